@@ -1,0 +1,324 @@
+#define TINYGLTF_IMPLEMENTATION
+#include "gltf_writer.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+namespace tl::content {
+
+void Shape::append(const Shape& o) {
+  uint32_t base = uint32_t(positions.size());
+  positions.insert(positions.end(), o.positions.begin(), o.positions.end());
+  normals.insert(normals.end(), o.normals.begin(), o.normals.end());
+  uvs.insert(uvs.end(), o.uvs.begin(), o.uvs.end());
+  for (uint32_t i : o.indices) indices.push_back(base + i);
+}
+
+namespace {
+
+// One planar face: origin corner, two edge vectors (u, v), normal = u x v.
+void face(Shape& s, glm::vec3 origin, glm::vec3 u, glm::vec3 v, glm::vec2 uvSize) {
+  uint32_t base = uint32_t(s.positions.size());
+  glm::vec3 n = glm::normalize(glm::cross(u, v));
+  const glm::vec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (auto c : corners) {
+    s.positions.push_back(origin + u * c.x + v * c.y);
+    s.normals.push_back(n);
+    s.uvs.push_back(c * uvSize);
+  }
+  for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) s.indices.push_back(base + i);
+}
+
+}  // namespace
+
+Shape box(glm::vec3 size, float uvScale) {
+  Shape s;
+  glm::vec3 h = size * 0.5f;
+  glm::vec3 X(size.x, 0, 0), Y(0, size.y, 0), Z(0, 0, size.z);
+  auto uv = [&](float a, float b) { return glm::vec2(a, b) * uvScale; };
+  face(s, {-h.x, -h.y, h.z}, X, Y, uv(size.x, size.y));    // +Z
+  face(s, {h.x, -h.y, -h.z}, -X, Y, uv(size.x, size.y));   // -Z
+  face(s, {h.x, -h.y, h.z}, -Z, Y, uv(size.z, size.y));    // +X
+  face(s, {-h.x, -h.y, -h.z}, Z, Y, uv(size.z, size.y));   // -X
+  face(s, {-h.x, h.y, h.z}, X, -Z, uv(size.x, size.z));    // +Y
+  face(s, {-h.x, -h.y, -h.z}, X, Z, uv(size.x, size.z));   // -Y
+  return s;
+}
+
+Shape quad(float width, float depth, float uvScale) {
+  Shape s;
+  face(s, {-width / 2, 0, depth / 2}, {width, 0, 0}, {0, 0, -depth}, glm::vec2(width, depth) * uvScale);
+  return s;
+}
+
+Shape cylinder(float radius, float height, int segments) {
+  Shape s;
+  const float twoPi = 6.28318530718f;
+  for (int i = 0; i <= segments; ++i) {
+    float a = twoPi * float(i) / float(segments);
+    glm::vec3 n(std::cos(a), 0.0f, -std::sin(a));
+    for (int k = 0; k < 2; ++k) {
+      s.positions.push_back(n * radius + glm::vec3(0, k * height, 0));
+      s.normals.push_back(n);
+      s.uvs.push_back({float(i) / float(segments) * 2.0f, float(k) * height});
+    }
+  }
+  for (int i = 0; i < segments; ++i) {
+    uint32_t a = uint32_t(2 * i), b = a + 2;
+    for (uint32_t idx : {a, b, b + 1, a, b + 1, a + 1}) s.indices.push_back(idx);
+  }
+  // Caps.
+  for (int k = 0; k < 2; ++k) {
+    uint32_t center = uint32_t(s.positions.size());
+    glm::vec3 n(0, k ? 1.0f : -1.0f, 0);
+    s.positions.push_back({0, k * height, 0});
+    s.normals.push_back(n);
+    s.uvs.push_back({0.5f, 0.5f});
+    for (int i = 0; i <= segments; ++i) {
+      float a = twoPi * float(i) / float(segments);
+      s.positions.push_back({std::cos(a) * radius, k * height, -std::sin(a) * radius});
+      s.normals.push_back(n);
+      s.uvs.push_back({0.5f + 0.5f * std::cos(a), 0.5f + 0.5f * std::sin(a)});
+    }
+    for (int i = 0; i < segments; ++i) {
+      uint32_t a = center + 1 + uint32_t(i), b = a + 1;
+      if (k) s.indices.insert(s.indices.end(), {center, a, b});
+      else s.indices.insert(s.indices.end(), {center, b, a});
+    }
+  }
+  return s;
+}
+
+Shape sphere(float radius, int segments, int rings) {
+  Shape s;
+  const float pi = 3.14159265359f;
+  for (int r = 0; r <= rings; ++r) {
+    float theta = pi * float(r) / float(rings);
+    for (int i = 0; i <= segments; ++i) {
+      float phi = 2.0f * pi * float(i) / float(segments);
+      glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
+      s.positions.push_back(n * radius);
+      s.normals.push_back(n);
+      s.uvs.push_back({float(i) / float(segments), float(r) / float(rings)});
+    }
+  }
+  for (int r = 0; r < rings; ++r)
+    for (int i = 0; i < segments; ++i) {
+      uint32_t a = uint32_t(r * (segments + 1) + i), b = a + uint32_t(segments + 1);
+      if (r != 0) s.indices.insert(s.indices.end(), {a, b, a + 1});
+      if (r != rings - 1) s.indices.insert(s.indices.end(), {a + 1, b, b + 1});
+    }
+  return s;
+}
+
+Shape torus(float major, float minor, int segments, int sides) {
+  Shape s;
+  const float twoPi = 6.28318530718f;
+  for (int i = 0; i <= segments; ++i) {
+    float u = twoPi * float(i) / float(segments);
+    glm::vec3 dir(std::cos(u), 0.0f, -std::sin(u));
+    for (int j = 0; j <= sides; ++j) {
+      float v = twoPi * float(j) / float(sides);
+      glm::vec3 n = dir * std::cos(v) + glm::vec3(0, std::sin(v), 0);
+      s.positions.push_back(dir * major + n * minor);
+      s.normals.push_back(n);
+      s.uvs.push_back({float(i) / float(segments), float(j) / float(sides)});
+    }
+  }
+  for (int i = 0; i < segments; ++i)
+    for (int j = 0; j < sides; ++j) {
+      uint32_t a = uint32_t(i * (sides + 1) + j), b = a + uint32_t(sides + 1);
+      s.indices.insert(s.indices.end(), {a, b, b + 1, a, b + 1, a + 1});
+    }
+  return s;
+}
+
+Shape transformed(const Shape& s, const glm::mat4& m) {
+  Shape out = s;
+  glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(m)));
+  for (auto& p : out.positions) p = glm::vec3(m * glm::vec4(p, 1.0f));
+  for (auto& n : out.normals) n = glm::normalize(nm * n);
+  return out;
+}
+
+SceneWriter::SceneWriter(std::string name) : name_(std::move(name)) {
+  model_.asset.version = "2.0";
+  model_.asset.generator = "Twinlight content generator";
+}
+
+int SceneWriter::accessor(const void* data, size_t bytes, size_t count, int componentType, int type, int target,
+                          const std::vector<double>& min, const std::vector<double>& max) {
+  while (bin_.size() % 4) bin_.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = bin_.size();
+  view.byteLength = bytes;
+  view.target = target;
+  const auto* p = static_cast<const unsigned char*>(data);
+  bin_.insert(bin_.end(), p, p + bytes);
+  model_.bufferViews.push_back(view);
+  tinygltf::Accessor a;
+  a.bufferView = int(model_.bufferViews.size() - 1);
+  a.componentType = componentType;
+  a.count = count;
+  a.type = type;
+  a.minValues = min;
+  a.maxValues = max;
+  model_.accessors.push_back(a);
+  return int(model_.accessors.size() - 1);
+}
+
+int SceneWriter::material(const MaterialSpec& spec) {
+  tinygltf::Material m;
+  m.name = spec.name;
+  m.pbrMetallicRoughness.baseColorFactor = {spec.baseColor.r, spec.baseColor.g, spec.baseColor.b, 1.0};
+  m.pbrMetallicRoughness.metallicFactor = spec.metallic;
+  m.pbrMetallicRoughness.roughnessFactor = spec.roughness;
+  if (glm::length(spec.emissive) > 0.0f) {
+    m.emissiveFactor = {spec.emissive.r, spec.emissive.g, spec.emissive.b};
+    if (spec.emissiveStrength != 1.0f) {
+      tinygltf::Value::Object ext;
+      ext["emissiveStrength"] = tinygltf::Value(double(spec.emissiveStrength));
+      m.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(ext);
+      if (std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), "KHR_materials_emissive_strength") ==
+          model_.extensionsUsed.end())
+        model_.extensionsUsed.push_back("KHR_materials_emissive_strength");
+    }
+  }
+  if (!spec.baseColorTexture.empty()) {
+    tinygltf::Image img;
+    img.uri = spec.baseColorTexture;
+    img.name = std::filesystem::path(spec.baseColorTexture).stem().string();
+    model_.images.push_back(img);
+    if (model_.samplers.empty()) {
+      tinygltf::Sampler s;
+      s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+      s.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+      model_.samplers.push_back(s);
+    }
+    tinygltf::Texture t;
+    t.source = int(model_.images.size() - 1);
+    t.sampler = 0;
+    model_.textures.push_back(t);
+    m.pbrMetallicRoughness.baseColorTexture.index = int(model_.textures.size() - 1);
+  }
+  model_.materials.push_back(m);
+  return int(model_.materials.size() - 1);
+}
+
+int SceneWriter::mesh(const std::string& name, const Shape& shape, int material) {
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (auto& p : shape.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.material = material;
+  prim.attributes["POSITION"] = accessor(shape.positions.data(), shape.positions.size() * 12, shape.positions.size(),
+                                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER,
+                                         {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
+  prim.attributes["NORMAL"] = accessor(shape.normals.data(), shape.normals.size() * 12, shape.normals.size(),
+                                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER);
+  prim.attributes["TEXCOORD_0"] = accessor(shape.uvs.data(), shape.uvs.size() * 8, shape.uvs.size(),
+                                           TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, TINYGLTF_TARGET_ARRAY_BUFFER);
+  prim.indices = accessor(shape.indices.data(), shape.indices.size() * 4, shape.indices.size(),
+                          TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  tinygltf::Mesh m;
+  m.name = name;
+  m.primitives.push_back(prim);
+  model_.meshes.push_back(m);
+  return int(model_.meshes.size() - 1);
+}
+
+void SceneWriter::node(const std::string& name, int mesh, glm::vec3 t, glm::vec3 euler, glm::vec3 scale) {
+  tinygltf::Node n;
+  n.name = name;
+  n.mesh = mesh;
+  if (t != glm::vec3(0.0f)) n.translation = {t.x, t.y, t.z};
+  if (euler != glm::vec3(0.0f)) {
+    glm::quat q = glm::quat(glm::radians(euler));
+    n.rotation = {q.x, q.y, q.z, q.w};
+  }
+  if (scale != glm::vec3(1.0f)) n.scale = {scale.x, scale.y, scale.z};
+  model_.nodes.push_back(n);
+  roots_.push_back(int(model_.nodes.size() - 1));
+}
+
+void SceneWriter::camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees) {
+  tinygltf::Camera c;
+  c.name = name;
+  c.type = "perspective";
+  c.perspective.yfov = glm::radians(yfovDegrees);
+  c.perspective.znear = 0.05;
+  c.perspective.aspectRatio = 16.0 / 9.0;
+  model_.cameras.push_back(c);
+  // glTF cameras look down -Z with +Y up.
+  glm::mat4 view = glm::lookAt(from, to, glm::vec3(0, 1, 0));
+  glm::quat q = glm::quat_cast(glm::inverse(glm::mat3(view)));
+  tinygltf::Node n;
+  n.name = name;
+  n.camera = int(model_.cameras.size() - 1);
+  n.translation = {from.x, from.y, from.z};
+  n.rotation = {q.x, q.y, q.z, q.w};
+  model_.nodes.push_back(n);
+  roots_.push_back(int(model_.nodes.size() - 1));
+}
+
+void SceneWriter::sun(glm::vec3 travel, float irradiance, glm::vec3 color) {
+  tinygltf::Light l;
+  l.name = "sun";
+  l.type = "directional";
+  l.color = {color.r, color.g, color.b};
+  l.intensity = irradiance;
+  model_.lights.push_back(l);
+  if (std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), "KHR_lights_punctual") == model_.extensionsUsed.end())
+    model_.extensionsUsed.push_back("KHR_lights_punctual");
+  // Directional lights shine down their node's -Z.
+  glm::vec3 d = glm::normalize(travel);
+  glm::vec3 up = std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  glm::quat q = glm::quat_cast(glm::inverse(glm::mat3(glm::lookAt(glm::vec3(0.0f), d, up))));
+  tinygltf::Node n;
+  n.name = "sun";
+  n.rotation = {q.x, q.y, q.z, q.w};
+  tinygltf::Value::Object ext;
+  ext["light"] = tinygltf::Value(int(model_.lights.size() - 1));
+  n.extensions["KHR_lights_punctual"] = tinygltf::Value(ext);
+  model_.nodes.push_back(n);
+  roots_.push_back(int(model_.nodes.size() - 1));
+}
+
+void SceneWriter::sky(glm::vec3 radiance) {
+  tinygltf::Value::Array a{tinygltf::Value(double(radiance.r)), tinygltf::Value(double(radiance.g)),
+                           tinygltf::Value(double(radiance.b))};
+  tinygltf::Value::Object t;
+  t["sky_radiance"] = tinygltf::Value(a);
+  extras_["twinlight"] = tinygltf::Value(t);
+}
+
+void SceneWriter::write(const std::filesystem::path& dir) {
+  tinygltf::Buffer buffer;
+  buffer.uri = name_ + ".bin";
+  buffer.data = bin_;
+  model_.buffers = {buffer};
+  tinygltf::Scene scene;
+  scene.name = name_;
+  scene.nodes = roots_;
+  if (!extras_.empty()) scene.extras = tinygltf::Value(extras_);
+  model_.scenes = {scene};
+  model_.defaultScene = 0;
+  tinygltf::TinyGLTF writer;
+  // Images are written by the generator itself (OpenImageIO); tinygltf only records URIs.
+  writer.SetImageWriter(
+      [](const std::string*, const std::string*, const tinygltf::Image* image, bool, std::string* outUri, void*) {
+        *outUri = image->uri;
+        return true;
+      },
+      nullptr);
+  auto path = dir / (name_ + ".gltf");
+  if (!writer.WriteGltfSceneToFile(&model_, path.string(), false, false, true, false))
+    throw std::runtime_error("cannot write " + path.string());
+}
+
+}  // namespace tl::content

@@ -1,0 +1,68 @@
+// A small builder over tinygltf for the project's own scenes: meshes from shapes,
+// materials, nodes, cameras, the sun and the sky, written as .gltf + .bin. Output is
+// deterministic byte for byte (no timestamps, fixed ordering).
+#pragma once
+
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_INCLUDE_STB_IMAGE
+#define TINYGLTF_NO_INCLUDE_STB_IMAGE_WRITE
+#include <tiny_gltf.h>
+
+#include <glm/glm.hpp>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tl::content {
+
+struct Shape {
+  std::vector<glm::vec3> positions, normals;
+  std::vector<glm::vec2> uvs;
+  std::vector<uint32_t> indices;
+  void append(const Shape& other);
+};
+
+// Shapes in metres, centred as documented per function.
+Shape box(glm::vec3 size, float uvScale = 1.0f);                // centred on the origin
+Shape quad(float width, float depth, float uvScale = 1.0f);     // in XZ, facing +Y
+Shape cylinder(float radius, float height, int segments);       // base at y = 0
+Shape sphere(float radius, int segments, int rings);            // centred
+Shape torus(float major, float minor, int segments, int sides); // in XZ, centred
+Shape transformed(const Shape& s, const glm::mat4& m);
+
+struct MaterialSpec {
+  std::string name;
+  glm::vec3 baseColor{0.8f};
+  float metallic = 0.0f;
+  float roughness = 0.8f;
+  glm::vec3 emissive{0.0f};
+  float emissiveStrength = 1.0f;
+  std::string baseColorTexture;  // uri relative to the .gltf
+};
+
+class SceneWriter {
+ public:
+  explicit SceneWriter(std::string name);
+  int material(const MaterialSpec& spec);
+  int mesh(const std::string& name, const Shape& shape, int material);
+  void node(const std::string& name, int mesh, glm::vec3 translation, glm::vec3 eulerDegrees = glm::vec3(0.0f),
+            glm::vec3 scale = glm::vec3(1.0f));
+  void camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees);
+  void sun(glm::vec3 travelDirection, float irradiance, glm::vec3 color = glm::vec3(1.0f));
+  void sky(glm::vec3 radiance);
+  void write(const std::filesystem::path& dir);
+
+ private:
+  int accessor(const void* data, size_t bytes, size_t count, int componentType, int type, int target,
+               const std::vector<double>& min = {}, const std::vector<double>& max = {});
+  std::string name_;
+  tinygltf::Model model_;
+  std::vector<unsigned char> bin_;
+  std::vector<int> roots_;
+  tinygltf::Value::Object extras_;
+};
+
+}  // namespace tl::content

@@ -1,0 +1,138 @@
+// The project's own scenes (units: metres, +Y up). Each one exists to make a lighting
+// question measurable; content/README.md says which. Usage: tl_content_gen <content-dir>
+#include "gltf_writer.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace tl::content {
+namespace {
+
+void writeChecker(const std::filesystem::path& file) {
+  const int size = 64, cells = 8;
+  std::vector<unsigned char> px(size * size * 3);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      bool light = ((x * cells / size) + (y * cells / size)) % 2 == 0;
+      unsigned char v = light ? 220 : 45;
+      for (int c = 0; c < 3; ++c) px[(y * size + x) * 3 + c] = v;
+    }
+  std::filesystem::create_directories(file.parent_path());
+  auto out = OIIO::ImageOutput::create(file.string());
+  OIIO::ImageSpec spec(size, size, 3, OIIO::TypeDesc::UINT8);
+  if (!out || !out->open(file.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, px.data()) || !out->close())
+    throw std::runtime_error("cannot write " + file.string());
+}
+
+// A box-shaped wall piece as its own node: boxes have real thickness, so light does not
+// leak through the seams the way it does through single-sided quads.
+void wall(SceneWriter& w, const std::string& name, int material, glm::vec3 center, glm::vec3 size) {
+  w.node(name, w.mesh(name, box(size, 0.5f), material), center);
+}
+
+void atrium(const std::filesystem::path& dir) {
+  SceneWriter w("atrium");
+  int floorMat = w.material({"stone_floor", {0.55f, 0.53f, 0.50f}, 0.0f, 0.85f});
+  int red = w.material({"plaster_terracotta", {0.62f, 0.22f, 0.14f}, 0.0f, 0.9f});
+  int ochre = w.material({"plaster_ochre", {0.76f, 0.56f, 0.22f}, 0.0f, 0.9f});
+  int teal = w.material({"plaster_teal", {0.14f, 0.44f, 0.44f}, 0.0f, 0.9f});
+  int white = w.material({"plaster_white", {0.80f, 0.79f, 0.76f}, 0.0f, 0.9f});
+  int stone = w.material({"column_stone", {0.70f, 0.68f, 0.64f}, 0.0f, 0.7f});
+  int gold = w.material({"polished_gold", {1.00f, 0.78f, 0.34f}, 1.0f, 0.25f});
+  int checker = w.material({"checker_textured", {1.0f, 1.0f, 1.0f}, 0.0f, 0.6f, {}, 1.0f, "textures/checker.png"});
+
+  wall(w, "courtyard_floor", floorMat, {0.0f, -0.1f, 0.0f}, {25.0f, 0.2f, 25.0f});
+  wall(w, "wall_north_terracotta", red, {0.0f, 3.0f, -12.2f}, {24.8f, 6.0f, 0.4f});
+  wall(w, "wall_west_ochre", ochre, {-12.2f, 3.0f, 0.0f}, {0.4f, 6.0f, 24.0f});
+  wall(w, "wall_east_teal", teal, {12.2f, 3.0f, 0.0f}, {0.4f, 6.0f, 24.0f});
+
+  // The interior room: 6 x 3.5 x 6 m inside a 0.25 m shell, lit only through a doorway in
+  // its south wall, which faces the sun.
+  const float t = 0.25f, h = 3.5f;
+  wall(w, "room_wall_north", white, {5.0f, h / 2, -10.0f + t / 2}, {6.0f, h, t});
+  wall(w, "room_wall_east", white, {8.0f - t / 2, h / 2, -7.0f}, {t, h, 6.0f});
+  wall(w, "room_wall_west", white, {2.0f + t / 2, h / 2, -7.0f}, {t, h, 6.0f});
+  wall(w, "room_wall_south_left", white, {3.1f, h / 2, -4.0f - t / 2}, {2.2f, h, t});
+  wall(w, "room_wall_south_right", white, {6.9f, h / 2, -4.0f - t / 2}, {2.2f, h, t});
+  wall(w, "room_door_lintel", white, {5.0f, 2.95f, -4.0f - t / 2}, {1.6f, 1.1f, t});
+  wall(w, "room_ceiling", white, {5.0f, h + t / 2, -7.0f}, {6.0f, t, 6.0f});
+
+  int columnMesh = w.mesh("column", cylinder(0.3f, 5.5f, 24), stone);
+  for (int i = 0; i < 4; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "column_%02d", i + 1);
+    w.node(name, columnMesh, {-9.0f + 2.5f * float(i), 0.0f, -6.0f});
+  }
+  w.node("metal_sphere", w.mesh("sphere", sphere(1.0f, 48, 24), gold), {-3.0f, 1.0f, 1.0f});
+  w.node("checker_box", w.mesh("checker_cube", box({1.2f, 1.2f, 1.2f}, 1.0f / 1.2f), checker), {-8.0f, 0.6f, 3.0f},
+         {0.0f, 25.0f, 0.0f});
+
+  w.camera("courtyard_view", {0.0f, 3.5f, 13.0f}, {1.5f, 1.2f, -6.0f}, 55.0f);
+  w.sun({0.25f, -0.55f, -0.8f}, 20.0f);
+  w.sky({0.6f, 0.75f, 1.0f});
+  writeChecker(dir / "textures" / "checker.png");
+  w.write(dir);
+}
+
+void cornell(const std::filesystem::path& dir) {
+  SceneWriter w("cornell");
+  int white = w.material({"cornell_white", {0.73f, 0.73f, 0.73f}, 0.0f, 1.0f});
+  int red = w.material({"cornell_red", {0.63f, 0.065f, 0.05f}, 0.0f, 1.0f});
+  int green = w.material({"cornell_green", {0.14f, 0.45f, 0.091f}, 0.0f, 1.0f});
+  int light = w.material({"ceiling_light", {0.78f, 0.78f, 0.78f}, 0.0f, 1.0f, {1.0f, 0.85f, 0.6f}, 15.0f});
+
+  // 2 x 2 x 2 m, open towards +Z; each wall a quad facing into the box.
+  Shape panel = quad(2.0f, 2.0f);
+  w.node("floor", w.mesh("floor", panel, white), {0.0f, 0.0f, 0.0f});
+  w.node("ceiling", w.mesh("ceiling", panel, white), {0.0f, 2.0f, 0.0f}, {180.0f, 0.0f, 0.0f});
+  w.node("back_wall", w.mesh("back_wall", panel, white), {0.0f, 1.0f, -1.0f}, {90.0f, 0.0f, 0.0f});
+  w.node("left_wall_red", w.mesh("left_wall", panel, red), {-1.0f, 1.0f, 0.0f}, {0.0f, 0.0f, -90.0f});
+  w.node("right_wall_green", w.mesh("right_wall", panel, green), {1.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 90.0f});
+  w.node("light_quad", w.mesh("light", quad(0.5f, 0.5f), light), {0.0f, 1.99f, 0.0f}, {180.0f, 0.0f, 0.0f});
+  w.node("tall_box", w.mesh("tall_box", box({0.6f, 1.2f, 0.6f}), white), {-0.35f, 0.6f, -0.3f}, {0.0f, 18.0f, 0.0f});
+  w.node("short_box", w.mesh("short_box", box({0.6f, 0.6f, 0.6f}), white), {0.35f, 0.3f, 0.35f}, {0.0f, -17.0f, 0.0f});
+  w.camera("front", {0.0f, 1.0f, 3.9f}, {0.0f, 1.0f, 0.0f}, 38.6f);
+  w.sky({0.0f, 0.0f, 0.0f});
+  w.write(dir);
+}
+
+void furnace(const std::filesystem::path& dir) {
+  SceneWriter w("furnace");
+  int grey = w.material({"furnace_grey", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  w.node("sphere", w.mesh("sphere", sphere(1.0f, 64, 32), grey), {0.0f, 0.0f, 0.0f});
+  w.camera("front", {0.0f, 0.0f, 4.0f}, {0.0f, 0.0f, 0.0f}, 40.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
+void plane(const std::filesystem::path& dir) {
+  SceneWriter w("plane");
+  int grey = w.material({"ground_grey", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  w.node("ground", w.mesh("ground", quad(100.0f, 100.0f, 0.5f), grey), {0.0f, 0.0f, 0.0f});
+  w.camera("down45", {0.0f, 3.0f, 3.0f}, {0.0f, 0.0f, 0.0f}, 60.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
+}  // namespace
+}  // namespace tl::content
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: tl_content_gen <content-dir>\n");
+    return 2;
+  }
+  try {
+    std::filesystem::path dir = argv[1];
+    tl::content::atrium(dir);
+    tl::content::cornell(dir);
+    tl::content::furnace(dir);
+    tl::content::plane(dir);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tl_content_gen: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

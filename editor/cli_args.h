@@ -1,0 +1,29 @@
+// Parsing and applying the command line's view and light options.
+#pragma once
+
+#include "session/session.h"
+
+#include <optional>
+#include <string>
+#include <utility>
+
+struct ViewArgs {
+  std::optional<size_t> camera;
+  std::string lookFrom, lookAt;
+  std::optional<float> fovDegrees;
+};
+
+struct LightArgs {
+  std::string sunDir, sun, sky;
+  std::optional<float> exposureEv;
+};
+
+// "640x360" -> {640, 360}; throws SessionError with the offending text.
+std::pair<uint32_t, uint32_t> parseSize(const std::string& text);
+// "x,y,z" -> vector; throws SessionError naming `what`.
+glm::dvec3 parseVec3(const std::string& text, const char* what);
+// "E" or "r,g,b" -> colour; throws SessionError naming `what`.
+glm::vec3 parseColor(const std::string& text, const char* what);
+
+void applyView(tl::session::Session& session, const ViewArgs& args);
+void applyLight(tl::session::Session& session, const LightArgs& args);

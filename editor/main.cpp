@@ -1,0 +1,147 @@
+// `twinlight`: one binary. Without a subcommand it shows the default (or given) scene;
+// the headless subcommands work on machines without a display. Errors are one line on
+// stderr and a non-zero exit: 1 for a failure at run time, 2 for bad usage.
+#include "cli_args.h"
+#include "session/session.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace {
+
+using tl::session::Session;
+
+std::filesystem::path contentRoot() {
+  if (const char* env = std::getenv("TWINLIGHT_ROOT"); env && *env) return std::filesystem::path(env) / "content";
+  return std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "content";
+}
+
+std::filesystem::path defaultScene() { return contentRoot() / "atrium.gltf"; }
+
+struct RenderOptions {
+  std::string scene;
+  std::string path = "direct";
+  std::string size = "640x360";
+  uint32_t frames = 1;
+  std::vector<std::string> outputs;
+  ViewArgs view;
+  LightArgs light;
+  std::string dumpGraph;
+  bool listBuffers = false;
+};
+
+void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
+  cmd.add_option("--camera", o.view.camera, "use the scene's glTF camera N (0-based)");
+  cmd.add_option("--look-from", o.view.lookFrom, "camera position x,y,z (metres, y up)");
+  cmd.add_option("--look-at", o.view.lookAt, "point the camera looks at, x,y,z");
+  cmd.add_option("--fov", o.view.fovDegrees, "vertical field of view in degrees");
+  cmd.add_option("--sun-dir", o.light.sunDir, "direction sunlight travels, x,y,z");
+  cmd.add_option("--sun", o.light.sun, "sun irradiance E (W/m^2-like; white Lambertian facing it shows E/pi), E or r,g,b");
+  cmd.add_option("--sky", o.light.sky, "uniform sky radiance L, L or r,g,b");
+  cmd.add_option("--exposure", o.light.exposureEv, "exposure in EV (default: from the sun and sky)");
+}
+
+int runRender(const RenderOptions& o) {
+  tl::gpu::DeviceOptions deviceOptions;
+  Session session(deviceOptions);
+  session.loadScene(o.scene.empty() ? defaultScene() : std::filesystem::path(o.scene));
+  session.setPath(o.path);
+  auto [w, h] = parseSize(o.size);
+  session.setSize(w, h);
+  applyView(session, o.view);
+  applyLight(session, o.light);
+  if (o.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
+
+  auto start = std::chrono::steady_clock::now();
+  session.renderFrames(o.frames);
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  for (const auto& out : o.outputs) {
+    session.saveImage(out);
+    fmt::print("wrote {}\n", std::filesystem::absolute(out).string());
+  }
+  double gpuMs = 0.0;
+  for (auto& t : session.timings()) gpuMs += t.gpuMs;
+  fmt::print("rendered {} frame(s) of {} with `{}` at {}x{} on {} in {:.2f} s (last frame GPU {:.1f} ms)\n", o.frames,
+             session.scene().name, session.path(), w, h, session.device().name(), seconds, gpuMs);
+  if (!o.dumpGraph.empty()) {
+    if (o.dumpGraph == "-") {
+      fmt::print("{}", session.graphDump());
+    } else {
+      std::ofstream(o.dumpGraph) << session.graphDump();
+      fmt::print("wrote {}\n", o.dumpGraph);
+    }
+  }
+  if (session.validationErrors() > 0) {
+    fmt::print(stderr, "twinlight: error: {} Vulkan validation error(s)\n", session.validationErrors());
+    return 1;
+  }
+  return 0;
+}
+
+int runInfo() {
+  Session session;
+  auto& d = session.device();
+  fmt::print("device: {}\ndriver: {}\nvulkan: {}.{}.{}\n", d.name(), d.driver(), VK_API_VERSION_MAJOR(d.apiVersion()),
+             VK_API_VERSION_MINOR(d.apiVersion()), VK_API_VERSION_PATCH(d.apiVersion()));
+  fmt::print("ray tracing: {}\n", d.rayTracing().pipeline ? (d.rayTracing().query ? "pipeline + query" : "pipeline")
+                                                          : "unavailable: " + d.rayTracing().unavailableReason);
+  fmt::print("lighting paths:\n");
+  for (auto& p : session.paths())
+    fmt::print("  {:10} {}{}\n", p.name, p.description, p.available ? "" : "  [unavailable: " + p.unavailableReason + "]");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  spdlog::set_level(std::getenv("TWINLIGHT_VERBOSE") ? spdlog::level::debug : spdlog::level::warn);
+  CLI::App app{"Twinlight: a lighting lab comparing ray-traced and legacy real-time lighting against a path tracer"};
+  app.require_subcommand(0, 1);
+  std::string sceneArg;
+  app.add_option("scene", sceneArg, "glTF scene to open (default: content/atrium.gltf)");
+
+  RenderOptions render;
+  auto* renderCmd = app.add_subcommand("render", "render a scene headless and save the image(s)");
+  renderCmd->add_option("--scene", render.scene, "glTF file (.gltf/.glb); default content/atrium.gltf");
+  renderCmd->add_option("--path", render.path, "lighting path: direct (more arrive with legacy, rt, reference)");
+  renderCmd->add_option("--size", render.size, "image size WxH")->capture_default_str();
+  renderCmd->add_option("--frames", render.frames, "frames to render (the last one is saved)")->capture_default_str();
+  renderCmd->add_option("--out", render.outputs,
+                        "output image(s): .exr = scene-linear radiance before exposure, .png = tonemapped display")
+      ->required();
+  renderCmd->add_option("--dump-graph", render.dumpGraph, "write the compiled render graph as text (- for stdout)");
+  addViewAndLightOptions(*renderCmd, render);
+
+  auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+
+  try {
+    if (*renderCmd) return runRender(render);
+    if (*infoCmd) return runInfo();
+    // No subcommand: the main job on the default (or given) scene. The interactive editor
+    // needs a display; without one the scene is rendered headless.
+    RenderOptions o;
+    o.scene = sceneArg;
+    std::filesystem::path stem = sceneArg.empty() ? defaultScene().stem() : std::filesystem::path(sceneArg).stem();
+    o.outputs = {(std::filesystem::path("out") / (stem.string() + ".png")).string(),
+                 (std::filesystem::path("out") / (stem.string() + ".exr")).string()};
+    fmt::print("no display editor in this build; rendering {} headless\n", stem.string());
+    return runRender(o);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "twinlight: error: {}\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,144 @@
+// The Vulkan device: instance, physical-device choice, logical device and queue, a timeline
+// of submissions, deferred destruction, validation-message accounting and debug names.
+// Everything above engine/gpu talks to Vulkan through this and the other gpu/ headers.
+#pragma once
+
+#include "gpu/check.h"
+
+#include <vulkan/vulkan_core.h>
+
+#include <atomic>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tl::gpu {
+
+struct DeviceOptions {
+  bool validation = false;  // also switched on by TWINLIGHT_VALIDATION=1
+  std::string preferredName;  // substring of the device name; TWINLIGHT_DEVICE overrides
+  std::vector<std::string> instanceExtensions;  // e.g. what GLFW needs for a surface
+  bool swapchain = false;                       // enable VK_KHR_swapchain on the device
+};
+
+// Extension entry points, loaded once.
+struct Extensions {
+  PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
+  PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
+  PFN_vkCmdBeginDebugUtilsLabelEXT cmdBeginLabel = nullptr;
+  PFN_vkCmdEndDebugUtilsLabelEXT cmdEndLabel = nullptr;
+  PFN_vkCreateAccelerationStructureKHR createAccelerationStructure = nullptr;
+  PFN_vkDestroyAccelerationStructureKHR destroyAccelerationStructure = nullptr;
+  PFN_vkGetAccelerationStructureBuildSizesKHR getAccelerationStructureBuildSizes = nullptr;
+  PFN_vkCmdBuildAccelerationStructuresKHR cmdBuildAccelerationStructures = nullptr;
+  PFN_vkGetAccelerationStructureDeviceAddressKHR getAccelerationStructureDeviceAddress = nullptr;
+  PFN_vkCmdWriteAccelerationStructuresPropertiesKHR cmdWriteAccelerationStructuresProperties = nullptr;
+  PFN_vkCmdCopyAccelerationStructureKHR cmdCopyAccelerationStructure = nullptr;
+  PFN_vkCreateRayTracingPipelinesKHR createRayTracingPipelines = nullptr;
+  PFN_vkGetRayTracingShaderGroupHandlesKHR getRayTracingShaderGroupHandles = nullptr;
+  PFN_vkCmdTraceRaysKHR cmdTraceRays = nullptr;
+};
+
+struct RayTracingSupport {
+  bool pipeline = false;  // VK_KHR_ray_tracing_pipeline + acceleration structures
+  bool query = false;     // VK_KHR_ray_query
+  std::string unavailableReason;  // why `pipeline` is false, for the UI and the CLI
+  VkPhysicalDeviceRayTracingPipelinePropertiesKHR pipelineProperties{};
+};
+
+class Device {
+ public:
+  explicit Device(const DeviceOptions& options = {});
+  ~Device();
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physical() const { return physical_; }
+  VkDevice handle() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  const std::string& name() const { return name_; }
+  const std::string& driver() const { return driver_; }
+  uint32_t apiVersion() const { return apiVersion_; }
+  const Extensions& ext() const { return ext_; }
+  const RayTracingSupport& rayTracing() const { return rayTracing_; }
+  const VkPhysicalDeviceLimits& limits() const { return limits_; }
+  bool validationEnabled() const { return validation_; }
+
+  // Validation errors reported by the layers since creation (warnings are only logged).
+  uint32_t validationErrorCount() const { return validationErrors_.load(); }
+  std::vector<std::string> validationMessages() const;
+
+  uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
+                          VkMemoryPropertyFlags preferred = 0) const;
+
+  // Submission timeline. Every submit signals the next value of one timeline semaphore.
+  VkCommandBuffer beginCommands();
+  uint64_t submit(VkCommandBuffer cmd, const std::vector<VkSemaphoreSubmitInfo>& waits = {},
+                  const std::vector<VkSemaphoreSubmitInfo>& signals = {});
+  void wait(uint64_t value);
+  void waitIdle();
+  uint64_t completedValue() const;
+  uint64_t lastSubmittedValue() const { return submitted_; }
+  // Records, submits and waits: for uploads and read-backs outside the frame.
+  void immediate(const std::function<void(VkCommandBuffer)>& record);
+
+  // Runs `destroy` once the GPU has finished every submission made so far (and the one
+  // being recorded). RAII objects call this from their destructors.
+  void destroyLater(std::function<void()> destroy);
+  void collectGarbage();
+
+  // VK_EXT_debug_utils names and labels; no-ops when the extension is absent.
+  void setName(VkObjectType type, uint64_t handle, std::string_view name) const;
+  void beginLabel(VkCommandBuffer cmd, std::string_view label) const;
+  void endLabel(VkCommandBuffer cmd) const;
+
+ private:
+  void createInstance(const DeviceOptions& options);
+  void choosePhysicalDevice(const DeviceOptions& options);
+  void createLogicalDevice(const DeviceOptions& options);
+  static VkBool32 VKAPI_PTR debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                          VkDebugUtilsMessageTypeFlagsEXT types,
+                                          const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+
+  struct CommandSlot {
+    VkCommandPool pool = VK_NULL_HANDLE;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    uint64_t value = 0;  // timeline value of its last submission
+    bool recording = false;
+  };
+  struct Garbage {
+    uint64_t after;
+    std::function<void()> destroy;
+  };
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  uint32_t queueFamily_ = 0;
+  VkSemaphore timeline_ = VK_NULL_HANDLE;
+  uint64_t submitted_ = 0;
+  std::string name_;
+  std::string driver_;
+  uint32_t apiVersion_ = 0;
+  bool validation_ = false;
+  bool debugUtils_ = false;
+  Extensions ext_;
+  RayTracingSupport rayTracing_;
+  VkPhysicalDeviceLimits limits_{};
+  VkPhysicalDeviceMemoryProperties memory_{};
+  std::deque<CommandSlot> commandSlots_;
+  std::deque<Garbage> garbage_;
+  std::atomic<uint32_t> validationErrors_{0};
+  mutable std::mutex messagesMutex_;
+  std::vector<std::string> messages_;
+};
+
+}  // namespace tl::gpu

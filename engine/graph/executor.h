@@ -1,0 +1,161 @@
+// Runs a compiled render graph on the device. The executor owns the cross-cutting work so
+// pass code never does it: physical images (transients placed in one aliased block,
+// persistent history kept across frames), barriers, debug labels and GPU timestamps named
+// after the pass, and read-back of any resource by name after the frame.
+#pragma once
+
+#include "gpu/pipeline.h"
+#include "gpu/resources.h"
+#include "gpu/timestamps.h"
+#include "graph/graph.h"
+
+#include <glm/glm.hpp>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tl::graph {
+
+struct Attachment {
+  std::string name;
+  std::optional<glm::vec4> clearColor;  // colour: clear to this, else load
+  std::optional<float> clearDepth;      // depth: clear to this, else load
+};
+
+// What a pass's execute function gets. Resource access is checked against what the pass
+// declared in setup: touching an undeclared resource throws with both names.
+class PassContext {
+ public:
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  gpu::Device& device;
+  uint64_t frameIndex = 0;
+
+  const gpu::Image& image(std::string_view name) const;
+  const gpu::Buffer& buffer(std::string_view name) const;
+  VkExtent3D extent(std::string_view name) const { return image(name).extent(); }
+  // True when a persistent resource holds last frame's contents (false after creation or resize).
+  bool historyValid(std::string_view name) const;
+
+  void beginRendering(const std::vector<Attachment>& colors, const std::optional<Attachment>& depth);
+  void endRendering();
+
+  void bind(const gpu::Pipeline& pipeline);
+  gpu::DescriptorWriter& descriptors() { return writer_; }
+  template <class T>
+  void pushConstants(const T& data) { pushConstantBytes(&data, sizeof(T)); }
+  void pushConstantBytes(const void* data, uint32_t bytes);
+  // Pushes the pending descriptors, then dispatches ceil(size / local) groups.
+  void dispatch(uint32_t width, uint32_t height, uint32_t depth = 1, uint32_t localX = 8, uint32_t localY = 8,
+                uint32_t localZ = 1);
+  void flushDescriptors();
+
+ private:
+  friend class Executor;
+  PassContext(gpu::Device& d, class Executor& e, const PassDecl& p, const CompiledPass& c)
+      : device(d), executor_(e), pass_(p), compiled_(c) {}
+  bool declares(std::string_view name) const;
+  Executor& executor_;
+  const PassDecl& pass_;
+  const CompiledPass& compiled_;
+  const gpu::Pipeline* bound_ = nullptr;
+  gpu::DescriptorWriter writer_;
+};
+
+struct PassTiming {
+  std::string pass;
+  double gpuMs = 0.0;
+};
+
+// One resource as the executor realised it, for the dump, the inspector and captures.
+struct PhysicalInfo {
+  std::string name;
+  ResourceDesc desc;
+  std::string writer;           // pass name, or "(imported)" / "(previous frame)"
+  uint32_t firstUse = kNone, lastUse = kNone;
+  bool persistent = false, imported = false, aliased = false;
+  VkDeviceSize offset = 0;      // in the transient block when aliased
+  VkDeviceSize bytes = 0;
+};
+
+struct Readback {
+  std::string name;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent3D extent{};
+  std::vector<uint8_t> bytes;   // tightly packed texels or buffer bytes
+  std::vector<float> texels() const;  // decoded, channels per texel from the format
+  uint32_t channels() const;
+};
+
+class Executor {
+ public:
+  explicit Executor(gpu::Device& device);
+  ~Executor();
+
+  // Resources owned outside the graph; bind before every execute.
+  void bindImportedImage(std::string_view name, gpu::Image& image, VkImageLayout currentLayout);
+  void bindImportedBuffer(std::string_view name, gpu::Buffer& buffer);
+
+  // Read-back requests for the next execute: names, or every resource of the frame.
+  void requestReadback(std::string_view name) { readbackNames_.insert(std::string(name)); }
+  void requestReadbackAll() { readbackAll_ = true; }
+
+  // Records and submits the frame, waits for it, then collects timings and read-backs.
+  void execute(const RenderGraph& graph, const CompiledGraph& compiled);
+
+  const std::vector<PassTiming>& timings() const { return timings_; }
+  const std::vector<PhysicalInfo>& resources() const { return physicalInfo_; }
+  const std::map<std::string, Readback>& readbacks() const { return readbacks_; }
+  const Readback& readback(std::string_view name) const;
+  VkDeviceSize transientBytes() const { return transientBlock_.size(); }
+  uint64_t frameIndex() const { return frame_; }
+  // Layout an imported image was left in by the frame (to hand it back to its owner).
+  VkImageLayout importedLayout(std::string_view name) const;
+  // Drops persistent history (e.g. a camera cut or a scene change).
+  void resetHistory();
+
+ private:
+  friend class PassContext;
+  struct Physical {
+    ResourceDesc desc;
+    gpu::Image ownedImage;
+    gpu::Buffer ownedBuffer;
+    gpu::Image* image = nullptr;
+    gpu::Buffer* buffer = nullptr;
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    bool historyValid = false;
+    enum class Kind : uint8_t { Transient, Persistent, Imported } kind = Kind::Transient;
+  };
+  Physical& find(std::string_view name);
+
+  void realise(const RenderGraph& graph, const CompiledGraph& compiled);
+  void placeBarriers(VkCommandBuffer cmd, const RenderGraph& graph, const CompiledPass& pass);
+  void copyForReadback(VkCommandBuffer cmd, const std::string& name, Physical& p, Usage usage, PassKind kind);
+
+  gpu::Device& device_;
+  gpu::TimestampPool timestamps_;
+  // By resource name. Transients are rebuilt when the graph's shape changes; persistent
+  // entries survive frames; imported entries point at images owned elsewhere.
+  std::map<std::string, Physical, std::less<>> physical_;
+  gpu::Memory transientBlock_;
+  std::string transientSignature_;
+  std::vector<PhysicalInfo> physicalInfo_;
+  std::vector<PassTiming> timings_;
+  std::set<std::string, std::less<>> readbackNames_;
+  bool readbackAll_ = false;
+  struct PendingReadback {
+    std::string name;
+    VkFormat format;
+    VkExtent3D extent;
+    gpu::Buffer staging;
+  };
+  std::vector<PendingReadback> pending_;
+  std::map<std::string, Readback> readbacks_;
+  uint64_t frame_ = 0;
+};
+
+}  // namespace tl::graph

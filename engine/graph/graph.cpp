@@ -1,0 +1,443 @@
+#include "graph/graph.h"
+
+#include "gpu/formats.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <queue>
+#include <set>
+
+namespace tl::graph {
+
+// ---- descriptions ------------------------------------------------------------------------
+
+ResourceDesc ResourceDesc::image2D(VkFormat f, uint32_t w, uint32_t h, std::string what, uint32_t mips) {
+  return {ResourceType::Image, f, {w, h, 1}, mips, 0, std::move(what)};
+}
+
+ResourceDesc ResourceDesc::image3D(VkFormat f, uint32_t w, uint32_t h, uint32_t d, std::string what, uint32_t mips) {
+  return {ResourceType::Image, f, {w, h, d}, mips, 0, std::move(what)};
+}
+
+ResourceDesc ResourceDesc::buffer(VkDeviceSize bytes, std::string what) {
+  return {ResourceType::Buffer, VK_FORMAT_UNDEFINED, {1, 1, 1}, 1, bytes, std::move(what)};
+}
+
+bool isWrite(Usage u) {
+  return u == Usage::StorageWrite || u == Usage::ColorAttachment || u == Usage::DepthAttachment ||
+         u == Usage::TransferDst;
+}
+
+const char* usageName(Usage u) {
+  switch (u) {
+    case Usage::Sampled: return "Sampled";
+    case Usage::StorageRead: return "StorageRead";
+    case Usage::DepthRead: return "DepthRead";
+    case Usage::TransferSrc: return "TransferSrc";
+    case Usage::VertexOrIndex: return "VertexOrIndex";
+    case Usage::StorageWrite: return "StorageWrite";
+    case Usage::ColorAttachment: return "ColorAttachment";
+    case Usage::DepthAttachment: return "DepthAttachment";
+    case Usage::TransferDst: return "TransferDst";
+  }
+  return "?";
+}
+
+std::string formatName(VkFormat format) {
+  auto fi = gpu::formatInfo(format);
+  return fi.bytes ? fi.name : fmt::format("VkFormat({})", int(format));
+}
+
+uint32_t formatBytesPerTexel(VkFormat format) { return gpu::formatInfo(format).bytes; }
+
+VkDeviceSize approximateBytes(const ResourceDesc& d) {
+  if (d.type == ResourceType::Buffer) return d.size;
+  VkDeviceSize total = 0;
+  uint32_t w = d.extent.width, h = d.extent.height, z = d.extent.depth;
+  for (uint32_t m = 0; m < std::max(1u, d.mipLevels); ++m) {
+    total += VkDeviceSize(w) * h * z * formatBytesPerTexel(d.format);
+    w = std::max(1u, w / 2), h = std::max(1u, h / 2), z = std::max(1u, z / 2);
+  }
+  return total;
+}
+
+// ---- declaration -------------------------------------------------------------------------
+
+void PassBuilder::create(std::string_view name, const ResourceDesc& desc, Usage usage) {
+  ResourceDecl r;
+  r.name = std::string(name);
+  r.desc = desc;
+  r.creator = pass_;
+  graph_.resources_.push_back(std::move(r));
+  write(name, usage);
+}
+
+void PassBuilder::read(std::string_view name, Usage usage) {
+  auto& p = graph_.passes_[pass_];
+  p.readNames.emplace_back(name);
+  p.readUsages.push_back(usage);
+}
+
+void PassBuilder::write(std::string_view name, Usage usage) {
+  auto& p = graph_.passes_[pass_];
+  p.writeNames.emplace_back(name);
+  p.writeUsages.push_back(usage);
+}
+
+void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
+
+void RenderGraph::declarePersistent(std::string_view name, const ResourceDesc& desc) {
+  ResourceDecl r;
+  r.name = std::string(name);
+  r.desc = desc;
+  r.persistent = true;
+  resources_.push_back(std::move(r));
+}
+
+void RenderGraph::declareImported(std::string_view name, const ResourceDesc& desc) {
+  ResourceDecl r;
+  r.name = std::string(name);
+  r.desc = desc;
+  r.imported = true;
+  resources_.push_back(std::move(r));
+}
+
+PassId RenderGraph::addPass(std::string_view name, PassKind kind, const std::function<void(PassBuilder&)>& setup,
+                            ExecuteFn execute) {
+  PassId id = PassId(passes_.size());
+  PassDecl p;
+  p.name = std::string(name);
+  p.kind = kind;
+  p.execute = std::move(execute);
+  passes_.push_back(std::move(p));
+  PassBuilder b(*this, id);
+  if (setup) setup(b);
+  return id;
+}
+
+void RenderGraph::markOutput(std::string_view name) {
+  if (std::find(outputs_.begin(), outputs_.end(), name) == outputs_.end()) outputs_.emplace_back(name);
+}
+
+std::optional<ResourceId> RenderGraph::find(std::string_view name) const {
+  for (ResourceId i = 0; i < resources_.size(); ++i)
+    if (resources_[i].name == name) return i;
+  return std::nullopt;
+}
+
+// ---- compile -----------------------------------------------------------------------------
+
+namespace {
+
+size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// Usages that share an image layout (see the executor's state table).
+int layoutClass(Usage u) {
+  switch (u) {
+    case Usage::StorageRead: case Usage::StorageWrite: return 1;  // GENERAL
+    case Usage::Sampled: return 2;                                // READ_ONLY_OPTIMAL
+    case Usage::DepthRead: return 3;
+    case Usage::TransferSrc: return 4;
+    case Usage::TransferDst: return 5;
+    case Usage::ColorAttachment: return 6;
+    case Usage::DepthAttachment: return 7;
+    case Usage::VertexOrIndex: return 8;
+  }
+  return 0;
+}
+
+std::string passList(const std::vector<PassDecl>& passes, const std::vector<PassId>& ids) {
+  std::string out;
+  for (PassId id : ids) out += (out.empty() ? "`" : ", `") + passes[id].name + "`";
+  return out;
+}
+
+}  // namespace
+
+CompiledGraph RenderGraph::compile() const {
+  const size_t nPasses = passes_.size(), nRes = resources_.size();
+
+  // 1. Names: unique resources, every access resolved, one writer per resource.
+  std::map<std::string, ResourceId, std::less<>> byName;
+  for (ResourceId i = 0; i < nRes; ++i) {
+    auto [it, fresh] = byName.emplace(resources_[i].name, i);
+    if (!fresh) {
+      const auto& first = resources_[it->second];
+      auto who = [&](const ResourceDecl& r) {
+        return r.creator != kNone ? fmt::format("pass `{}`", passes_[r.creator].name)
+                                  : std::string(r.persistent ? "a persistent declaration" : "an import");
+      };
+      throw GraphError(fmt::format("resource `{}` is declared twice: by {} and by {}", resources_[i].name, who(first),
+                                   who(resources_[i])));
+    }
+  }
+  auto resolve = [&](const std::string& name, const PassDecl& pass, const char* verb) -> ResourceId {
+    auto it = byName.find(name);
+    if (it != byName.end()) return it->second;
+    std::string suggestion;
+    size_t best = std::max<size_t>(3, name.size() / 3) + 1;
+    for (auto& [candidate, id] : byName) {
+      size_t d = editDistance(name, candidate);
+      if (d < best) best = d, suggestion = candidate;
+    }
+    throw GraphError(fmt::format("pass `{}` {} `{}`, which no pass writes and is not declared{}", pass.name, verb, name,
+                                 suggestion.empty() ? "" : fmt::format(" (did you mean `{}`?)", suggestion)));
+  };
+
+  CompiledGraph out;
+  out.resources.resize(nRes);
+  for (ResourceId i = 0; i < nRes; ++i) out.resources[i].id = i;
+  std::vector<std::vector<Access>> reads(nPasses), writes(nPasses);
+  for (PassId p = 0; p < nPasses; ++p) {
+    const auto& pass = passes_[p];
+    for (size_t i = 0; i < pass.readNames.size(); ++i)
+      reads[p].push_back({resolve(pass.readNames[i], pass, "reads"), pass.readUsages[i]});
+    for (size_t i = 0; i < pass.writeNames.size(); ++i) {
+      ResourceId r = resolve(pass.writeNames[i], pass, "writes");
+      writes[p].push_back({r, pass.writeUsages[i]});
+      auto& info = out.resources[r];
+      if (info.writer != kNone && info.writer != p)
+        throw GraphError(fmt::format("resource `{}` is written by both `{}` and `{}`", resources_[r].name,
+                                     passes_[info.writer].name, pass.name));
+      info.writer = p;
+    }
+  }
+  for (PassId p = 0; p < nPasses; ++p) {
+    for (auto& a : reads[p]) {
+      const auto& r = resources_[a.resource];
+      auto& info = out.resources[a.resource];
+      if (info.writer == kNone && !r.persistent && !r.imported)
+        throw GraphError(fmt::format("pass `{}` reads `{}`, which no pass writes", passes_[p].name, r.name));
+      if (std::find(info.readers.begin(), info.readers.end(), p) == info.readers.end()) info.readers.push_back(p);
+    }
+  }
+  for (auto& name : outputs_)
+    if (!byName.count(name)) throw GraphError(fmt::format("frame output `{}` is not a resource of the graph", name));
+
+  // 2. Dependencies. Transient and imported: writer before readers. Persistent: a reader
+  //    other than the writer sees last frame's contents, so it must run before the writer.
+  std::vector<std::set<PassId>> after(nPasses);  // edges p -> q: q runs after p
+  std::vector<size_t> indegree(nPasses, 0);
+  auto edge = [&](PassId from, PassId to) {
+    if (from != to && after[from].insert(to).second) ++indegree[to];
+  };
+  for (ResourceId r = 0; r < nRes; ++r) {
+    const auto& info = out.resources[r];
+    if (info.writer == kNone) continue;
+    for (PassId reader : info.readers) {
+      if (resources_[r].persistent) edge(reader, info.writer);
+      else edge(info.writer, reader);
+    }
+  }
+  // Kahn's algorithm, declaration order breaking ties.
+  std::priority_queue<PassId, std::vector<PassId>, std::greater<>> ready;
+  for (PassId p = 0; p < nPasses; ++p)
+    if (indegree[p] == 0) ready.push(p);
+  std::vector<PassId> sorted;
+  while (!ready.empty()) {
+    PassId p = ready.top();
+    ready.pop();
+    sorted.push_back(p);
+    for (PassId q : after[p])
+      if (--indegree[q] == 0) ready.push(q);
+  }
+  if (sorted.size() != nPasses) {
+    std::vector<PassId> stuck;
+    for (PassId p = 0; p < nPasses; ++p)
+      if (indegree[p] > 0) stuck.push_back(p);
+    throw GraphError(fmt::format("the passes {} depend on each other in a cycle", passList(passes_, stuck)));
+  }
+
+  // 3. Culling: keep what the frame exists for, then everything those passes read from.
+  std::vector<bool> keep(nPasses, false);
+  std::vector<PassId> work;
+  auto keepPass = [&](PassId p) {
+    if (!keep[p]) keep[p] = true, work.push_back(p);
+  };
+  for (PassId p = 0; p < nPasses; ++p) {
+    bool root = passes_[p].sideEffect;
+    for (auto& w : writes[p]) {
+      const auto& r = resources_[w.resource];
+      root |= r.persistent || r.imported ||
+              std::find(outputs_.begin(), outputs_.end(), r.name) != outputs_.end();
+    }
+    if (root) keepPass(p);
+  }
+  while (!work.empty()) {
+    PassId p = work.back();
+    work.pop_back();
+    for (auto& a : reads[p])
+      if (PassId w = out.resources[a.resource].writer; w != kNone) keepPass(w);
+  }
+
+  // 4. Order, barriers and lifetimes of the surviving passes.
+  struct Last {
+    Usage usage;
+    PassKind kind;
+  };
+  std::vector<std::optional<Last>> last(nRes);
+  for (PassId p : sorted) {
+    if (!keep[p]) {
+      out.culled.push_back(p);
+      continue;
+    }
+    const uint32_t index = uint32_t(out.order.size());
+    CompiledPass cp;
+    cp.pass = p;
+    cp.reads = reads[p];
+    cp.writes = writes[p];
+    // One state per resource per pass: a write wins over a read of the same resource
+    // (GENERAL layout and read|write access cover read-modify-write).
+    std::map<ResourceId, Usage> wanted;
+    for (auto& a : cp.reads) wanted.emplace(a.resource, a.usage);
+    for (auto& a : cp.writes) wanted[a.resource] = a.usage;
+    for (auto& [r, usage] : wanted) {
+      auto& info = out.resources[r];
+      if (info.firstUse == kNone) info.firstUse = index;
+      info.lastUse = index;
+      const auto& prev = last[r];
+      // Hazards need a barrier: anything after a write, and a write after reads. Two reads
+      // need one only for an image whose layout differs between the usages. A first use
+      // needs one for images (their layout); host-written buffers are visible at submit.
+      const bool image = resources_[r].desc.type == ResourceType::Image;
+      bool needed = prev ? isWrite(usage) || isWrite(prev->usage) || (image && layoutClass(prev->usage) != layoutClass(usage))
+                         : image || isWrite(usage);
+      if (needed) {
+        Barrier b;
+        b.resource = r;
+        if (prev) b.before = prev->usage, b.beforeKind = prev->kind;
+        b.after = usage;
+        b.afterKind = passes_[p].kind;
+        cp.barriers.push_back(b);
+      }
+      last[r] = Last{usage, passes_[p].kind};
+    }
+    out.order.push_back(std::move(cp));
+  }
+  for (auto& info : out.resources) info.culled = info.firstUse == kNone;
+  return out;
+}
+
+// ---- aliasing ----------------------------------------------------------------------------
+
+AliasPlan planAliasing(const std::vector<AliasRequest>& requests) {
+  AliasPlan plan;
+  plan.offsets.assign(requests.size(), 0);
+  std::vector<size_t> order(requests.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return requests[a].size > requests[b].size; });
+
+  std::vector<size_t> placed;
+  for (size_t i : order) {
+    const auto& r = requests[i];
+    plan.unaliasedSize += r.size;
+    if (r.size == 0) continue;
+    // Byte ranges already taken by requests alive at the same time, by start.
+    std::vector<std::pair<VkDeviceSize, VkDeviceSize>> busy;
+    for (size_t j : placed) {
+      const auto& o = requests[j];
+      if (o.firstPass <= r.lastPass && r.firstPass <= o.lastPass) busy.push_back({plan.offsets[j], plan.offsets[j] + o.size});
+    }
+    std::sort(busy.begin(), busy.end());
+    const VkDeviceSize align = std::max<VkDeviceSize>(1, r.alignment);
+    VkDeviceSize offset = 0;
+    for (auto& [start, end] : busy) {
+      if (offset + r.size <= start) break;  // fits in the gap before this range
+      offset = std::max(offset, (end + align - 1) / align * align);
+    }
+    plan.offsets[i] = offset;
+    plan.totalSize = std::max(plan.totalSize, offset + r.size);
+    placed.push_back(i);
+  }
+  return plan;
+}
+
+// ---- dump --------------------------------------------------------------------------------
+
+namespace {
+
+const char* kindName(PassKind k) {
+  switch (k) {
+    case PassKind::Raster: return "raster";
+    case PassKind::Compute: return "compute";
+    case PassKind::RayTracing: return "ray tracing";
+    case PassKind::Transfer: return "transfer";
+  }
+  return "?";
+}
+
+std::string describe(const ResourceDesc& d) {
+  if (d.type == ResourceType::Buffer) return fmt::format("buffer {} B", d.size);
+  std::string size = d.extent.depth > 1 ? fmt::format("{}x{}x{}", d.extent.width, d.extent.height, d.extent.depth)
+                                        : fmt::format("{}x{}", d.extent.width, d.extent.height);
+  return fmt::format("{} {}{}", formatName(d.format), size, d.mipLevels > 1 ? fmt::format(" {} mips", d.mipLevels) : "");
+}
+
+std::string mib(VkDeviceSize bytes) { return fmt::format("{:.2f} MiB", double(bytes) / (1024.0 * 1024.0)); }
+
+}  // namespace
+
+std::string RenderGraph::dump(const CompiledGraph& c) const {
+  // Transient memory with and without aliasing, from the description sizes.
+  std::vector<AliasRequest> requests;
+  for (auto& info : c.resources) {
+    const auto& r = resources_[info.id];
+    if (info.culled || r.persistent || r.imported || r.desc.type != ResourceType::Image) continue;
+    requests.push_back({approximateBytes(r.desc), 256, info.firstUse, info.lastUse});
+  }
+  AliasPlan plan = planAliasing(requests);
+
+  std::string s = fmt::format("render graph: {} passes ({} culled), {} resources, transient images {} aliased into {}\n",
+                              c.order.size() + c.culled.size(), c.culled.size(), resources_.size(),
+                              mib(plan.unaliasedSize), mib(plan.totalSize));
+  for (size_t i = 0; i < c.order.size(); ++i) {
+    const auto& cp = c.order[i];
+    s += fmt::format("[{}] {} ({})\n", i, passes_[cp.pass].name, kindName(passes_[cp.pass].kind));
+    for (auto& a : cp.reads)
+      s += fmt::format("      reads  {:22} {:24} ({})\n", resources_[a.resource].name, describe(resources_[a.resource].desc),
+                       usageName(a.usage));
+    for (auto& a : cp.writes)
+      s += fmt::format("      writes {:22} {:24} ({})\n", resources_[a.resource].name, describe(resources_[a.resource].desc),
+                       usageName(a.usage));
+    for (auto& b : cp.barriers)
+      s += fmt::format("      barrier {}: {} -> {}\n", resources_[b.resource].name,
+                       b.before ? usageName(*b.before) : "undefined", usageName(b.after));
+  }
+  s += "resources:\n";
+  for (auto& info : c.resources) {
+    const auto& r = resources_[info.id];
+    std::string writer = info.writer != kNone ? passes_[info.writer].name : (r.imported ? "(imported)" : "(none)");
+    std::string readers;
+    for (PassId p : info.readers) readers += (readers.empty() ? "" : ",") + passes_[p].name;
+    std::string life = info.culled ? "culled" : fmt::format("life [{}..{}]", info.firstUse, info.lastUse);
+    s += fmt::format("  {:22} {:26} {:>10}  written by {}  read by {}  {}{}{}\n", r.name, describe(r.desc),
+                     mib(approximateBytes(r.desc)), writer, readers.empty() ? "-" : readers, life,
+                     r.persistent ? "  persistent" : "", r.desc.description.empty() ? "" : "  -- " + r.desc.description);
+  }
+  if (!c.culled.empty()) {
+    s += "culled:\n";
+    for (PassId p : c.culled) {
+      std::string outs;
+      for (auto& n : passes_[p].writeNames) outs += (outs.empty() ? "" : ", ") + n;
+      s += fmt::format("  {} (nobody reads {})\n", passes_[p].name, outs.empty() ? "anything it writes" : outs);
+    }
+  }
+  return s;
+}
+
+}  // namespace tl::graph

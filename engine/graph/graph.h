@@ -1,0 +1,201 @@
+// The render graph: passes declare the named resources they read and write (setup), then
+// record commands (execute). compile() orders the passes, culls the ones whose outputs
+// nobody reads, derives barriers, lifetimes and the aliasing plan, and reports misuse with
+// both names. This header and graph.cpp are pure logic (no device): they are unit-tested
+// without a GPU. executor.h turns a compiled graph into Vulkan work.
+#pragma once
+
+#include <vulkan/vulkan_core.h>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+// Extents compare member-wise (ResourceDesc's defaulted == needs it; Vulkan has none).
+inline bool operator==(const VkExtent3D& a, const VkExtent3D& b) {
+  return a.width == b.width && a.height == b.height && a.depth == b.depth;
+}
+
+namespace tl::graph {
+
+using ResourceId = uint32_t;
+using PassId = uint32_t;
+inline constexpr uint32_t kNone = ~0u;
+
+enum class ResourceType : uint8_t { Image, Buffer };
+
+// What a resource looks like. An image with extent.depth > 1 is a 3D image.
+struct ResourceDesc {
+  ResourceType type = ResourceType::Image;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent3D extent{1, 1, 1};
+  uint32_t mipLevels = 1;
+  VkDeviceSize size = 0;    // buffers only, bytes
+  std::string description;  // one line, shown by the dump and the inspector
+
+  static ResourceDesc image2D(VkFormat f, uint32_t w, uint32_t h, std::string what = {}, uint32_t mips = 1);
+  static ResourceDesc image3D(VkFormat f, uint32_t w, uint32_t h, uint32_t d, std::string what = {},
+                              uint32_t mips = 1);
+  static ResourceDesc buffer(VkDeviceSize bytes, std::string what = {});
+  bool operator==(const ResourceDesc&) const = default;
+};
+
+// The kind of work a pass records; with a Usage it fixes the pipeline stage of a barrier.
+enum class PassKind : uint8_t { Raster, Compute, RayTracing, Transfer };
+
+// How a pass touches a resource. Reads and writes are separate values so a pass that
+// reads and writes one resource (read-modify-write, history) declares both.
+enum class Usage : uint8_t {
+  Sampled,            // read: sampled image / uniform texel
+  StorageRead,        // read: storage image or storage buffer
+  DepthRead,          // read: depth attachment, test only
+  TransferSrc,        // read: copy source
+  VertexOrIndex,      // read: vertex / index buffer
+  StorageWrite,       // write: storage image or storage buffer
+  ColorAttachment,    // write: colour attachment
+  DepthAttachment,    // write: depth attachment
+  TransferDst,        // write: copy destination / clear
+};
+bool isWrite(Usage u);
+const char* usageName(Usage u);
+
+struct Access {
+  ResourceId resource = kNone;
+  Usage usage = Usage::Sampled;
+};
+
+// A state transition the executor must place before a pass. `before` is empty when the
+// resource's previous contents do not matter (first use in the frame of a transient).
+struct Barrier {
+  ResourceId resource = kNone;
+  std::optional<Usage> before;
+  PassKind beforeKind = PassKind::Compute;
+  Usage after = Usage::Sampled;
+  PassKind afterKind = PassKind::Compute;
+};
+
+// One transient resource's place in aliased memory. Resources whose lifetimes do not
+// overlap may share bytes; persistent and imported resources are never aliased.
+struct AliasRequest {
+  VkDeviceSize size = 0;
+  VkDeviceSize alignment = 1;
+  uint32_t firstPass = 0;  // inclusive, index into CompiledGraph::order
+  uint32_t lastPass = 0;   // inclusive
+};
+struct AliasPlan {
+  std::vector<VkDeviceSize> offsets;  // one per request, aligned
+  VkDeviceSize totalSize = 0;         // bytes of the shared block
+  VkDeviceSize unaliasedSize = 0;     // what separate allocations would have needed
+};
+// Greedy first-fit by size: pure, deterministic, unit-tested.
+AliasPlan planAliasing(const std::vector<AliasRequest>& requests);
+
+class PassContext;  // executor.h: what execute() gets (command buffer, resource views)
+
+using ExecuteFn = std::function<void(PassContext&)>;
+
+struct PassDecl {
+  std::string name;
+  PassKind kind = PassKind::Compute;
+  std::vector<std::string> readNames;  // resolved at compile
+  std::vector<Usage> readUsages;
+  std::vector<std::string> writeNames;
+  std::vector<Usage> writeUsages;
+  bool sideEffect = false;  // never culled (e.g. writes to the swapchain or a file)
+  ExecuteFn execute;
+};
+
+struct ResourceDecl {
+  std::string name;
+  ResourceDesc desc;
+  bool persistent = false;  // survives across frames (history); never aliased
+  bool imported = false;    // owned outside the graph (e.g. scene buffers, swapchain)
+  PassId creator = kNone;   // the pass that declared it with create()
+};
+
+// Passed to a pass's setup function. Names are checked when the graph is compiled.
+class PassBuilder {
+ public:
+  PassBuilder(class RenderGraph& graph, PassId pass) : graph_(graph), pass_(pass) {}
+  // Declares a new transient resource that this pass writes with `usage`.
+  void create(std::string_view name, const ResourceDesc& desc, Usage usage);
+  void read(std::string_view name, Usage usage);
+  void write(std::string_view name, Usage usage);
+  void sideEffect();
+
+ private:
+  RenderGraph& graph_;
+  PassId pass_;
+};
+
+struct CompiledPass {
+  PassId pass = kNone;              // index into RenderGraph::passes()
+  std::vector<Access> reads;        // resolved
+  std::vector<Access> writes;       // resolved
+  std::vector<Barrier> barriers;    // to place before the pass
+};
+
+struct ResourceInfo {
+  ResourceId id = kNone;
+  PassId writer = kNone;           // the one pass that writes it (kNone: imported, read only)
+  std::vector<PassId> readers;
+  uint32_t firstUse = kNone;       // index into CompiledGraph::order, inclusive
+  uint32_t lastUse = kNone;
+  bool culled = false;             // only touched by culled passes
+};
+
+struct CompiledGraph {
+  std::vector<CompiledPass> order;      // passes that survive culling, in execution order
+  std::vector<PassId> culled;           // passes removed because nobody reads their outputs
+  std::vector<ResourceInfo> resources;  // indexed by ResourceId
+};
+
+// Thrown by compile() for misuse; the message names both sides.
+struct GraphError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class RenderGraph {
+ public:
+  // A resource that outlives one frame (temporal history). It may be read before it is
+  // written in a frame (it then holds the previous frame's contents).
+  void declarePersistent(std::string_view name, const ResourceDesc& desc);
+  // A resource owned outside the graph (scene geometry, the swapchain image).
+  void declareImported(std::string_view name, const ResourceDesc& desc);
+
+  PassId addPass(std::string_view name, PassKind kind,
+                 const std::function<void(PassBuilder&)>& setup, ExecuteFn execute);
+
+  // Resources the frame exists to produce; passes feeding them survive culling.
+  void markOutput(std::string_view name);
+
+  // Resolves names, orders, culls, derives barriers and lifetimes. Throws GraphError.
+  CompiledGraph compile() const;
+
+  // A readable text dump: passes in order with reads/writes/barriers, then resources with
+  // format, size, writer and lifetime, then culled passes.
+  std::string dump(const CompiledGraph& compiled) const;
+
+  const std::vector<PassDecl>& passes() const { return passes_; }
+  const std::vector<ResourceDecl>& resources() const { return resources_; }
+  const std::vector<std::string>& outputs() const { return outputs_; }
+  std::optional<ResourceId> find(std::string_view name) const;
+
+ private:
+  friend class PassBuilder;
+  std::vector<PassDecl> passes_;
+  std::vector<ResourceDecl> resources_;
+  std::vector<std::string> outputs_;
+};
+
+// Human-readable size/format helpers shared by the dump, the CLI and the inspector.
+std::string formatName(VkFormat format);
+uint32_t formatBytesPerTexel(VkFormat format);
+VkDeviceSize approximateBytes(const ResourceDesc& desc);
+
+}  // namespace tl::graph

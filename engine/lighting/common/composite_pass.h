@@ -1,0 +1,35 @@
+// The composite shared by every lighting path: sun (with the shadow map), sky multiplied
+// by AO, diffuse and specular indirect light from the path's outputs, and emission, into
+// scene-linear radiance. Then the tonemap turns radiance into the display image.
+#pragma once
+
+#include "gpu/pipeline.h"
+#include "graph/graph.h"
+#include "lighting/common/frame_inputs.h"
+#include "lighting/lighting_path.h"
+
+namespace tl::lighting {
+
+inline constexpr const char* kCompositeHdr = "composite.hdr";  // RGBA16F scene-linear radiance
+inline constexpr const char* kTonemapLdr = "tonemap.ldr";      // RGBA8, sRGB-encoded display image
+
+class CompositePass {
+ public:
+  void add(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path);
+
+ private:
+  gpu::Pipeline pipeline_;
+  gpu::Sampler pointSampler_;
+  gpu::Sampler shadowSampler_;
+};
+
+class TonemapPass {
+ public:
+  void add(graph::RenderGraph& graph, FrameInputs& in);
+
+ private:
+  gpu::Pipeline pipeline_;
+  gpu::Sampler pointSampler_;
+};
+
+}  // namespace tl::lighting

@@ -1,0 +1,37 @@
+// What every pass of a frame gets when it adds itself to the graph: the device, the scene
+// on the GPU, the frame's constants and the render settings. Frame-scoped: the graph is
+// built, compiled and executed while these are alive.
+#pragma once
+
+#include "gpu/device.h"
+#include "scene/gpu_scene.h"
+#include "shared/frame.h"
+
+#include <cstdint>
+
+namespace tl::lighting {
+
+struct RenderSettings {
+  uint32_t width = 640;
+  uint32_t height = 360;
+  uint32_t shadowMapSize = 2048;
+  float shadowDepthBiasTexels = 1.5f;  // constant bias, in shadow-map texels of depth
+  float shadowNormalOffsetTexels = 1.0f;
+};
+
+// Resources the frame imports from outside the graph (owned by the session and scene).
+inline constexpr const char* kFrameConstants = "frame.constants";
+inline constexpr const char* kSceneVertices = "scene.vertices";
+inline constexpr const char* kSceneIndices = "scene.indices";
+inline constexpr const char* kSceneInstances = "scene.instances";
+inline constexpr const char* kSceneMaterials = "scene.materials";
+
+struct FrameInputs {
+  gpu::Device& device;
+  scene::GpuScene& scene;
+  const RenderSettings& settings;
+  const shared::FrameConstants& constants;
+  gpu::Buffer& constantsBuffer;
+};
+
+}  // namespace tl::lighting

@@ -1,0 +1,37 @@
+// The G-buffer: every channel declared once in one table (name, format, meaning). The
+// pass rasterises all instances into these named resources.
+#pragma once
+
+#include "gpu/pipeline.h"
+#include "graph/graph.h"
+#include "lighting/common/frame_inputs.h"
+#include "shared/gbuffer.h"
+
+namespace tl::lighting {
+
+struct GbufferChannel {
+  const char* name;
+  VkFormat format;
+  uint32_t location;  // colour attachment location (shared/gbuffer.h)
+  const char* description;
+};
+
+inline constexpr GbufferChannel kGbufferChannels[] = {
+    {"gbuffer.baseColor", VK_FORMAT_R8G8B8A8_SRGB, shared::kGbufferBaseColor, "base colour, linear once sampled"},
+    {"gbuffer.normal", VK_FORMAT_R16G16_SNORM, shared::kGbufferNormal, "world shading normal, octahedral"},
+    {"gbuffer.material", VK_FORMAT_R8G8B8A8_UNORM, shared::kGbufferMaterial, "r roughness, g metalness"},
+    {"gbuffer.emissive", VK_FORMAT_R16G16B16A16_SFLOAT, shared::kGbufferEmissive, "emitted radiance"},
+    {"gbuffer.motion", VK_FORMAT_R16G16_SFLOAT, shared::kGbufferMotion, "screen motion in UV, current - previous"},
+    {"gbuffer.instanceId", VK_FORMAT_R32_UINT, shared::kGbufferInstanceId, "instance index + 1, 0 where empty"},
+};
+inline constexpr const char* kGbufferDepth = "gbuffer.depth";  // D32F, reversed Z (1 near, 0 far)
+
+class GbufferPass {
+ public:
+  void add(graph::RenderGraph& graph, FrameInputs& in);
+
+ private:
+  gpu::Pipeline pipeline_;
+};
+
+}  // namespace tl::lighting

@@ -1,0 +1,50 @@
+#include "lighting/common/shadow_pass.h"
+
+#include "graph/executor.h"
+#include "shared/scene.h"
+
+namespace tl::lighting {
+
+void ShadowPass::add(graph::RenderGraph& graph, FrameInputs& in) {
+  const uint32_t size = in.settings.shadowMapSize;
+  if (!pipeline_) {
+    gpu::GraphicsPipelineDesc d;
+    d.name = "shadow.sun";
+    d.vertexShader = "common/shadow.vert";
+    d.layout.bindings = {{shared::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}};
+    d.layout.extraSets = {in.scene.table().layout()};
+    d.depthFormat = VK_FORMAT_D32_SFLOAT;
+    d.vertexBindings = scene::GpuScene::vertexBindings();
+    d.vertexAttributes = scene::GpuScene::vertexAttributes();
+    d.cullMode = VK_CULL_MODE_NONE;  // thin and single-sided casters must cast from both sides
+    d.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
+    d.depthBias = true;
+    d.depthClamp = true;  // casters between the sun and the near plane clamp to it instead of vanishing
+    pipeline_ = gpu::createGraphicsPipeline(in.device, d);
+  }
+
+  graph.addPass(
+      "shadow.sun", graph::PassKind::Raster,
+      [&](graph::PassBuilder& b) {
+        b.read(kFrameConstants, graph::Usage::StorageRead);
+        b.read(kSceneVertices, graph::Usage::VertexOrIndex);
+        b.read(kSceneIndices, graph::Usage::VertexOrIndex);
+        b.read(kSceneInstances, graph::Usage::StorageRead);
+        b.create(kShadowSunDepth,
+                 graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, size, size, "sun shadow map depth, orthographic"),
+                 graph::Usage::DepthAttachment);
+      },
+      [this, &in](graph::PassContext& ctx) {
+        ctx.beginRendering({}, graph::Attachment{kShadowSunDepth, {}, 1.0f});
+        ctx.bind(pipeline_);
+        ctx.descriptors().uniformBuffer(shared::kBindingFrame, in.constantsBuffer.handle());
+        ctx.flushDescriptors();
+        in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout(), shared::kSceneSet);
+        // Slope-scaled bias against acne on surfaces at grazing angles to the sun.
+        vkCmdSetDepthBias(ctx.cmd, 0.0f, 0.0f, 1.5f);
+        in.scene.drawAll(ctx.cmd);
+        ctx.endRendering();
+      });
+}
+
+}  // namespace tl::lighting

@@ -1,0 +1,37 @@
+// A lighting path is an interface, not an if-statement: given the G-buffer and the sun
+// shadow map in the graph, it adds its own passes and names the resources the shared
+// composite consumes. Direct (T1), legacy, RT and reference implement it; plugins may too.
+#pragma once
+
+#include "graph/graph.h"
+#include "lighting/common/frame_inputs.h"
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace tl::lighting {
+
+// Names of graph resources a path produced; empty means "not produced" and the composite
+// uses the neutral value (AO = 1, unoccluded sky irradiance, no indirect specular).
+struct LightingOutputs {
+  std::string ambientOcclusion;  // R8/R16F, 1 = unoccluded
+  std::string diffuseShY;        // RGBA16F, L1 SH of luma (shared/sh.h)
+  std::string diffuseCoCg;       // RG16F, chroma
+  std::string specular;          // RGBA16F, indirect specular radiance
+};
+
+class LightingPath {
+ public:
+  virtual ~LightingPath() = default;
+  virtual std::string name() const = 0;         // "direct", "legacy", "rt", "reference"
+  virtual std::string description() const = 0;  // one line for --help and tooltips
+  // Why this device cannot run the path (shown verbatim), or nothing when it can.
+  virtual std::optional<std::string> unavailableReason(const gpu::Device&) const { return std::nullopt; }
+  virtual LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) = 0;
+};
+
+// Sun + sky without indirect light: the baseline every other path adds to.
+std::unique_ptr<LightingPath> makeDirectPath();
+
+}  // namespace tl::lighting

@@ -1,0 +1,135 @@
+#include "scene/gpu_scene.h"
+
+#include "shared/scene.h"
+
+#include <fmt/format.h>
+
+namespace tl::scene {
+
+using shared::GpuInstance;
+using shared::GpuMaterial;
+
+std::vector<VkVertexInputBindingDescription> GpuScene::vertexBindings() {
+  return {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+}
+
+std::vector<VkVertexInputAttributeDescription> GpuScene::vertexAttributes() {
+  return {{shared::kAttrPosition, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+          {shared::kAttrNormal, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+          {shared::kAttrTangent, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)},
+          {shared::kAttrUv, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)}};
+}
+
+GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
+  // Geometry: all meshes in one vertex and one index buffer.
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;
+  for (const Mesh& m : scene.meshes) {
+    meshes_.push_back({uint32_t(indices.size()), uint32_t(m.indices.size()), int32_t(vertices.size())});
+    vertices.insert(vertices.end(), m.vertices.begin(), m.vertices.end());
+    indices.insert(indices.end(), m.indices.begin(), m.indices.end());
+  }
+  // Acceleration-structure builds read the same buffers (only where the extension exists).
+  VkBufferUsageFlags geometryUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  if (device.rayTracing().pipeline) geometryUsage |= VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
+  vertices_ = gpu::Buffer(device, vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | geometryUsage,
+                          gpu::MemoryUsage::GpuOnly, "scene.vertices");
+  indices_ = gpu::Buffer(device, indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT | geometryUsage,
+                         gpu::MemoryUsage::GpuOnly, "scene.indices");
+  gpu::uploadBuffer(device, vertices_, vertices.data(), vertices.size() * sizeof(Vertex));
+  gpu::uploadBuffer(device, indices_, indices.data(), indices.size() * sizeof(uint32_t));
+
+  // Textures with full mip chains; sRGB-ness comes from how the material uses them.
+  for (const Texture& t : scene.textures) {
+    gpu::ImageInfo info{t.srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM,
+                        {t.width, t.height, 1}, gpu::mipCount(t.width, t.height),
+                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT};
+    gpu::Image img(device, info, fmt::format("scene.texture.{}", t.name));
+    gpu::uploadImage2DWithMips(device, img, t.rgba8.data(), t.rgba8.size());
+    textures_.push_back(std::move(img));
+  }
+  TL_CHECK(textures_.size() <= shared::kSceneMaxTextures, "scene {} has {} textures; at most {} are supported",
+           scene.name, textures_.size(), shared::kSceneMaxTextures);
+  sampler_ = gpu::Sampler(device, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT, "scene.sampler", false, 8.0f);
+
+  // Materials.
+  std::vector<GpuMaterial> materials;
+  for (const Material& m : scene.materials) {
+    GpuMaterial g{};
+    g.baseColorFactor = m.baseColorFactor;
+    g.emissive = glm::vec4(m.emissiveFactor * m.emissiveStrength, 0.0f);
+    g.metallic = m.metallic;
+    g.roughness = m.roughness;
+    g.normalScale = m.normalScale;
+    g.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : 0.0f;
+    g.baseColorTexture = m.baseColorTexture.value_or(shared::kNoTexture);
+    g.normalTexture = m.normalTexture.value_or(shared::kNoTexture);
+    g.metallicRoughnessTexture = m.metallicRoughnessTexture.value_or(shared::kNoTexture);
+    g.emissiveTexture = m.emissiveTexture.value_or(shared::kNoTexture);
+    materials.push_back(g);
+  }
+  materials_ = gpu::Buffer(device, materials.size() * sizeof(GpuMaterial), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                           gpu::MemoryUsage::GpuOnly, "scene.materials");
+  gpu::uploadBuffer(device, materials_, materials.data(), materials.size() * sizeof(GpuMaterial));
+
+  for (const Instance& inst : scene.instances) drawMesh_.push_back(inst.mesh);
+  instances_ = gpu::Buffer(device, std::max<size_t>(1, drawMesh_.size()) * sizeof(GpuInstance),
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "scene.instances");
+
+  table_ = gpu::DescriptorTable(device,
+                                {{shared::kSceneBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
+                                 {shared::kSceneBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
+                                 {shared::kSceneBindingTextures, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}},
+                                shared::kSceneMaxTextures, "scene.table");
+  table_.writeBuffer(shared::kSceneBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, materials_.handle());
+  table_.writeBuffer(shared::kSceneBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, instances_.handle());
+  std::vector<VkImageView> views;
+  for (auto& t : textures_) views.push_back(t.view());
+  table_.writeImages(shared::kSceneBindingTextures, views, sampler_.handle());
+}
+
+void GpuScene::updateInstances(const Scene& scene, const glm::dvec3& camera, const glm::dvec3& previousCamera) {
+  std::vector<GpuInstance> out(scene.instances.size());
+  if (!havePrevious_ || previousTransforms_.size() != scene.instances.size()) {
+    previousTransforms_.clear();
+    for (auto& i : scene.instances) previousTransforms_.push_back(i.transform);
+  }
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& inst = scene.instances[i];
+    // Subtract the camera in double: what reaches float is small near the viewer.
+    glm::dmat4 rel = inst.transform;
+    rel[3] = glm::dvec4(glm::dvec3(inst.transform[3]) - camera, 1.0);
+    glm::dmat4 prevRel = previousTransforms_[i];
+    prevRel[3] = glm::dvec4(glm::dvec3(prevRel[3]) - camera, 1.0);
+    GpuInstance g{};
+    g.modelRelative = glm::mat4(rel);
+    g.prevModelRelative = glm::mat4(prevRel);
+    g.normalMatrix = glm::mat4(glm::mat3(glm::transpose(glm::inverse(glm::dmat3(inst.transform)))));
+    g.material = scene.meshes[inst.mesh].material;
+    g.instanceId = uint32_t(i + 1);
+    out[i] = g;
+    previousTransforms_[i] = inst.transform;
+  }
+  (void)previousCamera;  // the previous camera enters through FrameConstants::prevViewProj
+  havePrevious_ = true;
+  if (!out.empty()) instances_.write(out.data(), out.size() * sizeof(GpuInstance));
+}
+
+void GpuScene::drawAll(VkCommandBuffer cmd) const {
+  VkDeviceSize offset = 0;
+  VkBuffer vb = vertices_.handle();
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+  vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+  for (uint32_t i = 0; i < drawMesh_.size(); ++i) {
+    const MeshRange& m = meshes_[drawMesh_[i]];
+    vkCmdDrawIndexed(cmd, m.indexCount, 1, m.firstIndex, m.vertexOffset, i);
+  }
+}
+
+VkDeviceSize GpuScene::bytes() const {
+  VkDeviceSize total = vertices_.size() + indices_.size() + materials_.size() + instances_.size();
+  for (auto& t : textures_) total += VkDeviceSize(t.extent().width) * t.extent().height * 4 * 4 / 3;
+  return total;
+}
+
+}  // namespace tl::scene

@@ -1,0 +1,54 @@
+// The scene on the GPU: one vertex and one index buffer for all meshes, the material
+// table, the per-frame camera-relative instance table, and the texture table, bound
+// together as descriptor set kSceneSet. Passes draw it with drawAll().
+#pragma once
+
+#include "gpu/descriptor_table.h"
+#include "gpu/resources.h"
+#include "scene/scene.h"
+
+#include <vector>
+
+namespace tl::scene {
+
+class GpuScene {
+ public:
+  GpuScene(gpu::Device& device, const Scene& scene);
+
+  // Vertex input of tl::scene::Vertex for raster pipelines.
+  static std::vector<VkVertexInputBindingDescription> vertexBindings();
+  static std::vector<VkVertexInputAttributeDescription> vertexAttributes();
+
+  // Rewrites the instance table relative to `camera` (double precision on the CPU).
+  // `previousCamera` and the previous transforms make the motion vectors.
+  void updateInstances(const Scene& scene, const glm::dvec3& camera, const glm::dvec3& previousCamera);
+
+  // Binds the geometry and draws every instance (instance index via firstInstance).
+  void drawAll(VkCommandBuffer cmd) const;
+
+  const gpu::DescriptorTable& table() const { return table_; }
+  gpu::Buffer& vertexBuffer() { return vertices_; }
+  gpu::Buffer& indexBuffer() { return indices_; }
+  gpu::Buffer& instanceBuffer() { return instances_; }
+  gpu::Buffer& materialBuffer() { return materials_; }
+  size_t instanceCount() const { return drawMesh_.size(); }
+  VkDeviceSize bytes() const;
+
+ private:
+  struct MeshRange {
+    uint32_t firstIndex = 0;
+    uint32_t indexCount = 0;
+    int32_t vertexOffset = 0;
+  };
+  gpu::Device& device_;
+  gpu::Buffer vertices_, indices_, materials_, instances_;
+  std::vector<gpu::Image> textures_;
+  gpu::Sampler sampler_;
+  gpu::DescriptorTable table_;
+  std::vector<MeshRange> meshes_;
+  std::vector<uint32_t> drawMesh_;             // per instance: its mesh
+  std::vector<glm::dmat4> previousTransforms_;  // per instance, world
+  bool havePrevious_ = false;
+};
+
+}  // namespace tl::scene

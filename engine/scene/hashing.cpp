@@ -1,0 +1,76 @@
+// Content hashes (xxHash64). They hash what a thing *is* — texels, vertex data, parameter
+// values — never names or paths, so renaming a file changes nothing and editing a texture
+// changes exactly the materials that use it.
+#include "scene/scene_internal.h"
+
+#include <xxhash.h>
+
+namespace tl::scene {
+namespace {
+
+struct Hasher {
+  XXH64_state_t* state = XXH64_createState();
+  Hasher() { XXH64_reset(state, 0); }
+  ~Hasher() { XXH64_freeState(state); }
+  template <class T>
+  void add(const T& v) { XXH64_update(state, &v, sizeof(T)); }
+  void bytes(const void* p, size_t n) { XXH64_update(state, p, n); }
+  uint64_t done() const { return XXH64_digest(state); }
+};
+
+}  // namespace
+
+uint64_t hashBytes(const void* data, size_t size, uint64_t seed) { return XXH64(data, size, seed); }
+
+uint64_t hashTexels(uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba8) {
+  Hasher h;
+  h.add(width);
+  h.add(height);
+  h.bytes(rgba8.data(), rgba8.size());
+  return h.done();
+}
+
+uint64_t hashMesh(const Mesh& m) {
+  Hasher h;
+  uint64_t nv = m.vertices.size(), ni = m.indices.size();
+  h.add(nv);
+  h.bytes(m.vertices.data(), m.vertices.size() * sizeof(Vertex));
+  h.add(ni);
+  h.bytes(m.indices.data(), m.indices.size() * sizeof(uint32_t));
+  return h.done();
+}
+
+uint64_t hashMaterial(const Material& m, const std::vector<Texture>& textures) {
+  Hasher h;
+  h.add(m.baseColorFactor);
+  h.add(m.metallic);
+  h.add(m.roughness);
+  h.add(m.emissiveFactor);
+  h.add(m.emissiveStrength);
+  h.add(m.normalScale);
+  h.add(m.alphaMode);
+  h.add(m.alphaCutoff);
+  uint8_t doubleSided = m.doubleSided;
+  h.add(doubleSided);
+  for (const auto& t : {m.baseColorTexture, m.normalTexture, m.metallicRoughnessTexture, m.emissiveTexture}) {
+    uint64_t th = t && *t < textures.size() ? textures[*t].contentHash : 0;
+    h.add(th);
+  }
+  return h.done();
+}
+
+uint64_t hashScene(const Scene& s) {
+  Hasher h;
+  for (const auto& m : s.meshes) h.add(m.contentHash);
+  for (const auto& m : s.materials) h.add(m.contentHash);
+  for (const auto& i : s.instances) {
+    h.add(i.mesh);
+    h.add(i.transform);
+  }
+  h.add(s.environment.sunDirection);
+  h.add(s.environment.sunIrradiance);
+  h.add(s.environment.skyRadiance);
+  return h.done();
+}
+
+}  // namespace tl::scene

@@ -1,0 +1,153 @@
+// The scene model: what a glTF file becomes on the CPU. Everything here is plain data;
+// gpu_scene.h uploads it. Positions and transforms are double where they are world-space
+// so scenes far from the origin stay exact until the camera-relative subtraction.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace tl::scene {
+
+// One interleaved vertex; attribute locations in shaders/shared/scene.h.
+struct Vertex {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 1.0f, 0.0f};
+  glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz tangent, w handedness (+1/-1)
+  glm::vec2 uv{0.0f};
+};
+static_assert(sizeof(Vertex) == 48);
+
+struct Bounds {
+  glm::dvec3 min{std::numeric_limits<double>::max()};
+  glm::dvec3 max{std::numeric_limits<double>::lowest()};
+  bool valid() const { return min.x <= max.x && min.y <= max.y && min.z <= max.z; }
+  void extend(const glm::dvec3& p) { min = glm::min(min, p); max = glm::max(max, p); }
+  void extend(const Bounds& b) { if (b.valid()) { extend(b.min); extend(b.max); } }
+  glm::dvec3 center() const { return (min + max) * 0.5; }
+  glm::dvec3 size() const { return max - min; }
+};
+
+// Texels are RGBA8 as stored in the file; `srgb` says how the sampler must decode them
+// (base colour and emissive are sRGB, normal and metallic-roughness are linear).
+struct Texture {
+  std::string name;
+  std::filesystem::path path;    // empty for embedded images
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<uint8_t> rgba8;    // width * height * 4
+  bool srgb = true;
+  bool placeholder = false;      // the file was missing or unreadable: a magenta checker
+  uint64_t contentHash = 0;      // xxHash64 of the decoded texels + size (not of the file name)
+};
+
+enum class AlphaMode : uint8_t { Opaque, Mask, Blend };
+
+struct Material {
+  std::string name;
+  glm::vec4 baseColorFactor{1.0f};
+  float metallic = 1.0f;
+  float roughness = 1.0f;
+  glm::vec3 emissiveFactor{0.0f};
+  float emissiveStrength = 1.0f;  // KHR_materials_emissive_strength
+  float normalScale = 1.0f;
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
+  bool doubleSided = false;
+  std::optional<uint32_t> baseColorTexture;         // index into Scene::textures
+  std::optional<uint32_t> normalTexture;
+  std::optional<uint32_t> metallicRoughnessTexture;
+  std::optional<uint32_t> emissiveTexture;
+  uint64_t contentHash = 0;  // parameters + the content hashes of the textures it uses
+};
+
+// One glTF primitive (triangles). A glTF mesh with several primitives becomes several
+// Meshes named "<mesh>" , "<mesh>#1", ... each with its own material.
+struct Mesh {
+  std::string name;
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;  // triangle list
+  uint32_t material = 0;          // index into Scene::materials (a default material exists)
+  Bounds bounds;                  // object space
+  bool generatedTangents = false;
+  uint64_t contentHash = 0;       // xxHash64 of vertices + indices
+};
+
+struct Instance {
+  std::string name;       // the node's name (or "node<i>")
+  uint32_t mesh = 0;      // index into Scene::meshes
+  uint32_t node = 0;      // glTF node index
+  glm::dmat4 transform{1.0};  // object -> world
+  Bounds worldBounds;
+};
+
+struct Camera {
+  std::string name;
+  glm::dvec3 position{0.0};
+  glm::dquat orientation{1.0, 0.0, 0.0, 0.0};  // glTF: looks down -Z, +Y up
+  float yfovRadians = 0.8f;
+  float znear = 0.05f;
+  std::optional<float> zfar;
+  std::optional<float> aspectRatio;
+};
+
+enum class LightType : uint8_t { Directional, Point, Spot };
+
+// KHR_lights_punctual, in its units: directional intensity is illuminance in lux (= the
+// irradiance E of the sun), point/spot intensity is luminous intensity in candela.
+struct Light {
+  std::string name;
+  LightType type = LightType::Point;
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  std::optional<float> range;
+  float innerConeAngle = 0.0f;
+  float outerConeAngle = 0.7853982f;
+  glm::dvec3 position{0.0};
+  glm::dvec3 direction{0.0, 0.0, -1.0};  // the direction the light travels
+};
+
+// Lighting environment. From the scene's first directional light (the sun) and the
+// scene's extras {"twinlight": {"sky_radiance": [r,g,b]}}; defaults when absent.
+struct Environment {
+  glm::dvec3 sunDirection = glm::normalize(glm::dvec3(-0.4, -1.0, -0.3));  // travel direction
+  glm::vec3 sunIrradiance{20.0f};  // E, W/m^2-like units: white Lambertian facing it has radiance E/pi
+  glm::vec3 skyRadiance{1.0f};     // uniform sky radiance L
+  bool sunFromFile = false;
+};
+
+struct Scene {
+  std::string name;                 // file stem
+  std::filesystem::path path;
+  std::vector<Texture> textures;
+  std::vector<Material> materials;  // never empty: index 0 may be the default material
+  std::vector<Mesh> meshes;
+  std::vector<Instance> instances;
+  std::vector<Camera> cameras;
+  std::vector<Light> lights;        // punctual lights other than the sun too
+  Environment environment;
+  Bounds bounds;                    // world bounds of all instances
+  std::vector<std::string> warnings;  // e.g. missing texture (placeholder used)
+  uint64_t contentHash = 0;         // hash of all meshes, materials, instances, environment
+};
+
+// One clear error naming the file and what is wrong with it.
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Loads .gltf or .glb. Throws SceneError for a file that cannot be used; a missing texture
+// is a warning (Scene::warnings) and a visible placeholder.
+Scene loadGltf(const std::filesystem::path& file);
+
+// xxHash64 helpers (seed 0) shared by the importer and, later, the albedo keys.
+uint64_t hashBytes(const void* data, size_t size, uint64_t seed = 0);
+
+}  // namespace tl::scene

@@ -1,0 +1,220 @@
+#include "session/session.h"
+
+#include "lighting/common/composite_pass.h"
+#include "lighting/common/gbuffer_pass.h"
+#include "lighting/common/shadow_pass.h"
+#include "session/image_io.h"
+#include "session/view_math.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+namespace tl::session {
+
+struct Session::Passes {
+  lighting::GbufferPass gbuffer;
+  lighting::ShadowPass shadow;
+  lighting::CompositePass composite;
+  lighting::TonemapPass tonemap;
+};
+
+Session::Session(const gpu::DeviceOptions& options)
+    : device_(std::make_unique<gpu::Device>(options)),
+      executor_(std::make_unique<graph::Executor>(*device_)),
+      passes_(std::make_unique<Passes>()) {
+  paths_.push_back(lighting::makeDirectPath());
+  path_ = paths_.front().get();
+  pathName_ = path_->name();
+  constants_ = gpu::Buffer(*device_, sizeof(shared::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                           gpu::MemoryUsage::Upload, lighting::kFrameConstants);
+}
+
+Session::~Session() {
+  if (device_) device_->waitIdle();
+}
+
+const scene::Scene& Session::scene() const {
+  if (!scene_) throw SessionError("no scene is loaded");
+  return *scene_;
+}
+
+void Session::loadScene(const std::filesystem::path& file) {
+  auto loaded = std::make_unique<scene::Scene>(scene::loadGltf(file));
+  for (auto& w : loaded->warnings) spdlog::warn("{}", w);
+  if (loaded->instances.empty()) throw scene::SceneError(fmt::format("{}: the scene has no meshes to draw", file.string()));
+  device_->waitIdle();
+  gpuScene_ = std::make_unique<scene::GpuScene>(*device_, *loaded);
+  scene_ = std::move(loaded);
+  // Pipelines depend on the scene's descriptor layout: rebuild them with the new scene.
+  passes_ = std::make_unique<Passes>();
+  executor_->resetHistory();
+  previousView_.reset();
+
+  const auto& env = scene_->environment;
+  lighting_.sunDirection = env.sunDirection;
+  lighting_.sunIrradiance = env.sunFromFile ? env.sunIrradiance : glm::vec3(0.0f);
+  lighting_.skyRadiance = env.skyRadiance;
+  lighting_.exposureEv.reset();
+  if (!scene_->cameras.empty()) useSceneCamera(0);
+  else fitViewToScene();
+}
+
+std::vector<PathInfo> Session::paths() const {
+  std::vector<PathInfo> out;
+  for (auto& p : paths_) {
+    auto reason = p->unavailableReason(*device_);
+    out.push_back({p->name(), p->description(), !reason, reason.value_or("")});
+  }
+  return out;
+}
+
+void Session::setPath(const std::string& name) {
+  for (auto& p : paths_) {
+    if (p->name() != name) continue;
+    if (auto reason = p->unavailableReason(*device_))
+      throw SessionError(fmt::format("lighting path `{}` is unavailable on {}: {}", name, device_->name(), *reason));
+    path_ = p.get();
+    pathName_ = name;
+    return;
+  }
+  std::string known;
+  for (auto& p : paths_) known += (known.empty() ? "" : ", ") + p->name();
+  throw SessionError(fmt::format("unknown lighting path `{}` (available: {})", name, known));
+}
+
+void Session::setView(const View& view) {
+  View v = view;
+  double len = glm::length(v.forward);
+  if (!(len > 1e-12) || !std::isfinite(len)) throw SessionError("the view direction is zero or not finite");
+  v.forward /= len;
+  if (!(v.yfovRadians > 0.0f && v.yfovRadians < 3.1f)) throw SessionError("the field of view must be between 0 and 178 degrees");
+  if (glm::length(glm::cross(v.forward, v.up)) < 1e-6) v.up = std::abs(v.forward.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+  view_ = v;
+}
+
+void Session::useSceneCamera(size_t index) {
+  const auto& cams = scene().cameras;
+  if (index >= cams.size())
+    throw SessionError(fmt::format("scene {} has {} camera(s); camera {} does not exist", scene_->name, cams.size(), index));
+  const auto& c = cams[index];
+  View v;
+  v.position = c.position;
+  v.forward = c.orientation * glm::dvec3(0.0, 0.0, -1.0);
+  v.up = c.orientation * glm::dvec3(0.0, 1.0, 0.0);
+  v.yfovRadians = c.yfovRadians;
+  v.znear = std::max(1e-4f, c.znear);
+  setView(v);
+}
+
+void Session::fitViewToScene() {
+  const auto& b = scene().bounds;
+  glm::dvec3 c = b.valid() ? b.center() : glm::dvec3(0.0);
+  double r = b.valid() ? 0.5 * glm::length(b.size()) : 1.0;
+  View v;
+  v.forward = glm::normalize(glm::dvec3(-0.4, -0.35, -1.0));
+  v.position = c - v.forward * (r / std::tan(0.45) + r);
+  v.znear = float(std::max(1e-3, r * 1e-3));
+  setView(v);
+}
+
+void Session::setSize(uint32_t width, uint32_t height) {
+  if (width == 0 || height == 0 || width > 16384 || height > 16384)
+    throw SessionError(fmt::format("image size {}x{} is out of range (1..16384)", width, height));
+  settings_.width = width;
+  settings_.height = height;
+}
+
+float autoExposureEv(const Lighting& l) {
+  // A white Lambertian surface facing the sun under the sky has radiance E/pi + L.
+  double white = shared::tlLuminance(l.sunIrradiance) / glm::pi<double>() + shared::tlLuminance(l.skyRadiance);
+  return float(std::log2(std::max(white, 1e-3)));
+}
+
+float Session::exposureEv() const { return lighting_.exposureEv.value_or(autoExposureEv(lighting_)); }
+
+void Session::buildFrameConstants(shared::FrameConstants& fc) const {
+  const double aspect = double(settings_.width) / double(settings_.height);
+  CameraMatrices cam = cameraMatrices(view_, aspect);
+  fc.view = glm::mat4(cam.view);
+  fc.proj = glm::mat4(cam.proj);
+  fc.viewProj = glm::mat4(cam.viewProj);
+  fc.invViewProj = glm::mat4(glm::inverse(cam.viewProj));
+  const View& prev = previousView_.value_or(view_);
+  fc.prevViewProj = glm::mat4(previousViewProjRelative(prev, view_.position, aspect));
+
+  glm::dvec3 travel = glm::normalize(lighting_.sunDirection);
+  SunShadowFit fit = fitSunShadow(view_, aspect, scene_->bounds, travel, settings_.shadowMapSize);
+  fc.sunViewProj = glm::mat4(fit.viewProj);
+  fc.sunToLight = glm::vec4(glm::vec3(-travel), lighting_.sunAngularRadius);
+  fc.sunIrradiance = glm::vec4(lighting_.sunIrradiance, 0.0f);
+  fc.skyRadiance = glm::vec4(lighting_.skyRadiance, 0.0f);
+  fc.viewport = glm::vec4(settings_.width, settings_.height, 1.0f / settings_.width, 1.0f / settings_.height);
+  fc.shadowParams = glm::vec4(float(fit.texelWorld), float(fit.texelWorld * settings_.shadowDepthBiasTexels),
+                              settings_.shadowNormalOffsetTexels, float(settings_.shadowMapSize));
+  fc.exposure = std::exp2(-exposureEv());
+  fc.frameIndex = uint32_t(frameIndex_);
+  fc.flags = glm::length(lighting_.sunIrradiance) > 0.0f ? shared::kFrameFlagSunShadows : 0u;
+  fc.sceneScale = float(scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0);
+}
+
+void Session::renderOne(bool readback) {
+  shared::FrameConstants fc{};
+  buildFrameConstants(fc);
+  constants_.write(&fc, sizeof(fc));
+  gpuScene_->updateInstances(*scene_, view_.position, previousView_.value_or(view_).position);
+
+  graph::RenderGraph graph;
+  auto imported = [&](const char* name, gpu::Buffer& b, const char* what) {
+    graph.declareImported(name, graph::ResourceDesc::buffer(b.size(), what));
+    executor_->bindImportedBuffer(name, b);
+  };
+  imported(lighting::kFrameConstants, constants_, "per-frame constants (shared/frame.h)");
+  imported(lighting::kSceneVertices, gpuScene_->vertexBuffer(), "all meshes' vertices");
+  imported(lighting::kSceneIndices, gpuScene_->indexBuffer(), "all meshes' indices");
+  imported(lighting::kSceneInstances, gpuScene_->instanceBuffer(), "camera-relative instance table");
+  imported(lighting::kSceneMaterials, gpuScene_->materialBuffer(), "material table");
+
+  lighting::FrameInputs in{*device_, *gpuScene_, settings_, fc, constants_};
+  passes_->gbuffer.add(graph, in);
+  passes_->shadow.add(graph, in);
+  lighting::LightingOutputs outputs = path_->addPasses(graph, in);
+  passes_->composite.add(graph, in, outputs);
+  passes_->tonemap.add(graph, in);
+
+  graph::CompiledGraph compiled = graph.compile();
+  if (readback) {
+    if (requestAll_) executor_->requestReadbackAll();
+    for (auto& n : requested_) executor_->requestReadback(n);
+    executor_->requestReadback(lighting::kCompositeHdr);
+    executor_->requestReadback(lighting::kTonemapLdr);
+  }
+  executor_->execute(graph, compiled);
+  graphDump_ = graph.dump(compiled);
+  previousView_ = view_;
+  ++frameIndex_;
+}
+
+void Session::renderFrames(uint32_t n) {
+  if (!scene_) throw SessionError("no scene is loaded");
+  for (uint32_t i = 0; i < n; ++i) renderOne(i + 1 == n);
+  requested_.clear();
+  requestAll_ = false;
+}
+
+const graph::Readback& Session::buffer(const std::string& name) const {
+  try {
+    return executor_->readback(name);
+  } catch (const gpu::Error& e) {
+    throw SessionError(e.what());
+  }
+}
+
+void Session::saveImage(const std::filesystem::path& file) const {
+  std::string ext = file.extension().string();
+  for (auto& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  if (ext == ".exr") writeImageAtomically(file, buffer(lighting::kCompositeHdr), ImageEncoding::LinearHalf);
+  else if (ext == ".png") writeImageAtomically(file, buffer(lighting::kTonemapLdr), ImageEncoding::Display8);
+  else throw SessionError(fmt::format("{}: unsupported image type `{}` (use .exr or .png)", file.string(), ext));
+}
+
+}  // namespace tl::session

@@ -1,0 +1,122 @@
+// The facade the editor and the command line both use: load a scene, choose a lighting
+// path, set the camera and the light, render frames, read any named buffer of the last
+// frame, save images. Everything the GUI can do goes through here, so tests drive it too.
+#pragma once
+
+#include "gpu/device.h"
+#include "graph/executor.h"
+#include "lighting/common/frame_inputs.h"
+#include "lighting/lighting_path.h"
+#include "scene/scene.h"
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tl::session {
+
+// A recoverable error to show the user (bad path name, unavailable path, bad argument).
+struct SessionError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct View {
+  glm::dvec3 position{0.0, 1.0, 5.0};
+  glm::dvec3 forward{0.0, 0.0, -1.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  float yfovRadians = 0.9f;  // vertical field of view
+  float znear = 0.05f;
+};
+
+struct Lighting {
+  glm::dvec3 sunDirection{-0.4, -1.0, -0.3};  // the direction sunlight travels
+  glm::vec3 sunIrradiance{0.0f};  // E on a surface facing the sun (white Lambertian: E/pi)
+  glm::vec3 skyRadiance{1.0f};    // uniform radiance L over the whole sphere
+  std::optional<float> exposureEv;  // empty: derived from the light (see autoExposureEv)
+  float sunAngularRadius = 0.00465f;  // radians (the real sun)
+};
+
+struct PathInfo {
+  std::string name;
+  std::string description;
+  bool available = true;
+  std::string unavailableReason;
+};
+
+class Session {
+ public:
+  explicit Session(const gpu::DeviceOptions& options = {});
+  ~Session();
+
+  gpu::Device& device() { return *device_; }
+
+  // Throws scene::SceneError (one line naming the file) and keeps the previous scene.
+  void loadScene(const std::filesystem::path& file);
+  bool hasScene() const { return scene_ != nullptr; }
+  const scene::Scene& scene() const;
+
+  std::vector<PathInfo> paths() const;
+  void setPath(const std::string& name);  // throws SessionError with the reason
+  const std::string& path() const { return pathName_; }
+
+  void setView(const View& view);
+  const View& view() const { return view_; }
+  void useSceneCamera(size_t index);  // throws SessionError when out of range
+  void fitViewToScene();
+
+  void setLighting(const Lighting& lighting) { lighting_ = lighting; }
+  const Lighting& lighting() const { return lighting_; }
+  float exposureEv() const;  // the EV in use (explicit or automatic)
+
+  void setSize(uint32_t width, uint32_t height);
+  lighting::RenderSettings& settings() { return settings_; }
+
+  // Read-backs for the last of the next frames: by name, or every resource.
+  void requestBuffer(const std::string& name) { requested_.push_back(name); }
+  void requestAllBuffers() { requestAll_ = true; }
+
+  // Renders n frames; the last one reads back the final images and the requested buffers.
+  void renderFrames(uint32_t n);
+
+  const graph::Readback& buffer(const std::string& name) const;
+  const std::vector<graph::PhysicalInfo>& resources() const { return executor_->resources(); }
+  const std::vector<graph::PassTiming>& timings() const { return executor_->timings(); }
+  std::string graphDump() const { return graphDump_; }
+  uint64_t frameIndex() const { return frameIndex_; }
+
+  // .exr: scene-linear radiance before exposure (composite.hdr);
+  // .png: the tonemapped display image (tonemap.ldr). Written atomically.
+  void saveImage(const std::filesystem::path& file) const;
+
+  uint32_t validationErrors() const { return device_->validationErrorCount(); }
+
+ private:
+  void buildFrameConstants(shared::FrameConstants& fc) const;
+  void renderOne(bool readback);
+
+  std::unique_ptr<gpu::Device> device_;
+  std::unique_ptr<scene::Scene> scene_;
+  std::unique_ptr<scene::GpuScene> gpuScene_;
+  std::unique_ptr<graph::Executor> executor_;
+  std::vector<std::unique_ptr<lighting::LightingPath>> paths_;
+  lighting::LightingPath* path_ = nullptr;
+  std::string pathName_;
+  struct Passes;
+  std::unique_ptr<Passes> passes_;
+  gpu::Buffer constants_;
+  lighting::RenderSettings settings_;
+  View view_;
+  std::optional<View> previousView_;
+  Lighting lighting_;
+  std::vector<std::string> requested_;
+  bool requestAll_ = false;
+  std::string graphDump_;
+  uint64_t frameIndex_ = 0;
+};
+
+// Exposure that maps a white surface lit by this sun and sky to about 1.0 before tonemapping.
+float autoExposureEv(const Lighting& lighting);
+
+}  // namespace tl::session

@@ -1,0 +1,36 @@
+// Camera and sun-shadow matrices, in double precision and in camera-relative space (the
+// camera at the origin), so a scene 10^6 m from the world origin renders like one at it.
+// Pure functions: unit-tested without a GPU.
+#pragma once
+
+#include "scene/scene.h"
+#include "session/session.h"
+
+namespace tl::session {
+
+struct CameraMatrices {
+  glm::dmat4 view;      // rotation only
+  glm::dmat4 proj;      // infinite reversed-Z, Vulkan clip space (y down, z in [0,1])
+  glm::dmat4 viewProj;
+};
+
+CameraMatrices cameraMatrices(const View& view, double aspect);
+
+// The previous frame's view-projection, applied to points relative to *this* frame's
+// camera position (so motion vectors need no absolute positions).
+glm::dmat4 previousViewProjRelative(const View& previous, const glm::dvec3& currentPosition, double aspect);
+
+struct SunShadowFit {
+  glm::dmat4 viewProj;     // camera-relative world -> shadow clip (x,y in [-1,1], z in [0,1])
+  double texelWorld = 0;   // world size of one shadow-map texel
+  double radius = 0;       // half-extent of the orthographic window
+};
+
+// Fits an orthographic sun view to what the camera sees: the smaller of the bounding
+// sphere of the view frustum (out to the scene's size) and the scene's bounding sphere,
+// snapped to whole texels so the map does not shimmer as the camera moves; its depth range
+// covers the whole scene so casters outside the view still cast.
+SunShadowFit fitSunShadow(const View& view, double aspect, const scene::Bounds& sceneBounds,
+                          const glm::dvec3& sunTravel, uint32_t mapSize);
+
+}  // namespace tl::session

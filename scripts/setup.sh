@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# Twinlight set-up for Debian 12 (bookworm). Idempotent: installs only what is missing,
+# upgrades lavapipe from bookworm-backports when the installed one has no ray tracing,
+# then configures and builds the Release tree in build/.
+#
+#   scripts/setup.sh            install + configure + build
+#   scripts/setup.sh --no-build install only
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build_dir="${TWINLIGHT_BUILD_DIR:-$root/build}"
+
+# Everything the build, the run and the tests need, from Debian's archive only.
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools spirv-tools
+  libglfw3-dev libimgui-dev libglm-dev
+  libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libopenimageio-dev openimageio-tools
+  libmeshoptimizer-dev libxxhash-dev libsqlite3-dev libcli11-dev libspdlog-dev libfmt-dev
+  librenderdoc-dev libgtest-dev libgmock-dev
+  xvfb xauth
+  mesa-vulkan-drivers
+)
+# Lavapipe gained VK_KHR_acceleration_structure / ray_tracing_pipeline / ray_query in Mesa 24.1.
+min_mesa="24.1"
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+apt_get() { DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get -y -q "$@"; }
+
+is_installed() {
+  dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"
+}
+
+missing=()
+for p in "${packages[@]}"; do is_installed "$p" || missing+=("$p"); done
+updated=0
+if [ "${#missing[@]}" -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  apt_get update
+  updated=1
+  apt_get install --no-install-recommends "${missing[@]}"
+fi
+
+mesa_version="$(dpkg-query -W -f='${Version}' mesa-vulkan-drivers 2>/dev/null || echo 0)"
+if dpkg --compare-versions "$mesa_version" lt "$min_mesa"; then
+  echo "setup: mesa-vulkan-drivers $mesa_version has no ray tracing in lavapipe; using bookworm-backports"
+  list=/etc/apt/sources.list.d/twinlight-bookworm-backports.list
+  if ! grep -rqs "bookworm-backports" /etc/apt/sources.list /etc/apt/sources.list.d/; then
+    echo "deb http://deb.debian.org/debian bookworm-backports main" | "${sudo_cmd[@]}" tee "$list" >/dev/null
+  fi
+  apt_get update
+  apt_get install --no-install-recommends -t bookworm-backports mesa-vulkan-drivers
+elif [ "$updated" -eq 0 ]; then
+  : # nothing to do
+fi
+
+if [ "${1:-}" = "--no-build" ]; then exit 0; fi
+
+if [ ! -f "$build_dir/build.ninja" ]; then
+  cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release
+fi
+cmake --build "$build_dir"

@@ -1,0 +1,71 @@
+#version 460
+// Composite shared by every lighting path: sun through the shadow map, the sky (times AO
+// when a path provides it), emission. Output is scene-linear radiance.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/frame.h"
+#include "shared/gbuffer.h"
+#include "shared/packing.h"
+#include "shared/shading.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; };
+layout(set = 0, binding = kCompositeBaseColor) uniform sampler2D gBaseColor;
+layout(set = 0, binding = kCompositeNormal) uniform sampler2D gNormal;
+layout(set = 0, binding = kCompositeMaterial) uniform sampler2D gMaterial;
+layout(set = 0, binding = kCompositeEmissive) uniform sampler2D gEmissive;
+layout(set = 0, binding = kCompositeDepth) uniform sampler2D gDepth;
+layout(set = 0, binding = kCompositeShadow) uniform sampler2DShadow sunShadow;
+layout(set = 0, binding = kCompositeOutput, rgba16f) uniform writeonly image2D outRadiance;
+
+vec3 cameraRelativePosition(vec2 uv, float depth) {
+  vec4 p = frame.invViewProj * vec4(uv * 2.0 - 1.0, depth, 1.0);
+  return p.xyz / p.w;
+}
+
+// 3x3 PCF of hardware 2x2 comparisons. Receivers are pushed along the normal by a few
+// texels and towards the sun by the depth bias, both in world units, which keeps acne
+// away at any distance from the origin.
+float sunVisibility(vec3 position, vec3 normal) {
+  if ((frame.flags & kFrameFlagSunShadows) == 0u) return 1.0;
+  vec3 l = frame.sunToLight.xyz;
+  float texel = frame.shadowParams.x;
+  float slope = sqrt(max(1.0 - dot(normal, l) * dot(normal, l), 0.0));
+  vec3 offset = normal * (frame.shadowParams.z * texel * max(slope, 0.2)) + l * frame.shadowParams.y;
+  vec4 clip = frame.sunViewProj * vec4(position + offset, 1.0);
+  vec3 s = clip.xyz / clip.w;
+  vec2 uv = s.xy * 0.5 + 0.5;
+  if (s.z >= 1.0) return 1.0;
+  float size = frame.shadowParams.w;
+  float sum = 0.0;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) sum += texture(sunShadow, vec3(uv + vec2(x, y) / size, s.z));
+  return sum / 9.0;
+}
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+  float depth = texelFetch(gDepth, p, 0).r;
+  if (depth <= 0.0) {  // reversed Z: nothing drawn, the sky is visible
+    imageStore(outRadiance, p, vec4(frame.skyRadiance.rgb, 1.0));
+    return;
+  }
+  vec2 uv = (vec2(p) + 0.5) * frame.viewport.zw;
+  vec3 position = cameraRelativePosition(uv, depth);
+  vec3 n = tlOctDecode(texelFetch(gNormal, p, 0).xy);
+  vec3 v = normalize(-position);
+  vec3 baseColor = texelFetch(gBaseColor, p, 0).rgb;
+  vec4 material = texelFetch(gMaterial, p, 0);
+  SurfaceParams s = tlSurface(baseColor, material.x, material.y);
+
+  vec3 radiance = texelFetch(gEmissive, p, 0).rgb;
+  float nl = dot(n, frame.sunToLight.xyz);
+  if (nl > 0.0) {
+    vec3 sun = frame.sunIrradiance.rgb * (nl * sunVisibility(position, n));
+    radiance += sun * tlBrdf(s, n, v, frame.sunToLight.xyz);
+  }
+  // The uniform sky: irradiance pi*L on any unoccluded surface, so Lambert gives albedo*L;
+  // the specular lobe integrates to the split-sum environment BRDF.
+  radiance += frame.skyRadiance.rgb * (s.diffuse + tlEnvironmentSpecular(s, max(dot(n, v), 1e-4)));
+  imageStore(outRadiance, p, vec4(radiance, 1.0));
+}

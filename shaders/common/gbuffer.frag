@@ -1,0 +1,75 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_nonuniform_qualifier : require
+#include "shared/frame.h"
+#include "shared/scene.h"
+#include "shared/gbuffer.h"
+#include "shared/packing.h"
+
+layout(set = kSceneSet, binding = kSceneBindingMaterials, std430) readonly buffer Materials { GpuMaterial materials[]; };
+layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
+layout(set = kSceneSet, binding = kSceneBindingTextures) uniform sampler2D sceneTextures[];
+
+layout(location = 0) in vec3 inNormal;
+layout(location = 1) in vec4 inTangent;
+layout(location = 2) in vec2 inUv;
+layout(location = 3) in vec4 inClip;
+layout(location = 4) in vec4 inPrevClip;
+layout(location = 5) flat in uint inInstance;
+
+layout(location = kGbufferBaseColor) out vec4 outBaseColor;
+layout(location = kGbufferNormal) out vec2 outNormal;
+layout(location = kGbufferMaterial) out vec4 outMaterial;
+layout(location = kGbufferEmissive) out vec4 outEmissive;
+layout(location = kGbufferMotion) out vec2 outMotion;
+layout(location = kGbufferInstanceId) out uint outInstanceId;
+
+vec4 sampleTexture(uint index, vec2 uv) {
+  return texture(sceneTextures[nonuniformEXT(index)], uv);
+}
+
+void main() {
+  GpuInstance inst = instances[inInstance];
+  GpuMaterial m = materials[inst.material];
+
+  vec4 base = m.baseColorFactor;
+  if (m.baseColorTexture != kNoTexture) base *= sampleTexture(m.baseColorTexture, inUv);
+  if (m.alphaCutoff > 0.0 && base.a < m.alphaCutoff) discard;
+
+  // Geometric normal faces the viewer: single-sided walls seen from behind shade as their
+  // back side instead of going black.
+  vec3 n = normalize(inNormal);
+  if (!gl_FrontFacing) n = -n;
+  if (m.normalTexture != kNoTexture) {
+    vec3 t = inTangent.xyz - n * dot(n, inTangent.xyz);
+    float tl = length(t);
+    if (tl > 1e-6) {
+      t /= tl;
+      vec3 b = cross(n, t) * (inTangent.w < 0.0 ? -1.0 : 1.0);
+      vec3 tn = sampleTexture(m.normalTexture, inUv).xyz * 2.0 - 1.0;
+      tn.xy *= m.normalScale;
+      vec3 mapped = t * tn.x + b * tn.y + n * tn.z;
+      if (dot(mapped, mapped) > 1e-12) n = normalize(mapped);
+    }
+  }
+
+  float roughness = m.roughness;
+  float metallic = m.metallic;
+  if (m.metallicRoughnessTexture != kNoTexture) {
+    vec4 mr = sampleTexture(m.metallicRoughnessTexture, inUv);
+    roughness *= mr.g;
+    metallic *= mr.b;
+  }
+  vec3 emissive = m.emissive.rgb;
+  if (m.emissiveTexture != kNoTexture) emissive *= sampleTexture(m.emissiveTexture, inUv).rgb;
+
+  vec2 ndc = inClip.xy / inClip.w;
+  vec2 prevNdc = inPrevClip.xy / inPrevClip.w;
+
+  outBaseColor = vec4(clamp(base.rgb, 0.0, 1.0), 1.0);
+  outNormal = tlOctEncode(n);
+  outMaterial = vec4(clamp(roughness, 0.0, 1.0), clamp(metallic, 0.0, 1.0), 0.0, 1.0);
+  outEmissive = vec4(emissive, 1.0);
+  outMotion = (ndc - prevNdc) * 0.5;
+  outInstanceId = inst.instanceId;
+}

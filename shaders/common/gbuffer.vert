@@ -1,0 +1,31 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "shared/frame.h"
+#include "shared/scene.h"
+
+layout(location = kAttrPosition) in vec3 inPosition;
+layout(location = kAttrNormal) in vec3 inNormal;
+layout(location = kAttrTangent) in vec4 inTangent;
+layout(location = kAttrUv) in vec2 inUv;
+
+layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; };
+layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
+
+layout(location = 0) out vec3 outNormal;
+layout(location = 1) out vec4 outTangent;
+layout(location = 2) out vec2 outUv;
+layout(location = 3) out vec4 outClip;
+layout(location = 4) out vec4 outPrevClip;
+layout(location = 5) flat out uint outInstance;
+
+void main() {
+  GpuInstance inst = instances[gl_InstanceIndex];
+  vec4 relative = inst.modelRelative * vec4(inPosition, 1.0);
+  outClip = frame.viewProj * relative;
+  outPrevClip = frame.prevViewProj * (inst.prevModelRelative * vec4(inPosition, 1.0));
+  outNormal = mat3(inst.normalMatrix) * inNormal;
+  outTangent = vec4(mat3(inst.modelRelative) * inTangent.xyz, inTangent.w);
+  outUv = inUv;
+  outInstance = uint(gl_InstanceIndex);
+  gl_Position = outClip;
+}

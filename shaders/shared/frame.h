@@ -1,0 +1,36 @@
+// Per-frame constants shared by every pass (a uniform buffer, the graph's imported
+// resource "frame.constants"). All positions are camera-relative: the camera sits at the
+// origin of the space the GPU sees, see shared/scene.h GpuInstance.
+#ifndef TL_SHARED_FRAME_H
+#define TL_SHARED_FRAME_H
+#include "common.h"
+
+TL_BEGIN
+struct FrameConstants {
+  mat4 view;             // rotation only: camera-relative world -> view
+  mat4 proj;             // infinite reversed-Z perspective, Vulkan clip space (y down)
+  mat4 viewProj;
+  mat4 invViewProj;      // clip -> camera-relative world
+  mat4 prevViewProj;     // previous frame's, applied to this frame's camera-relative space
+  mat4 sunViewProj;      // camera-relative world -> shadow map clip (orthographic, z in [0,1])
+  vec4 sunToLight;       // xyz: unit direction towards the sun, w: angular radius (radians)
+  vec4 sunIrradiance;    // rgb: irradiance E on a surface facing the sun
+  vec4 skyRadiance;      // rgb: uniform sky radiance L
+  vec4 viewport;         // width, height, 1/width, 1/height
+  vec4 shadowParams;     // x: texel size (world m), y: depth bias (world m), z: normal offset (texels), w: map size
+  float exposure;        // multiplier applied before tonemapping: 2^-EV100 / 1.2
+  uint frameIndex;
+  uint flags;            // kFrameFlag*
+  float sceneScale;      // characteristic scene size in metres (bounds diagonal)
+};
+
+TL_CONST uint kFrameFlagSunShadows = 1u;
+
+// Set-0 binding of the frame constants in every pass that reads them.
+TL_CONST uint kBindingFrame = 0;
+TL_END
+
+#ifdef __cplusplus
+static_assert(sizeof(tl::shared::FrameConstants) % 16 == 0);
+#endif
+#endif

@@ -1,0 +1,56 @@
+// Scene data shared by the importer/uploader (C++) and the shaders (GLSL).
+#ifndef TL_SHARED_SCENE_H
+#define TL_SHARED_SCENE_H
+#include "common.h"
+
+TL_BEGIN
+// Vertex attribute locations of the one interleaved vertex format (position, normal,
+// tangent with handedness in w, uv); the C++ struct is tl::scene::Vertex.
+TL_CONST uint kAttrPosition = 0;
+TL_CONST uint kAttrNormal = 1;
+TL_CONST uint kAttrTangent = 2;
+TL_CONST uint kAttrUv = 3;
+
+TL_CONST uint kNoTexture = 0xFFFFFFFFu;
+
+// The scene's descriptor set (a gpu::DescriptorTable), bound as set 1 where scene
+// materials are shaded. The texture table is last: a partially bound array.
+TL_CONST uint kSceneSet = 1;
+TL_CONST uint kSceneBindingMaterials = 0;
+TL_CONST uint kSceneBindingInstances = 1;
+TL_CONST uint kSceneBindingTextures = 2;
+TL_CONST uint kSceneMaxTextures = 1024;
+
+// One material, std430. Texture fields index the scene's texture array (kNoTexture: none).
+struct GpuMaterial {
+  vec4 baseColorFactor;     // linear RGB + alpha
+  vec4 emissive;            // linear RGB radiance scale (factor * strength), w unused
+  float metallic;
+  float roughness;
+  float normalScale;
+  float alphaCutoff;        // 0 = opaque
+  uint baseColorTexture;
+  uint normalTexture;
+  uint metallicRoughnessTexture;
+  uint emissiveTexture;
+};
+
+// One instance, std430. The transform is camera-relative: the translation has the camera
+// position subtracted in double precision on the CPU, so float on the GPU stays exact near
+// the viewer however far the scene is from the origin.
+struct GpuInstance {
+  mat4 modelRelative;       // object -> camera-relative world
+  mat4 prevModelRelative;   // previous frame, relative to this frame's camera (motion vectors)
+  mat4 normalMatrix;        // inverse transpose of the upper 3x3, in a mat4 for alignment
+  uint material;
+  uint instanceId;          // written to the G-buffer's instance id (0 is "nothing")
+  uint pad0;
+  uint pad1;
+};
+TL_END
+
+#ifdef __cplusplus
+static_assert(sizeof(tl::shared::GpuMaterial) == 64);
+static_assert(sizeof(tl::shared::GpuInstance) == 208);
+#endif
+#endif
