@@ -24,6 +24,9 @@ class GpuTest : public ::testing::Test {
       session_ = std::make_unique<session::Session>(o);
     }
   }
+  // Destroyed before main returns: at static-destruction time the Vulkan loader and the
+  // validation layer may already be gone.
+  static void TearDownTestSuite() { session_.reset(); }
   static session::Session& session() { return *session_; }
   void TearDown() override {
     EXPECT_EQ(session_->validationErrors(), errorsBefore_) << "Vulkan validation reported errors during this test";

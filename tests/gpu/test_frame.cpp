@@ -43,7 +43,9 @@ TEST_F(GpuTest, AtriumRendersFiniteLitFrameWithEveryResourceNamed) {
   std::string dump = s.graphDump();
   for (const auto& r : s.resources()) {
     EXPECT_NE(dump.find(r.name), std::string::npos) << r.name;
-    if (!r.imported) EXPECT_NE(dump.find(r.writer), std::string::npos) << r.writer;
+    if (!r.imported) {
+      EXPECT_NE(dump.find("written by " + r.writer), std::string::npos) << r.writer;
+    }
   }
 }
 

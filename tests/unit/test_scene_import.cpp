@@ -1,0 +1,286 @@
+// glTF import of every content scene and of broken files: one clear single-line error
+// naming the file, or a warning and a placeholder for a missing texture; content hashes
+// stable across loads and renames, sensitive to content.
+#include "scene/scene.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+
+namespace tl::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path content(const char* name) { return fs::path(TWINLIGHT_CONTENT_DIR) / name; }
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() / ("twinlight-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                                        "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+void writeText(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+nlohmann::json readJson(const fs::path& p) { return nlohmann::json::parse(std::ifstream(p)); }
+
+const Material* findMaterial(const Scene& s, const std::string& name) {
+  for (auto& m : s.materials)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+void expectWellFormed(const Scene& s) {
+  ASSERT_FALSE(s.instances.empty());
+  ASSERT_FALSE(s.materials.empty());
+  ASSERT_FALSE(s.cameras.empty()) << s.name << " needs a default camera";
+  EXPECT_TRUE(s.bounds.valid());
+  for (auto& m : s.meshes) {
+    EXPECT_FALSE(m.indices.empty()) << m.name;
+    for (auto& v : m.vertices) {
+      ASSERT_TRUE(std::isfinite(v.position.x) && std::isfinite(v.normal.x) && std::isfinite(v.tangent.x)) << m.name;
+      EXPECT_NEAR(glm::length(v.normal), 1.0f, 1e-3f) << m.name;
+      EXPECT_NEAR(glm::dot(glm::vec3(v.tangent), v.normal), 0.0f, 1e-3f) << m.name;
+      EXPECT_EQ(std::abs(v.tangent.w), 1.0f);
+    }
+  }
+  for (auto& i : s.instances) EXPECT_LT(i.mesh, s.meshes.size());
+}
+
+TEST(SceneImport, Atrium) {
+  Scene s = loadGltf(content("atrium.gltf"));
+  expectWellFormed(s);
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  EXPECT_TRUE(s.environment.sunFromFile);
+  EXPECT_NEAR(s.environment.sunIrradiance.x, 20.0f, 1e-4f);
+  EXPECT_LT(s.environment.sunDirection.y, 0.0);  // sunlight travels downwards
+  EXPECT_NEAR(s.environment.skyRadiance.z, 1.0f, 1e-6f);
+  const Material* gold = findMaterial(s, "polished_gold");
+  ASSERT_NE(gold, nullptr);
+  EXPECT_EQ(gold->metallic, 1.0f);
+  const Material* checker = findMaterial(s, "checker_textured");
+  ASSERT_NE(checker, nullptr);
+  ASSERT_TRUE(checker->baseColorTexture);
+  const Texture& t = s.textures[*checker->baseColorTexture];
+  EXPECT_FALSE(t.placeholder);
+  EXPECT_TRUE(t.srgb);
+  EXPECT_EQ(t.width, 64u);
+  bool sawRoom = false;
+  for (auto& i : s.instances) sawRoom |= i.name == "room_ceiling";
+  EXPECT_TRUE(sawRoom);
+}
+
+TEST(SceneImport, CornellHasColouredWallsAndAnEmitter) {
+  Scene s = loadGltf(content("cornell.gltf"));
+  expectWellFormed(s);
+  const Material* red = findMaterial(s, "cornell_red");
+  ASSERT_NE(red, nullptr);
+  EXPECT_GT(red->baseColorFactor.r, 4.0f * red->baseColorFactor.g);
+  const Material* light = findMaterial(s, "ceiling_light");
+  ASSERT_NE(light, nullptr);
+  EXPECT_NEAR(light->emissiveStrength, 15.0f, 1e-4f);
+  EXPECT_FALSE(s.environment.sunFromFile);
+  EXPECT_EQ(s.environment.skyRadiance, glm::vec3(0.0f));
+}
+
+TEST(SceneImport, FurnaceAndPlaneAreUnderAUniformSky) {
+  for (const char* name : {"furnace.gltf", "plane.gltf"}) {
+    Scene s = loadGltf(content(name));
+    expectWellFormed(s);
+    EXPECT_EQ(s.environment.skyRadiance, glm::vec3(1.0f)) << name;
+    EXPECT_FALSE(s.environment.sunFromFile) << name;
+  }
+  Scene plane = loadGltf(content("plane.gltf"));
+  EXPECT_NEAR(plane.bounds.size().x, 100.0, 1e-6);
+}
+
+TEST(SceneHashes, StableAcrossLoadsAndRenames) {
+  Scene a = loadGltf(content("atrium.gltf"));
+  Scene b = loadGltf(content("atrium.gltf"));
+  EXPECT_EQ(a.contentHash, b.contentHash);
+  TempDir tmp;
+  // Copy under other names: the .gltf renamed, the texture directory kept (its uri).
+  fs::copy_file(content("atrium.bin"), tmp.path / "atrium.bin");
+  fs::create_directories(tmp.path / "textures");
+  fs::copy_file(content("textures/checker.png"), tmp.path / "textures" / "checker.png");
+  fs::copy_file(content("atrium.gltf"), tmp.path / "renamed_scene.gltf");
+  Scene c = loadGltf(tmp.path / "renamed_scene.gltf");
+  EXPECT_EQ(a.contentHash, c.contentHash);
+  for (size_t i = 0; i < a.materials.size(); ++i) EXPECT_EQ(a.materials[i].contentHash, c.materials[i].contentHash);
+}
+
+TEST(SceneHashes, ChangeExactlyWithContent) {
+  Scene base = loadGltf(content("plane.gltf"));
+  TempDir tmp;
+  fs::copy_file(content("plane.bin"), tmp.path / "plane.bin");
+  auto j = readJson(content("plane.gltf"));
+  j["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"][0] = 0.5;
+  writeText(tmp.path / "plane.gltf", j.dump());
+  Scene changed = loadGltf(tmp.path / "plane.gltf");
+  EXPECT_NE(changed.materials[0].contentHash, base.materials[0].contentHash);
+  EXPECT_EQ(changed.meshes[0].contentHash, base.meshes[0].contentHash);  // geometry untouched
+  EXPECT_NE(changed.contentHash, base.contentHash);
+}
+
+// ---- broken input ------------------------------------------------------------------------
+
+std::string loadError(const fs::path& file) {
+  try {
+    loadGltf(file);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+void expectOneLineErrorNaming(const fs::path& file, const std::string& what) {
+  std::string e = loadError(file);
+  EXPECT_NE(e.find(file.filename().string()), std::string::npos) << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  EXPECT_NE(e.find(what), std::string::npos) << e;
+}
+
+// A valid one-triangle glTF whose JSON the tests then break in one place each.
+nlohmann::json triangle(const std::string& bin) {
+  return {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", {{{"uri", bin}, {"byteLength", 42}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}}, {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 6}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}, {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
+        {{"bufferView", 1}, {"componentType", 5123}, {"count", 3}, {"type", "SCALAR"}}}},
+      {"meshes", {{{"name", "tri"}, {"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"scene", 0}};
+}
+
+void writeTriangleBin(const fs::path& p, uint16_t lastIndex = 2) {
+  float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  uint16_t idx[3] = {0, 1, lastIndex};
+  std::ofstream f(p, std::ios::binary);
+  f.write(reinterpret_cast<const char*>(pos), sizeof pos);
+  f.write(reinterpret_cast<const char*>(idx), sizeof idx);
+}
+
+TEST(SceneErrors, ValidTriangleLoads) {
+  TempDir tmp;
+  writeTriangleBin(tmp.path / "t.bin");
+  writeText(tmp.path / "ok.gltf", triangle("t.bin").dump());
+  Scene s = loadGltf(tmp.path / "ok.gltf");
+  EXPECT_EQ(s.instances.size(), 1u);
+  EXPECT_NEAR(s.meshes[0].vertices[0].normal.z, 1.0f, 1e-6f);  // generated from the winding
+}
+
+TEST(SceneErrors, MissingFile) { expectOneLineErrorNaming("/nonexistent/dir/nothing.gltf", "file not found"); }
+
+TEST(SceneErrors, NotJson) {
+  TempDir tmp;
+  writeText(tmp.path / "not_json.gltf", "this is not { json");
+  expectOneLineErrorNaming(tmp.path / "not_json.gltf", "not a valid glTF file");
+}
+
+TEST(SceneErrors, TruncatedGlb) {
+  TempDir tmp;
+  writeText(tmp.path / "truncated.glb", std::string("glTF\x02\x00\x00\x00\x40\x00", 10));
+  expectOneLineErrorNaming(tmp.path / "truncated.glb", "not a valid glTF file");
+}
+
+TEST(SceneErrors, MissingBinary) {
+  TempDir tmp;
+  writeText(tmp.path / "missing_bin.gltf", triangle("nowhere.bin").dump());
+  expectOneLineErrorNaming(tmp.path / "missing_bin.gltf", "not a valid glTF file");
+}
+
+TEST(SceneErrors, AccessorOutOfRange) {
+  TempDir tmp;
+  writeTriangleBin(tmp.path / "t.bin");
+  auto j = triangle("t.bin");
+  j["accessors"][0]["count"] = 300;  // far past the 36-byte view
+  writeText(tmp.path / "accessor_out_of_range.gltf", j.dump());
+  expectOneLineErrorNaming(tmp.path / "accessor_out_of_range.gltf", "accessor 0 (POSITION) reaches past the end");
+}
+
+TEST(SceneErrors, IndexOutOfRange) {
+  TempDir tmp;
+  writeTriangleBin(tmp.path / "t.bin", 60000);
+  writeText(tmp.path / "index_out_of_range.gltf", triangle("t.bin").dump());
+  expectOneLineErrorNaming(tmp.path / "index_out_of_range.gltf", "index 2 is 60000, beyond its 3 vertices");
+}
+
+TEST(SceneErrors, MissingPosition) {
+  TempDir tmp;
+  writeTriangleBin(tmp.path / "t.bin");
+  auto j = triangle("t.bin");
+  j["meshes"][0]["primitives"][0]["attributes"] = {{"NORMAL", 0}};
+  writeText(tmp.path / "no_position.gltf", j.dump());
+  expectOneLineErrorNaming(tmp.path / "no_position.gltf", "has no POSITION");
+}
+
+TEST(SceneErrors, UnsupportedRequiredExtension) {
+  TempDir tmp;
+  writeTriangleBin(tmp.path / "t.bin");
+  auto j = triangle("t.bin");
+  j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  writeText(tmp.path / "draco_required.gltf", j.dump());
+  expectOneLineErrorNaming(tmp.path / "draco_required.gltf", "KHR_draco_mesh_compression");
+}
+
+TEST(SceneErrors, NonFinitePosition) {
+  TempDir tmp;
+  float pos[9] = {0, 0, 0, NAN, 0, 0, 0, 1, 0};
+  uint16_t idx[3] = {0, 1, 2};
+  {
+    std::ofstream f(tmp.path / "t.bin", std::ios::binary);
+    f.write(reinterpret_cast<const char*>(pos), sizeof pos);
+    f.write(reinterpret_cast<const char*>(idx), sizeof idx);
+  }
+  writeText(tmp.path / "nan.gltf", triangle("t.bin").dump());
+  expectOneLineErrorNaming(tmp.path / "nan.gltf", "non-finite position");
+}
+
+TEST(SceneErrors, MissingTextureIsAWarningAndAPlaceholder) {
+  TempDir tmp;
+  writeTriangleBin(tmp.path / "t.bin");
+  auto j = triangle("t.bin");
+  j["images"] = {{{"uri", "textures/gone.png"}}};
+  j["textures"] = {{{"source", 0}}};
+  j["materials"] = {{{"name", "m"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+  j["meshes"][0]["primitives"][0]["material"] = 0;
+  writeText(tmp.path / "missing_texture.gltf", j.dump());
+  Scene s = loadGltf(tmp.path / "missing_texture.gltf");
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("gone.png"), std::string::npos) << s.warnings[0];
+  EXPECT_NE(s.warnings[0].find("missing_texture.gltf"), std::string::npos) << s.warnings[0];
+  ASSERT_EQ(s.textures.size(), 1u);
+  EXPECT_TRUE(s.textures[0].placeholder);
+  EXPECT_EQ(s.textures[0].rgba8[0], 255);  // magenta
+  EXPECT_EQ(s.textures[0].rgba8[1], 0);
+}
+
+TEST(SceneErrors, DegenerateTrianglesGiveFiniteNormals) {
+  TempDir tmp;
+  float pos[9] = {1, 1, 1, 1, 1, 1, 1, 1, 1};  // zero area
+  uint16_t idx[3] = {0, 1, 2};
+  {
+    std::ofstream f(tmp.path / "t.bin", std::ios::binary);
+    f.write(reinterpret_cast<const char*>(pos), sizeof pos);
+    f.write(reinterpret_cast<const char*>(idx), sizeof idx);
+  }
+  writeText(tmp.path / "degenerate.gltf", triangle("t.bin").dump());
+  Scene s = loadGltf(tmp.path / "degenerate.gltf");
+  for (auto& v : s.meshes[0].vertices) {
+    EXPECT_TRUE(std::isfinite(v.normal.x) && std::isfinite(v.tangent.x));
+    EXPECT_NEAR(glm::length(v.normal), 1.0f, 1e-5f);
+  }
+}
+
+}  // namespace
+}  // namespace tl::scene
