@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -48,6 +49,30 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--exposure", o.light.exposureEv, "exposure in EV (default: from the sun and sky)");
 }
 
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+// The first frame compiles pipelines on first use: it is reported apart from the median.
+void printFrameTimes(const Session& session) {
+  const auto& frames = session.frameGpuMs();
+  if (frames.empty()) return;
+  if (frames.size() == 1) {
+    fmt::print("GPU frame time: {:.2f} ms (one frame, includes first-use pipeline compilation)\n", frames[0]);
+    return;
+  }
+  std::vector<double> steady(frames.begin() + 1, frames.end());
+  fmt::print("GPU frame time: median {:.2f} ms over {} frames (min {:.2f}, max {:.2f}); first frame {:.2f} ms\n",
+             median(steady), steady.size(), *std::min_element(steady.begin(), steady.end()),
+             *std::max_element(steady.begin(), steady.end()), frames[0]);
+  for (const auto& [pass, ms] : session.passGpuMs()) {
+    std::vector<double> s(ms.begin() + (ms.size() > 1 ? 1 : 0), ms.end());
+    fmt::print("  {:24} {:8.2f} ms\n", pass, median(s));
+  }
+}
+
 int runRender(const RenderOptions& o) {
   tl::gpu::DeviceOptions deviceOptions;
   Session session(deviceOptions);
@@ -67,10 +92,9 @@ int runRender(const RenderOptions& o) {
     session.saveImage(out);
     fmt::print("wrote {}\n", std::filesystem::absolute(out).string());
   }
-  double gpuMs = 0.0;
-  for (auto& t : session.timings()) gpuMs += t.gpuMs;
-  fmt::print("rendered {} frame(s) of {} with `{}` at {}x{} on {} in {:.2f} s (last frame GPU {:.1f} ms)\n", o.frames,
-             session.scene().name, session.path(), w, h, session.device().name(), seconds, gpuMs);
+  fmt::print("rendered {} frame(s) of {} with `{}` at {}x{} on {} in {:.2f} s\n", o.frames, session.scene().name,
+             session.path(), w, h, session.device().name(), seconds);
+  printFrameTimes(session);
   if (!o.dumpGraph.empty()) {
     if (o.dumpGraph == "-") {
       fmt::print("{}", session.graphDump());

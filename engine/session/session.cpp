@@ -190,12 +190,22 @@ void Session::renderOne(bool readback) {
   }
   executor_->execute(graph, compiled);
   graphDump_ = graph.dump(compiled);
+  double total = 0.0;
+  for (const auto& t : executor_->timings()) {
+    total += t.gpuMs;
+    auto it = std::find_if(passGpuMs_.begin(), passGpuMs_.end(), [&](auto& p) { return p.first == t.pass; });
+    if (it == passGpuMs_.end()) it = passGpuMs_.insert(passGpuMs_.end(), {t.pass, {}});
+    it->second.push_back(t.gpuMs);
+  }
+  frameGpuMs_.push_back(total);
   previousView_ = view_;
   ++frameIndex_;
 }
 
 void Session::renderFrames(uint32_t n) {
   if (!scene_) throw SessionError("no scene is loaded");
+  frameGpuMs_.clear();
+  passGpuMs_.clear();
   for (uint32_t i = 0; i < n; ++i) renderOne(i + 1 == n);
   requested_.clear();
   requestAll_ = false;

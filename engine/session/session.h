@@ -84,6 +84,9 @@ class Session {
   const std::vector<graph::PhysicalInfo>& resources() const { return executor_->resources(); }
   const std::vector<graph::PassTiming>& timings() const { return executor_->timings(); }
   std::string graphDump() const { return graphDump_; }
+  // GPU milliseconds of each frame of the last renderFrames call, and per pass (in order).
+  const std::vector<double>& frameGpuMs() const { return frameGpuMs_; }
+  const std::vector<std::pair<std::string, std::vector<double>>>& passGpuMs() const { return passGpuMs_; }
   uint64_t frameIndex() const { return frameIndex_; }
 
   // .exr: scene-linear radiance before exposure (composite.hdr);
@@ -113,6 +116,8 @@ class Session {
   std::vector<std::string> requested_;
   bool requestAll_ = false;
   std::string graphDump_;
+  std::vector<double> frameGpuMs_;
+  std::vector<std::pair<std::string, std::vector<double>>> passGpuMs_;
   uint64_t frameIndex_ = 0;
 };
 
