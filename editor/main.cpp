@@ -2,6 +2,7 @@
 // the headless subcommands work on machines without a display. Errors are one line on
 // stderr and a non-zero exit: 1 for a failure at run time, 2 for bad usage.
 #include "cli_args.h"
+#include "gpu/self_test.h"
 #include "session/session.h"
 
 #include <CLI/CLI.hpp>
@@ -115,8 +116,13 @@ int runInfo() {
   auto& d = session.device();
   fmt::print("device: {}\ndriver: {}\nvulkan: {}.{}.{}\n", d.name(), d.driver(), VK_API_VERSION_MAJOR(d.apiVersion()),
              VK_API_VERSION_MINOR(d.apiVersion()), VK_API_VERSION_PATCH(d.apiVersion()));
-  fmt::print("ray tracing: {}\n", d.rayTracing().pipeline ? (d.rayTracing().query ? "pipeline + query" : "pipeline")
-                                                          : "unavailable: " + d.rayTracing().unavailableReason);
+  if (d.rayTracing().pipeline) {
+    auto failure = tl::gpu::rayTracingSelfTest(d);
+    fmt::print("ray tracing: {}, self-test {}\n", d.rayTracing().query ? "pipeline + query" : "pipeline",
+               failure ? "FAILED: " + *failure : std::string("passed"));
+  } else {
+    fmt::print("ray tracing: unavailable: {}\n", d.rayTracing().unavailableReason);
+  }
   fmt::print("lighting paths:\n");
   for (auto& p : session.paths())
     fmt::print("  {:10} {}{}\n", p.name, p.description, p.available ? "" : "  [unavailable: " + p.unavailableReason + "]");

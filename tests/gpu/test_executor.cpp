@@ -3,6 +3,7 @@
 // the timestamps name every pass.
 #include "gpu_fixture.h"
 
+#include "gpu/self_test.h"
 #include "graph/executor.h"
 
 namespace tl::test {
@@ -99,6 +100,17 @@ TEST_F(GpuTest, AliasedTransientsReadBackTheirOwnValues) {
   ASSERT_EQ(ex.timings().size(), 4u);
   EXPECT_EQ(ex.timings()[0].pass, "make.a");
   for (auto& t : ex.timings()) EXPECT_GE(t.gpuMs, 0.0);
+}
+
+}  // namespace tl::test
+
+namespace tl::test {
+
+TEST_F(GpuTest, RayTracingPipelineTracesTheSelfTestTriangle) {
+  auto& d = session().device();
+  if (!d.rayTracing().pipeline) GTEST_SKIP() << d.rayTracing().unavailableReason;
+  auto failure = gpu::rayTracingSelfTest(d);
+  EXPECT_FALSE(failure.has_value()) << *failure;
 }
 
 }  // namespace tl::test

@@ -1,0 +1,56 @@
+// Acceleration structures for ray tracing: bottom level from a triangle mesh in GPU
+// buffers, top level from instances. Builds are recorded into a command buffer or run
+// immediately; the RT lighting module schedules them (T5).
+#pragma once
+
+#include "gpu/resources.h"
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+namespace tl::gpu {
+
+class AccelerationStructure {
+ public:
+  AccelerationStructure() = default;
+  ~AccelerationStructure() { reset(); }
+  AccelerationStructure(AccelerationStructure&& o) noexcept { *this = std::move(o); }
+  AccelerationStructure& operator=(AccelerationStructure&& o) noexcept;
+  void reset();
+
+  VkAccelerationStructureKHR handle() const { return handle_; }
+  VkDeviceAddress address() const { return address_; }
+  VkDeviceSize bytes() const { return buffer_.size(); }
+  explicit operator bool() const { return handle_ != VK_NULL_HANDLE; }
+
+ private:
+  friend AccelerationStructure buildBottomLevel(Device&, const struct TriangleGeometry&, std::string_view);
+  friend AccelerationStructure buildTopLevel(Device&, const std::vector<struct TlasInstance>&, std::string_view);
+  Device* device_ = nullptr;
+  VkAccelerationStructureKHR handle_ = VK_NULL_HANDLE;
+  Buffer buffer_;
+  VkDeviceAddress address_ = 0;
+};
+
+struct TriangleGeometry {
+  VkDeviceAddress vertices = 0;  // float3 positions at the start of each vertex
+  VkDeviceSize vertexStride = 12;
+  uint32_t vertexCount = 0;
+  VkDeviceAddress indices = 0;   // uint32 triangle list
+  uint32_t triangleCount = 0;
+  bool opaque = true;
+};
+
+struct TlasInstance {
+  glm::mat4 transform{1.0f};   // object -> world (camera-relative)
+  uint32_t customIndex = 0;    // gl_InstanceCustomIndexEXT: index into per-instance data
+  uint8_t mask = 0xFF;
+  VkDeviceAddress blas = 0;
+};
+
+// Builds and waits (device.immediate).
+AccelerationStructure buildBottomLevel(Device& device, const TriangleGeometry& geometry, std::string_view name);
+AccelerationStructure buildTopLevel(Device& device, const std::vector<TlasInstance>& instances, std::string_view name);
+
+}  // namespace tl::gpu
