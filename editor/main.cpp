@@ -2,6 +2,7 @@
 // the headless subcommands work on machines without a display. Errors are one line on
 // stderr and a non-zero exit: 1 for a failure at run time, 2 for bad usage.
 #include "cli_args.h"
+#include "editor_app.h"
 #include "gpu/self_test.h"
 #include "session/session.h"
 
@@ -135,8 +136,11 @@ int main(int argc, char** argv) {
   spdlog::set_level(std::getenv("TWINLIGHT_VERBOSE") ? spdlog::level::debug : spdlog::level::warn);
   CLI::App app{"Twinlight: a lighting lab comparing ray-traced and legacy real-time lighting against a path tracer"};
   app.require_subcommand(0, 1);
-  std::string sceneArg;
+  std::string sceneArg, scriptArg;
+  bool headless = false;
   app.add_option("scene", sceneArg, "glTF scene to open (default: content/atrium.gltf)");
+  app.add_option("--script", scriptArg, "run editor actions from FILE (see editor/script.h), then quit");
+  app.add_flag("--headless", headless, "render the scene to out/ instead of opening the editor");
 
   RenderOptions render;
   auto* renderCmd = app.add_subcommand("render", "render a scene headless and save the image(s)");
@@ -163,12 +167,22 @@ int main(int argc, char** argv) {
     if (*infoCmd) return runInfo();
     // No subcommand: the main job on the default (or given) scene. The interactive editor
     // needs a display; without one the scene is rendered headless.
+    const char* x11 = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    bool haveDisplay = (x11 && *x11) || (wayland && *wayland);
+    if (!headless && (haveDisplay || !scriptArg.empty())) {
+      std::optional<std::filesystem::path> scene, script;
+      if (!sceneArg.empty()) scene = sceneArg;
+      if (!scriptArg.empty()) script = scriptArg;
+      tl::editor::EditorApp editor(scene, script);
+      return editor.run();
+    }
     RenderOptions o;
     o.scene = sceneArg;
     std::filesystem::path stem = sceneArg.empty() ? defaultScene().stem() : std::filesystem::path(sceneArg).stem();
     o.outputs = {(std::filesystem::path("out") / (stem.string() + ".png")).string(),
                  (std::filesystem::path("out") / (stem.string() + ".exr")).string()};
-    fmt::print("no display editor in this build; rendering {} headless\n", stem.string());
+    fmt::print("no display found (DISPLAY/WAYLAND_DISPLAY unset); rendering {} headless\n", stem.string());
     return runRender(o);
   } catch (const std::exception& e) {
     fmt::print(stderr, "twinlight: error: {}\n", e.what());

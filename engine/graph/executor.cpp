@@ -237,6 +237,16 @@ VkImageLayout Executor::importedLayout(std::string_view name) const {
   return it == physical_.end() ? VK_IMAGE_LAYOUT_UNDEFINED : it->second.layout;
 }
 
+const gpu::Image* Executor::image(std::string_view name) const {
+  auto it = physical_.find(name);
+  return it == physical_.end() ? nullptr : it->second.image;
+}
+
+VkImageLayout Executor::layout(std::string_view name) const {
+  auto it = physical_.find(name);
+  return it == physical_.end() ? VK_IMAGE_LAYOUT_UNDEFINED : it->second.layout;
+}
+
 void Executor::resetHistory() {
   for (auto& [name, p] : physical_)
     if (p.kind == Physical::Kind::Persistent) p.historyValid = false, p.layout = VK_IMAGE_LAYOUT_UNDEFINED;

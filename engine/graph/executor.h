@@ -112,6 +112,10 @@ class Executor {
   const std::map<std::string, Readback>& readbacks() const { return readbacks_; }
   const Readback& readback(std::string_view name) const;
   VkDeviceSize transientBytes() const { return transientBlock_.size(); }
+  // The physical image of a resource after the frame, and the layout it was left in
+  // (the editor blits the display image from it); nullptr when there is none.
+  const gpu::Image* image(std::string_view name) const;
+  VkImageLayout layout(std::string_view name) const;
   uint64_t frameIndex() const { return frame_; }
   // Layout an imported image was left in by the frame (to hand it back to its owner).
   VkImageLayout importedLayout(std::string_view name) const;

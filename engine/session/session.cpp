@@ -7,6 +7,8 @@
 #include "session/view_math.h"
 
 #include <fmt/format.h>
+
+#include <cstring>
 #include <spdlog/spdlog.h>
 
 namespace tl::session {
@@ -16,6 +18,7 @@ struct Session::Passes {
   lighting::ShadowPass shadow;
   lighting::CompositePass composite;
   lighting::TonemapPass tonemap;
+  lighting::DisplayPass display;
 };
 
 Session::Session(const gpu::DeviceOptions& options)
@@ -38,10 +41,16 @@ const scene::Scene& Session::scene() const {
   return *scene_;
 }
 
-void Session::loadScene(const std::filesystem::path& file) {
+std::unique_ptr<scene::Scene> Session::parseScene(const std::filesystem::path& file) {
   auto loaded = std::make_unique<scene::Scene>(scene::loadGltf(file));
-  for (auto& w : loaded->warnings) spdlog::warn("{}", w);
   if (loaded->instances.empty()) throw scene::SceneError(fmt::format("{}: the scene has no meshes to draw", file.string()));
+  return loaded;
+}
+
+void Session::loadScene(const std::filesystem::path& file) { installScene(parseScene(file)); }
+
+void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
+  for (auto& w : loaded->warnings) spdlog::warn("{}", w);
   device_->waitIdle();
   gpuScene_ = std::make_unique<scene::GpuScene>(*device_, *loaded);
   scene_ = std::move(loaded);
@@ -180,6 +189,7 @@ void Session::renderOne(bool readback) {
   lighting::LightingOutputs outputs = path_->addPasses(graph, in);
   passes_->composite.add(graph, in, outputs);
   passes_->tonemap.add(graph, in);
+  if (display_) passes_->display.add(graph, in, *display_);
 
   graph::CompiledGraph compiled = graph.compile();
   if (readback) {
@@ -209,6 +219,15 @@ void Session::renderFrames(uint32_t n) {
   for (uint32_t i = 0; i < n; ++i) renderOne(i + 1 == n);
   requested_.clear();
   requestAll_ = false;
+}
+
+std::optional<uint32_t> Session::instanceAt(uint32_t x, uint32_t y) const {
+  const graph::Readback& ids = buffer("gbuffer.instanceId");
+  if (x >= ids.extent.width || y >= ids.extent.height) return std::nullopt;
+  uint32_t id;
+  std::memcpy(&id, &ids.bytes[(size_t(y) * ids.extent.width + x) * 4], 4);
+  if (id == 0 || id > scene().instances.size()) return std::nullopt;
+  return id - 1;
 }
 
 const graph::Readback& Session::buffer(const std::string& name) const {

@@ -5,6 +5,7 @@
 
 #include "gpu/device.h"
 #include "graph/executor.h"
+#include "lighting/common/display_pass.h"
 #include "lighting/common/frame_inputs.h"
 #include "lighting/lighting_path.h"
 #include "scene/scene.h"
@@ -54,6 +55,10 @@ class Session {
 
   // Throws scene::SceneError (one line naming the file) and keeps the previous scene.
   void loadScene(const std::filesystem::path& file);
+  // The two halves of loadScene: parsing touches no device and may run on another thread
+  // (the editor keeps its UI alive meanwhile); installing uploads to the GPU.
+  static std::unique_ptr<scene::Scene> parseScene(const std::filesystem::path& file);
+  void installScene(std::unique_ptr<scene::Scene> scene);
   bool hasScene() const { return scene_ != nullptr; }
   const scene::Scene& scene() const;
 
@@ -72,6 +77,13 @@ class Session {
 
   void setSize(uint32_t width, uint32_t height);
   lighting::RenderSettings& settings() { return settings_; }
+
+  // The editor's viewport: adds the display pass (selection outline, any resource shown).
+  void setDisplay(std::optional<lighting::DisplayRequest> request) { display_ = std::move(request); }
+  const gpu::Image* displayImage() const { return executor_->image(lighting::kDisplayLdr); }
+  VkImageLayout displayImageLayout() const { return executor_->layout(lighting::kDisplayLdr); }
+  // Instance under pixel (x, y) of the last frame, which must have read back gbuffer.instanceId.
+  std::optional<uint32_t> instanceAt(uint32_t x, uint32_t y) const;
 
   // Read-backs for the last of the next frames: by name, or every resource.
   void requestBuffer(const std::string& name) { requested_.push_back(name); }
@@ -113,6 +125,7 @@ class Session {
   View view_;
   std::optional<View> previousView_;
   Lighting lighting_;
+  std::optional<lighting::DisplayRequest> display_;
   std::vector<std::string> requested_;
   bool requestAll_ = false;
   std::string graphDump_;

@@ -1,4 +1,15 @@
-// Packing shared by C++ and GLSL: octahedral unit vectors (G-buffer normals).
+// Packing shared by C++ and GLSL: octahedral unit vectors (G-buffer normals), 2x16-bit
+// snorm words and half-float pairs.
+//
+// Contract:
+//   tlOctEncode(n)            unit vector -> [-1,1]^2 (exact inverse of tlOctDecode up to rounding)
+//   tlOctDecode(e)            [-1,1]^2 -> unit vector (any e in the square gives a unit vector)
+//   tlPackSnorm2x16(v)        vec2 in [-1,1] -> uint, x in bits 0..15, y in bits 16..31; the same
+//                             bits as GLSL/glm packSnorm2x16 (round half away from zero)
+//   tlUnpackSnorm2x16(p)      inverse; -32768 decodes to -1 like the builtin
+//   tlOctEncodeSnorm16(n)     unit vector -> one uint (oct + snorm16, the precise encoder)
+//   tlOctDecodeSnorm16(p)     inverse
+//   tlPackHalf2x16/tlUnpackHalf2x16   two floats <-> one uint of two IEEE halves (builtins)
 #ifndef TL_SHARED_PACKING_H
 #define TL_SHARED_PACKING_H
 #include "common.h"
@@ -22,5 +33,44 @@ TL_FN vec3 tlOctDecode(vec2 e) {
   n.y += n.y >= 0.0f ? -t : t;
   return normalize(n);
 }
+
+// Plain arithmetic rather than the builtin so rounding is pinned down on every GPU: the GLSL
+// spec lets round() pick either way at .5, this rounds half away from zero (as glm does).
+TL_FN uint tlSnorm16Bits(float x) {
+  float s = clamp(x, -1.0f, 1.0f) * 32767.0f;
+  int i = int(s >= 0.0f ? floor(s + 0.5f) : ceil(s - 0.5f));
+  return uint(i) & 0xFFFFu;
+}
+TL_FN float tlSnorm16Value(uint bits) {
+  int i = int(bits << 16u) >> 16;  // sign-extend the low 16 bits (arithmetic shift in both languages)
+  return max(float(i) / 32767.0f, -1.0f);
+}
+TL_FN uint tlPackSnorm2x16(vec2 v) { return tlSnorm16Bits(v.x) | (tlSnorm16Bits(v.y) << 16u); }
+TL_FN vec2 tlUnpackSnorm2x16(uint p) { return vec2(tlSnorm16Value(p & 0xFFFFu), tlSnorm16Value(p >> 16u)); }
+
+// Octahedral normal in one 32-bit word. Plain rounding of the encoded point is off by up to
+// ~0.006 deg; this tries the four snorm16 neighbours of the float encoding and keeps the one
+// that decodes closest to n (Cigolle et al. 2014, "oct32P"), so the worst case is about half.
+TL_FN uint tlOctEncodeSnorm16(vec3 n) {
+  vec2 e = tlOctEncode(n) * 32767.0f;
+  vec2 lo = floor(e);
+  uint best = 0u;
+  float bestDot = -2.0f;
+  for (int i = 0; i < 4; ++i) {
+    vec2 c = vec2(lo.x + float(i & 1), lo.y + float(i >> 1)) / 32767.0f;
+    uint bits = tlPackSnorm2x16(c);
+    float d = dot(tlOctDecode(tlUnpackSnorm2x16(bits)), n);
+    if (d > bestDot) {
+      bestDot = d;
+      best = bits;
+    }
+  }
+  return best;
+}
+TL_FN vec3 tlOctDecodeSnorm16(uint p) { return tlOctDecode(tlUnpackSnorm2x16(p)); }
+
+// IEEE half pairs: the builtin has the same name and meaning in GLSL and glm.
+TL_FN uint tlPackHalf2x16(vec2 v) { return packHalf2x16(v); }
+TL_FN vec2 tlUnpackHalf2x16(uint p) { return unpackHalf2x16(p); }
 TL_END
 #endif

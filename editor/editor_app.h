@@ -1,0 +1,104 @@
+// The editor: a GLFW window with Dear ImGui over the engine's session. The engine renders
+// into its own image at `renderScale` of the viewport panel; the image is blitted into the
+// swapchain under a transparent viewport panel and the UI is drawn over it.
+#pragma once
+
+#include "camera_controller.h"
+#include "settings.h"
+
+#include "gpu/descriptor_pool.h"
+#include "gpu/swapchain.h"
+#include "session/session.h"
+
+#include <deque>
+#include <filesystem>
+#include <future>
+#include <memory>
+#include <optional>
+#include <string>
+
+struct GLFWwindow;
+
+namespace tl::editor {
+
+class Script;
+
+class EditorApp {
+ public:
+  EditorApp(std::optional<std::filesystem::path> scene, std::optional<std::filesystem::path> script);
+  ~EditorApp();
+  int run();  // exit code
+
+  // --- used by the panels and the script runner -------------------------------------
+  session::Session& session() { return *session_; }
+  Settings& settings() { return settings_; }
+  void openScene(const std::filesystem::path& file);  // starts a background load
+  bool loading() const { return load_.valid(); }
+  void cancelLoad();
+  void setPath(const std::string& name);
+  void select(std::optional<uint32_t> instance) { selected_ = instance; }
+  std::optional<uint32_t> selected() const { return selected_; }
+  void clickViewport(glm::vec2 windowPos);    // picks the instance under the cursor
+  void requestScreenshot(const std::filesystem::path& file) { screenshotPath_ = file; }
+  void requestQuit() { quit_ = true; }
+  void focusSelection();
+  void showError(const std::string& message) { error_ = message; }
+  void previewResource(const std::string& name) { preview_ = name; }  // while hovering a pass
+  void pinPreview(const std::string& name) { pinnedPreview_ = name; }  // until changed
+  void showHelp(bool on) { showHelp_ = on; }
+  void showBrowser(bool on) { showBrowser_ = on; }
+  uint64_t framesDrawn() const { return framesDrawn_; }
+  double fps() const;
+  const std::deque<double>& frameHistoryMs() const { return frameHistory_; }
+  // Viewport panel rectangle in window pixels (valid after the first frame).
+  glm::vec2 viewportMin() const { return viewportMin_; }
+  glm::vec2 viewportSize() const { return viewportSize_; }
+
+ private:
+  void createWindow();
+  void initImgui();
+  void frame();
+  void drawUi();
+  void handleCameraInput(float seconds);
+  void renderEngine();
+  void recordAndPresent();
+  void finishLoad();
+  void applyBookmark(int slot, bool save);
+  std::string sceneKey() const;
+  float previewScale(const std::string& resource) const;
+  void writeScreenshot(const gpu::Buffer& pixels, VkExtent2D extent);
+
+  Settings settings_;
+  GLFWwindow* window_ = nullptr;
+  VkSurfaceKHR surface_ = VK_NULL_HANDLE;
+  std::unique_ptr<session::Session> session_;
+  std::unique_ptr<gpu::Swapchain> swapchain_;
+  std::unique_ptr<gpu::DescriptorPool> imguiPool_;
+  std::unique_ptr<Script> script_;
+  CameraController camera_;
+  std::future<std::unique_ptr<scene::Scene>> load_;
+  std::filesystem::path loadingPath_;
+  std::optional<uint32_t> selected_;
+  std::optional<glm::vec2> pendingClick_;
+  std::optional<std::filesystem::path> screenshotPath_;
+  std::string error_;
+  std::string preview_;        // resource shown while a pass is hovered ("" = none)
+  std::string pinnedPreview_;  // resource shown otherwise ("" = the final image)
+  glm::vec2 viewportMin_{0.0f}, viewportSize_{0.0f};
+  bool viewportHovered_ = false;
+  bool showHelp_ = false, showBrowser_ = false;
+  std::filesystem::path browserDir_;
+  bool quit_ = false;
+  bool resized_ = false;
+  uint64_t framesDrawn_ = 0;
+  std::deque<double> frameHistory_;
+  double lastTime_ = 0.0;
+  glm::vec2 lastMouse_{0.0f};
+  glm::vec2 pressPos_{0.0f};
+  bool dragged_ = false;
+
+  friend void drawPanels(EditorApp& app);
+  friend class Script;
+};
+
+}  // namespace tl::editor

@@ -1,0 +1,356 @@
+// The editor's panels, one function per concern. Tooltips state physical units.
+#include "editor_app.h"
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtx/matrix_decompose.hpp>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace tl::editor {
+namespace {
+
+void tooltip(const char* text) {
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
+}
+
+bool contains(const std::string& haystack, const std::string& needle) {
+  if (needle.empty()) return true;
+  auto lower = [](std::string s) {
+    for (auto& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+  };
+  return lower(haystack).find(lower(needle)) != std::string::npos;
+}
+
+void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
+  if (!ImGui::BeginMainMenuBar()) return;
+  if (ImGui::BeginMenu("File")) {
+    if (ImGui::MenuItem("Open...", "Ctrl+O")) showBrowser = true;
+    if (ImGui::BeginMenu("Open recent", !app.settings().recentScenes.empty())) {
+      for (const auto& r : app.settings().recentScenes)
+        if (ImGui::MenuItem(r.c_str())) app.openScene(r);
+      ImGui::EndMenu();
+    }
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit")) app.requestQuit();
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    if (ImGui::MenuItem("Vsync", nullptr, app.settings().vsync)) app.settings().vsync = !app.settings().vsync;
+    ImGui::MenuItem("Help", "F1", &showHelp);
+    ImGui::EndMenu();
+  }
+  ImGui::EndMainMenuBar();
+}
+
+void viewportPanel(EditorApp& app, glm::vec2& min, glm::vec2& size, bool& hovered) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(300, 20), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(display.x - 640, display.y - 44), ImGuiCond_FirstUseEver);
+  // No background: the engine's image is blitted into the window's area underneath.
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
+  ImGui::Begin("Viewport", nullptr, ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  ImVec2 pos = ImGui::GetCursorScreenPos();
+  ImVec2 avail = ImGui::GetContentRegionAvail();
+  min = {pos.x, pos.y};
+  size = {std::max(avail.x, 0.0f), std::max(avail.y, 0.0f)};
+  ImGui::InvisibleButton("viewport.area", ImVec2(std::max(avail.x, 1.0f), std::max(avail.y, 1.0f)),
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight | ImGuiButtonFlags_MouseButtonMiddle);
+  hovered = ImGui::IsItemHovered() || ImGui::IsItemActive();
+  if (!app.session().hasScene()) {
+    ImGui::SetCursorScreenPos(ImVec2(pos.x + 20, pos.y + 20));
+    ImGui::TextUnformatted("No scene. File > Open, or drop a .gltf/.glb on the window.");
+  }
+  ImGui::End();
+  ImGui::PopStyleVar();
+}
+
+void outlinerPanel(EditorApp& app) {
+  ImGui::SetNextWindowPos(ImVec2(0, 20), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(300, 420), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Outliner");
+  static char filter[128] = "";
+  ImGui::SetNextItemWidth(-1);
+  ImGui::InputTextWithHint("##search", "search instances, meshes, materials", filter, sizeof filter);
+  if (app.session().hasScene()) {
+    const auto& s = app.session().scene();
+    ImGui::BeginChild("instances");
+    for (uint32_t i = 0; i < s.instances.size(); ++i) {
+      const auto& inst = s.instances[i];
+      const auto& mesh = s.meshes[inst.mesh];
+      const auto& mat = s.materials[mesh.material];
+      if (!contains(inst.name, filter) && !contains(mesh.name, filter) && !contains(mat.name, filter)) continue;
+      bool selected = app.selected() == i;
+      ImGui::PushID(int(i));
+      if (ImGui::Selectable(inst.name.c_str(), selected)) app.select(i);
+      ImGui::SameLine(170);
+      ImGui::TextDisabled("%s / %s", mesh.name.c_str(), mat.name.c_str());
+      ImGui::PopID();
+    }
+    ImGui::EndChild();
+  }
+  ImGui::End();
+}
+
+void inspectorPanel(EditorApp& app) {
+  ImGui::SetNextWindowPos(ImVec2(0, 440), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(300, 436), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Inspector");
+  if (!app.session().hasScene() || !app.selected() || *app.selected() >= app.session().scene().instances.size()) {
+    ImGui::TextDisabled("Click an instance in the viewport or the outliner.");
+    ImGui::End();
+    return;
+  }
+  const auto& s = app.session().scene();
+  const auto& inst = s.instances[*app.selected()];
+  const auto& mesh = s.meshes[inst.mesh];
+  const auto& mat = s.materials[mesh.material];
+  ImGui::Text("%s", inst.name.c_str());
+  ImGui::Separator();
+  ImGui::Text("Mesh      %s", mesh.name.c_str());
+  ImGui::Text("          %zu triangles, %zu vertices", mesh.indices.size() / 3, mesh.vertices.size());
+  ImGui::Text("Material  %s", mat.name.c_str());
+  ImGui::ColorButton("##base", ImVec4(mat.baseColorFactor.r, mat.baseColorFactor.g, mat.baseColorFactor.b, 1.0f));
+  ImGui::SameLine();
+  ImGui::Text("base colour %.3f %.3f %.3f", mat.baseColorFactor.r, mat.baseColorFactor.g, mat.baseColorFactor.b);
+  ImGui::Text("metallic %.2f  roughness %.2f%s", mat.metallic, mat.roughness, mat.baseColorTexture ? "  (textured)" : "");
+  if (glm::length(mat.emissiveFactor) > 0.0f)
+    ImGui::Text("emissive %.2f %.2f %.2f x %.1f", mat.emissiveFactor.r, mat.emissiveFactor.g, mat.emissiveFactor.b,
+                mat.emissiveStrength);
+  ImGui::Separator();
+  // decompose() leaves its outputs alone for a degenerate matrix: start from identity.
+  glm::dvec3 scale(1.0), translation(0.0), skew(0.0);
+  glm::dquat rotation(1.0, 0.0, 0.0, 0.0);
+  glm::dvec4 perspective(0.0, 0.0, 0.0, 1.0);
+  glm::decompose(inst.transform, scale, rotation, translation, skew, perspective);
+  glm::dvec3 euler = glm::degrees(glm::eulerAngles(rotation));
+  ImGui::Text("Position  %.3f %.3f %.3f m", translation.x, translation.y, translation.z);
+  ImGui::Text("Rotation  %.1f %.1f %.1f deg", euler.x, euler.y, euler.z);
+  ImGui::Text("Scale     %.3f %.3f %.3f", scale.x, scale.y, scale.z);
+  const auto& b = inst.worldBounds;
+  ImGui::Text("Bounds    %.2f %.2f %.2f", b.min.x, b.min.y, b.min.z);
+  ImGui::Text("       .. %.2f %.2f %.2f m", b.max.x, b.max.y, b.max.z);
+  if (ImGui::Button("Focus (F)")) app.focusSelection();
+  ImGui::End();
+}
+
+void lightingPanel(EditorApp& app) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x - 340, 20), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(340, 380), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Lighting");
+  auto& session = app.session();
+  ImGui::TextUnformatted("Lighting path");
+  for (const auto& p : session.paths()) {
+    ImGui::BeginDisabled(!p.available);
+    if (ImGui::RadioButton(p.name.c_str(), session.path() == p.name)) app.setPath(p.name);
+    ImGui::EndDisabled();
+    tooltip(p.available ? p.description.c_str() : ("unavailable: " + p.unavailableReason).c_str());
+  }
+  if (!session.device().rayTracing().pipeline) {
+    ImGui::TextDisabled("ray tracing: unavailable");
+    tooltip(session.device().rayTracing().unavailableReason.c_str());
+  }
+  if (!session.hasScene()) {
+    ImGui::End();
+    return;
+  }
+  ImGui::Separator();
+  session::Lighting l = session.lighting();
+  glm::dvec3 toSun = -glm::normalize(l.sunDirection);
+  float elevation = float(glm::degrees(std::asin(std::clamp(toSun.y, -1.0, 1.0))));
+  float azimuth = float(glm::degrees(std::atan2(toSun.x, toSun.z)));
+  bool changed = false;
+  changed |= ImGui::SliderFloat("Sun azimuth", &azimuth, -180.0f, 180.0f, "%.1f deg");
+  tooltip("Compass direction the sunlight comes from, degrees from +Z towards +X");
+  changed |= ImGui::SliderFloat("Sun elevation", &elevation, -10.0f, 90.0f, "%.1f deg");
+  tooltip("Height of the sun above the horizon, degrees");
+  float sunE = std::max({l.sunIrradiance.r, l.sunIrradiance.g, l.sunIrradiance.b});
+  glm::vec3 sunColor = sunE > 0.0f ? l.sunIrradiance / sunE : glm::vec3(1.0f);
+  changed |= ImGui::DragFloat("Sun irradiance", &sunE, 0.1f, 0.0f, 1000.0f, "%.2f W/m2");
+  tooltip("Irradiance E on a surface facing the sun; a white Lambertian surface facing it shows E/pi");
+  changed |= ImGui::ColorEdit3("Sun colour", &sunColor.x);
+  float skyL = std::max({l.skyRadiance.r, l.skyRadiance.g, l.skyRadiance.b});
+  glm::vec3 skyColor = skyL > 0.0f ? l.skyRadiance / skyL : glm::vec3(1.0f);
+  changed |= ImGui::DragFloat("Sky radiance", &skyL, 0.01f, 0.0f, 100.0f, "%.3f W/m2/sr");
+  tooltip("Uniform radiance L of the sky; an unoccluded white surface under it shows L");
+  changed |= ImGui::ColorEdit3("Sky colour", &skyColor.x);
+  bool autoExposure = !l.exposureEv.has_value();
+  if (ImGui::Checkbox("Auto exposure", &autoExposure)) {
+    l.exposureEv = autoExposure ? std::nullopt : std::optional<float>(session.exposureEv());
+    changed = true;
+  }
+  tooltip("Auto: a white surface lit by this sun and sky maps to 1.0 before tonemapping");
+  float ev = session.exposureEv();
+  ImGui::BeginDisabled(autoExposure);
+  if (ImGui::SliderFloat("Exposure", &ev, -10.0f, 16.0f, "%.2f EV")) l.exposureEv = ev, changed = true;
+  ImGui::EndDisabled();
+  tooltip("Radiance is multiplied by 2^-EV before the ACES tonemap");
+  if (changed) {
+    double el = glm::radians(double(elevation)), az = glm::radians(double(azimuth));
+    toSun = {std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};
+    l.sunDirection = -toSun;
+    l.sunIrradiance = sunColor * sunE;
+    l.skyRadiance = skyColor * skyL;
+    session.setLighting(l);
+  }
+  ImGui::Separator();
+  ImGui::SliderFloat("Render scale", &app.settings().renderScale, 0.1f, 1.0f, "%.2f");
+  tooltip("Engine resolution relative to the viewport panel; lower keeps software rendering interactive");
+  ImGui::End();
+}
+
+void timingPanel(EditorApp& app) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x - 340, 400), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(340, 476), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Timing");
+  auto& session = app.session();
+  std::vector<graph::PassTiming> passes = session.hasScene() ? session.timings() : std::vector<graph::PassTiming>{};
+  double total = 0.0, worst = 1e-6;
+  for (auto& p : passes) total += p.gpuMs, worst = std::max(worst, p.gpuMs);
+  std::sort(passes.begin(), passes.end(), [](auto& a, auto& b) { return a.gpuMs > b.gpuMs; });
+  ImGui::Text("GPU frame %.2f ms", total);
+  std::string hoveredOutput;
+  for (const auto& p : passes) {
+    char label[96];
+    std::snprintf(label, sizeof label, "%-14s %6.2f ms", p.pass.c_str(), p.gpuMs);
+    ImGui::ProgressBar(float(p.gpuMs / worst), ImVec2(-1, 0), label);
+    if (ImGui::IsItemHovered()) {
+      // Hovering a pass shows its first output in the viewport.
+      for (const auto& r : session.resources())
+        if (r.writer == p.pass && r.desc.type == graph::ResourceType::Image && r.desc.extent.depth == 1) {
+          hoveredOutput = r.name;
+          break;
+        }
+      ImGui::SetTooltip("%s%s", p.pass.c_str(), hoveredOutput.empty() ? "" : (" -> " + hoveredOutput).c_str());
+    }
+  }
+  app.previewResource(hoveredOutput == "display.ldr" ? "" : hoveredOutput);
+  ImGui::Separator();
+  const auto& history = app.frameHistoryMs();
+  std::vector<float> values(history.begin(), history.end());
+  ImGui::Text("Frame time (CPU+GPU), %.1f fps", app.fps());
+  if (!values.empty())
+    ImGui::PlotLines("##history", values.data(), int(values.size()), 0, nullptr, 0.0f,
+                     *std::max_element(values.begin(), values.end()) * 1.2f, ImVec2(-1, 80));
+  ImGui::End();
+}
+
+void statusBar(EditorApp& app) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(0, display.y - 24));
+  ImGui::SetNextWindowSize(ImVec2(display.x, 24));
+  ImGui::Begin("##status", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+  auto& s = app.session();
+  ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  %.1f fps  |  path %s  |  %s", s.device().name().c_str(),
+              s.settings().width, s.settings().height, app.settings().renderScale, app.fps(), s.path().c_str(),
+              s.hasScene() ? s.scene().name.c_str() : "no scene");
+  ImGui::End();
+}
+
+void helpWindow(bool& open) {
+  if (!open) return;
+  ImGui::SetNextWindowSize(ImVec2(420, 330), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Help", &open);
+  const char* rows[][2] = {{"Left drag", "orbit around the pivot"},     {"Left click", "select the instance under the cursor"},
+                           {"Middle drag", "pan"},                      {"Wheel", "dolly towards the pivot"},
+                           {"Right drag", "fly: look around"},          {"Right + W A S D", "fly forwards / left / back / right"},
+                           {"Right + Q E", "fly down / up"},             {"Shift", "move 4x faster while flying"},
+                           {"F", "focus on the selection (or the scene)"}, {"1 .. 9", "recall camera bookmark"},
+                           {"Ctrl + 1 .. 9", "save camera bookmark"},   {"Ctrl + O", "open a scene"},
+                           {"F1", "this window"}};
+  if (ImGui::BeginTable("keys", 2)) {
+    for (auto& r : rows) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(r[0]);
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(r[1]);
+    }
+    ImGui::EndTable();
+  }
+  ImGui::TextDisabled("Scenes can also be dropped onto the window.");
+  ImGui::End();
+}
+
+void fileBrowser(EditorApp& app, bool& open, std::filesystem::path& dir) {
+  if (!open) return;
+  ImGui::SetNextWindowSize(ImVec2(520, 420), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Open scene", &open);
+  ImGui::TextWrapped("%s", dir.string().c_str());
+  if (ImGui::Button("Up") && dir.has_parent_path()) dir = dir.parent_path();
+  ImGui::SameLine();
+  if (ImGui::Button("Project content")) dir = std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "content";
+  ImGui::BeginChild("files");
+  std::error_code ec;
+  std::vector<std::filesystem::directory_entry> entries;
+  for (auto& e : std::filesystem::directory_iterator(dir, ec)) entries.push_back(e);
+  std::sort(entries.begin(), entries.end(), [](auto& a, auto& b) { return a.path().filename() < b.path().filename(); });
+  for (auto& e : entries) {
+    std::string name = e.path().filename().string();
+    if (e.is_directory(ec)) {
+      if (name[0] != '.' && ImGui::Selectable(("[dir] " + name).c_str())) dir = e.path();
+    } else {
+      std::string ext = e.path().extension().string();
+      if (ext != ".gltf" && ext != ".glb") continue;
+      if (ImGui::Selectable(name.c_str(), false, ImGuiSelectableFlags_AllowDoubleClick) && ImGui::IsMouseDoubleClicked(0)) {
+        app.openScene(e.path());
+        open = false;
+      }
+    }
+  }
+  ImGui::EndChild();
+  ImGui::End();
+}
+
+void loadingPopup(EditorApp& app) {
+  if (app.loading()) ImGui::OpenPopup("Loading");
+  if (ImGui::BeginPopupModal("Loading", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    if (!app.loading()) {
+      ImGui::CloseCurrentPopup();
+    } else {
+      ImGui::TextUnformatted("Loading the scene...");
+      float t = float(ImGui::GetTime());
+      ImGui::ProgressBar(std::fmod(t * 0.5f, 1.0f), ImVec2(260, 0), "");  // parse progress is not granular
+      if (ImGui::Button("Cancel")) app.cancelLoad();
+    }
+    ImGui::EndPopup();
+  }
+}
+
+void errorPopup(std::string& error) {
+  if (!error.empty()) ImGui::OpenPopup("Error");
+  if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::PushTextWrapPos(520);
+    ImGui::TextUnformatted(error.c_str());
+    ImGui::PopTextWrapPos();
+    if (ImGui::Button("OK")) {
+      error.clear();
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
+}
+
+}  // namespace
+
+void drawPanels(EditorApp& app) {
+  mainMenu(app, app.showHelp_, app.showBrowser_);
+  viewportPanel(app, app.viewportMin_, app.viewportSize_, app.viewportHovered_);
+  outlinerPanel(app);
+  inspectorPanel(app);
+  lightingPanel(app);
+  timingPanel(app);
+  statusBar(app);
+  helpWindow(app.showHelp_);
+  fileBrowser(app, app.showBrowser_, app.browserDir_);
+  loadingPopup(app);
+  errorPopup(app.error_);
+}
+
+}  // namespace tl::editor

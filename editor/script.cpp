@@ -1,0 +1,114 @@
+#include "script.h"
+
+#include "editor_app.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+
+namespace tl::editor {
+
+Script::Script(const std::filesystem::path& file) : file_(file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(fmt::format("{}: cannot read the script", file.string()));
+  std::string line;
+  while (std::getline(in, line)) lines_.push_back(line);
+}
+
+void Script::fail(EditorApp& app, const std::string& why) {
+  failure_ = fmt::format("{}:{}: {}", file_.string(), next_, why);
+  app.requestQuit();
+}
+
+void Script::step(EditorApp& app) {
+  if (failed()) return;
+  if (measureFrames_ > 0) {
+    if (--measureFrames_ == 0) {
+      double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count() -
+                       measureSeconds_;
+      uint64_t frames = app.framesDrawn() - measureStart_;
+      fmt::print("editor: {:.1f} fps over {} frames, render {}x{}, path {}, {}\n", double(frames) / seconds, frames,
+                 app.session().settings().width, app.session().settings().height, app.session().path(),
+                 app.session().device().name());
+    }
+    return;
+  }
+  if (waitFrames_ > 0) {
+    --waitFrames_;
+    return;
+  }
+  if (waitLoaded_) {
+    if (app.loading()) return;
+    waitLoaded_ = false;
+  }
+  while (next_ < lines_.size()) {
+    std::string line = lines_[next_++];
+    std::istringstream in(line);
+    std::string cmd;
+    if (!(in >> cmd) || cmd[0] == '#') continue;
+    std::string arg;
+    std::getline(in >> std::ws, arg);
+    try {
+      if (cmd == "open") {
+        std::filesystem::path p = arg;
+        if (p.is_relative() && !std::filesystem::exists(p)) p = std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / p;
+        app.openScene(p);
+        waitLoaded_ = true;
+      } else if (cmd == "wait-loaded") {
+        waitLoaded_ = true;
+      } else if (cmd == "path") {
+        app.session().setPath(arg);
+        app.settings().lightingPath = arg;
+      } else if (cmd == "click") {
+        float x, y;
+        if (std::sscanf(arg.c_str(), "%f %f", &x, &y) != 2) return fail(app, "click needs X Y");
+        app.clickViewport({x, y});
+      } else if (cmd == "click-viewport") {
+        float u, v;
+        if (std::sscanf(arg.c_str(), "%f %f", &u, &v) != 2) return fail(app, "click-viewport needs U V");
+        app.clickViewport(app.viewportMin() + app.viewportSize() * glm::vec2(u, v));
+      } else if (cmd == "select") {
+        const auto& inst = app.session().scene().instances;
+        auto it = std::find_if(inst.begin(), inst.end(), [&](auto& i) { return i.name == arg; });
+        if (it == inst.end()) return fail(app, fmt::format("no instance called `{}`", arg));
+        app.select(uint32_t(it - inst.begin()));
+      } else if (cmd == "expect-selected") {
+        std::string got = app.selected() ? app.session().scene().instances[*app.selected()].name : "none";
+        if (got != arg) return fail(app, fmt::format("expected `{}` to be selected, but `{}` is", arg, got));
+        fmt::print("script: `{}` is selected\n", got);
+      } else if (cmd == "preview") {
+        app.pinPreview(arg == "final" ? "" : arg);
+      } else if (cmd == "render-scale") {
+        app.settings().renderScale = std::clamp(std::stof(arg), 0.1f, 2.0f);
+      } else if (cmd == "help") {
+        app.showHelp(arg == "on");
+      } else if (cmd == "browser") {
+        app.showBrowser(arg == "on");
+      } else if (cmd == "wait") {
+        waitFrames_ = std::max(0, std::stoi(arg));
+        return;
+      } else if (cmd == "measure") {
+        measureFrames_ = std::max(1, std::stoi(arg));
+        measureStart_ = app.framesDrawn();
+        measureSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+        return;
+      } else if (cmd == "screenshot") {
+        app.requestScreenshot(arg);
+        return;  // taken at the end of this frame
+      } else if (cmd == "quit") {
+        app.requestQuit();
+        return;
+      } else {
+        return fail(app, fmt::format("unknown command `{}`", cmd));
+      }
+    } catch (const std::exception& e) {
+      return fail(app, e.what());
+    }
+    if (waitLoaded_) return;
+    return;  // one action per frame, as a person would
+  }
+}
+
+}  // namespace tl::editor

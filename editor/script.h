@@ -1,0 +1,49 @@
+// `twinlight --script FILE`: editor actions, one a line, run as a person would use the
+// editor (one action per frame; `wait` lets frames pass). A failed action or expectation
+// stops the editor with exit code 1 and the line number.
+//
+//   open PATH              load a scene (relative: to the working directory, else the project)
+//   wait-loaded            wait until the scene has loaded
+//   path NAME              switch the lighting path
+//   click X Y              left click at window pixel (X, Y)
+//   click-viewport U V     left click at a fraction (U, V) of the viewport panel
+//   select NAME            select the instance called NAME
+//   expect-selected NAME   fail unless NAME (or `none`) is selected
+//   preview RESOURCE       show a resource of the frame in the viewport (`final` for the image)
+//   render-scale S         engine resolution relative to the viewport
+//   help on|off, browser on|off
+//   wait N                 let N frames pass
+//   measure N              render N frames and print the frame rate
+//   screenshot FILE        save the whole window as PNG
+//   quit
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace tl::editor {
+
+class EditorApp;
+
+class Script {
+ public:
+  explicit Script(const std::filesystem::path& file);
+  void step(EditorApp& app);
+  bool failed() const { return !failure_.empty(); }
+  const std::string& failure() const { return failure_; }
+
+ private:
+  void fail(EditorApp& app, const std::string& why);
+  std::filesystem::path file_;
+  std::vector<std::string> lines_;
+  size_t next_ = 0;
+  int waitFrames_ = 0;
+  bool waitLoaded_ = false;
+  int measureFrames_ = 0;
+  uint64_t measureStart_ = 0;
+  double measureSeconds_ = 0.0;
+  std::string failure_;
+};
+
+}  // namespace tl::editor

@@ -1,0 +1,30 @@
+// What the editor remembers between runs, in $XDG_CONFIG_HOME/twinlight (or
+// ~/.config/twinlight): recent scenes, render scale, vsync, lighting path, camera bookmarks
+// per scene, and Dear ImGui's window layout (imgui.ini beside settings.json).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace tl::editor {
+
+struct Settings {
+  std::vector<std::string> recentScenes;  // most recent first, at most 10
+  float renderScale = 0.5f;               // engine resolution / viewport resolution
+  bool vsync = true;
+  std::string lightingPath = "direct";
+  int windowWidth = 1600, windowHeight = 900;
+  nlohmann::json bookmarks = nlohmann::json::object();  // scene path -> {"1": camera, ...}
+
+  void addRecent(const std::string& scene);
+};
+
+std::filesystem::path configDirectory();
+// A missing or unreadable file gives the defaults (and a warning), never an error.
+Settings loadSettings();
+void saveSettings(const Settings& settings);  // written atomically
+
+}  // namespace tl::editor

@@ -1,0 +1,29 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "shared/display.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = kDisplaySource) uniform usampler2D source;
+layout(set = 0, binding = kDisplayInstanceId) uniform usampler2D instanceId;
+layout(set = 0, binding = kDisplayOutput, rgba8) uniform writeonly image2D display;
+layout(push_constant) uniform Push { DisplayPush push; };
+
+#include "common/display_outline.glsl"
+
+// A stable, well-spread colour per integer value; 0 stays black.
+vec3 idColor(uint v) {
+  if (v == 0u) return vec3(0.0);
+  uint h = v * 747796405u + 2891336453u;
+  h = ((h >> ((h >> 28u) + 4u)) ^ h) * 277803737u;
+  h = (h >> 22u) ^ h;
+  return vec3(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u)) / 255.0 * 0.8 + 0.2;
+}
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 size = imageSize(display);
+  if (any(greaterThanEqual(p, size))) return;
+  ivec2 sp = ivec2((vec2(p) + 0.5) / vec2(size) * vec2(textureSize(source, 0)));
+  vec3 c = idColor(texelFetch(source, sp, 0).r);
+  imageStore(display, p, vec4(outline(p, size, c), 1.0));
+}
