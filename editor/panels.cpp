@@ -255,7 +255,9 @@ void statusBar(EditorApp& app) {
 
 void helpWindow(bool& open) {
   if (!open) return;
-  ImGui::SetNextWindowSize(ImVec2(420, 330), ImGuiCond_FirstUseEver);
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 240, display.y * 0.5f - 180), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(480, 360), ImGuiCond_FirstUseEver);
   ImGui::Begin("Help", &open);
   const char* rows[][2] = {{"Left drag", "orbit around the pivot"},     {"Left click", "select the instance under the cursor"},
                            {"Middle drag", "pan"},                      {"Wheel", "dolly towards the pivot"},
@@ -264,7 +266,7 @@ void helpWindow(bool& open) {
                            {"F", "focus on the selection (or the scene)"}, {"1 .. 9", "recall camera bookmark"},
                            {"Ctrl + 1 .. 9", "save camera bookmark"},   {"Ctrl + O", "open a scene"},
                            {"F1", "this window"}};
-  if (ImGui::BeginTable("keys", 2)) {
+  if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingFixedFit)) {
     for (auto& r : rows) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
@@ -280,7 +282,9 @@ void helpWindow(bool& open) {
 
 void fileBrowser(EditorApp& app, bool& open, std::filesystem::path& dir) {
   if (!open) return;
-  ImGui::SetNextWindowSize(ImVec2(520, 420), ImGuiCond_FirstUseEver);
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 280, display.y * 0.5f - 230), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(560, 460), ImGuiCond_FirstUseEver);
   ImGui::Begin("Open scene", &open);
   ImGui::TextWrapped("%s", dir.string().c_str());
   if (ImGui::Button("Up") && dir.has_parent_path()) dir = dir.parent_path();

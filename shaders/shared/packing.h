@@ -36,9 +36,13 @@ TL_FN vec3 tlOctDecode(vec2 e) {
 
 // Plain arithmetic rather than the builtin so rounding is pinned down on every GPU: the GLSL
 // spec lets round() pick either way at .5, this rounds half away from zero (as glm does).
+// Not floor(s + 0.5): that sum itself rounds up for s just below k + 0.5.
 TL_FN uint tlSnorm16Bits(float x) {
   float s = clamp(x, -1.0f, 1.0f) * 32767.0f;
-  int i = int(s >= 0.0f ? floor(s + 0.5f) : ceil(s - 0.5f));
+  float a = abs(s);
+  float r = floor(a);
+  r += a - r >= 0.5f ? 1.0f : 0.0f;  // a - floor(a) is exact for |a| < 2^23
+  int i = int(s < 0.0f ? -r : r);
   return uint(i) & 0xFFFFu;
 }
 TL_FN float tlSnorm16Value(uint bits) {
@@ -48,20 +52,23 @@ TL_FN float tlSnorm16Value(uint bits) {
 TL_FN uint tlPackSnorm2x16(vec2 v) { return tlSnorm16Bits(v.x) | (tlSnorm16Bits(v.y) << 16u); }
 TL_FN vec2 tlUnpackSnorm2x16(uint p) { return vec2(tlSnorm16Value(p & 0xFFFFu), tlSnorm16Value(p >> 16u)); }
 
-// Octahedral normal in one 32-bit word. Plain rounding of the encoded point is off by up to
-// ~0.006 deg; this tries the four snorm16 neighbours of the float encoding and keeps the one
-// that decodes closest to n (Cigolle et al. 2014, "oct32P"), so the worst case is about half.
+// Octahedral normal in one 32-bit word. Plain rounding of the encoded point (what an
+// RG16_SNORM render target does) is off by up to ~0.0037 deg; this tries the four snorm16
+// neighbours of the float encoding and keeps the one that decodes closest to n (Cigolle et
+// al. 2014, "oct32P"): worst case ~0.0025 deg (measured, tests/unit/test_shared_math.cpp).
 TL_FN uint tlOctEncodeSnorm16(vec3 n) {
   vec2 e = tlOctEncode(n) * 32767.0f;
   vec2 lo = floor(e);
   uint best = 0u;
-  float bestDot = -2.0f;
+  float bestErr = 8.0f;
   for (int i = 0; i < 4; ++i) {
     vec2 c = vec2(lo.x + float(i & 1), lo.y + float(i >> 1)) / 32767.0f;
     uint bits = tlPackSnorm2x16(c);
-    float d = dot(tlOctDecode(tlUnpackSnorm2x16(bits)), n);
-    if (d > bestDot) {
-      bestDot = d;
+    // Squared chord, not 1 - dot: a float dot near 1 cannot resolve 0.01 deg.
+    vec3 d = tlOctDecode(tlUnpackSnorm2x16(bits)) - n;
+    float err = dot(d, d);
+    if (err < bestErr) {
+      bestErr = err;
       best = bits;
     }
   }
