@@ -329,7 +329,12 @@ void EditorApp::renderEngine() {
     display.scale = previewScale(display.source);
     session_->setDisplay(display);
     if (pendingClick_) session_->requestBuffer("gbuffer.instanceId");
+    if (captureRequested_) session_->requestBuffer(lighting::kDisplayLdr);
     session_->renderFrames(1);
+    if (captureRequested_) {
+      capture_ = session_->buffer(lighting::kDisplayLdr).texels();
+      captureRequested_ = false;
+    }
     if (pendingClick_) {
       glm::vec2 uv = (*pendingClick_ - viewportMin_) / viewportSize_;
       selected_ = session_->instanceAt(uint32_t(uv.x * w), uint32_t(uv.y * h));

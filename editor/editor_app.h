@@ -41,6 +41,9 @@ class EditorApp {
   void clickViewport(glm::vec2 windowPos);    // picks the instance under the cursor
   void requestScreenshot(const std::filesystem::path& file) { screenshotPath_ = file; }
   void requestQuit() { quit_ = true; }
+  // Reads back the viewport image (display.ldr) on the next frame, for scripted checks.
+  void requestViewportCapture() { captureRequested_ = true, capture_.clear(); }
+  const std::vector<float>& viewportCapture() const { return capture_; }
   void focusSelection();
   void showError(const std::string& message) { error_ = message; }
   void previewResource(const std::string& name) { preview_ = name; }  // while hovering a pass
@@ -89,6 +92,8 @@ class EditorApp {
   bool showHelp_ = false, showBrowser_ = false;
   std::filesystem::path browserDir_;
   bool quit_ = false;
+  bool captureRequested_ = false;
+  std::vector<float> capture_;
   bool resized_ = false;
   uint64_t framesDrawn_ = 0;
   std::deque<double> frameHistory_;

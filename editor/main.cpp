@@ -37,7 +37,8 @@ struct RenderOptions {
   ViewArgs view;
   LightArgs light;
   std::string dumpGraph;
-  bool listBuffers = false;
+  std::optional<uint32_t> spp;
+  uint32_t bounces = 8;
 };
 
 void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
@@ -85,16 +86,27 @@ int runRender(const RenderOptions& o) {
   applyView(session, o.view);
   applyLight(session, o.light);
   if (o.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
+  if (o.bounces == 0) throw tl::session::SessionError("--bounces must be at least 1");
+  uint32_t frames = o.frames;
+  session.settings().referenceBounces = o.bounces;
+  if (o.spp) {
+    if (o.path != "reference") throw tl::session::SessionError("--spp applies to --path reference");
+    if (*o.spp == 0) throw tl::session::SessionError("--spp must be at least 1");
+    // Up to 16 samples a frame: fewer submissions, and each frame stays short.
+    session.settings().referenceSamplesPerFrame = std::min(*o.spp, 16u);
+    frames = (*o.spp + 15) / 16;
+    if (*o.spp % 16) throw tl::session::SessionError("--spp must be a multiple of 16, or at most 16");
+  }
 
   auto start = std::chrono::steady_clock::now();
-  session.renderFrames(o.frames);
+  session.renderFrames(frames);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   for (const auto& out : o.outputs) {
     session.saveImage(out);
     fmt::print("wrote {}\n", std::filesystem::absolute(out).string());
   }
-  fmt::print("rendered {} frame(s) of {} with `{}` at {}x{} on {} in {:.2f} s\n", o.frames, session.scene().name,
+  fmt::print("rendered {} frame(s) of {} with `{}` at {}x{} on {} in {:.2f} s\n", frames, session.scene().name,
              session.path(), w, h, session.device().name(), seconds);
   printFrameTimes(session);
   if (!o.dumpGraph.empty()) {
@@ -152,6 +164,10 @@ int main(int argc, char** argv) {
                         "output image(s): .exr = scene-linear radiance before exposure, .png = tonemapped display")
       ->required();
   renderCmd->add_option("--dump-graph", render.dumpGraph, "write the compiled render graph as text (- for stdout)");
+  renderCmd->add_option("--spp", render.spp, "reference path: samples per pixel to accumulate (sets the frames)");
+  renderCmd->add_option("--bounces", render.bounces,
+                        "reference path: scattering events per path (1 = direct light only, 2 = one indirect bounce)")
+      ->capture_default_str();
   addViewAndLightOptions(*renderCmd, render);
 
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -42,6 +43,21 @@ void Script::step(EditorApp& app) {
   if (waitLoaded_) {
     if (app.loading()) return;
     waitLoaded_ = false;
+  }
+  if (capture_ != Capture::None) {
+    if (app.viewportCapture().empty()) return fail(app, "the viewport could not be read back");
+    if (capture_ == Capture::Snapshot) {
+      snapshot_ = app.viewportCapture();
+    } else {
+      const auto& now = app.viewportCapture();
+      if (now.size() != snapshot_.size()) return fail(app, "the viewport changed size since the snapshot");
+      double diff = 0.0;
+      for (size_t i = 0; i < now.size(); ++i) diff += std::abs(now[i] - snapshot_[i]);
+      diff /= double(now.size());
+      if (diff < 0.01) return fail(app, fmt::format("the viewport did not change (mean difference {:.4f})", diff));
+      fmt::print("script: the viewport changed (mean difference {:.3f})\n", diff);
+    }
+    capture_ = Capture::None;
   }
   while (next_ < lines_.size()) {
     std::string line = lines_[next_++];
@@ -97,6 +113,11 @@ void Script::step(EditorApp& app) {
       } else if (cmd == "screenshot") {
         app.requestScreenshot(arg);
         return;  // taken at the end of this frame
+      } else if (cmd == "snapshot" || cmd == "expect-viewport-changed") {
+        if (cmd == "expect-viewport-changed" && snapshot_.empty()) return fail(app, "no snapshot to compare with");
+        capture_ = cmd == "snapshot" ? Capture::Snapshot : Capture::Compare;
+        app.requestViewportCapture();
+        return;
       } else if (cmd == "quit") {
         app.requestQuit();
         return;

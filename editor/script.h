@@ -15,6 +15,8 @@
 //   wait N                 let N frames pass
 //   measure N              render N frames and print the frame rate
 //   screenshot FILE        save the whole window as PNG
+//   snapshot               remember the viewport image of the next frame
+//   expect-viewport-changed  fail unless the viewport differs from the snapshot
 //   quit
 #pragma once
 
@@ -44,6 +46,8 @@ class Script {
   uint64_t measureStart_ = 0;
   double measureSeconds_ = 0.0;
   std::string failure_;
+  enum class Capture { None, Snapshot, Compare } capture_ = Capture::None;
+  std::vector<float> snapshot_;
 };
 
 }  // namespace tl::editor

@@ -19,6 +19,8 @@ struct LightingOutputs {
   std::string diffuseShY;        // RGBA16F, L1 SH of luma (shared/sh.h)
   std::string diffuseCoCg;       // RG16F, chroma
   std::string specular;          // RGBA16F, indirect specular radiance
+  std::string radiance;          // a path that computes the whole image (the reference):
+                                 // the composite passes it through unchanged
 };
 
 class LightingPath {
@@ -33,5 +35,7 @@ class LightingPath {
 
 // Sun + sky without indirect light: the baseline every other path adds to.
 std::unique_ptr<LightingPath> makeDirectPath();
+// Progressive path tracer on the ray-tracing pipeline: the ground truth.
+std::unique_ptr<LightingPath> makeReferencePath();
 
 }  // namespace tl::lighting

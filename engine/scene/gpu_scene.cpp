@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <atomic>
+
 namespace tl::scene {
 
 using shared::GpuInstance;
@@ -21,11 +23,14 @@ std::vector<VkVertexInputAttributeDescription> GpuScene::vertexAttributes() {
 }
 
 GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
+  static std::atomic<uint64_t> nextId{1};
+  id_ = nextId++;
   // Geometry: all meshes in one vertex and one index buffer.
   std::vector<Vertex> vertices;
   std::vector<uint32_t> indices;
   for (const Mesh& m : scene.meshes) {
-    meshes_.push_back({uint32_t(indices.size()), uint32_t(m.indices.size()), int32_t(vertices.size())});
+    meshes_.push_back({uint32_t(indices.size()), uint32_t(m.indices.size()), int32_t(vertices.size()),
+                       uint32_t(m.vertices.size()), m.material});
     vertices.insert(vertices.end(), m.vertices.begin(), m.vertices.end());
     indices.insert(indices.end(), m.indices.begin(), m.indices.end());
   }
@@ -90,6 +95,7 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
 
 void GpuScene::updateInstances(const Scene& scene, const glm::dvec3& camera, const glm::dvec3& previousCamera) {
   std::vector<GpuInstance> out(scene.instances.size());
+  relative_.resize(scene.instances.size());
   if (!havePrevious_ || previousTransforms_.size() != scene.instances.size()) {
     previousTransforms_.clear();
     for (auto& i : scene.instances) previousTransforms_.push_back(i.transform);
@@ -103,6 +109,7 @@ void GpuScene::updateInstances(const Scene& scene, const glm::dvec3& camera, con
     prevRel[3] = glm::dvec4(glm::dvec3(prevRel[3]) - camera, 1.0);
     GpuInstance g{};
     g.modelRelative = glm::mat4(rel);
+    relative_[i] = g.modelRelative;
     g.prevModelRelative = glm::mat4(prevRel);
     g.normalMatrix = glm::mat4(glm::mat3(glm::transpose(glm::inverse(glm::dmat3(inst.transform)))));
     g.material = scene.meshes[inst.mesh].material;

@@ -32,15 +32,26 @@ class GpuScene {
   gpu::Buffer& instanceBuffer() { return instances_; }
   gpu::Buffer& materialBuffer() { return materials_; }
   size_t instanceCount() const { return drawMesh_.size(); }
-  VkDeviceSize bytes() const;
-
- private:
+  // Distinct for every GpuScene made in this process (an address could be reused).
+  uint64_t id() const { return id_; }
   struct MeshRange {
     uint32_t firstIndex = 0;
     uint32_t indexCount = 0;
     int32_t vertexOffset = 0;
+    uint32_t vertexCount = 0;
+    uint32_t material = 0;
   };
+  // Where each mesh lives in the shared buffers, and which mesh each instance draws: what
+  // acceleration structures and hit shaders need.
+  const std::vector<MeshRange>& meshRanges() const { return meshes_; }
+  uint32_t instanceMesh(size_t instance) const { return drawMesh_[instance]; }
+  // This frame's camera-relative object -> world transforms, one per instance.
+  const std::vector<glm::mat4>& relativeTransforms() const { return relative_; }
+  VkDeviceSize bytes() const;
+
+ private:
   gpu::Device& device_;
+  uint64_t id_ = 0;
   gpu::Buffer vertices_, indices_, materials_, instances_;
   std::vector<gpu::Image> textures_;
   gpu::Sampler sampler_;
@@ -48,6 +59,7 @@ class GpuScene {
   std::vector<MeshRange> meshes_;
   std::vector<uint32_t> drawMesh_;             // per instance: its mesh
   std::vector<glm::dmat4> previousTransforms_;  // per instance, world
+  std::vector<glm::mat4> relative_;             // per instance, camera-relative
   bool havePrevious_ = false;
 };
 

@@ -26,6 +26,7 @@ Session::Session(const gpu::DeviceOptions& options)
       executor_(std::make_unique<graph::Executor>(*device_)),
       passes_(std::make_unique<Passes>()) {
   paths_.push_back(lighting::makeDirectPath());
+  paths_.push_back(lighting::makeReferencePath());
   path_ = paths_.front().get();
   pathName_ = path_->name();
   constants_ = gpu::Buffer(*device_, sizeof(shared::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -64,6 +65,9 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   lighting_.sunIrradiance = env.sunFromFile ? env.sunIrradiance : glm::vec3(0.0f);
   lighting_.skyRadiance = env.skyRadiance;
   lighting_.exposureEv.reset();
+  brightestEmission_ = 0.0f;
+  for (const auto& m : scene_->materials)
+    brightestEmission_ = std::max(brightestEmission_, shared::tlLuminance(m.emissiveFactor * m.emissiveStrength));
   if (!scene_->cameras.empty()) useSceneCamera(0);
   else fitViewToScene();
 }
@@ -133,13 +137,16 @@ void Session::setSize(uint32_t width, uint32_t height) {
   settings_.height = height;
 }
 
-float autoExposureEv(const Lighting& l) {
+float autoExposureEv(const Lighting& l, float brightestEmission) {
   // A white Lambertian surface facing the sun under the sky has radiance E/pi + L.
-  double white = shared::tlLuminance(l.sunIrradiance) / glm::pi<double>() + shared::tlLuminance(l.skyRadiance);
+  double white = shared::tlLuminance(l.sunIrradiance) / glm::pi<double>() + shared::tlLuminance(l.skyRadiance) +
+                 0.1 * brightestEmission;
   return float(std::log2(std::max(white, 1e-3)));
 }
 
-float Session::exposureEv() const { return lighting_.exposureEv.value_or(autoExposureEv(lighting_)); }
+float Session::exposureEv() const {
+  return lighting_.exposureEv.value_or(autoExposureEv(lighting_, brightestEmission_));
+}
 
 void Session::buildFrameConstants(shared::FrameConstants& fc) const {
   const double aspect = double(settings_.width) / double(settings_.height);

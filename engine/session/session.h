@@ -89,6 +89,9 @@ class Session {
   void requestBuffer(const std::string& name) { requested_.push_back(name); }
   void requestAllBuffers() { requestAll_ = true; }
 
+  // Drops every persistent (history) resource: the next frame starts accumulating afresh.
+  void resetHistory() { executor_->resetHistory(); }
+
   // Renders n frames; the last one reads back the final images and the requested buffers.
   void renderFrames(uint32_t n);
 
@@ -132,9 +135,12 @@ class Session {
   std::vector<double> frameGpuMs_;
   std::vector<std::pair<std::string, std::vector<double>>> passGpuMs_;
   uint64_t frameIndex_ = 0;
+  float brightestEmission_ = 0.0f;  // luminance of the scene's brightest emissive material
 };
 
 // Exposure that maps a white surface lit by this sun and sky to about 1.0 before tonemapping.
-float autoExposureEv(const Lighting& lighting);
+// In scenes lit by emitters, a white surface near the brightest one (taken as a tenth of its
+// radiance: a rule of thumb for a light of modest solid angle) counts too.
+float autoExposureEv(const Lighting& lighting, float brightestEmission = 0.0f);
 
 }  // namespace tl::session

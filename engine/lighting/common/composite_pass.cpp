@@ -9,8 +9,30 @@ namespace tl::lighting {
 using graph::Usage;
 
 void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path) {
-  (void)path;  // the direct path produces none of the optional inputs; legacy/RT wire them here
   const uint32_t w = in.settings.width, h = in.settings.height;
+  const auto hdrDesc =
+      graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "scene-linear radiance before exposure");
+  if (!path.radiance.empty()) {
+    // The path computed the whole image: pass it through (32-bit float -> half).
+    const std::string source = path.radiance;
+    graph.addPass(
+        "composite", graph::PassKind::Transfer,
+        [&](graph::PassBuilder& b) {
+          b.read(source, Usage::TransferSrc);
+          b.create(kCompositeHdr, hdrDesc, Usage::TransferDst);
+        },
+        [source](graph::PassContext& ctx) {
+          const gpu::Image& src = ctx.image(source);
+          const gpu::Image& dst = ctx.image(kCompositeHdr);
+          VkImageBlit blit{};
+          blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+          blit.srcOffsets[1] = {int32_t(src.extent().width), int32_t(src.extent().height), 1};
+          blit.dstOffsets[1] = {int32_t(dst.extent().width), int32_t(dst.extent().height), 1};
+          vkCmdBlitImage(ctx.cmd, src.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst.handle(),
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+        });
+    return;
+  }
   if (!pipeline_) {
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     gpu::ComputePipelineDesc d;
@@ -39,9 +61,7 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
           b.read(n, Usage::Sampled);
         b.read(kGbufferDepth, Usage::Sampled);
         b.read(kShadowSunDepth, Usage::Sampled);
-        b.create(kCompositeHdr,
-                 graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "scene-linear radiance before exposure"),
-                 Usage::StorageWrite);
+        b.create(kCompositeHdr, hdrDesc, Usage::StorageWrite);
       },
       [this, &in](graph::PassContext& ctx) {
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;

@@ -17,6 +17,10 @@ struct RenderSettings {
   uint32_t shadowMapSize = 2048;
   float shadowDepthBiasTexels = 1.5f;  // constant bias, in shadow-map texels of depth
   float shadowNormalOffsetTexels = 1.0f;
+  // Reference path tracer: scattering events per path (1 = direct light only: sun, sky,
+  // emitters; 2 = plus one indirect bounce; ...) and samples per pixel added each frame.
+  uint32_t referenceBounces = 8;
+  uint32_t referenceSamplesPerFrame = 1;
 };
 
 // Resources the frame imports from outside the graph (owned by the session and scene).

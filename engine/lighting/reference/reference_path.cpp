@@ -1,0 +1,172 @@
+// The reference path: a progressive path tracer on the ray-tracing pipeline. It
+// accumulates into a persistent sum while nothing that changes the image changes (view,
+// light, size, scene, settings) and starts over when something does.
+#include "gpu/acceleration_structure.h"
+#include "graph/executor.h"
+#include "lighting/lighting_path.h"
+#include "scene/scene.h"
+#include "shared/reference.h"
+#include "shared/scene.h"
+
+#include <fmt/format.h>
+
+#include <cstring>
+
+namespace tl::lighting {
+namespace {
+
+inline constexpr const char* kAccum = "reference.accum";
+inline constexpr const char* kRadiance = "reference.radiance";
+
+class ReferencePath final : public LightingPath {
+ public:
+  std::string name() const override { return "reference"; }
+  std::string description() const override {
+    return "progressive path tracer (ground truth): same materials, sun, sky and emitters";
+  }
+  std::optional<std::string> unavailableReason(const gpu::Device& device) const override {
+    if (device.rayTracing().pipeline) return std::nullopt;
+    return "needs hardware or lavapipe ray tracing: " + device.rayTracing().unavailableReason;
+  }
+
+  LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
+    prepareScene(in);
+    buildTopLevel(in);
+    const uint32_t w = in.settings.width, h = in.settings.height;
+    const uint64_t state = stateHash(in);
+    if (state != state_) samples_ = 0, state_ = state;
+
+    graph.declarePersistent(kAccum, graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                                                 "sum of path samples (rgb) and their count (a)"));
+    shared::RefPush push{};
+    push.samplesPerFrame = std::max(1u, in.settings.referenceSamplesPerFrame);
+    push.maxBounces = std::max(1u, in.settings.referenceBounces);
+    graph.addPass(
+        "reference.trace", graph::PassKind::RayTracing,
+        [&](graph::PassBuilder& b) {
+          b.read(kFrameConstants, graph::Usage::StorageRead);
+          b.read(kSceneVertices, graph::Usage::StorageRead);
+          b.read(kSceneIndices, graph::Usage::StorageRead);
+          b.read(kSceneInstances, graph::Usage::StorageRead);
+          b.read(kSceneMaterials, graph::Usage::StorageRead);
+          b.read(kAccum, graph::Usage::StorageRead);
+          b.write(kAccum, graph::Usage::StorageWrite);
+          b.create(kRadiance, graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "path-traced radiance"),
+                   graph::Usage::StorageWrite);
+        },
+        [this, &in, push](graph::PassContext& ctx) mutable {
+          // History can vanish under us (resize, reset): then the sum starts over.
+          if (!ctx.historyValid(kAccum)) samples_ = 0;
+          push.samplesSoFar = samples_;
+          push.seed = 0;
+          ctx.bind(pipeline_);
+          ctx.pushConstants(push);
+          ctx.descriptors()
+              .uniformBuffer(shared::kRefBindingFrame, in.constantsBuffer.handle())
+              .accelerationStructure(shared::kRefBindingTlas, tlas_.handle())
+              .storageImage(shared::kRefBindingAccum, ctx.image(kAccum).view())
+              .storageImage(shared::kRefBindingRadiance, ctx.image(kRadiance).view())
+              .storageBuffer(shared::kRefBindingGeometry, geometry_.handle())
+              .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
+              .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle());
+          ctx.flushDescriptors();
+          in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_.layout(), shared::kSceneSet);
+          VkExtent3D e = ctx.extent(kRadiance);
+          ctx.device.ext().cmdTraceRays(ctx.cmd, &pipeline_.raygenRegion, &pipeline_.missRegion, &pipeline_.hitRegion,
+                                        &pipeline_.callableRegion, e.width, e.height, 1);
+          samples_ += push.samplesPerFrame;
+        });
+    LightingOutputs out;
+    out.radiance = kRadiance;
+    return out;
+  }
+
+  uint32_t samples() const { return samples_; }
+
+ private:
+  // Bottom-level structures (one per mesh, full resolution: the reference does not
+  // simplify), the per-instance geometry table and the pipeline, once per scene.
+  void prepareScene(FrameInputs& in) {
+    if (sceneId_ == in.scene.id()) return;
+    in.device.waitIdle();
+    sceneId_ = in.scene.id();
+    blas_.clear();
+    const auto& ranges = in.scene.meshRanges();
+    const VkDeviceAddress vertices = in.scene.vertexBuffer().address(), indices = in.scene.indexBuffer().address();
+    for (size_t m = 0; m < ranges.size(); ++m) {
+      const auto& r = ranges[m];
+      gpu::TriangleGeometry g;
+      g.vertices = vertices + VkDeviceAddress(r.vertexOffset) * sizeof(scene::Vertex);
+      g.vertexStride = sizeof(scene::Vertex);
+      g.vertexCount = r.vertexCount;
+      g.indices = indices + VkDeviceAddress(r.firstIndex) * sizeof(uint32_t);
+      g.triangleCount = r.indexCount / 3;
+      blas_.push_back(gpu::buildBottomLevel(in.device, g, fmt::format("reference.blas.{}", m)));
+    }
+    std::vector<shared::RefInstanceGeometry> table(std::max<size_t>(1, in.scene.instanceCount()));
+    for (size_t i = 0; i < in.scene.instanceCount(); ++i) {
+      const auto& r = ranges[in.scene.instanceMesh(i)];
+      table[i] = {r.firstIndex, r.vertexOffset, r.material, 0};
+    }
+    geometry_ = gpu::Buffer(in.device, table.size() * sizeof(table[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                            gpu::MemoryUsage::Upload, "reference.instanceGeometry");
+    geometry_.write(table.data(), table.size() * sizeof(table[0]));
+    if (!pipeline_) {
+      gpu::RayTracingPipelineDesc d;
+      d.name = "reference.trace";
+      d.raygen = "reference/trace.rgen";
+      d.misses = {"reference/trace.rmiss", "reference/shadow.rmiss"};
+      d.hitGroups = {{"reference/trace.rchit", ""}};
+      d.layout.bindings = {{shared::kRefBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                           {shared::kRefBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+                           {shared::kRefBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                           {shared::kRefBindingRadiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                           {shared::kRefBindingGeometry, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+      d.layout.extraSets = {in.scene.table().layout()};
+      d.layout.pushConstantBytes = sizeof(shared::RefPush);
+      pipeline_ = gpu::createRayTracingPipeline(in.device, d);
+    }
+  }
+
+  // The top level is camera-relative like everything the GPU sees, so it follows the
+  // camera; it holds a few instances here (T5 adds culling for large scenes).
+  void buildTopLevel(FrameInputs& in) {
+    const auto& transforms = in.scene.relativeTransforms();
+    if (tlas_ && transforms == tlasTransforms_) return;
+    std::vector<gpu::TlasInstance> instances;
+    for (size_t i = 0; i < transforms.size(); ++i)
+      instances.push_back({transforms[i], uint32_t(i), 0xFF, blas_[in.scene.instanceMesh(i)].address()});
+    tlas_ = gpu::buildTopLevel(in.device, instances, "reference.tlas");
+    tlasTransforms_ = transforms;
+  }
+
+  // Everything that changes the converged image.
+  uint64_t stateHash(const FrameInputs& in) const {
+    const auto& c = in.constants;
+    std::vector<float> key;
+    auto add = [&](const float* p, size_t n) { key.insert(key.end(), p, p + n); };
+    add(&c.viewProj[0][0], 16);
+    for (const glm::vec4* v : {&c.sunToLight, &c.sunIrradiance, &c.skyRadiance, &c.viewport}) add(&v->x, 4);
+    key.push_back(float(c.flags));
+    key.push_back(float(in.settings.referenceBounces));
+    key.push_back(float(sceneId_));
+    return scene::hashBytes(key.data(), key.size() * sizeof(float));
+  }
+
+  uint64_t sceneId_ = 0;
+  std::vector<gpu::AccelerationStructure> blas_;
+  gpu::AccelerationStructure tlas_;
+  std::vector<glm::mat4> tlasTransforms_;
+  gpu::Buffer geometry_;
+  gpu::Pipeline pipeline_;
+  uint64_t state_ = 0;
+  uint32_t samples_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<LightingPath> makeReferencePath() { return std::make_unique<ReferencePath>(); }
+
+}  // namespace tl::lighting

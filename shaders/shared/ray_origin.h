@@ -1,0 +1,34 @@
+// Robust ray origins: move a hit point off its surface along the geometric normal by an
+// amount that scales with the point's magnitude, in integer ULPs of its coordinates
+// (Wächter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection", Ray Tracing
+// Gems, 2019). Works at any distance from the origin of the (camera-relative) space.
+#ifndef TL_SHARED_RAY_ORIGIN_H
+#define TL_SHARED_RAY_ORIGIN_H
+#include "common.h"
+
+#ifdef __cplusplus
+#include <bit>
+#define TL_FLOAT_AS_INT(x) std::bit_cast<int32_t>(x)
+#define TL_INT_AS_FLOAT(x) std::bit_cast<float>(x)
+#else
+#define TL_FLOAT_AS_INT(x) floatBitsToInt(x)
+#define TL_INT_AS_FLOAT(x) intBitsToFloat(x)
+#endif
+
+TL_BEGIN
+TL_CONST float kRayOriginNear = 1.0f / 32.0f;        // below this magnitude use a fixed offset
+TL_CONST float kRayOriginFloatScale = 1.0f / 65536.0f;
+TL_CONST float kRayOriginIntScale = 256.0f;
+
+TL_FN float tlOffsetComponent(float p, float n) {
+  int of = int(kRayOriginIntScale * n);
+  float pi = TL_INT_AS_FLOAT(TL_FLOAT_AS_INT(p) + (p < 0.0f ? -of : of));
+  return abs(p) < kRayOriginNear ? p + kRayOriginFloatScale * n : pi;
+}
+
+// `n` is the geometric normal on the side the new ray leaves from.
+TL_FN vec3 tlOffsetRayOrigin(vec3 p, vec3 n) {
+  return vec3(tlOffsetComponent(p.x, n.x), tlOffsetComponent(p.y, n.y), tlOffsetComponent(p.z, n.z));
+}
+TL_END
+#endif

@@ -1,0 +1,47 @@
+// The reference path tracer (engine/lighting/reference/): bindings, push constants,
+// per-instance geometry and the payload its shaders exchange.
+#ifndef TL_SHARED_REFERENCE_H
+#define TL_SHARED_REFERENCE_H
+#include "common.h"
+
+TL_BEGIN
+TL_CONST uint kRefBindingFrame = 0;      // FrameConstants (shared/frame.h)
+TL_CONST uint kRefBindingTlas = 1;
+TL_CONST uint kRefBindingAccum = 2;      // rgba32f: sum of samples (persistent)
+TL_CONST uint kRefBindingRadiance = 3;   // rgba32f: the estimate, sum / count
+TL_CONST uint kRefBindingGeometry = 4;   // RefInstanceGeometry[]
+TL_CONST uint kRefBindingVertices = 5;   // scene vertices as floats (12 per vertex)
+TL_CONST uint kRefBindingIndices = 6;    // scene indices
+
+TL_CONST uint kVertexFloats = 12;        // tl::scene::Vertex: position 3, normal 3, tangent 4, uv 2
+
+// Where an instance's triangles are in the scene's shared vertex/index buffers.
+struct RefInstanceGeometry {
+  uint firstIndex;
+  int vertexOffset;
+  uint material;
+  uint pad;
+};
+
+struct RefPush {
+  uint samplesSoFar;     // accumulated before this frame (0: start over)
+  uint samplesPerFrame;
+  uint maxBounces;       // indirect bounces after the first hit (1 = direct + one bounce)
+  uint seed;
+};
+
+// What a closest-hit shader reports (hitT < 0: the ray missed).
+struct RefHit {
+  vec4 positionT;     // xyz camera-relative hit point, w hit distance
+  vec4 normal;        // xyz shading normal facing the ray, w unused
+  vec4 geometric;     // xyz geometric normal facing the ray
+  vec4 baseColor;     // rgb, a roughness
+  vec4 emission;      // rgb emitted radiance, a metallic
+};
+TL_END
+
+#ifdef __cplusplus
+static_assert(sizeof(tl::shared::RefInstanceGeometry) == 16);
+static_assert(sizeof(tl::shared::RefPush) == 16);
+#endif
+#endif
