@@ -1,6 +1,7 @@
 // `twinlight`: one binary. Without a subcommand it shows the default (or given) scene;
 // the headless subcommands work on machines without a display. Errors are one line on
 // stderr and a non-zero exit: 1 for a failure at run time, 2 for bad usage.
+#include "bench.h"
 #include "cli_args.h"
 #include "editor_app.h"
 #include "gpu/self_test.h"
@@ -170,6 +171,18 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   addViewAndLightOptions(*renderCmd, render);
 
+  RenderOptions benchRender;
+  BenchOptions bench;
+  std::string benchJson;
+  auto* benchCmd = app.add_subcommand("bench", "per-pass GPU milliseconds (median and spread) as a table and JSON");
+  benchCmd->add_option("--scene", benchRender.scene, "glTF file; default content/atrium.gltf");
+  benchCmd->add_option("--path", benchRender.path, "lighting path")->capture_default_str();
+  benchCmd->add_option("--size", benchRender.size, "image size WxH")->capture_default_str();
+  benchCmd->add_option("--frames", bench.frames, "frames measured")->capture_default_str();
+  benchCmd->add_option("--warmup", bench.warmup, "frames rendered first and left out")->capture_default_str();
+  benchCmd->add_option("--json", benchJson, "write the figures as JSON to FILE (- for stdout)");
+  addViewAndLightOptions(*benchCmd, benchRender);
+
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
 
   try {
@@ -181,6 +194,24 @@ int main(int argc, char** argv) {
   try {
     if (*renderCmd) return runRender(render);
     if (*infoCmd) return runInfo();
+    if (*benchCmd) {
+      Session session;
+      session.loadScene(benchRender.scene.empty() ? defaultScene() : std::filesystem::path(benchRender.scene));
+      session.setPath(benchRender.path);
+      auto [w, h] = parseSize(benchRender.size);
+      session.setSize(w, h);
+      applyView(session, benchRender.view);
+      applyLight(session, benchRender.light);
+      if (bench.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
+      nlohmann::json report = runBench(session, bench);
+      fmt::print("{}", benchTable(report));
+      if (benchJson == "-") fmt::print("{}\n", report.dump(2));
+      else if (!benchJson.empty()) {
+        std::ofstream(benchJson) << report.dump(2) << "\n";
+        fmt::print("wrote {}\n", benchJson);
+      }
+      return 0;
+    }
     // No subcommand: the main job on the default (or given) scene. The interactive editor
     // needs a display; without one the scene is rendered headless.
     const char* x11 = std::getenv("DISPLAY");

@@ -1,0 +1,18 @@
+// `twinlight bench`: per-pass GPU milliseconds (median and spread over N frames after a
+// warm-up that compiles the pipelines) as a table and as JSON. A benchmark, not a test:
+// the figures are reported, never asserted.
+#pragma once
+
+#include "session/session.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+struct BenchOptions {
+  uint32_t frames = 20;
+  uint32_t warmup = 2;
+};
+
+nlohmann::json runBench(tl::session::Session& session, const BenchOptions& options);
+std::string benchTable(const nlohmann::json& report);

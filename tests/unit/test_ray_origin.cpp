@@ -1,0 +1,37 @@
+// Robust ray origins (shared/ray_origin.h): the offset point is strictly on the normal's
+// side of the surface and stays within a few ULPs of it, at any distance from the origin.
+#include "shared/ray_origin.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace tl::shared {
+namespace {
+
+TEST(RayOrigin, LeavesTheSurfaceOnTheNormalsSideAtAnyMagnitude) {
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  for (float magnitude : {0.0f, 1e-3f, 0.5f, 10.0f, 1e3f, 1e5f, 1e7f}) {
+    for (int i = 0; i < 500; ++i) {
+      vec3 n = normalize(vec3(unit(rng), unit(rng), unit(rng)));
+      vec3 p = vec3(unit(rng), unit(rng), unit(rng)) * magnitude;
+      vec3 o = tlOffsetRayOrigin(p, n);
+      // Signed distance along the normal, in double: positive, and small relative to |p|.
+      double d = double(o.x - p.x) * n.x + double(o.y - p.y) * n.y + double(o.z - p.z) * n.z;
+      EXPECT_GT(d, 0.0) << magnitude;
+      double scale = std::max(double(std::abs(p.x) + std::abs(p.y) + std::abs(p.z)), 1.0);
+      EXPECT_LT(d, 1e-3 * scale) << magnitude;
+    }
+  }
+}
+
+TEST(RayOrigin, NearTheOriginUsesAFixedOffset) {
+  vec3 o = tlOffsetRayOrigin(vec3(0.0f), vec3(0.0f, 1.0f, 0.0f));
+  EXPECT_FLOAT_EQ(o.y, kRayOriginFloatScale);
+  EXPECT_EQ(o.x, 0.0f);
+}
+
+}  // namespace
+}  // namespace tl::shared
