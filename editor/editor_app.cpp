@@ -29,22 +29,6 @@ void checkVk(VkResult r) {
   if (r != VK_SUCCESS) throw gpu::Error(fmt::format("Dear ImGui's Vulkan backend: {}", gpu::resultName(r)));
 }
 
-void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to) {
-  VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-  b.srcStageMask = b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-  b.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-  b.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-  b.oldLayout = from;
-  b.newLayout = to;
-  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = image;
-  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dep.imageMemoryBarrierCount = 1;
-  dep.pImageMemoryBarriers = &b;
-  vkCmdPipelineBarrier2(cmd, &dep);
-}
-
 }  // namespace
 
 EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<std::filesystem::path> script) {
@@ -357,7 +341,7 @@ void EditorApp::recordAndPresent() {
   VkCommandBuffer cmd = d.beginCommands();
   VkImage target = swapchain_->image();
   VkExtent2D ext = swapchain_->extent();
-  imageBarrier(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  gpu::transitionImage(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
   VkClearColorValue clear{{0.09f, 0.09f, 0.10f, 1.0f}};
   VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
   vkCmdClearColorImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &clear, 1, &range);
@@ -366,7 +350,7 @@ void EditorApp::recordAndPresent() {
   const gpu::Image* display = session_->hasScene() ? session_->displayImage() : nullptr;
   if (display && viewportSize_.x >= 1.0f && viewportSize_.y >= 1.0f && !load_.valid()) {
     VkImageLayout layout = session_->displayImageLayout();
-    imageBarrier(cmd, display->handle(), layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    gpu::transitionImage(cmd, display->handle(), VK_IMAGE_ASPECT_COLOR_BIT, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     VkImageBlit blit{};
     blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     blit.srcOffsets[1] = {int32_t(display->extent().width), int32_t(display->extent().height), 1};
@@ -380,7 +364,7 @@ void EditorApp::recordAndPresent() {
       vkCmdBlitImage(cmd, display->handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
     }
-    imageBarrier(cmd, display->handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout);
+    gpu::transitionImage(cmd, display->handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout);
   }
 
   VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
@@ -395,12 +379,12 @@ void EditorApp::recordAndPresent() {
   if (screenshotPath_) {
     shot.emplace(d, VkDeviceSize(ext.width) * ext.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUsage::Readback,
                  "ui.screenshot");
-    imageBarrier(cmd, target, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    gpu::transitionImage(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {ext.width, ext.height, 1};
     vkCmdCopyImageToBuffer(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, shot->handle(), 1, &region);
-    imageBarrier(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+    gpu::transitionImage(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
   }
   if (!swapchain_->submitAndPresent(cmd)) resized_ = true;
   if (shot) {

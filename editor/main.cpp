@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 namespace {
 
@@ -77,15 +78,20 @@ void printFrameTimes(const Session& session) {
   }
 }
 
-int runRender(const RenderOptions& o) {
-  tl::gpu::DeviceOptions deviceOptions;
-  Session session(deviceOptions);
+// Scene, path, size, view and light from the options every headless subcommand shares.
+void prepareSession(Session& session, const RenderOptions& o) {
   session.loadScene(o.scene.empty() ? defaultScene() : std::filesystem::path(o.scene));
   session.setPath(o.path);
   auto [w, h] = parseSize(o.size);
   session.setSize(w, h);
   applyView(session, o.view);
   applyLight(session, o.light);
+}
+
+int runRender(const RenderOptions& o) {
+  Session session;
+  prepareSession(session, o);
+  const uint32_t w = session.settings().width, h = session.settings().height;
   if (o.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
   if (o.bounces == 0) throw tl::session::SessionError("--bounces must be at least 1");
   uint32_t frames = o.frames;
@@ -196,12 +202,7 @@ int main(int argc, char** argv) {
     if (*infoCmd) return runInfo();
     if (*benchCmd) {
       Session session;
-      session.loadScene(benchRender.scene.empty() ? defaultScene() : std::filesystem::path(benchRender.scene));
-      session.setPath(benchRender.path);
-      auto [w, h] = parseSize(benchRender.size);
-      session.setSize(w, h);
-      applyView(session, benchRender.view);
-      applyLight(session, benchRender.light);
+      prepareSession(session, benchRender);
       if (bench.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
       nlohmann::json report = runBench(session, bench);
       fmt::print("{}", benchTable(report));

@@ -255,7 +255,8 @@ void Sampler::reset() {
 
 // ---- transfers -------------------------------------------------------------------------
 
-void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to) {
+void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
+                     uint32_t baseMip, uint32_t mipCount) {
   VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
   b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
   b.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
@@ -264,12 +265,16 @@ void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from
   b.oldLayout = from;
   b.newLayout = to;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = image.handle();
-  b.subresourceRange = {image.aspect(), 0, image.info().mipLevels, 0, 1};
+  b.image = image;
+  b.subresourceRange = {aspect, baseMip, mipCount, 0, 1};
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dep.imageMemoryBarrierCount = 1;
   dep.pImageMemoryBarriers = &b;
   vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to) {
+  transitionImage(cmd, image.handle(), image.aspect(), from, to);
 }
 
 void uploadBuffer(Device& device, Buffer& dst, const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
@@ -329,19 +334,7 @@ void uploadImage2DWithMips(Device& device, Image& dst, const void* texels, VkDev
   staging.write(texels, bytes);
   const uint32_t mips = dst.info().mipLevels;
   auto barrier = [&](VkCommandBuffer cmd, uint32_t mip, VkImageLayout from, VkImageLayout to) {
-    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    b.srcStageMask = b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    b.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-    b.oldLayout = from;
-    b.newLayout = to;
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = dst.handle();
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 1, 0, 1};
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.imageMemoryBarrierCount = 1;
-    dep.pImageMemoryBarriers = &b;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    transitionImage(cmd, dst.handle(), VK_IMAGE_ASPECT_COLOR_BIT, from, to, mip, 1);
   };
   device.immediate([&](VkCommandBuffer cmd) {
     transitionImage(cmd, dst, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);

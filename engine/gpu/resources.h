@@ -134,7 +134,10 @@ void uploadImage2D(Device& device, Image& dst, const void* texels, VkDeviceSize 
 // Copies a whole image (mip 0, current `layout`, left in that layout) into host memory.
 std::vector<uint8_t> readbackImage(Device& device, const Image& image, VkImageLayout layout);
 
-// Records a whole-image layout transition with synchronization2 (broad stages).
+// Records a layout transition with synchronization2 and broad stages (all commands before
+// against all after): for uploads, read-backs and the editor's swapchain, not for passes.
+void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
+                     uint32_t baseMip = 0, uint32_t mipCount = VK_REMAINING_MIP_LEVELS);
 void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to);
 
 }  // namespace tl::gpu

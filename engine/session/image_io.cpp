@@ -5,33 +5,25 @@
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <system_error>
 #include <unistd.h>
 
 namespace tl::session {
+namespace {
 
-void writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding) {
-  const uint32_t w = image.extent.width, h = image.extent.height;
-  const uint32_t srcChannels = image.channels();
-  std::vector<float> texels = image.texels();
-  if (texels.size() != size_t(w) * h * srcChannels)
-    throw SessionError(fmt::format("buffer `{}` cannot be written as an image", image.name));
-
-  // RGB for colour images, alpha dropped: radiance and display images carry none.
-  const int outChannels = srcChannels >= 3 ? 3 : int(srcChannels);
-  std::vector<float> pixels(size_t(w) * h * outChannels);
-  for (size_t i = 0; i < size_t(w) * h; ++i)
-    for (int c = 0; c < outChannels; ++c) pixels[i * outChannels + c] = texels[i * srcChannels + c];
-
+// Writes `pixels` (float, `channels` interleaved) as `type` to a temporary file, then
+// renames it into place.
+void writeAtomically(const std::filesystem::path& file, uint32_t w, uint32_t h, int channels, OIIO::TypeDesc type,
+                     const std::vector<float>& pixels, const char* colorSpace) {
   std::error_code ec;
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), ec);
   const std::filesystem::path tmp = file.string() + fmt::format(".tmp{}", ::getpid()) + file.extension().string();
   auto out = OIIO::ImageOutput::create(file.string());
   if (!out) throw SessionError(fmt::format("{}: cannot write this image type", file.string()));
-  OIIO::ImageSpec spec(int(w), int(h), outChannels,
-                       encoding == ImageEncoding::LinearHalf ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
-  if (encoding == ImageEncoding::LinearHalf) spec.attribute("oiio:ColorSpace", "Linear");
-  else spec.attribute("oiio:ColorSpace", "sRGB");
+  OIIO::ImageSpec spec(int(w), int(h), channels, type);
+  spec.attribute("oiio:ColorSpace", colorSpace);
   spec.attribute("Software", "Twinlight");
   bool ok = out->open(tmp.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close();
   if (!ok) {
@@ -43,6 +35,72 @@ void writeImageAtomically(const std::filesystem::path& file, const graph::Readba
     std::filesystem::remove(tmp, ec);
     throw SessionError(fmt::format("{}: cannot move the finished image into place", file.string()));
   }
+}
+
+}  // namespace
+
+void writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding) {
+  const uint32_t w = image.extent.width, h = image.extent.height;
+  const uint32_t srcChannels = image.channels();
+  std::vector<float> texels = image.texels();
+  if (texels.size() != size_t(w) * h * srcChannels)
+    throw SessionError(fmt::format("buffer `{}` cannot be written as an image", image.name));
+  // RGB for colour images, alpha dropped: radiance and display images carry none.
+  const int outChannels = srcChannels >= 3 ? 3 : int(srcChannels);
+  std::vector<float> pixels(size_t(w) * h * outChannels);
+  for (size_t i = 0; i < size_t(w) * h; ++i)
+    for (int c = 0; c < outChannels; ++c) pixels[i * outChannels + c] = texels[i * srcChannels + c];
+  if (encoding == ImageEncoding::LinearHalf) writeAtomically(file, w, h, outChannels, OIIO::TypeDesc::HALF, pixels, "Linear");
+  else writeAtomically(file, w, h, outChannels, OIIO::TypeDesc::UINT8, pixels, "sRGB");
+}
+
+std::optional<RgbImage> readExrRgb(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return std::nullopt;
+  auto in = OIIO::ImageInput::open(file.string());
+  if (!in) return std::nullopt;
+  const auto& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels < 3) return std::nullopt;
+  RgbImage img;
+  img.width = uint32_t(spec.width);
+  img.height = uint32_t(spec.height);
+  img.rgb.resize(size_t(img.width) * img.height * 3);
+  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, img.rgb.data())) return std::nullopt;
+  return img;
+}
+
+void writeExrRgb(const std::filesystem::path& file, uint32_t w, uint32_t h, const std::vector<float>& rgb) {
+  writeAtomically(file, w, h, 3, OIIO::TypeDesc::FLOAT, rgb, "Linear");
+}
+
+void writeExrGray(const std::filesystem::path& file, uint32_t w, uint32_t h, const std::vector<float>& values) {
+  writeAtomically(file, w, h, 1, OIIO::TypeDesc::FLOAT, values, "Linear");
+}
+
+void writePngRgb(const std::filesystem::path& file, uint32_t w, uint32_t h, const std::vector<float>& rgb01) {
+  writeAtomically(file, w, h, 3, OIIO::TypeDesc::UINT8, rgb01, "sRGB");
+}
+
+std::vector<float> falseColour(const std::vector<float>& values, float maxValue) {
+  // Piecewise-linear ramp through dark blue, purple, red, orange, yellow, white: dark is
+  // small error, bright is large, and the hue says roughly how large.
+  static const float ramp[][3] = {{0.02f, 0.02f, 0.10f}, {0.35f, 0.05f, 0.45f}, {0.80f, 0.10f, 0.20f},
+                                  {0.98f, 0.50f, 0.05f}, {0.99f, 0.90f, 0.20f}, {1.00f, 1.00f, 1.00f}};
+  const int n = 6;
+  std::vector<float> out(values.size() * 3);
+  for (size_t i = 0; i < values.size(); ++i) {
+    float v = std::isfinite(values[i]) ? std::clamp(values[i] / std::max(maxValue, 1e-20f), 0.0f, 1.0f) : 1.0f;
+    float x = v * float(n - 1);
+    int k = std::min(int(x), n - 2);
+    float f = x - float(k);
+    for (int c = 0; c < 3; ++c) out[i * 3 + c] = ramp[k][c] * (1.0f - f) + ramp[k + 1][c] * f;
+  }
+  return out;
+}
+
+void writeFalseColourPng(const std::filesystem::path& file, uint32_t w, uint32_t h, const std::vector<float>& values,
+                         float maxValue) {
+  writePngRgb(file, w, h, falseColour(values, maxValue));
 }
 
 }  // namespace tl::session

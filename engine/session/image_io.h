@@ -1,16 +1,33 @@
-// Writing images from read-back buffers: EXR (linear half float) and PNG (8-bit display).
-// Files are written to a temporary name beside the target and renamed, so a crash or a
-// kill never leaves a half-written image under the real name.
+// Writing and reading images: EXR (linear float or half), PNG (8-bit display). Files are
+// written to a temporary name beside the target and renamed, so a crash or a kill never
+// leaves a half-written image under the real name.
 #pragma once
 
 #include "graph/executor.h"
 
 #include <filesystem>
+#include <optional>
+#include <vector>
 
 namespace tl::session {
 
 enum class ImageEncoding { LinearHalf, Display8 };
 
+// A read-back buffer as an image (alpha dropped).
 void writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding);
+
+struct RgbImage {
+  uint32_t width = 0, height = 0;
+  std::vector<float> rgb;  // interleaved
+};
+// Nothing when the file is missing or unreadable (a cache miss, not an error).
+std::optional<RgbImage> readExrRgb(const std::filesystem::path& file);
+void writeExrRgb(const std::filesystem::path& file, uint32_t w, uint32_t h, const std::vector<float>& rgb);  // float32
+void writeExrGray(const std::filesystem::path& file, uint32_t w, uint32_t h, const std::vector<float>& values);
+void writePngRgb(const std::filesystem::path& file, uint32_t w, uint32_t h, const std::vector<float>& rgb01);
+// Values in [0, maxValue] through a perceptual dark-blue -> red -> yellow -> white ramp.
+void writeFalseColourPng(const std::filesystem::path& file, uint32_t w, uint32_t h, const std::vector<float>& values,
+                         float maxValue);
+std::vector<float> falseColour(const std::vector<float>& values, float maxValue);
 
 }  // namespace tl::session
