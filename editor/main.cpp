@@ -5,6 +5,7 @@
 #include "cli_args.h"
 #include "editor_app.h"
 #include "gpu/self_test.h"
+#include "session/compare.h"
 #include "session/session.h"
 
 #include <CLI/CLI.hpp>
@@ -189,6 +190,23 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--json", benchJson, "write the figures as JSON to FILE (- for stdout)");
   addViewAndLightOptions(*benchCmd, benchRender);
 
+  RenderOptions compareRender;
+  compareRender.size = "128x128";
+  tl::session::CompareOptions compare;
+  std::string comparePaths, compareOut = "out/compare", compareCache;
+  auto* compareCmd = app.add_subcommand("compare", "speed against error of lighting paths versus the reference path tracer");
+  compareCmd->add_option("--scene", compareRender.scene, "glTF file; default content/atrium.gltf");
+  compareCmd->add_option("--paths", comparePaths, "comma-separated paths (default: every available one)");
+  compareCmd->add_option("--size", compareRender.size, "image size WxH")->capture_default_str();
+  compareCmd->add_option("--spp", compare.referenceSpp, "reference samples per pixel (<= 16 or a multiple of 16)")
+      ->capture_default_str();
+  compareCmd->add_option("--bounces", compare.referenceBounces, "reference scattering events per path")->capture_default_str();
+  compareCmd->add_option("--frames", compare.framesPerPath, "frames each path runs before it is measured")
+      ->capture_default_str();
+  compareCmd->add_option("--out", compareOut, "report directory")->capture_default_str();
+  compareCmd->add_option("--cache", compareCache, "reference cache directory (default: $XDG_CACHE_HOME/twinlight/reference)");
+  addViewAndLightOptions(*compareCmd, compareRender);
+
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
 
   try {
@@ -200,6 +218,31 @@ int main(int argc, char** argv) {
   try {
     if (*renderCmd) return runRender(render);
     if (*infoCmd) return runInfo();
+    if (*compareCmd) {
+      Session session;
+      prepareSession(session, compareRender);
+      std::stringstream list(comparePaths);
+      for (std::string p; std::getline(list, p, ',');)
+        if (!p.empty()) compare.paths.push_back(p);
+      compare.outDir = compareOut;
+      compare.cacheDir = compareCache;
+      auto report = tl::session::runCompare(session, compare, [](const std::string& what, double f) {
+        int filled = int(f * 30.0 + 0.5);
+        fmt::print(stderr, "\r[{:30}] {:3.0f}% {:32}", std::string(size_t(filled), '#'), f * 100.0, what);
+        if (f >= 1.0) fmt::print(stderr, "\n");
+      });
+      fmt::print("{:10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>9}\n", "path", "GPU ms", "relMSE", "RMSE", "PSNR", "SSIM",
+                 "FLIP", "HDR-FLIP");
+      auto num = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); };
+      for (auto& p : report["paths"])
+        fmt::print("{:10} {:9.2f} {:9.4f} {:9.4f} {:8.2f} {:7.4f} {:7.4f} {:9.4f}\n", p["path"].get<std::string>(),
+                   p["frameMs"].get<double>(), num(p["relMSE"]), num(p["RMSE"]), num(p["PSNR"]), num(p["SSIM"]),
+                   num(p["FLIP"]), num(p["HDR-FLIP"]));
+      fmt::print("reference: {} spp{}\nwrote {}\n", report["reference"]["spp"].get<int>(),
+                 report["reference"]["cached"].get<bool>() ? " (reused from the cache)" : "",
+                 (std::filesystem::absolute(compareOut) / "report.html").string());
+      return 0;
+    }
     if (*benchCmd) {
       Session session;
       prepareSession(session, benchRender);

@@ -77,6 +77,7 @@ class Session {
 
   void setSize(uint32_t width, uint32_t height);
   lighting::RenderSettings& settings() { return settings_; }
+  const lighting::RenderSettings& settings() const { return settings_; }
 
   // The editor's viewport: adds the display pass (selection outline, any resource shown).
   void setDisplay(std::optional<lighting::DisplayRequest> request) { display_ = std::move(request); }

@@ -1,0 +1,190 @@
+#include "session/compare.h"
+
+#include "lighting/common/composite_pass.h"
+#include "metrics/flip.h"
+#include "metrics/metrics.h"
+#include "session/image_io.h"
+#include "session/report_html.h"
+#include "shared/color.h"
+#include "shared/tonemap.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+
+namespace tl::session {
+namespace {
+
+constexpr const char* kReferenceVersion = "reference-1";  // bump when the path tracer changes
+
+metrics::Image rgbOf(const graph::Readback& rb) {
+  auto t = rb.texels();
+  const uint32_t c = rb.channels(), w = rb.extent.width, h = rb.extent.height;
+  std::vector<float> rgb(size_t(w) * h * 3);
+  for (size_t i = 0; i < size_t(w) * h; ++i)
+    for (uint32_t k = 0; k < 3; ++k) rgb[i * 3 + k] = t[i * c + std::min(k, c - 1)];
+  return metrics::Image::fromTexels(w, h, 3, std::move(rgb));
+}
+
+// The display encoding the tonemap pass applies, on the CPU: exposure, ACES, sRGB.
+metrics::Image displayOf(const metrics::Image& linear, float exposure) {
+  metrics::Image out = linear;
+  for (size_t i = 0; i < out.data.size(); i += 3) {
+    glm::vec3 c(linear.data[i], linear.data[i + 1], linear.data[i + 2]);
+    glm::vec3 d = shared::tlLinearToSrgb(shared::tlTonemapAces(glm::max(c, glm::vec3(0.0f)) * exposure));
+    out.data[i] = d.x, out.data[i + 1] = d.y, out.data[i + 2] = d.z;
+  }
+  return out;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+std::string referenceKey(const Session& s, const CompareOptions& o) {
+  const View& v = s.view();
+  const Lighting& l = s.lighting();
+  std::string text = fmt::format(
+      "{}|{:x}|{},{},{}|{},{},{}|{}|{},{},{}|{},{},{}|{},{},{}|{}x{}|{}|{}", kReferenceVersion, s.scene().contentHash,
+      v.position.x, v.position.y, v.position.z, v.forward.x, v.forward.y, v.forward.z, v.yfovRadians, l.sunDirection.x,
+      l.sunDirection.y, l.sunDirection.z, l.sunIrradiance.x, l.sunIrradiance.y, l.sunIrradiance.z, l.skyRadiance.x,
+      l.skyRadiance.y, l.skyRadiance.z, s.settings().width, s.settings().height, o.referenceSpp, o.referenceBounces);
+  return fmt::format("{:016x}", scene::hashBytes(text.data(), text.size()));
+}
+
+metrics::Image renderReference(Session& s, const CompareOptions& o, const Progress& progress, nlohmann::json& info) {
+  std::filesystem::path cache = (o.cacheDir.empty() ? defaultReferenceCache() : o.cacheDir) /
+                                (referenceKey(s, o) + ".exr");
+  info = {{"spp", o.referenceSpp}, {"bounces", o.referenceBounces}, {"cacheFile", cache.string()}};
+  if (auto cached = readExrRgb(cache)) {
+    if (cached->width == s.settings().width && cached->height == s.settings().height) {
+      info["cached"] = true;
+      return metrics::Image::fromTexels(cached->width, cached->height, 3, std::move(cached->rgb));
+    }
+  }
+  info["cached"] = false;
+  s.setPath("reference");
+  s.settings().referenceBounces = o.referenceBounces;
+  s.settings().referenceSamplesPerFrame = std::min(o.referenceSpp, 16u);
+  const uint32_t frames = std::max(1u, o.referenceSpp / s.settings().referenceSamplesPerFrame);
+  s.resetHistory();
+  for (uint32_t f = 0; f < frames; ++f) {
+    if (f + 1 == frames) s.requestBuffer("reference.radiance");
+    s.renderFrames(1);
+    if (progress) progress(fmt::format("reference {} spp", (f + 1) * s.settings().referenceSamplesPerFrame), double(f + 1) / frames);
+  }
+  metrics::Image ref = rgbOf(s.buffer("reference.radiance"));
+  writeExrRgb(cache, ref.width, ref.height, ref.data);
+  return ref;
+}
+
+}  // namespace
+
+std::filesystem::path defaultReferenceCache() {
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::filesystem::path(x) / "twinlight" / "reference";
+  if (const char* h = std::getenv("HOME"); h && *h) return std::filesystem::path(h) / ".cache" / "twinlight" / "reference";
+  return std::filesystem::temp_directory_path() / "twinlight-reference";
+}
+
+nlohmann::json runCompare(Session& s, const CompareOptions& o, const Progress& progress) {
+  if (o.referenceSpp == 0 || (o.referenceSpp > 16 && o.referenceSpp % 16))
+    throw SessionError("the reference sample count must be at most 16 or a multiple of 16");
+  std::vector<std::string> paths = o.paths;
+  if (paths.empty())
+    for (auto& p : s.paths())
+      if (p.available && p.name != "reference") paths.push_back(p.name);
+  for (auto& name : paths) {
+    auto all = s.paths();
+    auto it = std::find_if(all.begin(), all.end(), [&](auto& p) { return p.name == name; });
+    if (it == all.end() || !it->available)
+      throw SessionError(fmt::format("cannot compare `{}`: {}", name, it == all.end() ? "no such path" : it->unavailableReason));
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(o.outDir, ec);
+  const std::string previousPath = s.path();
+
+  nlohmann::json refInfo;
+  metrics::Image reference = renderReference(s, o, progress, refInfo);
+  const float exposure = std::exp2(-s.exposureEv());
+  metrics::Image referenceDisplay = displayOf(reference, exposure);
+  writeExrRgb(o.outDir / "reference.exr", reference.width, reference.height, reference.data);
+  writePngRgb(o.outDir / "reference.png", referenceDisplay.width, referenceDisplay.height, referenceDisplay.data);
+
+  nlohmann::json results = nlohmann::json::array();
+  for (size_t i = 0; i < paths.size(); ++i) {
+    const std::string& name = paths[i];
+    s.setPath(name);
+    s.resetHistory();
+    s.renderFrames(std::max(1u, o.framesPerPath));
+    if (progress) progress("path " + name, double(i + 1) / paths.size());
+    metrics::Image test = rgbOf(s.buffer(lighting::kCompositeHdr));
+    metrics::Image testDisplay = displayOf(test, exposure);
+
+    auto rel = metrics::relMse(test, reference);
+    auto rms = metrics::rmse(test, reference);
+    double peak = 0.0;
+    for (float v : reference.data) peak = std::max(peak, double(v));
+    double psnr = metrics::psnr(test, reference, std::max(peak, 1e-6));
+    auto ssim = metrics::ssim(testDisplay, referenceDisplay, 1.0);
+    auto flip = metrics::flipLdr(testDisplay, referenceDisplay);
+    auto hdrFlip = metrics::flipHdr(test, reference);
+
+    std::string stem = "error_" + name;
+    writeExrRgb(o.outDir / (name + ".exr"), test.width, test.height, test.data);
+    writePngRgb(o.outDir / (name + ".png"), testDisplay.width, testDisplay.height, testDisplay.data);
+    writeFalseColourPng(o.outDir / (stem + "_flip.png"), flip.errorMap.width, flip.errorMap.height, flip.errorMap.data, 1.0f);
+    writeExrGray(o.outDir / (stem + "_relmse.exr"), rel.errorMap.width, rel.errorMap.height, rel.errorMap.data);
+
+    nlohmann::json passes = nlohmann::json::object();
+    for (const auto& [pass, ms] : s.passGpuMs()) passes[pass] = median(ms);
+    auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    results.push_back({{"path", name},
+                       {"frames", o.framesPerPath},
+                       {"frameMs", median(s.frameGpuMs())},
+                       {"passMs", passes},
+                       {"relMSE", finite(rel.value)},
+                       {"RMSE", finite(rms.value)},
+                       {"PSNR", finite(psnr)},
+                       {"SSIM", finite(ssim.value)},
+                       {"FLIP", finite(flip.value)},
+                       {"HDR-FLIP", finite(hdrFlip.value)},
+                       {"image", name + ".png"},
+                       {"flipMap", stem + "_flip.png"},
+                       {"relMSEMap", stem + "_relmse.exr"}});
+  }
+  s.setPath(previousPath);
+
+  const auto& d = s.device();
+  const View& v = s.view();
+  nlohmann::json report = {
+      {"scene", s.scene().name},
+      {"sceneFile", s.scene().path.string()},
+      {"sceneHash", fmt::format("{:016x}", s.scene().contentHash)},
+      {"width", s.settings().width},
+      {"height", s.settings().height},
+      {"camera", {{"position", {v.position.x, v.position.y, v.position.z}}, {"forward", {v.forward.x, v.forward.y, v.forward.z}},
+                  {"yfovDegrees", glm::degrees(v.yfovRadians)}}},
+      {"exposureEV", s.exposureEv()},
+      {"device", d.name()},
+      {"driver", d.driver()},
+      {"vulkan", fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(d.apiVersion()), VK_API_VERSION_MINOR(d.apiVersion()),
+                             VK_API_VERSION_PATCH(d.apiVersion()))},
+      {"twinlight", "0.1.0"},
+      {"reference", refInfo},
+      {"metrics", {{"relMSE", "mean over pixels and channels of (t - r)^2 / (r^2 + 0.01), linear radiance"},
+                   {"RMSE", "linear radiance"},
+                   {"PSNR", "linear radiance, peak = the reference's maximum"},
+                   {"SSIM", "display-encoded luminance, 11x11 Gaussian window"},
+                   {"FLIP", "LDR-FLIP of the display images, 67 pixels per degree"},
+                   {"HDR-FLIP", "HDR-FLIP of the linear images"}}},
+      {"paths", results}};
+  std::ofstream(o.outDir / "report.json") << report.dump(2) << "\n";
+  writeReportHtml(o.outDir / "report.html", report, o.outDir);
+  return report;
+}
+
+}  // namespace tl::session

@@ -1,0 +1,35 @@
+// Speed against error: render the reference (cached on disk by everything that determines
+// it), run each lighting path for a fixed number of frames on the same scene, camera and
+// light, and measure its per-pass GPU time and its error against the reference. Writes
+// report.json (every figure), error maps (EXR + false-colour PNG) and report.html.
+#pragma once
+
+#include "session/session.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tl::session {
+
+struct CompareOptions {
+  std::vector<std::string> paths;      // empty: every available path except the reference
+  uint32_t referenceSpp = 256;         // multiple of 16
+  uint32_t referenceBounces = 8;
+  uint32_t framesPerPath = 8;          // the last one is measured against the reference
+  std::filesystem::path outDir = "out/compare";
+  std::filesystem::path cacheDir;      // empty: $XDG_CACHE_HOME/twinlight/reference
+};
+
+// `what` and a fraction in [0,1], for a progress bar.
+using Progress = std::function<void(const std::string& what, double fraction)>;
+
+// The session must have its scene, view, light and size set. Returns report.json's content.
+nlohmann::json runCompare(Session& session, const CompareOptions& options, const Progress& progress = {});
+
+std::filesystem::path defaultReferenceCache();
+
+}  // namespace tl::session

@@ -1,0 +1,143 @@
+#include "session/report_html.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace tl::session {
+namespace {
+
+std::string base64(const std::string& bytes) {
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    uint32_t v = (uint8_t(bytes[i]) << 16) | (uint8_t(bytes[i + 1]) << 8) | uint8_t(bytes[i + 2]);
+    for (int s = 18; s >= 0; s -= 6) out += table[(v >> s) & 63];
+  }
+  if (i < bytes.size()) {
+    uint32_t v = uint8_t(bytes[i]) << 16;
+    if (i + 1 < bytes.size()) v |= uint8_t(bytes[i + 1]) << 8;
+    out += table[(v >> 18) & 63];
+    out += table[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? table[(v >> 6) & 63] : '=';
+    out += '=';
+  }
+  return out;
+}
+
+std::string pngDataUri(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return "data:image/png;base64," + base64(ss.str());
+}
+
+std::string escape(const std::string& s) {
+  std::string out;
+  for (char c : s) out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
+  return out;
+}
+
+std::string number(const nlohmann::json& v, const char* format = "{:.4f}") {
+  return v.is_number() ? fmt::format(fmt::runtime(format), v.get<double>()) : std::string("n/a");
+}
+
+// Frame time (x) against mean FLIP (y); the Pareto front joins the paths no other path
+// beats on both.
+std::string speedErrorPlot(const nlohmann::json& paths) {
+  const double W = 560, H = 320, left = 60, bottom = 40, top = 20, right = 20;
+  double maxX = 1e-6, maxY = 1e-6;
+  for (auto& p : paths) {
+    maxX = std::max(maxX, p["frameMs"].get<double>());
+    if (p["FLIP"].is_number()) maxY = std::max(maxY, p["FLIP"].get<double>());
+  }
+  maxX *= 1.15, maxY *= 1.15;
+  auto X = [&](double v) { return left + v / maxX * (W - left - right); };
+  auto Y = [&](double v) { return H - bottom - v / maxY * (H - bottom - top); };
+  std::string svg = fmt::format("<svg width='{}' height='{}' xmlns='http://www.w3.org/2000/svg' font-size='12'>", W, H);
+  svg += fmt::format("<line x1='{0}' y1='{1}' x2='{2}' y2='{1}' stroke='#888'/><line x1='{0}' y1='{1}' x2='{0}' y2='{3}' stroke='#888'/>",
+                     left, H - bottom, W - right, top);
+  svg += fmt::format("<text x='{}' y='{}' text-anchor='middle'>GPU frame time (ms)</text>", (left + W - right) / 2, H - 8);
+  svg += fmt::format("<text x='14' y='{}' transform='rotate(-90 14 {})' text-anchor='middle'>mean FLIP</text>", H / 2, H / 2);
+  for (int t = 0; t <= 4; ++t) {
+    svg += fmt::format("<text x='{}' y='{}' text-anchor='middle' fill='#666'>{:.1f}</text>", X(maxX * t / 4), H - bottom + 16, maxX * t / 4);
+    svg += fmt::format("<text x='{}' y='{}' text-anchor='end' fill='#666'>{:.3f}</text>", left - 6, Y(maxY * t / 4) + 4, maxY * t / 4);
+  }
+  std::vector<std::pair<double, double>> pts;
+  for (auto& p : paths)
+    if (p["FLIP"].is_number()) pts.push_back({p["frameMs"].get<double>(), p["FLIP"].get<double>()});
+  std::sort(pts.begin(), pts.end());
+  std::string front;
+  double best = 1e300;
+  for (auto& [x, y] : pts)
+    if (y < best) best = y, front += fmt::format("{:.1f},{:.1f} ", X(x), Y(y));
+  if (!front.empty()) svg += "<polyline fill='none' stroke='#d33' stroke-dasharray='4 3' points='" + front + "'/>";
+  for (auto& p : paths) {
+    if (!p["FLIP"].is_number()) continue;
+    double x = X(p["frameMs"].get<double>()), y = Y(p["FLIP"].get<double>());
+    svg += fmt::format("<circle cx='{:.1f}' cy='{:.1f}' r='5' fill='#2a6'/><text x='{:.1f}' y='{:.1f}'>{}</text>", x, y, x + 8, y - 6,
+                       escape(p["path"].get<std::string>()));
+  }
+  return svg + "</svg>";
+}
+
+std::string timingBars(const nlohmann::json& paths) {
+  double worst = 1e-6;
+  for (auto& p : paths) worst = std::max(worst, p["frameMs"].get<double>());
+  std::string html;
+  for (auto& p : paths) {
+    html += fmt::format("<h4>{} — {:.2f} ms</h4>", escape(p["path"].get<std::string>()), p["frameMs"].get<double>());
+    for (auto& [pass, ms] : p["passMs"].items())
+      html += fmt::format("<div class='bar'><span style='width:{:.1f}%'></span>{} {:.2f} ms</div>", ms.get<double>() / worst * 100.0,
+                          escape(pass), ms.get<double>());
+  }
+  return html;
+}
+
+}  // namespace
+
+void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r, const std::filesystem::path& dir) {
+  std::string html = R"(<!doctype html><html><head><meta charset='utf-8'><title>Twinlight compare</title><style>
+body{font-family:sans-serif;margin:24px;color:#222;max-width:1200px}
+table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:4px 10px;text-align:right}th{background:#f2f2f2}
+td:first-child,th:first-child{text-align:left}
+.bar{position:relative;height:18px;margin:2px 0;font-size:12px;line-height:18px;padding-left:4px}
+.bar span{position:absolute;left:0;top:0;bottom:0;background:#9cd;z-index:-1}
+.imgs{display:flex;gap:12px;flex-wrap:wrap}.imgs figure{margin:0}.imgs img{image-rendering:pixelated;width:256px}
+.legend{height:12px;width:256px;background:linear-gradient(to right,#05051a,#590d73,#cc1a33,#fa800d,#fce533,#fff)}
+</style></head><body>)";
+  html += fmt::format("<h1>Speed against error: {}</h1>", escape(r["scene"].get<std::string>()));
+  const auto& ref = r["reference"];
+  html += fmt::format("<p>{}×{} on {} ({}), Vulkan {}. Reference: {} samples per pixel, {} bounces{}. Exposure {:.2f} EV.</p>",
+                      r["width"].get<int>(), r["height"].get<int>(), escape(r["device"].get<std::string>()),
+                      escape(r["driver"].get<std::string>()), r["vulkan"].get<std::string>(), ref["spp"].get<int>(),
+                      ref["bounces"].get<int>(), ref["cached"].get<bool>() ? " (reused from the cache)" : "",
+                      r["exposureEV"].get<double>());
+  html += "<table><tr><th>path</th><th>GPU ms</th><th>relMSE</th><th>RMSE</th><th>PSNR dB</th><th>SSIM</th><th>FLIP</th><th>HDR-FLIP</th></tr>";
+  for (auto& p : r["paths"])
+    html += fmt::format("<tr><td>{}</td><td>{:.2f}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                        escape(p["path"].get<std::string>()), p["frameMs"].get<double>(), number(p["relMSE"]),
+                        number(p["RMSE"]), number(p["PSNR"], "{:.2f}"), number(p["SSIM"]), number(p["FLIP"]),
+                        number(p["HDR-FLIP"]));
+  html += "</table><h2>Speed against error</h2>" + speedErrorPlot(r["paths"]);
+  html += "<h2>Where the time goes</h2>" + timingBars(r["paths"]);
+  html += "<h2>Images and FLIP error maps</h2><div class='imgs'>";
+  html += fmt::format("<figure><img src='{}'><figcaption>reference</figcaption></figure>", pngDataUri(dir / "reference.png"));
+  for (auto& p : r["paths"]) {
+    html += fmt::format("<figure><img src='{}'><figcaption>{}</figcaption></figure>", pngDataUri(dir / p["image"].get<std::string>()),
+                        escape(p["path"].get<std::string>()));
+    html += fmt::format("<figure><img src='{}'><figcaption>{} — FLIP error</figcaption></figure>",
+                        pngDataUri(dir / p["flipMap"].get<std::string>()), escape(p["path"].get<std::string>()));
+  }
+  html += "</div><p>FLIP error 0 <span class='legend' style='display:inline-block'></span> 1</p>";
+  html += "<h2>Metrics</h2><ul>";
+  for (auto& [k, v] : r["metrics"].items()) html += fmt::format("<li><b>{}</b>: {}</li>", escape(k), escape(v.get<std::string>()));
+  html += "</ul><p>Every figure is also in report.json beside this page.</p></body></html>\n";
+  std::ofstream(file) << html;
+}
+
+}  // namespace tl::session

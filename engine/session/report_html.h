@@ -1,0 +1,14 @@
+// report.html: one self-contained page (images inlined as data URIs, plots as inline SVG)
+// that reads offline: the speed-against-error plot with its Pareto front, per-pass timing
+// bars, each path's image beside the reference and its FLIP error map.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+namespace tl::session {
+
+void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& report, const std::filesystem::path& imageDir);
+
+}  // namespace tl::session

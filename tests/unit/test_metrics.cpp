@@ -1,0 +1,117 @@
+// Error metrics on images with known answers.
+#include "metrics/flip.h"
+#include "metrics/metrics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace tl::metrics {
+namespace {
+
+Image textured(uint32_t w, uint32_t h, uint32_t seed = 1) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.1f, 0.9f);
+  Image img = Image::filled(w, h, 3, 0.0f);
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      float base = ((x / 4 + y / 4) % 2) ? 0.7f : 0.3f;  // a checker under mild noise
+      for (uint32_t c = 0; c < 3; ++c) img.at(x, y, c) = std::clamp(base + 0.1f * (u(rng) - 0.5f), 0.0f, 1.0f);
+    }
+  return img;
+}
+
+Image noisy(const Image& img, float amplitude, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> n(0.0f, 1.0f);
+  Image out = img;
+  for (auto& v : out.data) v = std::clamp(v + amplitude * n(rng), 0.0f, 1.0f);
+  return out;
+}
+
+TEST(MetricsBasic, IdenticalImagesHaveNoError) {
+  Image a = textured(32, 32);
+  EXPECT_EQ(relMse(a, a).value, 0.0);
+  EXPECT_EQ(rmse(a, a).value, 0.0);
+  EXPECT_TRUE(std::isinf(psnr(a, a, 1.0)));
+  EXPECT_NEAR(ssim(a, a).value, 1.0, 1e-9);
+  EXPECT_NEAR(flipLdr(a, a).value, 0.0, 1e-9);
+  EXPECT_NEAR(flipHdr(a, a).value, 0.0, 1e-9);
+}
+
+TEST(MetricsBasic, ConstantOffsetHasClosedForms) {
+  const float r = 0.5f, delta = 0.1f;
+  Image ref = Image::filled(16, 16, 3, r), test = Image::filled(16, 16, 3, r + delta);
+  EXPECT_NEAR(rmse(test, ref).value, delta, 1e-6);
+  EXPECT_NEAR(relMse(test, ref).value, delta * delta / (r * r + kRelMseEpsilon), 1e-6);
+  EXPECT_NEAR(psnr(test, ref, 1.0), 20.0 * std::log10(1.0 / delta), 1e-4);
+  auto map = relMse(test, ref).errorMap;
+  EXPECT_EQ(map.width, 16u);
+  EXPECT_EQ(map.channels, 1u);
+}
+
+TEST(MetricsBasic, SsimFallsWithStructureLossAndIsSymmetric) {
+  Image a = textured(48, 48), b = noisy(a, 0.1f, 3);
+  double ab = ssim(a, b).value, ba = ssim(b, a).value;
+  EXPECT_LT(ab, 0.95);
+  EXPECT_NEAR(ab, ba, 1e-9);
+  Image inverted = a;
+  for (auto& v : inverted.data) v = 1.0f - v;
+  EXPECT_LT(ssim(a, inverted).value, 0.0);
+}
+
+TEST(MetricsFlip, InUnitRangeAndMonotonicInNoise) {
+  Image a = textured(48, 48);
+  double previous = 0.0;
+  for (float amplitude : {0.01f, 0.03f, 0.1f, 0.3f}) {
+    auto m = flipLdr(noisy(a, amplitude, 7), a);
+    EXPECT_GT(m.value, previous) << amplitude;
+    EXPECT_LE(m.value, 1.0);
+    for (float v : m.errorMap.data) {
+      EXPECT_GE(v, 0.0f);
+      EXPECT_LE(v, 1.0f);
+    }
+    previous = m.value;
+  }
+}
+
+TEST(MetricsFlip, BlackAgainstWhiteIsNearlyMaximal) {
+  Image black = Image::filled(24, 24, 3, 0.0f), white = Image::filled(24, 24, 3, 1.0f);
+  EXPECT_GT(flipLdr(black, white).value, 0.9);
+}
+
+TEST(MetricsFlip, OnePixelChangeStaysLocal) {
+  Image a = Image::filled(64, 64, 3, 0.5f), b = a;
+  for (uint32_t c = 0; c < 3; ++c) b.at(32, 32, c) = 1.0f;
+  auto m = flipLdr(b, a);
+  EXPECT_GT(m.errorMap.at(32, 32, 0), 0.05f);
+  EXPECT_EQ(m.errorMap.at(2, 2, 0), 0.0f);
+  EXPECT_EQ(m.errorMap.at(60, 10, 0), 0.0f);
+}
+
+TEST(MetricsFlip, HdrFlipGrowsWithExposureError) {
+  Image ref = textured(32, 32);
+  for (auto& v : ref.data) v *= 8.0f;  // HDR radiance
+  double previous = 0.0;
+  for (float scale : {1.05f, 1.3f, 2.0f}) {
+    Image t = ref;
+    for (auto& v : t.data) v *= scale;
+    double e = flipHdr(t, ref).value;
+    EXPECT_GT(e, previous) << scale;
+    previous = e;
+  }
+}
+
+TEST(MetricsErrors, SizeMismatchThrowsAndNonFiniteIsVisible) {
+  EXPECT_THROW(rmse(Image::filled(4, 4, 3, 0), Image::filled(5, 4, 3, 0)), std::invalid_argument);
+  Image ref = Image::filled(8, 8, 3, 0.5f), t = ref;
+  t.at(3, 3, 1) = std::nanf("");
+  EXPECT_TRUE(std::isinf(rmse(t, ref).value));
+  auto f = flipLdr(t, ref);
+  EXPECT_EQ(f.errorMap.at(3, 3, 0), 1.0f);
+  EXPECT_TRUE(std::isfinite(f.value));
+}
+
+}  // namespace
+}  // namespace tl::metrics
