@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 
@@ -161,11 +162,10 @@ nlohmann::json triangle(const std::string& bin) {
       {"scene", 0}};
 }
 
-void writeTriangleBin(const fs::path& p, uint16_t lastIndex = 2) {
-  float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+void writeTriangleBin(const fs::path& p, uint16_t lastIndex = 2, std::array<float, 9> pos = {0, 0, 0, 1, 0, 0, 0, 1, 0}) {
   uint16_t idx[3] = {0, 1, lastIndex};
   std::ofstream f(p, std::ios::binary);
-  f.write(reinterpret_cast<const char*>(pos), sizeof pos);
+  f.write(reinterpret_cast<const char*>(pos.data()), sizeof(float) * pos.size());
   f.write(reinterpret_cast<const char*>(idx), sizeof idx);
 }
 
@@ -235,13 +235,7 @@ TEST(SceneErrors, UnsupportedRequiredExtension) {
 
 TEST(SceneErrors, NonFinitePosition) {
   TempDir tmp;
-  float pos[9] = {0, 0, 0, NAN, 0, 0, 0, 1, 0};
-  uint16_t idx[3] = {0, 1, 2};
-  {
-    std::ofstream f(tmp.path / "t.bin", std::ios::binary);
-    f.write(reinterpret_cast<const char*>(pos), sizeof pos);
-    f.write(reinterpret_cast<const char*>(idx), sizeof idx);
-  }
+  writeTriangleBin(tmp.path / "t.bin", 2, {0, 0, 0, NAN, 0, 0, 0, 1, 0});
   writeText(tmp.path / "nan.gltf", triangle("t.bin").dump());
   expectOneLineErrorNaming(tmp.path / "nan.gltf", "non-finite position");
 }
@@ -267,13 +261,7 @@ TEST(SceneErrors, MissingTextureIsAWarningAndAPlaceholder) {
 
 TEST(SceneErrors, DegenerateTrianglesGiveFiniteNormals) {
   TempDir tmp;
-  float pos[9] = {1, 1, 1, 1, 1, 1, 1, 1, 1};  // zero area
-  uint16_t idx[3] = {0, 1, 2};
-  {
-    std::ofstream f(tmp.path / "t.bin", std::ios::binary);
-    f.write(reinterpret_cast<const char*>(pos), sizeof pos);
-    f.write(reinterpret_cast<const char*>(idx), sizeof idx);
-  }
+  writeTriangleBin(tmp.path / "t.bin", 2, {1, 1, 1, 1, 1, 1, 1, 1, 1});  // zero area
   writeText(tmp.path / "degenerate.gltf", triangle("t.bin").dump());
   Scene s = loadGltf(tmp.path / "degenerate.gltf");
   for (auto& v : s.meshes[0].vertices) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "gpu/device.h"
+#include "graph/graph.h"
 #include "scene/gpu_scene.h"
 #include "shared/frame.h"
 
@@ -29,6 +30,16 @@ inline constexpr const char* kSceneVertices = "scene.vertices";
 inline constexpr const char* kSceneIndices = "scene.indices";
 inline constexpr const char* kSceneInstances = "scene.instances";
 inline constexpr const char* kSceneMaterials = "scene.materials";
+
+// Declares the reads of the frame constants and the scene's tables that every pass drawing
+// or tracing the scene makes; `geometry` is how it reads the vertex and index buffers.
+inline void readSceneInputs(graph::PassBuilder& b, graph::Usage geometry, bool materials = true) {
+  b.read(kFrameConstants, graph::Usage::StorageRead);
+  b.read(kSceneVertices, geometry);
+  b.read(kSceneIndices, geometry);
+  b.read(kSceneInstances, graph::Usage::StorageRead);
+  if (materials) b.read(kSceneMaterials, graph::Usage::StorageRead);
+}
 
 struct FrameInputs {
   gpu::Device& device;

@@ -27,11 +27,7 @@ void GbufferPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   graph.addPass(
       "gbuffer", graph::PassKind::Raster,
       [&](graph::PassBuilder& b) {
-        b.read(kFrameConstants, graph::Usage::StorageRead);
-        b.read(kSceneVertices, graph::Usage::VertexOrIndex);
-        b.read(kSceneIndices, graph::Usage::VertexOrIndex);
-        b.read(kSceneInstances, graph::Usage::StorageRead);
-        b.read(kSceneMaterials, graph::Usage::StorageRead);
+        readSceneInputs(b, graph::Usage::VertexOrIndex);
         for (auto& c : kGbufferChannels)
           b.create(c.name, graph::ResourceDesc::image2D(c.format, w, h, c.description), graph::Usage::ColorAttachment);
         b.create(kGbufferDepth,

@@ -26,10 +26,7 @@ void ShadowPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   graph.addPass(
       "shadow.sun", graph::PassKind::Raster,
       [&](graph::PassBuilder& b) {
-        b.read(kFrameConstants, graph::Usage::StorageRead);
-        b.read(kSceneVertices, graph::Usage::VertexOrIndex);
-        b.read(kSceneIndices, graph::Usage::VertexOrIndex);
-        b.read(kSceneInstances, graph::Usage::StorageRead);
+        readSceneInputs(b, graph::Usage::VertexOrIndex, false);
         b.create(kShadowSunDepth,
                  graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, size, size, "sun shadow map depth, orthographic"),
                  graph::Usage::DepthAttachment);

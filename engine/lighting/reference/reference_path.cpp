@@ -44,11 +44,7 @@ class ReferencePath final : public LightingPath {
     graph.addPass(
         "reference.trace", graph::PassKind::RayTracing,
         [&](graph::PassBuilder& b) {
-          b.read(kFrameConstants, graph::Usage::StorageRead);
-          b.read(kSceneVertices, graph::Usage::StorageRead);
-          b.read(kSceneIndices, graph::Usage::StorageRead);
-          b.read(kSceneInstances, graph::Usage::StorageRead);
-          b.read(kSceneMaterials, graph::Usage::StorageRead);
+          readSceneInputs(b, graph::Usage::StorageRead);
           b.read(kAccum, graph::Usage::StorageRead);
           b.write(kAccum, graph::Usage::StorageWrite);
           b.create(kRadiance, graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "path-traced radiance"),
