@@ -423,7 +423,9 @@ std::string RenderGraph::dump(const CompiledGraph& c) const {
     const auto& r = resources_[info.id];
     std::string writer = info.writer != kNone ? passes_[info.writer].name : (r.imported ? "(imported)" : "(none)");
     std::string readers;
-    for (PassId p : info.readers) readers += (readers.empty() ? "" : ",") + passes_[p].name;
+    for (PassId p : info.readers)
+      if (std::find(c.culled.begin(), c.culled.end(), p) == c.culled.end())
+        readers += (readers.empty() ? "" : ",") + passes_[p].name;
     std::string life = info.culled ? "culled" : fmt::format("life [{}..{}]", info.firstUse, info.lastUse);
     s += fmt::format("  {:22} {:26} {:>10}  written by {}  read by {}  {}{}{}\n", r.name, describe(r.desc),
                      mib(approximateBytes(r.desc)), writer, readers.empty() ? "-" : readers, life,

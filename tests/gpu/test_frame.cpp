@@ -63,6 +63,9 @@ TEST_F(GpuTest, GbufferInstanceIdsMatchSceneInstances) {
     covered += id > 0.0f;
   }
   EXPECT_GT(covered, ids.size() / 2);  // the box fills most of the view
+  // No sun in cornell: nothing reads the shadow map, so the graph culls its pass.
+  EXPECT_NE(s.graphDump().find("shadow.sun (nobody reads shadow.sunDepth)"), std::string::npos) << s.graphDump();
+  for (const auto& t : s.timings()) EXPECT_NE(t.pass, "shadow.sun");
 }
 
 }  // namespace tl::test

@@ -53,6 +53,9 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
                                   "composite.shadowCompare", true);
   }
 
+  // Without a sun the shadow map is never sampled (the shader tests kFrameFlagSunShadows):
+  // not reading it lets the graph cull the shadow pass.
+  const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
   graph.addPass(
       "composite", graph::PassKind::Compute,
       [&](graph::PassBuilder& b) {
@@ -60,12 +63,14 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
         for (const char* n : {"gbuffer.baseColor", "gbuffer.normal", "gbuffer.material", "gbuffer.emissive"})
           b.read(n, Usage::Sampled);
         b.read(kGbufferDepth, Usage::Sampled);
-        b.read(kShadowSunDepth, Usage::Sampled);
+        if (sun) b.read(kShadowSunDepth, Usage::Sampled);
         b.create(kCompositeHdr, hdrDesc, Usage::StorageWrite);
       },
-      [this, &in](graph::PassContext& ctx) {
+      [this, &in, sun](graph::PassContext& ctx) {
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
         VkSampler point = pointSampler_.handle();
+        // The binding must still hold a depth image; the G-buffer's depth stands in, unread.
+        const gpu::Image& shadow = ctx.image(sun ? kShadowSunDepth : kGbufferDepth);
         ctx.bind(pipeline_);
         ctx.descriptors()
             .uniformBuffer(shared::kBindingFrame, in.constantsBuffer.handle())
@@ -74,7 +79,7 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
             .sampledImage(shared::kCompositeMaterial, ctx.image("gbuffer.material").view(), point, ro)
             .sampledImage(shared::kCompositeEmissive, ctx.image("gbuffer.emissive").view(), point, ro)
             .sampledImage(shared::kCompositeDepth, ctx.image(kGbufferDepth).view(), point, ro)
-            .sampledImage(shared::kCompositeShadow, ctx.image(kShadowSunDepth).view(), shadowSampler_.handle(), ro)
+            .sampledImage(shared::kCompositeShadow, shadow.view(), shadowSampler_.handle(), ro)
             .storageImage(shared::kCompositeOutput, ctx.image(kCompositeHdr).view());
         ctx.dispatch(in.settings.width, in.settings.height);
       });
