@@ -165,7 +165,7 @@ int main(int argc, char** argv) {
   RenderOptions render;
   auto* renderCmd = app.add_subcommand("render", "render a scene headless and save the image(s)");
   renderCmd->add_option("--scene", render.scene, "glTF file (.gltf/.glb); default content/atrium.gltf");
-  renderCmd->add_option("--path", render.path, "lighting path: direct (more arrive with legacy, rt, reference)");
+  renderCmd->add_option("--path", render.path, "lighting path: direct, rt, reference (`twinlight info` lists them)");
   renderCmd->add_option("--size", render.size, "image size WxH")->capture_default_str();
   renderCmd->add_option("--frames", render.frames, "frames to render (the last one is saved)")->capture_default_str();
   renderCmd->add_option("--out", render.outputs,

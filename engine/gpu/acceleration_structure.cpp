@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstring>
 #include <utility>
 
@@ -15,43 +16,130 @@ VkDeviceSize scratchAlignment(Device& device) {
   return std::max<VkDeviceSize>(as.minAccelerationStructureScratchOffsetAlignment, 1);
 }
 
-// Sizes, allocates, builds and waits: the shared tail of both levels.
-void build(Device& device, VkAccelerationStructureTypeKHR type,
-                            const VkAccelerationStructureGeometryKHR& geometry, uint32_t primitives, std::string_view name,
-                            Buffer& storage, VkAccelerationStructureKHR& handle, VkDeviceAddress& address) {
-  TL_CHECK(device.rayTracing().pipeline, "acceleration structure `{}` needs ray tracing: {}", name,
-           device.rayTracing().unavailableReason);
+void createStructure(Device& device, VkAccelerationStructureTypeKHR type, VkDeviceSize size, std::string_view name,
+                     Buffer& storage, VkAccelerationStructureKHR& handle, VkDeviceAddress& address) {
   const auto& ext = device.ext();
-  VkAccelerationStructureBuildGeometryInfoKHR info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
-  info.type = type;
-  info.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR;
-  info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
-  info.geometryCount = 1;
-  info.pGeometries = &geometry;
-  VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
-  ext.getAccelerationStructureBuildSizes(device.handle(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info, &primitives,
-                                         &sizes);
-  storage = Buffer(device, sizes.accelerationStructureSize, VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR,
-                   MemoryUsage::GpuOnly, name);
+  storage = Buffer(device, size, VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR, MemoryUsage::GpuOnly, name);
   VkAccelerationStructureCreateInfoKHR ci{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_CREATE_INFO_KHR};
   ci.buffer = storage.handle();
-  ci.size = sizes.accelerationStructureSize;
+  ci.size = size;
   ci.type = type;
   TL_VK(ext.createAccelerationStructure(device.handle(), &ci, nullptr, &handle));
   device.setName(VK_OBJECT_TYPE_ACCELERATION_STRUCTURE_KHR, uint64_t(handle), name);
-
-  const VkDeviceSize align = scratchAlignment(device);
-  Buffer scratch(device, sizes.buildScratchSize + align, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly,
-                 fmt::format("{}.scratch", name));
-  info.dstAccelerationStructure = handle;
-  info.scratchData.deviceAddress = (scratch.address() + align - 1) / align * align;
-  VkAccelerationStructureBuildRangeInfoKHR range{primitives, 0, 0, 0};
-  const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
-  device.immediate([&](VkCommandBuffer cmd) { ext.cmdBuildAccelerationStructures(cmd, 1, &info, &ranges); });
-
   VkAccelerationStructureDeviceAddressInfoKHR ai{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR};
   ai.accelerationStructure = handle;
   address = ext.getAccelerationStructureDeviceAddress(device.handle(), &ai);
+}
+
+VkAccelerationStructureBuildGeometryInfoKHR buildInfo(VkAccelerationStructureTypeKHR type,
+                                                      const VkAccelerationStructureGeometryKHR& geometry, bool compactable) {
+  VkAccelerationStructureBuildGeometryInfoKHR info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
+  info.type = type;
+  info.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR |
+               (compactable ? VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_COMPACTION_BIT_KHR : 0);
+  info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
+  info.geometryCount = 1;
+  info.pGeometries = &geometry;
+  return info;
+}
+
+VkAccelerationStructureBuildSizesInfoKHR buildSizes(Device& device, const VkAccelerationStructureBuildGeometryInfoKHR& info,
+                                                    uint32_t primitives) {
+  VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+  device.ext().getAccelerationStructureBuildSizes(device.handle(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info,
+                                                  &primitives, &sizes);
+  return sizes;
+}
+
+VkDeviceAddress alignedScratch(Device& device, const Buffer& scratch) {
+  const VkDeviceSize align = scratchAlignment(device);
+  return (scratch.address() + align - 1) / align * align;
+}
+
+// Sizes, allocates, builds and waits: the shared tail of both levels. With `compact`, the
+// result is copied into a structure of its compacted size.
+void build(Device& device, VkAccelerationStructureTypeKHR type, const VkAccelerationStructureGeometryKHR& geometry,
+           uint32_t primitives, std::string_view name, bool compact, Buffer& storage,
+           VkAccelerationStructureKHR& handle, VkDeviceAddress& address) {
+  TL_CHECK(device.rayTracing().pipeline, "acceleration structure `{}` needs ray tracing: {}", name,
+           device.rayTracing().unavailableReason);
+  const auto& ext = device.ext();
+  VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(type, geometry, compact);
+  VkAccelerationStructureBuildSizesInfoKHR sizes = buildSizes(device, info, primitives);
+  createStructure(device, type, sizes.accelerationStructureSize, name, storage, handle, address);
+
+  Buffer scratch(device, sizes.buildScratchSize + scratchAlignment(device), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                 MemoryUsage::GpuOnly, fmt::format("{}.scratch", name));
+  info.dstAccelerationStructure = handle;
+  info.scratchData.deviceAddress = alignedScratch(device, scratch);
+  VkAccelerationStructureBuildRangeInfoKHR range{primitives, 0, 0, 0};
+  const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
+  VkQueryPool pool = VK_NULL_HANDLE;
+  if (compact) {
+    VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    qi.queryType = VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR;
+    qi.queryCount = 1;
+    TL_VK(vkCreateQueryPool(device.handle(), &qi, nullptr, &pool));
+  }
+  device.immediate([&](VkCommandBuffer cmd) {
+    ext.cmdBuildAccelerationStructures(cmd, 1, &info, &ranges);
+    if (!compact) return;
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    b.srcAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
+    b.dstAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                         VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0, 1, &b, 0, nullptr, 0, nullptr);
+    vkCmdResetQueryPool(cmd, pool, 0, 1);
+    ext.cmdWriteAccelerationStructuresProperties(cmd, 1, &handle, VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR,
+                                                 pool, 0);
+  });
+  if (!compact) return;
+  VkDeviceSize compacted = 0;
+  TL_VK(vkGetQueryPoolResults(device.handle(), pool, 0, 1, sizeof(compacted), &compacted, sizeof(compacted),
+                              VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  vkDestroyQueryPool(device.handle(), pool, nullptr);
+  if (compacted == 0 || compacted >= storage.size()) return;
+
+  Buffer small;
+  VkAccelerationStructureKHR smallHandle = VK_NULL_HANDLE;
+  VkDeviceAddress smallAddress = 0;
+  createStructure(device, type, compacted, name, small, smallHandle, smallAddress);
+  device.immediate([&](VkCommandBuffer cmd) {
+    VkCopyAccelerationStructureInfoKHR copy{VK_STRUCTURE_TYPE_COPY_ACCELERATION_STRUCTURE_INFO_KHR};
+    copy.src = handle;
+    copy.dst = smallHandle;
+    copy.mode = VK_COPY_ACCELERATION_STRUCTURE_MODE_COMPACT_KHR;
+    ext.cmdCopyAccelerationStructure(cmd, &copy);
+  });
+  VkAccelerationStructureKHR old = handle;
+  device.destroyLater([&device, old] { device.ext().destroyAccelerationStructure(device.handle(), old, nullptr); });
+  storage = std::move(small);
+  handle = smallHandle;
+  address = smallAddress;
+}
+
+VkAccelerationStructureGeometryKHR instancesGeometry(VkDeviceAddress instances) {
+  VkAccelerationStructureGeometryKHR geometry{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
+  geometry.geometryType = VK_GEOMETRY_TYPE_INSTANCES_KHR;
+  geometry.geometry.instances.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR;
+  geometry.geometry.instances.data.deviceAddress = instances;
+  return geometry;
+}
+
+std::vector<VkAccelerationStructureInstanceKHR> rawInstances(const std::vector<TlasInstance>& instances) {
+  std::vector<VkAccelerationStructureInstanceKHR> raw(instances.size());
+  for (size_t i = 0; i < instances.size(); ++i) {
+    const auto& in = instances[i];
+    VkAccelerationStructureInstanceKHR& r = raw[i];
+    glm::mat4 rowMajor = glm::transpose(in.transform);  // Vulkan wants a row-major 3x4
+    std::memcpy(&r.transform, &rowMajor, sizeof(r.transform));
+    r.instanceCustomIndex = in.customIndex & 0xFFFFFF;
+    r.mask = in.mask;
+    r.instanceShaderBindingTableRecordOffset = 0;
+    r.flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR;
+    r.accelerationStructureReference = in.blas;
+  }
+  return raw;
 }
 
 }  // namespace
@@ -78,7 +166,7 @@ void AccelerationStructure::reset() {
   address_ = 0;
 }
 
-AccelerationStructure buildBottomLevel(Device& device, const TriangleGeometry& g, std::string_view name) {
+AccelerationStructure buildBottomLevel(Device& device, const TriangleGeometry& g, std::string_view name, bool compact) {
   VkAccelerationStructureGeometryKHR geometry{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
   geometry.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
   geometry.flags = g.opaque ? VK_GEOMETRY_OPAQUE_BIT_KHR : 0;
@@ -92,37 +180,69 @@ AccelerationStructure buildBottomLevel(Device& device, const TriangleGeometry& g
   t.indexData.deviceAddress = g.indices;
   AccelerationStructure as;
   as.device_ = &device;
-  build(device, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, g.triangleCount, name, as.buffer_, as.handle_,
-        as.address_);
+  build(device, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, g.triangleCount, name, compact, as.buffer_,
+        as.handle_, as.address_);
   return as;
 }
 
 AccelerationStructure buildTopLevel(Device& device, const std::vector<TlasInstance>& instances, std::string_view name) {
-  std::vector<VkAccelerationStructureInstanceKHR> raw(instances.size());
-  for (size_t i = 0; i < instances.size(); ++i) {
-    const auto& in = instances[i];
-    VkAccelerationStructureInstanceKHR& r = raw[i];
-    glm::mat4 rowMajor = glm::transpose(in.transform);  // Vulkan wants a row-major 3x4
-    std::memcpy(&r.transform, &rowMajor, sizeof(r.transform));
-    r.instanceCustomIndex = in.customIndex & 0xFFFFFF;
-    r.mask = in.mask;
-    r.instanceShaderBindingTableRecordOffset = 0;
-    r.flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR;
-    r.accelerationStructureReference = in.blas;
-  }
+  std::vector<VkAccelerationStructureInstanceKHR> raw = rawInstances(instances);
   Buffer instanceBuffer(device, std::max<size_t>(1, raw.size()) * sizeof(VkAccelerationStructureInstanceKHR),
                         VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR, MemoryUsage::Upload,
                         fmt::format("{}.instances", name));
   if (!raw.empty()) instanceBuffer.write(raw.data(), raw.size() * sizeof(raw[0]));
-  VkAccelerationStructureGeometryKHR geometry{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
-  geometry.geometryType = VK_GEOMETRY_TYPE_INSTANCES_KHR;
-  geometry.geometry.instances.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR;
-  geometry.geometry.instances.data.deviceAddress = instanceBuffer.address();
+  VkAccelerationStructureGeometryKHR geometry = instancesGeometry(instanceBuffer.address());
   AccelerationStructure as;
   as.device_ = &device;
-  build(device, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, geometry, uint32_t(raw.size()), name, as.buffer_, as.handle_,
-        as.address_);
+  build(device, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, geometry, uint32_t(raw.size()), name, false, as.buffer_,
+        as.handle_, as.address_);
   return as;
+}
+
+void TopLevelBuilder::prepare(const std::vector<TlasInstance>& instances) {
+  Device& device = *device_;
+  TL_CHECK(device.rayTracing().pipeline, "acceleration structure `{}` needs ray tracing: {}", name_,
+           device.rayTracing().unavailableReason);
+  count_ = uint32_t(instances.size());
+  if (count_ > capacity_ || !structure_) {
+    capacity_ = std::max({count_, 2 * capacity_, 64u});
+    instances_ = Buffer(device, capacity_ * sizeof(VkAccelerationStructureInstanceKHR),
+                        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR, MemoryUsage::Upload,
+                        fmt::format("{}.instances", name_));
+    VkAccelerationStructureGeometryKHR geometry = instancesGeometry(instances_.address());
+    VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, geometry, false);
+    VkAccelerationStructureBuildSizesInfoKHR sizes = buildSizes(device, info, capacity_);
+    structure_.reset();
+    structure_.device_ = &device;
+    createStructure(device, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, sizes.accelerationStructureSize, name_,
+                    structure_.buffer_, structure_.handle_, structure_.address_);
+    scratch_ = Buffer(device, sizes.buildScratchSize + scratchAlignment(device), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                      MemoryUsage::GpuOnly, fmt::format("{}.scratch", name_));
+  }
+  std::vector<VkAccelerationStructureInstanceKHR> raw = rawInstances(instances);
+  if (!raw.empty()) instances_.write(raw.data(), raw.size() * sizeof(raw[0]));
+}
+
+void TopLevelBuilder::record(VkCommandBuffer cmd) {
+  VkAccelerationStructureGeometryKHR geometry = instancesGeometry(instances_.address());
+  VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, geometry, false);
+  info.dstAccelerationStructure = structure_.handle_;
+  info.scratchData.deviceAddress = alignedScratch(*device_, scratch_);
+  VkAccelerationStructureBuildRangeInfoKHR range{count_, 0, 0, 0};
+  const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
+  // The previous frame's traces finished (the caller waited); its build's scratch writes too.
+  VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  before.srcAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR | VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR;
+  before.dstAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR | VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR | VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR,
+                       VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0, 1, &before, 0, nullptr, 0, nullptr);
+  device_->ext().cmdBuildAccelerationStructures(cmd, 1, &info, &ranges);
+  VkMemoryBarrier after{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  after.srcAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
+  after.dstAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                       VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &after, 0,
+                       nullptr, 0, nullptr);
 }
 
 }  // namespace tl::gpu

@@ -25,8 +25,9 @@ class AccelerationStructure {
   explicit operator bool() const { return handle_ != VK_NULL_HANDLE; }
 
  private:
-  friend AccelerationStructure buildBottomLevel(Device&, const struct TriangleGeometry&, std::string_view);
+  friend AccelerationStructure buildBottomLevel(Device&, const struct TriangleGeometry&, std::string_view, bool);
   friend AccelerationStructure buildTopLevel(Device&, const std::vector<struct TlasInstance>&, std::string_view);
+  friend class TopLevelBuilder;
   Device* device_ = nullptr;
   VkAccelerationStructureKHR handle_ = VK_NULL_HANDLE;
   Buffer buffer_;
@@ -49,8 +50,34 @@ struct TlasInstance {
   VkDeviceAddress blas = 0;
 };
 
-// Builds and waits (device.immediate).
-AccelerationStructure buildBottomLevel(Device& device, const TriangleGeometry& geometry, std::string_view name);
+// Builds and waits (device.immediate). `compact`: build, query the compacted size and copy
+// into a structure of exactly that size (the driver's worst-case estimate is often 2x).
+AccelerationStructure buildBottomLevel(Device& device, const TriangleGeometry& geometry, std::string_view name,
+                                       bool compact = false);
 AccelerationStructure buildTopLevel(Device& device, const std::vector<TlasInstance>& instances, std::string_view name);
+
+// A top level rebuilt from scratch every frame inside a command buffer (Metro: "TLAS =
+// rebuild only from scratch"): storage, scratch and the instance upload buffer grow to the
+// largest instance count seen and are reused. The caller waits for the frame before the
+// next record() (the upload buffer is rewritten).
+class TopLevelBuilder {
+ public:
+  TopLevelBuilder() = default;
+  TopLevelBuilder(Device& device, std::string name) : device_(&device), name_(std::move(name)) {}
+  // Sizes everything for `instances.size()` and uploads the instances (host side).
+  void prepare(const std::vector<TlasInstance>& instances);
+  // Records the build and a barrier making it visible to ray-tracing and compute shaders.
+  void record(VkCommandBuffer cmd);
+  const AccelerationStructure& structure() const { return structure_; }
+  Buffer& storage() { return structure_.buffer_; }
+  uint32_t instanceCount() const { return count_; }
+
+ private:
+  Device* device_ = nullptr;
+  std::string name_;
+  AccelerationStructure structure_;
+  Buffer instances_, scratch_;
+  uint32_t capacity_ = 0, count_ = 0;
+};
 
 }  // namespace tl::gpu

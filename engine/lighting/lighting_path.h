@@ -21,6 +21,9 @@ struct LightingOutputs {
   std::string specular;          // RGBA16F, indirect specular radiance
   std::string radiance;          // a path that computes the whole image (the reference):
                                  // the composite passes it through unchanged
+  // Beyond this view distance (m) the path's diffuse GI fades out over 20% of it towards the
+  // unoccluded sky (Metro: RT GI to 250 m, then the legacy pipeline). 0: no fade.
+  float giBlendDistance = 0.0f;
 };
 
 class LightingPath {
@@ -37,5 +40,7 @@ class LightingPath {
 std::unique_ptr<LightingPath> makeDirectPath();
 // Progressive path tracer on the ray-tracing pipeline: the ground truth.
 std::unique_ptr<LightingPath> makeReferencePath();
+// Metro Exodus' hybrid RT GI + RTAO: one ray per pixel, SH irradiance, accumulation.
+std::unique_ptr<LightingPath> makeRtPath();
 
 }  // namespace tl::lighting

@@ -104,6 +104,8 @@ class Session {
   const std::vector<double>& frameGpuMs() const { return frameGpuMs_; }
   const std::vector<std::pair<std::string, std::vector<double>>>& passGpuMs() const { return passGpuMs_; }
   uint64_t frameIndex() const { return frameIndex_; }
+  // Pins the next frame's index (it seeds per-frame noise): reproducible frames for tests.
+  void setFrameIndex(uint64_t index) { frameIndex_ = index; }
 
   // .exr: scene-linear radiance before exposure (composite.hdr);
   // .png: the tonemapped display image (tonemap.ldr). Written atomically.

@@ -6,6 +6,7 @@
 #include "shared/gbuffer.h"
 #include "shared/packing.h"
 #include "shared/shading.h"
+#include "shared/sh.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; };
@@ -16,6 +17,10 @@ layout(set = 0, binding = kCompositeEmissive) uniform sampler2D gEmissive;
 layout(set = 0, binding = kCompositeDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kCompositeShadow) uniform sampler2DShadow sunShadow;
 layout(set = 0, binding = kCompositeOutput, rgba16f) uniform writeonly image2D outRadiance;
+layout(set = 0, binding = kCompositeAo) uniform sampler2D pathAo;
+layout(set = 0, binding = kCompositeShY) uniform sampler2D pathShY;
+layout(set = 0, binding = kCompositeCoCg) uniform sampler2D pathCoCg;
+layout(push_constant) uniform Push { CompositePush push; };
 
 vec3 cameraRelativePosition(vec2 uv, float depth) {
   vec4 p = frame.invViewProj * vec4(uv * 2.0 - 1.0, depth, 1.0);
@@ -64,8 +69,23 @@ void main() {
     vec3 sun = frame.sunIrradiance.rgb * (nl * sunVisibility(position, n));
     radiance += sun * tlBrdf(s, n, v, frame.sunToLight.xyz);
   }
-  // The uniform sky: irradiance pi*L on any unoccluded surface, so Lambert gives albedo*L;
-  // the specular lobe integrates to the split-sum environment BRDF.
-  radiance += frame.skyRadiance.rgb * (s.diffuse + tlEnvironmentSpecular(s, max(dot(n, v), 1e-4)));
+  // Indirect diffuse. Without a path's GI: the uniform sky, irradiance pi*L on an
+  // unoccluded surface, times AO. With it: the path's irradiance resolved against the normal
+  // (it already holds the sky's occlusion, so AO is not applied twice), fading to the sky
+  // beyond the blend distance. Lambert: radiance = albedo / pi * E.
+  float ao = (push.flags & kCompositeHasAo) != 0u ? clamp(texelFetch(pathAo, p, 0).r, 0.0, 1.0) : 1.0;
+  vec3 skyIrradiance = kPi * frame.skyRadiance.rgb * ao;
+  vec3 irradiance = skyIrradiance;
+  if ((push.flags & kCompositeHasGi) != 0u) {
+    ShLumaCoCg sh = tlShMake(texelFetch(pathShY, p, 0), texelFetch(pathCoCg, p, 0).xy);
+    vec3 gi = tlShResolveIrradiance(sh, n);
+    float fade = push.giBlendDistance > 0.0
+                     ? clamp((push.giBlendDistance - length(position)) / max(push.giBlendWidth, 1e-6), 0.0, 1.0)
+                     : 1.0;
+    irradiance = mix(skyIrradiance, gi, fade);
+  }
+  radiance += s.diffuse * kInvPi * irradiance;
+  // Specular from the sky: the split-sum environment BRDF, occluded by AO.
+  radiance += frame.skyRadiance.rgb * tlEnvironmentSpecular(s, max(dot(n, v), 1e-4)) * ao;
   imageStore(outRadiance, p, vec4(radiance, 1.0));
 }

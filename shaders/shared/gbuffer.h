@@ -29,6 +29,18 @@ TL_CONST uint kCompositeEmissive = 4;
 TL_CONST uint kCompositeDepth = 5;
 TL_CONST uint kCompositeShadow = 6;
 TL_CONST uint kCompositeOutput = 7;
+TL_CONST uint kCompositeAo = 8;        // the path's AO (r), 1 = unoccluded
+TL_CONST uint kCompositeShY = 9;       // the path's diffuse irradiance, L1 SH of luma (shared/sh.h)
+TL_CONST uint kCompositeCoCg = 10;     // its chroma (xy)
+
+TL_CONST uint kCompositeHasAo = 1u;
+TL_CONST uint kCompositeHasGi = 2u;
+struct CompositePush {
+  uint flags;               // kCompositeHas*: which path outputs are bound
+  float giBlendDistance;    // beyond this view distance GI fades to the unoccluded sky (0: never)
+  float giBlendWidth;       // over this many metres
+  uint pad;
+};
 
 // Bindings of the tonemap pass (set 0).
 TL_CONST uint kTonemapInput = 1;

@@ -45,7 +45,11 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
                          {shared::kCompositeEmissive, sampled},
                          {shared::kCompositeDepth, sampled},
                          {shared::kCompositeShadow, sampled},
-                         {shared::kCompositeOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+                         {shared::kCompositeOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                         {shared::kCompositeAo, sampled},
+                         {shared::kCompositeShY, sampled},
+                         {shared::kCompositeCoCg, sampled}};
+    d.layout.pushConstantBytes = sizeof(shared::CompositePush);
     pipeline_ = gpu::createComputePipeline(in.device, d);
     pointSampler_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "composite.point");
     // Outside the shadow map is lit (border white + compare): the fit covers the view.
@@ -56,6 +60,15 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   // Without a sun the shadow map is never sampled (the shader tests kFrameFlagSunShadows):
   // not reading it lets the graph cull the shadow pass.
   const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
+  shared::CompositePush push{};
+  push.flags = (path.ambientOcclusion.empty() ? 0u : shared::kCompositeHasAo) |
+               (path.diffuseShY.empty() || path.diffuseCoCg.empty() ? 0u : shared::kCompositeHasGi);
+  push.giBlendDistance = path.giBlendDistance;
+  push.giBlendWidth = 0.2f * path.giBlendDistance;
+  // Absent outputs: the binding still needs an image; the base colour stands in, unread.
+  const std::string ao = path.ambientOcclusion.empty() ? "gbuffer.baseColor" : path.ambientOcclusion;
+  const std::string shY = (push.flags & shared::kCompositeHasGi) ? path.diffuseShY : "gbuffer.baseColor";
+  const std::string coCg = (push.flags & shared::kCompositeHasGi) ? path.diffuseCoCg : "gbuffer.baseColor";
   graph.addPass(
       "composite", graph::PassKind::Compute,
       [&](graph::PassBuilder& b) {
@@ -64,9 +77,11 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
           b.read(n, Usage::Sampled);
         b.read(kGbufferDepth, Usage::Sampled);
         if (sun) b.read(kShadowSunDepth, Usage::Sampled);
+        for (const std::string& n : {ao, shY, coCg})
+          if (n != "gbuffer.baseColor") b.read(n, Usage::Sampled);
         b.create(kCompositeHdr, hdrDesc, Usage::StorageWrite);
       },
-      [this, &in, sun](graph::PassContext& ctx) {
+      [this, &in, sun, push, ao, shY, coCg](graph::PassContext& ctx) {
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
         VkSampler point = pointSampler_.handle();
         // The binding must still hold a depth image; the G-buffer's depth stands in, unread.
@@ -80,7 +95,11 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
             .sampledImage(shared::kCompositeEmissive, ctx.image("gbuffer.emissive").view(), point, ro)
             .sampledImage(shared::kCompositeDepth, ctx.image(kGbufferDepth).view(), point, ro)
             .sampledImage(shared::kCompositeShadow, shadow.view(), shadowSampler_.handle(), ro)
-            .storageImage(shared::kCompositeOutput, ctx.image(kCompositeHdr).view());
+            .storageImage(shared::kCompositeOutput, ctx.image(kCompositeHdr).view())
+            .sampledImage(shared::kCompositeAo, ctx.image(ao).view(), point, ro)
+            .sampledImage(shared::kCompositeShY, ctx.image(shY).view(), point, ro)
+            .sampledImage(shared::kCompositeCoCg, ctx.image(coCg).view(), point, ro);
+        ctx.pushConstants(push);
         ctx.dispatch(in.settings.width, in.settings.height);
       });
 }

@@ -4,8 +4,10 @@
 #pragma once
 
 #include "gpu/device.h"
+#include "graph/executor.h"
 #include "graph/graph.h"
 #include "scene/gpu_scene.h"
+#include "scene/scene.h"
 #include "shared/frame.h"
 
 #include <cstdint>
@@ -22,6 +24,21 @@ struct RenderSettings {
   // emitters; 2 = plus one indirect bounce; ...) and samples per pixel added each frame.
   uint32_t referenceBounces = 8;
   uint32_t referenceSamplesPerFrame = 1;
+
+  // Ray-traced path (T5). Distances <= 0 mean "scaled to the scene" (see rt_path.cpp).
+  float rtSimplifyRatio = 0.25f;    // RT (BLAS) mesh triangles / source triangles; 1 = full mesh
+  float rtSimplifyError = 0.01f;    // largest deviation the simplifier may introduce, fraction of the mesh size
+  float rtAoRadius = 0.0f;          // RTAO radius (m)
+  float rtRayLength = 0.0f;         // GI ray length (m)
+  float rtBlendDistance = 0.0f;     // beyond this view distance RT GI fades to the fallback (Metro: 250 m)
+  bool rtPretrace = true;           // screen-space pre-trace before real rays
+  bool rtScreenRadiance = true;     // hits seen on screen last frame reuse its shaded radiance (multi-bounce)
+  uint32_t rtPretraceSteps = 16;
+  float rtPretracePixels = 48.0f;   // screen length of a pre-traced ray
+  float rtThickness = 0.02f;        // depth-buffer surface thickness, fraction of view distance
+  uint32_t rtMaxAccumFrames = 32;   // temporal accumulation window
+  float rtCullAngle = 0.002f;       // contribution culling: instances subtending less (radians) are dropped
+  float rtCullMargin = 0.0f;        // expanded frustum: margin (m) around the view frustum
 };
 
 // Resources the frame imports from outside the graph (owned by the session and scene).
@@ -44,9 +61,11 @@ inline void readSceneInputs(graph::PassBuilder& b, graph::Usage geometry, bool m
 struct FrameInputs {
   gpu::Device& device;
   scene::GpuScene& scene;
+  const scene::Scene& sceneData;  // the CPU side: materials, textures, meshes (RT albedo, BLAS)
   const RenderSettings& settings;
   const shared::FrameConstants& constants;
   gpu::Buffer& constantsBuffer;
+  graph::Executor& executor;  // where a path binds buffers it owns and imports into the graph
 };
 
 }  // namespace tl::lighting

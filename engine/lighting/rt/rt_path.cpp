@@ -1,0 +1,367 @@
+// The ray-traced lighting path ("RTX ON"), after Metro Exodus (GDC 2019): top level rebuilt
+// from culled instances, screen-space pre-trace, real rays only where it failed, deferred
+// lighting of the hit points into L1 SH of luma + CoCg, RTAO from the same hit distances,
+// temporal accumulation, and a small AO filter. Every intermediate is a named resource.
+#include "graph/executor.h"
+#include "lighting/common/composite_pass.h"
+#include "lighting/common/gbuffer_pass.h"
+#include "lighting/lighting_path.h"
+#include "lighting/rt/blue_noise.h"
+#include "lighting/rt/rt_path.h"
+#include "lighting/rt/rt_scene.h"
+
+#include <fmt/format.h>
+
+namespace tl::lighting {
+namespace {
+
+using graph::Usage;
+using shared::RtPush;
+
+constexpr VkImageLayout kReadOnly = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
+
+class RtPath final : public LightingPath {
+ public:
+  std::string name() const override { return "rt"; }
+  std::string description() const override {
+    return "ray-traced GI + AO (Metro Exodus): pre-trace, 1 ray/pixel, SH irradiance, temporal accumulation";
+  }
+  std::optional<std::string> unavailableReason(const gpu::Device& device) const override {
+    if (device.rayTracing().pipeline) return std::nullopt;
+    return "needs hardware or lavapipe ray tracing: " + device.rayTracing().unavailableReason;
+  }
+
+  LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
+    prepare(in);
+    const RenderSettings& s = in.settings;
+    const float scale = std::max(in.constants.sceneScale, 1e-3f);
+    params_ = RtResolvedParams{};
+    params_.aoRadius = s.rtAoRadius > 0.0f ? s.rtAoRadius : std::clamp(0.05f * scale, 0.1f, 1.0f);
+    params_.rayLength = s.rtRayLength > 0.0f ? s.rtRayLength : scale;
+    params_.blendDistance = s.rtBlendDistance > 0.0f ? s.rtBlendDistance : 2.0f * scale;
+    params_.tMin = 1.5f * scene_->stats().maxDeviation + 1e-5f * scale;
+
+    RtCulling culling;
+    culling.viewProj = in.constants.viewProj;
+    culling.margin = s.rtCullMargin > 0.0f ? s.rtCullMargin : params_.rayLength;
+    culling.minAngle = s.rtCullAngle;
+    scene_->prepareTopLevel(in.scene, culling);
+
+    RtPush push{};
+    push.tMin = params_.tMin;
+    push.tMax = params_.rayLength;
+    push.aoRadius = params_.aoRadius;
+    push.pretrace = s.rtPretrace ? 1u : 0u;
+    push.pretraceSteps = s.rtPretraceSteps;
+    push.pretraceLength = s.rtPretracePixels;
+    push.thickness = s.rtThickness;
+    push.maxAccumFrames = s.rtMaxAccumFrames;
+    push.aoFilterDepth = 0.02f;
+
+    const uint32_t w = s.width, h = s.height;
+    auto image = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, w, h, what); };
+    graph.declareImported(kRtTlas, graph::ResourceDesc::buffer(scene_->topLevel().storage().size(),
+                                                               "top-level acceleration structure (culled instances)"));
+    in.executor.bindImportedBuffer(kRtTlas, scene_->topLevel().storage());
+    graph.declarePersistent(kHistShY, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated SH luma, last frame"));
+    graph.declarePersistent(kHistCoCgAo, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated CoCg, AO, frame count, last frame"));
+    graph.declarePersistent(kHistDepth, image(VK_FORMAT_R32_SFLOAT, "view depth, last frame"));
+    const bool screenRadiance = s.rtScreenRadiance;
+    if (screenRadiance)
+      graph.declarePersistent(kHistRadiance, image(VK_FORMAT_R16G16B16A16_SFLOAT, "composite radiance, last frame"));
+
+    graph.addPass(
+        "rt.tlas", graph::PassKind::Compute, [&](graph::PassBuilder& b) { b.write(kRtTlas, Usage::StorageWrite); },
+        [this](graph::PassContext& ctx) { scene_->topLevel().record(ctx.cmd); });
+
+    graph.addPass(
+        "rt.pretrace", graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive"}) b.read(n, Usage::Sampled);
+          b.create(kPretraceHits, image(VK_FORMAT_R32_UINT, "pre-trace hit records: distance + G-buffer albedo, or pending"),
+                   Usage::StorageWrite);
+          b.create(kPretraceSurface, image(VK_FORMAT_R32G32_UINT, "pre-trace hit normal (oct) + emission (rgb9e5)"),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push](graph::PassContext& ctx) {
+          ctx.bind(pretrace_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in)
+              .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), point_.handle(), kReadOnly)
+              .sampledImage(shared::kRtBindingMaterial, ctx.image("gbuffer.material").view(), point_.handle(), kReadOnly)
+              .sampledImage(shared::kRtBindingEmissive, ctx.image("gbuffer.emissive").view(), point_.handle(), kReadOnly)
+              .storageImage(shared::kRtBindingHitsOut, ctx.image(kPretraceHits).view())
+              .storageImage(shared::kRtBindingSurfaceOut, ctx.image(kPretraceSurface).view());
+          ctx.dispatch(in.settings.width, in.settings.height);
+        });
+
+    graph.addPass(
+        "rt.trace", graph::PassKind::RayTracing,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          b.read(kRtTlas, Usage::StorageRead);
+          b.read(kPretraceHits, Usage::StorageRead);
+          b.read(kPretraceSurface, Usage::StorageRead);
+          b.create(kHits, image(VK_FORMAT_R32_UINT, "hit records: distance (half) + albedo (565), miss code"),
+                   Usage::StorageWrite);
+          b.create(kHitSurface, image(VK_FORMAT_R32G32_UINT, "hit normal (oct) + emission (rgb9e5)"), Usage::StorageWrite);
+        },
+        [this, &in, push](graph::PassContext& ctx) {
+          ctx.bind(trace_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in)
+              .accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
+              .storageImage(shared::kRtBindingHitsIn, ctx.image(kPretraceHits).view())
+              .storageImage(shared::kRtBindingSurfaceIn, ctx.image(kPretraceSurface).view())
+              .storageImage(shared::kRtBindingHitsOut, ctx.image(kHits).view())
+              .storageImage(shared::kRtBindingSurfaceOut, ctx.image(kHitSurface).view())
+              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle());
+          traceRays(ctx, trace_, in);
+        });
+
+    graph.addPass(
+        "rt.lighting", graph::PassKind::RayTracing,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          b.read(kRtTlas, Usage::StorageRead);
+          b.read(kHits, Usage::StorageRead);
+          b.read(kHitSurface, Usage::StorageRead);
+          b.read(kHistDepth, Usage::Sampled);
+          if (screenRadiance) b.read(kHistRadiance, Usage::Sampled);
+          b.create(kRawShY, image(VK_FORMAT_R16G16B16A16_SFLOAT, "one-ray irradiance: L1 SH of luma"), Usage::StorageWrite);
+          b.create(kRawCoCg, image(VK_FORMAT_R16G16_SFLOAT, "one-ray irradiance: chroma"), Usage::StorageWrite);
+          b.create(kRawAo, image(VK_FORMAT_R16_SFLOAT, "one-ray ambient occlusion (hit closer than the AO radius)"),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push, screenRadiance](graph::PassContext& ctx) mutable {
+          push.screenRadiance = screenRadiance && ctx.historyValid(kHistRadiance) && ctx.historyValid(kHistDepth);
+          // Without history the binding still needs an image: the depth history stands in, unread.
+          const gpu::Image& radiance = ctx.image(screenRadiance ? kHistRadiance : kHistDepth);
+          ctx.bind(lighting_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in)
+              .accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
+              .storageImage(shared::kRtBindingHitsIn, ctx.image(kHits).view())
+              .storageImage(shared::kRtBindingSurfaceIn, ctx.image(kHitSurface).view())
+              .storageImage(shared::kRtBindingShY, ctx.image(kRawShY).view())
+              .storageImage(shared::kRtBindingCoCg, ctx.image(kRawCoCg).view())
+              .storageImage(shared::kRtBindingAo, ctx.image(kRawAo).view())
+              .sampledImage(shared::kRtBindingHistRadiance, radiance.view(), point_.handle(), kReadOnly)
+              .sampledImage(shared::kRtBindingHistDepth, ctx.image(kHistDepth).view(), point_.handle(), kReadOnly);
+          traceRays(ctx, lighting_, in);
+        });
+
+    graph.addPass(
+        "rt.temporal", graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          b.read("gbuffer.motion", Usage::Sampled);
+          for (const char* n : {kRawShY, kRawCoCg, kRawAo, kHistShY, kHistCoCgAo, kHistDepth}) b.read(n, Usage::Sampled);
+          b.create(kShY, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated irradiance: L1 SH of luma"), Usage::StorageWrite);
+          b.create(kCoCgAo, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated chroma (xy), AO (z), frames (w)"),
+                   Usage::StorageWrite);
+          b.create(kViewDepth, image(VK_FORMAT_R32_SFLOAT, "view depth (w) for the next frame's disocclusion test"),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push](graph::PassContext& ctx) mutable {
+          push.historyValid = ctx.historyValid(kHistShY) && ctx.historyValid(kHistCoCgAo) && ctx.historyValid(kHistDepth);
+          VkSampler p = point_.handle();
+          ctx.bind(temporal_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in)
+              .sampledImage(shared::kRtBindingMotion, ctx.image("gbuffer.motion").view(), p, kReadOnly)
+              .sampledImage(shared::kRtBindingShY, ctx.image(kRawShY).view(), p, kReadOnly)
+              .sampledImage(shared::kRtBindingCoCg, ctx.image(kRawCoCg).view(), p, kReadOnly)
+              .sampledImage(shared::kRtBindingAo, ctx.image(kRawAo).view(), p, kReadOnly)
+              .sampledImage(shared::kRtBindingHistShY, ctx.image(kHistShY).view(), p, kReadOnly)
+              .sampledImage(shared::kRtBindingHistCoCgAo, ctx.image(kHistCoCgAo).view(), p, kReadOnly)
+              .sampledImage(shared::kRtBindingHistDepth, ctx.image(kHistDepth).view(), p, kReadOnly)
+              .storageImage(shared::kRtBindingOutShY, ctx.image(kShY).view())
+              .storageImage(shared::kRtBindingOutCoCgAo, ctx.image(kCoCgAo).view())
+              .storageImage(shared::kRtBindingOutDepth, ctx.image(kViewDepth).view());
+          ctx.dispatch(in.settings.width, in.settings.height);
+        });
+
+    graph.addPass(
+        "rt.history", graph::PassKind::Transfer,
+        [&](graph::PassBuilder& b) {
+          for (const char* n : {kShY, kCoCgAo, kViewDepth}) b.read(n, Usage::TransferSrc);
+          for (const char* n : {kHistShY, kHistCoCgAo, kHistDepth}) b.write(n, Usage::TransferDst);
+        },
+        [](graph::PassContext& ctx) {
+          const std::pair<const char*, const char*> copies[] = {{kShY, kHistShY}, {kCoCgAo, kHistCoCgAo}, {kViewDepth, kHistDepth}};
+          for (auto [from, to] : copies) {
+            VkImageCopy region{};
+            region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            region.extent = ctx.extent(from);
+            vkCmdCopyImage(ctx.cmd, ctx.image(from).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, ctx.image(to).handle(),
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+          }
+        });
+
+    graph.addPass(
+        "rt.ao.filter", graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          b.read(kCoCgAo, Usage::Sampled);
+          b.read(kViewDepth, Usage::Sampled);
+          b.create(kAo, image(VK_FORMAT_R16_SFLOAT, "filtered ambient occlusion"), Usage::StorageWrite);
+        },
+        [this, &in, push](graph::PassContext& ctx) {
+          ctx.bind(aoFilter_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in)
+              .sampledImage(shared::kRtBindingCoCg, ctx.image(kCoCgAo).view(), point_.handle(), kReadOnly)
+              .sampledImage(shared::kRtBindingHistDepth, ctx.image(kViewDepth).view(), point_.handle(), kReadOnly)
+              .storageImage(shared::kRtBindingAo, ctx.image(kAo).view());
+          ctx.dispatch(in.settings.width, in.settings.height);
+        });
+
+    if (screenRadiance)
+      graph.addPass(
+          "rt.radiance.store", graph::PassKind::Transfer,
+          [&](graph::PassBuilder& b) {
+            b.read(kCompositeHdr, Usage::TransferSrc);
+            b.write(kHistRadiance, Usage::TransferDst);
+          },
+          [](graph::PassContext& ctx) {
+            VkImageCopy region{};
+            region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            region.extent = ctx.extent(kCompositeHdr);
+            vkCmdCopyImage(ctx.cmd, ctx.image(kCompositeHdr).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           ctx.image(kHistRadiance).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+          });
+
+    LightingOutputs out;
+    out.ambientOcclusion = kAo;
+    out.diffuseShY = kShY;
+    out.diffuseCoCg = kCoCgAo;
+    out.giBlendDistance = params_.blendDistance;
+    return out;
+  }
+
+  const RtScene* rtScene() const { return scene_.get(); }
+
+ private:
+  static void readCommon(graph::PassBuilder& b) {
+    b.read(kFrameConstants, Usage::StorageRead);
+    b.read(kGbufferDepth, Usage::Sampled);
+    b.read("gbuffer.normal", Usage::Sampled);
+  }
+  gpu::DescriptorWriter& writeCommon(graph::PassContext& ctx, FrameInputs& in) {
+    return ctx.descriptors()
+        .uniformBuffer(shared::kRtBindingFrame, in.constantsBuffer.handle())
+        .sampledImage(shared::kRtBindingBlueNoise, blueNoise_.view(), point_.handle(),
+                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+        .sampledImage(shared::kRtBindingDepth, ctx.image(kGbufferDepth).view(), point_.handle(), kReadOnly)
+        .sampledImage(shared::kRtBindingNormal, ctx.image("gbuffer.normal").view(), point_.handle(), kReadOnly);
+  }
+  static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, FrameInputs& in) {
+    ctx.flushDescriptors();
+    ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion,
+                                  in.settings.width, in.settings.height, 1);
+  }
+
+  // Scene geometry, blue noise and pipelines: once per scene (and RT mesh ratio).
+  void prepare(FrameInputs& in) {
+    if (!scene_ || sceneId_ != in.scene.id() || scene_->simplifyRatio() != std::clamp(in.settings.rtSimplifyRatio, 0.01f, 1.0f)) {
+      in.device.waitIdle();
+      scene_ = std::make_unique<RtScene>(in.device, in.sceneData, in.scene, in.settings.rtSimplifyRatio,
+                                         in.settings.rtSimplifyError);
+      sceneId_ = in.scene.id();
+    }
+    if (pretrace_) return;
+    point_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "rt.point");
+    // Two independent masks, one per uniform of the ray's direction.
+    static const std::vector<uint16_t> maskU = voidAndClusterRanks(shared::kRtBlueNoiseSize, 1);
+    static const std::vector<uint16_t> maskV = voidAndClusterRanks(shared::kRtBlueNoiseSize, 2);
+    const uint32_t n = shared::kRtBlueNoiseSize;
+    std::vector<uint16_t> texels(2 * n * n);
+    // Rank r -> (r + 0.5) / n^2 in unorm16: uniform in (0, 1).
+    for (uint32_t i = 0; i < n * n; ++i) {
+      texels[2 * i] = uint16_t((uint32_t(maskU[i]) * 2 + 1) * 65535u / (2 * n * n));
+      texels[2 * i + 1] = uint16_t((uint32_t(maskV[i]) * 2 + 1) * 65535u / (2 * n * n));
+    }
+    blueNoise_ = gpu::Image(in.device,
+                            {VK_FORMAT_R16G16_UNORM, {n, n, 1}, 1, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT},
+                            "rt.blueNoise");
+    gpu::uploadImage2D(in.device, blueNoise_, texels.data(), texels.size() * sizeof(uint16_t));
+
+    using B = gpu::Binding;
+    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    const std::vector<B> common = {{shared::kRtBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                   {shared::kRtBindingBlueNoise, sampled},
+                                   {shared::kRtBindingDepth, sampled},
+                                   {shared::kRtBindingNormal, sampled}};
+    auto with = [&](std::vector<B> extra) {
+      gpu::PipelineLayoutDesc l;
+      l.bindings = common;
+      l.bindings.insert(l.bindings.end(), extra.begin(), extra.end());
+      l.pushConstantBytes = sizeof(RtPush);
+      return l;
+    };
+    auto compute = [&](const char* name, const char* shader, std::vector<B> extra) {
+      gpu::ComputePipelineDesc d;
+      d.name = name;
+      d.shader = shader;
+      d.layout = with(std::move(extra));
+      return gpu::createComputePipeline(in.device, d);
+    };
+    pretrace_ = compute("rt.pretrace", "rt/pretrace.comp",
+                        {{shared::kRtBindingBaseColor, sampled}, {shared::kRtBindingMaterial, sampled},
+                         {shared::kRtBindingEmissive, sampled}, {shared::kRtBindingHitsOut, storage},
+                         {shared::kRtBindingSurfaceOut, storage}});
+    temporal_ = compute("rt.temporal", "rt/temporal.comp",
+                        {{shared::kRtBindingMotion, sampled}, {shared::kRtBindingShY, sampled},
+                         {shared::kRtBindingCoCg, sampled}, {shared::kRtBindingAo, sampled},
+                         {shared::kRtBindingHistShY, sampled}, {shared::kRtBindingHistCoCgAo, sampled},
+                         {shared::kRtBindingHistDepth, sampled}, {shared::kRtBindingOutShY, storage},
+                         {shared::kRtBindingOutCoCgAo, storage}, {shared::kRtBindingOutDepth, storage}});
+    aoFilter_ = compute("rt.ao.filter", "rt/ao_filter.comp",
+                        {{shared::kRtBindingCoCg, sampled}, {shared::kRtBindingHistDepth, sampled},
+                         {shared::kRtBindingAo, storage}});
+    {
+      gpu::RayTracingPipelineDesc d;
+      d.name = "rt.trace";
+      d.raygen = "rt/trace.rgen";
+      d.misses = {"rt/trace.rmiss"};
+      d.hitGroups = {{"rt/trace.rchit", ""}};
+      d.layout = with({{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+                       {shared::kRtBindingHitsIn, storage},
+                       {shared::kRtBindingSurfaceIn, storage},
+                       {shared::kRtBindingHitsOut, storage},
+                       {shared::kRtBindingSurfaceOut, storage},
+                       {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
+      trace_ = gpu::createRayTracingPipeline(in.device, d);
+    }
+    {
+      gpu::RayTracingPipelineDesc d;
+      d.name = "rt.lighting";
+      d.raygen = "rt/lighting.rgen";
+      d.misses = {"rt/shadow.rmiss"};
+      d.layout = with({{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+                       {shared::kRtBindingHitsIn, storage},
+                       {shared::kRtBindingSurfaceIn, storage},
+                       {shared::kRtBindingShY, storage},
+                       {shared::kRtBindingCoCg, storage},
+                       {shared::kRtBindingAo, storage},
+                       {shared::kRtBindingHistRadiance, sampled},
+                       {shared::kRtBindingHistDepth, sampled}});
+      lighting_ = gpu::createRayTracingPipeline(in.device, d);
+    }
+  }
+
+  std::unique_ptr<RtScene> scene_;
+  uint64_t sceneId_ = 0;
+  RtResolvedParams params_;
+  gpu::Image blueNoise_;
+  gpu::Sampler point_;
+  gpu::Pipeline pretrace_, trace_, lighting_, temporal_, aoFilter_;
+};
+
+}  // namespace
+
+std::unique_ptr<LightingPath> makeRtPath() { return std::make_unique<RtPath>(); }
+
+}  // namespace tl::lighting

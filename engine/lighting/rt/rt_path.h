@@ -1,0 +1,31 @@
+// Names of the RT path's graph resources (what tests, the inspector and captures ask for)
+// and the parameters it resolves from the settings and the scene's size.
+#pragma once
+
+namespace tl::lighting {
+
+inline constexpr const char* kRtTlas = "rt.tlas";
+inline constexpr const char* kPretraceHits = "rt.pretrace.hits";
+inline constexpr const char* kPretraceSurface = "rt.pretrace.surface";
+inline constexpr const char* kHits = "rt.hits";
+inline constexpr const char* kHitSurface = "rt.hitSurface";
+inline constexpr const char* kRawShY = "rt.gi.raw.shY";
+inline constexpr const char* kRawCoCg = "rt.gi.raw.coCg";
+inline constexpr const char* kRawAo = "rt.ao.raw";
+inline constexpr const char* kShY = "rt.gi.shY";
+inline constexpr const char* kCoCgAo = "rt.gi.coCgAo";
+inline constexpr const char* kViewDepth = "rt.viewDepth";
+inline constexpr const char* kAo = "rt.ao";
+inline constexpr const char* kHistShY = "rt.history.shY";
+inline constexpr const char* kHistCoCgAo = "rt.history.coCgAo";
+inline constexpr const char* kHistDepth = "rt.history.viewDepth";
+inline constexpr const char* kHistRadiance = "rt.history.radiance";
+
+struct RtResolvedParams {
+  float aoRadius = 0.0f;       // m
+  float rayLength = 0.0f;      // m
+  float blendDistance = 0.0f;  // m
+  float tMin = 0.0f;           // m
+};
+
+}  // namespace tl::lighting

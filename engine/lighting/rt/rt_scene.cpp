@@ -1,0 +1,192 @@
+#include "lighting/rt/rt_scene.h"
+
+#include "shared/color.h"
+
+#include <fmt/format.h>
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <chrono>
+#include <numeric>
+
+namespace tl::lighting {
+namespace {
+
+// Average of a texture's texels in linear space (sRGB decoded when the texture is colour).
+glm::vec4 textureAverage(const scene::Texture& t) {
+  if (t.rgba8.empty()) return glm::vec4(1.0f);
+  glm::dvec4 sum(0.0);
+  const size_t n = t.rgba8.size() / 4;
+  for (size_t i = 0; i < n; ++i) {
+    glm::vec4 c(t.rgba8[4 * i], t.rgba8[4 * i + 1], t.rgba8[4 * i + 2], t.rgba8[4 * i + 3]);
+    c /= 255.0f;
+    if (t.srgb) c = glm::vec4(shared::tlSrgbToLinear(glm::vec3(c)), c.a);
+    sum += glm::dvec4(c);
+  }
+  return glm::vec4(sum / double(n));
+}
+
+// Interleaves the low 10 bits of x, y, z (Morton order for the top level's instances).
+uint32_t morton3(uint32_t x, uint32_t y, uint32_t z) {
+  auto spread = [](uint32_t v) {
+    v &= 0x3FF;
+    v = (v | (v << 16)) & 0x030000FF;
+    v = (v | (v << 8)) & 0x0300F00F;
+    v = (v | (v << 4)) & 0x030C30C3;
+    v = (v | (v << 2)) & 0x09249249;
+    return v;
+  };
+  return spread(x) | (spread(y) << 1) | (spread(z) << 2);
+}
+
+}  // namespace
+
+glm::vec3 materialHitAlbedo(const scene::Scene& scene, const scene::Material& m) {
+  glm::vec3 base = glm::vec3(m.baseColorFactor);
+  if (m.baseColorTexture && *m.baseColorTexture < scene.textures.size())
+    base *= glm::vec3(textureAverage(scene.textures[*m.baseColorTexture]));
+  float metallic = m.metallic;
+  if (m.metallicRoughnessTexture && *m.metallicRoughnessTexture < scene.textures.size())
+    metallic *= textureAverage(scene.textures[*m.metallicRoughnessTexture]).b;
+  return shared::tlRtHitAlbedoFromMaterial(glm::clamp(base, 0.0f, 1.0f), glm::clamp(metallic, 0.0f, 1.0f));
+}
+
+glm::vec3 materialEmission(const scene::Scene& scene, const scene::Material& m) {
+  glm::vec3 e = m.emissiveFactor * m.emissiveStrength;
+  if (m.emissiveTexture && *m.emissiveTexture < scene.textures.size())
+    e *= glm::vec3(textureAverage(scene.textures[*m.emissiveTexture]));
+  return e;
+}
+
+std::vector<uint32_t> simplifyForRayTracing(const std::vector<scene::Vertex>& vertices,
+                                            const std::vector<uint32_t>& indices, float ratio, float maxError,
+                                            float* deviation) {
+  const float* positions = &vertices[0].position.x;
+  std::vector<uint32_t> reduced = indices;
+  float error = 0.0f;
+  if (ratio < 1.0f && indices.size() > 3) {
+    size_t target = std::max<size_t>(3, size_t(double(indices.size() / 3) * ratio) * 3);
+    reduced.resize(indices.size());
+    size_t count = meshopt_simplify(reduced.data(), indices.data(), indices.size(), positions, vertices.size(),
+                                    sizeof(scene::Vertex), target, maxError, 0, &error);
+    reduced.resize(count);
+    error *= meshopt_simplifyScale(positions, vertices.size(), sizeof(scene::Vertex));
+    if (reduced.empty()) reduced = indices, error = 0.0f;  // never lose a whole mesh
+  }
+  std::vector<uint32_t> sorted(reduced.size());
+  if (!reduced.empty())
+    meshopt_spatialSortTriangles(sorted.data(), reduced.data(), reduced.size(), positions, vertices.size(),
+                                 sizeof(scene::Vertex));
+  if (deviation) *deviation = error;
+  return sorted;
+}
+
+std::vector<uint32_t> cullInstances(const std::vector<glm::vec3>& centres, const std::vector<float>& radii,
+                                    const RtCulling& c) {
+  // Frustum planes from the (camera-relative) view-projection, Gribb & Hartmann; reversed-Z
+  // infinite projection: the far plane is at infinity, so five planes.
+  const glm::mat4 m = glm::transpose(c.viewProj);
+  glm::vec4 planes[5] = {m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[3] - m[2]};
+  for (auto& p : planes) p /= glm::length(glm::vec3(p));
+  std::vector<uint32_t> kept;
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (uint32_t i = 0; i < centres.size(); ++i) {
+    bool inside = true;
+    for (const auto& p : planes) inside &= glm::dot(glm::vec3(p), centres[i]) + p.w >= -(radii[i] + c.margin);
+    // The camera sits at the origin of camera-relative space.
+    float distance = std::max(glm::length(centres[i]) - radii[i], 0.0f);
+    bool contributes = distance <= 0.0f || radii[i] >= c.minAngle * distance;
+    if (!inside || !contributes) continue;
+    kept.push_back(i);
+    lo = glm::min(lo, centres[i]);
+    hi = glm::max(hi, centres[i]);
+  }
+  // Morton order of the centres: lavapipe's builder splits the instance list in order.
+  std::vector<uint32_t> code(kept.size());
+  glm::vec3 scale = 1023.0f / glm::max(hi - lo, glm::vec3(1e-6f));
+  for (size_t k = 0; k < kept.size(); ++k) {
+    glm::uvec3 q(glm::clamp((centres[kept[k]] - lo) * scale, glm::vec3(0.0f), glm::vec3(1023.0f)));
+    code[k] = morton3(q.x, q.y, q.z);
+  }
+  std::vector<size_t> order(kept.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return code[a] < code[b]; });
+  std::vector<uint32_t> out(kept.size());
+  for (size_t k = 0; k < kept.size(); ++k) out[k] = kept[order[k]];
+  return out;
+}
+
+RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene& gpuScene, float simplifyRatio,
+                 float simplifyError)
+    : topLevel_(device, "rt.tlas"), ratio_(std::clamp(simplifyRatio, 0.01f, 1.0f)) {
+  auto start = std::chrono::steady_clock::now();
+  const auto& ranges = gpuScene.meshRanges();
+  const VkDeviceAddress vertices = gpuScene.vertexBuffer().address();
+  // Largest uniform scale any instance applies to a mesh: deviations are in object units.
+  std::vector<float> meshScale(scene.meshes.size(), 0.0f);
+  for (const auto& inst : scene.instances) {
+    glm::dmat3 m(inst.transform);
+    double s = std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+    meshScale[inst.mesh] = std::max(meshScale[inst.mesh], float(s));
+  }
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    const auto& mesh = scene.meshes[i];
+    float deviation = 0.0f;
+    std::vector<uint32_t> indices = simplifyForRayTracing(mesh.vertices, mesh.indices, ratio_, simplifyError, &deviation);
+    stats_.sourceTriangles += mesh.indices.size() / 3;
+    stats_.rtTriangles += indices.size() / 3;
+    stats_.maxDeviation = std::max(stats_.maxDeviation, deviation * meshScale[i]);
+    gpu::Buffer ib(device, std::max<size_t>(1, indices.size()) * sizeof(uint32_t),
+                   VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                   gpu::MemoryUsage::GpuOnly, fmt::format("rt.blasIndices.{}", i));
+    if (!indices.empty()) gpu::uploadBuffer(device, ib, indices.data(), indices.size() * sizeof(uint32_t));
+    gpu::TriangleGeometry g;
+    g.vertices = vertices + VkDeviceAddress(ranges[i].vertexOffset) * sizeof(scene::Vertex);
+    g.vertexStride = sizeof(scene::Vertex);
+    g.vertexCount = ranges[i].vertexCount;
+    g.indices = ib.address();
+    g.triangleCount = uint32_t(indices.size() / 3);
+    blas_.push_back(gpu::buildBottomLevel(device, g, fmt::format("rt.blas.{}", i), true));
+    stats_.blasBytes += blas_.back().bytes();
+    rtIndices_.push_back(std::move(ib));
+    glm::vec3 lo(mesh.bounds.min), hi(mesh.bounds.max);
+    meshCentre_.push_back(mesh.bounds.valid() ? (lo + hi) * 0.5f : glm::vec3(0.0f));
+    meshRadius_.push_back(mesh.bounds.valid() ? glm::length(hi - lo) * 0.5f : 0.0f);
+  }
+  stats_.blasBuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+  std::vector<shared::RtInstance> data(std::max<size_t>(1, scene.instances.size()));
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const auto& mat = scene.materials[scene.meshes[scene.instances[i].mesh].material];
+    data[i].albedo = glm::vec4(materialHitAlbedo(scene, mat), 0.0f);
+    data[i].emission = glm::vec4(materialEmission(scene, mat), 0.0f);
+    const uint32_t mesh = scene.instances[i].mesh;
+    const VkDeviceAddress ia = rtIndices_[mesh].address();
+    const VkDeviceAddress va = vertices + VkDeviceAddress(ranges[mesh].vertexOffset) * sizeof(scene::Vertex);
+    data[i].indexAddress = glm::uvec2(uint32_t(ia), uint32_t(ia >> 32));
+    data[i].vertexAddress = glm::uvec2(uint32_t(va), uint32_t(va >> 32));
+  }
+  instanceData_ = gpu::Buffer(device, data.size() * sizeof(data[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              gpu::MemoryUsage::Upload, "rt.instanceData");
+  instanceData_.write(data.data(), data.size() * sizeof(data[0]));
+}
+
+void RtScene::prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling) {
+  const auto& transforms = gpuScene.relativeTransforms();
+  std::vector<glm::vec3> centres(transforms.size());
+  std::vector<float> radii(transforms.size());
+  for (size_t i = 0; i < transforms.size(); ++i) {
+    uint32_t mesh = gpuScene.instanceMesh(i);
+    const glm::mat4& t = transforms[i];
+    float scale = std::max({glm::length(glm::vec3(t[0])), glm::length(glm::vec3(t[1])), glm::length(glm::vec3(t[2]))});
+    centres[i] = glm::vec3(t * glm::vec4(meshCentre_[mesh], 1.0f));
+    radii[i] = meshRadius_[mesh] * scale;
+  }
+  std::vector<gpu::TlasInstance> instances;
+  for (uint32_t i : cullInstances(centres, radii, culling))
+    instances.push_back({transforms[i], i, 0xFF, blas_[gpuScene.instanceMesh(i)].address()});
+  topLevel_.prepare(instances);
+}
+
+}  // namespace tl::lighting

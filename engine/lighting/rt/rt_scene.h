@@ -1,0 +1,70 @@
+// The RT module's geometry (Metro: "a separate mini-engine"): one bottom-level structure
+// per mesh built from a simplified RT mesh, compacted; the per-instance hit data; and the
+// top level rebuilt every frame from the instances that survive culling.
+#pragma once
+
+#include "gpu/acceleration_structure.h"
+#include "lighting/common/frame_inputs.h"
+#include "shared/rt.h"
+
+#include <vector>
+
+namespace tl::lighting {
+
+struct RtSceneStats {
+  uint64_t sourceTriangles = 0;
+  uint64_t rtTriangles = 0;       // after simplification
+  VkDeviceSize blasBytes = 0;     // compacted
+  double blasBuildMs = 0.0;       // CPU wall time of simplify + build + compact, all meshes
+  float maxDeviation = 0.0f;      // largest simplification error in world metres
+};
+
+// Which instances go into this frame's top level.
+struct RtCulling {
+  glm::mat4 viewProj{1.0f};  // camera-relative
+  float margin = 0.0f;       // expanded frustum, metres added to every plane
+  float minAngle = 0.0f;     // contribution culling: bounding-sphere radius / distance below this is dropped
+};
+
+// Pure: the culled, spatially ordered instance list (indices into the scene's instances).
+// `centres`/`radii` are camera-relative bounding spheres. Tested without a GPU.
+std::vector<uint32_t> cullInstances(const std::vector<glm::vec3>& centres, const std::vector<float>& radii,
+                                    const RtCulling& culling);
+
+// A triangle list reduced to about `ratio` of its triangles within `maxError` (relative to
+// the mesh size), then spatially sorted (lavapipe's BVH builder splits in input order).
+// `deviation` receives the error in the mesh's units. ratio >= 1 keeps every triangle.
+std::vector<uint32_t> simplifyForRayTracing(const std::vector<scene::Vertex>& vertices,
+                                            const std::vector<uint32_t>& indices, float ratio, float maxError,
+                                            float* deviation);
+
+// The hit albedo of a material: base colour factor times its texture's average (decoded
+// from sRGB), through Metro's albedo (1 - F0) + F0 rule for metals. T7's database overrides it.
+glm::vec3 materialHitAlbedo(const scene::Scene& scene, const scene::Material& material);
+glm::vec3 materialEmission(const scene::Scene& scene, const scene::Material& material);
+
+class RtScene {
+ public:
+  RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene& gpuScene, float simplifyRatio,
+          float simplifyError);
+
+  // Chooses this frame's instances and uploads them; record() builds the top level.
+  void prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling);
+  gpu::TopLevelBuilder& topLevel() { return topLevel_; }
+  gpu::Buffer& instanceData() { return instanceData_; }
+  const RtSceneStats& stats() const { return stats_; }
+  uint32_t instancesInTopLevel() const { return topLevel_.instanceCount(); }
+  float simplifyRatio() const { return ratio_; }
+
+ private:
+  std::vector<gpu::AccelerationStructure> blas_;  // per mesh
+  std::vector<gpu::Buffer> rtIndices_;            // per mesh: the simplified triangle list
+  std::vector<glm::vec3> meshCentre_;             // object space bounding sphere per mesh
+  std::vector<float> meshRadius_;
+  gpu::Buffer instanceData_;                      // RtInstance per scene instance
+  gpu::TopLevelBuilder topLevel_;
+  RtSceneStats stats_;
+  float ratio_ = 1.0f;
+};
+
+}  // namespace tl::lighting

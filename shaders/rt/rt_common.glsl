@@ -1,0 +1,30 @@
+// What every pass of the RT path shares: the frame, the blue noise, the G-buffer's depth
+// and normal, and the one ray generation (shared/rt.h) they all repeat.
+#include "shared/frame.h"
+#include "shared/packing.h"
+#include "shared/ray_origin.h"
+#include "shared/rt.h"
+
+layout(set = 0, binding = kRtBindingFrame) uniform Frame { FrameConstants frame; };
+layout(set = 0, binding = kRtBindingBlueNoise) uniform sampler2D blueNoise;
+layout(set = 0, binding = kRtBindingDepth) uniform sampler2D gDepth;
+layout(set = 0, binding = kRtBindingNormal) uniform sampler2D gNormal;
+layout(push_constant) uniform Push { RtPush push; };
+
+vec3 cameraRelativePosition(vec2 uv, float depth) {
+  vec4 p = frame.invViewProj * vec4(uv * 2.0 - 1.0, depth, 1.0);
+  return p.xyz / p.w;
+}
+vec3 pixelPosition(ivec2 p, float depth) { return cameraRelativePosition((vec2(p) + 0.5) * frame.viewport.zw, depth); }
+vec3 pixelNormal(ivec2 p) { return tlOctDecode(texelFetch(gNormal, p, 0).xy); }
+
+// Metro's noise addressing: the 64x64 tile shifts by half a tile on odd frames, and the
+// R2 rotation (tlRtRandom) moves every value each frame.
+vec3 pixelRayDirection(ivec2 p, vec3 normal) {
+  ivec2 t = (p + ivec2(32 * (frame.frameIndex & 1u))) & ivec2(kRtBlueNoiseSize - 1u);
+  vec2 u = tlRtRandom(texelFetch(blueNoise, t, 0).xy, frame.frameIndex);
+  return tlRtRayDirection(normal, u);
+}
+
+// The ray starts off the surface by a few ULPs of its position (shared/ray_origin.h).
+vec3 pixelRayOrigin(vec3 position, vec3 normal) { return tlOffsetRayOrigin(position, normal); }

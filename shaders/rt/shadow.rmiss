@@ -1,0 +1,5 @@
+#version 460
+#extension GL_EXT_ray_tracing : require
+
+layout(location = 1) rayPayloadInEXT float visible;
+void main() { visible = 1.0; }

@@ -1,0 +1,156 @@
+// The ray-traced lighting path (engine/lighting/rt/, shaders/rt/), after Metro Exodus (GDC 2019):
+// the ray generation every stage repeats, the one-uint hit record, the SH sample weight,
+// per-instance hit data and the bindings. Shared by C++ (tests) and GLSL.
+//
+// Hit record: one uint per pixel, written by the pre-trace (G-buffer albedo) or the real
+// trace (per-instance albedo), read by hit lighting and RTAO.
+//   bits  0..15  hit distance as an IEEE half (sign always 0, so <= 0x7BFF for finite hits);
+//                two NaN patterns with the sign set are codes: kRtHitMiss (the ray left the
+//                scene) and kRtHitPending (the pre-trace found nothing: trace a real ray).
+//                Relative error <= 2^-11 for 6.1e-5 m <= d <= 65504 m (half's normal range);
+//                below, absolute error <= 2^-25 m; above, clamped to 65504 m.
+//   bits 16..31  hit albedo, RGB 5:6:5 of sqrt(albedo) (gamma 2: more codes in the darks).
+//                Error per channel <= sqrt(a)/31 + 1/31^2 (R, B) and sqrt(a)/63 + 1/63^2 (G).
+//
+// Ray generation (tlRtRayDirection): cosine-weighted around the shading normal from a 64x64
+// blue-noise texture of two channels, offset per frame by the R2 sequence (Cranley-Patterson
+// rotation) so every frame samples new directions with blue-noise spatial structure. The
+// pre-trace, the trace and hit lighting call the same function with the same inputs, so
+// the ray is regenerated exactly rather than stored.
+//
+// SH sample weight (tlRtShSampleWeight): a cosine-distributed sample of radiance L from d,
+// projected with weight w = pi / (1/4 + cos/2), resolves (shared/sh.h) to exactly pi L at
+// the sampling normal: E(n) = w L (1/4 + cos/2). So the mean over samples is an unbiased
+// estimate of the irradiance at the pixel's normal, and the L1 band still carries the
+// direction light came from (for normal-mapped neighbours, the denoiser, specular). The
+// weight stays within [4 pi / 3, 4 pi]: no 1/pdf blow-up at grazing angles.
+#ifndef TL_SHARED_RT_H
+#define TL_SHARED_RT_H
+#include "common.h"
+#include "packing.h"
+#include "sampling.h"
+#include "sh.h"
+
+TL_BEGIN
+TL_CONST uint kRtHitMiss = 0xFFFFu;
+TL_CONST uint kRtHitPending = 0xFFFEu;
+TL_CONST float kRtMaxHitDistance = 65504.0f;
+TL_CONST uint kRtBlueNoiseSize = 64u;
+
+TL_FN uint tlRtEncodeAlbedo(vec3 albedo) {
+  vec3 e = sqrt(clamp(albedo, vec3(0.0f), vec3(1.0f)));
+  uint r = uint(e.x * 31.0f + 0.5f), g = uint(e.y * 63.0f + 0.5f), b = uint(e.z * 31.0f + 0.5f);
+  return (r << 11u) | (g << 5u) | b;
+}
+TL_FN vec3 tlRtDecodeAlbedo(uint bits) {
+  vec3 e = vec3(float((bits >> 11u) & 31u) / 31.0f, float((bits >> 5u) & 63u) / 63.0f, float(bits & 31u) / 31.0f);
+  return e * e;
+}
+
+TL_FN uint tlRtPackHit(float distance, vec3 albedo) {
+  float d = clamp(distance, 0.0f, kRtMaxHitDistance);
+  return (tlPackHalf2x16(vec2(d, 0.0f)) & 0xFFFFu) | (tlRtEncodeAlbedo(albedo) << 16u);
+}
+TL_FN uint tlRtHitCode(uint hit) { return hit & 0xFFFFu; }
+TL_FN bool tlRtIsMiss(uint hit) { return (hit & 0xFFFFu) == kRtHitMiss; }
+TL_FN bool tlRtIsPending(uint hit) { return (hit & 0xFFFFu) == kRtHitPending; }
+TL_FN bool tlRtIsHit(uint hit) { return (hit & 0xFFFFu) < kRtHitPending; }
+TL_FN float tlRtHitDistance(uint hit) { return tlUnpackHalf2x16(hit & 0xFFFFu).x; }
+TL_FN vec3 tlRtHitAlbedo(uint hit) { return tlRtDecodeAlbedo(hit >> 16u); }
+
+// What a hit reflects of light it receives, as one colour (Metro: albedo (1 - F0) + F0, so
+// metals, whose diffuse albedo is zero, still bounce their specular colour).
+TL_FN vec3 tlRtHitAlbedoFromMaterial(vec3 baseColor, float metallic) {
+  vec3 diffuse = baseColor * (1.0f - metallic);
+  vec3 f0 = mix(vec3(0.04f), baseColor, metallic);
+  return diffuse * (vec3(1.0f) - f0) + f0;
+}
+
+// Shared-exponent HDR colour in one uint (the RGB9E5 format): emission at hits.
+TL_FN uint tlPackRgb9e5(vec3 rgb) {
+  const float maxValue = 65408.0f;  // (2^9 - 1) / 2^9 * 2^(31 - 15)
+  vec3 c = clamp(rgb, vec3(0.0f), vec3(maxValue));
+  float m = max(c.x, max(c.y, c.z));
+  if (m < 1e-9f) return 0u;
+  int e = max(-16, int(floor(log2(m)))) + 1;  // 2^(e-1) <= m < 2^e
+  float scale = exp2(float(9 - e));
+  uvec3 q = uvec3(c * scale + vec3(0.5f));
+  if (max(q.x, max(q.y, q.z)) >= 512u) {
+    e += 1;
+    scale *= 0.5f;
+    q = uvec3(c * scale + vec3(0.5f));
+  }
+  return min(q.x, 511u) | (min(q.y, 511u) << 9u) | (min(q.z, 511u) << 18u) | (uint(e + 15) << 27u);
+}
+TL_FN vec3 tlUnpackRgb9e5(uint p) {
+  float scale = exp2(float(int(p >> 27u) - 15 - 9));
+  return vec3(float(p & 511u), float((p >> 9u) & 511u), float((p >> 18u) & 511u)) * scale;
+}
+
+// The two uniforms of a pixel's ray this frame: its blue-noise value, rotated by R2.
+TL_FN vec2 tlRtRandom(vec2 blueNoise, uint frame) {
+  vec2 r = blueNoise + float(frame & 4095u) * vec2(0.75487766624669276f, 0.56984029099805327f);
+  return r - floor(r);
+}
+TL_FN vec3 tlRtRayDirection(vec3 normal, vec2 u) { return tlLocalToWorld(tlSampleCosineHemisphere(u), normal); }
+
+TL_FN float tlRtShSampleWeight(float cosTheta) { return kPi / (0.25f + 0.5f * clamp(cosTheta, 0.0f, 1.0f)); }
+TL_FN ShLumaCoCg tlRtProjectSample(vec3 normal, vec3 direction, vec3 radiance) {
+  return tlShScale(tlShProjectRadiance(direction, radiance), tlRtShSampleWeight(dot(normal, direction)));
+}
+
+// Per-instance data the real rays read at a hit (gl_InstanceCustomIndexEXT), std430.
+struct RtInstance {
+  vec4 albedo;         // rgb: resolved hit albedo (tlRtHitAlbedoFromMaterial of the texture average)
+  vec4 emission;       // rgb: emitted radiance (factor x texture average)
+  uvec2 indexAddress;  // device address of the instance's RT (simplified) triangle list
+  uvec2 vertexAddress; // device address of its first vertex (tl::scene::Vertex, 48 bytes)
+};
+
+struct RtPush {
+  float tMin;            // real rays start here: covers the simplified RT mesh's deviation
+  float tMax;            // ray length (m)
+  float aoRadius;        // RTAO radius (m)
+  uint pretrace;         // 0: every ray is real
+  uint pretraceSteps;    // depth-buffer samples along a pre-traced ray
+  float pretraceLength;  // screen-space length of a pre-traced ray, in pixels
+  float thickness;       // assumed depth of a depth-buffer surface, fraction of its view distance
+  uint maxAccumFrames;   // temporal accumulation: history weight saturates at this many frames
+  uint historyValid;     // 0: the history images hold nothing usable (first frame, resize, reset)
+  float aoFilterDepth;   // AO filter: relative view-depth difference that halves a tap's weight
+  uint screenRadiance;   // hit lighting may reuse last frame's shaded pixels (1: history is valid)
+  uint pad1;
+};
+
+// Bindings (set 0) of the RT path's passes; set 1 is the scene (shared/scene.h) where used.
+TL_CONST uint kRtBindingFrame = 0;       // FrameConstants
+TL_CONST uint kRtBindingTlas = 1;
+TL_CONST uint kRtBindingBlueNoise = 2;   // rg16 unorm, 64 x 64
+TL_CONST uint kRtBindingDepth = 3;       // gbuffer.depth
+TL_CONST uint kRtBindingNormal = 4;      // gbuffer.normal
+TL_CONST uint kRtBindingBaseColor = 5;   // gbuffer.baseColor
+TL_CONST uint kRtBindingMaterial = 6;    // gbuffer.material
+TL_CONST uint kRtBindingEmissive = 7;    // gbuffer.emissive
+TL_CONST uint kRtBindingHitsIn = 8;      // r32ui hit records read (pre-trace result, or hits)
+TL_CONST uint kRtBindingSurfaceIn = 9;   // rg32ui hit surface read
+TL_CONST uint kRtBindingHitsOut = 10;    // r32ui hit records written
+TL_CONST uint kRtBindingSurfaceOut = 11; // rg32ui hit surface written: x oct normal, y rgb9e5 emission
+TL_CONST uint kRtBindingInstances = 12;  // RtInstance[]
+TL_CONST uint kRtBindingShY = 13;        // rgba16f
+TL_CONST uint kRtBindingCoCg = 14;       // rg16f / rgba16f
+TL_CONST uint kRtBindingAo = 15;         // r16f
+TL_CONST uint kRtBindingMotion = 16;     // gbuffer.motion
+TL_CONST uint kRtBindingHistShY = 17;
+TL_CONST uint kRtBindingHistCoCgAo = 18;
+TL_CONST uint kRtBindingHistDepth = 19;
+TL_CONST uint kRtBindingOutShY = 20;
+TL_CONST uint kRtBindingOutCoCgAo = 21;
+TL_CONST uint kRtBindingOutDepth = 22;
+TL_CONST uint kRtBindingHistRadiance = 23;  // last frame's composite radiance
+TL_END
+
+#ifdef __cplusplus
+static_assert(sizeof(tl::shared::RtInstance) == 48);
+static_assert(sizeof(tl::shared::RtPush) == 48);
+#endif
+#endif

@@ -1,0 +1,147 @@
+// The ray-traced path on lavapipe at small sizes, on scenes with known answers: the open
+// plane under a uniform sky (AO = 1, irradiance = pi L), the pre-trace agreeing with real
+// rays, colour bleeding in the Cornell box, and finite output on the atrium.
+#include "gpu_fixture.h"
+
+#include "lighting/rt/rt_path.h"
+#include "shared/packing.h"
+#include "shared/rt.h"
+
+#include <cstring>
+
+namespace tl::test {
+namespace {
+
+using namespace lighting;
+
+class RtTest : public GpuTest {
+ protected:
+  void SetUp() override {
+    GpuTest::SetUp();
+    if (!session().device().rayTracing().pipeline) GTEST_SKIP() << session().device().rayTracing().unavailableReason;
+  }
+  void TearDown() override {
+    session().setPath("direct");
+    session().settings() = RenderSettings{};
+    GpuTest::TearDown();
+  }
+  // Renders `frames` RT frames at w x h and reads back `names`.
+  void render(uint32_t w, uint32_t h, uint32_t frames, const std::vector<std::string>& names) {
+    auto& s = session();
+    s.setPath("rt");
+    s.setSize(w, h);
+    for (auto& n : names) s.requestBuffer(n);
+    s.renderFrames(frames);
+  }
+  static std::vector<uint32_t> uints(const graph::Readback& rb, uint32_t components) {
+    std::vector<uint32_t> v(rb.bytes.size() / 4);
+    std::memcpy(v.data(), rb.bytes.data(), v.size() * 4);
+    EXPECT_EQ(v.size(), size_t(rb.extent.width) * rb.extent.height * components);
+    return v;
+  }
+};
+
+// Irradiance (RGB) of pixel i from the accumulated SH, resolved against normal n.
+glm::vec3 irradianceAt(const std::vector<float>& shY, const std::vector<float>& coCgAo, size_t i, glm::vec3 n) {
+  shared::ShLumaCoCg sh = shared::tlShMake(glm::vec4(shY[4 * i], shY[4 * i + 1], shY[4 * i + 2], shY[4 * i + 3]),
+                                           glm::vec2(coCgAo[4 * i], coCgAo[4 * i + 1]));
+  return shared::tlShResolveIrradiance(sh, n);
+}
+
+TEST_F(RtTest, PlaneUnderUniformSkyHasNoOcclusionAndIrradiancePiL) {
+  auto& s = session();
+  s.loadScene(contentFile("plane.gltf"));
+  const glm::vec3 sky = s.lighting().skyRadiance;
+  render(48, 32, 8, {kShY, kCoCgAo, kAo, "gbuffer.depth"});
+  auto shY = s.buffer(kShY).texels(), coCgAo = s.buffer(kCoCgAo).texels(), ao = s.buffer(kAo).texels();
+  auto depth = s.buffer("gbuffer.depth").texels();
+  size_t surface = 0;
+  double worstAo = 0.0, worstE = 0.0;
+  for (size_t i = 0; i < depth.size(); ++i) {
+    if (depth[i] <= 0.0f) continue;
+    ++surface;
+    worstAo = std::max(worstAo, std::abs(double(ao[i]) - 1.0));
+    glm::vec3 e = irradianceAt(shY, coCgAo, i, glm::vec3(0, 1, 0));
+    for (int c = 0; c < 3; ++c) worstE = std::max(worstE, std::abs(e[c] / (shared::kPi * sky[c]) - 1.0));
+  }
+  ASSERT_GT(surface, depth.size() / 4) << "the plane should fill much of the view";
+  EXPECT_LE(worstAo, 0.02);
+  EXPECT_LE(worstE, 0.03) << "irradiance relative to pi L";
+  RecordProperty("worst_irradiance_error", std::to_string(worstE));
+}
+
+TEST_F(RtTest, PretraceAgreesWithRealRaysWhereBothHit) {
+  auto& s = session();
+  s.loadScene(contentFile("cornell.gltf"));
+  // The same frame index twice: identical rays, once pre-traced, once all real.
+  s.setFrameIndex(5);
+  render(96, 96, 1, {kPretraceHits, "gbuffer.depth"});
+  auto pre = uints(s.buffer(kPretraceHits), 1);
+  auto depth = s.buffer("gbuffer.depth").texels();
+  s.settings().rtPretrace = false;
+  s.setFrameIndex(5);
+  render(96, 96, 1, {kHits});
+  auto real = uints(s.buffer(kHits), 1);
+
+  size_t surface = 0, preHits = 0, bothHit = 0, agree = 0;
+  for (size_t i = 0; i < pre.size(); ++i) {
+    if (depth[i] <= 0.0f) continue;
+    ++surface;
+    if (!shared::tlRtIsHit(pre[i])) continue;
+    ++preHits;
+    if (!shared::tlRtIsHit(real[i])) continue;
+    ++bothHit;
+    double a = shared::tlRtHitDistance(pre[i]), b = shared::tlRtHitDistance(real[i]);
+    agree += std::abs(a - b) <= 0.05 * b + 0.01;
+  }
+  ASSERT_GT(surface, 0u);
+  const double saved = double(preHits) / double(surface);
+  const double agreement = bothHit ? double(agree) / double(bothHit) : 0.0;
+  RecordProperty("pretrace_share", std::to_string(saved));
+  RecordProperty("pretrace_agreement", std::to_string(agreement));
+  EXPECT_GT(saved, 0.05) << "the pre-trace should answer some rays inside a box";
+  EXPECT_GE(double(bothHit), 0.95 * double(preHits)) << "a pre-trace hit must be a real surface";
+  EXPECT_GE(agreement, 0.9) << "distances of pre-traced and real hits";
+}
+
+TEST_F(RtTest, CornellFloorIsRedderNextToTheRedWall) {
+  auto& s = session();
+  s.loadScene(contentFile("cornell.gltf"));
+  render(64, 64, 24, {kShY, kCoCgAo, "gbuffer.normal", "gbuffer.depth"});
+  auto shY = s.buffer(kShY).texels(), coCgAo = s.buffer(kCoCgAo).texels();
+  auto normal = s.buffer("gbuffer.normal").texels();
+  const uint32_t w = 64, h = 64;
+  // Floor pixels (normal up) in the left and right fifth of the floor's horizontal extent.
+  uint32_t lo = w, hi = 0;
+  std::vector<bool> floor(w * h, false);
+  for (uint32_t i = 0; i < w * h; ++i) {
+    glm::vec3 n = shared::tlOctDecode(glm::vec2(normal[2 * i], normal[2 * i + 1]));
+    if (n.y > 0.95f) floor[i] = true, lo = std::min(lo, i % w), hi = std::max(hi, i % w);
+  }
+  ASSERT_LT(lo + 10, hi);
+  glm::dvec3 left(0.0), right(0.0);
+  for (uint32_t i = 0; i < w * h; ++i) {
+    if (!floor[i]) continue;
+    uint32_t x = i % w;
+    glm::dvec3 e(irradianceAt(shY, coCgAo, i, glm::vec3(0, 1, 0)));
+    if (x <= lo + (hi - lo) / 5) left += e;
+    if (x >= hi - (hi - lo) / 5) right += e;
+  }
+  const double redLeft = left.r / left.g, redRight = right.r / right.g;
+  RecordProperty("red_to_green_left", std::to_string(redLeft));
+  RecordProperty("red_to_green_right", std::to_string(redRight));
+  EXPECT_GT(redLeft, 1.1 * redRight) << "left (red wall) R/G " << redLeft << ", right (green wall) " << redRight;
+}
+
+TEST_F(RtTest, AtriumStaysFiniteAndItsIntermediatesAreNamed) {
+  auto& s = session();
+  s.loadScene(contentFile("atrium.gltf"));
+  render(80, 45, 3, {kShY, kCoCgAo, kAo, "composite.hdr"});
+  for (const char* n : {kShY, kCoCgAo, kAo, "composite.hdr"}) EXPECT_EQ(countNonFinite(s.buffer(n).texels()), 0u) << n;
+  const std::string dump = s.graphDump();
+  for (const char* n : {kRtTlas, kPretraceHits, kHits, kHitSurface, kRawShY, kRawAo, kShY, kAo, kHistShY})
+    EXPECT_NE(dump.find(n), std::string::npos) << n;
+}
+
+}  // namespace
+}  // namespace tl::test

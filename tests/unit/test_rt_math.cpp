@@ -1,0 +1,197 @@
+// The RT path's CPU-testable pieces against closed forms: the one-uint hit record over the
+// whole distance range, RGB9E5, the SH sample weight (unbiased irradiance at the sampling
+// normal), the blue-noise masks, the simplifier and instance culling.
+#include "lighting/rt/blue_noise.h"
+#include "lighting/rt/rt_scene.h"
+#include "shared/rt.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace tl {
+namespace {
+
+using namespace shared;
+
+TEST(RtHitRecord, DistanceRoundTripsWithinHalfPrecisionOverTheWholeRange) {
+  double worstRelative = 0.0, worstTiny = 0.0;
+  for (double d = 1e-7; d <= 65504.0; d *= 1.0007) {
+    uint32_t rec = tlRtPackHit(float(d), vec3(0.5f));
+    ASSERT_TRUE(tlRtIsHit(rec)) << d;
+    double back = tlRtHitDistance(rec);
+    if (d >= 6.104e-5) worstRelative = std::max(worstRelative, std::abs(back - d) / d);
+    else worstTiny = std::max(worstTiny, std::abs(back - d));
+  }
+  EXPECT_LE(worstRelative, std::ldexp(1.0, -11) * 1.0001);  // round to nearest half
+  EXPECT_LE(worstTiny, std::ldexp(1.0, -25) * 1.0001);
+  // Beyond the range: clamped, still a hit, never a code.
+  EXPECT_EQ(tlRtHitDistance(tlRtPackHit(1e9f, vec3(0.0f))), 65504.0f);
+  EXPECT_TRUE(tlRtIsHit(tlRtPackHit(1e9f, vec3(1.0f))));
+  EXPECT_EQ(tlRtHitDistance(tlRtPackHit(-3.0f, vec3(0.0f))), 0.0f);
+}
+
+TEST(RtHitRecord, CodesAreNeverDistances) {
+  EXPECT_TRUE(tlRtIsMiss(kRtHitMiss));
+  EXPECT_FALSE(tlRtIsHit(kRtHitMiss));
+  EXPECT_TRUE(tlRtIsPending(kRtHitPending));
+  EXPECT_FALSE(tlRtIsHit(kRtHitPending));
+  EXPECT_FALSE(tlRtIsMiss(kRtHitPending));
+  // Every finite distance and albedo stays clear of both codes.
+  for (float d : {0.0f, 1e-30f, 1.0f, 65504.0f, std::numeric_limits<float>::infinity()})
+    for (float a : {0.0f, 0.5f, 1.0f}) {
+      uint32_t rec = tlRtPackHit(d, vec3(a));
+      EXPECT_TRUE(tlRtIsHit(rec)) << d << " " << a;
+    }
+}
+
+TEST(RtHitRecord, AlbedoRoundTripsWithinTheDocumentedBound) {
+  for (int r = 0; r <= 100; ++r)
+    for (int g = 0; g <= 100; g += 7) {
+      vec3 a(r / 100.0f, g / 100.0f, 1.0f - r / 100.0f);
+      vec3 back = tlRtHitAlbedo(tlRtPackHit(2.0f, a));
+      EXPECT_LE(std::abs(back.x - a.x), std::sqrt(a.x) / 31.0f + 1.0f / 961.0f);
+      EXPECT_LE(std::abs(back.y - a.y), std::sqrt(a.y) / 63.0f + 1.0f / 3969.0f);
+      EXPECT_LE(std::abs(back.z - a.z), std::sqrt(a.z) / 31.0f + 1.0f / 961.0f);
+    }
+  EXPECT_EQ(tlRtHitAlbedo(tlRtPackHit(1.0f, vec3(0.0f))), vec3(0.0f));
+  EXPECT_EQ(tlRtHitAlbedo(tlRtPackHit(1.0f, vec3(1.0f))), vec3(1.0f));
+}
+
+TEST(RtHitRecord, MetalsBounceTheirSpecularColour) {
+  vec3 gold(1.0f, 0.78f, 0.34f);
+  vec3 metal = tlRtHitAlbedoFromMaterial(gold, 1.0f);
+  EXPECT_NEAR(metal.x, 1.0f, 1e-6f);  // diffuse 0: albedo (1 - F0) + F0 = F0 = base
+  EXPECT_NEAR(metal.z, 0.34f, 1e-6f);
+  vec3 white = tlRtHitAlbedoFromMaterial(vec3(0.8f), 0.0f);
+  EXPECT_NEAR(white.x, 0.8f * 0.96f + 0.04f, 1e-6f);
+}
+
+TEST(Rgb9e5, RoundTripsWithSharedExponentPrecision) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> e(-12.0f, 15.0f);
+  for (int i = 0; i < 20000; ++i) {
+    vec3 c(std::exp2(e(rng)), std::exp2(e(rng)), std::exp2(e(rng)));
+    vec3 back = tlUnpackRgb9e5(tlPackRgb9e5(c));
+    float m = std::max({c.x, c.y, c.z});
+    for (int k = 0; k < 3; ++k) EXPECT_LE(std::abs(back[k] - c[k]), m / 256.0f) << c.x << " " << c.y << " " << c.z;
+  }
+  EXPECT_EQ(tlPackRgb9e5(vec3(0.0f)), 0u);
+  EXPECT_EQ(tlUnpackRgb9e5(0u), vec3(0.0f));
+  vec3 big = tlUnpackRgb9e5(tlPackRgb9e5(vec3(1e9f, 0.0f, -5.0f)));
+  EXPECT_NEAR(big.x, 65408.0f, 1.0f);
+  EXPECT_EQ(big.z, 0.0f);
+}
+
+// Mean of weighted cosine samples resolved at the sampling normal = irradiance, for any
+// radiance distribution (here: uniform, a cosine lobe, and a tilted one-sided one).
+TEST(RtShSampleWeight, ResolvesToTheIrradianceAtTheSamplingNormal) {
+  const vec3 n = normalize(vec3(0.3f, 0.8f, -0.2f));
+  auto check = [&](auto radiance, double exact) {
+    ShLumaCoCg sum = tlShZero();
+    const int k = 256;
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; j < k; ++j) {
+        vec2 u((i + 0.5f) / k, (j + 0.5f) / k);
+        vec3 d = tlRtRayDirection(n, u);
+        sum = tlShAdd(sum, tlRtProjectSample(n, d, vec3(radiance(d))));
+      }
+    sum = tlShScale(sum, 1.0f / float(k * k));
+    EXPECT_NEAR(tlShResolveIrradiance(sum, n).y, exact, 2e-3 * exact);
+  };
+  check([](vec3) { return 1.0f; }, kPi);                                    // uniform: pi L
+  check([&](vec3 d) { return std::max(dot(d, n), 0.0f); }, 2.0 * kPi / 3.0);  // cosine lobe: 2 pi / 3
+  const vec3 t = normalize(vec3(1.0f, 0.0f, 0.0f));
+  // Light only from the half-space x > 0: irradiance by quadrature of the same integrand.
+  double e = 0.0;
+  const int q = 1024;
+  for (int i = 0; i < q; ++i)
+    for (int j = 0; j < q; ++j) {
+      vec3 d = tlRtRayDirection(n, vec2((i + 0.5f) / q, (j + 0.5f) / q));
+      e += dot(d, t) > 0.0f ? 1.0 : 0.0;
+    }
+  check([&](vec3 d) { return dot(d, t) > 0.0f ? 1.0f : 0.0f; }, kPi * e / (double(q) * q));
+}
+
+TEST(RtShSampleWeight, StaysBounded) {
+  EXPECT_NEAR(tlRtShSampleWeight(1.0f), 4.0f * kPi / 3.0f, 1e-5f);
+  EXPECT_NEAR(tlRtShSampleWeight(0.0f), 4.0f * kPi, 1e-5f);
+}
+
+TEST(BlueNoise, IsAPermutationWithoutLowFrequencyClumps) {
+  const uint32_t n = 64;
+  auto ranks = lighting::voidAndClusterRanks(n, 1);
+  std::vector<uint16_t> sorted = ranks;
+  std::sort(sorted.begin(), sorted.end());
+  for (uint32_t i = 0; i < n * n; ++i) ASSERT_EQ(sorted[i], i);
+  EXPECT_EQ(ranks, lighting::voidAndClusterRanks(n, 1)) << "deterministic";
+  // Variance of 4x4 block means: white noise gives var(U)/16; blue noise far less.
+  auto blockVariance = [&](const std::vector<uint16_t>& r) {
+    double sum = 0.0, sum2 = 0.0;
+    int blocks = 0;
+    for (uint32_t by = 0; by < n; by += 4)
+      for (uint32_t bx = 0; bx < n; bx += 4) {
+        double m = 0.0;
+        for (uint32_t y = 0; y < 4; ++y)
+          for (uint32_t x = 0; x < 4; ++x) m += (r[(by + y) * n + bx + x] + 0.5) / (n * n);
+        m /= 16.0;
+        sum += m, sum2 += m * m, ++blocks;
+      }
+    return sum2 / blocks - (sum / blocks) * (sum / blocks);
+  };
+  std::vector<uint16_t> white(n * n);
+  for (uint32_t i = 0; i < n * n; ++i) white[i] = uint16_t(i);
+  std::shuffle(white.begin(), white.end(), std::mt19937(3));
+  double blue = blockVariance(ranks), whiteV = blockVariance(white);
+  EXPECT_LT(blue, 0.25 * whiteV) << "blue " << blue << " white " << whiteV;
+}
+
+TEST(RtSimplify, ReducesAFineGridAndKeepsItsShape) {
+  // A flat 64x64 grid: planar, so the simplifier may drop almost everything at no error.
+  std::vector<scene::Vertex> v;
+  std::vector<uint32_t> idx;
+  const int g = 64;
+  for (int y = 0; y <= g; ++y)
+    for (int x = 0; x <= g; ++x) v.push_back({glm::vec3(x / float(g), 0.0f, y / float(g))});
+  for (int y = 0; y < g; ++y)
+    for (int x = 0; x < g; ++x) {
+      uint32_t a = y * (g + 1) + x, b = a + 1, c = a + g + 1, d = c + 1;
+      idx.insert(idx.end(), {a, c, b, b, c, d});
+    }
+  float deviation = -1.0f;
+  auto reduced = lighting::simplifyForRayTracing(v, idx, 0.25f, 0.01f, &deviation);
+  EXPECT_LE(reduced.size(), idx.size() / 4);
+  EXPECT_GT(reduced.size(), 0u);
+  EXPECT_LE(deviation, 1e-4f);
+  auto full = lighting::simplifyForRayTracing(v, idx, 1.0f, 0.01f, &deviation);
+  EXPECT_EQ(full.size(), idx.size());
+  EXPECT_EQ(deviation, 0.0f);
+}
+
+TEST(RtCulling, KeepsTheExpandedFrustumAndDropsTinyFarInstances) {
+  // Camera at the origin looking down -z, 90 degree vertical field of view, square.
+  glm::mat4 proj(0.0f);
+  proj[0][0] = 1.0f;
+  proj[1][1] = -1.0f;
+  proj[2][3] = -1.0f;
+  proj[3][2] = 0.1f;
+  lighting::RtCulling c;
+  c.viewProj = proj;
+  c.margin = 1.0f;
+  c.minAngle = 0.01f;
+  std::vector<glm::vec3> centres = {{0, 0, -5},      // in view
+                                    {0, 0, 5},       // behind, far from the frustum
+                                    {0, 0, 0.5f},    // behind but within the margin
+                                    {0, 0, -1000},   // in view but tiny: radius 1 at 1000 m
+                                    {0, 0, -50},     // in view, radius 1 at 50 m: kept
+                                    {20, 0, -5}};    // far to the side
+  std::vector<float> radii = {0.5f, 0.5f, 0.2f, 1.0f, 1.0f, 0.5f};
+  auto kept = lighting::cullInstances(centres, radii, c);
+  std::sort(kept.begin(), kept.end());
+  EXPECT_EQ(kept, (std::vector<uint32_t>{0, 2, 4}));
+}
+
+}  // namespace
+}  // namespace tl
