@@ -1,6 +1,11 @@
 #include "bench.h"
 
+#include "lighting/rt/rt_path.h"
+#include "shared/rt.h"
+
 #include <fmt/format.h>
+
+#include <cstring>
 
 #include <algorithm>
 
@@ -20,11 +25,54 @@ nlohmann::json stats(const std::vector<double>& ms) {
           {"min", quantile(ms, 0.0)},    {"max", quantile(ms, 1.0)}};
 }
 
+
+double medianOf(tl::session::Session& session, const std::string& pass) {
+  for (const auto& [name, ms] : session.passGpuMs())
+    if (name == pass) return quantile(ms, 0.5);
+  return 0.0;
+}
+
+// Rays the RT path traced (pixels the pre-trace left pending) against the same rays through
+// a trivial kernel, measured in the same frames.
+nlohmann::json rayFigures(tl::session::Session& session) {
+  const auto& pre = session.buffer(tl::lighting::kPretraceHits);
+  const auto depth = session.buffer("gbuffer.depth").texels();
+  std::vector<uint32_t> hits(pre.bytes.size() / 4);
+  std::memcpy(hits.data(), pre.bytes.data(), hits.size() * 4);
+  size_t surface = 0, pending = 0;
+  for (size_t i = 0; i < hits.size() && i < depth.size(); ++i) {
+    if (depth[i] <= 0.0f) continue;
+    ++surface;
+    pending += tl::shared::tlRtIsPending(hits[i]);
+  }
+  const double rawMs = medianOf(session, "rt.rawRays"), traceMs = medianOf(session, "rt.trace");
+  const double rawRate = rawMs > 0.0 ? double(surface) / (rawMs * 1e-3) : 0.0;
+  const double rtRate = traceMs > 0.0 ? double(pending) / (traceMs * 1e-3) : 0.0;
+  const double pixels = double(session.settings().width) * session.settings().height;
+  return {{"surfacePixels", surface},
+          {"realRays", pending},
+          {"pretraceShare", surface ? 1.0 - double(pending) / double(surface) : 0.0},
+          {"realRaysPerPixel", pending / pixels},
+          {"rawKernelMs", rawMs},
+          {"rawRaysPerSecond", rawRate},
+          {"traceMs", traceMs},
+          {"rtRaysPerSecond", rtRate},
+          {"rtOverRaw", rawRate > 0.0 ? rtRate / rawRate : 0.0}};
+}
+
 }  // namespace
 
 nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
+  if (o.rays) {
+    if (session.path() != "rt") throw tl::session::SessionError("--rays measures the rt path: add --path rt");
+    session.settings().rtRawRayProbe = true;
+  }
   session.renderFrames(std::max(1u, o.warmup));
   std::vector<double> firstFrame = session.frameGpuMs();
+  if (o.rays) {
+    session.requestBuffer(tl::lighting::kPretraceHits);
+    session.requestBuffer("gbuffer.depth");
+  }
   session.renderFrames(std::max(1u, o.frames));
   const auto& d = session.device();
   nlohmann::json passes = nlohmann::json::array();
@@ -45,7 +93,8 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
           {"vulkan", fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(d.apiVersion()), VK_API_VERSION_MINOR(d.apiVersion()),
                                  VK_API_VERSION_PATCH(d.apiVersion()))},
           {"frame", stats(session.frameGpuMs())},
-          {"passes", passes}};
+          {"passes", passes},
+          {"rays", o.rays ? rayFigures(session) : nlohmann::json()}};
 }
 
 std::string benchTable(const nlohmann::json& r) {
@@ -60,5 +109,14 @@ std::string benchTable(const nlohmann::json& r) {
   };
   for (const auto& p : r["passes"]) row(p["pass"].get<std::string>(), p);
   row("frame", r["frame"]);
+  if (r.contains("rays") && r["rays"].is_object()) {
+    const auto& y = r["rays"];
+    s += fmt::format("  rays: {} real of {} surface pixels (pre-trace answered {:.1f}%), {:.3f} real rays/pixel\n",
+                     y["realRays"].get<size_t>(), y["surfacePixels"].get<size_t>(), 100.0 * y["pretraceShare"].get<double>(),
+                     y["realRaysPerPixel"].get<double>());
+    s += fmt::format("  raw kernel {:.2f} M rays/s, rt.trace {:.2f} M rays/s: {:.0f}% of raw\n",
+                     y["rawRaysPerSecond"].get<double>() * 1e-6, y["rtRaysPerSecond"].get<double>() * 1e-6,
+                     100.0 * y["rtOverRaw"].get<double>());
+  }
   return s;
 }

@@ -12,6 +12,7 @@
 struct BenchOptions {
   uint32_t frames = 20;
   uint32_t warmup = 2;
+  bool rays = false;  // rt path: raw ray throughput on the scene's TLAS against the path's traced rays/s
 };
 
 nlohmann::json runBench(tl::session::Session& session, const BenchOptions& options);

@@ -187,6 +187,8 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--size", benchRender.size, "image size WxH")->capture_default_str();
   benchCmd->add_option("--frames", bench.frames, "frames measured")->capture_default_str();
   benchCmd->add_option("--warmup", bench.warmup, "frames rendered first and left out")->capture_default_str();
+  benchCmd->add_flag("--rays", bench.rays,
+                     "rt path: the device's raw ray rate on the scene's TLAS (trivial kernel) against rt.trace's");
   benchCmd->add_option("--json", benchJson, "write the figures as JSON to FILE (- for stdout)");
   addViewAndLightOptions(*benchCmd, benchRender);
 

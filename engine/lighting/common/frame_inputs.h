@@ -34,11 +34,12 @@ struct RenderSettings {
   bool rtPretrace = true;           // screen-space pre-trace before real rays
   bool rtScreenRadiance = true;     // hits seen on screen last frame reuse its shaded radiance (multi-bounce)
   uint32_t rtPretraceSteps = 16;
-  float rtPretracePixels = 48.0f;   // screen length of a pre-traced ray
+  float rtPretracePixels = 128.0f;  // screen length of a pre-traced ray
   float rtThickness = 0.02f;        // depth-buffer surface thickness, fraction of view distance
   uint32_t rtMaxAccumFrames = 32;   // temporal accumulation window
   float rtCullAngle = 0.002f;       // contribution culling: instances subtending less (radians) are dropped
   float rtCullMargin = 0.0f;        // expanded frustum: margin (m) around the view frustum
+  bool rtRawRayProbe = false;       // benchmark: also trace the same rays with a trivial kernel (rt.rawRays)
 };
 
 // Resources the frame imports from outside the graph (owned by the session and scene).

@@ -218,6 +218,26 @@ class RtPath final : public LightingPath {
           ctx.dispatch(in.settings.width, in.settings.height);
         });
 
+    if (s.rtRawRayProbe) {
+      graph.addPass(
+          "rt.rawRays", graph::PassKind::RayTracing,
+          [&](graph::PassBuilder& b) {
+            readCommon(b);
+            b.read(kRtTlas, Usage::StorageRead);
+            b.create(kRawRays, image(VK_FORMAT_R32_SFLOAT, "benchmark: hit distance of the trivial trace kernel"),
+                     Usage::StorageWrite);
+          },
+          [this, &in, push](graph::PassContext& ctx) {
+            ctx.bind(rawRays_);
+            ctx.pushConstants(push);
+            writeCommon(ctx, in)
+                .accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
+                .storageImage(shared::kRtBindingAo, ctx.image(kRawRays).view());
+            traceRays(ctx, rawRays_, in);
+          });
+      graph.markOutput(kRawRays);
+    }
+
     if (screenRadiance)
       graph.addPass(
           "rt.radiance.store", graph::PassKind::Transfer,
@@ -350,6 +370,15 @@ class RtPath final : public LightingPath {
                        {shared::kRtBindingHistDepth, sampled}});
       lighting_ = gpu::createRayTracingPipeline(in.device, d);
     }
+    {
+      gpu::RayTracingPipelineDesc d;
+      d.name = "rt.rawRays";
+      d.raygen = "rt/raw.rgen";
+      d.misses = {"rt/raw.rmiss"};
+      d.hitGroups = {{"rt/raw.rchit", ""}};
+      d.layout = with({{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}, {shared::kRtBindingAo, storage}});
+      rawRays_ = gpu::createRayTracingPipeline(in.device, d);
+    }
   }
 
   std::unique_ptr<RtScene> scene_;
@@ -357,7 +386,7 @@ class RtPath final : public LightingPath {
   RtResolvedParams params_;
   gpu::Image blueNoise_;
   gpu::Sampler point_;
-  gpu::Pipeline pretrace_, trace_, lighting_, temporal_, aoFilter_;
+  gpu::Pipeline pretrace_, trace_, lighting_, temporal_, aoFilter_, rawRays_;
 };
 
 }  // namespace

@@ -20,6 +20,7 @@ inline constexpr const char* kHistShY = "rt.history.shY";
 inline constexpr const char* kHistCoCgAo = "rt.history.coCgAo";
 inline constexpr const char* kHistDepth = "rt.history.viewDepth";
 inline constexpr const char* kHistRadiance = "rt.history.radiance";
+inline constexpr const char* kRawRays = "rt.rawRays";  // benchmark only: distances of the trivial kernel
 
 struct RtResolvedParams {
   float aoRadius = 0.0f;       // m
