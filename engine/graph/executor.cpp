@@ -132,7 +132,8 @@ const gpu::Buffer& PassContext::buffer(std::string_view name) const {
 
 bool PassContext::historyValid(std::string_view name) const { return executor_.find(name).historyValid; }
 
-void PassContext::beginRendering(const std::vector<Attachment>& colors, const std::optional<Attachment>& depth) {
+void PassContext::beginRendering(const std::vector<Attachment>& colors, const std::optional<Attachment>& depth,
+                                 std::optional<VkExtent2D> area) {
   std::vector<VkRenderingAttachmentInfo> colorInfos;
   VkExtent3D extent{0, 0, 1};
   for (auto& c : colors) {
@@ -156,6 +157,7 @@ void PassContext::beginRendering(const std::vector<Attachment>& colors, const st
     depthInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     depthInfo.clearValue.depthStencil.depth = depth->clearDepth.value_or(0.0f);
   }
+  if (area) extent = {area->width, area->height, 1};
   VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
   ri.renderArea = {{0, 0}, {extent.width, extent.height}};
   ri.layerCount = 1;
@@ -252,6 +254,11 @@ void Executor::resetHistory() {
     if (p.kind == Physical::Kind::Persistent) p.historyValid = false, p.layout = VK_IMAGE_LAYOUT_UNDEFINED;
 }
 
+bool Executor::historyValid(std::string_view name) const {
+  auto it = physical_.find(std::string(name));
+  return it != physical_.end() && it->second.historyValid;
+}
+
 const Readback& Executor::readback(std::string_view name) const {
   auto it = readbacks_.find(std::string(name));
   TL_CHECK(it != readbacks_.end(), "no read-back of `{}` in the last frame (request it before executing)", name);
@@ -276,7 +283,8 @@ void Executor::realise(const RenderGraph& graph, const CompiledGraph& compiled) 
     const auto& d = decls[id];
     const auto& info = compiled.resources[id];
     if (d.persistent || d.imported || info.culled || info.firstUse == kNone) continue;
-    VkImageUsageFlags u = usage[id] | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    // Transfer source for read-backs, destination so a pass may clear what it creates.
+    VkImageUsageFlags u = usage[id] | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     if (gpu::formatInfo(d.desc.format).kind != gpu::TexelKind::Uint) u |= VK_IMAGE_USAGE_SAMPLED_BIT;
     usage[id] = u;
     transients.push_back(id);

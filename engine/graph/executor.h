@@ -41,7 +41,9 @@ class PassContext {
   // True when a persistent resource holds last frame's contents (false after creation or resize).
   bool historyValid(std::string_view name) const;
 
-  void beginRendering(const std::vector<Attachment>& colors, const std::optional<Attachment>& depth);
+  // `area`: the render area when there are no attachments (e.g. voxelization into storage images).
+  void beginRendering(const std::vector<Attachment>& colors, const std::optional<Attachment>& depth,
+                      std::optional<VkExtent2D> area = std::nullopt);
   void endRendering();
 
   void bind(const gpu::Pipeline& pipeline);
@@ -116,6 +118,8 @@ class Executor {
   // (the editor blits the display image from it); nullptr when there is none.
   const gpu::Image* image(std::string_view name) const;
   VkImageLayout layout(std::string_view name) const;
+  // Whether a persistent resource holds a previous frame's contents (false when unknown).
+  bool historyValid(std::string_view name) const;
   uint64_t frameIndex() const { return frame_; }
   // Layout an imported image was left in by the frame (to hand it back to its owner).
   VkImageLayout importedLayout(std::string_view name) const;

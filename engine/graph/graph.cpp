@@ -96,6 +96,11 @@ void RenderGraph::declarePersistent(std::string_view name, const ResourceDesc& d
   resources_.push_back(std::move(r));
 }
 
+void RenderGraph::declareCache(std::string_view name, const ResourceDesc& desc) {
+  declarePersistent(name, desc);
+  resources_.back().cache = true;
+}
+
 void RenderGraph::declareImported(std::string_view name, const ResourceDesc& desc) {
   ResourceDecl r;
   r.name = std::string(name);
@@ -229,8 +234,8 @@ CompiledGraph RenderGraph::compile() const {
   for (auto& name : outputs_)
     if (!byName.count(name)) throw GraphError(fmt::format("frame output `{}` is not a resource of the graph", name));
 
-  // 2. Dependencies. Transient and imported: writer before readers. Persistent: a reader
-  //    other than the writer sees last frame's contents, so it must run before the writer.
+  // 2. Dependencies. Transient, imported and caches: writer before readers. Persistent: a
+  //    reader other than the writer sees last frame's contents, so it must run before the writer.
   std::vector<std::set<PassId>> after(nPasses);  // edges p -> q: q runs after p
   std::vector<size_t> indegree(nPasses, 0);
   auto edge = [&](PassId from, PassId to) {
@@ -240,7 +245,7 @@ CompiledGraph RenderGraph::compile() const {
     const auto& info = out.resources[r];
     if (info.writer == kNone) continue;
     for (PassId reader : info.readers) {
-      if (resources_[r].persistent) edge(reader, info.writer);
+      if (resources_[r].persistent && !resources_[r].cache) edge(reader, info.writer);
       else edge(info.writer, reader);
     }
   }

@@ -114,6 +114,7 @@ struct ResourceDecl {
   std::string name;
   ResourceDesc desc;
   bool persistent = false;  // survives across frames (history); never aliased
+  bool cache = false;       // persistent, but a frame that writes it does so before its readers
   bool imported = false;    // owned outside the graph (e.g. scene buffers, swapchain)
   PassId creator = kNone;   // the pass that declared it with create()
 };
@@ -165,6 +166,10 @@ class RenderGraph {
   // A resource that outlives one frame (temporal history). It may be read before it is
   // written in a frame (it then holds the previous frame's contents).
   void declarePersistent(std::string_view name, const ResourceDesc& desc);
+  // A persistent resource used as a cache: in a frame that rebuilds it the writer runs
+  // first and readers see this frame's contents; in a frame with no writer they see the
+  // last contents (e.g. voxels rebuilt only when what they hold changes).
+  void declareCache(std::string_view name, const ResourceDesc& desc);
   // A resource owned outside the graph (scene geometry, the swapchain image).
   void declareImported(std::string_view name, const ResourceDesc& desc);
 

@@ -24,6 +24,9 @@ struct LightingOutputs {
   // Beyond this view distance (m) the path's diffuse GI fades out over 20% of it towards the
   // unoccluded sky (Metro: RT GI to 250 m, then the legacy pipeline). 0: no fade.
   float giBlendDistance = 0.0f;
+  // The AO also darkens the diffuse GI (legacy: coarse voxel GI needs SSAO's contact detail).
+  // Off for ray-traced GI, whose rays already saw the occluders.
+  bool aoOnGi = false;
 };
 
 class LightingPath {
@@ -40,6 +43,8 @@ class LightingPath {
 std::unique_ptr<LightingPath> makeDirectPath();
 // Progressive path tracer on the ray-tracing pipeline: the ground truth.
 std::unique_ptr<LightingPath> makeReferencePath();
+// RTX OFF: GTAO + voxel-clipmap cone-traced GI and voxel AO.
+std::unique_ptr<LightingPath> makeLegacyPath();
 // Metro Exodus' hybrid RT GI + RTAO: one ray per pixel, SH irradiance, accumulation.
 std::unique_ptr<LightingPath> makeRtPath();
 

@@ -133,6 +133,18 @@ void GpuScene::drawAll(VkCommandBuffer cmd) const {
   }
 }
 
+void GpuScene::drawInstances(VkCommandBuffer cmd, const std::vector<uint32_t>& instances) const {
+  VkDeviceSize offset = 0;
+  VkBuffer vb = vertices_.handle();
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+  vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+  for (uint32_t i : instances) {
+    if (i >= drawMesh_.size()) continue;
+    const MeshRange& m = meshes_[drawMesh_[i]];
+    vkCmdDrawIndexed(cmd, m.indexCount, 1, m.firstIndex, m.vertexOffset, i);
+  }
+}
+
 VkDeviceSize GpuScene::bytes() const {
   VkDeviceSize total = vertices_.size() + indices_.size() + materials_.size() + instances_.size();
   for (auto& t : textures_) total += VkDeviceSize(t.extent().width) * t.extent().height * 4 * 4 / 3;

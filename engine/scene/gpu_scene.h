@@ -25,6 +25,8 @@ class GpuScene {
 
   // Binds the geometry and draws every instance (instance index via firstInstance).
   void drawAll(VkCommandBuffer cmd) const;
+  // Binds the geometry and draws the listed instances only.
+  void drawInstances(VkCommandBuffer cmd, const std::vector<uint32_t>& instances) const;
 
   const gpu::DescriptorTable& table() const { return table_; }
   gpu::Buffer& vertexBuffer() { return vertices_; }

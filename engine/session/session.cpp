@@ -26,6 +26,7 @@ Session::Session(const gpu::DeviceOptions& options)
       executor_(std::make_unique<graph::Executor>(*device_)),
       passes_(std::make_unique<Passes>()) {
   paths_.push_back(lighting::makeDirectPath());
+  paths_.push_back(lighting::makeLegacyPath());
   paths_.push_back(lighting::makeRtPath());
   paths_.push_back(lighting::makeReferencePath());
   path_ = paths_.front().get();
@@ -191,7 +192,7 @@ void Session::renderOne(bool readback) {
   imported(lighting::kSceneInstances, gpuScene_->instanceBuffer(), "camera-relative instance table");
   imported(lighting::kSceneMaterials, gpuScene_->materialBuffer(), "material table");
 
-  lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, constants_, *executor_};
+  lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, constants_, *executor_, view_.position};
   passes_->gbuffer.add(graph, in);
   passes_->shadow.add(graph, in);
   lighting::LightingOutputs outputs = path_->addPasses(graph, in);

@@ -35,6 +35,7 @@ TL_CONST uint kCompositeCoCg = 10;     // its chroma (xy)
 
 TL_CONST uint kCompositeHasAo = 1u;
 TL_CONST uint kCompositeHasGi = 2u;
+TL_CONST uint kCompositeAoOnGi = 4u;
 struct CompositePush {
   uint flags;               // kCompositeHas*: which path outputs are bound
   float giBlendDistance;    // beyond this view distance GI fades to the unoccluded sky (0: never)

@@ -127,6 +127,23 @@ TEST(Graph, WriteAfterReadGetsABarrier) {
   EXPECT_TRUE(found);
 }
 
+TEST(Graph, ACacheIsWrittenBeforeItsReadersInFramesThatRebuildIt) {
+  for (bool rebuild : {true, false}) {
+    RenderGraph g;
+    g.declareCache("voxels", kImage);
+    compute(g, "cones", {"voxels"}, {"gi"});  // declared first, still runs after a rebuild
+    if (rebuild)
+      g.addPass("voxelize", PassKind::Compute, [](PassBuilder& b) { b.write("voxels", Usage::StorageWrite); }, nullptr);
+    g.markOutput("gi");
+    auto c = g.compile();
+    if (rebuild) {
+      EXPECT_EQ(orderNames(g, c), (std::vector<std::string>{"voxelize", "cones"}));
+    } else {
+      EXPECT_EQ(orderNames(g, c), (std::vector<std::string>{"cones"})) << "no writer: last contents are read";
+    }
+  }
+}
+
 TEST(Graph, PersistentHistoryIsReadBeforeItsWriterEvenIfDeclaredAfter) {
   RenderGraph g;
   g.declarePersistent("taa.history", kImage);

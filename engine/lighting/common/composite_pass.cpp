@@ -62,7 +62,8 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
   shared::CompositePush push{};
   push.flags = (path.ambientOcclusion.empty() ? 0u : shared::kCompositeHasAo) |
-               (path.diffuseShY.empty() || path.diffuseCoCg.empty() ? 0u : shared::kCompositeHasGi);
+               (path.diffuseShY.empty() || path.diffuseCoCg.empty() ? 0u : shared::kCompositeHasGi) |
+               (path.aoOnGi ? shared::kCompositeAoOnGi : 0u);
   push.giBlendDistance = path.giBlendDistance;
   push.giBlendWidth = 0.2f * path.giBlendDistance;
   // Absent outputs: the binding still needs an image; the base colour stands in, unread.

@@ -39,7 +39,21 @@ struct RenderSettings {
   uint32_t rtMaxAccumFrames = 32;   // temporal accumulation window
   float rtCullAngle = 0.002f;       // contribution culling: instances subtending less (radians) are dropped
   float rtCullMargin = 0.0f;        // expanded frustum: margin (m) around the view frustum
-  bool rtRawRayProbe = false;       // benchmark: also trace the same rays with a trivial kernel (rt.rawRays)
+  bool rtRawRayProbe = false;
+
+  // Legacy path (T3). Distances <= 0 mean "scaled to the scene" (see legacy_path.cpp).
+  float legacyAoRadius = 0.0f;      // SSAO / voxel AO radius (m)
+  float legacyAoThickness = 0.1f;   // GTAO thickness heuristic, 0 (infinitely thick) .. 1 (paper thin)
+  uint32_t legacyAoSlices = 2;
+  uint32_t legacyAoSteps = 6;
+  uint32_t legacyAoDivisor = 2;     // SSAO resolution: 1 full, 2 half
+  uint32_t legacyConeDivisor = 4;   // cone tracing resolution: 1 full, 2 half, 4 quarter
+  bool legacyVoxelizeEveryFrame = false;  // rebuild the voxels even when nothing they hold changed
+  uint32_t legacyVoxelResolution = 64;  // R: voxels per clipmap level side
+  float legacyLevel0Extent = 0.0f;  // side of the finest clipmap level (m)
+  uint32_t legacyMaxLevels = 4;
+  float legacyConeRange = 0.0f;     // cones stop after this distance (m)
+  float legacyConeStep = 1.0f;      // cone step as a fraction of its diameter       // benchmark: also trace the same rays with a trivial kernel (rt.rawRays)
 };
 
 // Resources the frame imports from outside the graph (owned by the session and scene).
@@ -67,6 +81,7 @@ struct FrameInputs {
   const shared::FrameConstants& constants;
   gpu::Buffer& constantsBuffer;
   graph::Executor& executor;  // where a path binds buffers it owns and imports into the graph
+  glm::dvec3 cameraWorld{0.0};  // the camera's world position (camera-relative space is centred on it)
 };
 
 }  // namespace tl::lighting

@@ -1,0 +1,381 @@
+// The legacy lighting path ("RTX OFF"): horizon-based SSAO (GTAO) at half resolution, a voxel
+// clipmap voxelized from the scene's triangles every frame with the sun injected through the
+// shadow map, its mip chain, six diffuse cones per pixel for irradiance (in the RT path's SH
+// layout) and voxel AO from the same cones, then a depth-aware upsample. Every intermediate
+// is a named graph resource.
+#include "graph/executor.h"
+#include "lighting/common/gbuffer_pass.h"
+#include "lighting/common/shadow_pass.h"
+#include "lighting/legacy/legacy_path.h"
+#include "lighting/lighting_path.h"
+#include "shared/scene.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace tl::lighting {
+namespace {
+
+using graph::Usage;
+using shared::LegacyPush;
+
+constexpr VkImageLayout kReadOnly = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
+
+class LegacyPath final : public LightingPath {
+ public:
+  std::string name() const override { return "legacy"; }
+  std::string description() const override {
+    return "RTX OFF: GTAO + voxel clipmap GI with cone tracing and voxel AO";
+  }
+
+  LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
+    prepare(in);
+    const RenderSettings& s = in.settings;
+    const LegacyClipmapFit fit = fitLegacyClipmap(in.sceneData.bounds, in.cameraWorld, s.legacyVoxelResolution,
+                                                  s.legacyLevel0Extent, s.legacyMaxLevels);
+    const float scale = std::max(in.constants.sceneScale, 1e-3f);
+    LegacyPush push{};
+    push.clipmap = fit.clipmap;
+    push.aoRadius = s.legacyAoRadius > 0.0f ? s.legacyAoRadius : std::clamp(0.05f * scale, 0.1f, 1.0f);
+    push.aoThickness = std::clamp(s.legacyAoThickness, 0.0f, 1.0f);
+    push.aoSlices = std::max(1u, s.legacyAoSlices);
+    push.aoSteps = std::max(1u, s.legacyAoSteps);
+    push.coneRange = s.legacyConeRange > 0.0f ? s.legacyConeRange : scale;
+    push.coneStep = std::clamp(s.legacyConeStep, 0.2f, 2.0f);
+    push.aoDivisor = s.legacyAoDivisor >= 2 ? 2u : 1u;
+    push.coneDivisor = s.legacyConeDivisor >= 4 ? 4u : (s.legacyConeDivisor >= 2 ? 2u : 1u);
+    fit_ = fit;
+
+    const uint32_t w = s.width, h = s.height;
+    const uint32_t aw = (w + push.aoDivisor - 1) / push.aoDivisor, ah = (h + push.aoDivisor - 1) / push.aoDivisor;
+    const uint32_t cw = (w + push.coneDivisor - 1) / push.coneDivisor, ch = (h + push.coneDivisor - 1) / push.coneDivisor;
+    const uint32_t R = fit.clipmap.resolution, N = fit.clipmap.levels, mips = fit.clipmap.mipCount;
+    const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
+    const char* shadow = sun ? kShadowSunDepth : kGbufferDepth;  // unread without a sun, but bound
+
+    graph.addPass(
+        "legacy.ssao", graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          b.create(kLegacyAoRaw, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, aw, ah, "GTAO visibility, 1/aoDivisor resolution"),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push, aw, ah](graph::PassContext& ctx) {
+          ctx.bind(ssao_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in).storageImage(shared::kLegacyBindingAoRaw, ctx.image(kLegacyAoRaw).view());
+          ctx.dispatch(aw, ah);
+        });
+
+    // The voxels persist: they are rebuilt only when what they hold changes (where the levels
+    // sit in the world, the sun, the scene), so a still camera pays nothing for them.
+    const uint64_t key = voxelKey(in, fit);
+    graph.declareCache(kVoxelRadiance,
+                            graph::ResourceDesc::image3D(VK_FORMAT_R16G16B16A16_SFLOAT, 6 * R, R, N * R,
+                                                         fmt::format("voxels per face (+x -x +y -y +z -z blocks along x): "
+                                                                     "radiance, opacity; {} level(s) of {}^3 stacked in z",
+                                                                     N, R)));
+    graph.declareCache(kVoxelRadianceMips,
+                            graph::ResourceDesc::image3D(VK_FORMAT_R16G16B16A16_SFLOAT, 3 * R, R / 2, N * R / 2,
+                                                         "voxels per face, mips 1.. (front-to-back along each face's axis)",
+                                                         mips));
+    const bool revoxelize = key != voxelKey_ || !in.executor.historyValid(kVoxelRadiance) ||
+                            !in.executor.historyValid(kVoxelRadianceMips) || s.legacyVoxelizeEveryFrame;
+    voxelKey_ = key;
+    voxelized_ = revoxelize;
+    if (revoxelize) {
+    graph.addPass(
+        "legacy.voxelize", graph::PassKind::Raster,
+        [&](graph::PassBuilder& b) {
+          readSceneInputs(b, Usage::VertexOrIndex);
+          b.read(shadow, Usage::Sampled);
+          b.write(kVoxelRadiance, Usage::StorageWrite);
+        },
+        [this, &in, push, shadow, R, N](graph::PassContext& ctx) mutable {
+          const gpu::Image& radiance = ctx.image(kVoxelRadiance);
+          clearStorage(ctx.cmd, {&radiance});
+          // Emitters are drawn in a second round after a barrier: where an emitter shares a voxel
+          // with a dark surface (a light panel just under a ceiling), the emitter's radiance wins.
+          for (const auto* group : {&plainInstances_, &emissiveInstances_}) {
+            if (group->empty()) continue;
+            if (group == &emissiveInstances_) fragmentBarrier(ctx.cmd);
+            ctx.beginRendering({}, std::nullopt, VkExtent2D{R, R});
+            ctx.bind(voxelize_);
+            ctx.descriptors()
+                .uniformBuffer(shared::kLegacyBindingFrame, in.constantsBuffer.handle())
+                .sampledImage(shared::kLegacyBindingShadow, ctx.image(shadow).view(), shadowSampler_.handle(), kReadOnly)
+                .storageImage(shared::kLegacyBindingRadiance, radiance.view());
+            ctx.flushDescriptors();
+            in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, voxelize_.layout(), shared::kSceneSet);
+            for (uint32_t level = 0; level < N; ++level)
+              for (uint32_t axis = 0; axis < 3; ++axis) {
+                push.axis = axis + 3 * level;
+                ctx.pushConstants(push);
+                in.scene.drawInstances(ctx.cmd, *group);
+              }
+            ctx.endRendering();
+          }
+        });
+
+    graph.addPass(
+        "legacy.voxel.mips", graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          b.read(kVoxelRadiance, Usage::StorageRead);
+          b.write(kVoxelRadianceMips, Usage::StorageWrite);
+        },
+        [this, mips](graph::PassContext& ctx) {
+          const gpu::Image& r0 = ctx.image(kVoxelRadiance);
+          const gpu::Image& rm = ctx.image(kVoxelRadianceMips);
+          ctx.bind(mip_);
+          for (uint32_t m = 0; m < mips; ++m) {
+            if (m > 0) computeBarrier(ctx.cmd);
+            ctx.descriptors()
+                .storageImage(shared::kLegacyBindingMipSrcRadiance, m == 0 ? r0.view() : rm.mipView(m - 1))
+                .storageImage(shared::kLegacyBindingRadianceMips, rm.mipView(m));
+            VkExtent3D e = rm.extent();
+            ctx.dispatch(std::max(1u, e.width >> m), std::max(1u, e.height >> m), std::max(1u, e.depth >> m), 4, 4, 4);
+          }
+        });
+    }
+
+    graph.addPass(
+        "legacy.cones", graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          for (const char* n : {kVoxelRadiance, kVoxelRadianceMips}) b.read(n, Usage::Sampled);
+          b.create(kConeShY, graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced irradiance, SH luma"),
+                   Usage::StorageWrite);
+          b.create(kConeCoCgAo,
+                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced chroma (xy), voxel AO (z)"),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push, cw, ch](graph::PassContext& ctx) {
+          VkSampler lin = linear_.handle();
+          ctx.bind(cones_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in)
+              .sampledImage(shared::kLegacyBindingRadiance, ctx.image(kVoxelRadiance).view(), lin, kReadOnly)
+              .sampledImage(shared::kLegacyBindingRadianceMips, ctx.image(kVoxelRadianceMips).view(), lin, kReadOnly)
+              .storageImage(shared::kLegacyBindingConeShY, ctx.image(kConeShY).view())
+              .storageImage(shared::kLegacyBindingConeCoCgAo, ctx.image(kConeCoCgAo).view());
+          ctx.dispatch(cw, ch);
+        });
+
+    graph.addPass(
+        "legacy.upsample", graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          for (const char* n : {kLegacyAoRaw, kConeShY, kConeCoCgAo}) b.read(n, Usage::Sampled);
+          b.create(kLegacyAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO"), Usage::StorageWrite);
+          b.create(kLegacyShY, graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "diffuse irradiance, SH luma"),
+                   Usage::StorageWrite);
+          b.create(kLegacyCoCg, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "diffuse irradiance, chroma"),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push](graph::PassContext& ctx) {
+          VkSampler p = point_.handle();
+          ctx.bind(upsample_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in)
+              .sampledImage(shared::kLegacyBindingAoRaw, ctx.image(kLegacyAoRaw).view(), p, kReadOnly)
+              .sampledImage(shared::kLegacyBindingConeShY, ctx.image(kConeShY).view(), p, kReadOnly)
+              .sampledImage(shared::kLegacyBindingConeCoCgAo, ctx.image(kConeCoCgAo).view(), p, kReadOnly)
+              .storageImage(shared::kLegacyBindingOutAo, ctx.image(kLegacyAo).view())
+              .storageImage(shared::kLegacyBindingOutShY, ctx.image(kLegacyShY).view())
+              .storageImage(shared::kLegacyBindingOutCoCg, ctx.image(kLegacyCoCg).view());
+          ctx.dispatch(in.settings.width, in.settings.height);
+        });
+
+    LightingOutputs out;
+    out.ambientOcclusion = kLegacyAo;
+    out.diffuseShY = kLegacyShY;
+    out.diffuseCoCg = kLegacyCoCg;
+    out.aoOnGi = true;
+    return out;
+  }
+
+  // Whether the last frame rebuilt the voxels (tests, the timing panel's reading).
+  bool voxelizedLastFrame() const { return voxelized_; }
+
+ private:
+  // Everything the voxels depend on: the scene, the levels' place in the world (not
+  // camera-relative, so a camera moving within one voxel keeps them), the sun and the settings.
+  static uint64_t voxelKey(const FrameInputs& in, const LegacyClipmapFit& fit) {
+    std::vector<double> k;
+    for (uint32_t l = 0; l < fit.clipmap.levels; ++l) {
+      glm::dvec3 world = glm::dvec3(glm::vec3(fit.clipmap.levelMin[l])) + in.cameraWorld;
+      double v = fit.clipmap.levelMin[l].w;
+      for (int a = 0; a < 3; ++a) k.push_back(std::round(world[a] / v));
+      k.push_back(v);
+    }
+    const auto& c = in.constants;
+    for (const glm::vec4* x : {&c.sunToLight, &c.sunIrradiance}) k.insert(k.end(), {x->x, x->y, x->z, x->w});
+    k.push_back(double(c.flags));
+    k.push_back(double(in.scene.id()));
+    k.push_back(double(fit.clipmap.resolution));
+    return scene::hashBytes(k.data(), k.size() * sizeof(double));
+  }
+
+  static void readCommon(graph::PassBuilder& b) {
+    b.read(kFrameConstants, Usage::StorageRead);
+    b.read(kGbufferDepth, Usage::Sampled);
+    b.read("gbuffer.normal", Usage::Sampled);
+  }
+  gpu::DescriptorWriter& writeCommon(graph::PassContext& ctx, FrameInputs& in) {
+    return ctx.descriptors()
+        .uniformBuffer(shared::kLegacyBindingFrame, in.constantsBuffer.handle())
+        .sampledImage(shared::kLegacyBindingDepth, ctx.image(kGbufferDepth).view(), point_.handle(), kReadOnly)
+        .sampledImage(shared::kLegacyBindingNormal, ctx.image("gbuffer.normal").view(), point_.handle(), kReadOnly);
+  }
+  // The voxel images start empty every frame. The clear runs at the transfer stage inside a
+  // raster pass, so it waits for everything before it and the fragment writes wait for it.
+  static void clearStorage(VkCommandBuffer cmd, std::initializer_list<const gpu::Image*> images) {
+    VkMemoryBarrier2 before{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    before.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    before.srcAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    before.dstStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
+    before.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &before;
+    vkCmdPipelineBarrier2(cmd, &dep);
+    VkClearColorValue zero{};
+    for (const gpu::Image* image : images) {
+      VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+    }
+    VkMemoryBarrier2 after{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    after.srcStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
+    after.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    after.dstStageMask = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    after.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+    dep.pMemoryBarriers = &after;
+    vkCmdPipelineBarrier2(cmd, &dep);
+  }
+  static void fragmentBarrier(VkCommandBuffer cmd) {
+    VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    b.srcStageMask = b.dstStageMask = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    b.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+  }
+  // Between mips: the next dispatch reads what the previous one wrote.
+  static void computeBarrier(VkCommandBuffer cmd) {
+    VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    b.srcStageMask = b.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    b.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+  }
+
+  void prepare(FrameInputs& in) {
+    if (ssao_ && sceneId_ == in.scene.id()) return;
+    sceneId_ = in.scene.id();
+    plainInstances_.clear();
+    emissiveInstances_.clear();
+    for (uint32_t i = 0; i < in.sceneData.instances.size(); ++i) {
+      const auto& m = in.sceneData.materials[in.sceneData.meshes[in.sceneData.instances[i].mesh].material];
+      const bool emits = glm::length(m.emissiveFactor) * m.emissiveStrength > 0.0f;
+      (emits ? emissiveInstances_ : plainInstances_).push_back(i);
+    }
+    point_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "legacy.point");
+    linear_ = gpu::Sampler(in.device, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "legacy.linear");
+    shadowSampler_ = gpu::Sampler(in.device, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER,
+                                  "legacy.shadowCompare", true);
+    using B = gpu::Binding;
+    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    auto compute = [&](const char* name, const char* shader, std::vector<B> extra, bool common = true) {
+      gpu::ComputePipelineDesc d;
+      d.name = name;
+      d.shader = shader;
+      if (common)
+        d.layout.bindings = {{shared::kLegacyBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                             {shared::kLegacyBindingDepth, sampled},
+                             {shared::kLegacyBindingNormal, sampled}};
+      d.layout.bindings.insert(d.layout.bindings.end(), extra.begin(), extra.end());
+      d.layout.pushConstantBytes = sizeof(LegacyPush);
+      return gpu::createComputePipeline(in.device, d);
+    };
+    ssao_ = compute("legacy.ssao", "legacy/ssao.comp", {{shared::kLegacyBindingAoRaw, storage}});
+    mip_ = compute("legacy.voxel.mips", "legacy/voxel_mip.comp",
+                   {{shared::kLegacyBindingMipSrcRadiance, storage}, {shared::kLegacyBindingRadianceMips, storage}},
+                   false);
+    cones_ = compute("legacy.cones", "legacy/cones.comp",
+                     {{shared::kLegacyBindingRadiance, sampled}, {shared::kLegacyBindingRadianceMips, sampled},
+                      {shared::kLegacyBindingConeShY, storage}, {shared::kLegacyBindingConeCoCgAo, storage}});
+    upsample_ = compute("legacy.upsample", "legacy/upsample.comp",
+                        {{shared::kLegacyBindingAoRaw, sampled}, {shared::kLegacyBindingConeShY, sampled},
+                         {shared::kLegacyBindingConeCoCgAo, sampled}, {shared::kLegacyBindingOutAo, storage},
+                         {shared::kLegacyBindingOutShY, storage}, {shared::kLegacyBindingOutCoCg, storage}});
+    gpu::GraphicsPipelineDesc d;
+    d.name = "legacy.voxelize";
+    d.vertexShader = "legacy/voxelize.vert";
+    d.fragmentShader = "legacy/voxelize.frag";
+    d.layout.bindings = {{shared::kLegacyBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                         {shared::kLegacyBindingShadow, sampled},
+                         {shared::kLegacyBindingRadiance, storage}};
+    d.layout.extraSets = {in.scene.table().layout()};
+    d.layout.pushConstantBytes = sizeof(LegacyPush);
+    d.vertexBindings = scene::GpuScene::vertexBindings();
+    d.vertexAttributes = scene::GpuScene::vertexAttributes();
+    d.cullMode = VK_CULL_MODE_NONE;
+    d.depthTest = false;
+    d.depthWrite = false;
+    voxelize_ = gpu::createGraphicsPipeline(in.device, d);
+  }
+
+  uint64_t sceneId_ = 0;
+  uint64_t voxelKey_ = 0;
+  bool voxelized_ = false;
+  std::vector<uint32_t> plainInstances_, emissiveInstances_;
+  LegacyClipmapFit fit_;
+  gpu::Sampler point_, linear_, shadowSampler_;
+  gpu::Pipeline ssao_, voxelize_, mip_, cones_, upsample_;
+};
+
+}  // namespace
+
+LegacyClipmapFit fitLegacyClipmap(const scene::Bounds& bounds, const glm::dvec3& camera, uint32_t resolution,
+                                  float level0Extent, uint32_t maxLevels) {
+  LegacyClipmapFit fit;
+  uint32_t R = 16;
+  while (R < resolution && R < 256) R *= 2;
+  const glm::dvec3 size = bounds.valid() ? bounds.size() : glm::dvec3(1.0);
+  const double maxAxis = std::max({size.x, size.y, size.z, 1e-3}) * 1.02;  // a margin so walls on the bounds are inside
+  const double e0 = level0Extent > 0.0f ? double(level0Extent) : std::min(maxAxis, 0.25 * R);
+  const uint32_t levels =
+      std::clamp(1u + uint32_t(std::max(0.0, std::ceil(std::log2(maxAxis / e0) - 1e-9))), 1u, std::min(maxLevels, shared::kLegacyMaxLevels));
+  const glm::dvec3 centreOfScene = bounds.valid() ? bounds.center() : glm::dvec3(0.0);
+  for (uint32_t l = 0; l < levels; ++l) {
+    const double voxel = e0 / R * std::exp2(double(l)), extent = voxel * R;
+    glm::dvec3 centre;
+    for (int a = 0; a < 3; ++a) {
+      if (extent >= size[a] * 1.02) {
+        centre[a] = centreOfScene[a];  // the level spans the scene on this axis: no need to follow the camera
+      } else {
+        double c = std::floor(camera[a] / voxel + 0.5) * voxel;  // on the voxel grid: stable as the camera moves
+        double lo = bounds.min[a] + 0.5 * extent - voxel, hi = bounds.max[a] - 0.5 * extent + voxel;
+        centre[a] = std::clamp(c, lo, std::max(lo, hi));
+      }
+    }
+    glm::dvec3 minCorner = centre - 0.5 * extent - camera;
+    fit.clipmap.levelMin[l] = glm::vec4(glm::vec3(minCorner), float(voxel));
+  }
+  fit.clipmap.resolution = R;
+  fit.clipmap.levels = levels;
+  uint32_t mips = 0;
+  for (uint32_t r = R / 2; r >= 1; r /= 2) ++mips;
+  fit.clipmap.mipCount = mips;
+  return fit;
+}
+
+std::unique_ptr<LightingPath> makeLegacyPath() { return std::make_unique<LegacyPath>(); }
+
+}  // namespace tl::lighting

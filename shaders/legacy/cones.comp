@@ -1,0 +1,117 @@
+#version 460
+// Diffuse cone tracing through the voxel clipmap (Crassin et al. 2011; VXGI/VXAO): six 60
+// degree cones around the normal gather voxel radiance front to back through the opacity,
+// escaping light sees the sky. The same cones' opacity within the AO radius is voxel AO.
+// The result is encoded in the RT path's SH luma + CoCg layout so the composite is shared.
+#extension GL_GOOGLE_include_directive : require
+#include "legacy/legacy_common.glsl"
+#include "shared/sampling.h"
+#include "shared/sh.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = kLegacyBindingRadiance) uniform sampler3D radiance0;
+layout(set = 0, binding = kLegacyBindingRadianceMips) uniform sampler3D radianceMips;
+layout(set = 0, binding = kLegacyBindingConeShY, rgba16f) uniform writeonly image2D shYOut;
+layout(set = 0, binding = kLegacyBindingConeCoCgAo, rgba16f) uniform writeonly image2D coCgAoOut;
+
+const float kTanHalfAperture = 0.57735;  // 60 degree cones
+const float kRingTilt = 0.95993;         // 55 degrees: six cones cover the hemisphere
+
+struct VoxelSample {
+  vec3 radiance;  // premultiplied by coverage
+  float opacity;
+};
+
+// The faces that look back along -dir (towards the cone's apex), weighted by dir's squared
+// components: premultiplied radiance (rgb) and opacity (a).
+vec4 facesTowards(vec3 dir, vec3 uvw, float lod, bool mip, uint level, uint levels) {
+  vec3 w = dir * dir;
+  vec4 sum = vec4(0.0);
+  for (int a = 0; a < 3; ++a) {
+    if (w[a] < 0.02) continue;
+    int face = 2 * a + (dir[a] > 0.0 ? 1 : 0);
+    vec3 t = vec3((float(face) + uvw.x) / 6.0, uvw.y, (float(level) + uvw.z) / float(levels));
+    sum += w[a] * (mip ? textureLod(radianceMips, t, lod) : textureLod(radiance0, t, 0.0));
+  }
+  return sum / (w.x * float(w.x >= 0.02) + w.y * float(w.y >= 0.02) + w.z * float(w.z >= 0.02));
+}
+
+VoxelSample sampleClipmap(vec3 position, vec3 dir, float diameter) {
+  LegacyClipmap c = push.clipmap;
+  float R = float(c.resolution);
+  float lodGlobal = max(log2(diameter / c.levelMin[0].w), 0.0);
+  uint level = min(uint(lodGlobal), c.levels - 1u);
+  // Move out to a level that contains the point.
+  for (; level < c.levels; ++level) {
+    vec3 uvw = (position - c.levelMin[level].xyz) / (c.levelMin[level].w * R);
+    if (all(greaterThan(uvw, vec3(0.0))) && all(lessThan(uvw, vec3(1.0)))) break;
+  }
+  VoxelSample s;
+  s.radiance = vec3(0.0);
+  s.opacity = 0.0;
+  if (level >= c.levels) return s;  // outside the clipmap: empty (the sky)
+  vec3 uvw = (position - c.levelMin[level].xyz) / (c.levelMin[level].w * R);
+  float lod = clamp(lodGlobal - float(level), 0.0, float(c.mipCount));
+  // Keep trilinear taps inside this level's block along z and inside the face block along x.
+  float texel = exp2(lod) / R;
+  uvw = clamp(uvw, vec3(0.5 * texel), vec3(1.0 - 0.5 * texel));
+  // Mip 0 lives in its own image: below lod 1 it is read alone (no blend across images).
+  vec4 v = lod < 1.0 ? facesTowards(dir, uvw, 0.0, false, level, c.levels)
+                     : facesTowards(dir, uvw, lod - 1.0, true, level, c.levels);
+  s.radiance = v.rgb;
+  s.opacity = v.a;
+  return s;
+}
+
+void main() {
+  ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(q, reducedSize(push.coneDivisor)))) return;
+  ivec2 p = fullPixel(q, push.coneDivisor);
+  float depth = texelFetch(gDepth, p, 0).r;
+  if (depth <= 0.0) {
+    imageStore(shYOut, q, vec4(0.0));
+    imageStore(coCgAoOut, q, vec4(0.0, 0.0, 1.0, 0.0));
+    return;
+  }
+  vec3 P = pixelPosition(p, depth);
+  vec3 n = pixelNormal(p);
+  float voxel = push.clipmap.levelMin[0].w;
+  vec3 origin = P + n * (1.5 * voxel);  // leave the surface's own voxel
+  mat3 basis = tlBasisFromNormal(n);
+  // Cosine weights of one axial and five tilted cones, summing to pi (Lambert's integral).
+  const float wAxis = 3.14159265 / (1.0 + 5.0 * 0.57358), wRing = wAxis * 0.57358;
+  ShLumaCoCg sh = tlShZero();
+  float ao = 0.0;
+  for (int i = 0; i < 6; ++i) {
+    vec3 local = vec3(0.0, 0.0, 1.0);
+    if (i > 0) {
+      float phi = float(i - 1) * 1.2566371;
+      local = vec3(sin(kRingTilt) * cos(phi), sin(kRingTilt) * sin(phi), cos(kRingTilt));
+    }
+    vec3 dir = basis * local;
+    vec3 gathered = vec3(0.0);
+    float occlusion = 0.0, aoOcclusion = 0.0;
+    float t = voxel;
+    while (t < push.coneRange && occlusion < 0.95) {
+      float diameter = max(2.0 * t * kTanHalfAperture, voxel);
+      // Samples keep 1.5 times their own size off the surface: a coarse voxel holding the
+      // surface would otherwise occlude the cone with the surface it starts from (the
+      // surface may lie anywhere in its voxel, and trilinear taps reach one voxel further).
+      VoxelSample s = sampleClipmap(origin + dir * t + n * (1.5 * diameter), dir, diameter);
+      // Opacity is per voxel-sized step: correct it for the actual step length.
+      float stepLength = diameter * push.coneStep;
+      float a = 1.0 - pow(max(1.0 - s.opacity, 0.0), stepLength / diameter);
+      gathered += (1.0 - occlusion) * s.radiance * (a / max(s.opacity, 1e-4));
+      occlusion += (1.0 - occlusion) * a;
+      if (t < push.aoRadius) aoOcclusion = occlusion;
+      t += stepLength;
+    }
+    vec3 radiance = gathered + (1.0 - occlusion) * frame.skyRadiance.rgb;
+    float w = i == 0 ? wAxis : wRing;
+    float cosTheta = local.z;
+    sh = tlShAdd(sh, tlShScale(tlShProjectRadiance(dir, radiance), w / (0.25 + 0.5 * cosTheta)));
+    ao += w * (1.0 - aoOcclusion);
+  }
+  imageStore(shYOut, q, sh.shY);
+  imageStore(coCgAoOut, q, vec4(sh.coCg, ao / 3.14159265, 1.0));
+}

@@ -1,0 +1,56 @@
+#version 460
+// Writes the voxel under the fragment: opacity 1, and the diffuse radiance the surface sends
+// out of each side (sun through the shadow map + emission), into the anisotropic faces that
+// side faces (shared/legacy.h). Direct light is injected here, while the surface is at hand.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_nonuniform_qualifier : require
+#include "shared/frame.h"
+#include "shared/legacy.h"
+#include "shared/rt.h"
+#include "shared/scene.h"
+
+layout(set = 0, binding = kLegacyBindingFrame) uniform Frame { FrameConstants frame; };
+layout(set = 0, binding = kLegacyBindingShadow) uniform sampler2DShadow sunShadow;
+layout(set = 0, binding = kLegacyBindingRadiance, rgba16f) uniform writeonly image3D radianceOut;
+layout(set = kSceneSet, binding = kSceneBindingMaterials, std430) readonly buffer Materials { GpuMaterial materials[]; };
+layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
+layout(set = kSceneSet, binding = kSceneBindingTextures) uniform sampler2D sceneTextures[];
+layout(push_constant) uniform Push { LegacyPush push; };
+
+#include "common/sun_shadow.glsl"
+
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+layout(location = 3) flat in uint inInstance;
+
+const vec3 kFace[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));
+
+void main() {
+  uint level = push.axis / 3u;
+  int R = int(push.clipmap.resolution);
+  vec4 box = push.clipmap.levelMin[level];
+  ivec3 v = ivec3(floor((inPosition - box.xyz) / box.w));
+  if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(R)))) return;
+  GpuMaterial m = materials[instances[inInstance].material];
+  vec4 base = m.baseColorFactor;
+  if (m.baseColorTexture != kNoTexture) base *= texture(sceneTextures[nonuniformEXT(m.baseColorTexture)], inUv);
+  if (m.alphaCutoff > 0.0 && base.a < m.alphaCutoff) return;
+  vec3 emission = m.emissive.rgb;
+  if (m.emissiveTexture != kNoTexture) emission *= texture(sceneTextures[nonuniformEXT(m.emissiveTexture)], inUv).rgb;
+  vec3 albedo = tlRtHitAlbedoFromMaterial(clamp(base.rgb, 0.0, 1.0), m.metallic);
+  vec3 n = normalize(inNormal);
+  ivec3 z = ivec3(0, 0, int(level) * R);
+  // Both sides of the surface: a single quad is a wall seen from either side. A side writes
+  // the faces it looks out of (n.face > 0.35) with its radiance and opacity 1: a floor is
+  // opaque from above and below but not to a cone skimming along it, and the two sides of a
+  // wall fill opposite faces of the same voxel without overwriting each other.
+  for (int side = 0; side < 2; ++side) {
+    vec3 ns = side == 0 ? n : -n;
+    float nl = dot(ns, frame.sunToLight.xyz);
+    vec3 radiance = emission;
+    if (nl > 0.0) radiance += albedo * kInvPi * frame.sunIrradiance.rgb * (nl * sunVisibility(inPosition, ns));
+    for (int f = 0; f < 6; ++f)
+      if (dot(ns, kFace[f]) > 0.35) imageStore(radianceOut, ivec3(v.x + f * R, v.y, v.z) + z, vec4(radiance, 1.0));
+  }
+}

@@ -1,0 +1,68 @@
+// The legacy lighting path ("RTX OFF", engine/lighting/legacy/, shaders/legacy/): horizon-based
+// SSAO (GTAO), a voxel clipmap lit by the sun through the shadow map, cone-traced diffuse
+// irradiance and voxel AO. Bindings, push constants and the clipmap layout, shared by C++
+// and GLSL.
+//
+// Clipmap layout. Level l is a cube of R^3 voxels of size voxelSize * 2^l, placed around the
+// camera (clamped to the scene's bounds so a small scene needs one level). All levels are
+// stacked along z in one 3D image: level l occupies z in [l R, (l+1) R).
+//   voxels: 6R x R x (N R), rgba16f, anisotropic: face block f (x in [f R, (f+1) R)) holds,
+//           for direction +x, -x, +y, -y, +z, -z, the diffuse radiance the voxel sends that
+//           way (rgb, premultiplied by opacity) and its opacity seen from that side (a). A thin wall's lit and unlit sides land
+//             in opposite faces of the same voxel, so a cone from inside sees the unlit one:
+//             that is what keeps light from leaking through walls one voxel thick. Mips
+//             composite the two children along each face's axis front to back (opacity and
+//             premultiplied radiance), then average across it.
+// Mips: a second image holds levels 1.. of the chain (R/2 and smaller), so every graph
+// resource has one writer; cone tracing reads mip 0 from the first.
+#ifndef TL_SHARED_LEGACY_H
+#define TL_SHARED_LEGACY_H
+#include "common.h"
+
+TL_BEGIN
+TL_CONST uint kLegacyMaxLevels = 4u;
+TL_CONST uint kLegacyFaces = 6u;
+
+struct LegacyClipmap {
+  vec4 levelMin[4];    // xyz: camera-relative minimum corner of level l, w: its voxel size (m)
+  uint resolution;     // R
+  uint levels;         // N
+  uint mipCount;       // mips of the mip images (levels 1.. of the chain)
+  float pad;
+};
+
+struct LegacyPush {
+  LegacyClipmap clipmap;
+  float aoRadius;          // SSAO and voxel AO radius (m)
+  float aoThickness;       // GTAO thickness heuristic: how fast a horizon falls back behind thin occluders, 0..1
+  uint aoSlices;           // directions per pixel
+  uint aoSteps;            // samples per direction and side
+  float coneRange;         // GI cones stop after this distance (m)
+  float coneStep;          // step as a fraction of the cone diameter
+  uint aoDivisor;          // SSAO resolution: 1 full, 2 half
+  uint axis;               // voxelization: projection axis (0 x, 1 y, 2 z) + 3 x level
+  uint coneDivisor;        // cone tracing resolution: 1 full, 2 half, 4 quarter
+  uint pad0, pad1, pad2;
+};
+
+// Bindings (set 0).
+TL_CONST uint kLegacyBindingFrame = 0;
+TL_CONST uint kLegacyBindingDepth = 1;
+TL_CONST uint kLegacyBindingNormal = 2;
+TL_CONST uint kLegacyBindingShadow = 3;       // sun shadow map (compare sampler)
+TL_CONST uint kLegacyBindingRadiance = 5;     // voxels, mip 0 (storage or sampled)
+TL_CONST uint kLegacyBindingRadianceMips = 7; // voxels, mips 1..
+TL_CONST uint kLegacyBindingAoRaw = 8;        // half-res SSAO
+TL_CONST uint kLegacyBindingConeShY = 9;      // half-res cone-traced SH luma
+TL_CONST uint kLegacyBindingConeCoCgAo = 10;  // half-res chroma (xy), voxel AO (z)
+TL_CONST uint kLegacyBindingOutAo = 11;
+TL_CONST uint kLegacyBindingOutShY = 12;
+TL_CONST uint kLegacyBindingOutCoCg = 13;
+TL_CONST uint kLegacyBindingMipSrcRadiance = 15;
+TL_END
+
+#ifdef __cplusplus
+static_assert(sizeof(tl::shared::LegacyClipmap) == 80);
+static_assert(sizeof(tl::shared::LegacyPush) == 128);
+#endif
+#endif
