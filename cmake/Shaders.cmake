@@ -6,7 +6,7 @@ function(twinlight_add_shaders)
   cmake_parse_arguments(ARG "" "TARGET" "SOURCES" ${ARGN})
   set(outputs)
   file(GLOB_RECURSE shared_headers CONFIGURE_DEPENDS
-       "${CMAKE_SOURCE_DIR}/shaders/shared/*.h" "${CMAKE_SOURCE_DIR}/shaders/*.glsl")
+       "${CMAKE_SOURCE_DIR}/shaders/shared/*.h" "${CMAKE_SOURCE_DIR}/shaders/*.glsl" "${CMAKE_SOURCE_DIR}/shaders/*/*.glsl")
   foreach(src IN LISTS ARG_SOURCES)
     get_filename_component(abs "${src}" ABSOLUTE)
     file(RELATIVE_PATH rel "${CMAKE_SOURCE_DIR}/shaders" "${abs}")

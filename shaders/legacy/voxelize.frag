@@ -15,7 +15,27 @@ layout(set = 0, binding = kLegacyBindingRadiance, rgba16f) uniform writeonly ima
 layout(set = kSceneSet, binding = kSceneBindingMaterials, std430) readonly buffer Materials { GpuMaterial materials[]; };
 layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
 layout(set = kSceneSet, binding = kSceneBindingTextures) uniform sampler2D sceneTextures[];
+layout(set = 0, binding = kLegacyBindingPrevRadiance) uniform sampler2D previousRadiance;
+layout(set = 0, binding = kLegacyBindingPrevDepth) uniform sampler2D previousDepth;
 layout(push_constant) uniform Push { LegacyPush push; };
+
+// The radiance last frame's image showed at this point, if the point was on screen and
+// unoccluded then: it holds every light and every bounce so far, so feeding it back into
+// the voxels makes the GI multi-bounce over frames (the RT path does the same at its hits).
+bool screenRadiance(vec3 position, vec3 normal, out vec3 radiance) {
+  radiance = vec3(0.0);
+  if (push.screenRadiance == 0u || dot(normal, -position) <= 0.0) return false;
+  vec4 clip = frame.prevViewProj * vec4(position, 1.0);
+  if (clip.w <= 0.0) return false;
+  vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return false;
+  float depth = textureLod(previousDepth, uv, 0.0).r;
+  if (depth <= 0.0) return false;
+  float seenW = frame.proj[3][2] / depth;
+  if (abs(seenW - clip.w) > 0.03 * clip.w + 2.0 * push.clipmap.levelMin[push.axis / 3u].w) return false;
+  radiance = textureLod(previousRadiance, uv, 0.0).rgb;
+  return true;
+}
 
 #include "common/sun_shadow.glsl"
 
@@ -41,15 +61,21 @@ void main() {
   vec3 albedo = tlRtHitAlbedoFromMaterial(clamp(base.rgb, 0.0, 1.0), m.metallic);
   vec3 n = normalize(inNormal);
   ivec3 z = ivec3(0, 0, int(level) * R);
-  // Both sides of the surface: a single quad is a wall seen from either side. A side writes
-  // the faces it looks out of (n.face > 0.35) with its radiance and opacity 1: a floor is
-  // opaque from above and below but not to a cone skimming along it, and the two sides of a
-  // wall fill opposite faces of the same voxel without overwriting each other.
+  // Round 0: the voxel is solid from every side (rgb 0, opacity 1). Round 1, after a barrier:
+  // each side of the surface (a single quad is a wall seen from either side) writes the faces
+  // it looks out of (n.face > 0.35) with its radiance. A wall's two sides fill opposite faces
+  // of the same voxel, so its lit side cannot shine out of the other one.
+  if (push.voxelRound == 0u) {
+    for (int f = 0; f < 6; ++f) imageStore(radianceOut, ivec3(v.x + f * R, v.y, v.z) + z, vec4(0.0, 0.0, 0.0, 1.0));
+    return;
+  }
   for (int side = 0; side < 2; ++side) {
     vec3 ns = side == 0 ? n : -n;
     float nl = dot(ns, frame.sunToLight.xyz);
     vec3 radiance = emission;
     if (nl > 0.0) radiance += albedo * kInvPi * frame.sunIrradiance.rgb * (nl * sunVisibility(inPosition, ns));
+    vec3 seen;
+    if (screenRadiance(inPosition, ns, seen)) radiance = seen;
     for (int f = 0; f < 6; ++f)
       if (dot(ns, kFace[f]) > 0.35) imageStore(radianceOut, ivec3(v.x + f * R, v.y, v.z) + z, vec4(radiance, 1.0));
   }

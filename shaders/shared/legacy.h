@@ -42,7 +42,9 @@ struct LegacyPush {
   uint aoDivisor;          // SSAO resolution: 1 full, 2 half
   uint axis;               // voxelization: projection axis (0 x, 1 y, 2 z) + 3 x level
   uint coneDivisor;        // cone tracing resolution: 1 full, 2 half, 4 quarter
-  uint pad0, pad1, pad2;
+  uint voxelRound;         // voxelization: 0 opacity of every face, 1 radiance of the faces a surface looks out of
+  uint screenRadiance;     // voxelization: surfaces seen last frame take their shaded radiance from it
+  uint pad2;
 };
 
 // Bindings (set 0).
@@ -59,6 +61,8 @@ TL_CONST uint kLegacyBindingOutAo = 11;
 TL_CONST uint kLegacyBindingOutShY = 12;
 TL_CONST uint kLegacyBindingOutCoCg = 13;
 TL_CONST uint kLegacyBindingMipSrcRadiance = 15;
+TL_CONST uint kLegacyBindingPrevRadiance = 16;  // last frame's composite radiance
+TL_CONST uint kLegacyBindingPrevDepth = 17;     // last frame's G-buffer depth
 TL_END
 
 #ifdef __cplusplus

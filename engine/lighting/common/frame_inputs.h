@@ -49,6 +49,8 @@ struct RenderSettings {
   uint32_t legacyAoDivisor = 2;     // SSAO resolution: 1 full, 2 half
   uint32_t legacyConeDivisor = 4;   // cone tracing resolution: 1 full, 2 half, 4 quarter
   bool legacyVoxelizeEveryFrame = false;  // rebuild the voxels even when nothing they hold changed
+  bool legacyScreenRadiance = true; // voxels seen last frame take its shaded radiance (multi-bounce)
+  uint32_t legacySettleFrames = 4;  // after a change, rebuild this many more frames so bounces settle
   uint32_t legacyVoxelResolution = 64;  // R: voxels per clipmap level side
   float legacyLevel0Extent = 0.0f;  // side of the finest clipmap level (m)
   uint32_t legacyMaxLevels = 4;

@@ -4,6 +4,7 @@
 // layout) and voxel AO from the same cones, then a depth-aware upsample. Every intermediate
 // is a named graph resource.
 #include "graph/executor.h"
+#include "lighting/common/composite_pass.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/shadow_pass.h"
 #include "lighting/legacy/legacy_path.h"
@@ -13,6 +14,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <tuple>
 
 namespace tl::lighting {
 namespace {
@@ -80,8 +82,21 @@ class LegacyPath final : public LightingPath {
                             graph::ResourceDesc::image3D(VK_FORMAT_R16G16B16A16_SFLOAT, 3 * R, R / 2, N * R / 2,
                                                          "voxels per face, mips 1.. (front-to-back along each face's axis)",
                                                          mips));
-    const bool revoxelize = key != voxelKey_ || !in.executor.historyValid(kVoxelRadiance) ||
+    const bool feedback = s.legacyScreenRadiance;
+    if (feedback) {
+      graph.declarePersistent(kLegacyHistRadiance, graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
+                                                                                "composite radiance, last frame"));
+      graph.declarePersistent(kLegacyHistDepth,
+                              graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, w, h, "G-buffer depth, last frame"));
+    }
+    const bool historyOk = feedback && in.executor.historyValid(kLegacyHistRadiance) &&
+                           in.executor.historyValid(kLegacyHistDepth);
+    if (key != voxelKey_) settle_ = s.legacySettleFrames + 1;
+    const bool revoxelize = key != voxelKey_ || settle_ > 0 || !in.executor.historyValid(kVoxelRadiance) ||
                             !in.executor.historyValid(kVoxelRadianceMips) || s.legacyVoxelizeEveryFrame;
+    // Bounces through the screen settle over a few rebuilds; only frames with history count.
+    if (revoxelize && settle_ > 0 && (historyOk || !feedback)) --settle_;
+    push.screenRadiance = historyOk ? 1u : 0u;
     voxelKey_ = key;
     voxelized_ = revoxelize;
     if (revoxelize) {
@@ -90,29 +105,49 @@ class LegacyPath final : public LightingPath {
         [&](graph::PassBuilder& b) {
           readSceneInputs(b, Usage::VertexOrIndex);
           b.read(shadow, Usage::Sampled);
+          if (feedback) {
+            b.read(kLegacyHistRadiance, Usage::Sampled);
+            b.read(kLegacyHistDepth, Usage::Sampled);
+          } else if (std::string(shadow) != kGbufferDepth) {
+            b.read(kGbufferDepth, Usage::Sampled);  // stands in for the history, unread
+          }
           b.write(kVoxelRadiance, Usage::StorageWrite);
         },
-        [this, &in, push, shadow, R, N](graph::PassContext& ctx) mutable {
+        [this, &in, push, shadow, R, N, feedback](graph::PassContext& ctx) mutable {
           const gpu::Image& radiance = ctx.image(kVoxelRadiance);
           clearStorage(ctx.cmd, {&radiance});
-          // Emitters are drawn in a second round after a barrier: where an emitter shares a voxel
-          // with a dark surface (a light panel just under a ceiling), the emitter's radiance wins.
-          for (const auto* group : {&plainInstances_, &emissiveInstances_}) {
-            if (group->empty()) continue;
-            if (group == &emissiveInstances_) fragmentBarrier(ctx.cmd);
+          // Round 0 makes every touched voxel opaque on all faces; round 1 writes the faces each
+          // surface looks out of; emitters come last, after a barrier, so where an emitter shares
+          // a voxel with a dark surface (a light panel under a ceiling) the emitter wins.
+          struct Round {
+            uint32_t mode;
+            const std::vector<uint32_t>* instances;
+          };
+          const Round rounds[] = {{0, &allInstances_}, {1, &plainInstances_}, {1, &emissiveInstances_}};
+          bool first = true;
+          for (const Round& round : rounds) {
+            if (round.instances->empty()) continue;
+            if (!first) fragmentBarrier(ctx.cmd);
+            first = false;
             ctx.beginRendering({}, std::nullopt, VkExtent2D{R, R});
             ctx.bind(voxelize_);
             ctx.descriptors()
                 .uniformBuffer(shared::kLegacyBindingFrame, in.constantsBuffer.handle())
                 .sampledImage(shared::kLegacyBindingShadow, ctx.image(shadow).view(), shadowSampler_.handle(), kReadOnly)
-                .storageImage(shared::kLegacyBindingRadiance, radiance.view());
+                .storageImage(shared::kLegacyBindingRadiance, radiance.view())
+                // Without feedback the bindings still need images: the G-buffer depth stands in, unread.
+                .sampledImage(shared::kLegacyBindingPrevRadiance, ctx.image(feedback ? kLegacyHistRadiance : kGbufferDepth).view(),
+                              point_.handle(), kReadOnly)
+                .sampledImage(shared::kLegacyBindingPrevDepth, ctx.image(feedback ? kLegacyHistDepth : kGbufferDepth).view(),
+                              point_.handle(), kReadOnly);
             ctx.flushDescriptors();
             in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, voxelize_.layout(), shared::kSceneSet);
+            push.voxelRound = round.mode;
             for (uint32_t level = 0; level < N; ++level)
               for (uint32_t axis = 0; axis < 3; ++axis) {
                 push.axis = axis + 3 * level;
                 ctx.pushConstants(push);
-                in.scene.drawInstances(ctx.cmd, *group);
+                in.scene.drawInstances(ctx.cmd, *round.instances);
               }
             ctx.endRendering();
           }
@@ -186,6 +221,26 @@ class LegacyPath final : public LightingPath {
               .storageImage(shared::kLegacyBindingOutCoCg, ctx.image(kLegacyCoCg).view());
           ctx.dispatch(in.settings.width, in.settings.height);
         });
+
+    if (feedback)
+      graph.addPass(
+          "legacy.history", graph::PassKind::Transfer,
+          [&](graph::PassBuilder& b) {
+            b.read(kCompositeHdr, Usage::TransferSrc);
+            b.read(kGbufferDepth, Usage::TransferSrc);
+            b.write(kLegacyHistRadiance, Usage::TransferDst);
+            b.write(kLegacyHistDepth, Usage::TransferDst);
+          },
+          [](graph::PassContext& ctx) {
+            for (auto [from, to, aspect] : {std::tuple{kCompositeHdr, kLegacyHistRadiance, VK_IMAGE_ASPECT_COLOR_BIT},
+                                            std::tuple{kGbufferDepth, kLegacyHistDepth, VK_IMAGE_ASPECT_DEPTH_BIT}}) {
+              VkImageCopy region{};
+              region.srcSubresource = region.dstSubresource = {VkImageAspectFlags(aspect), 0, 0, 1};
+              region.extent = ctx.extent(from);
+              vkCmdCopyImage(ctx.cmd, ctx.image(from).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, ctx.image(to).handle(),
+                             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+            }
+          });
 
     LightingOutputs out;
     out.ambientOcclusion = kLegacyAo;
@@ -280,10 +335,12 @@ class LegacyPath final : public LightingPath {
     sceneId_ = in.scene.id();
     plainInstances_.clear();
     emissiveInstances_.clear();
+    allInstances_.clear();
     for (uint32_t i = 0; i < in.sceneData.instances.size(); ++i) {
       const auto& m = in.sceneData.materials[in.sceneData.meshes[in.sceneData.instances[i].mesh].material];
       const bool emits = glm::length(m.emissiveFactor) * m.emissiveStrength > 0.0f;
       (emits ? emissiveInstances_ : plainInstances_).push_back(i);
+      allInstances_.push_back(i);
     }
     point_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "legacy.point");
     linear_ = gpu::Sampler(in.device, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "legacy.linear");
@@ -320,7 +377,9 @@ class LegacyPath final : public LightingPath {
     d.fragmentShader = "legacy/voxelize.frag";
     d.layout.bindings = {{shared::kLegacyBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                          {shared::kLegacyBindingShadow, sampled},
-                         {shared::kLegacyBindingRadiance, storage}};
+                         {shared::kLegacyBindingRadiance, storage},
+                         {shared::kLegacyBindingPrevRadiance, sampled},
+                         {shared::kLegacyBindingPrevDepth, sampled}};
     d.layout.extraSets = {in.scene.table().layout()};
     d.layout.pushConstantBytes = sizeof(LegacyPush);
     d.vertexBindings = scene::GpuScene::vertexBindings();
@@ -333,8 +392,9 @@ class LegacyPath final : public LightingPath {
 
   uint64_t sceneId_ = 0;
   uint64_t voxelKey_ = 0;
+  uint32_t settle_ = 0;
   bool voxelized_ = false;
-  std::vector<uint32_t> plainInstances_, emissiveInstances_;
+  std::vector<uint32_t> plainInstances_, emissiveInstances_, allInstances_;
   LegacyClipmapFit fit_;
   gpu::Sampler point_, linear_, shadowSampler_;
   gpu::Pipeline ssao_, voxelize_, mip_, cones_, upsample_;

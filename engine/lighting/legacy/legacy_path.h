@@ -14,6 +14,8 @@ inline constexpr const char* kConeCoCgAo = "legacy.cones.coCgAo";
 inline constexpr const char* kLegacyAo = "legacy.ao";
 inline constexpr const char* kLegacyShY = "legacy.gi.shY";
 inline constexpr const char* kLegacyCoCg = "legacy.gi.coCg";
+inline constexpr const char* kLegacyHistRadiance = "legacy.history.radiance";
+inline constexpr const char* kLegacyHistDepth = "legacy.history.depth";
 
 struct LegacyClipmapFit {
   shared::LegacyClipmap clipmap{};

@@ -1,0 +1,270 @@
+// The legacy path on lavapipe at small sizes, on scenes with known answers: the open plane
+// (AO = 1, irradiance = pi L), AO in a corner of the Cornell box, a box voxelized exactly,
+// colour bleeding, persistent voxels, and light leaking into the atrium's interior room.
+#include "gpu_fixture.h"
+
+#include "lighting/legacy/legacy_path.h"
+#include "lighting/rt/rt_path.h"
+#include "shared/packing.h"
+#include "shared/sh.h"
+
+#include <cstring>
+
+namespace tl::test {
+namespace {
+
+using namespace lighting;
+
+class LegacyTest : public GpuTest {
+ protected:
+  void TearDown() override {
+    session().setPath("direct");
+    session().settings() = RenderSettings{};
+    GpuTest::TearDown();
+  }
+  void render(const char* path, uint32_t w, uint32_t h, uint32_t frames, const std::vector<std::string>& names) {
+    auto& s = session();
+    s.setPath(path);
+    s.setSize(w, h);
+    for (auto& n : names) s.requestBuffer(n);
+    s.renderFrames(frames);
+  }
+};
+
+glm::vec3 irradianceAt(const std::vector<float>& shY, const std::vector<float>& coCg, uint32_t coCgChannels, size_t i,
+                       glm::vec3 n) {
+  shared::ShLumaCoCg sh = shared::tlShMake(glm::vec4(shY[4 * i], shY[4 * i + 1], shY[4 * i + 2], shY[4 * i + 3]),
+                                           glm::vec2(coCg[coCgChannels * i], coCg[coCgChannels * i + 1]));
+  return shared::tlShResolveIrradiance(sh, n);
+}
+
+TEST_F(LegacyTest, PlaneUnderUniformSkyHasNoOcclusionAndIrradiancePiL) {
+  auto& s = session();
+  s.loadScene(contentFile("plane.gltf"));
+  const glm::vec3 sky = s.lighting().skyRadiance;
+  render("legacy", 64, 40, 1, {kLegacyAo, kLegacyShY, kLegacyCoCg, "gbuffer.depth"});
+  auto ao = s.buffer(kLegacyAo).texels(), shY = s.buffer(kLegacyShY).texels(), coCg = s.buffer(kLegacyCoCg).texels();
+  auto depth = s.buffer("gbuffer.depth").texels();
+  double worstAo = 0.0, worstE = 0.0;
+  size_t surface = 0, worstPixel = 0;
+  for (size_t i = 0; i < depth.size(); ++i) {
+    if (depth[i] <= 0.0f) continue;
+    ++surface;
+    if (std::abs(double(ao[i]) - 1.0) > worstAo) worstAo = std::abs(double(ao[i]) - 1.0), worstPixel = i;
+    glm::vec3 e = irradianceAt(shY, coCg, 2, i, glm::vec3(0, 1, 0));
+    for (int c = 0; c < 3; ++c) worstE = std::max(worstE, std::abs(e[c] / (shared::kPi * sky[c]) - 1.0));
+  }
+  ASSERT_GT(surface, depth.size() / 4);
+  RecordProperty("worst_ao_error", std::to_string(worstAo));
+  RecordProperty("worst_irradiance_error", std::to_string(worstE));
+  EXPECT_LE(worstAo, 0.02) << "at pixel " << worstPixel % 64 << ", " << worstPixel / 64;
+  EXPECT_LE(worstE, 0.05) << "cone-traced sky irradiance relative to pi L";
+}
+
+// The Cornell box's back wall (by instance id): AO in its top-left corner (against the
+// ceiling and the red wall) against its centre.
+TEST_F(LegacyTest, AoDarkensACornerOfTheCornellBox) {
+  auto& s = session();
+  s.loadScene(contentFile("cornell.gltf"));
+  uint32_t backWall = 0;
+  for (size_t i = 0; i < s.scene().instances.size(); ++i)
+    if (s.scene().instances[i].name == "back_wall") backWall = uint32_t(i) + 1;
+  ASSERT_NE(backWall, 0u);
+  const uint32_t w = 96, h = 96;
+  render("legacy", w, h, 1, {kLegacyAo, "gbuffer.instanceId"});
+  auto ao = s.buffer(kLegacyAo).texels();
+  const auto& ids = s.buffer("gbuffer.instanceId");
+  std::vector<uint32_t> id(w * h);
+  std::memcpy(id.data(), ids.bytes.data(), id.size() * 4);
+  uint32_t x0 = w, x1 = 0, y0 = h, y1 = 0;
+  for (uint32_t i = 0; i < w * h; ++i)
+    if (id[i] == backWall) x0 = std::min(x0, i % w), x1 = std::max(x1, i % w), y0 = std::min(y0, i / w), y1 = std::max(y1, i / w);
+  ASSERT_GT(x1, x0 + 20);
+  auto mean = [&](uint32_t ax, uint32_t bx, uint32_t ay, uint32_t by) {
+    double sum = 0.0;
+    int n = 0;
+    for (uint32_t y = ay; y <= by; ++y)
+      for (uint32_t x = ax; x <= bx; ++x)
+        if (id[y * w + x] == backWall) sum += ao[y * w + x], ++n;
+    return n ? sum / n : -1.0;
+  };
+  const uint32_t cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+  double centre = mean(cx - 2, cx + 2, cy - 2, cy + 2);
+  double corner = mean(x0, x0 + 1, y0, y0 + 1);
+  RecordProperty("ao_centre", std::to_string(centre));
+  RecordProperty("ao_corner", std::to_string(corner));
+  EXPECT_GT(centre, 0.0);
+  EXPECT_GT(corner, 0.0);
+  EXPECT_LT(corner, centre - 0.1) << "corner " << corner << ", centre " << centre;
+}
+
+// A cube whose faces sit a quarter voxel inside voxels 16 and 47 (so no edge falls on a
+// pixel centre of the voxelizing raster): exactly its 32^3 - 30^3 shell is occupied.
+TEST_F(LegacyTest, VoxelizationCoversAKnownBoxExactly) {
+  auto scene = std::make_unique<scene::Scene>();
+  scene->name = "voxel_box";
+  scene->materials.push_back({});
+  scene->materials[0].metallic = 0.0f;
+  scene::Mesh mesh;
+  mesh.name = "cube";
+  const float h = 15.75f / 32.0f;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sign = -1; sign <= 1; sign += 2) {
+      glm::vec3 n(0.0f);
+      n[axis] = float(sign);
+      glm::vec3 u(0.0f), v(0.0f);
+      u[(axis + 1) % 3] = h;
+      v[(axis + 2) % 3] = h;
+      uint32_t base = uint32_t(mesh.vertices.size());
+      for (glm::vec2 c : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)})
+        mesh.vertices.push_back({n * h + u * c.x + v * c.y, n});
+      mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+  for (auto& vtx : mesh.vertices) mesh.bounds.extend(glm::dvec3(vtx.position));
+  scene->meshes.push_back(mesh);
+  scene::Instance inst;
+  inst.name = "cube";
+  inst.worldBounds = mesh.bounds;
+  scene->instances.push_back(inst);
+  scene->bounds = mesh.bounds;
+  auto& s = session();
+  s.installScene(std::move(scene));
+  s.settings().legacyLevel0Extent = 2.0f;  // 64 voxels of 1/32 m from -1 m: faces at voxel coordinates 16.25, 47.75
+  s.settings().legacyVoxelResolution = 64;
+  render("legacy", 32, 32, 1, {kVoxelRadiance});
+  const auto& rb = s.buffer(kVoxelRadiance);
+  ASSERT_EQ(rb.extent.width, 6u * 64u);
+  ASSERT_EQ(rb.extent.depth, 64u) << "one level for a scene smaller than the finest level";
+  auto t = rb.texels();
+  size_t occupied = 0, outside = 0;
+  for (uint32_t z = 0; z < 64; ++z)
+    for (uint32_t y = 0; y < 64; ++y)
+      for (uint32_t x = 0; x < 64; ++x) {
+        bool any = false;
+        for (uint32_t f = 0; f < 6; ++f) any |= t[((size_t(z) * 64 + y) * 384 + x + f * 64) * 4 + 3] > 0.0f;
+        occupied += any;
+        bool shell = x >= 16 && x <= 47 && y >= 16 && y <= 47 && z >= 16 && z <= 47 &&
+                     (x == 16 || x == 47 || y == 16 || y == 47 || z == 16 || z == 47);
+        outside += any && !shell;
+      }
+  EXPECT_EQ(occupied, size_t(32 * 32 * 32 - 30 * 30 * 30));
+  EXPECT_EQ(outside, 0u);
+}
+
+// Red-to-green ratio of the irradiance on the floor next to each wall, for one path.
+struct Bleeding {
+  double left = 0.0, right = 0.0;
+};
+Bleeding cornellBleeding(session::Session& s, const char* path, uint32_t frames) {
+  const uint32_t w = 64, h = 64;
+  const bool rt = std::string(path) == "rt";
+  const std::string shYName = rt ? kShY : kLegacyShY, coCgName = rt ? kCoCgAo : kLegacyCoCg;
+  s.setPath(path);
+  s.setSize(w, h);
+  for (const std::string& n : {shYName, coCgName, std::string("gbuffer.normal")}) s.requestBuffer(n);
+  s.renderFrames(frames);
+  const auto& coCgBuffer = s.buffer(coCgName);
+  auto shY = s.buffer(shYName).texels(), coCg = coCgBuffer.texels(), normal = s.buffer("gbuffer.normal").texels();
+  uint32_t lo = w, hi = 0;
+  std::vector<bool> floor(w * h);
+  for (uint32_t i = 0; i < w * h; ++i) {
+    glm::vec3 n = shared::tlOctDecode(glm::vec2(normal[2 * i], normal[2 * i + 1]));
+    if (n.y > 0.95f) floor[i] = true, lo = std::min(lo, i % w), hi = std::max(hi, i % w);
+  }
+  glm::dvec3 left(0.0), right(0.0);
+  for (uint32_t i = 0; i < w * h; ++i) {
+    if (!floor[i]) continue;
+    glm::dvec3 e(irradianceAt(shY, coCg, coCgBuffer.channels(), i, glm::vec3(0, 1, 0)));
+    if (i % w <= lo + (hi - lo) / 5) left += e;
+    if (i % w >= hi - (hi - lo) / 5) right += e;
+  }
+  return {left.r / left.g, right.r / right.g};
+}
+
+TEST_F(LegacyTest, CornellFloorIsRedderNextToTheRedWall) {
+  auto& s = session();
+  s.loadScene(contentFile("cornell.gltf"));
+  Bleeding b = cornellBleeding(s, "legacy", 8);  // light bounces through the screen over a few frames
+  RecordProperty("red_to_green_left", std::to_string(b.left));
+  RecordProperty("red_to_green_right", std::to_string(b.right));
+  EXPECT_GT(b.left, 1.01 * b.right) << "left (red wall) R/G " << b.left << ", right (green wall) " << b.right;
+}
+
+TEST_F(LegacyTest, RayTracedBleedingIsStrongerThanLegacy) {
+  auto& s = session();
+  if (!s.device().rayTracing().pipeline) GTEST_SKIP() << s.device().rayTracing().unavailableReason;
+  s.loadScene(contentFile("cornell.gltf"));
+  Bleeding legacy = cornellBleeding(s, "legacy", 8);
+  Bleeding rt = cornellBleeding(s, "rt", 24);
+  const double legacyContrast = legacy.left / legacy.right, rtContrast = rt.left / rt.right;
+  RecordProperty("legacy_contrast", std::to_string(legacyContrast));
+  RecordProperty("rt_contrast", std::to_string(rtContrast));
+  EXPECT_GT(rtContrast, legacyContrast) << "R/G next to the red wall over R/G next to the green wall";
+}
+
+TEST_F(LegacyTest, VoxelsPersistWhileNothingTheyHoldChanges) {
+  auto& s = session();
+  s.loadScene(contentFile("atrium.gltf"));
+  render("legacy", 80, 45, 1, {});
+  EXPECT_NE(s.graphDump().find("legacy.voxelize"), std::string::npos) << "the first frame builds the voxels";
+  // A few more rebuilds let light bounce through the screen, then they are kept.
+  render("legacy", 80, 45, s.settings().legacySettleFrames + 1, {"composite.hdr"});
+  auto settled = s.buffer("composite.hdr").texels();
+  render("legacy", 80, 45, 1, {"composite.hdr", kLegacyShY, kLegacyAo});
+  EXPECT_EQ(s.graphDump().find("legacy.voxelize"), std::string::npos) << "a still camera keeps them";
+  auto kept = s.buffer("composite.hdr").texels();
+  EXPECT_EQ(countNonFinite(kept), 0u);
+  EXPECT_EQ(countNonFinite(s.buffer(kLegacyShY).texels()), 0u);
+  EXPECT_EQ(countNonFinite(s.buffer(kLegacyAo).texels()), 0u);
+  ASSERT_EQ(settled.size(), kept.size());
+  double worst = 0.0;
+  for (size_t i = 0; i < kept.size(); ++i) worst = std::max(worst, double(std::abs(settled[i] - kept[i])));
+  EXPECT_LE(worst, 1e-3) << "the kept voxels light the frame as the last rebuilt ones did";
+  // Moving the sun changes what the voxels hold: they are rebuilt.
+  session::Lighting light = s.lighting();
+  light.sunDirection = glm::normalize(glm::dvec3(0.5, -0.6, -0.3));
+  s.setLighting(light);
+  render("legacy", 80, 45, 1, {});
+  EXPECT_NE(s.graphDump().find("legacy.voxelize"), std::string::npos);
+}
+
+// Inside the atrium's room, looking up at the underside of its sunlit ceiling (one voxel
+// thick at the default resolution): the legacy path's radiance there against the reference
+// path tracer's. Light leaking through the ceiling would make it several times brighter.
+TEST_F(LegacyTest, LightLeakingIntoTheAtriumRoomIsSmall) {
+  auto& s = session();
+  if (!s.device().rayTracing().pipeline) GTEST_SKIP() << s.device().rayTracing().unavailableReason;
+  s.loadScene(contentFile("atrium.gltf"));
+  session::View v = s.view();
+  v.position = {5.0, 1.2, -7.0};
+  v.forward = glm::normalize(glm::dvec3(0.0, 1.0, -0.35));
+  v.up = {0.0, 0.0, -1.0};
+  v.yfovRadians = 1.0f;
+  s.setView(v);
+  // Ceiling pixels from the legacy frame's G-buffer (the reference path draws none).
+  render("legacy", 48, 48, 8, {"composite.hdr", "gbuffer.normal"});
+  auto n = s.buffer("gbuffer.normal").texels();
+  std::vector<bool> ceilingPixel(n.size() / 2);
+  for (size_t i = 0; i < ceilingPixel.size(); ++i)
+    ceilingPixel[i] = shared::tlOctDecode(glm::vec2(n[2 * i], n[2 * i + 1])).y < -0.95f;
+  auto mean = [&](const char* image) {
+    auto c = s.buffer(image).texels();
+    const uint32_t channels = s.buffer(image).channels();
+    double sum = 0.0;
+    int count = 0;
+    for (size_t i = 0; i < ceilingPixel.size(); ++i)
+      if (ceilingPixel[i]) sum += shared::tlLuminance(glm::vec3(c[channels * i], c[channels * i + 1], c[channels * i + 2])), ++count;
+    return count ? sum / count : -1.0;
+  };
+  const double legacy = mean("composite.hdr");
+  s.settings().referenceSamplesPerFrame = 64;
+  render("reference", 48, 48, 4, {"reference.radiance"});
+  const double reference = mean("reference.radiance");
+  RecordProperty("ceiling_radiance_legacy", std::to_string(legacy));
+  RecordProperty("ceiling_radiance_reference", std::to_string(reference));
+  ASSERT_GT(reference, 0.0) << "the camera should see the ceiling";
+  EXPECT_LT(legacy, 1.5 * reference) << "legacy " << legacy << " vs reference " << reference;
+}
+
+}  // namespace
+}  // namespace tl::test
