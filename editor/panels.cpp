@@ -3,6 +3,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtx/matrix_decompose.hpp>
+#include <fmt/format.h>
 #include <imgui.h>
 
 #include <algorithm>
@@ -136,6 +137,89 @@ void inspectorPanel(EditorApp& app) {
   ImGui::End();
 }
 
+// A distance in metres where 0 means "scaled to the scene": shown as "auto" with the value.
+bool distanceParameter(const char* label, float& value, float autoValue, const char* help) {
+  bool changed = ImGui::DragFloat(label, &value, 0.01f, 0.0f, 10000.0f, value > 0.0f ? "%.2f m" : "auto");
+  value = std::max(value, 0.0f);
+  tooltip(fmt::format("{}\n0 = scaled to the scene: {:.2f} m now", help, autoValue).c_str());
+  return changed;
+}
+
+bool divisorParameter(const char* label, uint32_t& divisor, std::initializer_list<uint32_t> choices, const char* help) {
+  bool changed = false;
+  ImGui::TextUnformatted(label);
+  for (uint32_t d : choices) {
+    ImGui::SameLine();
+    const std::string name = d == 1 ? "full" : (d == 2 ? "half" : "quarter");
+    if (ImGui::RadioButton((name + "##" + label).c_str(), divisor == d)) divisor = d, changed = true;
+  }
+  tooltip(help);
+  return changed;
+}
+
+// The active path's parameters, with units; changing one restarts accumulation.
+void pathParameters(EditorApp& app) {
+  auto& session = app.session();
+  auto& s = session.settings();
+  const auto& b = session.scene().bounds;
+  const float scale = b.valid() ? float(glm::length(b.size())) : 1.0f;
+  bool changed = false;
+  if (session.path() == "legacy") {
+    ImGui::Separator();
+    ImGui::TextUnformatted("Legacy: GTAO + voxel GI");
+    changed |= distanceParameter("AO radius", s.legacyAoRadius, lighting::sceneScaledAoRadius(scale),
+                                 "Reach of SSAO and voxel AO");
+    changed |= ImGui::SliderFloat("AO thickness", &s.legacyAoThickness, 0.0f, 1.0f, "%.2f");
+    tooltip("How fast a horizon falls back behind thin occluders: 0 = infinitely thick, 1 = paper thin");
+    int slices = int(s.legacyAoSlices), steps = int(s.legacyAoSteps);
+    if (ImGui::SliderInt("AO directions", &slices, 1, 4)) s.legacyAoSlices = uint32_t(slices), changed = true;
+    tooltip("Slice directions per pixel (the 2x2 upsample averages four rotations of them)");
+    if (ImGui::SliderInt("AO steps", &steps, 2, 12)) s.legacyAoSteps = uint32_t(steps), changed = true;
+    tooltip("Depth samples per direction and side");
+    changed |= divisorParameter("SSAO", s.legacyAoDivisor, {1, 2}, "SSAO resolution");
+    changed |= divisorParameter("Cones", s.legacyConeDivisor, {1, 2, 4}, "Cone tracing resolution");
+    int resolution = int(s.legacyVoxelResolution);
+    if (ImGui::SliderInt("Voxels per side", &resolution, 32, 128)) {
+      uint32_t r = 32;
+      while (r < uint32_t(resolution) && r < 128) r *= 2;
+      s.legacyVoxelResolution = r, changed = true;
+    }
+    tooltip("Clipmap resolution R (a power of two): each level holds R^3 voxels");
+    changed |= distanceParameter("Finest level", s.legacyLevel0Extent, std::min(scale, 0.25f * float(s.legacyVoxelResolution)),
+                                 "Side of the finest clipmap level; coarser levels double it until the scene is covered");
+    changed |= distanceParameter("Cone range", s.legacyConeRange, lighting::sceneScaledRayLength(scale),
+                                 "Cones stop after this distance");
+    changed |= ImGui::SliderFloat("Cone step", &s.legacyConeStep, 0.25f, 1.5f, "%.2f x diameter");
+    tooltip("Cone step as a fraction of its diameter: smaller is slower and more exact");
+    changed |= ImGui::Checkbox("Multi-bounce from the screen", &s.legacyScreenRadiance);
+    tooltip("Voxels seen last frame take its shaded radiance, so light bounces more than once");
+  } else if (session.path() == "rt") {
+    ImGui::Separator();
+    ImGui::TextUnformatted("RT: RTGI + RTAO");
+    changed |= distanceParameter("AO radius##rt", s.rtAoRadius, lighting::sceneScaledAoRadius(scale),
+                                 "A hit closer than this occludes (RTAO)");
+    changed |= distanceParameter("Ray length", s.rtRayLength, lighting::sceneScaledRayLength(scale),
+                                 "GI rays stop after this distance; also the TLAS culling margin");
+    changed |= distanceParameter("RT to sky blend", s.rtBlendDistance, lighting::sceneScaledBlendDistance(scale),
+                                 "Beyond this view distance RT GI fades out (Metro: 250 m)");
+    changed |= ImGui::Checkbox("Screen-space pre-trace", &s.rtPretrace);
+    tooltip("March the depth buffer first; real rays only where it finds nothing");
+    changed |= ImGui::SliderFloat("Pre-trace length", &s.rtPretracePixels, 8.0f, 512.0f, "%.0f px");
+    int steps = int(s.rtPretraceSteps);
+    if (ImGui::SliderInt("Pre-trace steps", &steps, 4, 32)) s.rtPretraceSteps = uint32_t(steps), changed = true;
+    changed |= ImGui::SliderFloat("Depth thickness", &s.rtThickness, 0.001f, 0.2f, "%.3f x distance");
+    tooltip("Assumed thickness of what the depth buffer shows, as a fraction of its distance");
+    int frames = int(s.rtMaxAccumFrames);
+    if (ImGui::SliderInt("Accumulation", &frames, 1, 128, "%d frames")) s.rtMaxAccumFrames = uint32_t(frames), changed = true;
+    tooltip("Temporal accumulation window while the camera holds still");
+    changed |= ImGui::SliderFloat("RT mesh triangles", &s.rtSimplifyRatio, 0.05f, 1.0f, "%.2f x");
+    tooltip("Simplified BLAS meshes (Metro: about 4x fewer triangles); 1 = the full mesh");
+    changed |= ImGui::Checkbox("Multi-bounce from the screen##rt", &s.rtScreenRadiance);
+    tooltip("Hits seen last frame take its shaded radiance, so light bounces more than once");
+  }
+  if (changed) session.resetHistory();
+}
+
 void lightingPanel(EditorApp& app) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(display.x - 340, 20), ImGuiCond_FirstUseEver);
@@ -196,6 +280,7 @@ void lightingPanel(EditorApp& app) {
     l.skyRadiance = skyColor * skyL;
     session.setLighting(l);
   }
+  pathParameters(app);
   ImGui::Separator();
   ImGui::SliderFloat("Render scale", &app.settings().renderScale, 0.1f, 1.0f, "%.2f");
   tooltip("Engine resolution relative to the viewport panel; lower keeps software rendering interactive");

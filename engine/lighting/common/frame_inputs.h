@@ -10,6 +10,7 @@
 #include "scene/scene.h"
 #include "shared/frame.h"
 
+#include <algorithm>
 #include <cstdint>
 
 namespace tl::lighting {
@@ -57,6 +58,13 @@ struct RenderSettings {
   float legacyConeRange = 0.0f;     // cones stop after this distance (m)
   float legacyConeStep = 1.0f;      // cone step as a fraction of its diameter       // benchmark: also trace the same rays with a trivial kernel (rt.rawRays)
 };
+
+// Defaults that scale with the scene (sceneScale: the diagonal of its bounds, metres), shared
+// by the paths and the editor's lighting panel: an AO radius of 5% of the scene between
+// 0.1 and 1 m (Metro's SSAO reached about 1 m), rays and cones as long as the scene.
+inline float sceneScaledAoRadius(float sceneScale) { return std::clamp(0.05f * sceneScale, 0.1f, 1.0f); }
+inline float sceneScaledRayLength(float sceneScale) { return std::max(sceneScale, 1e-3f); }
+inline float sceneScaledBlendDistance(float sceneScale) { return 2.0f * std::max(sceneScale, 1e-3f); }
 
 // Resources the frame imports from outside the graph (owned by the session and scene).
 inline constexpr const char* kFrameConstants = "frame.constants";

@@ -39,11 +39,11 @@ class LegacyPath final : public LightingPath {
     const float scale = std::max(in.constants.sceneScale, 1e-3f);
     LegacyPush push{};
     push.clipmap = fit.clipmap;
-    push.aoRadius = s.legacyAoRadius > 0.0f ? s.legacyAoRadius : std::clamp(0.05f * scale, 0.1f, 1.0f);
+    push.aoRadius = s.legacyAoRadius > 0.0f ? s.legacyAoRadius : sceneScaledAoRadius(scale);
     push.aoThickness = std::clamp(s.legacyAoThickness, 0.0f, 1.0f);
     push.aoSlices = std::max(1u, s.legacyAoSlices);
     push.aoSteps = std::max(1u, s.legacyAoSteps);
-    push.coneRange = s.legacyConeRange > 0.0f ? s.legacyConeRange : scale;
+    push.coneRange = s.legacyConeRange > 0.0f ? s.legacyConeRange : sceneScaledRayLength(scale);
     push.coneStep = std::clamp(s.legacyConeStep, 0.2f, 2.0f);
     push.aoDivisor = s.legacyAoDivisor >= 2 ? 2u : 1u;
     push.coneDivisor = s.legacyConeDivisor >= 4 ? 4u : (s.legacyConeDivisor >= 2 ? 2u : 1u);

@@ -36,9 +36,9 @@ class RtPath final : public LightingPath {
     const RenderSettings& s = in.settings;
     const float scale = std::max(in.constants.sceneScale, 1e-3f);
     params_ = RtResolvedParams{};
-    params_.aoRadius = s.rtAoRadius > 0.0f ? s.rtAoRadius : std::clamp(0.05f * scale, 0.1f, 1.0f);
-    params_.rayLength = s.rtRayLength > 0.0f ? s.rtRayLength : scale;
-    params_.blendDistance = s.rtBlendDistance > 0.0f ? s.rtBlendDistance : 2.0f * scale;
+    params_.aoRadius = s.rtAoRadius > 0.0f ? s.rtAoRadius : sceneScaledAoRadius(scale);
+    params_.rayLength = s.rtRayLength > 0.0f ? s.rtRayLength : sceneScaledRayLength(scale);
+    params_.blendDistance = s.rtBlendDistance > 0.0f ? s.rtBlendDistance : sceneScaledBlendDistance(scale);
     params_.tMin = 1.5f * scene_->stats().maxDeviation + 1e-5f * scale;
 
     RtCulling culling;
