@@ -256,6 +256,10 @@ void lightingPanel(EditorApp& app) {
   changed |= ImGui::DragFloat("Sun irradiance", &sunE, 0.1f, 0.0f, 1000.0f, "%.2f W/m2");
   tooltip("Irradiance E on a surface facing the sun; a white Lambertian surface facing it shows E/pi");
   changed |= ImGui::ColorEdit3("Sun colour", &sunColor.x);
+  float sunSize = glm::degrees(l.sunAngularRadius);
+  if (ImGui::SliderFloat("Sun size", &sunSize, 0.05f, 5.0f, "%.2f deg", ImGuiSliderFlags_Logarithmic))
+    l.sunAngularRadius = glm::radians(sunSize), changed = true;
+  tooltip("Angular radius of the sun (the real one: 0.27 deg): sets the width of soft shadows (PCSS)");
   float skyL = std::max({l.skyRadiance.r, l.skyRadiance.g, l.skyRadiance.b});
   glm::vec3 skyColor = skyL > 0.0f ? l.skyRadiance / skyL : glm::vec3(1.0f);
   changed |= ImGui::DragFloat("Sky radiance", &skyL, 0.01f, 0.0f, 100.0f, "%.3f W/m2/sr");

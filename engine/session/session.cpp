@@ -169,6 +169,7 @@ void Session::buildFrameConstants(shared::FrameConstants& fc) const {
   fc.viewport = glm::vec4(settings_.width, settings_.height, 1.0f / settings_.width, 1.0f / settings_.height);
   fc.shadowParams = glm::vec4(float(fit.texelWorld), float(fit.texelWorld * settings_.shadowDepthBiasTexels),
                               settings_.shadowNormalOffsetTexels, float(settings_.shadowMapSize));
+  fc.shadowSoftness = glm::vec4(float(fit.depthRange), settings_.pcssMaxRadiusTexels, settings_.softShadows ? 1.0f : 0.0f, 0.0f);
   fc.exposure = std::exp2(-exposureEv());
   fc.frameIndex = uint32_t(frameIndex_);
   fc.flags = glm::length(lighting_.sunIrradiance) > 0.0f ? shared::kFrameFlagSunShadows : 0u;

@@ -87,6 +87,7 @@ SunShadowFit fitSunShadow(const View& view, double aspect, const scene::Bounds& 
   fit.viewProj = proj * lightView;
   fit.texelWorld = texel;
   fit.radius = radius;
+  fit.depthRange = zMax - zMin;
   return fit;
 }
 

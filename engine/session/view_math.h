@@ -24,6 +24,7 @@ struct SunShadowFit {
   glm::dmat4 viewProj;     // camera-relative world -> shadow clip (x,y in [-1,1], z in [0,1])
   double texelWorld = 0;   // world size of one shadow-map texel
   double radius = 0;       // half-extent of the orthographic window
+  double depthRange = 0;   // metres covered by the map's depth range [0, 1]
 };
 
 // Fits an orthographic sun view to what the camera sees: the smaller of the bounding

@@ -27,6 +27,8 @@ vec3 cameraRelativePosition(vec2 uv, float depth) {
   return p.xyz / p.w;
 }
 
+#define TL_SUN_SHADOW_PCSS
+layout(set = 0, binding = kCompositeShadowDepth) uniform sampler2D sunShadowDepth;
 #include "common/sun_shadow.glsl"
 
 void main() {
@@ -48,7 +50,7 @@ void main() {
   vec3 radiance = texelFetch(gEmissive, p, 0).rgb;
   float nl = dot(n, frame.sunToLight.xyz);
   if (nl > 0.0) {
-    vec3 sun = frame.sunIrradiance.rgb * (nl * sunVisibility(position, n));
+    vec3 sun = frame.sunIrradiance.rgb * (nl * sunVisibilitySoft(position, n, p));
     radiance += sun * tlBrdf(s, n, v, frame.sunToLight.xyz);
   }
   // Indirect diffuse. Without a path's GI: the uniform sky, irradiance pi*L on an

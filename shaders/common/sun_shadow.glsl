@@ -1,5 +1,7 @@
 // Sun visibility through the shadow map, shared by the composite and the voxelizer. The
-// includer declares `frame` (FrameConstants) and `sunShadow` (sampler2DShadow).
+// includer declares `frame` (FrameConstants) and `sunShadow` (sampler2DShadow); with
+// TL_SUN_SHADOW_PCSS defined also `sunShadowDepth` (sampler2D, the same map) for
+// percentage-closer soft shadows.
 // 3x3 PCF of hardware 2x2 comparisons. Receivers are pushed along the normal by a few
 // texels and towards the sun by the depth bias, both in world units, which keeps acne
 // away at any distance from the origin.
@@ -20,3 +22,49 @@ float sunVisibility(vec3 position, vec3 normal) {
   return sum / 9.0;
 }
 
+
+#ifdef TL_SUN_SHADOW_PCSS
+// Percentage-closer soft shadows (Fernando 2005) for a sun of angular radius theta: the
+// blockers' mean depth over the region that could hide the sun from the receiver gives the
+// penumbra half-width tan(theta) * (receiver - blocker) in metres, and PCF over that radius.
+// Sixteen Poisson taps per step, rotated per pixel.
+const vec2 kPoisson16[16] = vec2[16](
+    vec2(-0.94201624, -0.39906216), vec2(0.94558609, -0.76890725), vec2(-0.09418410, -0.92938870),
+    vec2(0.34495938, 0.29387760), vec2(-0.91588581, 0.45771432), vec2(-0.81544232, -0.87912464),
+    vec2(-0.38277543, 0.27676845), vec2(0.97484398, 0.75648379), vec2(0.44323325, -0.97511554),
+    vec2(0.53742981, -0.47373420), vec2(-0.26496911, -0.41893023), vec2(0.79197514, 0.19090188),
+    vec2(-0.24188840, 0.99706507), vec2(-0.81409955, 0.91437590), vec2(0.19984126, 0.78641367),
+    vec2(0.14383161, -0.14100790));
+
+float sunVisibilitySoft(vec3 position, vec3 normal, ivec2 pixel) {
+  if ((frame.flags & kFrameFlagSunShadows) == 0u) return 1.0;
+  float texel = frame.shadowParams.x, size = frame.shadowParams.w;
+  float tanSun = tan(frame.sunToLight.w);
+  float metres = frame.shadowSoftness.x;
+  float maxRadius = frame.shadowSoftness.y;
+  if (frame.shadowSoftness.z == 0.0) return sunVisibility(position, normal);
+  vec3 l = frame.sunToLight.xyz;
+  float slope = sqrt(max(1.0 - dot(normal, l) * dot(normal, l), 0.0));
+  vec3 offset = normal * (frame.shadowParams.z * texel * max(slope, 0.2)) + l * frame.shadowParams.y;
+  vec4 clip = frame.sunViewProj * vec4(position + offset, 1.0);
+  vec3 s = clip.xyz / clip.w;
+  if (s.z >= 1.0) return 1.0;
+  vec2 uv = s.xy * 0.5 + 0.5;
+  // Any blocker that can hide part of the sun lies within tan(theta) * (its height) of the
+  // receiver: search that far (at most the largest filter).
+  float searchTexels = clamp(tanSun * s.z * metres / texel, 1.0, maxRadius);
+  if (searchTexels <= 1.5) return sunVisibility(position, normal);  // penumbra below a texel: plain PCF
+  float angle = 6.2831853 * fract(52.9829189 * fract(dot(vec2(pixel), vec2(0.06711056, 0.00583715))));
+  mat2 rotation = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+  float blockerSum = 0.0, blockers = 0.0;
+  for (int i = 0; i < 16; ++i) {
+    float d = textureLod(sunShadowDepth, uv + rotation * kPoisson16[i] * (searchTexels / size), 0.0).r;
+    if (d < s.z) blockerSum += d, blockers += 1.0;
+  }
+  if (blockers == 0.0) return 1.0;
+  float penumbraTexels = clamp(tanSun * (s.z - blockerSum / blockers) * metres / texel, 1.0, maxRadius);
+  float sum = 0.0;
+  for (int i = 0; i < 16; ++i) sum += texture(sunShadow, vec3(uv + rotation * kPoisson16[i] * (penumbraTexels / size), s.z));
+  return sum / 16.0;
+}
+#endif

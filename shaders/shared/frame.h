@@ -18,6 +18,7 @@ struct FrameConstants {
   vec4 skyRadiance;      // rgb: uniform sky radiance L
   vec4 viewport;         // width, height, 1/width, 1/height
   vec4 shadowParams;     // x: texel size (world m), y: depth bias (world m), z: normal offset (texels), w: map size
+  vec4 shadowSoftness;   // x: metres per unit of shadow-map depth, y: largest PCSS filter radius (texels), z: 1 = PCSS on
   float exposure;        // multiplier applied before tonemapping: 2^-EV (shared/color.h tlExposureScale)
   uint frameIndex;
   uint flags;            // kFrameFlag*

@@ -32,6 +32,7 @@ TL_CONST uint kCompositeOutput = 7;
 TL_CONST uint kCompositeAo = 8;        // the path's AO (r), 1 = unoccluded
 TL_CONST uint kCompositeShY = 9;       // the path's diffuse irradiance, L1 SH of luma (shared/sh.h)
 TL_CONST uint kCompositeCoCg = 10;     // its chroma (xy)
+TL_CONST uint kCompositeShadowDepth = 11;  // the sun shadow map again, plain sampler (PCSS blocker search)
 
 TL_CONST uint kCompositeHasAo = 1u;
 TL_CONST uint kCompositeHasGi = 2u;

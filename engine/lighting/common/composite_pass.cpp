@@ -48,7 +48,8 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
                          {shared::kCompositeOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                          {shared::kCompositeAo, sampled},
                          {shared::kCompositeShY, sampled},
-                         {shared::kCompositeCoCg, sampled}};
+                         {shared::kCompositeCoCg, sampled},
+                         {shared::kCompositeShadowDepth, sampled}};
     d.layout.pushConstantBytes = sizeof(shared::CompositePush);
     pipeline_ = gpu::createComputePipeline(in.device, d);
     pointSampler_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "composite.point");
@@ -99,7 +100,8 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
             .storageImage(shared::kCompositeOutput, ctx.image(kCompositeHdr).view())
             .sampledImage(shared::kCompositeAo, ctx.image(ao).view(), point, ro)
             .sampledImage(shared::kCompositeShY, ctx.image(shY).view(), point, ro)
-            .sampledImage(shared::kCompositeCoCg, ctx.image(coCg).view(), point, ro);
+            .sampledImage(shared::kCompositeCoCg, ctx.image(coCg).view(), point, ro)
+            .sampledImage(shared::kCompositeShadowDepth, shadow.view(), point, ro);
         ctx.pushConstants(push);
         ctx.dispatch(in.settings.width, in.settings.height);
       });

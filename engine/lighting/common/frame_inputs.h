@@ -21,6 +21,8 @@ struct RenderSettings {
   uint32_t shadowMapSize = 2048;
   float shadowDepthBiasTexels = 1.5f;  // constant bias, in shadow-map texels of depth
   float shadowNormalOffsetTexels = 1.0f;
+  bool softShadows = true;            // PCSS: penumbrae from the sun's angular size (else 3x3 PCF)
+  float pcssMaxRadiusTexels = 16.0f;  // widest PCSS filter
   // Reference path tracer: scattering events per path (1 = direct light only: sun, sky,
   // emitters; 2 = plus one indirect bounce; ...) and samples per pixel added each frame.
   uint32_t referenceBounces = 8;
