@@ -42,6 +42,8 @@ struct RenderOptions {
   std::string dumpGraph;
   std::optional<uint32_t> spp;
   uint32_t bounces = 8;
+  std::optional<float> sunSizeDegrees;
+  bool hardShadows = false;
 };
 
 void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
@@ -53,6 +55,9 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--sun", o.light.sun, "sun irradiance E (W/m^2-like; white Lambertian facing it shows E/pi), E or r,g,b");
   cmd.add_option("--sky", o.light.sky, "uniform sky radiance L, L or r,g,b");
   cmd.add_option("--exposure", o.light.exposureEv, "exposure in EV (default: from the sun and sky)");
+  cmd.add_option("--sun-size", o.sunSizeDegrees, "angular radius of the sun in degrees (0.27 = the real sun): soft shadows")
+      ->check(CLI::Range(0.01f, 10.0f));
+  cmd.add_flag("--hard-shadows", o.hardShadows, "3x3 PCF sun shadows instead of PCSS soft shadows");
 }
 
 double median(std::vector<double> v) {
@@ -87,6 +92,12 @@ void prepareSession(Session& session, const RenderOptions& o) {
   session.setSize(w, h);
   applyView(session, o.view);
   applyLight(session, o.light);
+  if (o.sunSizeDegrees) {
+    auto light = session.lighting();
+    light.sunAngularRadius = glm::radians(*o.sunSizeDegrees);
+    session.setLighting(light);
+  }
+  session.settings().softShadows = !o.hardShadows;
 }
 
 int runRender(const RenderOptions& o) {

@@ -33,7 +33,10 @@ void main() {
   float stepPixels = radiusPixels / float(steps);
   // 2x2 interleaved rotation: the four half-resolution pixels a full-resolution pixel is
   // filtered from take four different sets of directions.
-  float rotation = (float(((q.y & 1) << 1) | ((q.x & 1) ^ (q.y & 1))) + 0.5) / 4.0;
+  // The pattern turns by a golden-ratio step each frame, so the temporal filter gathers new
+  // directions while the camera holds still.
+  float rotation = fract((float(((q.y & 1) << 1) | ((q.x & 1) ^ (q.y & 1))) + 0.5) / 4.0 +
+                         float(frame.frameIndex & 255u) * 0.618034 / 4.0);
 
   // Self-normalised over the slices: a slice of an unoccluded surface seen at an angle
   // integrates to lenN (cos g + g sin g), which is 1 only on average over all directions, so

@@ -1,7 +1,9 @@
 #version 460
 // Full resolution from the reduced-resolution SSAO and cone tracing: for each, a depth-aware
 // filter over the 2x2 reduced texels around the pixel (for the SSAO this also averages its
-// 2x2 rotation pattern). AO = SSAO x voxel AO.
+// 2x2 rotation pattern). AO = SSAO x voxel AO. The SSAO then accumulates over frames
+// (its directions turn each frame): reprojected with the motion vectors, history rejected off
+// screen or on another surface (view-depth test), weight 1/n up to aoHistory frames.
 #extension GL_GOOGLE_include_directive : require
 #include "legacy/legacy_common.glsl"
 
@@ -10,6 +12,10 @@ layout(set = 0, binding = kLegacyBindingAoRaw) uniform sampler2D aoRaw;
 layout(set = 0, binding = kLegacyBindingConeShY) uniform sampler2D coneShY;
 layout(set = 0, binding = kLegacyBindingConeCoCgAo) uniform sampler2D coneCoCgAo;
 layout(set = 0, binding = kLegacyBindingOutAo, r16f) uniform writeonly image2D aoOut;
+layout(set = 0, binding = kLegacyBindingAoHistory) uniform sampler2D aoHistory;
+layout(set = 0, binding = kLegacyBindingSsaoOut, rg16f) uniform writeonly image2D ssaoOut;
+layout(set = 0, binding = kLegacyBindingPrevDepth) uniform sampler2D previousDepth;
+layout(set = 0, binding = kLegacyBindingMotion) uniform sampler2D gMotion;
 layout(set = 0, binding = kLegacyBindingOutShY, rgba16f) uniform writeonly image2D shYOut;
 layout(set = 0, binding = kLegacyBindingOutCoCg, rg16f) uniform writeonly image2D coCgOut;
 
@@ -40,6 +46,7 @@ void main() {
   float depth = texelFetch(gDepth, p, 0).r;
   if (depth <= 0.0) {
     imageStore(aoOut, p, vec4(1.0));
+    imageStore(ssaoOut, p, vec4(1.0, 0.0, 0.0, 0.0));
     imageStore(shYOut, p, vec4(0.0));
     imageStore(coCgOut, p, vec4(0.0));
     return;
@@ -70,8 +77,23 @@ void main() {
       giWeight += k;
     }
   float ssao = aoWeight > 0.0 ? clamp(ao / aoWeight, 0.0, 1.0) : 1.0;
+  float frames = 1.0;
+  if (push.aoHistory > 0u) {
+    vec2 previousUv = (vec2(p) + 0.5) * frame.viewport.zw - texelFetch(gMotion, p, 0).xy;
+    vec4 previousClip = frame.prevViewProj * vec4(pixelPosition(p, depth), 1.0);
+    if (all(greaterThanEqual(previousUv, vec2(0.0))) && all(lessThan(previousUv, vec2(1.0))) && previousClip.w > 0.0) {
+      ivec2 q = ivec2(previousUv * frame.viewport.xy);
+      float previous = texelFetch(previousDepth, q, 0).r;
+      vec2 history = texelFetch(aoHistory, q, 0).rg;
+      if (previous > 0.0 && abs(depthToViewW(previous) - previousClip.w) <= 0.03 * previousClip.w && history.g >= 1.0) {
+        frames = min(history.g + 1.0, float(push.aoHistory));
+        ssao = mix(history.r, ssao, 1.0 / frames);
+      }
+    }
+  }
   float vxao = giWeight > 0.0 ? coCgAo.z / giWeight : 1.0;
   imageStore(aoOut, p, vec4(ssao * vxao));
+  imageStore(ssaoOut, p, vec4(ssao, frames, 0.0, 0.0));
   imageStore(shYOut, p, giWeight > 0.0 ? shY / giWeight : vec4(0.0));
   imageStore(coCgOut, p, vec4(giWeight > 0.0 ? coCgAo.xy / giWeight : vec2(0.0), 0.0, 0.0));
 }

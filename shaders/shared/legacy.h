@@ -44,7 +44,7 @@ struct LegacyPush {
   uint coneDivisor;        // cone tracing resolution: 1 full, 2 half, 4 quarter
   uint voxelRound;         // voxelization: 0 opacity of every face, 1 radiance of the faces a surface looks out of
   uint screenRadiance;     // voxelization: surfaces seen last frame take their shaded radiance from it
-  uint pad2;
+  uint aoHistory;          // upsample: frames the AO may accumulate (0: no valid history)
 };
 
 // Bindings (set 0).
@@ -63,6 +63,9 @@ TL_CONST uint kLegacyBindingOutCoCg = 13;
 TL_CONST uint kLegacyBindingMipSrcRadiance = 15;
 TL_CONST uint kLegacyBindingPrevRadiance = 16;  // last frame's composite radiance
 TL_CONST uint kLegacyBindingPrevDepth = 17;     // last frame's G-buffer depth
+TL_CONST uint kLegacyBindingAoHistory = 18;     // last frame's filtered SSAO (r) and frames accumulated (g)
+TL_CONST uint kLegacyBindingMotion = 19;        // gbuffer.motion
+TL_CONST uint kLegacyBindingSsaoOut = 20;       // filtered, accumulated SSAO (r) and its frames (g)
 TL_END
 
 #ifdef __cplusplus

@@ -54,6 +54,7 @@ struct RenderSettings {
   bool legacyVoxelizeEveryFrame = false;  // rebuild the voxels even when nothing they hold changed
   bool legacyScreenRadiance = true; // voxels seen last frame take its shaded radiance (multi-bounce)
   uint32_t legacySettleFrames = 4;  // after a change, rebuild this many more frames so bounces settle
+  uint32_t legacyAoFrames = 8;      // SSAO temporal accumulation window (1: off)
   uint32_t legacyVoxelResolution = 64;  // R: voxels per clipmap level side
   float legacyLevel0Extent = 0.0f;  // side of the finest clipmap level (m)
   uint32_t legacyMaxLevels = 4;

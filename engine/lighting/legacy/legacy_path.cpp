@@ -83,12 +83,15 @@ class LegacyPath final : public LightingPath {
                                                          "voxels per face, mips 1.. (front-to-back along each face's axis)",
                                                          mips));
     const bool feedback = s.legacyScreenRadiance;
-    if (feedback) {
+    if (feedback)
       graph.declarePersistent(kLegacyHistRadiance, graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
                                                                                 "composite radiance, last frame"));
-      graph.declarePersistent(kLegacyHistDepth,
-                              graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, w, h, "G-buffer depth, last frame"));
-    }
+    graph.declarePersistent(kLegacyHistDepth, graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, w, h, "G-buffer depth, last frame"));
+    graph.declarePersistent(kLegacyHistSsao,
+                            graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "filtered SSAO and its frames, last frame"));
+    const bool aoHistory = s.legacyAoFrames > 1 && in.executor.historyValid(kLegacyHistSsao) &&
+                           in.executor.historyValid(kLegacyHistDepth);
+    push.aoHistory = aoHistory ? s.legacyAoFrames : 0u;
     const bool historyOk = feedback && in.executor.historyValid(kLegacyHistRadiance) &&
                            in.executor.historyValid(kLegacyHistDepth);
     if (key != voxelKey_) settle_ = s.legacySettleFrames + 1;
@@ -201,8 +204,11 @@ class LegacyPath final : public LightingPath {
         "legacy.upsample", graph::PassKind::Compute,
         [&](graph::PassBuilder& b) {
           readCommon(b);
-          for (const char* n : {kLegacyAoRaw, kConeShY, kConeCoCgAo}) b.read(n, Usage::Sampled);
+          for (const char* n : {kLegacyAoRaw, kConeShY, kConeCoCgAo, kLegacyHistSsao, kLegacyHistDepth, "gbuffer.motion"})
+            b.read(n, Usage::Sampled);
           b.create(kLegacyAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO"), Usage::StorageWrite);
+          b.create(kLegacySsao, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "GTAO filtered and accumulated, frames"),
+                   Usage::StorageWrite);
           b.create(kLegacyShY, graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "diffuse irradiance, SH luma"),
                    Usage::StorageWrite);
           b.create(kLegacyCoCg, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "diffuse irradiance, chroma"),
@@ -218,29 +224,39 @@ class LegacyPath final : public LightingPath {
               .sampledImage(shared::kLegacyBindingConeCoCgAo, ctx.image(kConeCoCgAo).view(), p, kReadOnly)
               .storageImage(shared::kLegacyBindingOutAo, ctx.image(kLegacyAo).view())
               .storageImage(shared::kLegacyBindingOutShY, ctx.image(kLegacyShY).view())
-              .storageImage(shared::kLegacyBindingOutCoCg, ctx.image(kLegacyCoCg).view());
+              .storageImage(shared::kLegacyBindingOutCoCg, ctx.image(kLegacyCoCg).view())
+              .storageImage(shared::kLegacyBindingSsaoOut, ctx.image(kLegacySsao).view())
+              .sampledImage(shared::kLegacyBindingAoHistory, ctx.image(kLegacyHistSsao).view(), p, kReadOnly)
+              .sampledImage(shared::kLegacyBindingPrevDepth, ctx.image(kLegacyHistDepth).view(), p, kReadOnly)
+              .sampledImage(shared::kLegacyBindingMotion, ctx.image("gbuffer.motion").view(), p, kReadOnly);
           ctx.dispatch(in.settings.width, in.settings.height);
         });
 
-    if (feedback)
-      graph.addPass(
-          "legacy.history", graph::PassKind::Transfer,
-          [&](graph::PassBuilder& b) {
+    graph.addPass(
+        "legacy.history", graph::PassKind::Transfer,
+        [&](graph::PassBuilder& b) {
+          b.read(kGbufferDepth, Usage::TransferSrc);
+          b.read(kLegacySsao, Usage::TransferSrc);
+          b.write(kLegacyHistDepth, Usage::TransferDst);
+          b.write(kLegacyHistSsao, Usage::TransferDst);
+          if (feedback) {
             b.read(kCompositeHdr, Usage::TransferSrc);
-            b.read(kGbufferDepth, Usage::TransferSrc);
             b.write(kLegacyHistRadiance, Usage::TransferDst);
-            b.write(kLegacyHistDepth, Usage::TransferDst);
-          },
-          [](graph::PassContext& ctx) {
-            for (auto [from, to, aspect] : {std::tuple{kCompositeHdr, kLegacyHistRadiance, VK_IMAGE_ASPECT_COLOR_BIT},
-                                            std::tuple{kGbufferDepth, kLegacyHistDepth, VK_IMAGE_ASPECT_DEPTH_BIT}}) {
-              VkImageCopy region{};
-              region.srcSubresource = region.dstSubresource = {VkImageAspectFlags(aspect), 0, 0, 1};
-              region.extent = ctx.extent(from);
-              vkCmdCopyImage(ctx.cmd, ctx.image(from).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, ctx.image(to).handle(),
-                             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-            }
-          });
+          }
+        },
+        [feedback](graph::PassContext& ctx) {
+          std::vector<std::tuple<const char*, const char*, VkImageAspectFlags>> copies = {
+              {kGbufferDepth, kLegacyHistDepth, VK_IMAGE_ASPECT_DEPTH_BIT},
+              {kLegacySsao, kLegacyHistSsao, VK_IMAGE_ASPECT_COLOR_BIT}};
+          if (feedback) copies.push_back({kCompositeHdr, kLegacyHistRadiance, VK_IMAGE_ASPECT_COLOR_BIT});
+          for (auto [from, to, aspect] : copies) {
+            VkImageCopy region{};
+            region.srcSubresource = region.dstSubresource = {aspect, 0, 0, 1};
+            region.extent = ctx.extent(from);
+            vkCmdCopyImage(ctx.cmd, ctx.image(from).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, ctx.image(to).handle(),
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+          }
+        });
 
     LightingOutputs out;
     out.ambientOcclusion = kLegacyAo;
@@ -370,7 +386,9 @@ class LegacyPath final : public LightingPath {
     upsample_ = compute("legacy.upsample", "legacy/upsample.comp",
                         {{shared::kLegacyBindingAoRaw, sampled}, {shared::kLegacyBindingConeShY, sampled},
                          {shared::kLegacyBindingConeCoCgAo, sampled}, {shared::kLegacyBindingOutAo, storage},
-                         {shared::kLegacyBindingOutShY, storage}, {shared::kLegacyBindingOutCoCg, storage}});
+                         {shared::kLegacyBindingOutShY, storage}, {shared::kLegacyBindingOutCoCg, storage},
+                         {shared::kLegacyBindingSsaoOut, storage}, {shared::kLegacyBindingAoHistory, sampled},
+                         {shared::kLegacyBindingPrevDepth, sampled}, {shared::kLegacyBindingMotion, sampled}});
     gpu::GraphicsPipelineDesc d;
     d.name = "legacy.voxelize";
     d.vertexShader = "legacy/voxelize.vert";
