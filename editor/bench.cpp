@@ -75,6 +75,8 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
   }
   session.renderFrames(std::max(1u, o.frames));
   const auto& d = session.device();
+  nlohmann::json figures = nlohmann::json::object();
+  for (const auto& [name, value] : session.pathFigures()) figures[name] = value;
   nlohmann::json passes = nlohmann::json::array();
   for (const auto& [pass, ms] : session.passGpuMs()) {
     auto s = stats(ms);
@@ -94,7 +96,8 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
                                  VK_API_VERSION_PATCH(d.apiVersion()))},
           {"frame", stats(session.frameGpuMs())},
           {"passes", passes},
-          {"rays", o.rays ? rayFigures(session) : nlohmann::json()}};
+          {"rays", o.rays ? rayFigures(session) : nlohmann::json()},
+          {"figures", figures}};
 }
 
 std::string benchTable(const nlohmann::json& r) {
@@ -109,6 +112,11 @@ std::string benchTable(const nlohmann::json& r) {
   };
   for (const auto& p : r["passes"]) row(p["pass"].get<std::string>(), p);
   row("frame", r["frame"]);
+  if (r.contains("figures") && !r["figures"].empty()) {
+    s += "  figures:";
+    for (const auto& [name, value] : r["figures"].items()) s += fmt::format(" {}={:g}", name, value.get<double>());
+    s += "\n";
+  }
   if (r.contains("rays") && r["rays"].is_object()) {
     const auto& y = r["rays"];
     s += fmt::format("  rays: {} real of {} surface pixels (pre-trace answered {:.1f}%), {:.3f} real rays/pixel\n",

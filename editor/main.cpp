@@ -44,6 +44,7 @@ struct RenderOptions {
   uint32_t bounces = 8;
   std::optional<float> sunSizeDegrees;
   bool hardShadows = false;
+  std::optional<float> rtMeshRatio;
 };
 
 void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
@@ -58,6 +59,8 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--sun-size", o.sunSizeDegrees, "angular radius of the sun in degrees (0.27 = the real sun): soft shadows")
       ->check(CLI::Range(0.01f, 10.0f));
   cmd.add_flag("--hard-shadows", o.hardShadows, "3x3 PCF sun shadows instead of PCSS soft shadows");
+  cmd.add_option("--rt-mesh-ratio", o.rtMeshRatio, "rt path: triangles of the simplified RT meshes / source triangles (1 = full)")
+      ->check(CLI::Range(0.01f, 1.0f));
 }
 
 double median(std::vector<double> v) {
@@ -98,6 +101,7 @@ void prepareSession(Session& session, const RenderOptions& o) {
     session.setLighting(light);
   }
   session.settings().softShadows = !o.hardShadows;
+  if (o.rtMeshRatio) session.settings().rtSimplifyRatio = *o.rtMeshRatio;
 }
 
 int runRender(const RenderOptions& o) {

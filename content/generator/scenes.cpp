@@ -116,6 +116,31 @@ void plane(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// Many instances for the RT module's culling: a 100 x 100 grid of crates (10,000 instances of
+// two meshes) on a 220 m ground. The camera stands at a corner looking out, so it sees few.
+void grove(const std::filesystem::path& dir) {
+  SceneWriter w("grove");
+  int ground = w.material({"grass", {0.25f, 0.35f, 0.15f}, 0.0f, 0.9f});
+  int wood = w.material({"crate_wood", {0.55f, 0.40f, 0.25f}, 0.0f, 0.8f});
+  int stone = w.material({"crate_stone", {0.60f, 0.60f, 0.58f}, 0.0f, 0.7f});
+  w.node("ground", w.mesh("ground", quad(220.0f, 220.0f, 1.0f), ground), {0.0f, 0.0f, 0.0f});
+  int crate = w.mesh("crate", box({1.0f, 1.0f, 1.0f}), wood);
+  int pillar = w.mesh("pillar", box({0.6f, 2.0f, 0.6f}), stone);
+  for (int z = 0; z < 100; ++z)
+    for (int x = 0; x < 100; ++x) {
+      char name[32];
+      std::snprintf(name, sizeof name, "item_%02d_%02d", z, x);
+      const bool isPillar = (x * 7 + z * 3) % 5 == 0;
+      w.node(name, isPillar ? pillar : crate, {-99.0f + 2.0f * float(x), isPillar ? 1.0f : 0.5f, -99.0f + 2.0f * float(z)},
+             {0.0f, float((x * 37 + z * 11) % 90), 0.0f});
+    }
+  w.camera("corner_out", {-100.5f, 1.7f, -100.5f}, {-110.0f, 1.0f, -108.0f}, 60.0f);
+  w.camera("overview", {-110.0f, 40.0f, -110.0f}, {0.0f, 0.0f, 0.0f}, 50.0f);
+  w.sun({0.3f, -0.7f, 0.4f}, 20.0f);
+  w.sky({0.6f, 0.75f, 1.0f});
+  w.write(dir);
+}
+
 }  // namespace
 }  // namespace tl::content
 
@@ -130,6 +155,7 @@ int main(int argc, char** argv) {
     tl::content::cornell(dir);
     tl::content::furnace(dir);
     tl::content::plane(dir);
+    tl::content::grove(dir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());
     return 1;

@@ -9,6 +9,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace tl::lighting {
 
@@ -37,6 +39,9 @@ class LightingPath {
   // Why this device cannot run the path (shown verbatim), or nothing when it can.
   virtual std::optional<std::string> unavailableReason(const gpu::Device&) const { return std::nullopt; }
   virtual LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) = 0;
+  // Figures about the last frame beyond pass timings (acceleration-structure sizes, culled
+  // instances, ...), name -> value, for the benchmark and the tests.
+  virtual std::vector<std::pair<std::string, double>> figures() const { return {}; }
 };
 
 // Sun + sky without indirect light: the baseline every other path adds to.

@@ -104,6 +104,8 @@ class Session {
   const std::vector<double>& frameGpuMs() const { return frameGpuMs_; }
   const std::vector<std::pair<std::string, std::vector<double>>>& passGpuMs() const { return passGpuMs_; }
   uint64_t frameIndex() const { return frameIndex_; }
+  // The active path's figures about the last frame (see LightingPath::figures).
+  std::vector<std::pair<std::string, double>> pathFigures() const { return path_->figures(); }
   // Pins the next frame's index (it seeds per-frame noise): reproducible frames for tests.
   void setFrameIndex(uint64_t index) { frameIndex_ = index; }
 

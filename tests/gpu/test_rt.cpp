@@ -143,5 +143,40 @@ TEST_F(RtTest, AtriumStaysFiniteAndItsIntermediatesAreNamed) {
     EXPECT_NE(dump.find(n), std::string::npos) << n;
 }
 
+// 10,000 instances, a camera at the corner looking out: the top level keeps only what rays
+// from the visible surfaces can reach, and the image is the one without culling.
+TEST_F(RtTest, TopLevelCullingKeepsFewInstancesAndChangesNothing) {
+  auto& s = session();
+  s.loadScene(contentFile("grove.gltf"));
+  auto figure = [&](const char* name) {
+    for (const auto& [n, v] : s.pathFigures())
+      if (n == name) return v;
+    return -1.0;
+  };
+  s.setFrameIndex(3);
+  render(64, 36, 1, {"composite.hdr"});
+  const double kept = figure("tlasInstances"), total = figure("sceneInstances");
+  auto culled = s.buffer("composite.hdr").texels();
+  s.settings().rtCullMargin = 1e6f;  // keep everything
+  s.settings().rtCullAngle = 0.0f;
+  s.resetHistory();
+  s.setFrameIndex(3);
+  render(64, 36, 1, {"composite.hdr"});
+  const double all = figure("tlasInstances");
+  auto full = s.buffer("composite.hdr").texels();
+  RecordProperty("tlas_instances_culled", std::to_string(kept));
+  RecordProperty("tlas_instances_all", std::to_string(all));
+  EXPECT_GE(total, 10000.0);
+  EXPECT_EQ(all, total);
+  EXPECT_LE(kept, 5000.0);
+  EXPECT_GT(kept, 0.0);
+  ASSERT_EQ(culled.size(), full.size());
+  double diff = 0.0, sum = 0.0;
+  for (size_t i = 0; i < full.size(); i += 4)
+    for (int c = 0; c < 3; ++c) diff += std::abs(culled[i + c] - full[i + c]), sum += std::abs(full[i + c]);
+  RecordProperty("relative_image_difference", std::to_string(diff / sum));
+  EXPECT_LE(diff / sum, 1e-3) << "culling must not change what rays hit";
+}
+
 }  // namespace
 }  // namespace tl::test

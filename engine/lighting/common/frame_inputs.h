@@ -64,9 +64,10 @@ struct RenderSettings {
 
 // Defaults that scale with the scene (sceneScale: the diagonal of its bounds, metres), shared
 // by the paths and the editor's lighting panel: an AO radius of 5% of the scene between
-// 0.1 and 1 m (Metro's SSAO reached about 1 m), rays and cones as long as the scene.
+// 0.1 and 1 m (Metro's SSAO reached about 1 m), rays and cones as long as the scene up to
+// Metro's 50 m (which also bounds how far outside the view the RT top level keeps instances).
 inline float sceneScaledAoRadius(float sceneScale) { return std::clamp(0.05f * sceneScale, 0.1f, 1.0f); }
-inline float sceneScaledRayLength(float sceneScale) { return std::max(sceneScale, 1e-3f); }
+inline float sceneScaledRayLength(float sceneScale) { return std::clamp(sceneScale, 1e-3f, 50.0f); }
 inline float sceneScaledBlendDistance(float sceneScale) { return 2.0f * std::max(sceneScale, 1e-3f); }
 
 // Resources the frame imports from outside the graph (owned by the session and scene).

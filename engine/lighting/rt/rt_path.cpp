@@ -46,6 +46,7 @@ class RtPath final : public LightingPath {
     culling.margin = s.rtCullMargin > 0.0f ? s.rtCullMargin : params_.rayLength;
     culling.minAngle = s.rtCullAngle;
     scene_->prepareTopLevel(in.scene, culling);
+    sceneInstances_ = uint32_t(in.scene.instanceCount());
 
     RtPush push{};
     push.tMin = params_.tMin;
@@ -261,7 +262,19 @@ class RtPath final : public LightingPath {
     return out;
   }
 
-  const RtScene* rtScene() const { return scene_.get(); }
+  std::vector<std::pair<std::string, double>> figures() const override {
+    if (!scene_) return {};
+    const RtSceneStats& st = scene_->stats();
+    return {{"tlasInstances", double(scene_->instancesInTopLevel())},
+            {"sceneInstances", double(sceneInstances_)},
+            {"sourceTriangles", double(st.sourceTriangles)},
+            {"rtTriangles", double(st.rtTriangles)},
+            {"blasBytes", double(st.blasBytes)},
+            {"blasBuildMs", st.blasBuildMs},
+            {"simplificationDeviationM", double(st.maxDeviation)},
+            {"aoRadiusM", double(params_.aoRadius)},
+            {"rayLengthM", double(params_.rayLength)}};
+  }
 
  private:
   static void readCommon(graph::PassBuilder& b) {
@@ -383,6 +396,7 @@ class RtPath final : public LightingPath {
 
   std::unique_ptr<RtScene> scene_;
   uint64_t sceneId_ = 0;
+  uint32_t sceneInstances_ = 0;
   RtResolvedParams params_;
   gpu::Image blueNoise_;
   gpu::Sampler point_;
