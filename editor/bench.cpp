@@ -40,8 +40,12 @@ nlohmann::json rayFigures(tl::session::Session& session) {
   std::vector<uint32_t> hits(pre.bytes.size() / 4);
   std::memcpy(hits.data(), pre.bytes.data(), hits.size() * 4);
   size_t surface = 0, pending = 0;
+  const uint32_t w = session.settings().width;
+  const uint32_t frame = uint32_t(session.frameIndex() - 1);  // the last frame rendered
+  const uint32_t half = session.settings().rtHalfRays ? 1u : 0u;
   for (size_t i = 0; i < hits.size() && i < depth.size(); ++i) {
     if (depth[i] <= 0.0f) continue;
+    if (!tl::shared::tlRtTracesThisFrame(glm::ivec2(int(i % w), int(i / w)), frame, half)) continue;
     ++surface;
     pending += tl::shared::tlRtIsPending(hits[i]);
   }
@@ -49,7 +53,7 @@ nlohmann::json rayFigures(tl::session::Session& session) {
   const double rawRate = rawMs > 0.0 ? double(surface) / (rawMs * 1e-3) : 0.0;
   const double rtRate = traceMs > 0.0 ? double(pending) / (traceMs * 1e-3) : 0.0;
   const double pixels = double(session.settings().width) * session.settings().height;
-  return {{"surfacePixels", surface},
+  return {{"surfacePixels", surface},  // traced this frame (all, or this frame's checkerboard)
           {"realRays", pending},
           {"pretraceShare", surface ? 1.0 - double(pending) / double(surface) : 0.0},
           {"realRaysPerPixel", pending / pixels},

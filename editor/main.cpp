@@ -45,6 +45,8 @@ struct RenderOptions {
   std::optional<float> sunSizeDegrees;
   bool hardShadows = false;
   std::optional<float> rtMeshRatio;
+  std::optional<float> rtRaysPerPixel;
+  std::optional<bool> rtPretrace;
 };
 
 void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
@@ -61,6 +63,9 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_flag("--hard-shadows", o.hardShadows, "3x3 PCF sun shadows instead of PCSS soft shadows");
   cmd.add_option("--rt-mesh-ratio", o.rtMeshRatio, "rt path: triangles of the simplified RT meshes / source triangles (1 = full)")
       ->check(CLI::Range(0.01f, 1.0f));
+  cmd.add_option("--rays-per-pixel", o.rtRaysPerPixel, "rt path: 1 or 0.5 (a checkerboard alternating each frame)")
+      ->check(CLI::IsMember({1.0f, 0.5f}));
+  cmd.add_option("--pretrace", o.rtPretrace, "rt path: screen-space pre-trace before real rays (true/false)");
 }
 
 double median(std::vector<double> v) {
@@ -102,6 +107,8 @@ void prepareSession(Session& session, const RenderOptions& o) {
   }
   session.settings().softShadows = !o.hardShadows;
   if (o.rtMeshRatio) session.settings().rtSimplifyRatio = *o.rtMeshRatio;
+  if (o.rtRaysPerPixel) session.settings().rtHalfRays = *o.rtRaysPerPixel < 1.0f;
+  if (o.rtPretrace) session.settings().rtPretrace = *o.rtPretrace;
 }
 
 int runRender(const RenderOptions& o) {

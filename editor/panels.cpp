@@ -202,6 +202,8 @@ void pathParameters(EditorApp& app) {
                                  "GI rays stop after this distance; also the TLAS culling margin");
     changed |= distanceParameter("RT to sky blend", s.rtBlendDistance, lighting::sceneScaledBlendDistance(scale),
                                  "Beyond this view distance RT GI fades out (Metro: 250 m)");
+    changed |= ImGui::Checkbox("0.5 rays per pixel", &s.rtHalfRays);
+    tooltip("Trace a checkerboard that alternates each frame; the other half borrows a neighbour's ray");
     changed |= ImGui::Checkbox("Screen-space pre-trace", &s.rtPretrace);
     tooltip("March the depth buffer first; real rays only where it finds nothing");
     changed |= ImGui::SliderFloat("Pre-trace length", &s.rtPretracePixels, 8.0f, 512.0f, "%.0f px");

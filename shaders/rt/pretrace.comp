@@ -13,7 +13,7 @@ layout(set = 0, binding = kRtBindingHitsOut, r32ui) uniform writeonly uimage2D h
 layout(set = 0, binding = kRtBindingSurfaceOut, rg32ui) uniform writeonly uimage2D surfaceOut;
 
 void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 p = tracedPixel(ivec2(gl_GlobalInvocationID.xy));
   ivec2 size = ivec2(frame.viewport.xy);
   if (any(greaterThanEqual(p, size))) return;
   float depth = texelFetch(gDepth, p, 0).r;

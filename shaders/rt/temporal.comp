@@ -23,8 +23,18 @@ void main() {
   ivec2 size = ivec2(frame.viewport.xy);
   if (any(greaterThanEqual(p, size))) return;
   float depth = texelFetch(gDepth, p, 0).r;
-  vec4 shY = texelFetch(rawShY, p, 0);
-  vec4 coCgAo = vec4(texelFetch(rawCoCg, p, 0).xy, texelFetch(rawAo, p, 0).r, 1.0);
+  // 0.5 rays per pixel: a pixel without a ray this frame takes its horizontal neighbour's
+  // sample (which had one) when that neighbour is the same surface, else the vertical one.
+  ivec2 src = p;
+  if (!tlRtTracesThisFrame(p, frame.frameIndex, push.halfRays)) {
+    ivec2 a = ivec2(p.x ^ 1, p.y), b = ivec2(p.x, p.y ^ 1);
+    a = min(a, size - 1);
+    b = min(b, size - 1);
+    float da = abs(texelFetch(gDepth, a, 0).r - depth), db = abs(texelFetch(gDepth, b, 0).r - depth);
+    src = da <= db ? a : b;
+  }
+  vec4 shY = texelFetch(rawShY, src, 0);
+  vec4 coCgAo = vec4(texelFetch(rawCoCg, src, 0).xy, texelFetch(rawAo, src, 0).r, 1.0);
   if (depth <= 0.0) {
     imageStore(outShY, p, vec4(0.0));
     imageStore(outCoCgAo, p, vec4(0.0, 0.0, 1.0, 0.0));

@@ -6,7 +6,8 @@
 // trace (per-instance albedo), read by hit lighting and RTAO.
 //   bits  0..15  hit distance as an IEEE half (sign always 0, so <= 0x7BFF for finite hits);
 //                two NaN patterns with the sign set are codes: kRtHitMiss (the ray left the
-//                scene) and kRtHitPending (the pre-trace found nothing: trace a real ray).
+//                scene) and kRtHitPending (the pre-trace found nothing: trace a real ray). With
+//                0.5 rays per pixel the pixels off this frame's checkerboard are not written.
 //                Relative error <= 2^-11 for 6.1e-5 m <= d <= 65504 m (half's normal range);
 //                below, absolute error <= 2^-25 m; above, clamped to 65504 m.
 //   bits 16..31  hit albedo, RGB 5:6:5 of sqrt(albedo) (gamma 2: more codes in the darks).
@@ -55,6 +56,10 @@ TL_FN uint tlRtHitCode(uint hit) { return hit & 0xFFFFu; }
 TL_FN bool tlRtIsMiss(uint hit) { return (hit & 0xFFFFu) == kRtHitMiss; }
 TL_FN bool tlRtIsPending(uint hit) { return (hit & 0xFFFFu) == kRtHitPending; }
 TL_FN bool tlRtIsHit(uint hit) { return (hit & 0xFFFFu) < kRtHitPending; }
+// 0.5 rays per pixel: which pixels trace this frame (a checkerboard, flipped every frame).
+TL_FN bool tlRtTracesThisFrame(ivec2 p, uint frame, uint halfRays) {
+  return halfRays == 0u || ((uint(p.x + p.y) + frame) & 1u) == 0u;
+}
 TL_FN float tlRtHitDistance(uint hit) { return tlUnpackHalf2x16(hit & 0xFFFFu).x; }
 TL_FN vec3 tlRtHitAlbedo(uint hit) { return tlRtDecodeAlbedo(hit >> 16u); }
 
@@ -119,7 +124,7 @@ struct RtPush {
   uint historyValid;     // 0: the history images hold nothing usable (first frame, resize, reset)
   float aoFilterDepth;   // AO filter: relative view-depth difference that halves a tap's weight
   uint screenRadiance;   // hit lighting may reuse last frame's shaded pixels (1: history is valid)
-  uint pad1;
+  uint halfRays;         // 1: 0.5 rays per pixel, a checkerboard that alternates each frame
 };
 
 // Bindings (set 0) of the RT path's passes; set 1 is the scene (shared/scene.h) where used.

@@ -70,6 +70,28 @@ TEST_F(RtTest, PlaneUnderUniformSkyHasNoOcclusionAndIrradiancePiL) {
   RecordProperty("worst_irradiance_error", std::to_string(worstE));
 }
 
+TEST_F(RtTest, HalfRaysPerPixelStillConvergeOnThePlane) {
+  auto& s = session();
+  s.loadScene(contentFile("plane.gltf"));
+  s.settings().rtHalfRays = true;
+  const glm::vec3 sky = s.lighting().skyRadiance;
+  render(48, 32, 6, {kShY, kCoCgAo, kAo, "gbuffer.depth"});
+  auto shY = s.buffer(kShY).texels(), coCgAo = s.buffer(kCoCgAo).texels(), ao = s.buffer(kAo).texels();
+  auto depth = s.buffer("gbuffer.depth").texels();
+  size_t surface = 0;
+  double worstE = 0.0, worstAo = 0.0;
+  for (size_t i = 0; i < depth.size(); ++i) {
+    if (depth[i] <= 0.0f) continue;
+    ++surface;
+    worstAo = std::max(worstAo, std::abs(double(ao[i]) - 1.0));
+    glm::vec3 e = irradianceAt(shY, coCgAo, i, glm::vec3(0, 1, 0));
+    for (int c = 0; c < 3; ++c) worstE = std::max(worstE, std::abs(e[c] / (shared::kPi * sky[c]) - 1.0));
+  }
+  ASSERT_GT(surface, depth.size() / 4);
+  EXPECT_LE(worstAo, 0.02);
+  EXPECT_LE(worstE, 0.03);
+}
+
 TEST_F(RtTest, PretraceAgreesWithRealRaysWhereBothHit) {
   auto& s = session();
   s.loadScene(contentFile("cornell.gltf"));

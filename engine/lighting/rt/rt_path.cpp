@@ -53,6 +53,7 @@ class RtPath final : public LightingPath {
     push.tMax = params_.rayLength;
     push.aoRadius = params_.aoRadius;
     push.pretrace = s.rtPretrace ? 1u : 0u;
+    push.halfRays = s.rtHalfRays ? 1u : 0u;
     push.pretraceSteps = s.rtPretraceSteps;
     push.pretraceLength = s.rtPretracePixels;
     push.thickness = s.rtThickness;
@@ -94,7 +95,7 @@ class RtPath final : public LightingPath {
               .sampledImage(shared::kRtBindingEmissive, ctx.image("gbuffer.emissive").view(), point_.handle(), kReadOnly)
               .storageImage(shared::kRtBindingHitsOut, ctx.image(kPretraceHits).view())
               .storageImage(shared::kRtBindingSurfaceOut, ctx.image(kPretraceSurface).view());
-          ctx.dispatch(in.settings.width, in.settings.height);
+          ctx.dispatch(tracedWidth(in), in.settings.height);
         });
 
     graph.addPass(
@@ -290,10 +291,14 @@ class RtPath final : public LightingPath {
         .sampledImage(shared::kRtBindingDepth, ctx.image(kGbufferDepth).view(), point_.handle(), kReadOnly)
         .sampledImage(shared::kRtBindingNormal, ctx.image("gbuffer.normal").view(), point_.handle(), kReadOnly);
   }
+  // Invocations per row of the passes that trace: half with 0.5 rays per pixel.
+  static uint32_t tracedWidth(const FrameInputs& in) {
+    return in.settings.rtHalfRays ? (in.settings.width + 1) / 2 : in.settings.width;
+  }
   static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, FrameInputs& in) {
     ctx.flushDescriptors();
     ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion,
-                                  in.settings.width, in.settings.height, 1);
+                                  tracedWidth(in), in.settings.height, 1);
   }
 
   // Scene geometry, blue noise and pipelines: once per scene (and RT mesh ratio).
