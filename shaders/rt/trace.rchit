@@ -6,8 +6,7 @@
 #extension GL_EXT_ray_tracing : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
-#include "shared/packing.h"
-#include "shared/rt.h"
+#include "rt/rt_common.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Indices { uint i[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Vertices { float f[]; };
@@ -35,5 +34,6 @@ void main() {
   vec3 n = normalize(vec4(cross(p1 - p0, p2 - p0), 0.0) * mat4(gl_WorldToObjectEXT)).xyz;
   if (dot(n, gl_WorldRayDirectionEXT) > 0.0) n = -n;
   hitRecord = tlRtPackHit(gl_HitTEXT, inst.albedo.rgb);
-  imageStore(surfaceOut, ivec2(gl_LaunchIDEXT.xy), uvec4(tlOctEncodeSnorm16(n), tlPackRgb9e5(inst.emission.rgb), 0u, 0u));
+  // The pixel, not the launch index: with 0.5 rays per pixel they differ.
+  imageStore(surfaceOut, tracedPixel(ivec2(gl_LaunchIDEXT.xy)), uvec4(tlOctEncodeSnorm16(n), tlPackRgb9e5(inst.emission.rgb), 0u, 0u));
 }
