@@ -70,7 +70,7 @@ void main() {
   float depth = texelFetch(gDepth, p, 0).r;
   if (depth <= 0.0) {
     imageStore(shYOut, q, vec4(0.0));
-    imageStore(coCgAoOut, q, vec4(0.0, 0.0, 1.0, 0.0));
+    imageStore(coCgAoOut, q, vec4(0.0, 0.0, 1.0, 0.0));  // w 0: sky
     return;
   }
   vec3 P = pixelPosition(p, depth);
@@ -113,5 +113,5 @@ void main() {
     ao += w * (1.0 - aoOcclusion);
   }
   imageStore(shYOut, q, sh.shY);
-  imageStore(coCgAoOut, q, vec4(sh.coCg, ao / 3.14159265, 1.0));
+  imageStore(coCgAoOut, q, vec4(sh.coCg, ao / 3.14159265, depthToViewW(depth)));  // w: view depth for the upsample
 }

@@ -8,7 +8,7 @@
 #include "legacy/legacy_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = kLegacyBindingAoRaw, r16f) uniform writeonly image2D aoOut;
+layout(set = 0, binding = kLegacyBindingAoRaw, rg16f) uniform writeonly image2D aoOut;  // AO, view depth
 
 const float kHalfPi = 1.5707963;
 
@@ -19,7 +19,7 @@ void main() {
   ivec2 size = ivec2(frame.viewport.xy);
   float depth = texelFetch(gDepth, p, 0).r;
   if (depth <= 0.0) {
-    imageStore(aoOut, q, vec4(1.0));
+    imageStore(aoOut, q, vec4(1.0, 0.0, 0.0, 0.0));
     return;
   }
   vec3 P = pixelPosition(p, depth);
@@ -84,5 +84,6 @@ void main() {
     visibility += lenN * 0.25 * (arc0 + arc1);
     unoccluded += lenN * (cg + gamma * sg);
   }
-  imageStore(aoOut, q, vec4(unoccluded > 1e-4 ? clamp(visibility / unoccluded, 0.0, 1.0) : 1.0));
+  // The view depth rides along for the upsample's depth weights (no second fetch there).
+  imageStore(aoOut, q, vec4(unoccluded > 1e-4 ? clamp(visibility / unoccluded, 0.0, 1.0) : 1.0, depthToViewW(depth), 0.0, 0.0));
 }

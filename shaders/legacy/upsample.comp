@@ -22,12 +22,10 @@ layout(set = 0, binding = kLegacyBindingOutCoCg, rg16f) uniform writeonly image2
 float w0;
 ivec2 size;
 
-// Weight of reduced texel q (divisor d): 0 on the sky, falling with view-depth difference.
-float tapWeight(ivec2 q, uint d) {
-  ivec2 fp = fullPixel(q, d);
-  float depth = texelFetch(gDepth, fp, 0).r;
-  if (depth <= 0.0) return 0.0;
-  float rel = abs(depthToViewW(depth) - w0) / (0.02 * w0);
+// Weight of a reduced texel from the view depth it stored (0: sky).
+float depthWeight(float w) {
+  if (w <= 0.0) return 0.0;
+  float rel = abs(w - w0) / (0.02 * w0);
   return 1.0 / (1.0 + rel * rel);
 }
 
@@ -59,8 +57,9 @@ void main() {
   for (int y = 0; y < aoTaps; ++y)
     for (int x = 0; x < aoTaps; ++x) {
       ivec2 q = clamp(aoBase + ivec2(x, y), ivec2(0), aoMax);
-      float k = tapWeight(q, push.aoDivisor);
-      ao += k * texelFetch(aoRaw, q, 0).r;
+      vec2 raw = texelFetch(aoRaw, q, 0).rg;
+      float k = depthWeight(raw.g);
+      ao += k * raw.r;
       aoWeight += k;
     }
 
@@ -71,9 +70,10 @@ void main() {
   for (int y = 0; y < giTaps; ++y)
     for (int x = 0; x < giTaps; ++x) {
       ivec2 q = clamp(giBase + ivec2(x, y), ivec2(0), giMax);
-      float k = tapWeight(q, push.coneDivisor);
+      vec4 cone = texelFetch(coneCoCgAo, q, 0);
+      float k = depthWeight(cone.w);
       shY += k * texelFetch(coneShY, q, 0);
-      coCgAo += k * texelFetch(coneCoCgAo, q, 0);
+      coCgAo += k * cone;
       giWeight += k;
     }
   float ssao = aoWeight > 0.0 ? clamp(ao / aoWeight, 0.0, 1.0) : 1.0;

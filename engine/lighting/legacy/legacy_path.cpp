@@ -60,7 +60,8 @@ class LegacyPath final : public LightingPath {
         "legacy.ssao", graph::PassKind::Compute,
         [&](graph::PassBuilder& b) {
           readCommon(b);
-          b.create(kLegacyAoRaw, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, aw, ah, "GTAO visibility, 1/aoDivisor resolution"),
+          b.create(kLegacyAoRaw,
+                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, aw, ah, "GTAO visibility (r) and view depth (g), 1/aoDivisor"),
                    Usage::StorageWrite);
         },
         [this, &in, push, aw, ah](graph::PassContext& ctx) {
@@ -185,7 +186,7 @@ class LegacyPath final : public LightingPath {
           b.create(kConeShY, graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced irradiance, SH luma"),
                    Usage::StorageWrite);
           b.create(kConeCoCgAo,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced chroma (xy), voxel AO (z)"),
+                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced chroma (xy), voxel AO (z), view depth (w)"),
                    Usage::StorageWrite);
         },
         [this, &in, push, cw, ch](graph::PassContext& ctx) {
