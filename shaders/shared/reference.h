@@ -12,6 +12,8 @@ TL_CONST uint kRefBindingRadiance = 3;   // rgba32f: the estimate, sum / count
 TL_CONST uint kRefBindingGeometry = 4;   // RefInstanceGeometry[]
 TL_CONST uint kRefBindingVertices = 5;   // scene vertices as floats (12 per vertex)
 TL_CONST uint kRefBindingIndices = 6;    // scene indices
+TL_CONST uint kRefBindingAoAccum = 7;    // r32f: sum of AO samples at the primary hit (persistent)
+TL_CONST uint kRefBindingAo = 8;         // r32f: ambient occlusion at the AO radius, sum / count
 
 TL_CONST uint kVertexFloats = 12;        // tl::scene::Vertex: position 3, normal 3, tangent 4, uv 2
 
@@ -28,6 +30,8 @@ struct RefPush {
   uint samplesPerFrame;
   uint maxBounces;       // indirect bounces after the first hit (1 = direct + one bounce)
   uint seed;
+  float aoRadius;        // reference AO: one cosine ray per sample from the primary hit, this long (m)
+  uint pad0, pad1, pad2;
 };
 
 // What a closest-hit shader reports (hitT < 0: the ray missed).
@@ -42,6 +46,6 @@ TL_END
 
 #ifdef __cplusplus
 static_assert(sizeof(tl::shared::RefInstanceGeometry) == 16);
-static_assert(sizeof(tl::shared::RefPush) == 16);
+static_assert(sizeof(tl::shared::RefPush) == 32);
 #endif
 #endif

@@ -228,6 +228,40 @@ TEST_F(LegacyTest, VoxelsPersistWhileNothingTheyHoldChanges) {
   EXPECT_NE(s.graphDump().find("legacy.voxelize"), std::string::npos);
 }
 
+// Per-stage error: each path's AO against the reference's AO at the same radius (one
+// cosine ray per sample from the primary hit, 256 samples), on the Cornell box.
+TEST_F(LegacyTest, AoOfEachPathAgainstTheReferenceAo) {
+  auto& s = session();
+  if (!s.device().rayTracing().pipeline) GTEST_SKIP() << s.device().rayTracing().unavailableReason;
+  s.loadScene(contentFile("cornell.gltf"));
+  const uint32_t w = 64, h = 64;
+  s.settings().referenceSamplesPerFrame = 64;
+  render("reference", w, h, 4, {"reference.ao"});
+  auto reference = s.buffer("reference.ao").texels();
+  render("legacy", w, h, 8, {kLegacyAo, "gbuffer.depth"});
+  auto legacy = s.buffer(kLegacyAo).texels(), depth = s.buffer("gbuffer.depth").texels();
+  s.resetHistory();
+  render("rt", w, h, 32, {kAo});
+  auto rt = s.buffer(kAo).texels();
+  double legacyError = 0.0, rtError = 0.0, referenceMean = 0.0;
+  size_t n = 0;
+  for (size_t i = 0; i < depth.size(); ++i) {
+    if (depth[i] <= 0.0f) continue;
+    ++n;
+    legacyError += std::abs(legacy[i] - reference[i]);
+    rtError += std::abs(rt[i] - reference[i]);
+    referenceMean += reference[i];
+  }
+  ASSERT_GT(n, 0u);
+  legacyError /= double(n), rtError /= double(n), referenceMean /= double(n);
+  RecordProperty("reference_ao_mean", std::to_string(referenceMean));
+  RecordProperty("legacy_ao_mean_abs_error", std::to_string(legacyError));
+  RecordProperty("rt_ao_mean_abs_error", std::to_string(rtError));
+  EXPECT_LT(referenceMean, 0.99) << "the box has corners: some occlusion";
+  EXPECT_LT(rtError, 0.05) << "RTAO estimates exactly the reference's definition";
+  EXPECT_LT(rtError, legacyError);
+}
+
 // Inside the atrium's room, looking up at the underside of its sunlit ceiling (one voxel
 // thick at the default resolution): the legacy path's radiance there against the reference
 // path tracer's. Light leaking through the ceiling would make it several times brighter.

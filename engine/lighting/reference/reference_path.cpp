@@ -17,6 +17,8 @@ namespace {
 
 inline constexpr const char* kAccum = "reference.accum";
 inline constexpr const char* kRadiance = "reference.radiance";
+inline constexpr const char* kAoAccum = "reference.aoAccum";
+inline constexpr const char* kAo = "reference.ao";
 
 class ReferencePath final : public LightingPath {
  public:
@@ -38,7 +40,10 @@ class ReferencePath final : public LightingPath {
 
     graph.declarePersistent(kAccum, graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                                                  "sum of path samples (rgb) and their count (a)"));
+    graph.declarePersistent(kAoAccum, graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h, "sum of AO samples"));
     shared::RefPush push{};
+    push.aoRadius = in.settings.rtAoRadius > 0.0f ? in.settings.rtAoRadius
+                                                  : sceneScaledAoRadius(std::max(in.constants.sceneScale, 1e-3f));
     push.samplesPerFrame = std::max(1u, in.settings.referenceSamplesPerFrame);
     push.maxBounces = std::max(1u, in.settings.referenceBounces);
     graph.addPass(
@@ -47,12 +52,17 @@ class ReferencePath final : public LightingPath {
           readSceneInputs(b, graph::Usage::StorageRead);
           b.read(kAccum, graph::Usage::StorageRead);
           b.write(kAccum, graph::Usage::StorageWrite);
+          b.read(kAoAccum, graph::Usage::StorageRead);
+          b.write(kAoAccum, graph::Usage::StorageWrite);
+          b.create(kAo, graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
+                                                     "ambient occlusion at the AO radius (cosine-weighted), ground truth"),
+                   graph::Usage::StorageWrite);
           b.create(kRadiance, graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "path-traced radiance"),
                    graph::Usage::StorageWrite);
         },
         [this, &in, push](graph::PassContext& ctx) mutable {
           // History can vanish under us (resize, reset): then the sum starts over.
-          if (!ctx.historyValid(kAccum)) samples_ = 0;
+          if (!ctx.historyValid(kAccum) || !ctx.historyValid(kAoAccum)) samples_ = 0;
           push.samplesSoFar = samples_;
           push.seed = 0;
           ctx.bind(pipeline_);
@@ -64,7 +74,9 @@ class ReferencePath final : public LightingPath {
               .storageImage(shared::kRefBindingRadiance, ctx.image(kRadiance).view())
               .storageBuffer(shared::kRefBindingGeometry, geometry_.handle())
               .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
-              .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle());
+              .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
+              .storageImage(shared::kRefBindingAoAccum, ctx.image(kAoAccum).view())
+              .storageImage(shared::kRefBindingAo, ctx.image(kAo).view());
           ctx.flushDescriptors();
           in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_.layout(), shared::kSceneSet);
           VkExtent3D e = ctx.extent(kRadiance);
@@ -119,7 +131,9 @@ class ReferencePath final : public LightingPath {
                            {shared::kRefBindingRadiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                            {shared::kRefBindingGeometry, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+                           {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kRefBindingAoAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                           {shared::kRefBindingAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
       d.layout.extraSets = {in.scene.table().layout()};
       d.layout.pushConstantBytes = sizeof(shared::RefPush);
       pipeline_ = gpu::createRayTracingPipeline(in.device, d);
@@ -147,6 +161,7 @@ class ReferencePath final : public LightingPath {
     for (const glm::vec4* v : {&c.sunToLight, &c.sunIrradiance, &c.skyRadiance, &c.viewport}) add(&v->x, 4);
     key.push_back(float(c.flags));
     key.push_back(float(in.settings.referenceBounces));
+    key.push_back(in.settings.rtAoRadius);
     key.push_back(float(sceneId_));
     return scene::hashBytes(key.data(), key.size() * sizeof(float));
   }
