@@ -2,6 +2,7 @@
 // the headless subcommands work on machines without a display. Errors are one line on
 // stderr and a non-zero exit: 1 for a failure at run time, 2 for bad usage.
 #include "bench.h"
+#include "session/capture.h"
 #include "cli_args.h"
 #include "editor_app.h"
 #include "gpu/self_test.h"
@@ -231,6 +232,17 @@ int main(int argc, char** argv) {
   compareCmd->add_option("--cache", compareCache, "reference cache directory (default: $XDG_CACHE_HOME/twinlight/reference)");
   addViewAndLightOptions(*compareCmd, compareRender);
 
+  RenderOptions captureRender;
+  captureRender.frames = 4;
+  std::string captureOut;
+  auto* captureCmd = app.add_subcommand("capture", "write every buffer of a frame (EXR + manifest.json) into a folder");
+  captureCmd->add_option("--scene", captureRender.scene, "glTF file; default content/atrium.gltf");
+  captureCmd->add_option("--path", captureRender.path, "lighting path")->capture_default_str();
+  captureCmd->add_option("--size", captureRender.size, "image size WxH")->capture_default_str();
+  captureCmd->add_option("--frames", captureRender.frames, "frames rendered first (the last is captured)")->capture_default_str();
+  captureCmd->add_option("--out", captureOut, "folder to write into")->required();
+  addViewAndLightOptions(*captureCmd, captureRender);
+
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
 
   try {
@@ -242,6 +254,17 @@ int main(int argc, char** argv) {
   try {
     if (*renderCmd) return runRender(render);
     if (*infoCmd) return runInfo();
+    if (*captureCmd) {
+      Session session;
+      prepareSession(session, captureRender);
+      auto manifest = tl::session::captureFrame(session, captureOut, captureRender.frames);
+      size_t files = 0;
+      for (const auto& r : manifest["resources"]) files += !r["file"].is_null();
+      fmt::print("captured {} of {} resources of {} / {} (frame {}) into {}\n", files, manifest["resources"].size(),
+                 manifest["scene"].get<std::string>(), manifest["lightingPath"].get<std::string>(),
+                 manifest["frame"].get<uint64_t>(), captureOut);
+      return 0;
+    }
     if (*compareCmd) {
       Session session;
       prepareSession(session, compareRender);

@@ -1,0 +1,175 @@
+#include "session/capture.h"
+
+#include "gpu/formats.h"
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include <fstream>
+#include <system_error>
+#include <unistd.h>
+
+namespace tl::session {
+namespace {
+
+// Names become file names: everything but letters, digits, '.', '-' and '_' turns into '_'.
+std::string fileStem(const std::string& name) {
+  std::string s = name;
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-' && c != '_') c = '_';
+  return s;
+}
+
+// Writes through a temporary file and a rename: a capture never holds half a file.
+void writeAtomic(const std::filesystem::path& file, const std::function<bool(const std::string&)>& write) {
+  const std::filesystem::path tmp = file.string() + fmt::format(".tmp{}", ::getpid()) + file.extension().string();
+  std::error_code ec;
+  if (!write(tmp.string())) {
+    std::filesystem::remove(tmp, ec);
+    throw SessionError(fmt::format("{}: write failed", file.string()));
+  }
+  std::filesystem::rename(tmp, file, ec);
+  if (ec) throw SessionError(fmt::format("{}: cannot move the finished file into place", file.string()));
+}
+
+void writeExr(const std::filesystem::path& file, const graph::Readback& rb) {
+  const gpu::FormatInfo fi = gpu::formatInfo(rb.format);
+  const uint32_t w = rb.extent.width, h = rb.extent.height * std::max(1u, rb.extent.depth);
+  const bool integer = fi.kind == gpu::TexelKind::Uint || fi.kind == gpu::TexelKind::Sint;
+  const int channels = int(fi.channels);
+  writeAtomic(file, [&](const std::string& tmp) {
+    auto out = OIIO::ImageOutput::create(file.string());
+    if (!out) return false;
+    if (integer) {
+      // 32-bit integer channels: lossless for every uint/sint format.
+      OIIO::ImageSpec spec(int(w), int(h), channels, OIIO::TypeDesc::UINT);
+      std::vector<uint32_t> values(size_t(w) * h * channels);
+      const std::vector<float> decoded = rb.texels();
+      if (fi.bytes == 4u * fi.channels) {
+        std::memcpy(values.data(), rb.bytes.data(), values.size() * 4);
+      } else {
+        for (size_t i = 0; i < values.size() && i < decoded.size(); ++i) values[i] = uint32_t(int64_t(decoded[i]));
+      }
+      return out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UINT, values.data()) && out->close();
+    }
+    // Float, unorm, snorm, depth: stored as half when the format has 16 bits or fewer per
+    // channel, else as float.
+    const bool half = fi.bytes <= 2u * fi.channels;
+    OIIO::ImageSpec spec(int(w), int(h), channels, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+    spec.attribute("oiio:ColorSpace", fi.kind == gpu::TexelKind::Srgb ? "sRGB" : "Linear");
+    const std::vector<float> values = rb.texels();
+    return out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, values.data()) && out->close();
+  });
+}
+
+}  // namespace
+
+nlohmann::json captureFrame(Session& session, const std::filesystem::path& dir, uint32_t frames) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw SessionError(fmt::format("{}: cannot create the capture folder", dir.string()));
+  session.requestAllBuffers();
+  session.renderFrames(std::max(1u, frames));
+
+  const View& v = session.view();
+  nlohmann::json manifest;
+  manifest["scene"] = session.scene().name;
+  manifest["scenePath"] = session.scene().path.string();
+  manifest["lightingPath"] = session.path();
+  manifest["frame"] = session.frameIndex() - 1;
+  manifest["camera"] = {{"position", {v.position.x, v.position.y, v.position.z}},
+                        {"forward", {v.forward.x, v.forward.y, v.forward.z}},
+                        {"up", {v.up.x, v.up.y, v.up.z}},
+                        {"yfovRadians", v.yfovRadians}};
+  const auto& l = session.lighting();
+  manifest["lighting"] = {{"sunDirection", {l.sunDirection.x, l.sunDirection.y, l.sunDirection.z}},
+                          {"sunIrradiance", {l.sunIrradiance.r, l.sunIrradiance.g, l.sunIrradiance.b}},
+                          {"sunAngularRadius", l.sunAngularRadius},
+                          {"skyRadiance", {l.skyRadiance.r, l.skyRadiance.g, l.skyRadiance.b}},
+                          {"exposureEv", session.exposureEv()}};
+  const auto& s = session.settings();
+  manifest["settings"] = {{"width", s.width}, {"height", s.height}, {"softShadows", s.softShadows},
+                          {"rtHalfRays", s.rtHalfRays}, {"rtPretrace", s.rtPretrace},
+                          {"rtSimplifyRatio", s.rtSimplifyRatio}, {"legacyVoxelResolution", s.legacyVoxelResolution},
+                          {"legacyAoDivisor", s.legacyAoDivisor}, {"legacyConeDivisor", s.legacyConeDivisor},
+                          {"referenceBounces", s.referenceBounces}};
+  manifest["albedoDatabase"] = nullptr;  // no albedo database yet (issue 8): hit albedo is the texture average
+  manifest["device"] = session.device().name();
+  nlohmann::json timings = nlohmann::json::array();
+  for (const auto& t : session.timings()) timings.push_back({{"pass", t.pass}, {"gpuMs", t.gpuMs}});
+  manifest["timings"] = timings;
+
+  nlohmann::json resources = nlohmann::json::array();
+  for (const auto& info : session.resources()) {
+    nlohmann::json r = {{"name", info.name},
+                        {"writer", info.writer},
+                        {"persistent", info.persistent},
+                        {"imported", info.imported},
+                        {"description", info.desc.description}};
+    const graph::Readback* rb = nullptr;
+    try {
+      rb = &session.buffer(info.name);
+    } catch (const std::exception&) {
+      r["file"] = nullptr;
+      r["note"] = "not read back (culled or not touched this frame)";
+      resources.push_back(r);
+      continue;
+    }
+    if (info.desc.type == graph::ResourceType::Image) {
+      const gpu::FormatInfo fi = gpu::formatInfo(rb->format);
+      const std::string file = fileStem(info.name) + ".exr";
+      writeExr(dir / file, *rb);
+      r["file"] = file;
+      r["format"] = fi.name;
+      r["width"] = rb->extent.width;
+      r["height"] = rb->extent.height;
+      r["depth"] = rb->extent.depth;
+      r["channels"] = fi.channels;
+      r["mips"] = info.desc.mipLevels;
+      if (rb->extent.depth > 1) r["layout"] = "z slices stacked downwards (height x depth rows), mip 0";
+      else if (info.desc.mipLevels > 1) r["layout"] = "mip 0";
+    } else {
+      const std::string file = fileStem(info.name) + ".bin";
+      writeAtomic(dir / file, [&](const std::string& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(rb->bytes.data()), std::streamsize(rb->bytes.size()));
+        return bool(out);
+      });
+      r["file"] = file;
+      r["bytes"] = rb->bytes.size();
+    }
+    resources.push_back(r);
+  }
+  manifest["resources"] = resources;
+  writeAtomic(dir / "manifest.json", [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    out << manifest.dump(2) << "\n";
+    return bool(out);
+  });
+  return manifest;
+}
+
+CapturedImage readCaptureImage(const std::filesystem::path& file) {
+  auto in = OIIO::ImageInput::open(file.string());
+  if (!in) throw SessionError(fmt::format("{}: not a readable capture image", file.string()));
+  const auto& spec = in->spec();
+  CapturedImage img;
+  img.width = uint32_t(spec.width);
+  img.height = uint32_t(spec.height);
+  img.channels = uint32_t(spec.nchannels);
+  const size_t n = size_t(img.width) * img.height * img.channels;
+  img.integer = spec.format == OIIO::TypeDesc::UINT;
+  if (img.integer) {
+    img.integers.resize(n);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT, img.integers.data()))
+      throw SessionError(fmt::format("{}: read failed", file.string()));
+    img.values.assign(img.integers.begin(), img.integers.end());
+  } else {
+    img.values.resize(n);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.values.data()))
+      throw SessionError(fmt::format("{}: read failed", file.string()));
+  }
+  return img;
+}
+
+}  // namespace tl::session

@@ -1,0 +1,30 @@
+// Captures: every resource of the last frame written to a folder, images as EXR (float
+// buffers at their precision, integer buffers as lossless 32-bit integers, 3D images as their
+// z slices stacked downwards), buffers as raw bytes, plus manifest.json describing each one
+// with the frame, camera, lighting path, settings and per-pass timings. A capture reads back
+// without the scene (readCaptureImage).
+#pragma once
+
+#include "session/session.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+namespace tl::session {
+
+// Renders `frames` frames of the session's current scene, path and view with every resource
+// read back, and writes the capture into `dir`. Returns the manifest it wrote.
+nlohmann::json captureFrame(Session& session, const std::filesystem::path& dir, uint32_t frames);
+
+// A captured image as it was stored: width x (height * depth) texels of `channels` floats
+// (integer images hold their exact integer values).
+struct CapturedImage {
+  uint32_t width = 0, height = 0, channels = 0;
+  std::vector<float> values;
+  bool integer = false;
+  std::vector<uint32_t> integers;  // integer images: the exact stored values
+};
+CapturedImage readCaptureImage(const std::filesystem::path& file);
+
+}  // namespace tl::session
