@@ -1,5 +1,7 @@
 #include "editor_app.h"
 
+#include "session/capture.h"
+
 #include "script.h"
 
 #include <GLFW/glfw3.h>
@@ -300,6 +302,11 @@ float EditorApp::previewScale(const std::string& resource) const {
   return std::exp2(-session_->exposureEv());
 }
 
+std::filesystem::path EditorApp::defaultCaptureFolder() const {
+  const std::string scene = session_->hasScene() ? session_->scene().name : "none";
+  return std::filesystem::path("captures") / fmt::format("{}-{}-frame{}", scene, session_->path(), session_->frameIndex());
+}
+
 void EditorApp::renderEngine() {
   if (!session_->hasScene() || viewportSize_.x < 1.0f || viewportSize_.y < 1.0f) return;
   uint32_t w = std::max(1u, uint32_t(viewportSize_.x * settings_.renderScale));
@@ -314,7 +321,16 @@ void EditorApp::renderEngine() {
     session_->setDisplay(display);
     if (pendingClick_) session_->requestBuffer("gbuffer.instanceId");
     if (captureRequested_) session_->requestBuffer(lighting::kDisplayLdr);
+    if (frameCapturePath_) session_->requestAllBuffers();
     session_->renderFrames(1);
+    if (frameCapturePath_) {
+      const std::filesystem::path dir = *frameCapturePath_;
+      frameCapturePath_.reset();
+      auto manifest = session::writeCapture(*session_, dir);
+      size_t files = 0;
+      for (const auto& r : manifest["resources"]) files += !r["file"].is_null();
+      fmt::print("captured {} of {} resources into {}\n", files, manifest["resources"].size(), dir.string());
+    }
     if (captureRequested_) {
       capture_ = session_->buffer(lighting::kDisplayLdr).texels();
       captureRequested_ = false;

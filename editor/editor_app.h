@@ -40,7 +40,10 @@ class EditorApp {
   std::optional<uint32_t> selected() const { return selected_; }
   void clickViewport(glm::vec2 windowPos);    // picks the instance under the cursor
   void requestScreenshot(const std::filesystem::path& file) { screenshotPath_ = file; }
+  // Writes every buffer of the next engine frame into `dir` (EXR + manifest.json).
+  void requestFrameCapture(const std::filesystem::path& dir) { frameCapturePath_ = dir; }
   void requestQuit() { quit_ = true; }
+  std::filesystem::path defaultCaptureFolder() const;
   // Reads back the viewport image (display.ldr) on the next frame, for scripted checks.
   void requestViewportCapture() { captureRequested_ = true, capture_.clear(); }
   const std::vector<float>& viewportCapture() const { return capture_; }
@@ -104,6 +107,7 @@ class EditorApp {
 
   friend void drawPanels(EditorApp& app);
   friend class Script;
+  std::optional<std::filesystem::path> frameCapturePath_;
 };
 
 }  // namespace tl::editor

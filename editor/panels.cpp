@@ -35,6 +35,9 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
       ImGui::EndMenu();
     }
     ImGui::Separator();
+    if (ImGui::MenuItem("Capture frame", nullptr, false, app.session().hasScene()))
+      app.requestFrameCapture(app.defaultCaptureFolder());
+    tooltip("Writes every buffer of the next frame as EXR, with manifest.json, into captures/");
     if (ImGui::MenuItem("Quit")) app.requestQuit();
     ImGui::EndMenu();
   }

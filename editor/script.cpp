@@ -118,6 +118,9 @@ void Script::step(EditorApp& app) {
         capture_ = cmd == "snapshot" ? Capture::Snapshot : Capture::Compare;
         app.requestViewportCapture();
         return;
+      } else if (cmd == "capture") {
+        app.requestFrameCapture(arg.empty() ? app.defaultCaptureFolder() : std::filesystem::path(arg));
+        return;  // written after the next engine frame
       } else if (cmd == "quit") {
         app.requestQuit();
         return;

@@ -15,6 +15,7 @@
 //   wait N                 let N frames pass
 //   measure N              render N frames and print the frame rate
 //   screenshot FILE        save the whole window as PNG
+//   capture [DIR]          write every buffer of the next frame (EXR + manifest.json) into DIR
 //   snapshot               remember the viewport image of the next frame
 //   expect-viewport-changed  fail unless the viewport differs from the snapshot
 //   quit

@@ -65,11 +65,15 @@ void writeExr(const std::filesystem::path& file, const graph::Readback& rb) {
 }  // namespace
 
 nlohmann::json captureFrame(Session& session, const std::filesystem::path& dir, uint32_t frames) {
+  session.requestAllBuffers();
+  session.renderFrames(std::max(1u, frames));
+  return writeCapture(session, dir);
+}
+
+nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw SessionError(fmt::format("{}: cannot create the capture folder", dir.string()));
-  session.requestAllBuffers();
-  session.renderFrames(std::max(1u, frames));
 
   const View& v = session.view();
   nlohmann::json manifest;

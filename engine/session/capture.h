@@ -16,6 +16,9 @@ namespace tl::session {
 // Renders `frames` frames of the session's current scene, path and view with every resource
 // read back, and writes the capture into `dir`. Returns the manifest it wrote.
 nlohmann::json captureFrame(Session& session, const std::filesystem::path& dir, uint32_t frames);
+// Writes the capture of the last frame, which must have been rendered after
+// Session::requestAllBuffers() (the editor does so inside its own frame loop).
+nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir);
 
 // A captured image as it was stored: width x (height * depth) texels of `channels` floats
 // (integer images hold their exact integer values).
