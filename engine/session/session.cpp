@@ -177,6 +177,10 @@ void Session::buildFrameConstants(shared::FrameConstants& fc) const {
 }
 
 void Session::renderOne(bool readback) {
+  if (previousView_ && isCameraCut(*previousView_, view_, scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0)) {
+    executor_->resetHistory();
+    previousView_.reset();  // no motion across a cut
+  }
   shared::FrameConstants fc{};
   buildFrameConstants(fc);
   constants_.write(&fc, sizeof(fc));

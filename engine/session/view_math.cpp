@@ -91,4 +91,10 @@ SunShadowFit fitSunShadow(const View& view, double aspect, const scene::Bounds& 
   return fit;
 }
 
+bool isCameraCut(const View& previous, const View& current, double sceneScale) {
+  const double moved = glm::length(current.position - previous.position);
+  const double turned = glm::dot(glm::normalize(previous.forward), glm::normalize(current.forward));
+  return moved > 0.2 * std::max(sceneScale, 1e-6) || turned < 0.5;
+}
+
 }  // namespace tl::session

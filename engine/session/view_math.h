@@ -16,6 +16,11 @@ struct CameraMatrices {
 
 CameraMatrices cameraMatrices(const View& view, double aspect);
 
+// A camera cut: between two frames the camera jumped more than a fifth of the scene's size or
+// turned by more than 60 degrees. Temporal history from before a cut is meaningless even where
+// a surface happens to reproject onto the same depth, so the session drops all of it.
+bool isCameraCut(const View& previous, const View& current, double sceneScale);
+
 // The previous frame's view-projection, applied to points relative to *this* frame's
 // camera position (so motion vectors need no absolute positions).
 glm::dmat4 previousViewProjRelative(const View& previous, const glm::dvec3& currentPosition, double aspect);

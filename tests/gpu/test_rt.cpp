@@ -113,6 +113,31 @@ TEST_F(RtTest, HalfRaysPerPixelAgreeWithFullRateOnTheAtrium) {
   EXPECT_NEAR(half / full, 1.0, 0.05);
 }
 
+// A camera cut rejects all history: after many still frames, the first frame from a view
+// that shares no surface with the last one accumulates nothing old.
+TEST_F(RtTest, CameraCutRejectsHistory) {
+  auto& s = session();
+  s.loadScene(contentFile("atrium.gltf"));
+  session::View v = s.view();
+  v.position = {0.0, 1.7, 8.0};
+  v.forward = {0.0, 0.0, -1.0};
+  v.up = {0.0, 1.0, 0.0};
+  s.setView(v);
+  render(48, 27, 12, {kCoCgAo});
+  auto still = s.buffer(kCoCgAo).texels();
+  float maxFrames = 0.0f;
+  for (size_t i = 3; i < still.size(); i += 4) maxFrames = std::max(maxFrames, still[i]);
+  EXPECT_GE(maxFrames, 11.0f) << "a still camera accumulates";
+  v.position = {5.0, 1.5, -7.0};  // inside the room, looking at its north wall
+  v.forward = {0.0, -0.1, -1.0};
+  s.setView(v);
+  render(48, 27, 1, {kCoCgAo});
+  auto cut = s.buffer(kCoCgAo).texels();
+  size_t old = 0;
+  for (size_t i = 3; i < cut.size(); i += 4) old += cut[i] > 1.0f;
+  EXPECT_EQ(old, 0u) << "pixels that kept history across the cut";
+}
+
 TEST_F(RtTest, PretraceAgreesWithRealRaysWhereBothHit) {
   auto& s = session();
   s.loadScene(contentFile("cornell.gltf"));

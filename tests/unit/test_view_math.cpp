@@ -90,3 +90,25 @@ TEST(ViewMath, SunShadowFitCoversTheVisibleSceneAndItsCasters) {
 
 }  // namespace
 }  // namespace tl::session
+
+namespace tl::session {
+namespace {
+
+TEST(CameraCut, JumpsAndTurnsAreCutsSmallMovesAreNot) {
+  View a;
+  a.position = {0.0, 1.0, 0.0};
+  a.forward = {0.0, 0.0, -1.0};
+  View b = a;
+  b.position += glm::dvec3(0.5, 0.0, 0.0);
+  EXPECT_FALSE(isCameraCut(a, b, 10.0)) << "walking half a metre in a 10 m scene";
+  b.position = a.position + glm::dvec3(3.0, 0.0, 0.0);
+  EXPECT_TRUE(isCameraCut(a, b, 10.0)) << "jumping 3 m in a 10 m scene";
+  b = a;
+  b.forward = glm::normalize(glm::dvec3(1.0, 0.0, -1.0));
+  EXPECT_FALSE(isCameraCut(a, b, 10.0)) << "turning 45 degrees";
+  b.forward = {1.0, 0.0, 0.0};
+  EXPECT_TRUE(isCameraCut(a, b, 10.0)) << "turning 90 degrees";
+}
+
+}  // namespace
+}  // namespace tl::session
