@@ -48,6 +48,7 @@ struct RenderOptions {
   std::optional<float> rtMeshRatio;
   std::optional<float> rtRaysPerPixel;
   std::optional<bool> rtPretrace;
+  std::optional<bool> rtDenoise;
 };
 
 void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
@@ -67,6 +68,7 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--rays-per-pixel", o.rtRaysPerPixel, "rt path: 1 or 0.5 (a checkerboard alternating each frame)")
       ->check(CLI::IsMember({1.0f, 0.5f}));
   cmd.add_option("--pretrace", o.rtPretrace, "rt path: screen-space pre-trace before real rays (true/false)");
+  cmd.add_option("--denoise", o.rtDenoise, "rt path: two-pass spatial denoiser after accumulation (true/false)");
 }
 
 double median(std::vector<double> v) {
@@ -110,6 +112,7 @@ void prepareSession(Session& session, const RenderOptions& o) {
   if (o.rtMeshRatio) session.settings().rtSimplifyRatio = *o.rtMeshRatio;
   if (o.rtRaysPerPixel) session.settings().rtHalfRays = *o.rtRaysPerPixel < 1.0f;
   if (o.rtPretrace) session.settings().rtPretrace = *o.rtPretrace;
+  if (o.rtDenoise) session.settings().rtDenoise = *o.rtDenoise;
 }
 
 int runRender(const RenderOptions& o) {

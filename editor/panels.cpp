@@ -205,6 +205,10 @@ void pathParameters(EditorApp& app) {
                                  "GI rays stop after this distance; also the TLAS culling margin");
     changed |= distanceParameter("RT to sky blend", s.rtBlendDistance, lighting::sceneScaledBlendDistance(scale),
                                  "Beyond this view distance RT GI fades out (Metro: 250 m)");
+    changed |= ImGui::Checkbox("Denoiser", &s.rtDenoise);
+    tooltip("Two-pass spatial denoiser on the SH after accumulation (Metro's): cleaner, slower");
+    changed |= distanceParameter("Denoiser radius", s.rtDenoiseRadius, std::clamp(scale / 6.0f, 0.25f, 6.0f),
+                                 "Pass 1 base radius; pass 2 uses half (Metro: 6 m and 3 m)");
     changed |= ImGui::Checkbox("0.5 rays per pixel", &s.rtHalfRays);
     tooltip("Trace a checkerboard that alternates each frame; the other half borrows a neighbour's ray");
     changed |= ImGui::Checkbox("Screen-space pre-trace", &s.rtPretrace);

@@ -127,6 +127,14 @@ struct RtPush {
   uint halfRays;         // 1: 0.5 rays per pixel, a checkerboard that alternates each frame
 };
 
+// The two-pass spatial denoiser on the SH (Metro's "little monster"): its own push constants.
+struct RtDenoisePush {
+  float baseRadius;      // world radius before the variance and AO factors (m)
+  uint normalWeight;     // 0: pass 1 (geometry only), 1: pass 2 (linear normal weight)
+  float rotation;        // this frame's rotation of the Poisson disk (radians), the same for every pixel
+  float planeDistance;   // a sample counts when within this fraction of the view distance of the tangent plane
+};
+
 // Bindings (set 0) of the RT path's passes; set 1 is the scene (shared/scene.h) where used.
 TL_CONST uint kRtBindingFrame = 0;       // FrameConstants
 TL_CONST uint kRtBindingTlas = 1;
@@ -152,10 +160,13 @@ TL_CONST uint kRtBindingOutShY = 20;
 TL_CONST uint kRtBindingOutCoCgAo = 21;
 TL_CONST uint kRtBindingOutDepth = 22;
 TL_CONST uint kRtBindingHistRadiance = 23;  // last frame's composite radiance
+TL_CONST uint kRtBindingDenoiseShY = 24;     // denoiser output
+TL_CONST uint kRtBindingDenoiseCoCgAo = 25;
 TL_END
 
 #ifdef __cplusplus
 static_assert(sizeof(tl::shared::RtInstance) == 48);
 static_assert(sizeof(tl::shared::RtPush) == 48);
+static_assert(sizeof(tl::shared::RtDenoisePush) == 16);
 #endif
 #endif

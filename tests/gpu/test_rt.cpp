@@ -138,6 +138,44 @@ TEST_F(RtTest, CameraCutRejectsHistory) {
   EXPECT_EQ(old, 0u) << "pixels that kept history across the cut";
 }
 
+// The spatial denoiser on one frame: its irradiance is closer to the converged one (256
+// accumulated frames, denoiser off) than the raw frame's, by a stated factor.
+TEST_F(RtTest, DenoisedSingleFrameIsCloserToConvergedThanRaw) {
+  auto& s = session();
+  s.loadScene(contentFile("cornell.gltf"));
+  const uint32_t w = 64, h = 64;
+  auto luma = [&](const char* shYName, const char* coCgName) {
+    auto shY = s.buffer(shYName).texels(), coCg = s.buffer(coCgName).texels();
+    auto n = s.buffer("gbuffer.normal").texels();
+    std::vector<double> out(w * h);
+    for (size_t i = 0; i < out.size(); ++i)
+      out[i] = shared::tlLuminance(irradianceAt(shY, coCg, i, shared::tlOctDecode(glm::vec2(n[2 * i], n[2 * i + 1]))));
+    return out;
+  };
+  s.settings().rtDenoise = false;
+  s.settings().rtMaxAccumFrames = 4096;
+  render(w, h, 256, {kShY, kCoCgAo, "gbuffer.normal", "gbuffer.depth"});
+  const auto converged = luma(kShY, kCoCgAo);
+  const auto depth = s.buffer("gbuffer.depth").texels();
+  s.settings() = RenderSettings{};
+  s.resetHistory();
+  render(w, h, 1, {kShY, kCoCgAo, kDenoisedShY, kDenoisedCoCgAo, "gbuffer.normal"});
+  const auto raw = luma(kShY, kCoCgAo), denoised = luma(kDenoisedShY, kDenoisedCoCgAo);
+  auto relMse = [&](const std::vector<double>& x) {
+    double sum = 0.0;
+    size_t n = 0;
+    for (size_t i = 0; i < x.size(); ++i) {
+      if (depth[i] <= 0.0f) continue;
+      sum += (x[i] - converged[i]) * (x[i] - converged[i]) / (converged[i] * converged[i] + 0.01), ++n;
+    }
+    return sum / double(std::max<size_t>(n, 1));
+  };
+  const double rawError = relMse(raw), denoisedError = relMse(denoised);
+  RecordProperty("relmse_raw", std::to_string(rawError));
+  RecordProperty("relmse_denoised", std::to_string(denoisedError));
+  EXPECT_LT(denoisedError * 2.0, rawError) << "raw " << rawError << ", denoised " << denoisedError;
+}
+
 TEST_F(RtTest, PretraceAgreesWithRealRaysWhereBothHit) {
   auto& s = session();
   s.loadScene(contentFile("cornell.gltf"));

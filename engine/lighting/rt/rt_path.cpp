@@ -255,10 +255,55 @@ class RtPath final : public LightingPath {
                            ctx.image(kHistRadiance).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
           });
 
+    std::string giShY = kShY, giCoCg = kCoCgAo;
+    if (s.rtDenoise) {
+      // Metro's radii are 6 m and 3 m in its world; here a sixth of the scene, at most 6 m.
+      const float base = s.rtDenoiseRadius > 0.0f ? s.rtDenoiseRadius : std::clamp(scale / 6.0f, 0.25f, 6.0f);
+      const uint32_t frameIndex = in.constants.frameIndex;
+      auto denoise = [&](const char* name, const char* inShY, const char* inCoCg, const char* outShY, const char* outCoCg,
+                         float radius, uint32_t normalWeight) {
+        graph.addPass(
+            name, graph::PassKind::Compute,
+            [&](graph::PassBuilder& b) {
+              b.read(kFrameConstants, Usage::StorageRead);
+              b.read(kGbufferDepth, Usage::Sampled);
+              b.read("gbuffer.normal", Usage::Sampled);
+              b.read(inShY, Usage::Sampled);
+              b.read(inCoCg, Usage::Sampled);
+              b.create(outShY, image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised irradiance, SH luma"), Usage::StorageWrite);
+              b.create(outCoCg, image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised chroma (xy), AO and frames as input"),
+                       Usage::StorageWrite);
+            },
+            [this, &in, inShY, inCoCg, outShY, outCoCg, radius, normalWeight, frameIndex](graph::PassContext& ctx) {
+              shared::RtDenoisePush dp{};
+              dp.baseRadius = radius;
+              dp.normalWeight = normalWeight;
+              dp.rotation = float(frameIndex % 1024u) * 2.3999632f;  // golden angle per frame
+              dp.planeDistance = 0.02f;
+              VkSampler pt = point_.handle();
+              ctx.bind(denoise_);
+              ctx.pushConstants(dp);
+              ctx.descriptors()
+                  .uniformBuffer(shared::kRtBindingFrame, in.constantsBuffer.handle())
+                  .sampledImage(shared::kRtBindingDepth, ctx.image(kGbufferDepth).view(), pt, kReadOnly)
+                  .sampledImage(shared::kRtBindingNormal, ctx.image("gbuffer.normal").view(), pt, kReadOnly)
+                  .sampledImage(shared::kRtBindingShY, ctx.image(inShY).view(), pt, kReadOnly)
+                  .sampledImage(shared::kRtBindingCoCg, ctx.image(inCoCg).view(), pt, kReadOnly)
+                  .storageImage(shared::kRtBindingDenoiseShY, ctx.image(outShY).view())
+                  .storageImage(shared::kRtBindingDenoiseCoCgAo, ctx.image(outCoCg).view());
+              ctx.dispatch(in.settings.width, in.settings.height);
+            });
+      };
+      denoise("rt.denoise1", kShY, kCoCgAo, kDenoise1ShY, kDenoise1CoCgAo, base, 0);
+      denoise("rt.denoise2", kDenoise1ShY, kDenoise1CoCgAo, kDenoisedShY, kDenoisedCoCgAo, 0.5f * base, 1);
+      giShY = kDenoisedShY;
+      giCoCg = kDenoisedCoCgAo;
+    }
+
     LightingOutputs out;
     out.ambientOcclusion = kAo;
-    out.diffuseShY = kShY;
-    out.diffuseCoCg = kCoCgAo;
+    out.diffuseShY = giShY;
+    out.diffuseCoCg = giCoCg;
     out.giBlendDistance = params_.blendDistance;
     return out;
   }
@@ -356,6 +401,20 @@ class RtPath final : public LightingPath {
                          {shared::kRtBindingHistShY, sampled}, {shared::kRtBindingHistCoCgAo, sampled},
                          {shared::kRtBindingHistDepth, sampled}, {shared::kRtBindingOutShY, storage},
                          {shared::kRtBindingOutCoCgAo, storage}, {shared::kRtBindingOutDepth, storage}});
+    {
+      gpu::ComputePipelineDesc d;
+      d.name = "rt.denoise";
+      d.shader = "rt/denoise.comp";
+      d.layout.bindings = {{shared::kRtBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                           {shared::kRtBindingDepth, sampled},
+                           {shared::kRtBindingNormal, sampled},
+                           {shared::kRtBindingShY, sampled},
+                           {shared::kRtBindingCoCg, sampled},
+                           {shared::kRtBindingDenoiseShY, storage},
+                           {shared::kRtBindingDenoiseCoCgAo, storage}};
+      d.layout.pushConstantBytes = sizeof(shared::RtDenoisePush);
+      denoise_ = gpu::createComputePipeline(in.device, d);
+    }
     aoFilter_ = compute("rt.ao.filter", "rt/ao_filter.comp",
                         {{shared::kRtBindingCoCg, sampled}, {shared::kRtBindingHistDepth, sampled},
                          {shared::kRtBindingAo, storage}});
@@ -405,7 +464,7 @@ class RtPath final : public LightingPath {
   RtResolvedParams params_;
   gpu::Image blueNoise_;
   gpu::Sampler point_;
-  gpu::Pipeline pretrace_, trace_, lighting_, temporal_, aoFilter_, rawRays_;
+  gpu::Pipeline pretrace_, trace_, lighting_, temporal_, aoFilter_, rawRays_, denoise_;
 };
 
 }  // namespace
