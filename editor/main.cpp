@@ -225,6 +225,9 @@ int main(int argc, char** argv) {
   auto* compareCmd = app.add_subcommand("compare", "speed against error of lighting paths versus the reference path tracer");
   compareCmd->add_option("--scene", compareRender.scene, "glTF file; default content/atrium.gltf");
   compareCmd->add_option("--paths", comparePaths, "comma-separated paths (default: every available one)");
+  std::string compareSettings;
+  compareCmd->add_option("--settings", compareSettings,
+                         "JSON file: [{\"name\": N, \"path\": P, \"settings\": {setting: value, ...}}, ...] measured after --paths");
   compareCmd->add_option("--size", compareRender.size, "image size WxH")->capture_default_str();
   compareCmd->add_option("--spp", compare.referenceSpp, "reference samples per pixel (<= 16 or a multiple of 16)")
       ->capture_default_str();
@@ -274,6 +277,22 @@ int main(int argc, char** argv) {
       std::stringstream list(comparePaths);
       for (std::string p; std::getline(list, p, ',');)
         if (!p.empty()) compare.paths.push_back(p);
+      if (!compareSettings.empty()) {
+        std::ifstream in(compareSettings);
+        if (!in) throw tl::session::SessionError(fmt::format("{}: cannot read the settings file", compareSettings));
+        nlohmann::json list;
+        try {
+          list = nlohmann::json::parse(in);
+        } catch (const nlohmann::json::exception& e) {
+          throw tl::session::SessionError(fmt::format("{}: not JSON: {}", compareSettings, e.what()));
+        }
+        if (!list.is_array()) throw tl::session::SessionError(fmt::format("{}: expected a JSON array of configurations", compareSettings));
+        for (const auto& v : list) {
+          if (!v.is_object() || !v.contains("name") || !v.contains("path") || !v["name"].is_string() || !v["path"].is_string())
+            throw tl::session::SessionError(fmt::format("{}: each configuration needs \"name\" and \"path\" strings", compareSettings));
+          compare.variants.push_back({v["name"], v["path"], v.value("settings", nlohmann::json::object())});
+        }
+      }
       compare.outDir = compareOut;
       compare.cacheDir = compareCache;
       auto report = tl::session::runCompare(session, compare, [](const std::string& what, double f) {

@@ -1,5 +1,7 @@
 #include "session/compare.h"
 
+#include "session/settings_json.h"
+
 #include "lighting/common/composite_pass.h"
 #include "metrics/flip.h"
 #include "metrics/metrics.h"
@@ -93,15 +95,24 @@ std::filesystem::path defaultReferenceCache() {
 nlohmann::json runCompare(Session& s, const CompareOptions& o, const Progress& progress) {
   if (o.referenceSpp == 0 || (o.referenceSpp > 16 && o.referenceSpp % 16))
     throw SessionError("the reference sample count must be at most 16 or a multiple of 16");
-  std::vector<std::string> paths = o.paths;
-  if (paths.empty())
+  std::vector<CompareVariant> runs;
+  for (const auto& p : o.paths) runs.push_back({p, p, nlohmann::json::object()});
+  if (o.paths.empty() && o.variants.empty())
     for (auto& p : s.paths())
-      if (p.available && p.name != "reference") paths.push_back(p.name);
-  for (auto& name : paths) {
+      if (p.available && p.name != "reference") runs.push_back({p.name, p.name, nlohmann::json::object()});
+  for (const auto& v : o.variants) {
+    if (std::any_of(runs.begin(), runs.end(), [&](auto& r) { return r.name == v.name; }))
+      throw SessionError(fmt::format("two compared configurations are called `{}`", v.name));
+    runs.push_back(v);
+  }
+  const lighting::RenderSettings baseSettings = s.settings();
+  for (auto& run : runs) {
     auto all = s.paths();
-    auto it = std::find_if(all.begin(), all.end(), [&](auto& p) { return p.name == name; });
+    auto it = std::find_if(all.begin(), all.end(), [&](auto& p) { return p.name == run.path; });
     if (it == all.end() || !it->available)
-      throw SessionError(fmt::format("cannot compare `{}`: {}", name, it == all.end() ? "no such path" : it->unavailableReason));
+      throw SessionError(fmt::format("cannot compare `{}`: {}", run.name, it == all.end() ? "no such path `" + run.path + "`"
+                                                                                         : it->unavailableReason));
+    applySettingsJson(baseSettings, run.settings);  // every variant is checked before anything renders
   }
   std::error_code ec;
   std::filesystem::create_directories(o.outDir, ec);
@@ -115,12 +126,14 @@ nlohmann::json runCompare(Session& s, const CompareOptions& o, const Progress& p
   writePngRgb(o.outDir / "reference.png", referenceDisplay.width, referenceDisplay.height, referenceDisplay.data);
 
   nlohmann::json results = nlohmann::json::array();
-  for (size_t i = 0; i < paths.size(); ++i) {
-    const std::string& name = paths[i];
-    s.setPath(name);
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const std::string& name = runs[i].name;
+    s.setPath(runs[i].path);
+    s.settings() = applySettingsJson(baseSettings, runs[i].settings);
     s.resetHistory();
     s.renderFrames(std::max(1u, o.framesPerPath));
-    if (progress) progress("path " + name, double(i + 1) / paths.size());
+    s.settings() = baseSettings;
+    if (progress) progress("path " + name, double(i + 1) / runs.size());
     metrics::Image test = rgbOf(s.buffer(lighting::kCompositeHdr));
     metrics::Image testDisplay = displayOf(test, exposure);
 
@@ -143,6 +156,8 @@ nlohmann::json runCompare(Session& s, const CompareOptions& o, const Progress& p
     for (const auto& [pass, ms] : s.passGpuMs()) passes[pass] = median(ms);
     auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
     results.push_back({{"path", name},
+                       {"lightingPath", runs[i].path},
+                       {"settings", runs[i].settings},
                        {"frames", o.framesPerPath},
                        {"frameMs", median(s.frameGpuMs())},
                        {"passMs", passes},

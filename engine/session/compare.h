@@ -15,8 +15,16 @@
 
 namespace tl::session {
 
+// One measured configuration: a lighting path with settings changed from the session's.
+struct CompareVariant {
+  std::string name;            // shown in the report (unique)
+  std::string path;            // lighting path
+  nlohmann::json settings;     // RenderSettings overrides (session/settings_json.h), {} for none
+};
+
 struct CompareOptions {
-  std::vector<std::string> paths;      // empty: every available path except the reference
+  std::vector<std::string> paths;      // empty (and no variants): every available path except the reference
+  std::vector<CompareVariant> variants;  // measured after `paths` (compare --settings FILE)
   uint32_t referenceSpp = 256;         // multiple of 16
   uint32_t referenceBounces = 8;
   uint32_t framesPerPath = 8;          // the last one is measured against the reference

@@ -95,9 +95,11 @@ class LegacyPath final : public LightingPath {
     push.aoHistory = aoHistory ? s.legacyAoFrames : 0u;
     const bool historyOk = feedback && in.executor.historyValid(kLegacyHistRadiance) &&
                            in.executor.historyValid(kLegacyHistDepth);
-    if (key != voxelKey_) settle_ = s.legacySettleFrames + 1;
-    const bool revoxelize = key != voxelKey_ || settle_ > 0 || !in.executor.historyValid(kVoxelRadiance) ||
-                            !in.executor.historyValid(kVoxelRadianceMips) || s.legacyVoxelizeEveryFrame;
+    const bool voxelsKept = in.executor.historyValid(kVoxelRadiance) && in.executor.historyValid(kVoxelRadianceMips);
+    // A change, or voxels lost (a reset, a camera cut): rebuild, and keep rebuilding while the
+    // bounces through the screen settle.
+    if (key != voxelKey_ || !voxelsKept) settle_ = s.legacySettleFrames + 1;
+    const bool revoxelize = settle_ > 0 || s.legacyVoxelizeEveryFrame;
     // Bounces through the screen settle over a few rebuilds; only frames with history count.
     if (revoxelize && settle_ > 0 && (historyOk || !feedback)) --settle_;
     push.screenRadiance = historyOk ? 1u : 0u;

@@ -1,0 +1,92 @@
+#include "session/settings_json.h"
+
+#include "session/session.h"
+
+#include <fmt/format.h>
+
+#include <functional>
+#include <map>
+
+namespace tl::session {
+namespace {
+
+using Setter = std::function<void(lighting::RenderSettings&, const nlohmann::json&)>;
+
+template <class T>
+Setter field(T lighting::RenderSettings::*member) {
+  return [member](lighting::RenderSettings& s, const nlohmann::json& v) {
+    if constexpr (std::is_same_v<T, bool>) {
+      if (!v.is_boolean()) throw std::invalid_argument("true or false");
+      s.*member = v.get<bool>();
+    } else if constexpr (std::is_unsigned_v<T>) {
+      if (!v.is_number_integer() || v.get<int64_t>() < 0) throw std::invalid_argument("a whole number >= 0");
+      s.*member = T(v.get<int64_t>());
+    } else {
+      if (!v.is_number()) throw std::invalid_argument("a number");
+      s.*member = v.get<T>();
+    }
+  };
+}
+
+const std::map<std::string, Setter>& setters() {
+  using S = lighting::RenderSettings;
+  static const std::map<std::string, Setter> table = {
+      {"shadowMapSize", field(&S::shadowMapSize)},
+      {"softShadows", field(&S::softShadows)},
+      {"pcssMaxRadiusTexels", field(&S::pcssMaxRadiusTexels)},
+      {"referenceBounces", field(&S::referenceBounces)},
+      {"rtSimplifyRatio", field(&S::rtSimplifyRatio)},
+      {"rtAoRadius", field(&S::rtAoRadius)},
+      {"rtRayLength", field(&S::rtRayLength)},
+      {"rtBlendDistance", field(&S::rtBlendDistance)},
+      {"rtPretrace", field(&S::rtPretrace)},
+      {"rtPretraceSteps", field(&S::rtPretraceSteps)},
+      {"rtPretracePixels", field(&S::rtPretracePixels)},
+      {"rtThickness", field(&S::rtThickness)},
+      {"rtMaxAccumFrames", field(&S::rtMaxAccumFrames)},
+      {"rtCullAngle", field(&S::rtCullAngle)},
+      {"rtCullMargin", field(&S::rtCullMargin)},
+      {"rtHalfRays", field(&S::rtHalfRays)},
+      {"rtDenoise", field(&S::rtDenoise)},
+      {"rtDenoiseRadius", field(&S::rtDenoiseRadius)},
+      {"rtScreenRadiance", field(&S::rtScreenRadiance)},
+      {"legacyAoRadius", field(&S::legacyAoRadius)},
+      {"legacyAoThickness", field(&S::legacyAoThickness)},
+      {"legacyAoSlices", field(&S::legacyAoSlices)},
+      {"legacyAoSteps", field(&S::legacyAoSteps)},
+      {"legacyAoDivisor", field(&S::legacyAoDivisor)},
+      {"legacyConeDivisor", field(&S::legacyConeDivisor)},
+      {"legacyVoxelResolution", field(&S::legacyVoxelResolution)},
+      {"legacyLevel0Extent", field(&S::legacyLevel0Extent)},
+      {"legacyMaxLevels", field(&S::legacyMaxLevels)},
+      {"legacyConeRange", field(&S::legacyConeRange)},
+      {"legacyConeStep", field(&S::legacyConeStep)},
+      {"legacyScreenRadiance", field(&S::legacyScreenRadiance)},
+      {"legacySettleFrames", field(&S::legacySettleFrames)},
+      {"legacyAoFrames", field(&S::legacyAoFrames)},
+  };
+  return table;
+}
+
+}  // namespace
+
+lighting::RenderSettings applySettingsJson(const lighting::RenderSettings& base, const nlohmann::json& overrides) {
+  if (!overrides.is_object()) throw SessionError("settings must be a JSON object of setting names and values");
+  lighting::RenderSettings s = base;
+  for (const auto& [key, value] : overrides.items()) {
+    auto it = setters().find(key);
+    if (it == setters().end()) {
+      std::string known;
+      for (const auto& [name, setter] : setters()) known += (known.empty() ? "" : ", ") + name;
+      throw SessionError(fmt::format("unknown setting `{}` (known: {})", key, known));
+    }
+    try {
+      it->second(s, value);
+    } catch (const std::invalid_argument& e) {
+      throw SessionError(fmt::format("setting `{}` must be {}, not {}", key, e.what(), value.dump()));
+    }
+  }
+  return s;
+}
+
+}  // namespace tl::session

@@ -1,0 +1,39 @@
+// Render settings from JSON: known keys apply, unknown keys and wrong types are one clear error.
+#include "session/session.h"
+#include "session/settings_json.h"
+
+#include <gtest/gtest.h>
+
+namespace tl::session {
+namespace {
+
+TEST(SettingsJson, KnownKeysApplyAndTheRestIsKept) {
+  lighting::RenderSettings base;
+  auto s = applySettingsJson(base, {{"rtHalfRays", true}, {"legacyConeDivisor", 2}, {"rtAoRadius", 0.5}});
+  EXPECT_TRUE(s.rtHalfRays);
+  EXPECT_EQ(s.legacyConeDivisor, 2u);
+  EXPECT_FLOAT_EQ(s.rtAoRadius, 0.5f);
+  EXPECT_EQ(s.width, base.width);
+  EXPECT_EQ(s.rtDenoise, base.rtDenoise);
+}
+
+TEST(SettingsJson, UnknownKeysAndWrongTypesAreRefusedByName) {
+  lighting::RenderSettings base;
+  try {
+    applySettingsJson(base, {{"rtBogus", 1}});
+    FAIL() << "accepted an unknown key";
+  } catch (const SessionError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown setting `rtBogus`"), std::string::npos) << e.what();
+  }
+  try {
+    applySettingsJson(base, {{"rtHalfRays", 3}});
+    FAIL() << "accepted a number for a switch";
+  } catch (const SessionError& e) {
+    EXPECT_NE(std::string(e.what()).find("`rtHalfRays` must be true or false"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(applySettingsJson(base, {{"legacyAoSteps", -2}}), SessionError);
+  EXPECT_THROW(applySettingsJson(base, nlohmann::json::array()), SessionError);
+}
+
+}  // namespace
+}  // namespace tl::session
