@@ -277,6 +277,33 @@ void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from
   transitionImage(cmd, image.handle(), image.aspect(), from, to);
 }
 
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+  VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  b.srcStageMask = srcStage;
+  b.srcAccessMask = srcAccess;
+  b.dstStageMask = dstStage;
+  b.dstAccessMask = dstAccess;
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.memoryBarrierCount = 1;
+  dep.pMemoryBarriers = &b;
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+void copyImage(VkCommandBuffer cmd, const Image& src, const Image& dst) {
+  VkImageCopy region{};
+  region.srcSubresource = region.dstSubresource = {src.aspect(), 0, 0, 1};
+  region.extent = src.extent();
+  vkCmdCopyImage(cmd, src.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 1, &region);
+}
+
+void clearImage(VkCommandBuffer cmd, const Image& image, VkImageLayout layout) {
+  VkClearColorValue zero{};
+  VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdClearColorImage(cmd, image.handle(), layout, &zero, 1, &range);
+}
+
 void uploadBuffer(Device& device, Buffer& dst, const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
   if (bytes == 0) return;
   Buffer staging(device, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging.upload");

@@ -140,6 +140,14 @@ void transitionImage(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspe
                      uint32_t baseMip = 0, uint32_t mipCount = VK_REMAINING_MIP_LEVELS);
 void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to);
 
+// A global memory dependency (synchronization2), e.g. between dispatches inside one pass.
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+// Copies mip 0 of `src` (TRANSFER_SRC_OPTIMAL) into `dst` (TRANSFER_DST_OPTIMAL), same size and aspect.
+void copyImage(VkCommandBuffer cmd, const Image& src, const Image& dst);
+// Clears mip 0 of a colour image to zero in `layout` (GENERAL or TRANSFER_DST_OPTIMAL).
+void clearImage(VkCommandBuffer cmd, const Image& image, VkImageLayout layout);
+
 }  // namespace tl::gpu
 
 namespace tl::gpu {

@@ -89,15 +89,7 @@ void imageBarrier(VkCommandBuffer cmd, const gpu::Image& image, const State& src
 }
 
 void memoryBarrier(VkCommandBuffer cmd, const State& src, const State& dst) {
-  VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  b.srcStageMask = src.stage;
-  b.srcAccessMask = src.access;
-  b.dstStageMask = dst.stage;
-  b.dstAccessMask = dst.access;
-  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dep.memoryBarrierCount = 1;
-  dep.pMemoryBarriers = &b;
-  vkCmdPipelineBarrier2(cmd, &dep);
+  gpu::memoryBarrier(cmd, src.stage, src.access, dst.stage, dst.access);
 }
 
 // Contents of a transient do not survive, and the memory may have held another resource:

@@ -5,6 +5,7 @@
 // is a named graph resource.
 #include "graph/executor.h"
 #include "lighting/common/composite_pass.h"
+#include "lighting/common/copy_pass.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/shadow_pass.h"
 #include "lighting/legacy/legacy_path.h"
@@ -14,7 +15,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <tuple>
 
 namespace tl::lighting {
 namespace {
@@ -133,7 +133,10 @@ class LegacyPath final : public LightingPath {
           bool first = true;
           for (const Round& round : rounds) {
             if (round.instances->empty()) continue;
-            if (!first) fragmentBarrier(ctx.cmd);
+            if (!first)
+              gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                 VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
             first = false;
             ctx.beginRendering({}, std::nullopt, VkExtent2D{R, R});
             ctx.bind(voxelize_);
@@ -170,7 +173,9 @@ class LegacyPath final : public LightingPath {
           const gpu::Image& rm = ctx.image(kVoxelRadianceMips);
           ctx.bind(mip_);
           for (uint32_t m = 0; m < mips; ++m) {
-            if (m > 0) computeBarrier(ctx.cmd);
+            if (m > 0)  // the next mip reads what the previous dispatch wrote
+              gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
             ctx.descriptors()
                 .storageImage(shared::kLegacyBindingMipSrcRadiance, m == 0 ? r0.view() : rm.mipView(m - 1))
                 .storageImage(shared::kLegacyBindingRadianceMips, rm.mipView(m));
@@ -235,31 +240,9 @@ class LegacyPath final : public LightingPath {
           ctx.dispatch(in.settings.width, in.settings.height);
         });
 
-    graph.addPass(
-        "legacy.history", graph::PassKind::Transfer,
-        [&](graph::PassBuilder& b) {
-          b.read(kGbufferDepth, Usage::TransferSrc);
-          b.read(kLegacySsao, Usage::TransferSrc);
-          b.write(kLegacyHistDepth, Usage::TransferDst);
-          b.write(kLegacyHistSsao, Usage::TransferDst);
-          if (feedback) {
-            b.read(kCompositeHdr, Usage::TransferSrc);
-            b.write(kLegacyHistRadiance, Usage::TransferDst);
-          }
-        },
-        [feedback](graph::PassContext& ctx) {
-          std::vector<std::tuple<const char*, const char*, VkImageAspectFlags>> copies = {
-              {kGbufferDepth, kLegacyHistDepth, VK_IMAGE_ASPECT_DEPTH_BIT},
-              {kLegacySsao, kLegacyHistSsao, VK_IMAGE_ASPECT_COLOR_BIT}};
-          if (feedback) copies.push_back({kCompositeHdr, kLegacyHistRadiance, VK_IMAGE_ASPECT_COLOR_BIT});
-          for (auto [from, to, aspect] : copies) {
-            VkImageCopy region{};
-            region.srcSubresource = region.dstSubresource = {aspect, 0, 0, 1};
-            region.extent = ctx.extent(from);
-            vkCmdCopyImage(ctx.cmd, ctx.image(from).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, ctx.image(to).handle(),
-                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-          }
-        });
+    std::vector<ImageCopy> history = {{kGbufferDepth, kLegacyHistDepth}, {kLegacySsao, kLegacyHistSsao}};
+    if (feedback) history.push_back({kCompositeHdr, kLegacyHistRadiance});
+    addCopyPass(graph, "legacy.history", std::move(history));
 
     LightingOutputs out;
     out.ambientOcclusion = kLegacyAo;
@@ -305,48 +288,11 @@ class LegacyPath final : public LightingPath {
   // The voxel images start empty every frame. The clear runs at the transfer stage inside a
   // raster pass, so it waits for everything before it and the fragment writes wait for it.
   static void clearStorage(VkCommandBuffer cmd, std::initializer_list<const gpu::Image*> images) {
-    VkMemoryBarrier2 before{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    before.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    before.srcAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-    before.dstStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
-    before.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &before;
-    vkCmdPipelineBarrier2(cmd, &dep);
-    VkClearColorValue zero{};
-    for (const gpu::Image* image : images) {
-      VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-      vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
-    }
-    VkMemoryBarrier2 after{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    after.srcStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
-    after.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    after.dstStageMask = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-    after.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
-    dep.pMemoryBarriers = &after;
-    vkCmdPipelineBarrier2(cmd, &dep);
-  }
-  static void fragmentBarrier(VkCommandBuffer cmd) {
-    VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    b.srcStageMask = b.dstStageMask = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-    b.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &b;
-    vkCmdPipelineBarrier2(cmd, &dep);
-  }
-  // Between mips: the next dispatch reads what the previous one wrote.
-  static void computeBarrier(VkCommandBuffer cmd) {
-    VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    b.srcStageMask = b.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    b.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &b;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    for (const gpu::Image* image : images) gpu::clearImage(cmd, *image, VK_IMAGE_LAYOUT_GENERAL);
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   }
 
   void prepare(FrameInputs& in) {

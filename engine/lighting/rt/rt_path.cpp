@@ -4,6 +4,7 @@
 // temporal accumulation, and a small AO filter. Every intermediate is a named resource.
 #include "graph/executor.h"
 #include "lighting/common/composite_pass.h"
+#include "lighting/common/copy_pass.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/lighting_path.h"
 #include "lighting/rt/blue_noise.h"
@@ -185,22 +186,7 @@ class RtPath final : public LightingPath {
           ctx.dispatch(in.settings.width, in.settings.height);
         });
 
-    graph.addPass(
-        "rt.history", graph::PassKind::Transfer,
-        [&](graph::PassBuilder& b) {
-          for (const char* n : {kShY, kCoCgAo, kViewDepth}) b.read(n, Usage::TransferSrc);
-          for (const char* n : {kHistShY, kHistCoCgAo, kHistDepth}) b.write(n, Usage::TransferDst);
-        },
-        [](graph::PassContext& ctx) {
-          const std::pair<const char*, const char*> copies[] = {{kShY, kHistShY}, {kCoCgAo, kHistCoCgAo}, {kViewDepth, kHistDepth}};
-          for (auto [from, to] : copies) {
-            VkImageCopy region{};
-            region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-            region.extent = ctx.extent(from);
-            vkCmdCopyImage(ctx.cmd, ctx.image(from).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, ctx.image(to).handle(),
-                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-          }
-        });
+    addCopyPass(graph, "rt.history", {{kShY, kHistShY}, {kCoCgAo, kHistCoCgAo}, {kViewDepth, kHistDepth}});
 
     graph.addPass(
         "rt.ao.filter", graph::PassKind::Compute,
@@ -240,20 +226,7 @@ class RtPath final : public LightingPath {
       graph.markOutput(kRawRays);
     }
 
-    if (screenRadiance)
-      graph.addPass(
-          "rt.radiance.store", graph::PassKind::Transfer,
-          [&](graph::PassBuilder& b) {
-            b.read(kCompositeHdr, Usage::TransferSrc);
-            b.write(kHistRadiance, Usage::TransferDst);
-          },
-          [](graph::PassContext& ctx) {
-            VkImageCopy region{};
-            region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-            region.extent = ctx.extent(kCompositeHdr);
-            vkCmdCopyImage(ctx.cmd, ctx.image(kCompositeHdr).handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                           ctx.image(kHistRadiance).handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-          });
+    if (screenRadiance) addCopyPass(graph, "rt.radiance.store", {{kCompositeHdr, kHistRadiance}});
 
     std::string giShY = kShY, giCoCg = kCoCgAo;
     if (s.rtDenoise) {
