@@ -22,10 +22,7 @@ layout(set = 0, binding = kCompositeShY) uniform sampler2D pathShY;
 layout(set = 0, binding = kCompositeCoCg) uniform sampler2D pathCoCg;
 layout(push_constant) uniform Push { CompositePush push; };
 
-vec3 cameraRelativePosition(vec2 uv, float depth) {
-  vec4 p = frame.invViewProj * vec4(uv * 2.0 - 1.0, depth, 1.0);
-  return p.xyz / p.w;
-}
+#include "common/camera.glsl"
 
 #define TL_SUN_SHADOW_PCSS
 layout(set = 0, binding = kCompositeShadowDepth) uniform sampler2D sunShadowDepth;

@@ -27,8 +27,7 @@ void main() {
   vec3 V = normalize(-P);
   float w = viewW(P);
   // Radius in pixels at this distance; at least a few pixels, at most a fifth of the screen.
-  float pixelWorld = 2.0 * w / (abs(frame.proj[1][1]) * frame.viewport.y);
-  float radiusPixels = clamp(push.aoRadius / pixelWorld, 2.0, 0.2 * frame.viewport.y);
+  float radiusPixels = clamp(push.aoRadius / pixelFootprint(w), 2.0, 0.2 * frame.viewport.y);
   uint steps = max(push.aoSteps, 1u), slices = max(push.aoSlices, 1u);
   float stepPixels = radiusPixels / float(steps);
   // 2x2 interleaved rotation: the four half-resolution pixels a full-resolution pixel is

@@ -19,6 +19,8 @@ layout(set = 0, binding = kLegacyBindingPrevRadiance) uniform sampler2D previous
 layout(set = 0, binding = kLegacyBindingPrevDepth) uniform sampler2D previousDepth;
 layout(push_constant) uniform Push { LegacyPush push; };
 
+#include "common/camera.glsl"
+
 // The radiance last frame's image showed at this point, if the point was on screen and
 // unoccluded then: it holds every light and every bounce so far, so feeding it back into
 // the voxels makes the GI multi-bounce over frames (the RT path does the same at its hits).
@@ -31,7 +33,7 @@ bool screenRadiance(vec3 position, vec3 normal, out vec3 radiance) {
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return false;
   float depth = textureLod(previousDepth, uv, 0.0).r;
   if (depth <= 0.0) return false;
-  float seenW = frame.proj[3][2] / depth;
+  float seenW = depthToViewW(depth);
   if (abs(seenW - clip.w) > 0.03 * clip.w + 2.0 * push.clipmap.levelMin[push.axis / 3u].w) return false;
   radiance = textureLod(previousRadiance, uv, 0.0).rgb;
   return true;

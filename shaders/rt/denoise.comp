@@ -29,10 +29,7 @@ const vec2 kDisk[16] = vec2[16](
     vec2(-0.24188840, 0.99706507), vec2(-0.81409955, 0.91437590), vec2(0.19984126, 0.78641367),
     vec2(0.14383161, -0.14100790));
 
-vec3 positionAt(ivec2 p, float depth) {
-  vec4 q = frame.invViewProj * vec4(((vec2(p) + 0.5) * frame.viewport.zw) * 2.0 - 1.0, depth, 1.0);
-  return q.xyz / q.w;
-}
+#include "common/camera.glsl"
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -46,9 +43,9 @@ void main() {
     imageStore(outCoCgAo, p, coCgAo0);
     return;
   }
-  vec3 P0 = positionAt(p, depth);
+  vec3 P0 = pixelPosition(p, depth);
   vec3 n0 = tlOctDecode(texelFetch(gNormal, p, 0).xy);
-  float w0 = frame.proj[3][2] / depth;
+  float w0 = depthToViewW(depth);
 
   // 3x3 relative standard deviation of the luma band.
   float sum = 0.0, sum2 = 0.0;
@@ -62,8 +59,7 @@ void main() {
   float sigma = sqrt(max(sum2 / 9.0 - mean * mean, 0.0));
   float fVariance = clamp(2.0 * sigma / max(abs(mean), 1e-4), 0.1, 1.0);
   float fAo = mix(0.5, 1.0, clamp(coCgAo0.z, 0.0, 1.0));
-  float pixelWorld = 2.0 * w0 / (abs(frame.proj[1][1]) * frame.viewport.y);
-  float radius = clamp(push.baseRadius * fVariance * fAo / pixelWorld, 1.0, 48.0);
+  float radius = clamp(push.baseRadius * fVariance * fAo / pixelFootprint(w0), 1.0, 48.0);
   int step = radius < 4.0 ? 4 : (radius < 8.0 ? 2 : 1);
 
   float c = cos(push.rotation), s = sin(push.rotation);
@@ -77,7 +73,7 @@ void main() {
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)) || q == p) continue;
     float d = texelFetch(gDepth, q, 0).r;
     if (d <= 0.0) continue;
-    if (abs(dot(n0, positionAt(q, d) - P0)) > plane) continue;  // off the tangent plane: weight 0
+    if (abs(dot(n0, pixelPosition(q, d) - P0)) > plane) continue;  // off the tangent plane: weight 0
     float k = 1.0;
     if (push.normalWeight != 0u) k = max(dot(n0, tlOctDecode(texelFetch(gNormal, q, 0).xy)), 0.0);
     if (k <= 0.0) continue;

@@ -28,10 +28,8 @@ void main() {
   uint result = kRtHitPending;
   uvec2 surface = uvec2(0u);
   if (push.pretrace != 0u) {
-    // World length of one pixel at this distance, from the projection's y scale.
-    float viewW = (frame.viewProj * vec4(position, 1.0)).w;
-    float pixelWorld = 2.0 * viewW / (abs(frame.proj[1][1]) * frame.viewport.y);
-    float rayLength = min(push.pretraceLength * pixelWorld, push.tMax);
+    // A roughly constant screen length: pixels times the world size of a pixel here.
+    float rayLength = min(push.pretraceLength * pixelFootprint(viewW(position)), push.tMax);
     uint steps = max(push.pretraceSteps, 1u);
     // A per-pixel offset of the samples (from the same noise) hides the step pattern.
     float jitter = fract(dot(vec2(p), vec2(0.7548777, 0.5698403)) + float(frame.frameIndex & 63u) * 0.618034);
@@ -48,7 +46,7 @@ void main() {
       float sceneDepth = texelFetch(gDepth, s, 0).r;
       if (sceneDepth <= 0.0) continue;
       vec3 scenePosition = pixelPosition(s, sceneDepth);
-      float sceneW = (frame.viewProj * vec4(scenePosition, 1.0)).w;
+      float sceneW = viewW(scenePosition);
       float behind = clip.w - sceneW;
       if (behind > 0.0) {
         // Behind a surface thicker than `thickness` of its distance: hidden, not hit.

@@ -11,11 +11,8 @@ layout(set = 0, binding = kRtBindingDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kRtBindingNormal) uniform sampler2D gNormal;
 layout(push_constant) uniform Push { RtPush push; };
 
-vec3 cameraRelativePosition(vec2 uv, float depth) {
-  vec4 p = frame.invViewProj * vec4(uv * 2.0 - 1.0, depth, 1.0);
-  return p.xyz / p.w;
-}
-vec3 pixelPosition(ivec2 p, float depth) { return cameraRelativePosition((vec2(p) + 0.5) * frame.viewport.zw, depth); }
+#include "common/camera.glsl"
+
 vec3 pixelNormal(ivec2 p) { return tlOctDecode(texelFetch(gNormal, p, 0).xy); }
 
 // Metro's noise addressing: the 64x64 tile shifts by half a tile on odd frames, and the

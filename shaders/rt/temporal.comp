@@ -42,7 +42,7 @@ void main() {
     return;
   }
   vec3 position = pixelPosition(p, depth);
-  float viewW = (frame.viewProj * vec4(position, 1.0)).w;
+  float w = viewW(position);
   if (push.historyValid != 0u) {
     vec2 uv = (vec2(p) + 0.5) * frame.viewport.zw;
     vec2 previousUv = uv - texelFetch(gMotion, p, 0).xy;
@@ -64,5 +64,5 @@ void main() {
   }
   imageStore(outShY, p, shY);
   imageStore(outCoCgAo, p, coCgAo);
-  imageStore(outDepth, p, vec4(viewW));
+  imageStore(outDepth, p, vec4(w));
 }
