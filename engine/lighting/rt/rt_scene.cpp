@@ -156,12 +156,17 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
   }
   stats_.blasBuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
+  // Once per material (texture averages touch every texel), then per instance.
+  std::vector<glm::vec4> albedo, emission;
+  for (const auto& m : scene.materials) {
+    albedo.push_back(glm::vec4(materialHitAlbedo(scene, m), 0.0f));
+    emission.push_back(glm::vec4(materialEmission(scene, m), 0.0f));
+  }
   std::vector<shared::RtInstance> data(std::max<size_t>(1, scene.instances.size()));
   for (size_t i = 0; i < scene.instances.size(); ++i) {
-    const auto& mat = scene.materials[scene.meshes[scene.instances[i].mesh].material];
-    data[i].albedo = glm::vec4(materialHitAlbedo(scene, mat), 0.0f);
-    data[i].emission = glm::vec4(materialEmission(scene, mat), 0.0f);
     const uint32_t mesh = scene.instances[i].mesh;
+    data[i].albedo = albedo[scene.meshes[mesh].material];
+    data[i].emission = emission[scene.meshes[mesh].material];
     const VkDeviceAddress ia = rtIndices_[mesh].address();
     const VkDeviceAddress va = vertices + VkDeviceAddress(ranges[mesh].vertexOffset) * sizeof(scene::Vertex);
     data[i].indexAddress = glm::uvec2(uint32_t(ia), uint32_t(ia >> 32));
