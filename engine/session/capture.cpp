@@ -1,13 +1,13 @@
 #include "session/capture.h"
 
 #include "gpu/formats.h"
+#include "session/image_io.h"
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <fstream>
 #include <system_error>
-#include <unistd.h>
 
 namespace tl::session {
 namespace {
@@ -20,24 +20,12 @@ std::string fileStem(const std::string& name) {
   return s;
 }
 
-// Writes through a temporary file and a rename: a capture never holds half a file.
-void writeAtomic(const std::filesystem::path& file, const std::function<bool(const std::string&)>& write) {
-  const std::filesystem::path tmp = file.string() + fmt::format(".tmp{}", ::getpid()) + file.extension().string();
-  std::error_code ec;
-  if (!write(tmp.string())) {
-    std::filesystem::remove(tmp, ec);
-    throw SessionError(fmt::format("{}: write failed", file.string()));
-  }
-  std::filesystem::rename(tmp, file, ec);
-  if (ec) throw SessionError(fmt::format("{}: cannot move the finished file into place", file.string()));
-}
-
 void writeExr(const std::filesystem::path& file, const graph::Readback& rb) {
   const gpu::FormatInfo fi = gpu::formatInfo(rb.format);
   const uint32_t w = rb.extent.width, h = rb.extent.height * std::max(1u, rb.extent.depth);
   const bool integer = fi.kind == gpu::TexelKind::Uint || fi.kind == gpu::TexelKind::Sint;
   const int channels = int(fi.channels);
-  writeAtomic(file, [&](const std::string& tmp) {
+  writeFileAtomically(file, [&](const std::string& tmp) {
     auto out = OIIO::ImageOutput::create(file.string());
     if (!out) return false;
     if (integer) {
@@ -134,7 +122,7 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
       else if (info.desc.mipLevels > 1) r["layout"] = "mip 0";
     } else {
       const std::string file = fileStem(info.name) + ".bin";
-      writeAtomic(dir / file, [&](const std::string& tmp) {
+      writeFileAtomically(dir / file, [&](const std::string& tmp) {
         std::ofstream out(tmp, std::ios::binary);
         out.write(reinterpret_cast<const char*>(rb->bytes.data()), std::streamsize(rb->bytes.size()));
         return bool(out);
@@ -145,7 +133,7 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
     resources.push_back(r);
   }
   manifest["resources"] = resources;
-  writeAtomic(dir / "manifest.json", [&](const std::string& tmp) {
+  writeFileAtomically(dir / "manifest.json", [&](const std::string& tmp) {
     std::ofstream out(tmp);
     out << manifest.dump(2) << "\n";
     return bool(out);

@@ -13,31 +13,43 @@
 namespace tl::session {
 namespace {
 
-// Writes `pixels` (float, `channels` interleaved) as `type` to a temporary file, then
-// renames it into place.
+// Writes `pixels` (float, `channels` interleaved) as `type`.
 void writeAtomically(const std::filesystem::path& file, uint32_t w, uint32_t h, int channels, OIIO::TypeDesc type,
                      const std::vector<float>& pixels, const char* colorSpace) {
+  auto out = OIIO::ImageOutput::create(file.string());
+  if (!out) throw SessionError(fmt::format("{}: cannot write this image type", file.string()));
+  writeFileAtomically(file, [&](const std::string& tmp) {
+    OIIO::ImageSpec spec(int(w), int(h), channels, type);
+    spec.attribute("oiio:ColorSpace", colorSpace);
+    spec.attribute("Software", "Twinlight");
+    if (out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close()) return true;
+    throw SessionError(fmt::format("{}: write failed: {}", file.string(), out->geterror()));
+  });
+}
+
+}  // namespace
+
+void writeFileAtomically(const std::filesystem::path& file, const std::function<bool(const std::string& tmp)>& write) {
   std::error_code ec;
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), ec);
   const std::filesystem::path tmp = file.string() + fmt::format(".tmp{}", ::getpid()) + file.extension().string();
-  auto out = OIIO::ImageOutput::create(file.string());
-  if (!out) throw SessionError(fmt::format("{}: cannot write this image type", file.string()));
-  OIIO::ImageSpec spec(int(w), int(h), channels, type);
-  spec.attribute("oiio:ColorSpace", colorSpace);
-  spec.attribute("Software", "Twinlight");
-  bool ok = out->open(tmp.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close();
+  bool ok = false;
+  try {
+    ok = write(tmp.string());
+  } catch (...) {
+    std::filesystem::remove(tmp, ec);
+    throw;
+  }
   if (!ok) {
     std::filesystem::remove(tmp, ec);
-    throw SessionError(fmt::format("{}: write failed: {}", file.string(), out->geterror()));
+    throw SessionError(fmt::format("{}: write failed", file.string()));
   }
   std::filesystem::rename(tmp, file, ec);
   if (ec) {
     std::filesystem::remove(tmp, ec);
-    throw SessionError(fmt::format("{}: cannot move the finished image into place", file.string()));
+    throw SessionError(fmt::format("{}: cannot move the finished file into place", file.string()));
   }
 }
-
-}  // namespace
 
 void writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding) {
   const uint32_t w = image.extent.width, h = image.extent.height;

@@ -7,11 +7,18 @@
 
 #include <filesystem>
 #include <optional>
+#include <functional>
+#include <string>
 #include <vector>
 
 namespace tl::session {
 
 enum class ImageEncoding { LinearHalf, Display8 };
+
+// Writes `file` through a temporary file in the same folder and a rename, so a reader never
+// sees half a file. `write` writes the temporary and returns false (or throws) on failure:
+// the temporary is removed and the error names `file`.
+void writeFileAtomically(const std::filesystem::path& file, const std::function<bool(const std::string& tmp)>& write);
 
 // A read-back buffer as an image (alpha dropped).
 void writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding);
