@@ -37,6 +37,21 @@ class GpuTest : public ::testing::Test {
   uint32_t errorsBefore_ = 0;
 };
 
+// Tests that need ray tracing: skipped where the device has none; each leaves the shared
+// session on the direct path with default settings.
+class RayTracingTest : public GpuTest {
+ protected:
+  void SetUp() override {
+    GpuTest::SetUp();
+    if (!session().device().rayTracing().pipeline) GTEST_SKIP() << session().device().rayTracing().unavailableReason;
+  }
+  void TearDown() override {
+    session().setPath("direct");
+    session().settings() = lighting::RenderSettings{};
+    GpuTest::TearDown();
+  }
+};
+
 // Counts non-finite values among decoded texels.
 inline size_t countNonFinite(const std::vector<float>& v) {
   size_t n = 0;

@@ -1,7 +1,7 @@
 // The legacy path on lavapipe at small sizes, on scenes with known answers: the open plane
 // (AO = 1, irradiance = pi L), AO in a corner of the Cornell box, a box voxelized exactly,
 // colour bleeding, persistent voxels, and light leaking into the atrium's interior room.
-#include "gpu_fixture.h"
+#include "lighting_checks.h"
 
 #include "lighting/legacy/legacy_path.h"
 #include "lighting/rt/rt_path.h"
@@ -31,34 +31,16 @@ class LegacyTest : public GpuTest {
   }
 };
 
-glm::vec3 irradianceAt(const std::vector<float>& shY, const std::vector<float>& coCg, uint32_t coCgChannels, size_t i,
-                       glm::vec3 n) {
-  shared::ShLumaCoCg sh = shared::tlShMake(glm::vec4(shY[4 * i], shY[4 * i + 1], shY[4 * i + 2], shY[4 * i + 3]),
-                                           glm::vec2(coCg[coCgChannels * i], coCg[coCgChannels * i + 1]));
-  return shared::tlShResolveIrradiance(sh, n);
-}
-
 TEST_F(LegacyTest, PlaneUnderUniformSkyHasNoOcclusionAndIrradiancePiL) {
   auto& s = session();
   s.loadScene(contentFile("plane.gltf"));
-  const glm::vec3 sky = s.lighting().skyRadiance;
   render("legacy", 64, 40, 1, {kLegacyAo, kLegacyShY, kLegacyCoCg, "gbuffer.depth"});
-  auto ao = s.buffer(kLegacyAo).texels(), shY = s.buffer(kLegacyShY).texels(), coCg = s.buffer(kLegacyCoCg).texels();
-  auto depth = s.buffer("gbuffer.depth").texels();
-  double worstAo = 0.0, worstE = 0.0;
-  size_t surface = 0, worstPixel = 0;
-  for (size_t i = 0; i < depth.size(); ++i) {
-    if (depth[i] <= 0.0f) continue;
-    ++surface;
-    if (std::abs(double(ao[i]) - 1.0) > worstAo) worstAo = std::abs(double(ao[i]) - 1.0), worstPixel = i;
-    glm::vec3 e = irradianceAt(shY, coCg, 2, i, glm::vec3(0, 1, 0));
-    for (int c = 0; c < 3; ++c) worstE = std::max(worstE, std::abs(e[c] / (shared::kPi * sky[c]) - 1.0));
-  }
-  ASSERT_GT(surface, depth.size() / 4);
-  RecordProperty("worst_ao_error", std::to_string(worstAo));
-  RecordProperty("worst_irradiance_error", std::to_string(worstE));
-  EXPECT_LE(worstAo, 0.02) << "at pixel " << worstPixel % 64 << ", " << worstPixel / 64;
-  EXPECT_LE(worstE, 0.05) << "cone-traced sky irradiance relative to pi L";
+  PlaneErrors e = planeErrors(s, kLegacyAo, kLegacyShY, kLegacyCoCg);
+  ASSERT_GT(e.surface, e.pixels / 4);
+  RecordProperty("worst_ao_error", std::to_string(e.worstAo));
+  RecordProperty("worst_irradiance_error", std::to_string(e.worstIrradiance));
+  EXPECT_LE(e.worstAo, 0.02) << "at pixel " << e.worstAoPixel % 64 << ", " << e.worstAoPixel / 64;
+  EXPECT_LE(e.worstIrradiance, 0.05) << "cone-traced sky irradiance relative to pi L";
 }
 
 // The Cornell box's back wall (by instance id): AO in its top-left corner (against the
@@ -151,40 +133,10 @@ TEST_F(LegacyTest, VoxelizationCoversAKnownBoxExactly) {
   EXPECT_EQ(outside, 0u);
 }
 
-// Red-to-green ratio of the irradiance on the floor next to each wall, for one path.
-struct Bleeding {
-  double left = 0.0, right = 0.0;
-};
-Bleeding cornellBleeding(session::Session& s, const char* path, uint32_t frames) {
-  const uint32_t w = 64, h = 64;
-  const bool rt = std::string(path) == "rt";
-  const std::string shYName = rt ? kShY : kLegacyShY, coCgName = rt ? kCoCgAo : kLegacyCoCg;
-  s.setPath(path);
-  s.setSize(w, h);
-  for (const std::string& n : {shYName, coCgName, std::string("gbuffer.normal")}) s.requestBuffer(n);
-  s.renderFrames(frames);
-  const auto& coCgBuffer = s.buffer(coCgName);
-  auto shY = s.buffer(shYName).texels(), coCg = coCgBuffer.texels(), normal = s.buffer("gbuffer.normal").texels();
-  uint32_t lo = w, hi = 0;
-  std::vector<bool> floor(w * h);
-  for (uint32_t i = 0; i < w * h; ++i) {
-    glm::vec3 n = shared::tlOctDecode(glm::vec2(normal[2 * i], normal[2 * i + 1]));
-    if (n.y > 0.95f) floor[i] = true, lo = std::min(lo, i % w), hi = std::max(hi, i % w);
-  }
-  glm::dvec3 left(0.0), right(0.0);
-  for (uint32_t i = 0; i < w * h; ++i) {
-    if (!floor[i]) continue;
-    glm::dvec3 e(irradianceAt(shY, coCg, coCgBuffer.channels(), i, glm::vec3(0, 1, 0)));
-    if (i % w <= lo + (hi - lo) / 5) left += e;
-    if (i % w >= hi - (hi - lo) / 5) right += e;
-  }
-  return {left.r / left.g, right.r / right.g};
-}
-
 TEST_F(LegacyTest, CornellFloorIsRedderNextToTheRedWall) {
   auto& s = session();
   s.loadScene(contentFile("cornell.gltf"));
-  Bleeding b = cornellBleeding(s, "legacy", 8);  // light bounces through the screen over a few frames
+  Bleeding b = cornellBleeding(s, "legacy", kLegacyShY, kLegacyCoCg, 8);  // light bounces through the screen over a few frames
   RecordProperty("red_to_green_left", std::to_string(b.left));
   RecordProperty("red_to_green_right", std::to_string(b.right));
   EXPECT_GT(b.left, 1.01 * b.right) << "left (red wall) R/G " << b.left << ", right (green wall) " << b.right;
@@ -194,8 +146,8 @@ TEST_F(LegacyTest, RayTracedBleedingIsStrongerThanLegacy) {
   auto& s = session();
   if (!s.device().rayTracing().pipeline) GTEST_SKIP() << s.device().rayTracing().unavailableReason;
   s.loadScene(contentFile("cornell.gltf"));
-  Bleeding legacy = cornellBleeding(s, "legacy", 8);
-  Bleeding rt = cornellBleeding(s, "rt", 24);
+  Bleeding legacy = cornellBleeding(s, "legacy", kLegacyShY, kLegacyCoCg, 8);
+  Bleeding rt = cornellBleeding(s, "rt", kShY, kCoCgAo, 24);
   const double legacyContrast = legacy.left / legacy.right, rtContrast = rt.left / rt.right;
   RecordProperty("legacy_contrast", std::to_string(legacyContrast));
   RecordProperty("rt_contrast", std::to_string(rtContrast));

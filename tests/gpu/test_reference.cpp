@@ -62,19 +62,7 @@ void renderReference(session::Session& s, uint32_t size, uint32_t bounces, uint3
   s.renderFrames(std::max(1u, spp / 64u));
 }
 
-class ReferenceTest : public GpuTest {
- protected:
-  void SetUp() override {
-    GpuTest::SetUp();
-    if (!session().device().rayTracing().pipeline) GTEST_SKIP() << session().device().rayTracing().unavailableReason;
-  }
-  void TearDown() override {
-    session().setPath("direct");
-    session().settings().referenceBounces = 8;
-    session().settings().referenceSamplesPerFrame = 1;
-    GpuTest::TearDown();
-  }
-};
+class ReferenceTest : public RayTracingTest {};
 
 TEST_F(ReferenceTest, WhiteFurnaceOneScatteringEventReflectsAlbedoTimesSky) {
   auto& s = session();

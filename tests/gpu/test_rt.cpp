@@ -1,7 +1,7 @@
 // The ray-traced path on lavapipe at small sizes, on scenes with known answers: the open
 // plane under a uniform sky (AO = 1, irradiance = pi L), the pre-trace agreeing with real
 // rays, colour bleeding in the Cornell box, and finite output on the atrium.
-#include "gpu_fixture.h"
+#include "lighting_checks.h"
 
 #include "lighting/rt/rt_path.h"
 #include "shared/packing.h"
@@ -14,17 +14,8 @@ namespace {
 
 using namespace lighting;
 
-class RtTest : public GpuTest {
+class RtTest : public RayTracingTest {
  protected:
-  void SetUp() override {
-    GpuTest::SetUp();
-    if (!session().device().rayTracing().pipeline) GTEST_SKIP() << session().device().rayTracing().unavailableReason;
-  }
-  void TearDown() override {
-    session().setPath("direct");
-    session().settings() = RenderSettings{};
-    GpuTest::TearDown();
-  }
   // Renders `frames` RT frames at w x h and reads back `names`.
   void render(uint32_t w, uint32_t h, uint32_t frames, const std::vector<std::string>& names) {
     auto& s = session();
@@ -41,55 +32,26 @@ class RtTest : public GpuTest {
   }
 };
 
-// Irradiance (RGB) of pixel i from the accumulated SH, resolved against normal n.
-glm::vec3 irradianceAt(const std::vector<float>& shY, const std::vector<float>& coCgAo, size_t i, glm::vec3 n) {
-  shared::ShLumaCoCg sh = shared::tlShMake(glm::vec4(shY[4 * i], shY[4 * i + 1], shY[4 * i + 2], shY[4 * i + 3]),
-                                           glm::vec2(coCgAo[4 * i], coCgAo[4 * i + 1]));
-  return shared::tlShResolveIrradiance(sh, n);
-}
-
 TEST_F(RtTest, PlaneUnderUniformSkyHasNoOcclusionAndIrradiancePiL) {
   auto& s = session();
   s.loadScene(contentFile("plane.gltf"));
-  const glm::vec3 sky = s.lighting().skyRadiance;
   render(48, 32, 8, {kShY, kCoCgAo, kAo, "gbuffer.depth"});
-  auto shY = s.buffer(kShY).texels(), coCgAo = s.buffer(kCoCgAo).texels(), ao = s.buffer(kAo).texels();
-  auto depth = s.buffer("gbuffer.depth").texels();
-  size_t surface = 0;
-  double worstAo = 0.0, worstE = 0.0;
-  for (size_t i = 0; i < depth.size(); ++i) {
-    if (depth[i] <= 0.0f) continue;
-    ++surface;
-    worstAo = std::max(worstAo, std::abs(double(ao[i]) - 1.0));
-    glm::vec3 e = irradianceAt(shY, coCgAo, i, glm::vec3(0, 1, 0));
-    for (int c = 0; c < 3; ++c) worstE = std::max(worstE, std::abs(e[c] / (shared::kPi * sky[c]) - 1.0));
-  }
-  ASSERT_GT(surface, depth.size() / 4) << "the plane should fill much of the view";
-  EXPECT_LE(worstAo, 0.02);
-  EXPECT_LE(worstE, 0.03) << "irradiance relative to pi L";
-  RecordProperty("worst_irradiance_error", std::to_string(worstE));
+  PlaneErrors e = planeErrors(s, kAo, kShY, kCoCgAo);
+  ASSERT_GT(e.surface, e.pixels / 4) << "the plane should fill much of the view";
+  EXPECT_LE(e.worstAo, 0.02);
+  EXPECT_LE(e.worstIrradiance, 0.03) << "irradiance relative to pi L";
+  RecordProperty("worst_irradiance_error", std::to_string(e.worstIrradiance));
 }
 
 TEST_F(RtTest, HalfRaysPerPixelStillConvergeOnThePlane) {
   auto& s = session();
   s.loadScene(contentFile("plane.gltf"));
   s.settings().rtHalfRays = true;
-  const glm::vec3 sky = s.lighting().skyRadiance;
   render(48, 32, 6, {kShY, kCoCgAo, kAo, "gbuffer.depth"});
-  auto shY = s.buffer(kShY).texels(), coCgAo = s.buffer(kCoCgAo).texels(), ao = s.buffer(kAo).texels();
-  auto depth = s.buffer("gbuffer.depth").texels();
-  size_t surface = 0;
-  double worstE = 0.0, worstAo = 0.0;
-  for (size_t i = 0; i < depth.size(); ++i) {
-    if (depth[i] <= 0.0f) continue;
-    ++surface;
-    worstAo = std::max(worstAo, std::abs(double(ao[i]) - 1.0));
-    glm::vec3 e = irradianceAt(shY, coCgAo, i, glm::vec3(0, 1, 0));
-    for (int c = 0; c < 3; ++c) worstE = std::max(worstE, std::abs(e[c] / (shared::kPi * sky[c]) - 1.0));
-  }
-  ASSERT_GT(surface, depth.size() / 4);
-  EXPECT_LE(worstAo, 0.02);
-  EXPECT_LE(worstE, 0.03);
+  PlaneErrors e = planeErrors(s, kAo, kShY, kCoCgAo);
+  ASSERT_GT(e.surface, e.pixels / 4);
+  EXPECT_LE(e.worstAo, 0.02);
+  EXPECT_LE(e.worstIrradiance, 0.03);
 }
 
 // Half the rays, the same answer: the mean image after accumulation on the atrium is within a
@@ -149,7 +111,7 @@ TEST_F(RtTest, DenoisedSingleFrameIsCloserToConvergedThanRaw) {
     auto n = s.buffer("gbuffer.normal").texels();
     std::vector<double> out(w * h);
     for (size_t i = 0; i < out.size(); ++i)
-      out[i] = shared::tlLuminance(irradianceAt(shY, coCg, i, shared::tlOctDecode(glm::vec2(n[2 * i], n[2 * i + 1]))));
+      out[i] = shared::tlLuminance(irradianceAt(shY, coCg, 4, i, shared::tlOctDecode(glm::vec2(n[2 * i], n[2 * i + 1]))));
     return out;
   };
   s.settings().rtDenoise = false;
@@ -213,30 +175,11 @@ TEST_F(RtTest, PretraceAgreesWithRealRaysWhereBothHit) {
 TEST_F(RtTest, CornellFloorIsRedderNextToTheRedWall) {
   auto& s = session();
   s.loadScene(contentFile("cornell.gltf"));
-  render(64, 64, 24, {kShY, kCoCgAo, "gbuffer.normal", "gbuffer.depth"});
-  auto shY = s.buffer(kShY).texels(), coCgAo = s.buffer(kCoCgAo).texels();
-  auto normal = s.buffer("gbuffer.normal").texels();
-  const uint32_t w = 64, h = 64;
-  // Floor pixels (normal up) in the left and right fifth of the floor's horizontal extent.
-  uint32_t lo = w, hi = 0;
-  std::vector<bool> floor(w * h, false);
-  for (uint32_t i = 0; i < w * h; ++i) {
-    glm::vec3 n = shared::tlOctDecode(glm::vec2(normal[2 * i], normal[2 * i + 1]));
-    if (n.y > 0.95f) floor[i] = true, lo = std::min(lo, i % w), hi = std::max(hi, i % w);
-  }
-  ASSERT_LT(lo + 10, hi);
-  glm::dvec3 left(0.0), right(0.0);
-  for (uint32_t i = 0; i < w * h; ++i) {
-    if (!floor[i]) continue;
-    uint32_t x = i % w;
-    glm::dvec3 e(irradianceAt(shY, coCgAo, i, glm::vec3(0, 1, 0)));
-    if (x <= lo + (hi - lo) / 5) left += e;
-    if (x >= hi - (hi - lo) / 5) right += e;
-  }
-  const double redLeft = left.r / left.g, redRight = right.r / right.g;
-  RecordProperty("red_to_green_left", std::to_string(redLeft));
-  RecordProperty("red_to_green_right", std::to_string(redRight));
-  EXPECT_GT(redLeft, 1.1 * redRight) << "left (red wall) R/G " << redLeft << ", right (green wall) " << redRight;
+  Bleeding b = cornellBleeding(s, "rt", kShY, kCoCgAo, 24);
+  ASSERT_GT(b.floorWidth, 10u);
+  RecordProperty("red_to_green_left", std::to_string(b.left));
+  RecordProperty("red_to_green_right", std::to_string(b.right));
+  EXPECT_GT(b.left, 1.1 * b.right) << "left (red wall) R/G " << b.left << ", right (green wall) " << b.right;
 }
 
 TEST_F(RtTest, AtriumStaysFiniteAndItsIntermediatesAreNamed) {
