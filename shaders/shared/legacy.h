@@ -21,7 +21,6 @@
 
 TL_BEGIN
 TL_CONST uint kLegacyMaxLevels = 4u;
-TL_CONST uint kLegacyFaces = 6u;
 
 struct LegacyClipmap {
   vec4 levelMin[4];    // xyz: camera-relative minimum corner of level l, w: its voxel size (m)

@@ -52,7 +52,6 @@ TL_FN uint tlRtPackHit(float distance, vec3 albedo) {
   float d = clamp(distance, 0.0f, kRtMaxHitDistance);
   return (tlPackHalf2x16(vec2(d, 0.0f)) & 0xFFFFu) | (tlRtEncodeAlbedo(albedo) << 16u);
 }
-TL_FN uint tlRtHitCode(uint hit) { return hit & 0xFFFFu; }
 TL_FN bool tlRtIsMiss(uint hit) { return (hit & 0xFFFFu) == kRtHitMiss; }
 TL_FN bool tlRtIsPending(uint hit) { return (hit & 0xFFFFu) == kRtHitPending; }
 TL_FN bool tlRtIsHit(uint hit) { return (hit & 0xFFFFu) < kRtHitPending; }

@@ -47,7 +47,6 @@ class LegacyPath final : public LightingPath {
     push.coneStep = std::clamp(s.legacyConeStep, 0.2f, 2.0f);
     push.aoDivisor = s.legacyAoDivisor >= 2 ? 2u : 1u;
     push.coneDivisor = s.legacyConeDivisor >= 4 ? 4u : (s.legacyConeDivisor >= 2 ? 2u : 1u);
-    fit_ = fit;
 
     const uint32_t w = s.width, h = s.height;
     const uint32_t aw = (w + push.aoDivisor - 1) / push.aoDivisor, ah = (h + push.aoDivisor - 1) / push.aoDivisor;
@@ -104,7 +103,6 @@ class LegacyPath final : public LightingPath {
     if (revoxelize && settle_ > 0 && (historyOk || !feedback)) --settle_;
     push.screenRadiance = historyOk ? 1u : 0u;
     voxelKey_ = key;
-    voxelized_ = revoxelize;
     if (revoxelize) {
     graph.addPass(
         "legacy.voxelize", graph::PassKind::Raster,
@@ -252,9 +250,6 @@ class LegacyPath final : public LightingPath {
     return out;
   }
 
-  // Whether the last frame rebuilt the voxels (tests, the timing panel's reading).
-  bool voxelizedLastFrame() const { return voxelized_; }
-
  private:
   // Everything the voxels depend on: the scene, the levels' place in the world (not
   // camera-relative, so a camera moving within one voxel keeps them), the sun and the settings.
@@ -360,9 +355,7 @@ class LegacyPath final : public LightingPath {
   uint64_t sceneId_ = 0;
   uint64_t voxelKey_ = 0;
   uint32_t settle_ = 0;
-  bool voxelized_ = false;
   std::vector<uint32_t> plainInstances_, emissiveInstances_, allInstances_;
-  LegacyClipmapFit fit_;
   gpu::Sampler point_, linear_, shadowSampler_;
   gpu::Pipeline ssao_, voxelize_, mip_, cones_, upsample_;
 };
