@@ -1,6 +1,7 @@
 // The RT path's CPU-testable pieces against closed forms: the one-uint hit record over the
 // whole distance range, RGB9E5, the SH sample weight (unbiased irradiance at the sampling
 // normal), the blue-noise masks, the simplifier and instance culling.
+#include "lighting/legacy/legacy_path.h"
 #include "lighting/rt/blue_noise.h"
 #include "lighting/rt/rt_scene.h"
 #include "shared/rt.h"
@@ -191,6 +192,51 @@ TEST(RtCulling, KeepsTheExpandedFrustumAndDropsTinyFarInstances) {
   auto kept = lighting::cullInstances(centres, radii, c);
   std::sort(kept.begin(), kept.end());
   EXPECT_EQ(kept, (std::vector<uint32_t>{0, 2, 4}));
+}
+
+}  // namespace
+}  // namespace tl
+
+namespace tl {
+namespace {
+
+scene::Bounds box(glm::dvec3 lo, glm::dvec3 hi) {
+  scene::Bounds b;
+  b.extend(lo);
+  b.extend(hi);
+  return b;
+}
+
+TEST(LegacyClipmap, SmallScenesGetOneLevelLargeOnesMore) {
+  auto cornell = lighting::fitLegacyClipmap(box({-1, 0, -1}, {1, 2, 1}), {0, 1, 3.9}, 64, 0.0f, 4);
+  EXPECT_EQ(cornell.clipmap.levels, 1u);
+  EXPECT_EQ(cornell.clipmap.resolution, 64u);
+  EXPECT_EQ(cornell.clipmap.mipCount, 6u);  // 32, 16, 8, 4, 2, 1
+  // The level spans the scene: its minimum corner is at or below the scene's, camera-relative.
+  EXPECT_LE(cornell.clipmap.levelMin[0].x, -1.0f - 0.0f);
+  EXPECT_LE(cornell.clipmap.levelMin[0].z, -1.0f - 3.9f);
+  auto atrium = lighting::fitLegacyClipmap(box({-12.5, -0.2, -12.5}, {12.5, 6, 12.5}), {0, 3.5, 13}, 64, 0.0f, 4);
+  EXPECT_EQ(atrium.clipmap.levels, 2u);
+  EXPECT_FLOAT_EQ(atrium.clipmap.levelMin[1].w, 2.0f * atrium.clipmap.levelMin[0].w);
+  auto capped = lighting::fitLegacyClipmap(box({-500, 0, -500}, {500, 10, 500}), {0, 1, 0}, 64, 0.0f, 3);
+  EXPECT_EQ(capped.clipmap.levels, 3u) << "at most maxLevels";
+  EXPECT_EQ(lighting::fitLegacyClipmap(box({-1, 0, -1}, {1, 2, 1}), {}, 100, 0.0f, 4).clipmap.resolution, 128u)
+      << "rounded up to a power of two";
+}
+
+TEST(LegacyClipmap, AFinerLevelFollowsTheCameraOnTheVoxelGridAndStaysInTheScene) {
+  const auto bounds = box({-100, 0, -100}, {100, 10, 100});
+  auto a = lighting::fitLegacyClipmap(bounds, {10.0, 1.0, 20.0}, 64, 16.0f, 4);
+  const float voxel = a.clipmap.levelMin[0].w;
+  EXPECT_FLOAT_EQ(voxel, 0.25f);
+  // World minimum corner of level 0 lies on the voxel grid, around the camera.
+  const double worldX = double(a.clipmap.levelMin[0].x) + 10.0;
+  EXPECT_NEAR(worldX / voxel, std::round(worldX / voxel), 1e-3);
+  EXPECT_LT(worldX, 10.0);
+  EXPECT_GT(worldX + 16.0, 10.0);
+  // Near the scene's edge the level is clamped into the bounds (one voxel of margin).
+  auto edge = lighting::fitLegacyClipmap(bounds, {99.0, 1.0, 0.0}, 64, 16.0f, 4);
+  EXPECT_LE(double(edge.clipmap.levelMin[0].x) + 99.0 + 16.0, 100.0 + voxel + 1e-3);
 }
 
 }  // namespace
