@@ -1,6 +1,7 @@
 // `twinlight`: one binary. Without a subcommand it shows the default (or given) scene;
 // the headless subcommands work on machines without a display. Errors are one line on
 // stderr and a non-zero exit: 1 for a failure at run time, 2 for bad usage.
+#include "bake_command.h"
 #include "bench.h"
 #include "session/capture.h"
 #include "cli_args.h"
@@ -49,10 +50,12 @@ struct RenderOptions {
   std::optional<float> rtRaysPerPixel;
   std::optional<bool> rtPretrace;
   std::optional<bool> rtDenoise;
+  std::string albedoDb;
 };
 
 void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--camera", o.view.camera, "use the scene's glTF camera N (0-based)");
+  cmd.add_option("--albedo-db", o.albedoDb, "albedo database whose baked values and overrides the RT path's hits use");
   cmd.add_option("--look-from", o.view.lookFrom, "camera position x,y,z (metres, y up)");
   cmd.add_option("--look-at", o.view.lookAt, "point the camera looks at, x,y,z");
   cmd.add_option("--fov", o.view.fovDegrees, "vertical field of view in degrees");
@@ -103,6 +106,7 @@ void prepareSession(Session& session, const RenderOptions& o) {
   session.setSize(w, h);
   applyView(session, o.view);
   applyLight(session, o.light);
+  if (!o.albedoDb.empty()) session.openAlbedoDatabase(o.albedoDb, false);
   if (o.sunSizeDegrees) {
     auto light = session.lighting();
     light.sunAngularRadius = glm::radians(*o.sunSizeDegrees);
@@ -249,6 +253,17 @@ int main(int argc, char** argv) {
   captureCmd->add_option("--out", captureOut, "folder to write into")->required();
   addViewAndLightOptions(*captureCmd, captureRender);
 
+  BakeArgs bake;
+  auto* bakeCmd = app.add_subcommand("bake", "bake the per-instance albedo database (or merge or list databases)");
+  bakeCmd->add_option("--scene", bake.scene, "glTF file; default content/atrium.gltf");
+  bakeCmd->add_option("--db", bake.db, "the albedo database (SQLite), created when missing")->required();
+  bakeCmd->add_option("--shard", bake.shard, "bake only shard i of N (i/N, 0-based): a deterministic subset of the keys");
+  bakeCmd->add_option("--batch", bake.batch, "combinations per GPU submission (default: as many as fit, 42)");
+  bakeCmd->add_option("--tile", bake.tileSize, "pixels per side of each of the 6 views (part of every key)")->capture_default_str();
+  bakeCmd->add_flag("--force", bake.force, "re-bake keys the database already holds");
+  bakeCmd->add_flag("--list", bake.list, "print the database's baked entries and overrides, bake nothing");
+  bakeCmd->add_option("--merge", bake.merge, "merge these databases into --db (conflicts reported, overrides kept)");
+
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
 
   try {
@@ -260,6 +275,7 @@ int main(int argc, char** argv) {
   try {
     if (*renderCmd) return runRender(render);
     if (*infoCmd) return runInfo();
+    if (*bakeCmd) return runBake(bake, defaultScene().string());
     if (*captureCmd) {
       Session session;
       prepareSession(session, captureRender);

@@ -340,8 +340,10 @@ void DescriptorWriter::push(const Device& device, VkCommandBuffer cmd, const Pip
     }
     writes.push_back(w);
   }
-  device.ext().cmdPushDescriptorSet(cmd, pipeline.bindPoint(), pipeline.layout(), 0, uint32_t(writes.size()),
-                                    writes.data());
+  // A pipeline whose set 0 is empty (only push constants and further sets) pushes nothing.
+  if (!writes.empty())
+    device.ext().cmdPushDescriptorSet(cmd, pipeline.bindPoint(), pipeline.layout(), 0, uint32_t(writes.size()),
+                                      writes.data());
   entries_.clear();
 }
 

@@ -163,6 +163,13 @@ void PassContext::beginRendering(const std::vector<Attachment>& colors, const st
   vkCmdSetScissor(cmd, 0, 1, &sc);
 }
 
+void PassContext::setViewport(uint32_t x, uint32_t y, uint32_t width, uint32_t height) {
+  VkViewport vp{float(x), float(y), float(width), float(height), 0.0f, 1.0f};
+  VkRect2D sc{{int32_t(x), int32_t(y)}, {width, height}};
+  vkCmdSetViewport(cmd, 0, 1, &vp);
+  vkCmdSetScissor(cmd, 0, 1, &sc);
+}
+
 void PassContext::endRendering() { vkCmdEndRendering(cmd); }
 
 void PassContext::bind(const gpu::Pipeline& pipeline) {

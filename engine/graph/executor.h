@@ -45,6 +45,9 @@ class PassContext {
   void beginRendering(const std::vector<Attachment>& colors, const std::optional<Attachment>& depth,
                       std::optional<VkExtent2D> area = std::nullopt);
   void endRendering();
+  // Draws into a sub-rectangle of the attachments (viewport and scissor); beginRendering()
+  // resets it to the whole area.
+  void setViewport(uint32_t x, uint32_t y, uint32_t width, uint32_t height);
 
   void bind(const gpu::Pipeline& pipeline);
   gpu::DescriptorWriter& descriptors() { return writer_; }

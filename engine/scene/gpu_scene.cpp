@@ -122,11 +122,20 @@ void GpuScene::updateInstances(const Scene& scene, const glm::dvec3& camera, con
   if (!out.empty()) instances_.write(out.data(), out.size() * sizeof(GpuInstance));
 }
 
-void GpuScene::drawAll(VkCommandBuffer cmd) const {
+void GpuScene::bindGeometry(VkCommandBuffer cmd) const {
   VkDeviceSize offset = 0;
   VkBuffer vb = vertices_.handle();
   vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
   vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+}
+
+void GpuScene::drawMesh(VkCommandBuffer cmd, uint32_t mesh) const {
+  const MeshRange& m = meshes_.at(mesh);
+  vkCmdDrawIndexed(cmd, m.indexCount, 1, m.firstIndex, m.vertexOffset, 0);
+}
+
+void GpuScene::drawAll(VkCommandBuffer cmd) const {
+  bindGeometry(cmd);
   for (uint32_t i = 0; i < drawMesh_.size(); ++i) {
     const MeshRange& m = meshes_[drawMesh_[i]];
     vkCmdDrawIndexed(cmd, m.indexCount, 1, m.firstIndex, m.vertexOffset, i);
@@ -134,10 +143,7 @@ void GpuScene::drawAll(VkCommandBuffer cmd) const {
 }
 
 void GpuScene::drawInstances(VkCommandBuffer cmd, const std::vector<uint32_t>& instances) const {
-  VkDeviceSize offset = 0;
-  VkBuffer vb = vertices_.handle();
-  vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-  vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+  bindGeometry(cmd);
   for (uint32_t i : instances) {
     if (i >= drawMesh_.size()) continue;
     const MeshRange& m = meshes_[drawMesh_[i]];

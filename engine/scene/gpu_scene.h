@@ -27,6 +27,10 @@ class GpuScene {
   void drawAll(VkCommandBuffer cmd) const;
   // Binds the geometry and draws the listed instances only.
   void drawInstances(VkCommandBuffer cmd, const std::vector<uint32_t>& instances) const;
+  // Binds the vertex and index buffers; then drawMesh() draws one mesh once (instance 0),
+  // for passes that place meshes themselves (the albedo baker).
+  void bindGeometry(VkCommandBuffer cmd) const;
+  void drawMesh(VkCommandBuffer cmd, uint32_t mesh) const;
 
   const gpu::DescriptorTable& table() const { return table_; }
   gpu::Buffer& vertexBuffer() { return vertices_; }

@@ -57,6 +57,14 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   device_->waitIdle();
   gpuScene_ = std::make_unique<scene::GpuScene>(*device_, *loaded);
   scene_ = std::move(loaded);
+  albedo_ = std::make_unique<albedo::AlbedoLibrary>(*scene_);
+  if (albedoDbFile_) {
+    try {
+      albedo_->attach(std::make_unique<albedo::AlbedoDatabase>(*albedoDbFile_));
+    } catch (const albedo::DatabaseError& e) {
+      spdlog::warn("{} (texture averages are used)", e.what());
+    }
+  }
   // Pipelines depend on the scene's descriptor layout: rebuild them with the new scene.
   passes_ = std::make_unique<Passes>();
   executor_->resetHistory();
@@ -72,6 +80,17 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
     brightestEmission_ = std::max(brightestEmission_, shared::tlLuminance(m.emissiveFactor * m.emissiveStrength));
   if (!scene_->cameras.empty()) useSceneCamera(0);
   else fitViewToScene();
+}
+
+void Session::openAlbedoDatabase(const std::filesystem::path& file, bool create) {
+  if (!albedo_) throw SessionError("load a scene before opening an albedo database");
+  albedo_->attach(std::make_unique<albedo::AlbedoDatabase>(file, create));
+  albedoDbFile_ = file;
+}
+
+std::unique_ptr<albedo::BakeJob> Session::startAlbedoBake(const albedo::BakeOptions& options) {
+  if (!albedo_ || !albedo_->database()) throw SessionError("open an albedo database before baking");
+  return std::make_unique<albedo::BakeJob>(*device_, *scene_, *gpuScene_, *albedo_->database(), options);
 }
 
 std::vector<PathInfo> Session::paths() const {
@@ -198,6 +217,8 @@ void Session::renderOne(bool readback) {
   imported(lighting::kSceneMaterials, gpuScene_->materialBuffer(), "material table");
 
   lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, constants_, *executor_, view_.position};
+  in.instanceAlbedo = &albedo_->instanceAlbedo();
+  in.instanceAlbedoVersion = albedo_->version();
   passes_->gbuffer.add(graph, in);
   passes_->shadow.add(graph, in);
   lighting::LightingOutputs outputs = path_->addPasses(graph, in);

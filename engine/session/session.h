@@ -3,6 +3,8 @@
 // frame, save images. Everything the GUI can do goes through here, so tests drive it too.
 #pragma once
 
+#include "albedo/albedo_library.h"
+#include "albedo/bake_job.h"
 #include "gpu/device.h"
 #include "graph/executor.h"
 #include "lighting/common/display_pass.h"
@@ -61,6 +63,18 @@ class Session {
   void installScene(std::unique_ptr<scene::Scene> scene);
   bool hasScene() const { return scene_ != nullptr; }
   const scene::Scene& scene() const;
+
+  // Per-instance hit albedo for the RT path (T7): override > baked > texture average. Edits
+  // through it show in the next frame.
+  albedo::AlbedoLibrary& albedo() { return *albedo_; }
+  const albedo::AlbedoLibrary& albedo() const { return *albedo_; }
+  // Opens (or creates) the albedo database for this scene and the next ones. Throws
+  // albedo::DatabaseError and keeps the database in use before.
+  void openAlbedoDatabase(const std::filesystem::path& file, bool create = true);
+  std::optional<std::filesystem::path> albedoDatabaseFile() const { return albedoDbFile_; }
+  // A bake of this scene into the open database (throws SessionError without one); step it
+  // to completion, then albedo().reload().
+  std::unique_ptr<albedo::BakeJob> startAlbedoBake(const albedo::BakeOptions& options);
 
   std::vector<PathInfo> paths() const;
   void setPath(const std::string& name);  // throws SessionError with the reason
@@ -122,6 +136,8 @@ class Session {
   std::unique_ptr<gpu::Device> device_;
   std::unique_ptr<scene::Scene> scene_;
   std::unique_ptr<scene::GpuScene> gpuScene_;
+  std::unique_ptr<albedo::AlbedoLibrary> albedo_;
+  std::optional<std::filesystem::path> albedoDbFile_;
   std::unique_ptr<graph::Executor> executor_;
   std::vector<std::unique_ptr<lighting::LightingPath>> paths_;
   lighting::LightingPath* path_ = nullptr;

@@ -1,14 +1,12 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#extension GL_EXT_nonuniform_qualifier : require
 #include "shared/frame.h"
 #include "shared/scene.h"
 #include "shared/gbuffer.h"
 #include "shared/packing.h"
+#include "common/material.glsl"
 
-layout(set = kSceneSet, binding = kSceneBindingMaterials, std430) readonly buffer Materials { GpuMaterial materials[]; };
 layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
-layout(set = kSceneSet, binding = kSceneBindingTextures) uniform sampler2D sceneTextures[];
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec4 inTangent;
@@ -24,17 +22,12 @@ layout(location = kGbufferEmissive) out vec4 outEmissive;
 layout(location = kGbufferMotion) out vec2 outMotion;
 layout(location = kGbufferInstanceId) out uint outInstanceId;
 
-vec4 sampleTexture(uint index, vec2 uv) {
-  return texture(sceneTextures[nonuniformEXT(index)], uv);
-}
-
 void main() {
   GpuInstance inst = instances[inInstance];
   GpuMaterial m = materials[inst.material];
 
-  vec4 base = m.baseColorFactor;
-  if (m.baseColorTexture != kNoTexture) base *= sampleTexture(m.baseColorTexture, inUv);
-  if (m.alphaCutoff > 0.0 && base.a < m.alphaCutoff) discard;
+  vec4 base = materialBaseColor(m, inUv);
+  if (materialCutout(m, base.a)) discard;
 
   // Geometric normal faces the viewer: single-sided walls seen from behind shade as their
   // back side instead of going black.
@@ -53,13 +46,9 @@ void main() {
     }
   }
 
-  float roughness = m.roughness;
-  float metallic = m.metallic;
-  if (m.metallicRoughnessTexture != kNoTexture) {
-    vec4 mr = sampleTexture(m.metallicRoughnessTexture, inUv);
-    roughness *= mr.g;
-    metallic *= mr.b;
-  }
+  vec2 rm = materialRoughnessMetallic(m, inUv);
+  float roughness = rm.x;
+  float metallic = rm.y;
   vec3 emissive = m.emissive.rgb;
   if (m.emissiveTexture != kNoTexture) emissive *= sampleTexture(m.emissiveTexture, inUv).rgb;
 

@@ -1,7 +1,8 @@
 #version 460
 // Screen-space pre-trace (Metro Exodus): the exact ray of the real trace, marched against
 // the depth buffer over a roughly constant screen length. Where it finds a surface, hit
-// distance, albedo, normal and emission come from the G-buffer and no real ray is traced.
+// distance, albedo, normal and emission come from the G-buffer and no real ray is traced
+// (the albedo scaled by the instance's albedo-database correction, shared/rt.h RtInstance).
 #extension GL_GOOGLE_include_directive : require
 #include "rt/rt_common.glsl"
 
@@ -9,6 +10,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = kRtBindingBaseColor) uniform sampler2D gBaseColor;
 layout(set = 0, binding = kRtBindingMaterial) uniform sampler2D gMaterial;
 layout(set = 0, binding = kRtBindingEmissive) uniform sampler2D gEmissive;
+layout(set = 0, binding = kRtBindingInstanceId) uniform usampler2D gInstanceId;
+layout(set = 0, binding = kRtBindingInstances, std430) readonly buffer Instances { RtInstance rtInstances[]; };
 layout(set = 0, binding = kRtBindingHitsOut, r32ui) uniform writeonly uimage2D hitsOut;
 layout(set = 0, binding = kRtBindingSurfaceOut, rg32ui) uniform writeonly uimage2D surfaceOut;
 
@@ -59,7 +62,10 @@ void main() {
         float distance = clamp(tPlane, previousT, t);
         vec3 base = texelFetch(gBaseColor, s, 0).rgb;
         float metallic = texelFetch(gMaterial, s, 0).g;
-        result = tlRtPackHit(distance, tlRtHitAlbedoFromMaterial(base, metallic));
+        // The G-buffer's albedo, scaled as the instance's database entry or override asks.
+        uint id = texelFetch(gInstanceId, s, 0).r;
+        vec3 scale = id > 0u ? rtInstances[id - 1u].albedoScale.rgb : vec3(1.0);
+        result = tlRtPackHit(distance, clamp(tlRtHitAlbedoFromMaterial(base, metallic) * scale, 0.0, 1.0));
         surface = uvec2(tlOctEncodeSnorm16(sn), tlPackRgb9e5(texelFetch(gEmissive, s, 0).rgb));
         break;
       }

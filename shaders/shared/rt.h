@@ -70,6 +70,17 @@ TL_FN vec3 tlRtHitAlbedoFromMaterial(vec3 baseColor, float metallic) {
   return diffuse * (vec3(1.0f) - f0) + f0;
 }
 
+// Last frame's shaded radiance at a hit seen on screen, re-coloured to the albedo the hit
+// record carries (T7's per-instance albedo for real rays, the G-buffer's for pre-traced
+// ones): the light the surface reflected, divided by the albedo it was shaded with, times
+// the record's albedo, plus its emission. So an artist's override or the baked database
+// shows in the bounce also where the hit is on screen. Albedos here follow the F0 rule,
+// which never goes below 0.04: the ratio stays bounded.
+TL_FN vec3 tlRtRecolourScreenRadiance(vec3 seen, vec3 emission, vec3 screenAlbedo, vec3 hitAlbedo) {
+  vec3 reflected = max(seen - emission, vec3(0.0f));
+  return emission + reflected * (hitAlbedo / max(screenAlbedo, vec3(0.04f)));
+}
+
 // Shared-exponent HDR colour in one uint (the RGB9E5 format): emission at hits.
 TL_FN uint tlPackRgb9e5(vec3 rgb) {
   const float maxValue = 65408.0f;  // (2^9 - 1) / 2^9 * 2^(31 - 15)
@@ -105,8 +116,10 @@ TL_FN ShLumaCoCg tlRtProjectSample(vec3 normal, vec3 direction, vec3 radiance) {
 
 // Per-instance data the real rays read at a hit (gl_InstanceCustomIndexEXT), std430.
 struct RtInstance {
-  vec4 albedo;         // rgb: resolved hit albedo (tlRtHitAlbedoFromMaterial of the texture average)
+  vec4 albedo;         // rgb: resolved hit albedo (T7: override > baked > the texture-average fallback)
   vec4 emission;       // rgb: emitted radiance (factor x texture average)
+  vec4 albedoScale;    // rgb: albedo / the texture-average fallback (1 unless a database entry or
+                       // override applies): re-colours pre-traced hits, which read the G-buffer
   uvec2 indexAddress;  // device address of the instance's RT (simplified) triangle list
   uvec2 vertexAddress; // device address of its first vertex (tl::scene::Vertex, 48 bytes)
 };
@@ -161,10 +174,11 @@ TL_CONST uint kRtBindingOutDepth = 22;
 TL_CONST uint kRtBindingHistRadiance = 23;  // last frame's composite radiance
 TL_CONST uint kRtBindingDenoiseShY = 24;     // denoiser output
 TL_CONST uint kRtBindingDenoiseCoCgAo = 25;
+TL_CONST uint kRtBindingInstanceId = 26;     // gbuffer.instanceId (instance + 1, 0 = none)
 TL_END
 
 #ifdef __cplusplus
-static_assert(sizeof(tl::shared::RtInstance) == 48);
+static_assert(sizeof(tl::shared::RtInstance) == 64);
 static_assert(sizeof(tl::shared::RtPush) == 48);
 static_assert(sizeof(tl::shared::RtDenoisePush) == 16);
 #endif

@@ -241,3 +241,26 @@ TEST(LegacyClipmap, AFinerLevelFollowsTheCameraOnTheVoxelGridAndStaysInTheScene)
 
 }  // namespace
 }  // namespace tl
+
+namespace tl::shared {
+namespace {
+
+// Screen radiance reused at a hit takes the hit record's albedo: same albedo, same light;
+// twice the albedo, twice the reflected part; emission unchanged.
+TEST(RtScreenRadiance, RecolouringScalesOnlyTheReflectedLight) {
+  const glm::vec3 seen(0.9f, 0.5f, 0.3f), emission(0.1f, 0.1f, 0.1f), albedo(0.5f, 0.4f, 0.2f);
+  glm::vec3 same = tlRtRecolourScreenRadiance(seen, emission, albedo, albedo);
+  EXPECT_NEAR(same.r, seen.r, 1e-6f);
+  EXPECT_NEAR(same.b, seen.b, 1e-6f);
+  glm::vec3 twice = tlRtRecolourScreenRadiance(seen, emission, albedo, albedo * 2.0f);
+  EXPECT_NEAR(twice.g, 0.1f + 2.0f * 0.4f, 1e-6f);
+  glm::vec3 green = tlRtRecolourScreenRadiance(seen, glm::vec3(0.0f), glm::vec3(0.8f, 0.1f, 0.1f), glm::vec3(0.1f, 0.8f, 0.1f));
+  EXPECT_LT(green.r, seen.r);
+  EXPECT_GT(green.g, seen.g);
+  // The darkest F0-rule albedo bounds the ratio.
+  glm::vec3 dark = tlRtRecolourScreenRadiance(glm::vec3(1.0f), glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(1.0f));
+  EXPECT_NEAR(dark.r, 25.0f, 1e-4f);
+}
+
+}  // namespace
+}  // namespace tl::shared

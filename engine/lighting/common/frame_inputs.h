@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 namespace tl::lighting {
 
@@ -99,6 +100,10 @@ struct FrameInputs {
   gpu::Buffer& constantsBuffer;
   graph::Executor& executor;  // where a path binds buffers it owns and imports into the graph
   glm::dvec3 cameraWorld{0.0};  // the camera's world position (camera-relative space is centred on it)
+  // Per-instance hit albedo resolved by the session (T7: override > baked > texture average),
+  // and a counter that changes whenever any value does; null: texture averages.
+  const std::vector<glm::vec3>* instanceAlbedo = nullptr;
+  uint64_t instanceAlbedoVersion = 0;
 };
 
 }  // namespace tl::lighting

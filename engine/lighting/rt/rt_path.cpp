@@ -81,7 +81,8 @@ class RtPath final : public LightingPath {
         "rt.pretrace", graph::PassKind::Compute,
         [&](graph::PassBuilder& b) {
           readCommon(b);
-          for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive"}) b.read(n, Usage::Sampled);
+          for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive", "gbuffer.instanceId"})
+            b.read(n, Usage::Sampled);
           b.create(kPretraceHits, image(VK_FORMAT_R32_UINT, "pre-trace hit records: distance + G-buffer albedo, or pending"),
                    Usage::StorageWrite);
           b.create(kPretraceSurface, image(VK_FORMAT_R32G32_UINT, "pre-trace hit normal (oct) + emission (rgb9e5)"),
@@ -94,6 +95,8 @@ class RtPath final : public LightingPath {
               .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), point_.handle(), kReadOnly)
               .sampledImage(shared::kRtBindingMaterial, ctx.image("gbuffer.material").view(), point_.handle(), kReadOnly)
               .sampledImage(shared::kRtBindingEmissive, ctx.image("gbuffer.emissive").view(), point_.handle(), kReadOnly)
+              .sampledImage(shared::kRtBindingInstanceId, ctx.image("gbuffer.instanceId").view(), point_.handle(), kReadOnly)
+              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
               .storageImage(shared::kRtBindingHitsOut, ctx.image(kPretraceHits).view())
               .storageImage(shared::kRtBindingSurfaceOut, ctx.image(kPretraceSurface).view());
           ctx.dispatch(tracedWidth(in), in.settings.height);
@@ -132,6 +135,7 @@ class RtPath final : public LightingPath {
           b.read(kHitSurface, Usage::StorageRead);
           b.read(kHistDepth, Usage::Sampled);
           if (screenRadiance) b.read(kHistRadiance, Usage::Sampled);
+          for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive"}) b.read(n, Usage::Sampled);
           b.create(kRawShY, image(VK_FORMAT_R16G16B16A16_SFLOAT, "one-ray irradiance: L1 SH of luma"), Usage::StorageWrite);
           b.create(kRawCoCg, image(VK_FORMAT_R16G16_SFLOAT, "one-ray irradiance: chroma"), Usage::StorageWrite);
           b.create(kRawAo, image(VK_FORMAT_R16_SFLOAT, "one-ray ambient occlusion (hit closer than the AO radius)"),
@@ -151,7 +155,10 @@ class RtPath final : public LightingPath {
               .storageImage(shared::kRtBindingCoCg, ctx.image(kRawCoCg).view())
               .storageImage(shared::kRtBindingAo, ctx.image(kRawAo).view())
               .sampledImage(shared::kRtBindingHistRadiance, radiance.view(), point_.handle(), kReadOnly)
-              .sampledImage(shared::kRtBindingHistDepth, ctx.image(kHistDepth).view(), point_.handle(), kReadOnly);
+              .sampledImage(shared::kRtBindingHistDepth, ctx.image(kHistDepth).view(), point_.handle(), kReadOnly)
+              .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), point_.handle(), kReadOnly)
+              .sampledImage(shared::kRtBindingMaterial, ctx.image("gbuffer.material").view(), point_.handle(), kReadOnly)
+              .sampledImage(shared::kRtBindingEmissive, ctx.image("gbuffer.emissive").view(), point_.handle(), kReadOnly);
           traceRays(ctx, lighting_, in);
         });
 
@@ -326,6 +333,11 @@ class RtPath final : public LightingPath {
       scene_ = std::make_unique<RtScene>(in.device, in.sceneData, in.scene, in.settings.rtSimplifyRatio,
                                          in.settings.rtSimplifyError);
       sceneId_ = in.scene.id();
+      albedoVersion_ = ~0ull;
+    }
+    if (in.instanceAlbedo && albedoVersion_ != in.instanceAlbedoVersion) {
+      scene_->setInstanceAlbedo(*in.instanceAlbedo);  // an override shows in the next frame's bounce
+      albedoVersion_ = in.instanceAlbedoVersion;
     }
     if (pretrace_) return;
     point_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "rt.point");
@@ -367,7 +379,8 @@ class RtPath final : public LightingPath {
     pretrace_ = compute("rt.pretrace", "rt/pretrace.comp",
                         {{shared::kRtBindingBaseColor, sampled}, {shared::kRtBindingMaterial, sampled},
                          {shared::kRtBindingEmissive, sampled}, {shared::kRtBindingHitsOut, storage},
-                         {shared::kRtBindingSurfaceOut, storage}});
+                         {shared::kRtBindingSurfaceOut, storage}, {shared::kRtBindingInstanceId, sampled},
+                         {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
     temporal_ = compute("rt.temporal", "rt/temporal.comp",
                         {{shared::kRtBindingMotion, sampled}, {shared::kRtBindingShY, sampled},
                          {shared::kRtBindingCoCg, sampled}, {shared::kRtBindingAo, sampled},
@@ -417,7 +430,10 @@ class RtPath final : public LightingPath {
                        {shared::kRtBindingCoCg, storage},
                        {shared::kRtBindingAo, storage},
                        {shared::kRtBindingHistRadiance, sampled},
-                       {shared::kRtBindingHistDepth, sampled}});
+                       {shared::kRtBindingHistDepth, sampled},
+                       {shared::kRtBindingBaseColor, sampled},
+                       {shared::kRtBindingMaterial, sampled},
+                       {shared::kRtBindingEmissive, sampled}});
       lighting_ = gpu::createRayTracingPipeline(in.device, d);
     }
     {
@@ -433,6 +449,7 @@ class RtPath final : public LightingPath {
 
   std::unique_ptr<RtScene> scene_;
   uint64_t sceneId_ = 0;
+  uint64_t albedoVersion_ = ~0ull;
   uint32_t sceneInstances_ = 0;
   RtResolvedParams params_;
   gpu::Image blueNoise_;

@@ -1,6 +1,6 @@
 #include "lighting/rt/rt_scene.h"
 
-#include "shared/color.h"
+#include "scene/material_average.h"
 
 #include <fmt/format.h>
 #include <meshoptimizer.h>
@@ -11,20 +11,6 @@
 
 namespace tl::lighting {
 namespace {
-
-// Average of a texture's texels in linear space (sRGB decoded when the texture is colour).
-glm::vec4 textureAverage(const scene::Texture& t) {
-  if (t.rgba8.empty()) return glm::vec4(1.0f);
-  glm::dvec4 sum(0.0);
-  const size_t n = t.rgba8.size() / 4;
-  for (size_t i = 0; i < n; ++i) {
-    glm::vec4 c(t.rgba8[4 * i], t.rgba8[4 * i + 1], t.rgba8[4 * i + 2], t.rgba8[4 * i + 3]);
-    c /= 255.0f;
-    if (t.srgb) c = glm::vec4(shared::tlSrgbToLinear(glm::vec3(c)), c.a);
-    sum += glm::dvec4(c);
-  }
-  return glm::vec4(sum / double(n));
-}
 
 // Interleaves the low 10 bits of x, y, z (Morton order for the top level's instances).
 uint32_t morton3(uint32_t x, uint32_t y, uint32_t z) {
@@ -40,23 +26,6 @@ uint32_t morton3(uint32_t x, uint32_t y, uint32_t z) {
 }
 
 }  // namespace
-
-glm::vec3 materialHitAlbedo(const scene::Scene& scene, const scene::Material& m) {
-  glm::vec3 base = glm::vec3(m.baseColorFactor);
-  if (m.baseColorTexture && *m.baseColorTexture < scene.textures.size())
-    base *= glm::vec3(textureAverage(scene.textures[*m.baseColorTexture]));
-  float metallic = m.metallic;
-  if (m.metallicRoughnessTexture && *m.metallicRoughnessTexture < scene.textures.size())
-    metallic *= textureAverage(scene.textures[*m.metallicRoughnessTexture]).b;
-  return shared::tlRtHitAlbedoFromMaterial(glm::clamp(base, 0.0f, 1.0f), glm::clamp(metallic, 0.0f, 1.0f));
-}
-
-glm::vec3 materialEmission(const scene::Scene& scene, const scene::Material& m) {
-  glm::vec3 e = m.emissiveFactor * m.emissiveStrength;
-  if (m.emissiveTexture && *m.emissiveTexture < scene.textures.size())
-    e *= glm::vec3(textureAverage(scene.textures[*m.emissiveTexture]));
-  return e;
-}
 
 std::vector<uint32_t> simplifyForRayTracing(const std::vector<scene::Vertex>& vertices,
                                             const std::vector<uint32_t>& indices, float ratio, float maxError,
@@ -156,25 +125,38 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
   }
   stats_.blasBuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
-  // Once per material (texture averages touch every texel), then per instance.
+  // Once per material (texture averages touch every texel), then per instance. The albedo
+  // is the texture-average fallback until setInstanceAlbedo() gives the resolved one.
   std::vector<glm::vec4> albedo, emission;
   for (const auto& m : scene.materials) {
-    albedo.push_back(glm::vec4(materialHitAlbedo(scene, m), 0.0f));
-    emission.push_back(glm::vec4(materialEmission(scene, m), 0.0f));
+    albedo.push_back(glm::vec4(scene::materialAverageAlbedo(scene, m), 0.0f));
+    emission.push_back(glm::vec4(scene::materialAverageEmission(scene, m), 0.0f));
   }
-  std::vector<shared::RtInstance> data(std::max<size_t>(1, scene.instances.size()));
+  std::vector<shared::RtInstance>& data = instances_;
+  data.assign(std::max<size_t>(1, scene.instances.size()), shared::RtInstance{});
   for (size_t i = 0; i < scene.instances.size(); ++i) {
     const uint32_t mesh = scene.instances[i].mesh;
     data[i].albedo = albedo[scene.meshes[mesh].material];
+    data[i].albedoScale = glm::vec4(1.0f);
     data[i].emission = emission[scene.meshes[mesh].material];
     const VkDeviceAddress ia = rtIndices_[mesh].address();
     const VkDeviceAddress va = vertices + VkDeviceAddress(ranges[mesh].vertexOffset) * sizeof(scene::Vertex);
     data[i].indexAddress = glm::uvec2(uint32_t(ia), uint32_t(ia >> 32));
     data[i].vertexAddress = glm::uvec2(uint32_t(va), uint32_t(va >> 32));
   }
+  for (size_t i = 0; i < scene.instances.size(); ++i) fallbackAlbedo_.push_back(glm::vec3(data[i].albedo));
   instanceData_ = gpu::Buffer(device, data.size() * sizeof(data[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               gpu::MemoryUsage::Upload, "rt.instanceData");
   instanceData_.write(data.data(), data.size() * sizeof(data[0]));
+}
+
+void RtScene::setInstanceAlbedo(const std::vector<glm::vec3>& albedo) {
+  // The executor waits for each frame, so the upload-heap table is not in flight here.
+  for (size_t i = 0; i < albedo.size() && i < fallbackAlbedo_.size(); ++i) {
+    instances_[i].albedo = glm::vec4(albedo[i], 0.0f);
+    instances_[i].albedoScale = glm::vec4(albedo[i] / glm::max(fallbackAlbedo_[i], glm::vec3(1e-4f)), 0.0f);
+  }
+  instanceData_.write(instances_.data(), instances_.size() * sizeof(instances_[0]));
 }
 
 void RtScene::prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling) {

@@ -38,11 +38,6 @@ std::vector<uint32_t> simplifyForRayTracing(const std::vector<scene::Vertex>& ve
                                             const std::vector<uint32_t>& indices, float ratio, float maxError,
                                             float* deviation);
 
-// The hit albedo of a material: base colour factor times its texture's average (decoded
-// from sRGB), through Metro's albedo (1 - F0) + F0 rule for metals. T7's database overrides it.
-glm::vec3 materialHitAlbedo(const scene::Scene& scene, const scene::Material& material);
-glm::vec3 materialEmission(const scene::Scene& scene, const scene::Material& material);
-
 class RtScene {
  public:
   RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene& gpuScene, float simplifyRatio,
@@ -52,6 +47,9 @@ class RtScene {
   void prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling);
   gpu::TopLevelBuilder& topLevel() { return topLevel_; }
   gpu::Buffer& instanceData() { return instanceData_; }
+  // Per-instance hit albedo resolved outside (T7: override > baked > texture average);
+  // until called, each instance has its material's texture average.
+  void setInstanceAlbedo(const std::vector<glm::vec3>& albedo);
   const RtSceneStats& stats() const { return stats_; }
   uint32_t instancesInTopLevel() const { return topLevel_.instanceCount(); }
   float simplifyRatio() const { return ratio_; }
@@ -61,6 +59,8 @@ class RtScene {
   std::vector<gpu::Buffer> rtIndices_;            // per mesh: the simplified triangle list
   std::vector<glm::vec3> meshCentre_;             // object space bounding sphere per mesh
   std::vector<float> meshRadius_;
+  std::vector<shared::RtInstance> instances_;     // CPU copy of instanceData_
+  std::vector<glm::vec3> fallbackAlbedo_;         // per instance: its material's texture-average albedo
   gpu::Buffer instanceData_;                      // RtInstance per scene instance
   gpu::TopLevelBuilder topLevel_;
   RtSceneStats stats_;

@@ -1,0 +1,198 @@
+#include "albedo/albedo_baker.h"
+
+#include "shared/albedo.h"
+#include "shared/scene.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace tl::albedo {
+namespace {
+
+constexpr const char* kVertices = "scene.vertices";
+constexpr const char* kIndices = "scene.indices";
+constexpr const char* kMaterials = "scene.materials";
+
+}  // namespace
+
+glm::mat4 bakeViewProjection(const scene::Bounds& bounds, int view) {
+  const int axis = view / 2;
+  const float side = view % 2 == 0 ? 1.0f : -1.0f;  // +: seen from the positive side
+  glm::vec3 lo(bounds.valid() ? bounds.min : glm::dvec3(-1.0)), hi(bounds.valid() ? bounds.max : glm::dvec3(1.0));
+  const glm::vec3 centre = (lo + hi) * 0.5f, size = hi - lo;
+  glm::vec3 a(0.0f), u(0.0f), v(0.0f);
+  a[axis] = 1.0f;
+  u[(axis + 1) % 3] = 1.0f;
+  v[(axis + 2) % 3] = 1.0f;
+  const float largest = std::max({size.x, size.y, size.z, 1e-6f});
+  // Square and aspect-preserving, so every texel covers the same area in every view.
+  const float half = 0.51f * std::max({size[(axis + 1) % 3], size[(axis + 2) % 3], 1e-4f * largest});
+  const float halfDepth = 0.51f * std::max(size[axis], 1e-4f * largest);
+  glm::mat4 m(0.0f);  // m[column][row]
+  for (int j = 0; j < 3; ++j) {
+    m[j][0] = u[j] / half;
+    m[j][1] = v[j] / half;
+    m[j][2] = 0.5f * side * a[j] / halfDepth;
+  }
+  m[3][0] = -glm::dot(u, centre) / half;
+  m[3][1] = -glm::dot(v, centre) / half;
+  m[3][2] = 0.5f - 0.5f * side * glm::dot(a, centre) / halfDepth;
+  m[3][3] = 1.0f;
+  return m;
+}
+
+std::optional<BakedEntry> entryFromViewSums(AlbedoKey key, const std::array<glm::vec4, kViews>& sums, uint32_t tileSize) {
+  const double pixels = double(tileSize) * tileSize;
+  glm::dvec3 total(0.0);
+  double covered = 0.0;
+  BakedEntry e;
+  e.key = key;
+  for (int v = 0; v < kViews; ++v) {
+    total += glm::dvec3(sums[v]);
+    covered += sums[v].w;
+    e.viewCoverage[v] = float(sums[v].w / pixels);
+    e.coverage += e.viewCoverage[v] / float(kViews);
+  }
+  if (covered <= 0.0) return std::nullopt;
+  const glm::dvec3 mean = total / covered;
+  e.rgb = glm::vec3(mean);
+  double variance = 0.0;
+  for (int v = 0; v < kViews; ++v) {
+    if (sums[v].w <= 0.0f) continue;
+    glm::dvec3 d = glm::dvec3(sums[v]) / double(sums[v].w) - mean;
+    variance += sums[v].w * glm::dot(d, d) / 3.0;
+  }
+  e.viewVariance = float(variance / covered);
+  e.bakerVersion = kBakerVersion;
+  return e;
+}
+
+uint32_t AlbedoBaker::bakeSlot(AlbedoKey key) { return uint32_t(key % maxBatch()); }
+
+uint32_t AlbedoBaker::maxBatch() { return shared::kAlbedoAtlasTiles * shared::kAlbedoAtlasTiles / kViews; }
+
+AlbedoBaker::AlbedoBaker(gpu::Device& device, const scene::Scene& scene, scene::GpuScene& gpuScene,
+                         const BakeSettings& settings)
+    : device_(device), scene_(scene), gpuScene_(gpuScene), settings_(settings), executor_(device) {
+  gpu::GraphicsPipelineDesc r;
+  r.name = "albedo.bake.raster";
+  r.vertexShader = "albedo/bake.vert";
+  r.fragmentShader = "albedo/bake.frag";
+  r.layout.extraSets = {gpuScene.table().layout()};
+  r.layout.pushConstantBytes = sizeof(shared::AlbedoBakeDraw);
+  r.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT};
+  r.depthFormat = VK_FORMAT_D32_SFLOAT;
+  r.vertexBindings = scene::GpuScene::vertexBindings();
+  r.vertexAttributes = scene::GpuScene::vertexAttributes();
+  r.cullMode = VK_CULL_MODE_NONE;  // a single-sided sheet still shows its colour from behind
+  raster_ = gpu::createGraphicsPipeline(device, r);
+
+  gpu::ComputePipelineDesc c;
+  c.name = "albedo.bake.reduce";
+  c.shader = "albedo/reduce.comp";
+  c.layout.bindings = {{shared::kAlbedoBindingAtlas, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                       {shared::kAlbedoBindingSums, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+  c.layout.pushConstantBytes = sizeof(shared::AlbedoReduceParams);
+  reduce_ = gpu::createComputePipeline(device, c);
+}
+
+std::vector<BakeOutcome> AlbedoBaker::bake(const std::vector<const Combination*>& batch) {
+  if (batch.size() > maxBatch()) throw std::invalid_argument(fmt::format("albedo bake batch of {} > {}", batch.size(), maxBatch()));
+  std::vector<BakeOutcome> outcomes(batch.size());
+  if (batch.empty()) return outcomes;
+
+  const uint32_t tile = settings_.tileSize, side = shared::kAlbedoAtlasTiles * tile;
+  const uint32_t tiles = maxBatch() * kViews;
+  std::vector<shared::AlbedoBakeDraw> draws;
+  std::vector<uint32_t> drawTile, drawMesh;
+  std::vector<bool> slotUsed(maxBatch(), false);
+  for (const Combination* c : batch) {
+    const uint32_t slot = bakeSlot(c->key);
+    if (slotUsed[slot]) throw std::invalid_argument(fmt::format("albedo bake batch has two keys in slot {}", slot));
+    slotUsed[slot] = true;
+    const scene::Mesh& mesh = scene_.meshes.at(c->mesh);
+    for (int v = 0; v < kViews; ++v) {
+      shared::AlbedoBakeDraw d{};
+      d.objectToClip = bakeViewProjection(mesh.bounds, v);
+      d.material = std::min<uint32_t>(mesh.material, uint32_t(scene_.materials.size()) - 1);
+      draws.push_back(d);
+      drawTile.push_back(slot * kViews + v);
+      drawMesh.push_back(c->mesh);
+    }
+  }
+
+  graph::RenderGraph graph;
+  graph.declareImported(kVertices, graph::ResourceDesc::buffer(gpuScene_.vertexBuffer().size(), "all meshes' vertices"));
+  graph.declareImported(kIndices, graph::ResourceDesc::buffer(gpuScene_.indexBuffer().size(), "all meshes' indices"));
+  graph.declareImported(kMaterials, graph::ResourceDesc::buffer(gpuScene_.materialBuffer().size(), "material table"));
+  executor_.bindImportedBuffer(kVertices, gpuScene_.vertexBuffer());
+  executor_.bindImportedBuffer(kIndices, gpuScene_.indexBuffer());
+  executor_.bindImportedBuffer(kMaterials, gpuScene_.materialBuffer());
+
+  graph.addPass(
+      "albedo.bake.raster", graph::PassKind::Raster,
+      [&](graph::PassBuilder& b) {
+        b.read(kVertices, graph::Usage::VertexOrIndex);
+        b.read(kIndices, graph::Usage::VertexOrIndex);
+        b.read(kMaterials, graph::Usage::StorageRead);
+        b.create(kBakeAtlas,
+                 graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, side, side,
+                                              "hit albedo of 6 views per combination, a = covered"),
+                 graph::Usage::ColorAttachment);
+        b.create(kBakeDepth, graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, side, side, "depth, reversed"),
+                 graph::Usage::DepthAttachment);
+      },
+      [&](graph::PassContext& ctx) {
+        ctx.beginRendering({{kBakeAtlas, glm::vec4(0.0f), {}}}, graph::Attachment{kBakeDepth, {}, 0.0f});
+        ctx.bind(raster_);
+        ctx.flushDescriptors();
+        gpuScene_.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, raster_.layout(), shared::kSceneSet);
+        gpuScene_.bindGeometry(ctx.cmd);
+        for (size_t i = 0; i < draws.size(); ++i) {
+          const uint32_t t = drawTile[i];
+          ctx.setViewport(t % shared::kAlbedoAtlasTiles * tile, t / shared::kAlbedoAtlasTiles * tile, tile, tile);
+          ctx.pushConstants(draws[i]);
+          gpuScene_.drawMesh(ctx.cmd, drawMesh[i]);
+        }
+        ctx.endRendering();
+      });
+  graph.addPass(
+      "albedo.bake.reduce", graph::PassKind::Compute,
+      [&](graph::PassBuilder& b) {
+        b.read(kBakeAtlas, graph::Usage::StorageRead);
+        b.create(kBakeSums, graph::ResourceDesc::buffer(tiles * sizeof(shared::AlbedoTileSum), "per tile: albedo sum, covered pixels"),
+                 graph::Usage::StorageWrite);
+      },
+      [&](graph::PassContext& ctx) {
+        ctx.bind(reduce_);
+        ctx.descriptors()
+            .storageImage(shared::kAlbedoBindingAtlas, ctx.image(kBakeAtlas).view())
+            .storageBuffer(shared::kAlbedoBindingSums, ctx.buffer(kBakeSums).handle());
+        ctx.pushConstants(shared::AlbedoReduceParams{tile, tiles, 0, 0});
+        ctx.dispatch(tiles, 1, 1, 1, 1, 1);
+      });
+  graph.markOutput(kBakeSums);
+  executor_.requestReadback(kBakeSums);
+  if (keepAtlas_) executor_.requestReadback(kBakeAtlas);
+  executor_.execute(graph, graph.compile());
+
+  const graph::Readback& back = executor_.readback(kBakeSums);
+  const auto* sums = reinterpret_cast<const shared::AlbedoTileSum*>(back.bytes.data());
+  for (uint32_t c = 0; c < batch.size(); ++c) {
+    std::array<glm::vec4, kViews> views{};
+    for (int v = 0; v < kViews; ++v) views[v] = sums[bakeSlot(batch[c]->key) * kViews + v].sum;
+    outcomes[c].key = batch[c]->key;
+    outcomes[c].entry = entryFromViewSums(batch[c]->key, views, tile);
+    if (outcomes[c].entry) outcomes[c].entry->label = batch[c]->label;
+    else outcomes[c].error = "nothing visible from any direction (empty mesh or fully cut out)";
+  }
+  return outcomes;
+}
+
+const graph::Readback* AlbedoBaker::lastAtlas() const {
+  auto it = executor_.readbacks().find(kBakeAtlas);
+  return it == executor_.readbacks().end() ? nullptr : &it->second;
+}
+
+}  // namespace tl::albedo

@@ -1,0 +1,115 @@
+#include "albedo/albedo_key.h"
+
+#include <fmt/format.h>
+#include <xxhash.h>
+
+#include <algorithm>
+#include <map>
+
+namespace tl::albedo {
+namespace {
+
+// Streams little-endian values into XXH64. Floats are canonicalised (-0 -> +0) so values
+// that compare equal hash equal.
+class KeyHasher {
+ public:
+  KeyHasher() { XXH64_reset(state_, 0); }
+  ~KeyHasher() { XXH64_freeState(state_); }
+  KeyHasher(const KeyHasher&) = delete;
+  KeyHasher& operator=(const KeyHasher&) = delete;
+
+  void u32(uint32_t v) { XXH64_update(state_, &v, sizeof v); }
+  void u64(uint64_t v) { XXH64_update(state_, &v, sizeof v); }
+  void f32(float v) {
+    v = v + 0.0f;
+    XXH64_update(state_, &v, sizeof v);
+  }
+  void text(std::string_view s) {
+    u64(s.size());
+    XXH64_update(state_, s.data(), s.size());
+  }
+  void texture(const scene::Scene& scene, const std::optional<uint32_t>& index) {
+    if (!index || *index >= scene.textures.size()) return u32(0);
+    const scene::Texture& t = scene.textures[*index];
+    u32(1);
+    u64(t.contentHash);  // width, height and texels
+    u32(t.srgb ? 1 : 0);
+  }
+  uint64_t digest() const { return XXH64_digest(state_); }
+
+ private:
+  XXH64_state_t* state_ = XXH64_createState();
+};
+
+}  // namespace
+
+std::string keyToHex(AlbedoKey key) { return fmt::format("{:016x}", key); }
+
+std::optional<AlbedoKey> keyFromHex(std::string_view text) {
+  if (text.size() != 16) return std::nullopt;
+  AlbedoKey key = 0;
+  for (char c : text) {
+    int digit = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
+    if (digit < 0) return std::nullopt;
+    key = key << 4 | AlbedoKey(digit);
+  }
+  return key;
+}
+
+AlbedoKey albedoKey(const scene::Scene& scene, uint32_t meshIndex, const BakeSettings& settings) {
+  const scene::Mesh& mesh = scene.meshes.at(meshIndex);
+  KeyHasher h;
+  h.text("twinlight.albedo");
+  h.u32(kBakerVersion);
+  h.u32(settings.tileSize);
+
+  // Geometry: what the orthographic views rasterise and where they sample textures.
+  h.u64(mesh.vertices.size());
+  for (const scene::Vertex& v : mesh.vertices) {
+    h.f32(v.position.x), h.f32(v.position.y), h.f32(v.position.z);
+    h.f32(v.uv.x), h.f32(v.uv.y);
+  }
+  h.u64(mesh.indices.size());
+  for (uint32_t i : mesh.indices) h.u32(i);
+
+  // Material: base colour and metallic (the F0 rule), and alpha testing (coverage).
+  const scene::Material& m = scene.materials.at(std::min<size_t>(mesh.material, scene.materials.size() - 1));
+  for (int c = 0; c < 4; ++c) h.f32(m.baseColorFactor[c]);
+  h.f32(m.metallic);
+  h.texture(scene, m.baseColorTexture);
+  h.texture(scene, m.metallicRoughnessTexture);
+  const bool masked = m.alphaMode == scene::AlphaMode::Mask;
+  h.u32(masked ? 1 : 0);
+  if (masked) h.f32(m.alphaCutoff);
+  return h.digest();
+}
+
+SceneKeys sceneKeys(const scene::Scene& scene, const BakeSettings& settings) {
+  std::vector<AlbedoKey> meshKey(scene.meshes.size());
+  std::map<AlbedoKey, Combination> byKey;
+  for (uint32_t i = 0; i < scene.meshes.size(); ++i) {
+    meshKey[i] = albedoKey(scene, i, settings);
+    auto [it, added] = byKey.try_emplace(meshKey[i]);
+    if (added) {
+      const scene::Mesh& mesh = scene.meshes[i];
+      it->second.key = meshKey[i];
+      it->second.mesh = i;
+      it->second.label = mesh.name + " / " + scene.materials.at(std::min<size_t>(mesh.material, scene.materials.size() - 1)).name;
+    }
+  }
+  SceneKeys out;
+  std::map<AlbedoKey, uint32_t> index;
+  for (auto& [key, c] : byKey) {
+    index[key] = uint32_t(out.combinations.size());
+    out.combinations.push_back(std::move(c));
+  }
+  out.instanceCombination.resize(scene.instances.size());
+  for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+    uint32_t c = index.at(meshKey.at(scene.instances[i].mesh));
+    out.instanceCombination[i] = c;
+    out.combinations[c].instances.push_back(i);
+  }
+  return out;
+}
+
+}  // namespace tl::albedo

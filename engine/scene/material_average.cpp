@@ -1,0 +1,38 @@
+#include "scene/material_average.h"
+
+#include "shared/color.h"
+#include "shared/rt.h"
+
+namespace tl::scene {
+
+glm::vec4 textureAverage(const Texture& t) {
+  if (t.rgba8.empty()) return glm::vec4(1.0f);
+  glm::dvec4 sum(0.0);
+  const size_t n = t.rgba8.size() / 4;
+  for (size_t i = 0; i < n; ++i) {
+    glm::vec4 c(t.rgba8[4 * i], t.rgba8[4 * i + 1], t.rgba8[4 * i + 2], t.rgba8[4 * i + 3]);
+    c /= 255.0f;
+    if (t.srgb) c = glm::vec4(shared::tlSrgbToLinear(glm::vec3(c)), c.a);
+    sum += glm::dvec4(c);
+  }
+  return glm::vec4(sum / double(n));
+}
+
+glm::vec3 materialAverageAlbedo(const Scene& scene, const Material& m) {
+  glm::vec3 base = glm::vec3(m.baseColorFactor);
+  if (m.baseColorTexture && *m.baseColorTexture < scene.textures.size())
+    base *= glm::vec3(textureAverage(scene.textures[*m.baseColorTexture]));
+  float metallic = m.metallic;
+  if (m.metallicRoughnessTexture && *m.metallicRoughnessTexture < scene.textures.size())
+    metallic *= textureAverage(scene.textures[*m.metallicRoughnessTexture]).b;
+  return shared::tlRtHitAlbedoFromMaterial(glm::clamp(base, 0.0f, 1.0f), glm::clamp(metallic, 0.0f, 1.0f));
+}
+
+glm::vec3 materialAverageEmission(const Scene& scene, const Material& m) {
+  glm::vec3 e = m.emissiveFactor * m.emissiveStrength;
+  if (m.emissiveTexture && *m.emissiveTexture < scene.textures.size())
+    e *= glm::vec3(textureAverage(scene.textures[*m.emissiveTexture]));
+  return e;
+}
+
+}  // namespace tl::scene

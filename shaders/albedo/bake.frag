@@ -1,0 +1,20 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "shared/albedo.h"
+#include "shared/rt.h"
+#include "common/material.glsl"
+
+// The hit albedo a ray would read at this texel (Metro's albedo (1 - F0) + F0); alpha marks
+// coverage. Cut-out texels are not covered.
+layout(push_constant) uniform Draw { AlbedoBakeDraw draw; };
+
+layout(location = 0) in vec2 inUv;
+layout(location = 0) out vec4 outAlbedo;
+
+void main() {
+  GpuMaterial m = materials[draw.material];
+  vec4 base = materialBaseColor(m, inUv);
+  if (materialCutout(m, base.a)) discard;
+  float metallic = clamp(materialRoughnessMetallic(m, inUv).y, 0.0, 1.0);
+  outAlbedo = vec4(tlRtHitAlbedoFromMaterial(clamp(base.rgb, 0.0, 1.0), metallic), 1.0);
+}

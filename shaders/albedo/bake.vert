@@ -1,0 +1,16 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "shared/albedo.h"
+#include "shared/scene.h"
+
+// One combination seen from one direction; the pass makes its tile of the atlas the viewport.
+layout(push_constant) uniform Draw { AlbedoBakeDraw draw; };
+
+layout(location = kAttrPosition) in vec3 inPosition;
+layout(location = kAttrUv) in vec2 inUv;
+layout(location = 0) out vec2 outUv;
+
+void main() {
+  outUv = inUv;
+  gl_Position = draw.objectToClip * vec4(inPosition, 1.0);
+}

@@ -1,0 +1,249 @@
+// The albedo baker on the GPU: known materials bake to known colours, repeatably; a batch
+// cut short resumes to the same database; shards merged equal one bake.
+#include "albedo/bake_job.h"
+#include "gpu_fixture.h"
+#include "lighting_checks.h"
+#include "scene/material_average.h"
+#include "shared/rt.h"
+#include "../common/test_scenes.h"
+
+namespace tl::test {
+namespace {
+
+namespace fs = std::filesystem;
+using albedo::BakedEntry;
+
+class AlbedoBakeTest : public GpuTest {
+ protected:
+  // Bakes every combination of `scene`; fails the test on any failure.
+  std::vector<albedo::BakeOutcome> bake(const scene::Scene& scene, albedo::BakeSettings settings = {}) {
+    scene::GpuScene gpuScene(session().device(), scene);
+    albedo::AlbedoBaker baker(session().device(), scene, gpuScene, settings);
+    albedo::SceneKeys keys = albedo::sceneKeys(scene, settings);
+    std::vector<albedo::BakeOutcome> out;
+    for (auto& c : keys.combinations) {  // one at a time: any batching bakes the same values
+      auto one = baker.bake({&c});
+      out.push_back(one[0]);
+    }
+    return out;
+  }
+  BakedEntry bakeOne(const scene::Scene& scene) {
+    auto outcomes = bake(scene);
+    EXPECT_EQ(outcomes.size(), 1u);
+    EXPECT_TRUE(outcomes[0].entry) << outcomes[0].error;
+    return outcomes[0].entry.value_or(BakedEntry{});
+  }
+  static fs::path tempDb(const std::string& name) {
+    fs::path p = fs::path(::testing::TempDir()) / ("twinlight_bake_" + name);
+    fs::remove(p);
+    return p;
+  }
+};
+
+scene::Material material(glm::vec3 colour, float metallic = 0.0f) {
+  scene::Material m;
+  m.name = "m";
+  m.baseColorFactor = glm::vec4(colour, 1.0f);
+  m.metallic = metallic;
+  return m;
+}
+
+void expectNear(glm::vec3 a, glm::vec3 b, float tol) {
+  EXPECT_NEAR(a.r, b.r, tol);
+  EXPECT_NEAR(a.g, b.g, tol);
+  EXPECT_NEAR(a.b, b.b, tol);
+}
+
+TEST_F(AlbedoBakeTest, WhiteMeshBakesToWhiteWithFullCoverageOfItsSquare) {
+  auto s = makeCubeScene(material(glm::vec3(1.0f)));
+  BakedEntry e = bakeOne(*s);
+  expectNear(e.rgb, glm::vec3(1.0f), 1e-4f);
+  // A cube face fills (1 / 1.02)^2 of its tile (2% margin); every view sees one.
+  for (float c : e.viewCoverage) EXPECT_NEAR(c, 1.0f / (1.02f * 1.02f), 0.03f);
+  EXPECT_LT(e.viewVariance, 1e-8f);
+}
+
+TEST_F(AlbedoBakeTest, CheckerboardBakesToItsMean) {
+  auto s = makeCubeScene(material(glm::vec3(1.0f)));
+  s->textures.push_back(makeCheckerTexture(64, 8, {255, 255, 255}, {0, 0, 0}));
+  s->materials[0].baseColorTexture = 0;
+  BakedEntry e = bakeOne(*s);
+  // Texels decode from sRGB to 1 and 0: mean 0.5, through the dielectric F0 rule.
+  const glm::vec3 expected = shared::tlRtHitAlbedoFromMaterial(glm::vec3(0.5f), 0.0f);
+  expectNear(e.rgb, expected, 0.01f);
+  expectNear(e.rgb, scene::materialAverageAlbedo(*s, s->materials[0]), 0.01f);
+}
+
+TEST_F(AlbedoBakeTest, MetalsFollowTheF0Rule) {
+  const glm::vec3 gold(0.9f, 0.6f, 0.2f);
+  BakedEntry metal = bakeOne(*makeCubeScene(material(gold, 1.0f)));
+  expectNear(metal.rgb, gold, 1e-4f);  // diffuse 0, F0 = base colour
+  BakedEntry half = bakeOne(*makeCubeScene(material(gold, 0.5f)));
+  expectNear(half.rgb, shared::tlRtHitAlbedoFromMaterial(gold, 0.5f), 1e-4f);
+  BakedEntry dielectric = bakeOne(*makeCubeScene(material(gold, 0.0f)));
+  expectNear(dielectric.rgb, gold * 0.96f + 0.04f, 1e-4f);
+}
+
+TEST_F(AlbedoBakeTest, ViewsThatSeeDifferentColoursShowVariance) {
+  // A 2x2 checker: the +-X faces sample its black cell, the others its white one.
+  auto s = makeCubeScene(material(glm::vec3(1.0f)));
+  s->textures.push_back(makeCheckerTexture(64, 2, {255, 255, 255}, {0, 0, 0}));
+  s->materials[0].baseColorTexture = 0;
+  for (int v = 0; v < 8; ++v) s->meshes[0].vertices[v].uv = glm::vec2(0.75f, 0.25f);  // black cell: +-X faces
+  for (int v = 8; v < 24; ++v) s->meshes[0].vertices[v].uv = glm::vec2(0.25f);         // white cell: the others
+  BakedEntry e = bakeOne(*s);
+  EXPECT_GT(e.viewVariance, 0.05f) << "views disagree: high view variance";
+  // Constant UVs per face: zero texture gradients still sample the right texel.
+  EXPECT_NEAR(e.rgb.r, (2.0f * 0.04f + 4.0f * 1.0f) / 6.0f, 0.01f);
+}
+
+TEST_F(AlbedoBakeTest, FullyCutOutMaterialFailsWithAReason) {
+  auto s = makeCubeScene(material(glm::vec3(1.0f)));
+  s->materials[0].baseColorFactor.a = 0.1f;
+  s->materials[0].alphaMode = scene::AlphaMode::Mask;
+  s->materials[0].alphaCutoff = 0.5f;
+  auto outcomes = bake(*s);
+  ASSERT_EQ(outcomes.size(), 1u);
+  EXPECT_FALSE(outcomes[0].entry);
+  EXPECT_NE(outcomes[0].error.find("nothing visible"), std::string::npos);
+}
+
+TEST_F(AlbedoBakeTest, BakingTwiceGivesIdenticalValues) {
+  const scene::Scene atrium = scene::loadGltf(contentFile("atrium.gltf"));
+  auto a = bake(atrium), b = bake(atrium);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GE(a.size(), 10u);
+  for (size_t i = 0; i < a.size(); ++i) {
+    ASSERT_TRUE(a[i].entry && b[i].entry);
+    EXPECT_EQ(a[i].entry->rgb, b[i].entry->rgb) << a[i].entry->label;
+    EXPECT_EQ(a[i].entry->viewCoverage, b[i].entry->viewCoverage);
+    EXPECT_EQ(a[i].entry->viewVariance, b[i].entry->viewVariance);
+  }
+}
+
+// Every baked row equal in value (bake times aside).
+void expectSameBakes(const albedo::AlbedoDatabase& x, const albedo::AlbedoDatabase& y) {
+  auto a = x.baked(), b = y.baked();
+  ASSERT_EQ(a.size(), b.size());
+  for (auto& [key, row] : a) {
+    ASSERT_TRUE(b.count(key)) << albedo::keyToHex(key);
+    EXPECT_EQ(row.rgb, b[key].rgb) << row.label << " " << row.rgb.r << " vs " << b[key].rgb.r << " cov " << row.coverage << " vs " << b[key].coverage;
+    EXPECT_EQ(row.viewCoverage, b[key].viewCoverage);
+    EXPECT_EQ(row.label, b[key].label);
+  }
+}
+
+TEST_F(AlbedoBakeTest, ABakeCutShortResumesToTheSameDatabase) {
+  const scene::Scene atrium = scene::loadGltf(contentFile("atrium.gltf"));
+  scene::GpuScene gpuScene(session().device(), atrium);
+  albedo::AlbedoDatabase whole(tempDb("whole.db"));
+  {
+    albedo::BakeJob job(session().device(), atrium, gpuScene, whole, {});
+    while (job.step()) {
+    }
+    EXPECT_EQ(job.progress().failed, 0u);
+    EXPECT_EQ(job.progress().baked, job.progress().total);
+  }
+
+  albedo::AlbedoDatabase resumed(tempDb("resumed.db"));
+  albedo::BakeOptions dies;
+  dies.batchSize = 3;
+  dies.beforeCommit = [](uint32_t batch) {
+    if (batch == 2) throw std::runtime_error("killed inside the transaction");
+  };
+  {
+    albedo::BakeJob job(session().device(), atrium, gpuScene, resumed, dies);
+    EXPECT_THROW(
+        while (job.step()) {},
+        std::runtime_error);
+  }
+  EXPECT_EQ(resumed.baked().size(), 6u) << "two whole batches, nothing of the third";
+  albedo::BakeOptions again;
+  again.batchSize = 3;
+  albedo::BakeJob job(session().device(), atrium, gpuScene, resumed, again);
+  EXPECT_EQ(job.progress().skipped, 6u);
+  while (job.step()) {
+  }
+  EXPECT_EQ(job.progress().baked + job.progress().skipped, job.progress().total);
+  expectSameBakes(whole, resumed);
+}
+
+TEST_F(AlbedoBakeTest, ShardsMergedEqualOneBake) {
+  const scene::Scene atrium = scene::loadGltf(contentFile("atrium.gltf"));
+  scene::GpuScene gpuScene(session().device(), atrium);
+  albedo::AlbedoDatabase whole(tempDb("shard_whole.db"));
+  {
+    albedo::BakeJob job(session().device(), atrium, gpuScene, whole, {});
+    while (job.step()) {
+    }
+  }
+  std::vector<std::unique_ptr<albedo::AlbedoDatabase>> shards;
+  uint32_t total = 0;
+  for (uint32_t i = 0; i < 3; ++i) {
+    shards.push_back(std::make_unique<albedo::AlbedoDatabase>(tempDb("shard" + std::to_string(i) + ".db")));
+    albedo::BakeOptions o;
+    o.shardIndex = i;
+    o.shardCount = 3;
+    albedo::BakeJob job(session().device(), atrium, gpuScene, *shards.back(), o);
+    while (job.step()) {
+    }
+    total += job.progress().total;
+  }
+  EXPECT_EQ(total, whole.baked().size()) << "shards cover every key once";
+  albedo::AlbedoDatabase merged(tempDb("merged.db"));
+  for (auto& s : shards) EXPECT_TRUE(merged.mergeFrom(*s).conflicts.empty());
+  expectSameBakes(whole, merged);
+}
+
+}  // namespace
+}  // namespace tl::test
+
+namespace tl::test {
+namespace {
+
+class AlbedoOverrideTest : public RayTracingTest {};
+
+// An artist repaints cornell's red wall green. The very next frame's hit records (real
+// rays and pre-traced ones alike) carry the new albedo, and once the bounce has settled the
+// floor beside the wall is far less red. Undo restores the frame exactly.
+TEST_F(AlbedoOverrideTest, AnOverrideChangesRtColourBleedingOnTheNextFrame) {
+  auto& s = session();
+  s.loadScene(contentFile("cornell.gltf"));
+  s.settings().rtDenoise = false;
+  auto& lib = s.albedo();
+  uint32_t red = ~0u;
+  for (uint32_t c = 0; c < lib.entries().size(); ++c)
+    if (lib.entries()[c].combination.label.find("cornell_red") != std::string::npos) red = c;
+  ASSERT_NE(red, ~0u) << "cornell has a red wall";
+  auto settledLeftRedToGreen = [&] {
+    s.resetHistory();
+    s.setFrameIndex(7);
+    return cornellBleeding(s, "rt", "rt.gi.shY", "rt.gi.coCgAo", 12).left;
+  };
+  auto redHits = [&] {
+    s.requestBuffer("rt.hits");
+    s.renderFrames(1);
+    const auto& rb = s.buffer("rt.hits");
+    const auto* h = reinterpret_cast<const uint32_t*>(rb.bytes.data());
+    size_t n = 0;
+    for (size_t i = 0; i < rb.bytes.size() / 4; ++i) {
+      const glm::vec3 a = shared::tlRtHitAlbedo(h[i]);
+      n += shared::tlRtIsHit(h[i]) && a.r > 0.4f && a.g < 0.2f;
+    }
+    return n;
+  };
+  const double before = settledLeftRedToGreen();
+  EXPECT_GT(redHits(), 50u) << "rays from the floor and boxes hit the red wall";
+  lib.setOverride(red, glm::vec3(0.05f, 0.6f, 0.05f));
+  EXPECT_EQ(redHits(), 0u) << "the next frame's hits all read the override";
+  const double after = settledLeftRedToGreen();
+  RecordProperty("left_red_to_green_before", std::to_string(before));
+  RecordProperty("left_red_to_green_after", std::to_string(after));
+  EXPECT_GT(before, 1.2);
+  EXPECT_LT(after, 0.85 * before) << "the floor by the repainted wall loses its red";
+  ASSERT_TRUE(lib.undo());
+  EXPECT_EQ(settledLeftRedToGreen(), before) << "undo restores the frame exactly";
+}
+
+}  // namespace
+}  // namespace tl::test
