@@ -170,6 +170,7 @@ void EditorApp::frame() {
   droppedFiles.clear();
   if (load_.valid() && load_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) finishLoad();
   if (script_) script_->step(*this);
+  stepAlbedoBake();
 
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
@@ -216,6 +217,17 @@ void EditorApp::handleCameraInput(float seconds) {
     if (ImGui::IsKeyPressed(GLFW_KEY_F1, false)) showHelp_ = !showHelp_;
     bool ctrl = io.KeyCtrl;
     if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O, false)) showBrowser_ = true;
+    // Albedo edits (the inspector's override): undo, redo, save.
+    auto& albedo = session_->albedo();
+    if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z, false)) io.KeyShift ? albedo.redo() : albedo.undo();
+    if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y, false)) albedo.redo();
+    if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S, false) && albedo.database() && albedo.unsaved()) {
+      try {
+        albedo.save();
+      } catch (const std::exception& e) {
+        showError(e.what());
+      }
+    }
     for (int slot = 1; slot <= 9; ++slot)
       if (ImGui::IsKeyPressed(GLFW_KEY_0 + slot, false)) applyBookmark(slot, ctrl);
   }
@@ -429,6 +441,40 @@ void EditorApp::writeScreenshot(const gpu::Buffer& pixels, VkExtent2D ext) {
     return;
   }
   fmt::print("wrote {}\n", std::filesystem::absolute(file).string());
+}
+
+void EditorApp::openAlbedoDatabase(const std::filesystem::path& file) {
+  if (bake_) throw session::SessionError("a bake is running: cancel it first");
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  session_->openAlbedoDatabase(file);
+  albedoDbField_ = file.string();
+}
+
+void EditorApp::startAlbedoBake(bool force) {
+  if (bake_) return;
+  albedo::BakeOptions options;
+  options.force = force;
+  bake_ = session_->startAlbedoBake(options);
+  lastBakeSummary_.clear();
+}
+
+void EditorApp::stepAlbedoBake() {
+  if (!bake_) return;
+  try {
+    bake_->step();
+  } catch (const std::exception& e) {
+    showError(fmt::format("albedo bake failed: {}", e.what()));
+    bake_.reset();
+    session_->albedo().reload();
+    return;
+  }
+  if (!bake_->finished()) return;
+  const albedo::BakeProgress& p = bake_->progress();
+  lastBakeSummary_ = fmt::format("{}: baked {}, skipped {}, failed {} of {} keys", p.cancelled ? "cancelled" : "done",
+                                 p.baked, p.skipped, p.failed, p.total);
+  for (const std::string& f : p.failures) lastBakeSummary_ += "\nfailed: " + f;
+  bake_.reset();
+  session_->albedo().reload();  // the new rows apply from the next frame
 }
 
 }  // namespace tl::editor

@@ -52,6 +52,14 @@ class EditorApp {
   void previewResource(const std::string& name) { preview_ = name; }  // while hovering a pass
   void pinPreview(const std::string& name) { pinnedPreview_ = name; }  // until changed
   void showHelp(bool on) { showHelp_ = on; }
+  // The albedo database: bakes run one batch per frame so the UI stays responsive.
+  void openAlbedoDatabase(const std::filesystem::path& file);
+  void startAlbedoBake(bool force);
+  void cancelAlbedoBake() { if (bake_) bake_->cancel(); }
+  const albedo::BakeJob* albedoBake() const { return bake_.get(); }
+  std::string& albedoDbField() { return albedoDbField_; }
+  const std::string& lastBakeSummary() const { return lastBakeSummary_; }
+  const std::string& pinnedPreview() const { return pinnedPreview_; }
   void showBrowser(bool on) { showBrowser_ = on; }
   uint64_t framesDrawn() const { return framesDrawn_; }
   double fps() const;
@@ -108,6 +116,10 @@ class EditorApp {
   friend void drawPanels(EditorApp& app);
   friend class Script;
   std::optional<std::filesystem::path> frameCapturePath_;
+  std::unique_ptr<albedo::BakeJob> bake_;
+  std::string albedoDbField_;     // the Albedo panel's database path
+  std::string lastBakeSummary_;
+  void stepAlbedoBake();
 };
 
 }  // namespace tl::editor

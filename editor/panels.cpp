@@ -1,4 +1,5 @@
 // The editor's panels, one function per concern. Tooltips state physical units.
+#include "albedo_panels.h"
 #include "editor_app.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -137,6 +138,8 @@ void inspectorPanel(EditorApp& app) {
   ImGui::Text("Bounds    %.2f %.2f %.2f", b.min.x, b.min.y, b.min.z);
   ImGui::Text("       .. %.2f %.2f %.2f m", b.max.x, b.max.y, b.max.z);
   if (ImGui::Button("Focus (F)")) app.focusSelection();
+  ImGui::Separator();
+  albedoInspectorSection(app, *app.selected());
   ImGui::End();
 }
 
@@ -303,7 +306,7 @@ void lightingPanel(EditorApp& app) {
 void timingPanel(EditorApp& app) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(display.x - 340, 400), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(340, 476), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(340, 220), ImGuiCond_FirstUseEver);
   ImGui::Begin("Timing");
   auto& session = app.session();
   std::vector<graph::PassTiming> passes = session.hasScene() ? session.timings() : std::vector<graph::PassTiming>{};
@@ -448,6 +451,7 @@ void drawPanels(EditorApp& app) {
   inspectorPanel(app);
   lightingPanel(app);
   timingPanel(app);
+  albedoPanel(app);
   statusBar(app);
   helpWindow(app.showHelp_);
   fileBrowser(app, app.showBrowser_, app.browserDir_);

@@ -44,6 +44,11 @@ void Script::step(EditorApp& app) {
     if (app.loading()) return;
     waitLoaded_ = false;
   }
+  if (waitBake_) {
+    if (app.albedoBake()) return;
+    waitBake_ = false;
+    fmt::print("script: albedo bake {}\n", app.lastBakeSummary());
+  }
   if (capture_ != Capture::None) {
     if (app.viewportCapture().empty()) return fail(app, "the viewport could not be read back");
     if (capture_ == Capture::Snapshot) {
@@ -121,6 +126,32 @@ void Script::step(EditorApp& app) {
       } else if (cmd == "capture") {
         app.requestFrameCapture(arg.empty() ? app.defaultCaptureFolder() : std::filesystem::path(arg));
         return;  // written after the next engine frame
+      } else if (cmd == "albedo-db") {
+        app.openAlbedoDatabase(arg);
+      } else if (cmd == "albedo-bake") {
+        app.startAlbedoBake(false);
+        waitBake_ = true;
+        return;
+      } else if (cmd == "albedo-override" || cmd == "albedo-undo" || cmd == "albedo-redo" || cmd == "albedo-save" ||
+                 cmd == "expect-albedo-source") {
+        auto& lib = app.session().albedo();
+        if (!app.selected()) return fail(app, cmd + " needs a selected instance");
+        const uint32_t c = lib.combinationOf(*app.selected());
+        if (cmd == "albedo-override") {
+          glm::vec3 rgb;
+          if (std::sscanf(arg.c_str(), "%f %f %f", &rgb.r, &rgb.g, &rgb.b) != 3) return fail(app, "albedo-override needs R G B");
+          lib.setOverride(c, rgb);
+        } else if (cmd == "albedo-undo") {
+          if (!lib.undo()) return fail(app, "nothing to undo");
+        } else if (cmd == "albedo-redo") {
+          if (!lib.redo()) return fail(app, "nothing to redo");
+        } else if (cmd == "albedo-save") {
+          lib.save();
+        } else {
+          std::string got = albedo::sourceName(lib.entries()[c].source);
+          if (got != arg) return fail(app, fmt::format("expected albedo source `{}`, but it is `{}`", arg, got));
+          fmt::print("script: albedo source is `{}`\n", got);
+        }
       } else if (cmd == "quit") {
         app.requestQuit();
         return;

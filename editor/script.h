@@ -18,6 +18,12 @@
 //   capture [DIR]          write every buffer of the next frame (EXR + manifest.json) into DIR
 //   snapshot               remember the viewport image of the next frame
 //   expect-viewport-changed  fail unless the viewport differs from the snapshot
+//   albedo-db PATH         open (or create) the albedo database
+//   albedo-bake            bake the scene into it (one batch a frame) and wait until done
+//   albedo-override R G B  override the selected instance's albedo (linear RGB)
+//   albedo-undo, albedo-redo, albedo-save
+//   expect-albedo-source S fail unless the selected instance's albedo comes from S
+//                          (override, baked, texture average)
 //   quit
 #pragma once
 
@@ -43,6 +49,7 @@ class Script {
   size_t next_ = 0;
   int waitFrames_ = 0;
   bool waitLoaded_ = false;
+  bool waitBake_ = false;
   int measureFrames_ = 0;
   uint64_t measureStart_ = 0;
   double measureSeconds_ = 0.0;

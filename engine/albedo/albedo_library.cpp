@@ -1,6 +1,7 @@
 #include "albedo/albedo_library.h"
 
 #include "scene/material_average.h"
+#include "shared/albedo.h"
 
 #include <map>
 
@@ -72,7 +73,13 @@ void AlbedoLibrary::resolve() {
     else e.resolved = e.textureAverage, e.source = AlbedoSource::TextureAverage;
   }
   instanceAlbedo_.resize(instanceCombination_.size());
-  for (size_t i = 0; i < instanceCombination_.size(); ++i) instanceAlbedo_[i] = entries_[instanceCombination_[i]].resolved;
+  for (size_t i = 0; i < instanceCombination_.size(); ++i) {
+    const AlbedoEntry& e = entries_[instanceCombination_[i]];
+    const float code = e.source == AlbedoSource::Override ? shared::kAlbedoSourceOverride
+                       : e.source == AlbedoSource::Baked  ? shared::kAlbedoSourceBaked
+                                                          : shared::kAlbedoSourceTextureAverage;
+    instanceAlbedo_[i] = glm::vec4(e.resolved, code);
+  }
   ++version_;
 }
 

@@ -39,8 +39,9 @@ class AlbedoLibrary {
   const std::vector<AlbedoEntry>& entries() const { return entries_; }
   uint32_t combinationOf(uint32_t instance) const { return instanceCombination_.at(instance); }
   const AlbedoEntry& entryOf(uint32_t instance) const { return entries_.at(combinationOf(instance)); }
-  // Per scene instance, resolved; `version` changes whenever any value does.
-  const std::vector<glm::vec3>& instanceAlbedo() const { return instanceAlbedo_; }
+  // Per scene instance: rgb resolved, w the source (shared/albedo.h kAlbedoSource*);
+  // `version` changes whenever any value does.
+  const std::vector<glm::vec4>& instanceAlbedo() const { return instanceAlbedo_; }
   uint64_t version() const { return version_; }
 
   // Edits. `merge`: fold into the previous edit of the same combination (one undo step for
@@ -68,7 +69,7 @@ class AlbedoLibrary {
   std::unique_ptr<AlbedoDatabase> db_;
   std::vector<AlbedoEntry> entries_;
   std::vector<uint32_t> instanceCombination_;
-  std::vector<glm::vec3> instanceAlbedo_;
+  std::vector<glm::vec4> instanceAlbedo_;
   std::vector<Edit> edits_;
   size_t undoCount_ = 0;     // edits_[0, undoCount_) are applied
   size_t savedAt_ = 0;       // undoCount_ when last saved or loaded

@@ -85,7 +85,19 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
                           {"rtSimplifyRatio", s.rtSimplifyRatio}, {"legacyVoxelResolution", s.legacyVoxelResolution},
                           {"legacyAoDivisor", s.legacyAoDivisor}, {"legacyConeDivisor", s.legacyConeDivisor},
                           {"referenceBounces", s.referenceBounces}};
-  manifest["albedoDatabase"] = nullptr;  // no albedo database yet (issue 8): hit albedo is the texture average
+  // Which albedo the RT hits read: the database (file, schema, revision) and how many
+  // combinations resolve to each source; null database: texture averages and unsaved edits.
+  {
+    const albedo::AlbedoLibrary& lib = session.albedo();
+    nlohmann::json sources = {{"override", 0}, {"baked", 0}, {"texture average", 0}};
+    for (const auto& e : lib.entries()) sources[albedo::sourceName(e.source)] = sources[albedo::sourceName(e.source)].get<int>() + 1;
+    nlohmann::json db = nullptr;
+    if (const albedo::AlbedoDatabase* d = lib.database())
+      db = {{"file", d->file().string()}, {"schema", d->schemaVersion()}, {"revision", d->revision()}};
+    manifest["albedoDatabase"] = db;
+    manifest["albedoSources"] = sources;
+    manifest["albedoUnsavedEdits"] = lib.unsaved();
+  }
   manifest["device"] = session.device().name();
   nlohmann::json timings = nlohmann::json::array();
   for (const auto& t : session.timings()) timings.push_back({{"pass", t.pass}, {"gpuMs", t.gpuMs}});

@@ -1,5 +1,6 @@
 #include "session/session.h"
 
+#include "lighting/common/albedo_view_pass.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/shadow_pass.h"
@@ -19,6 +20,7 @@ struct Session::Passes {
   lighting::CompositePass composite;
   lighting::TonemapPass tonemap;
   lighting::DisplayPass display;
+  lighting::AlbedoViewPass albedoView;
 };
 
 Session::Session(const gpu::DeviceOptions& options)
@@ -87,6 +89,9 @@ void Session::openAlbedoDatabase(const std::filesystem::path& file, bool create)
   albedo_->attach(std::make_unique<albedo::AlbedoDatabase>(file, create));
   albedoDbFile_ = file;
 }
+
+void Session::captureAlbedoBaseline() { passes_->albedoView.captureBaseline(); }
+bool Session::hasAlbedoBaseline() const { return passes_->albedoView.hasBaseline(); }
 
 std::unique_ptr<albedo::BakeJob> Session::startAlbedoBake(const albedo::BakeOptions& options) {
   if (!albedo_ || !albedo_->database()) throw SessionError("open an albedo database before baking");
@@ -223,8 +228,16 @@ void Session::renderOne(bool readback) {
   passes_->shadow.add(graph, in);
   lighting::LightingOutputs outputs = path_->addPasses(graph, in);
   passes_->composite.add(graph, in, outputs);
+  passes_->albedoView.add(graph, in);
   passes_->tonemap.add(graph, in);
   if (display_) passes_->display.add(graph, in, *display_);
+  // What is read back is wanted: debug views nothing else reads (albedo.*) survive culling
+  // in the frame that reads them, and a capture gets every buffer the frame can make.
+  if (readback) {
+    for (const auto& r : graph.resources())
+      if (!r.imported && (requestAll_ || std::find(requested_.begin(), requested_.end(), r.name) != requested_.end()))
+        graph.markOutput(r.name);
+  }
 
   graph::CompiledGraph compiled = graph.compile();
   if (readback) {

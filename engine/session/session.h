@@ -75,6 +75,10 @@ class Session {
   // A bake of this scene into the open database (throws SessionError without one); step it
   // to completion, then albedo().reload().
   std::unique_ptr<albedo::BakeJob> startAlbedoBake(const albedo::BakeOptions& options);
+  // The next frame's image becomes what albedo.impact (the change albedo edits made) compares
+  // against.
+  void captureAlbedoBaseline();
+  bool hasAlbedoBaseline() const;
 
   std::vector<PathInfo> paths() const;
   void setPath(const std::string& name);  // throws SessionError with the reason

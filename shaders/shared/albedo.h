@@ -32,6 +32,22 @@ struct AlbedoReduceParams {
 struct AlbedoTileSum {
   vec4 sum;
 };
+
+// Debug views of the resolved albedo (lighting/common/albedo_view_pass.cpp).
+TL_CONST uint kAlbedoViewBindingInstanceId = 0;  // gbuffer.instanceId
+TL_CONST uint kAlbedoViewBindingBaseColor = 1;   // gbuffer.baseColor
+TL_CONST uint kAlbedoViewBindingMaterial = 2;    // gbuffer.material
+TL_CONST uint kAlbedoViewBindingPerInstance = 3; // vec4 per instance: rgb resolved albedo, w source
+TL_CONST uint kAlbedoViewBindingInstance = 4;    // out: albedo.instance
+TL_CONST uint kAlbedoViewBindingDifference = 5;  // out: albedo.difference
+TL_CONST uint kAlbedoViewBindingCurrent = 6;     // impact: composite.hdr
+TL_CONST uint kAlbedoViewBindingBaseline = 7;    // impact: the image before the edits
+TL_CONST uint kAlbedoViewBindingImpact = 8;      // out: albedo.impact
+
+// Source codes in albedo.instance's alpha (0: no surface).
+TL_CONST float kAlbedoSourceOverride = 1.0f;
+TL_CONST float kAlbedoSourceBaked = 2.0f;
+TL_CONST float kAlbedoSourceTextureAverage = 3.0f;
 TL_END
 
 #ifdef __cplusplus

@@ -4,6 +4,7 @@
 #include "gpu_fixture.h"
 #include "lighting_checks.h"
 #include "scene/material_average.h"
+#include "shared/albedo.h"
 #include "shared/rt.h"
 #include "../common/test_scenes.h"
 
@@ -243,6 +244,111 @@ TEST_F(AlbedoOverrideTest, AnOverrideChangesRtColourBleedingOnTheNextFrame) {
   EXPECT_LT(after, 0.85 * before) << "the floor by the repainted wall loses its red";
   ASSERT_TRUE(lib.undo());
   EXPECT_EQ(settledLeftRedToGreen(), before) << "undo restores the frame exactly";
+}
+
+}  // namespace
+}  // namespace tl::test
+
+namespace tl::test {
+namespace {
+
+class AlbedoViewTest : public GpuTest {
+ protected:
+  void TearDown() override {
+    session().setPath("direct");
+    session().settings() = lighting::RenderSettings{};
+    GpuTest::TearDown();
+  }
+};
+
+bool ranPass(const session::Session& s, const std::string& name) {
+  for (const auto& t : s.timings())
+    if (t.pass == name) return true;
+  return false;
+}
+
+// albedo.instance shows the albedo rays read and its source; albedo.difference is ~0 where
+// the fallback (texture average) of untextured materials applies and large under an
+// override; neither costs anything unless something reads it.
+TEST_F(AlbedoViewTest, InstanceAndDifferenceViewsFollowTheResolution) {
+  auto& s = session();
+  s.loadScene(contentFile("cornell.gltf"));
+  s.setSize(48, 48);
+  s.renderFrames(1);
+  EXPECT_FALSE(ranPass(s, "albedo.view")) << "culled when nothing reads it";
+
+  auto views = [&] {
+    s.requestBuffer("albedo.instance");
+    s.requestBuffer("albedo.difference");
+    s.requestBuffer("gbuffer.instanceId");
+    s.renderFrames(1);
+    EXPECT_TRUE(ranPass(s, "albedo.view"));
+  };
+  views();
+  auto inst = s.buffer("albedo.instance").texels(), diff = s.buffer("albedo.difference").texels();
+  size_t surface = 0;
+  float worst = 0.0f;
+  for (size_t i = 0; i < inst.size() / 4; ++i) {
+    if (inst[4 * i + 3] == 0.0f) continue;
+    ++surface;
+    EXPECT_EQ(inst[4 * i + 3], shared::kAlbedoSourceTextureAverage);
+    worst = std::max({worst, diff[4 * i], diff[4 * i + 1], diff[4 * i + 2]});
+  }
+  ASSERT_GT(surface, 1000u);
+  EXPECT_LT(worst, 0.01f) << "untextured materials: fallback = G-buffer albedo up to 8-bit sRGB";
+
+  auto& lib = s.albedo();
+  uint32_t red = 0;
+  for (uint32_t c = 0; c < lib.entries().size(); ++c)
+    if (lib.entries()[c].combination.label.find("cornell_red") != std::string::npos) red = c;
+  lib.setOverride(red, glm::vec3(0.0f, 0.0f, 1.0f));
+  views();
+  inst = s.buffer("albedo.instance").texels();
+  diff = s.buffer("albedo.difference").texels();
+  const auto ids = s.buffer("gbuffer.instanceId");
+  const auto* id = reinterpret_cast<const uint32_t*>(ids.bytes.data());
+  const uint32_t redInstance = lib.entries()[red].combination.instances[0] + 1;
+  size_t overridden = 0;
+  for (size_t i = 0; i < inst.size() / 4; ++i) {
+    if (id[i] != redInstance) continue;
+    ++overridden;
+    EXPECT_EQ(inst[4 * i + 3], shared::kAlbedoSourceOverride);
+    EXPECT_EQ(inst[4 * i + 2], 1.0f);
+    EXPECT_GT(diff[4 * i + 2], 0.8f) << "blue override vs red texels";
+  }
+  EXPECT_GT(overridden, 50u);
+  lib.undo();
+}
+
+// albedo.impact: zero before any edit, and where the edit changed the bounce afterwards.
+TEST_F(AlbedoViewTest, ImpactViewShowsWhatAnEditChanged) {
+  auto& s = session();
+  if (!s.device().rayTracing().pipeline) GTEST_SKIP() << "needs the RT path";
+  s.loadScene(contentFile("cornell.gltf"));
+  s.setSize(48, 48);
+  s.setPath("rt");
+  s.settings().rtDenoise = false;
+  s.renderFrames(16);
+  s.captureAlbedoBaseline();
+  s.requestBuffer("albedo.impact");
+  s.renderFrames(1);
+  auto meanImpact = [&] {
+    double sum = 0.0;
+    auto t = s.buffer("albedo.impact").texels();
+    for (size_t i = 0; i < t.size() / 4; ++i) sum += t[4 * i] + t[4 * i + 1] + t[4 * i + 2];
+    return sum / double(t.size() / 4);
+  };
+  const double still = meanImpact();
+  auto& lib = s.albedo();
+  for (uint32_t c = 0; c < lib.entries().size(); ++c)
+    if (lib.entries()[c].combination.label.find("cornell_red") != std::string::npos) lib.setOverride(c, glm::vec3(0.0f, 0.8f, 0.0f));
+  s.requestBuffer("albedo.impact");
+  s.renderFrames(16);
+  const double edited = meanImpact();
+  RecordProperty("impact_before_edit", std::to_string(still));
+  RecordProperty("impact_after_edit", std::to_string(edited));
+  EXPECT_GT(edited, 5.0 * still + 1e-3) << "before " << still << ", after " << edited;
+  lib.undo();
 }
 
 }  // namespace

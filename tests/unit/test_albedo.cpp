@@ -347,21 +347,21 @@ TEST(AlbedoLibrary, ResolvesOverrideThenBakedThenTextureAverage) {
   ASSERT_EQ(lib.entries().size(), 1u);
   const glm::vec3 average = scene::materialAverageAlbedo(*s, s->materials[0]);
   EXPECT_EQ(lib.entryOf(0).source, AlbedoSource::TextureAverage);
-  EXPECT_EQ(lib.instanceAlbedo()[0], average);
+  EXPECT_EQ(glm::vec3(lib.instanceAlbedo()[0]), average);
 
   const fs::path file = tempFile("library.db");
   auto db = std::make_unique<AlbedoDatabase>(file);
   db->writeBaked({row(lib.entries()[0].combination.key, glm::vec3(0.3f), lib.entries()[0].combination.label)});
   lib.attach(std::move(db));
   EXPECT_EQ(lib.entryOf(0).source, AlbedoSource::Baked);
-  EXPECT_EQ(lib.instanceAlbedo()[0], glm::vec3(0.3f));
+  EXPECT_EQ(glm::vec3(lib.instanceAlbedo()[0]), glm::vec3(0.3f));
   EXPECT_EQ(lib.entryOf(0).textureAverage, average) << "the fallback is always known";
 
   const uint64_t v = lib.version();
   lib.setOverride(0, glm::vec3(1.0f, 0.0f, 0.0f));
   EXPECT_GT(lib.version(), v);
   EXPECT_EQ(lib.entryOf(0).source, AlbedoSource::Override);
-  EXPECT_EQ(lib.instanceAlbedo()[0], glm::vec3(1.0f, 0.0f, 0.0f));
+  EXPECT_EQ(glm::vec3(lib.instanceAlbedo()[0]), glm::vec3(1.0f, 0.0f, 0.0f));
   EXPECT_TRUE(lib.unsaved());
 }
 
@@ -401,7 +401,7 @@ TEST(AlbedoLibrary, SaveWritesOverridesAndAReopenSeesThem) {
   AlbedoLibrary lib(*s);
   lib.attach(std::make_unique<AlbedoDatabase>(file));
   EXPECT_EQ(lib.entryOf(0).source, AlbedoSource::Override);
-  EXPECT_EQ(lib.instanceAlbedo()[0], glm::vec3(0.25f, 0.5f, 0.75f));
+  EXPECT_EQ(glm::vec3(lib.instanceAlbedo()[0]), glm::vec3(0.25f, 0.5f, 0.75f));
   lib.clearOverride(0);
   lib.save();
   EXPECT_TRUE(lib.database()->overrides().empty());

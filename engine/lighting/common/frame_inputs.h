@@ -100,9 +100,10 @@ struct FrameInputs {
   gpu::Buffer& constantsBuffer;
   graph::Executor& executor;  // where a path binds buffers it owns and imports into the graph
   glm::dvec3 cameraWorld{0.0};  // the camera's world position (camera-relative space is centred on it)
-  // Per-instance hit albedo resolved by the session (T7: override > baked > texture average),
-  // and a counter that changes whenever any value does; null: texture averages.
-  const std::vector<glm::vec3>* instanceAlbedo = nullptr;
+  // Per-instance hit albedo resolved by the session (T7: override > baked > texture average;
+  // w: the source, shared/albedo.h kAlbedoSource*), and a counter that changes whenever any
+  // value does; null: texture averages.
+  const std::vector<glm::vec4>* instanceAlbedo = nullptr;
   uint64_t instanceAlbedoVersion = 0;
 };
 

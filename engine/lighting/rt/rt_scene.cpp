@@ -150,11 +150,11 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
   instanceData_.write(data.data(), data.size() * sizeof(data[0]));
 }
 
-void RtScene::setInstanceAlbedo(const std::vector<glm::vec3>& albedo) {
+void RtScene::setInstanceAlbedo(const std::vector<glm::vec4>& albedo) {
   // The executor waits for each frame, so the upload-heap table is not in flight here.
   for (size_t i = 0; i < albedo.size() && i < fallbackAlbedo_.size(); ++i) {
-    instances_[i].albedo = glm::vec4(albedo[i], 0.0f);
-    instances_[i].albedoScale = glm::vec4(albedo[i] / glm::max(fallbackAlbedo_[i], glm::vec3(1e-4f)), 0.0f);
+    instances_[i].albedo = glm::vec4(glm::vec3(albedo[i]), 0.0f);
+    instances_[i].albedoScale = glm::vec4(glm::vec3(albedo[i]) / glm::max(fallbackAlbedo_[i], glm::vec3(1e-4f)), 0.0f);
   }
   instanceData_.write(instances_.data(), instances_.size() * sizeof(instances_[0]));
 }

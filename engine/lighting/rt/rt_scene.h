@@ -49,7 +49,7 @@ class RtScene {
   gpu::Buffer& instanceData() { return instanceData_; }
   // Per-instance hit albedo resolved outside (T7: override > baked > texture average);
   // until called, each instance has its material's texture average.
-  void setInstanceAlbedo(const std::vector<glm::vec3>& albedo);
+  void setInstanceAlbedo(const std::vector<glm::vec4>& albedo);
   const RtSceneStats& stats() const { return stats_; }
   uint32_t instancesInTopLevel() const { return topLevel_.instanceCount(); }
   float simplifyRatio() const { return ratio_; }
