@@ -128,6 +128,9 @@ void Script::step(EditorApp& app) {
         return;  // written after the next engine frame
       } else if (cmd == "albedo-db") {
         app.openAlbedoDatabase(arg);
+      } else if (cmd == "albedo-impact") {
+        app.session().captureAlbedoBaseline();
+        app.pinPreview("albedo.impact");
       } else if (cmd == "albedo-bake") {
         app.startAlbedoBake(false);
         waitBake_ = true;

@@ -22,6 +22,7 @@
 //   albedo-bake            bake the scene into it (one batch a frame) and wait until done
 //   albedo-override R G B  override the selected instance's albedo (linear RGB)
 //   albedo-undo, albedo-redo, albedo-save
+//   albedo-impact          remember this image and show what later albedo edits change
 //   expect-albedo-source S fail unless the selected instance's albedo comes from S
 //                          (override, baked, texture average)
 //   quit

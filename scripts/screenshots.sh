@@ -6,15 +6,19 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 config="$(mktemp -d)"
 trap 'rm -rf "$config"' EXIT
+rm -rf out/screenshots
 XDG_CONFIG_HOME="$config" xvfb-run -a -s "-screen 0 1600x900x24" \
   "${TWINLIGHT_BUILD_DIR:-$root/build}/editor/twinlight" --script docs/screenshots.script
+rm -rf out/screenshots
 crop() { oiiotool docs/images/editor_overview.png --cut "$2" -o "docs/images/panel_$1.png"; }
 crop outliner 300x420+0+20
 crop inspector 300x440+0+440
 crop viewport 960x856+300+20
 crop lighting 340x380+1260+20
-crop timing 340x480+1260+400
+crop timing 340x220+1260+400
 crop status 1600x24+0+876
+oiiotool docs/images/editor_albedo.png --cut 340x256+1260+620 -o docs/images/panel_albedo.png
+oiiotool docs/images/editor_albedo.png --cut 300x440+0+440 -o docs/images/panel_inspector_albedo.png
 oiiotool docs/images/editor_help.png --cut 480x360+560+270 -o docs/images/panel_help.png
 oiiotool docs/images/editor_browser.png --cut 560x460+520+220 -o docs/images/panel_browser.png
 echo "screenshots in docs/images/"
