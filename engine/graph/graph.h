@@ -37,11 +37,19 @@ struct ResourceDesc {
   uint32_t mipLevels = 1;
   VkDeviceSize size = 0;    // buffers only, bytes
   std::string description;  // one line, shown by the dump and the inspector
+  // How a viewer turns a texel into meaning, declared by whoever writes the resource:
+  // "NAME key=resource ..." (lighting/common/decoders.h lists the names). Empty: raw values.
+  std::string decoder;
 
   static ResourceDesc image2D(VkFormat f, uint32_t w, uint32_t h, std::string what = {}, uint32_t mips = 1);
   static ResourceDesc image3D(VkFormat f, uint32_t w, uint32_t h, uint32_t d, std::string what = {},
                               uint32_t mips = 1);
   static ResourceDesc buffer(VkDeviceSize bytes, std::string what = {});
+  ResourceDesc decodedAs(std::string spec) const {
+    ResourceDesc d = *this;
+    d.decoder = std::move(spec);
+    return d;
+  }
   bool operator==(const ResourceDesc&) const = default;
 };
 

@@ -53,7 +53,8 @@ void AlbedoViewPass::add(graph::RenderGraph& graph, FrameInputs& in) {
         b.read(kAlbedoPerInstance, graph::Usage::StorageRead);
         b.create(kAlbedoInstance,
                  graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
-                                              "albedo the RT rays read (rgb); a: 1 override, 2 baked, 3 texture average"),
+                                              "albedo the RT rays read (rgb); a: 1 override, 2 baked, 3 texture average")
+                     .decodedAs("albedo-source"),
                  graph::Usage::StorageWrite);
         b.create(kAlbedoDifference,
                  graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,

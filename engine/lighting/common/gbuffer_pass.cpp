@@ -29,7 +29,8 @@ void GbufferPass::add(graph::RenderGraph& graph, FrameInputs& in) {
       [&](graph::PassBuilder& b) {
         readSceneInputs(b, graph::Usage::VertexOrIndex);
         for (auto& c : kGbufferChannels)
-          b.create(c.name, graph::ResourceDesc::image2D(c.format, w, h, c.description), graph::Usage::ColorAttachment);
+          b.create(c.name, graph::ResourceDesc::image2D(c.format, w, h, c.description).decodedAs(c.decoder),
+                   graph::Usage::ColorAttachment);
         b.create(kGbufferDepth,
                  graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, w, h, "depth, reversed Z (1 near, 0 at infinity)"),
                  graph::Usage::DepthAttachment);

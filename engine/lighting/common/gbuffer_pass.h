@@ -14,15 +14,16 @@ struct GbufferChannel {
   VkFormat format;
   uint32_t location;  // colour attachment location (shared/gbuffer.h)
   const char* description;
+  const char* decoder = "";  // lighting/common/decoders.h, for the viewer's probe
 };
 
 inline constexpr GbufferChannel kGbufferChannels[] = {
     {"gbuffer.baseColor", VK_FORMAT_R8G8B8A8_SRGB, shared::kGbufferBaseColor, "base colour, linear once sampled"},
-    {"gbuffer.normal", VK_FORMAT_R16G16_SNORM, shared::kGbufferNormal, "world shading normal, octahedral"},
+    {"gbuffer.normal", VK_FORMAT_R16G16_SNORM, shared::kGbufferNormal, "world shading normal, octahedral", "oct-normal"},
     {"gbuffer.material", VK_FORMAT_R8G8B8A8_UNORM, shared::kGbufferMaterial, "r roughness, g metalness"},
     {"gbuffer.emissive", VK_FORMAT_R16G16B16A16_SFLOAT, shared::kGbufferEmissive, "emitted radiance"},
     {"gbuffer.motion", VK_FORMAT_R16G16_SFLOAT, shared::kGbufferMotion, "screen motion in UV, current - previous"},
-    {"gbuffer.instanceId", VK_FORMAT_R32_UINT, shared::kGbufferInstanceId, "instance index + 1, 0 where empty"},
+    {"gbuffer.instanceId", VK_FORMAT_R32_UINT, shared::kGbufferInstanceId, "instance index + 1, 0 where empty", "instance-id"},
 };
 inline constexpr const char* kGbufferDepth = "gbuffer.depth";  // D32F, reversed Z (1 near, 0 far)
 

@@ -188,7 +188,9 @@ class LegacyPath final : public LightingPath {
         [&](graph::PassBuilder& b) {
           readCommon(b);
           for (const char* n : {kVoxelRadiance, kVoxelRadianceMips}) b.read(n, Usage::Sampled);
-          b.create(kConeShY, graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced irradiance, SH luma"),
+          b.create(kConeShY,
+                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced irradiance, SH luma")
+                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kConeCoCgAo)),
                    Usage::StorageWrite);
           b.create(kConeCoCgAo,
                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced chroma (xy), voxel AO (z), view depth (w)"),
@@ -215,7 +217,9 @@ class LegacyPath final : public LightingPath {
           b.create(kLegacyAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO"), Usage::StorageWrite);
           b.create(kLegacySsao, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "GTAO filtered and accumulated, frames"),
                    Usage::StorageWrite);
-          b.create(kLegacyShY, graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "diffuse irradiance, SH luma"),
+          b.create(kLegacyShY,
+                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "diffuse irradiance, SH luma")
+                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kLegacyCoCg)),
                    Usage::StorageWrite);
           b.create(kLegacyCoCg, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "diffuse irradiance, chroma"),
                    Usage::StorageWrite);

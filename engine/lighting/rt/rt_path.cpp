@@ -83,9 +83,9 @@ class RtPath final : public LightingPath {
           readCommon(b);
           for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive", "gbuffer.instanceId"})
             b.read(n, Usage::Sampled);
-          b.create(kPretraceHits, image(VK_FORMAT_R32_UINT, "pre-trace hit records: distance + G-buffer albedo, or pending"),
+          b.create(kPretraceHits, image(VK_FORMAT_R32_UINT, "pre-trace hit records: distance + G-buffer albedo, or pending").decodedAs("rt-hit-record"),
                    Usage::StorageWrite);
-          b.create(kPretraceSurface, image(VK_FORMAT_R32G32_UINT, "pre-trace hit normal (oct) + emission (rgb9e5)"),
+          b.create(kPretraceSurface, image(VK_FORMAT_R32G32_UINT, "pre-trace hit normal (oct) + emission (rgb9e5)").decodedAs("rt-hit-surface"),
                    Usage::StorageWrite);
         },
         [this, &in, push](graph::PassContext& ctx) {
@@ -109,9 +109,10 @@ class RtPath final : public LightingPath {
           b.read(kRtTlas, Usage::StorageRead);
           b.read(kPretraceHits, Usage::StorageRead);
           b.read(kPretraceSurface, Usage::StorageRead);
-          b.create(kHits, image(VK_FORMAT_R32_UINT, "hit records: distance (half) + albedo (565), miss code"),
+          b.create(kHits, image(VK_FORMAT_R32_UINT, "hit records: distance (half) + albedo (565), miss code").decodedAs("rt-hit-record"),
                    Usage::StorageWrite);
-          b.create(kHitSurface, image(VK_FORMAT_R32G32_UINT, "hit normal (oct) + emission (rgb9e5)"), Usage::StorageWrite);
+          b.create(kHitSurface, image(VK_FORMAT_R32G32_UINT, "hit normal (oct) + emission (rgb9e5)").decodedAs("rt-hit-surface"),
+                   Usage::StorageWrite);
         },
         [this, &in, push](graph::PassContext& ctx) {
           ctx.bind(trace_);
@@ -136,7 +137,10 @@ class RtPath final : public LightingPath {
           b.read(kHistDepth, Usage::Sampled);
           if (screenRadiance) b.read(kHistRadiance, Usage::Sampled);
           for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive"}) b.read(n, Usage::Sampled);
-          b.create(kRawShY, image(VK_FORMAT_R16G16B16A16_SFLOAT, "one-ray irradiance: L1 SH of luma"), Usage::StorageWrite);
+          b.create(kRawShY,
+                   image(VK_FORMAT_R16G16B16A16_SFLOAT, "one-ray irradiance: L1 SH of luma")
+                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kRawCoCg)),
+                   Usage::StorageWrite);
           b.create(kRawCoCg, image(VK_FORMAT_R16G16_SFLOAT, "one-ray irradiance: chroma"), Usage::StorageWrite);
           b.create(kRawAo, image(VK_FORMAT_R16_SFLOAT, "one-ray ambient occlusion (hit closer than the AO radius)"),
                    Usage::StorageWrite);
@@ -168,7 +172,10 @@ class RtPath final : public LightingPath {
           readCommon(b);
           b.read("gbuffer.motion", Usage::Sampled);
           for (const char* n : {kRawShY, kRawCoCg, kRawAo, kHistShY, kHistCoCgAo, kHistDepth}) b.read(n, Usage::Sampled);
-          b.create(kShY, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated irradiance: L1 SH of luma"), Usage::StorageWrite);
+          b.create(kShY,
+                   image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated irradiance: L1 SH of luma")
+                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kCoCgAo)),
+                   Usage::StorageWrite);
           b.create(kCoCgAo, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated chroma (xy), AO (z), frames (w)"),
                    Usage::StorageWrite);
           b.create(kViewDepth, image(VK_FORMAT_R32_SFLOAT, "view depth (w) for the next frame's disocclusion test"),
@@ -250,7 +257,10 @@ class RtPath final : public LightingPath {
               b.read("gbuffer.normal", Usage::Sampled);
               b.read(inShY, Usage::Sampled);
               b.read(inCoCg, Usage::Sampled);
-              b.create(outShY, image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised irradiance, SH luma"), Usage::StorageWrite);
+              b.create(outShY,
+                       image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised irradiance, SH luma")
+                           .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", outCoCg)),
+                       Usage::StorageWrite);
               b.create(outCoCg, image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised chroma (xy), AO and frames as input"),
                        Usage::StorageWrite);
             },

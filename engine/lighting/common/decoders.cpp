@@ -1,0 +1,158 @@
+#include "lighting/common/decoders.h"
+
+#include "gpu/formats.h"
+#include "shared/albedo.h"
+#include "shared/packing.h"
+#include "shared/rt.h"
+#include "shared/sh.h"
+
+#include <fmt/format.h>
+
+#include <cstring>
+#include <sstream>
+
+namespace tl::lighting {
+namespace {
+
+// The texel's bytes, or null outside the resource.
+const uint8_t* texelBytes(const graph::Readback& r, uint32_t x, uint32_t y, uint32_t z) {
+  const uint32_t bpt = gpu::formatInfo(r.format).bytes;
+  if (bpt == 0 || x >= r.extent.width || y >= r.extent.height || z >= std::max(1u, r.extent.depth)) return nullptr;
+  const size_t offset = ((size_t(z) * r.extent.height + y) * r.extent.width + x) * bpt;
+  return offset + bpt <= r.bytes.size() ? r.bytes.data() + offset : nullptr;
+}
+
+uint32_t uintAt(const graph::Readback& r, uint32_t x, uint32_t y, uint32_t z, uint32_t channel = 0) {
+  const uint8_t* p = texelBytes(r, x, y, z);
+  uint32_t v = 0;
+  if (p) std::memcpy(&v, p + 4 * channel, 4);
+  return v;
+}
+
+std::vector<float> floatsAt(const graph::Readback& r, uint32_t x, uint32_t y, uint32_t z) {
+  const uint8_t* p = texelBytes(r, x, y, z);
+  if (!p) return {};
+  return gpu::decodeTexels(r.format, std::span<const uint8_t>(p, gpu::formatInfo(r.format).bytes));
+}
+
+// A companion's texel at the same relative position as (x, y) in `self`.
+std::vector<float> companionAt(const DecodeInput& in, const std::string& name) {
+  const graph::Readback* c = in.companion ? in.companion(name) : nullptr;
+  if (!c || in.resource.extent.width == 0 || in.resource.extent.height == 0) return {};
+  const uint32_t cx = uint32_t((uint64_t(in.x) * c->extent.width) / in.resource.extent.width);
+  const uint32_t cy = uint32_t((uint64_t(in.y) * c->extent.height) / in.resource.extent.height);
+  return floatsAt(*c, cx, cy, 0);
+}
+
+std::string vec(const glm::vec3& v, int digits = 4) { return fmt::format("{:.{}f} {:.{}f} {:.{}f}", v.x, digits, v.y, digits, v.z, digits); }
+
+DecodedLines hitRecord(const DecodeInput& in) {
+  const uint32_t hit = uintAt(in.resource, in.x, in.y, in.z);
+  if (shared::tlRtIsMiss(hit)) return {{"ray", "miss: left the scene (sky)"}};
+  if (shared::tlRtIsPending(hit)) return {{"ray", "pending: the pre-trace found nothing (a real ray is traced)"}};
+  return {{"hit distance", fmt::format("{:.4f} m", shared::tlRtHitDistance(hit))},
+          {"hit albedo", vec(shared::tlRtHitAlbedo(hit), 3)}};
+}
+
+DecodedLines hitSurface(const DecodeInput& in) {
+  const uint32_t normal = uintAt(in.resource, in.x, in.y, in.z, 0), emission = uintAt(in.resource, in.x, in.y, in.z, 1);
+  return {{"hit normal", vec(shared::tlOctDecodeSnorm16(normal))}, {"hit emission", vec(shared::tlUnpackRgb9e5(emission))}};
+}
+
+DecodedLines octNormal(const DecodeInput& in) {
+  auto v = floatsAt(in.resource, in.x, in.y, in.z);
+  if (v.size() < 2) return {};
+  return {{"normal", vec(shared::tlOctDecode(glm::vec2(v[0], v[1])))}};
+}
+
+DecodedLines instanceId(const DecodeInput& in) {
+  const uint32_t id = uintAt(in.resource, in.x, in.y, in.z);
+  if (id == 0) return {{"instance", "none (background)"}};
+  std::string name = in.scene && id - 1 < in.scene->instances.size() ? in.scene->instances[id - 1].name : "?";
+  return {{"instance", fmt::format("{} (index {})", name, id - 1)}};
+}
+
+DecodedLines shIrradiance(const DecodeInput& in, const DecoderSpec& spec) {
+  auto y = floatsAt(in.resource, in.x, in.y, in.z);
+  if (y.size() < 4) return {};
+  glm::vec2 coCg(0.0f);
+  DecodedLines out;
+  auto c = spec.companions.count("coCg") ? companionAt(in, spec.companions.at("coCg")) : std::vector<float>{};
+  if (c.size() >= 2) coCg = glm::vec2(c[0], c[1]);
+  else out.push_back({"chroma", "not read back: luma only"});
+  const shared::ShLumaCoCg sh = shared::tlShMake(glm::vec4(y[0], y[1], y[2], y[3]), coCg);
+  auto n = spec.companions.count("normal") ? companionAt(in, spec.companions.at("normal")) : std::vector<float>{};
+  if (n.size() >= 2) {
+    const glm::vec3 normal = shared::tlOctDecode(glm::vec2(n[0], n[1]));
+    out.push_back({"irradiance (at normal)", vec(shared::tlShResolveIrradiance(sh, normal))});
+    out.push_back({"normal", vec(normal, 3)});
+  }
+  out.push_back({"dominant direction", vec(shared::tlShDominantDirection(sh, glm::vec3(0.0f, 1.0f, 0.0f)), 3)});
+  out.push_back({"directionality", fmt::format("{:.3f}", shared::tlShDirectionality(sh))});
+  return out;
+}
+
+DecodedLines albedoSource(const DecodeInput& in) {
+  auto v = floatsAt(in.resource, in.x, in.y, in.z);
+  if (v.size() < 4) return {};
+  const char* source = v[3] == shared::kAlbedoSourceOverride ? "override"
+                       : v[3] == shared::kAlbedoSourceBaked  ? "baked"
+                       : v[3] == shared::kAlbedoSourceTextureAverage ? "texture average"
+                                                                      : "no surface";
+  return {{"albedo", vec(glm::vec3(v[0], v[1], v[2]), 3)}, {"source", source}};
+}
+
+}  // namespace
+
+DecoderSpec parseDecoderSpec(const std::string& text) {
+  DecoderSpec spec;
+  std::istringstream in(text);
+  in >> spec.name;
+  for (std::string word; in >> word;) {
+    auto eq = word.find('=');
+    if (eq != std::string::npos) spec.companions[word.substr(0, eq)] = word.substr(eq + 1);
+  }
+  return spec;
+}
+
+std::vector<std::string> decoderCompanions(const std::string& text) {
+  std::vector<std::string> out;
+  for (auto& [role, name] : parseDecoderSpec(text).companions) out.push_back(name);
+  return out;
+}
+
+DecodedLines rawTexel(const graph::Readback& r, uint32_t x, uint32_t y, uint32_t z) {
+  const gpu::FormatInfo fi = gpu::formatInfo(r.format);
+  const uint8_t* p = texelBytes(r, x, y, z);
+  if (!p) return {{"texel", "outside the resource"}};
+  DecodedLines out;
+  static const char* kChannels[] = {"r", "g", "b", "a"};
+  if (fi.kind == gpu::TexelKind::Uint || fi.kind == gpu::TexelKind::Sint) {
+    for (uint32_t c = 0; c < fi.channels && 4 * (c + 1) <= fi.bytes; ++c) {
+      uint32_t v;
+      std::memcpy(&v, p + 4 * c, 4);
+      out.push_back({kChannels[c], fmt::format("{} (0x{:08x})", fi.kind == gpu::TexelKind::Sint ? int64_t(int32_t(v)) : int64_t(v), v)});
+    }
+    return out;
+  }
+  auto v = gpu::decodeTexels(r.format, std::span<const uint8_t>(p, fi.bytes));
+  for (size_t c = 0; c < v.size() && c < 4; ++c) out.push_back({kChannels[c], fmt::format("{:.6g}", v[c])});
+  return out;
+}
+
+DecodedLines decodeTexel(const std::string& text, const DecodeInput& in) {
+  using Decoder = DecodedLines (*)(const DecodeInput&, const DecoderSpec&);
+  static const std::map<std::string, Decoder> kDecoders = {
+      {"rt-hit-record", [](const DecodeInput& i, const DecoderSpec&) { return hitRecord(i); }},
+      {"rt-hit-surface", [](const DecodeInput& i, const DecoderSpec&) { return hitSurface(i); }},
+      {"oct-normal", [](const DecodeInput& i, const DecoderSpec&) { return octNormal(i); }},
+      {"instance-id", [](const DecodeInput& i, const DecoderSpec&) { return instanceId(i); }},
+      {"sh-irradiance", [](const DecodeInput& i, const DecoderSpec& s) { return shIrradiance(i, s); }},
+      {"albedo-source", [](const DecodeInput& i, const DecoderSpec&) { return albedoSource(i); }},
+  };
+  const DecoderSpec spec = parseDecoderSpec(text);
+  auto it = kDecoders.find(spec.name);
+  return it == kDecoders.end() ? DecodedLines{} : it->second(in, spec);
+}
+
+}  // namespace tl::lighting

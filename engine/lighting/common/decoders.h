@@ -1,0 +1,51 @@
+// Texel decoders for the buffer viewer's pixel probe. A resource that needs decoding to be
+// understood says so in its description (graph::ResourceDesc::decoder, set where it is
+// written): "NAME key=resource ...". The viewer asks this table, by that spec, what a texel
+// means; it never knows a resource by name. Decoders (and what their companions are):
+//   rt-hit-record          r32ui hit record: distance + albedo, or miss / pending (shared/rt.h)
+//   rt-hit-surface         rg32ui: hit normal (oct snorm16) + emission (rgb9e5)
+//   oct-normal             rg16 snorm octahedral normal (shared/packing.h)
+//   instance-id            r32ui instance index + 1: the scene instance's name
+//   sh-irradiance          rgba16f L1 SH of luma; coCg=RESOURCE (chroma in its xy) normal=RESOURCE
+//                          (oct normal): irradiance in the pixel's normal direction, and the SH's
+//                          dominant direction and directionality
+//   albedo-source          rgba16f per-instance albedo, source code in alpha (shared/albedo.h)
+#pragma once
+
+#include "graph/executor.h"
+#include "scene/scene.h"
+
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tl::lighting {
+
+struct DecoderSpec {
+  std::string name;
+  std::map<std::string, std::string> companions;  // role -> resource name
+};
+DecoderSpec parseDecoderSpec(const std::string& spec);
+
+// What a decoder may look at: the texel's resource read back, the texel, other resources of
+// the same frame (companions, by name; null when not read back) and the scene.
+struct DecodeInput {
+  const graph::Readback& resource;
+  uint32_t x = 0, y = 0, z = 0;
+  std::function<const graph::Readback*(const std::string&)> companion;
+  const scene::Scene* scene = nullptr;
+};
+
+using DecodedLines = std::vector<std::pair<std::string, std::string>>;  // label, value
+
+// Raw stored values of one texel: integers as integers (and hex), floats as floats.
+DecodedLines rawTexel(const graph::Readback& resource, uint32_t x, uint32_t y, uint32_t z = 0);
+// Empty when the spec names no known decoder. Companions are sampled at the same relative
+// position when their size differs (quarter-resolution cones against a full-size normal).
+DecodedLines decodeTexel(const std::string& spec, const DecodeInput& input);
+// The resources a spec needs read back beside its own.
+std::vector<std::string> decoderCompanions(const std::string& spec);
+
+}  // namespace tl::lighting

@@ -1,0 +1,120 @@
+// The buffer viewer's decoders invert the encoders the passes use.
+#include "lighting/common/decoders.h"
+#include "shared/packing.h"
+#include "shared/rt.h"
+#include "shared/sh.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <sstream>
+
+namespace tl::lighting {
+namespace {
+
+template <class T>
+graph::Readback oneTexel(VkFormat format, const T& value) {
+  graph::Readback r;
+  r.format = format;
+  r.extent = {1, 1, 1};
+  r.bytes.resize(sizeof(T));
+  std::memcpy(r.bytes.data(), &value, sizeof(T));
+  return r;
+}
+
+std::string find(const DecodedLines& lines, const std::string& label) {
+  for (auto& [l, v] : lines)
+    if (l == label) return v;
+  return "(missing " + label + ")";
+}
+
+glm::vec3 parseVec(const std::string& text) {
+  std::istringstream in(text);
+  glm::vec3 v(NAN);
+  in >> v.x >> v.y >> v.z;
+  return v;
+}
+
+TEST(Decoders, SpecNamesTheDecoderAndItsCompanions) {
+  DecoderSpec s = parseDecoderSpec("sh-irradiance coCg=rt.gi.coCgAo normal=gbuffer.normal");
+  EXPECT_EQ(s.name, "sh-irradiance");
+  EXPECT_EQ(s.companions.at("coCg"), "rt.gi.coCgAo");
+  EXPECT_EQ(decoderCompanions("sh-irradiance coCg=a normal=b").size(), 2u);
+  EXPECT_TRUE(decodeTexel("no-such-decoder", {oneTexel(VK_FORMAT_R32_UINT, 0u)}).empty());
+}
+
+TEST(Decoders, HitRecordRoundTrips) {
+  const glm::vec3 albedo(0.5f, 0.25f, 0.75f);
+  const uint32_t hit = shared::tlRtPackHit(3.5f, albedo);
+  auto r = oneTexel(VK_FORMAT_R32_UINT, hit);
+  DecodedLines lines = decodeTexel("rt-hit-record", {r});
+  EXPECT_EQ(find(lines, "hit distance"), "3.5000 m");
+  glm::vec3 a = parseVec(find(lines, "hit albedo"));
+  EXPECT_NEAR(a.r, albedo.r, 0.02f);
+  EXPECT_NEAR(a.g, albedo.g, 0.02f);
+  EXPECT_NEAR(a.b, albedo.b, 0.02f);
+  EXPECT_NE(find(decodeTexel("rt-hit-record", {oneTexel(VK_FORMAT_R32_UINT, shared::kRtHitMiss)}), "ray").find("miss"),
+            std::string::npos);
+  EXPECT_NE(find(rawTexel(r, 0, 0), "r").find(fmt::format("0x{:08x}", hit)), std::string::npos) << "raw bits shown";
+}
+
+TEST(Decoders, HitSurfaceAndOctahedralNormalsRoundTrip) {
+  const glm::vec3 n = glm::normalize(glm::vec3(0.3f, -0.8f, 0.52f));
+  const glm::uvec2 surface(shared::tlOctEncodeSnorm16(n), shared::tlPackRgb9e5(glm::vec3(2.0f, 0.5f, 0.0f)));
+  DecodedLines s = decodeTexel("rt-hit-surface", {oneTexel(VK_FORMAT_R32G32_UINT, surface)});
+  glm::vec3 dn = parseVec(find(s, "hit normal")), e = parseVec(find(s, "hit emission"));
+  EXPECT_LT(glm::length(dn - n), 1e-3f);
+  EXPECT_NEAR(e.r, 2.0f, 0.01f);
+  EXPECT_NEAR(e.g, 0.5f, 0.01f);
+  // R16G16_SNORM as the G-buffer stores it.
+  const glm::vec2 oct = shared::tlOctEncode(n);
+  const int16_t snorm[2] = {int16_t(std::lround(oct.x * 32767.0f)), int16_t(std::lround(oct.y * 32767.0f))};
+  graph::Readback r;
+  r.format = VK_FORMAT_R16G16_SNORM;
+  r.extent = {1, 1, 1};
+  r.bytes.resize(4);
+  std::memcpy(r.bytes.data(), snorm, 4);
+  EXPECT_LT(glm::length(parseVec(find(decodeTexel("oct-normal", {r}), "normal")) - n), 1e-3f);
+}
+
+TEST(Decoders, ShIrradianceUsesTheCompanionsAtTheSameRelativePosition) {
+  // One radiance sample projected into SH; the decoder resolves it against the pixel normal.
+  const glm::vec3 dir = glm::normalize(glm::vec3(0.2f, 1.0f, 0.1f)), n(0.0f, 1.0f, 0.0f);
+  shared::ShLumaCoCg sh = shared::tlShProjectRadiance(dir, glm::vec3(1.0f, 0.5f, 0.25f));
+  // The SH at 2x2, chroma and normals at 4x4 (a quarter-resolution cone buffer, say).
+  graph::Readback shY;
+  shY.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  shY.extent = {2, 2, 1};
+  for (int i = 0; i < 4; ++i) shY.bytes.insert(shY.bytes.end(), (uint8_t*)&sh.shY, (uint8_t*)&sh.shY + 16);
+  graph::Readback coCg, normal;
+  coCg.format = normal.format = VK_FORMAT_R32G32_SFLOAT;
+  coCg.extent = normal.extent = {4, 4, 1};
+  const glm::vec2 octN = shared::tlOctEncode(n);
+  for (int i = 0; i < 16; ++i) {
+    coCg.bytes.insert(coCg.bytes.end(), (uint8_t*)&sh.coCg, (uint8_t*)&sh.coCg + 8);
+    normal.bytes.insert(normal.bytes.end(), (const uint8_t*)&octN, (const uint8_t*)&octN + 8);
+  }
+  DecodeInput in{shY, 1, 1, 0, [&](const std::string& name) -> const graph::Readback* {
+                   return name == "chroma" ? &coCg : name == "normals" ? &normal : nullptr;
+                 }};
+  DecodedLines lines = decodeTexel("sh-irradiance coCg=chroma normal=normals", in);
+  const glm::vec3 expected = shared::tlShResolveIrradiance(sh, n), got = parseVec(find(lines, "irradiance (at normal)"));
+  EXPECT_NEAR(got.r, expected.r, 1e-3f);
+  EXPECT_NEAR(got.g, expected.g, 1e-3f);
+  EXPECT_NEAR(got.b, expected.b, 1e-3f);
+  EXPECT_LT(glm::length(parseVec(find(lines, "dominant direction")) - dir), 0.01f);
+}
+
+TEST(Decoders, InstanceIdNamesTheInstance) {
+  scene::Scene s;
+  s.instances.resize(3);
+  s.instances[2].name = "crate";
+  DecodeInput in{oneTexel(VK_FORMAT_R32_UINT, 3u)};
+  in.scene = &s;
+  EXPECT_EQ(find(decodeTexel("instance-id", in), "instance"), "crate (index 2)");
+  EXPECT_NE(find(decodeTexel("instance-id", {oneTexel(VK_FORMAT_R32_UINT, 0u)}), "instance").find("none"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tl::lighting
