@@ -6,6 +6,7 @@
 
 #include <GLFW/glfw3.h>
 #include <OpenImageIO/imageio.h>
+#include <cmath>
 #include <fmt/format.h>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
@@ -203,7 +204,16 @@ void EditorApp::handleCameraInput(float seconds) {
   }
   if (ImGui::IsMouseReleased(0) && viewportHovered_ && !dragged_) clickViewport(mouse);
   if (ImGui::IsMouseDown(2) && viewportHovered_) in.panDelta = delta;
-  if (viewportHovered_ && io.MouseWheel != 0.0f) in.dolly = io.MouseWheel;
+  if (viewportHovered_ && io.MouseWheel != 0.0f && !io.KeyCtrl) in.dolly = io.MouseWheel;
+  if (viewportHovered_ && io.MouseWheel != 0.0f && io.KeyCtrl) {
+    // Ctrl + wheel zooms the viewer around the cursor: the texel under it stays put.
+    const glm::vec2 uv = (mouse - viewportMin_) / viewportSize_;
+    const glm::vec4 before = viewerWindow(viewer_);
+    const glm::vec2 texel = glm::vec2(before) + uv * glm::vec2(before.z, before.w);
+    viewer_.zoom = std::clamp(viewer_.zoom * std::exp2(0.25f * io.MouseWheel), 1.0f, 256.0f);
+    const float size = 1.0f / viewer_.zoom;
+    viewer_.centre = texel - (uv - 0.5f) * size;
+  }
   const bool flying = ImGui::IsMouseDown(1) && viewportHovered_;
   if (flying) {
     in.lookDelta = delta;
@@ -215,6 +225,7 @@ void EditorApp::handleCameraInput(float seconds) {
   if (!io.WantTextInput && !flying) {
     if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) focusSelection();
     if (ImGui::IsKeyPressed(GLFW_KEY_F1, false)) showHelp_ = !showHelp_;
+    if (ImGui::IsKeyPressed(GLFW_KEY_F2, false)) showBuffers_ = !showBuffers_;
     bool ctrl = io.KeyCtrl;
     if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O, false)) showBrowser_ = true;
     // Albedo edits (the inspector's override): undo, redo, save.
@@ -306,14 +317,6 @@ void EditorApp::finishLoad() {
   load_ = {};
 }
 
-float EditorApp::previewScale(const std::string& resource) const {
-  // Radiance is shown at the frame's exposure; G-buffer channels are already in [0,1]
-  // (or [-1,1]); motion vectors are small fractions of the screen.
-  if (resource.find("motion") != std::string::npos) return 20.0f;
-  if (resource.rfind("gbuffer.", 0) == 0 || resource.rfind("shadow.", 0) == 0) return 1.0f;
-  return std::exp2(-session_->exposureEv());
-}
-
 std::filesystem::path EditorApp::defaultCaptureFolder() const {
   const std::string scene = session_->hasScene() ? session_->scene().name : "none";
   return std::filesystem::path("captures") / fmt::format("{}-{}-frame{}", scene, session_->path(), session_->frameIndex());
@@ -326,11 +329,28 @@ void EditorApp::renderEngine() {
   try {
     if (w != session_->settings().width || h != session_->settings().height) session_->setSize(w, h);
     session_->setView(camera_.view());
-    lighting::DisplayRequest display;
-    display.source = preview_.empty() ? pinnedPreview_ : preview_;
+    VkFormat hoverFormat = VK_FORMAT_UNDEFINED;
+    std::string decoder;
+    uint64_t texels = 0;
+    for (const auto& r : session_->resources()) {
+      if (r.name == preview_) hoverFormat = r.desc.format;
+      if (r.name == viewer_.resource)
+        decoder = r.desc.decoder, texels = uint64_t(r.desc.extent.width) * r.desc.extent.height * r.desc.extent.depth;
+    }
+    // Live read-back of big volumes (the voxel clipmap) would cost more than the frame.
+    const bool liveReadback = showBuffers_ && viewer_.live && texels <= (uint64_t(1) << 22);
+    lighting::DisplayRequest display = displayRequest(viewer_, preview_, hoverFormat, std::exp2(-session_->exposureEv()));
     display.selectedInstance = selected_ ? *selected_ + 1 : 0;
-    display.scale = previewScale(display.source);
     session_->setDisplay(display);
+    // The viewer's read-back (histogram, probe, range fit): the shown resource and what its
+    // decoder needs beside it.
+    std::vector<std::string> viewerReads;
+    if (preview_.empty() && !viewer_.resource.empty() &&
+        (viewer_.autoFitPending || viewer_.refresh || viewer_.keepCopy || liveReadback)) {
+      viewerReads.push_back(viewer_.resource);
+      for (const std::string& c : lighting::decoderCompanions(decoder)) viewerReads.push_back(c);
+    }
+    for (const std::string& n : viewerReads) session_->requestBuffer(n);
     if (pendingClick_) session_->requestBuffer("gbuffer.instanceId");
     if (captureRequested_) session_->requestBuffer(lighting::kDisplayLdr);
     if (frameCapturePath_) session_->requestAllBuffers();
@@ -347,6 +367,17 @@ void EditorApp::renderEngine() {
       capture_ = session_->buffer(lighting::kDisplayLdr).texels();
       captureRequested_ = false;
     }
+    if (!viewerReads.empty()) {
+      viewer_.readbacks.clear();
+      for (const std::string& n : viewerReads) viewer_.readbacks[n] = session_->buffer(n);
+      const graph::Readback& shown = viewer_.readbacks[viewer_.resource];
+      if (viewer_.autoFitPending && shown.extent.width > 0) {
+        std::tie(viewer_.rangeMin, viewer_.rangeMax) = fitRange(channelValues(shown, viewer_.channel, viewer_.slice));
+        viewer_.autoFitPending = false;
+      }
+      if (viewer_.keepCopy) viewer_.copyOf = viewer_.resource, viewer_.copyReadback = shown;
+      viewer_.refresh = viewer_.keepCopy = false;
+    }
     if (pendingClick_) {
       glm::vec2 uv = (*pendingClick_ - viewportMin_) / viewportSize_;
       selected_ = session_->instanceAt(uint32_t(uv.x * w), uint32_t(uv.y * h));
@@ -355,7 +386,8 @@ void EditorApp::renderEngine() {
   } catch (const std::exception& e) {
     showError(e.what());
     preview_.clear();
-    pinnedPreview_.clear();
+    viewer_.resource.clear();
+    viewer_.keepCopy = viewer_.showCopy = false;
     pendingClick_.reset();
   }
 }

@@ -3,6 +3,7 @@
 // swapchain under a transparent viewport panel and the UI is drawn over it.
 #pragma once
 
+#include "buffer_viewer.h"
 #include "camera_controller.h"
 #include "settings.h"
 
@@ -50,7 +51,14 @@ class EditorApp {
   void focusSelection();
   void showError(const std::string& message) { error_ = message; }
   void previewResource(const std::string& name) { preview_ = name; }  // while hovering a pass
-  void pinPreview(const std::string& name) { pinnedPreview_ = name; }  // until changed
+  // Shows a resource in the viewport until changed ("" = the final image); its range is fitted.
+  void pinPreview(const std::string& name) {
+    if (name != viewer_.resource) viewer_.autoFitPending = true, viewer_.probe.reset(), viewer_.slice = 0;
+    viewer_.resource = name;
+  }
+  ViewerState& viewer() { return viewer_; }
+  void showBuffers(bool on) { showBuffers_ = on; }
+  bool& buffersOpen() { return showBuffers_; }
   void showHelp(bool on) { showHelp_ = on; }
   // The albedo database: bakes run one batch per frame so the UI stays responsive.
   void openAlbedoDatabase(const std::filesystem::path& file);
@@ -59,7 +67,7 @@ class EditorApp {
   const albedo::BakeJob* albedoBake() const { return bake_.get(); }
   std::string& albedoDbField() { return albedoDbField_; }
   const std::string& lastBakeSummary() const { return lastBakeSummary_; }
-  const std::string& pinnedPreview() const { return pinnedPreview_; }
+  const std::string& pinnedPreview() const { return viewer_.resource; }
   void showBrowser(bool on) { showBrowser_ = on; }
   uint64_t framesDrawn() const { return framesDrawn_; }
   double fps() const;
@@ -79,7 +87,6 @@ class EditorApp {
   void finishLoad();
   void applyBookmark(int slot, bool save);
   std::string sceneKey() const;
-  float previewScale(const std::string& resource) const;
   void writeScreenshot(const gpu::Buffer& pixels, VkExtent2D extent);
 
   Settings settings_;
@@ -97,7 +104,8 @@ class EditorApp {
   std::optional<std::filesystem::path> screenshotPath_;
   std::string error_;
   std::string preview_;        // resource shown while a pass is hovered ("" = none)
-  std::string pinnedPreview_;  // resource shown otherwise ("" = the final image)
+  ViewerState viewer_;         // what is shown otherwise, and how (the Buffers panel)
+  bool showBuffers_ = false;
   glm::vec2 viewportMin_{0.0f}, viewportSize_{0.0f};
   bool viewportHovered_ = false;
   bool showHelp_ = false, showBrowser_ = false;

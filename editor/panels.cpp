@@ -1,5 +1,6 @@
 // The editor's panels, one function per concern. Tooltips state physical units.
 #include "albedo_panels.h"
+#include "buffer_panel.h"
 #include "editor_app.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -45,6 +46,7 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
   if (ImGui::BeginMenu("View")) {
     if (ImGui::MenuItem("Vsync", nullptr, app.settings().vsync)) app.settings().vsync = !app.settings().vsync;
     ImGui::MenuItem("Help", "F1", &showHelp);
+    ImGui::MenuItem("Buffers", "F2", &app.buffersOpen());
     ImGui::EndMenu();
   }
   ImGui::EndMainMenuBar();
@@ -336,7 +338,7 @@ void timingPanel(EditorApp& app) {
   ImGui::Text("Frame time (CPU+GPU), %.1f fps", app.fps());
   if (!values.empty())
     ImGui::PlotLines("##history", values.data(), int(values.size()), 0, nullptr, 0.0f,
-                     *std::max_element(values.begin(), values.end()) * 1.2f, ImVec2(-1, 80));
+                     *std::max_element(values.begin(), values.end()) * 1.2f, ImVec2(ImGui::GetContentRegionAvail().x, 80));
   ImGui::End();
 }
 
@@ -452,6 +454,7 @@ void drawPanels(EditorApp& app) {
   lightingPanel(app);
   timingPanel(app);
   albedoPanel(app);
+  buffersPanel(app, app.buffersOpen());
   statusBar(app);
   helpWindow(app.showHelp_);
   fileBrowser(app, app.showBrowser_, app.browserDir_);

@@ -1,6 +1,7 @@
 #include "script.h"
 
 #include "editor_app.h"
+#include "session/capture.h"
 
 #include <fmt/format.h>
 
@@ -155,6 +156,62 @@ void Script::step(EditorApp& app) {
           if (got != arg) return fail(app, fmt::format("expected albedo source `{}`, but it is `{}`", arg, got));
           fmt::print("script: albedo source is `{}`\n", got);
         }
+      } else if (cmd == "buffers") {
+        app.showBuffers(arg == "on");
+      } else if (cmd == "view") {
+        app.pinPreview(arg == "final" ? "" : arg);
+        app.viewer().refresh = true;
+      } else if (cmd == "view-channel") {
+        static const char* names[] = {"rgb", "r", "g", "b", "a", "luminance"};
+        auto it = std::find(std::begin(names), std::end(names), arg);
+        if (it == std::end(names)) return fail(app, fmt::format("unknown channel `{}`", arg));
+        app.viewer().channel = uint32_t(it - std::begin(names));
+        app.viewer().autoFitPending = true;
+      } else if (cmd == "view-false-colour") {
+        app.viewer().falseColour = arg == "on";
+      } else if (cmd == "view-zoom") {
+        float z, u, v;
+        if (std::sscanf(arg.c_str(), "%f %f %f", &z, &u, &v) != 3) return fail(app, "view-zoom needs Z U V");
+        app.viewer().zoom = z, app.viewer().centre = glm::vec2(u, v);
+      } else if (cmd == "view-slice") {
+        app.viewer().slice = uint32_t(std::stoul(arg));
+      } else if (cmd == "keep-b") {
+        app.viewer().keepCopy = true;
+      } else if (cmd == "show-b") {
+        app.viewer().showCopy = arg == "on";
+      } else if (cmd == "expect-probe") {
+        unsigned x, y;
+        char text[256] = {};
+        if (std::sscanf(arg.c_str(), "%u %u %255[^\n]", &x, &y, text) != 3) return fail(app, "expect-probe needs X Y TEXT");
+        const ViewerState& v = app.viewer();
+        auto it = v.readbacks.find(v.resource);
+        if (it == v.readbacks.end()) return fail(app, fmt::format("`{}` was not read back", v.resource));
+        std::string decoder;
+        for (const auto& r : app.session().resources())
+          if (r.name == v.resource) decoder = r.desc.decoder;
+        lighting::DecodeInput in{it->second, x, y, 0,
+                                 [&](const std::string& n) -> const graph::Readback* {
+                                   auto c = v.readbacks.find(n);
+                                   return c == v.readbacks.end() ? nullptr : &c->second;
+                                 },
+                                 &app.session().scene()};
+        std::string all;
+        for (auto& [l, val] : lighting::rawTexel(it->second, x, y)) all += l + " = " + val + "; ";
+        for (auto& [l, val] : lighting::decodeTexel(decoder, in)) all += l + ": " + val + "; ";
+        if (all.find(text) == std::string::npos)
+          return fail(app, fmt::format("probe of `{}` at {}, {} shows `{}`, not `{}`", v.resource, x, y, all, text));
+        fmt::print("script: probe of `{}` at {}, {}: {}\n", v.resource, x, y, all);
+      } else if (cmd == "expect-viewer-matches-capture") {
+        const ViewerState& v = app.viewer();
+        auto it = v.readbacks.find(v.resource);
+        if (it == v.readbacks.end()) return fail(app, fmt::format("`{}` was not read back", v.resource));
+        session::CapturedImage img = session::readCaptureImage(std::filesystem::path(arg) / (v.resource + ".exr"));
+        const std::vector<float> mine = it->second.texels();
+        if (img.values.size() != mine.size()) return fail(app, fmt::format("{} values in the viewer, {} in the capture", mine.size(), img.values.size()));
+        size_t differ = 0;
+        for (size_t i = 0; i < mine.size(); ++i) differ += !(mine[i] == img.values[i] || (std::isnan(mine[i]) && std::isnan(img.values[i])));
+        if (differ) return fail(app, fmt::format("{} of {} values differ between the viewer and the capture", differ, mine.size()));
+        fmt::print("script: the viewer's `{}` equals the capture ({} values)\n", v.resource, mine.size());
       } else if (cmd == "quit") {
         app.requestQuit();
         return;

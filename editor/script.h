@@ -25,6 +25,13 @@
 //   albedo-impact          remember this image and show what later albedo edits change
 //   expect-albedo-source S fail unless the selected instance's albedo comes from S
 //                          (override, baked, texture average)
+//   buffers on|off         the Buffers panel
+//   view RESOURCE          show a resource through the viewer (range fitted); `final` for the image
+//   view-channel C         rgb, r, g, b, a or luminance
+//   view-false-colour on|off, view-zoom Z U V (zoom Z around source UV), view-slice N
+//   keep-b, show-b on|off  A/B against a kept copy
+//   expect-probe X Y TEXT  fail unless texel (X, Y)'s raw or decoded lines contain TEXT
+//   expect-viewer-matches-capture DIR  the viewer's read-back equals DIR/<resource>.exr
 //   quit
 #pragma once
 

@@ -23,7 +23,11 @@ void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = imageSize(display);
   if (any(greaterThanEqual(p, size))) return;
-  ivec2 sp = ivec2((vec2(p) + 0.5) / vec2(size) * vec2(textureSize(source, 0)));
-  vec3 c = idColor(texelFetch(source, sp, 0).r);
-  imageStore(display, p, vec4(outline(p, size, c), 1.0));
+  vec2 uv = sourceUv(p, size);
+  ivec2 sourceSize = textureSize(source, 0);
+  vec3 c = vec3(0.04);
+  if (all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0))))
+    c = idColor(texelFetch(source, ivec2(uv * vec2(sourceSize)), 0).r);
+  c = grid(uv, size, sourceSize, c);
+  imageStore(display, p, vec4(outline(uv, c), 1.0));
 }

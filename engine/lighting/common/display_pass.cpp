@@ -21,22 +21,52 @@ void DisplayPass::add(graph::RenderGraph& graph, FrameInputs& in, const DisplayR
       return gpu::createComputePipeline(in.device, d);
     };
     floatPipeline_ = make("display.float", "common/display_float.comp");
+    float3dPipeline_ = make("display.float3d", "common/display_float3d.comp");
     uintPipeline_ = make("display.uint", "common/display_uint.comp");
     sampler_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "display.point");
   }
-  const std::string source = request.source.empty() ? kTonemapLdr : request.source;
-  auto id = graph.find(source);
-  if (!id || graph.resources()[*id].desc.type != graph::ResourceType::Image || graph.resources()[*id].desc.extent.depth > 1)
-    throw gpu::Error("the display can show 2D images of the frame; `" + source + "` is not one");
-  const VkFormat format = graph.resources()[*id].desc.format;
-  const gpu::FormatInfo fi = gpu::formatInfo(format);
+  const std::string requested = request.source.empty() ? kTonemapLdr : request.source;
+  auto id = graph.find(requested);
+  if (!id || graph.resources()[*id].desc.type != graph::ResourceType::Image)
+    throw gpu::Error("the display shows images of the frame; `" + requested + "` is not one");
+  const graph::ResourceDesc desc = graph.resources()[*id].desc;
+
+  // A/B: keep a copy of the source (a cache resource: written this frame, held after), and
+  // show it instead of the live resource on request.
+  if (request.keepCopy && gpu::formatInfo(desc.format).kind == gpu::TexelKind::Depth)
+    throw gpu::Error("A/B keeps copies of colour images; `" + requested + "` is a depth image");
+  if (request.keepCopy) copyDesc_ = desc;
+  const bool haveCopy = copyDesc_ && *copyDesc_ == desc;
+  if (haveCopy) graph.declareCache(kDisplayCopy, *copyDesc_);
+  if (request.keepCopy) {
+    graph.addPass(
+        "display.keepCopy", graph::PassKind::Transfer,
+        [&](graph::PassBuilder& b) {
+          b.read(requested, graph::Usage::TransferSrc);
+          b.write(kDisplayCopy, graph::Usage::TransferDst);
+          b.sideEffect();
+        },
+        [requested](graph::PassContext& ctx) { gpu::copyImage(ctx.cmd, ctx.image(requested), ctx.image(kDisplayCopy)); });
+  }
+  const std::string source = request.showCopy && haveCopy && !request.keepCopy ? std::string(kDisplayCopy) : requested;
+
+  const gpu::FormatInfo fi = gpu::formatInfo(desc.format);
+  const bool volume = desc.extent.depth > 1;
   shared::DisplayPush push{};
-  push.mode = source == kTonemapLdr ? shared::kDisplayModeFinal
+  push.mode = requested == kTonemapLdr ? shared::kDisplayModeFinal
               : fi.kind == gpu::TexelKind::Uint ? shared::kDisplayModeId
                                                  : shared::kDisplayModeLinear;
+  if (volume && push.mode == shared::kDisplayModeId)
+    throw gpu::Error("the display shows integer images in 2D only; `" + requested + "` is 3D");
   push.selectedId = request.selectedInstance;
   push.channels = fi.channels;
-  push.scale = request.scale;
+  push.channel = request.channel;
+  push.rangeMin = request.rangeMin;
+  push.rangeMax = request.rangeMax;
+  push.window = request.window;
+  push.flags = (request.falseColour ? shared::kDisplayFlagFalseColour : 0u) |
+               (request.highlightInvalid ? shared::kDisplayFlagHighlight : 0u) | shared::kDisplayFlagGrid;
+  push.slice = volume ? (float(std::min(request.slice, desc.extent.depth - 1)) + 0.5f) / float(desc.extent.depth) : 0.0f;
   const uint32_t w = in.settings.width, h = in.settings.height;
 
   graph.addPass(
@@ -47,8 +77,8 @@ void DisplayPass::add(graph::RenderGraph& graph, FrameInputs& in, const DisplayR
         b.create(kDisplayLdr, graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "editor viewport image"),
                  graph::Usage::StorageWrite);
       },
-      [this, push, source](graph::PassContext& ctx) {
-        const gpu::Pipeline& p = push.mode == shared::kDisplayModeId ? uintPipeline_ : floatPipeline_;
+      [this, push, source, volume](graph::PassContext& ctx) {
+        const gpu::Pipeline& p = push.mode == shared::kDisplayModeId ? uintPipeline_ : volume ? float3dPipeline_ : floatPipeline_;
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
         ctx.bind(p);
         ctx.pushConstants(push);

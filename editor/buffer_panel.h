@@ -1,0 +1,9 @@
+// The Buffers panel: the graph's resources and the buffer viewer (T8).
+#pragma once
+
+namespace tl::editor {
+
+class EditorApp;
+void buffersPanel(EditorApp& app, bool& open);
+
+}  // namespace tl::editor

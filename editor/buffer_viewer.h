@@ -1,0 +1,57 @@
+// The buffer viewer's state and logic (T8): which resource the viewport shows and how
+// (channel, range, false colour, invalid-value highlight, zoom, 3D slice, A/B copy), its
+// read-back for the histogram and the pixel probe. The Buffers panel (buffer_panel.cpp)
+// draws it; EditorApp turns it into the display request. Nothing here knows a resource by
+// name: formats and each resource's declared decoder say how to read it.
+#pragma once
+
+#include "graph/executor.h"
+#include "lighting/common/decoders.h"
+#include "lighting/common/display_pass.h"
+
+#include <glm/glm.hpp>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tl::editor {
+
+struct ViewerState {
+  std::string resource;            // "" = the final image
+  uint32_t channel = 0;            // shared/display.h kDisplayChannel*
+  float rangeMin = 0.0f, rangeMax = 1.0f;
+  bool autoFitPending = true;      // fit the range to the next read-back
+  bool falseColour = false;
+  bool highlightInvalid = true;
+  float zoom = 1.0f;               // display pixels per source pixel at 1 = the whole image
+  glm::vec2 centre{0.5f};          // source UV at the viewport's centre
+  uint32_t slice = 0;              // 3D resources
+  bool live = true;                // read the resource back every frame (histogram, probe)
+  bool refresh = false;            // one read-back when not live
+  bool keepCopy = false;           // one frame: store the resource as "B"
+  bool showCopy = false;
+  std::string copyOf;              // resource "B" holds
+  graph::Readback copyReadback;    // and its values, for the A-B statistics
+  std::optional<glm::uvec3> probe; // the texel under the cursor
+  // The last read-back of the resource and its decoder's companions.
+  std::map<std::string, graph::Readback> readbacks;
+};
+
+// The display request for the state (`hoverPreview` overrides the resource while a pass is
+// hovered in the Timing panel; its range then comes from the format).
+lighting::DisplayRequest displayRequest(const ViewerState& v, const std::string& hoverPreview, VkFormat hoverFormat,
+                                        float exposureScale);
+// The source UV rectangle shown (offset, size) for a zoom and centre.
+glm::vec4 viewerWindow(const ViewerState& v);
+// Values of the shown channel over the read-back (the slice of a 3D image), as the display
+// computes them.
+std::vector<float> channelValues(const graph::Readback& r, uint32_t channel, uint32_t slice);
+// The range a viewer fits to values: 0.1 and 99.9 percentiles of the finite ones (so a few
+// fireflies do not squash everything), widened when flat.
+std::pair<float, float> fitRange(std::vector<float> values);
+// `bins` counts of values in [lo, hi] (outside ones clamp into the end bins; non-finite skipped).
+std::vector<float> histogram(const std::vector<float>& values, float lo, float hi, int bins);
+
+}  // namespace tl::editor

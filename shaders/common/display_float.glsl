@@ -1,0 +1,55 @@
+// The float display, for 2D sources and (DISPLAY_3D) a slice of a 3D source.
+#include "shared/display.h"
+#include "shared/color.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+#ifdef DISPLAY_3D
+layout(set = 0, binding = kDisplaySource) uniform sampler3D source;
+#else
+layout(set = 0, binding = kDisplaySource) uniform sampler2D source;
+#endif
+layout(set = 0, binding = kDisplayInstanceId) uniform usampler2D instanceId;
+layout(set = 0, binding = kDisplayOutput, rgba8) uniform writeonly image2D display;
+layout(push_constant) uniform Push { DisplayPush push; };
+
+#include "common/display_outline.glsl"
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 size = imageSize(display);
+  if (any(greaterThanEqual(p, size))) return;
+  vec2 uv = sourceUv(p, size);
+#ifdef DISPLAY_3D
+  ivec2 sourceSize = textureSize(source, 0).xy;
+  vec4 v = textureLod(source, vec3(uv, push.slice), 0.0);
+#else
+  ivec2 sourceSize = textureSize(source, 0);
+  vec4 v = textureLod(source, uv, 0.0);
+#endif
+  vec3 c;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) {
+    c = vec3(0.04);  // outside the image (zoomed out or panned)
+  } else if (push.mode == kDisplayModeFinal) {
+    c = v.rgb;
+  } else {
+    if (push.channels == 1u) v = vec4(v.r, v.r, v.r, 1.0);
+    if (push.channels == 2u) v = vec4(v.r, v.g, 0.0, 1.0);
+    if (push.channels == 3u) v.a = 1.0;
+    vec3 shown = push.channel == kDisplayChannelR   ? vec3(v.r)
+                 : push.channel == kDisplayChannelG ? vec3(v.g)
+                 : push.channel == kDisplayChannelB ? vec3(v.b)
+                 : push.channel == kDisplayChannelA ? vec3(v.a)
+                 : push.channel == kDisplayChannelLuminance ? vec3(tlLuminance(v.rgb))
+                                                            : v.rgb;
+    vec3 t = (shown - push.rangeMin) / max(push.rangeMax - push.rangeMin, 1e-20);
+    c = (push.flags & kDisplayFlagFalseColour) != 0u ? tlDisplayFalseColour(t.r) : tlLinearToSrgb(clamp(t, 0.0, 1.0));
+    if ((push.flags & kDisplayFlagHighlight) != 0u) {
+      bvec3 nan = isnan(shown), inf = isinf(shown);
+      if (any(nan)) c = vec3(1.0, 0.0, 1.0);
+      else if (any(inf)) c = vec3(1.0, 1.0, 0.0);
+      else if (any(lessThan(shown, vec3(0.0)))) c = vec3(0.0, 0.4, 1.0);
+    }
+  }
+  c = grid(uv, size, sourceSize, c);
+  imageStore(display, p, vec4(outline(uv, c), 1.0));
+}
