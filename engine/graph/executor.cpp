@@ -2,6 +2,7 @@
 
 #include "gpu/formats.h"
 
+#include <algorithm>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -258,6 +259,11 @@ bool Executor::historyValid(std::string_view name) const {
   return it != physical_.end() && it->second.historyValid;
 }
 
+bool Executor::historyValid(std::string_view name, const ResourceDesc& declared) const {
+  auto it = physical_.find(std::string(name));
+  return it != physical_.end() && it->second.historyValid && it->second.desc == declared;
+}
+
 const Readback& Executor::readback(std::string_view name) const {
   auto it = readbacks_.find(std::string(name));
   TL_CHECK(it != readbacks_.end(), "no read-back of `{}` in the last frame (request it before executing)", name);
@@ -463,6 +469,15 @@ void Executor::execute(const RenderGraph& graph, const CompiledGraph& compiled) 
       const auto& name = graph.resources()[w.resource].name;
       if (readbackAll_ || readbackNames_.count(name)) copyForReadback(cmd, name, find(name), w.usage, decl.kind);
     }
+  }
+  // Persistent resources no pass wrote this frame (history read but not rewritten, a cache
+  // that was not rebuilt) hold their last contents: read those back at the end.
+  for (auto& [name, p] : physical_) {
+    if (p.kind != Physical::Kind::Persistent || !p.historyValid || !graph.find(name)) continue;
+    if (p.image && p.layout == VK_IMAGE_LAYOUT_UNDEFINED) continue;
+    if (!readbackAll_ && !readbackNames_.count(name)) continue;
+    if (std::any_of(pending_.begin(), pending_.end(), [&](const PendingReadback& r) { return r.name == name; })) continue;
+    copyForReadback(cmd, name, p, Usage::Sampled, PassKind::Compute);
   }
   device_.wait(device_.submit(cmd));
 

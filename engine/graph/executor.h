@@ -123,6 +123,9 @@ class Executor {
   VkImageLayout layout(std::string_view name) const;
   // Whether a persistent resource holds a previous frame's contents (false when unknown).
   bool historyValid(std::string_view name) const;
+  // The same, asked while building a graph: also false when this frame declares it with
+  // another description (a resize), which recreates it with undefined contents.
+  bool historyValid(std::string_view name, const ResourceDesc& declared) const;
   uint64_t frameIndex() const { return frame_; }
   // Layout an imported image was left in by the frame (to hand it back to its owner).
   VkImageLayout importedLayout(std::string_view name) const;

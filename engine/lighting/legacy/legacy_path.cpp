@@ -73,28 +73,33 @@ class LegacyPath final : public LightingPath {
     // The voxels persist: they are rebuilt only when what they hold changes (where the levels
     // sit in the world, the sun, the scene), so a still camera pays nothing for them.
     const uint64_t key = voxelKey(in, fit);
-    graph.declareCache(kVoxelRadiance,
-                            graph::ResourceDesc::image3D(VK_FORMAT_R16G16B16A16_SFLOAT, 6 * R, R, N * R,
-                                                         fmt::format("voxels per face (+x -x +y -y +z -z blocks along x): "
-                                                                     "radiance, opacity; {} level(s) of {}^3 stacked in z",
-                                                                     N, R)));
-    graph.declareCache(kVoxelRadianceMips,
-                            graph::ResourceDesc::image3D(VK_FORMAT_R16G16B16A16_SFLOAT, 3 * R, R / 2, N * R / 2,
-                                                         "voxels per face, mips 1.. (front-to-back along each face's axis)",
-                                                         mips));
+    const graph::ResourceDesc voxelDesc = graph::ResourceDesc::image3D(
+        VK_FORMAT_R16G16B16A16_SFLOAT, 6 * R, R, N * R,
+        fmt::format("voxels per face (+x -x +y -y +z -z blocks along x): radiance, opacity; {} level(s) of {}^3 stacked in z",
+                    N, R));
+    const graph::ResourceDesc voxelMipsDesc =
+        graph::ResourceDesc::image3D(VK_FORMAT_R16G16B16A16_SFLOAT, 3 * R, R / 2, N * R / 2,
+                                     "voxels per face, mips 1.. (front-to-back along each face's axis)", mips);
+    const graph::ResourceDesc radianceDesc =
+        graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "composite radiance, last frame");
+    const graph::ResourceDesc depthDesc = graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, w, h, "G-buffer depth, last frame");
+    const graph::ResourceDesc ssaoDesc =
+        graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "filtered SSAO and its frames, last frame");
+    graph.declareCache(kVoxelRadiance, voxelDesc);
+    graph.declareCache(kVoxelRadianceMips, voxelMipsDesc);
     const bool feedback = s.legacyScreenRadiance;
-    if (feedback)
-      graph.declarePersistent(kLegacyHistRadiance, graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
-                                                                                "composite radiance, last frame"));
-    graph.declarePersistent(kLegacyHistDepth, graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, w, h, "G-buffer depth, last frame"));
-    graph.declarePersistent(kLegacyHistSsao,
-                            graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "filtered SSAO and its frames, last frame"));
-    const bool aoHistory = s.legacyAoFrames > 1 && in.executor.historyValid(kLegacyHistSsao) &&
-                           in.executor.historyValid(kLegacyHistDepth);
+    if (feedback) graph.declarePersistent(kLegacyHistRadiance, radianceDesc);
+    graph.declarePersistent(kLegacyHistDepth, depthDesc);
+    graph.declarePersistent(kLegacyHistSsao, ssaoDesc);
+    // History counts only if this frame's declaration keeps it: a resize recreates it with
+    // undefined contents (NaN on lavapipe's reused memory, once).
+    const auto& ex = in.executor;
+    const bool aoHistory =
+        s.legacyAoFrames > 1 && ex.historyValid(kLegacyHistSsao, ssaoDesc) && ex.historyValid(kLegacyHistDepth, depthDesc);
     push.aoHistory = aoHistory ? s.legacyAoFrames : 0u;
-    const bool historyOk = feedback && in.executor.historyValid(kLegacyHistRadiance) &&
-                           in.executor.historyValid(kLegacyHistDepth);
-    const bool voxelsKept = in.executor.historyValid(kVoxelRadiance) && in.executor.historyValid(kVoxelRadianceMips);
+    const bool historyOk =
+        feedback && ex.historyValid(kLegacyHistRadiance, radianceDesc) && ex.historyValid(kLegacyHistDepth, depthDesc);
+    const bool voxelsKept = ex.historyValid(kVoxelRadiance, voxelDesc) && ex.historyValid(kVoxelRadianceMips, voxelMipsDesc);
     // A change, or voxels lost (a reset, a camera cut): rebuild, and keep rebuilding while the
     // bounces through the screen settle.
     if (key != voxelKey_ || !voxelsKept) settle_ = s.legacySettleFrames + 1;
