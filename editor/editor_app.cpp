@@ -1,5 +1,6 @@
 #include "editor_app.h"
 
+#include "gpu/renderdoc.h"
 #include "session/capture.h"
 
 #include "script.h"
@@ -226,6 +227,7 @@ void EditorApp::handleCameraInput(float seconds) {
     if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) focusSelection();
     if (ImGui::IsKeyPressed(GLFW_KEY_F1, false)) showHelp_ = !showHelp_;
     if (ImGui::IsKeyPressed(GLFW_KEY_F2, false)) showBuffers_ = !showBuffers_;
+    if (ImGui::IsKeyPressed(GLFW_KEY_F12, false) && gpu::RenderDoc::get().attached()) requestRenderDocCapture();
     bool ctrl = io.KeyCtrl;
     if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O, false)) showBrowser_ = true;
     // Albedo edits (the inspector's override): undo, redo, save.
@@ -507,6 +509,14 @@ void EditorApp::stepAlbedoBake() {
   for (const std::string& f : p.failures) lastBakeSummary_ += "\nfailed: " + f;
   bake_.reset();
   session_->albedo().reload();  // the new rows apply from the next frame
+}
+
+void EditorApp::requestRenderDocCapture() {
+  auto& rd = gpu::RenderDoc::get();
+  if (!rd.attached()) throw session::SessionError("RenderDoc capture unavailable: " + rd.unavailableReason());
+  const std::string scene = session_->hasScene() ? session_->scene().name : "none";
+  rd.setCaptureTemplate((std::filesystem::absolute("captures") / "renderdoc" / scene).string());
+  rd.triggerCapture();  // the next presented frame, engine work included
 }
 
 }  // namespace tl::editor

@@ -44,6 +44,8 @@ class EditorApp {
   // Writes every buffer of the next engine frame into `dir` (EXR + manifest.json).
   void requestFrameCapture(const std::filesystem::path& dir) { frameCapturePath_ = dir; }
   void requestQuit() { quit_ = true; }
+  // Throws SessionError with the reason when RenderDoc is not attached.
+  void requestRenderDocCapture();
   std::filesystem::path defaultCaptureFolder() const;
   // Reads back the viewport image (display.ldr) on the next frame, for scripted checks.
   void requestViewportCapture() { captureRequested_ = true, capture_.clear(); }

@@ -6,6 +6,7 @@
 #include "session/capture.h"
 #include "cli_args.h"
 #include "editor_app.h"
+#include "gpu/renderdoc.h"
 #include "gpu/self_test.h"
 #include "session/compare.h"
 #include "session/session.h"
@@ -251,6 +252,9 @@ int main(int argc, char** argv) {
   captureCmd->add_option("--size", captureRender.size, "image size WxH")->capture_default_str();
   captureCmd->add_option("--frames", captureRender.frames, "frames rendered first (the last is captured)")->capture_default_str();
   captureCmd->add_option("--out", captureOut, "folder to write into")->required();
+  bool captureRenderDoc = false;
+  captureCmd->add_flag("--renderdoc", captureRenderDoc,
+                       "also capture one frame with RenderDoc (run under `renderdoccmd capture` or qrenderdoc)");
   addViewAndLightOptions(*captureCmd, captureRender);
 
   BakeArgs bake;
@@ -285,6 +289,16 @@ int main(int argc, char** argv) {
       fmt::print("captured {} of {} resources of {} / {} (frame {}) into {}\n", files, manifest["resources"].size(),
                  manifest["scene"].get<std::string>(), manifest["lightingPath"].get<std::string>(),
                  manifest["frame"].get<uint64_t>(), captureOut);
+      if (captureRenderDoc) {
+        auto& rd = tl::gpu::RenderDoc::get();
+        if (!rd.attached()) throw tl::session::SessionError("RenderDoc capture unavailable: " + rd.unavailableReason());
+        rd.setCaptureTemplate((std::filesystem::absolute(captureOut) / "renderdoc").string());
+        rd.startFrame(session.device().instance());
+        session.renderFrames(1);
+        if (!rd.endFrame(session.device().instance()) || rd.captureCount() == 0)
+          throw tl::session::SessionError("RenderDoc captured nothing");
+        fmt::print("RenderDoc capture: {}\n", rd.capturePath(rd.captureCount() - 1).value_or("?"));
+      }
       return 0;
     }
     if (*compareCmd) {

@@ -2,6 +2,7 @@
 #include "albedo_panels.h"
 #include "buffer_panel.h"
 #include "editor_app.h"
+#include "gpu/renderdoc.h"
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtx/matrix_decompose.hpp>
@@ -40,6 +41,11 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
     if (ImGui::MenuItem("Capture frame", nullptr, false, app.session().hasScene()))
       app.requestFrameCapture(app.defaultCaptureFolder());
     tooltip("Writes every buffer of the next frame as EXR, with manifest.json, into captures/");
+    auto& renderdoc = gpu::RenderDoc::get();
+    if (ImGui::MenuItem("RenderDoc capture", "F12", false, renderdoc.attached() && app.session().hasScene()))
+      app.requestRenderDocCapture();
+    tooltip(renderdoc.attached() ? "Captures the next frame in RenderDoc; passes and resources carry their graph names."
+                                 : ("Unavailable: " + renderdoc.unavailableReason()).c_str());
     if (ImGui::MenuItem("Quit")) app.requestQuit();
     ImGui::EndMenu();
   }

@@ -156,6 +156,8 @@ void Script::step(EditorApp& app) {
           if (got != arg) return fail(app, fmt::format("expected albedo source `{}`, but it is `{}`", arg, got));
           fmt::print("script: albedo source is `{}`\n", got);
         }
+      } else if (cmd == "renderdoc-capture") {
+        app.requestRenderDocCapture();
       } else if (cmd == "buffers") {
         app.showBuffers(arg == "on");
       } else if (cmd == "view") {

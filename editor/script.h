@@ -32,6 +32,7 @@
 //   keep-b, show-b on|off  A/B against a kept copy
 //   expect-probe X Y TEXT  fail unless texel (X, Y)'s raw or decoded lines contain TEXT
 //   expect-viewer-matches-capture DIR  the viewer's read-back equals DIR/<resource>.exr
+//   renderdoc-capture      capture the next frame in RenderDoc (fails with the reason outside it)
 //   quit
 #pragma once
 

@@ -18,7 +18,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenimageio-dev openimageio-tools
   libmeshoptimizer-dev libxxhash-dev libsqlite3-dev libcli11-dev libspdlog-dev libfmt-dev
-  librenderdoc-dev libgtest-dev libgmock-dev
+  librenderdoc-dev renderdoccmd libgtest-dev libgmock-dev
   xvfb xauth
   mesa-vulkan-drivers
 )

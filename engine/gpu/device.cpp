@@ -1,4 +1,5 @@
 #include "gpu/device.h"
+#include "gpu/renderdoc.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -164,7 +165,10 @@ void Device::choosePhysicalDevice(const DeviceOptions& options) {
     std::string list;
     for (auto& s : names) list += (list.empty() ? "" : ", ") + s;
     if (!wanted.empty()) throw Error(fmt::format("TWINLIGHT_DEVICE=\"{}\" matches no Vulkan 1.3 device (found: {})", wanted, list));
-    throw Error(fmt::format("no Vulkan 1.3 device found (found: {})", list));
+    throw Error(fmt::format("no Vulkan 1.3 device found (found: {}){}", list,
+                            RenderDoc::get().attached()
+                                ? "; RenderDoc is attached and offers only the Vulkan version it supports (Debian's 1.24: 1.2)"
+                                : ""));
   }
   physical_ = devices[best];
 
