@@ -130,6 +130,8 @@ void albedoPanel(EditorApp& app) {
   auto& session = app.session();
   auto& lib = session.albedo();
   std::string& field = app.albedoDbField();
+  static std::string fieldScene;  // a new scene proposes its own database
+  if (fieldScene != session.scene().name) field.clear(), fieldScene = session.scene().name;
   if (field.empty())
     field = session.albedoDatabaseFile().value_or(std::filesystem::path("out") / (session.scene().name + ".albedo.db")).string();
   char buf[512];

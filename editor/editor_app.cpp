@@ -41,6 +41,11 @@ EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<s
   createWindow();
   initImgui();
   if (script) script_ = std::make_unique<Script>(*script);
+  // Edit a shader under shaders/ while the editor runs: it is recompiled and swapped in.
+  const char* sources = std::getenv("TWINLIGHT_SHADER_SOURCES");
+  const std::filesystem::path shaderSources =
+      sources && *sources ? std::filesystem::path(sources) : std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "shaders";
+  if (std::filesystem::is_directory(shaderSources)) reloader_ = std::make_unique<gpu::ShaderReloader>(shaderSources);
   std::filesystem::path first = scene.value_or(std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "content" / "atrium.gltf");
   // The first scene loads before the first frame so a script starts on a loaded scene.
   try {
@@ -173,6 +178,7 @@ void EditorApp::frame() {
   if (load_.valid() && load_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) finishLoad();
   if (script_) script_->step(*this);
   stepAlbedoBake();
+  if (framesDrawn_ % 15 == 0) pollShaders();
 
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
@@ -517,6 +523,15 @@ void EditorApp::requestRenderDocCapture() {
   const std::string scene = session_->hasScene() ? session_->scene().name : "none";
   rd.setCaptureTemplate((std::filesystem::absolute("captures") / "renderdoc" / scene).string());
   rd.triggerCapture();  // the next presented frame, engine work included
+}
+
+void EditorApp::pollShaders() {
+  if (!reloader_) return;
+  gpu::ShaderReloadResult r = reloader_->poll();
+  if (!r.recompiled.empty())
+    shaderStatus_ = fmt::format("reloaded {}{}", r.recompiled.front(),
+                                r.recompiled.size() > 1 ? fmt::format(" and {} more", r.recompiled.size() - 1) : "");
+  if (!r.errors.empty()) shaderStatus_ = "shader error (see the Shader errors window)";
 }
 
 }  // namespace tl::editor

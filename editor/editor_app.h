@@ -8,6 +8,7 @@
 #include "settings.h"
 
 #include "gpu/descriptor_pool.h"
+#include "gpu/shader_reload.h"
 #include "gpu/swapchain.h"
 #include "session/session.h"
 
@@ -61,6 +62,9 @@ class EditorApp {
   ViewerState& viewer() { return viewer_; }
   void showBuffers(bool on) { showBuffers_ = on; }
   bool& buffersOpen() { return showBuffers_; }
+  // Hot shader reload: null where the shader sources are not around (an installed build).
+  const gpu::ShaderReloader* shaderReloader() const { return reloader_.get(); }
+  const std::string& shaderStatus() const { return shaderStatus_; }
   void showHelp(bool on) { showHelp_ = on; }
   // The albedo database: bakes run one batch per frame so the UI stays responsive.
   void openAlbedoDatabase(const std::filesystem::path& file);
@@ -127,6 +131,9 @@ class EditorApp {
   friend class Script;
   std::optional<std::filesystem::path> frameCapturePath_;
   std::unique_ptr<albedo::BakeJob> bake_;
+  std::unique_ptr<gpu::ShaderReloader> reloader_;
+  std::string shaderStatus_;
+  void pollShaders();
   std::string albedoDbField_;     // the Albedo panel's database path
   std::string lastBakeSummary_;
   void stepAlbedoBake();

@@ -356,9 +356,25 @@ void statusBar(EditorApp& app) {
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
                    ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
   auto& s = app.session();
-  ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  %.1f fps  |  path %s  |  %s", s.device().name().c_str(),
+  ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  %.1f fps  |  path %s  |  %s%s%s", s.device().name().c_str(),
               s.settings().width, s.settings().height, app.settings().renderScale, app.fps(), s.path().c_str(),
-              s.hasScene() ? s.scene().name.c_str() : "no scene");
+              s.hasScene() ? s.scene().name.c_str() : "no scene", app.shaderStatus().empty() ? "" : "  |  shaders: ",
+              app.shaderStatus().c_str());
+  ImGui::End();
+}
+
+// Compile and pipeline errors of hot-reloaded shaders, with file and line, until fixed; the
+// last good pipelines keep rendering meanwhile.
+void shaderErrorWindow(EditorApp& app) {
+  if (!app.shaderReloader()) return;
+  const std::vector<std::string> errors = app.shaderReloader()->errors();
+  if (errors.empty()) return;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(310, display.y - 200), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(820, 170), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Shader errors");
+  ImGui::TextDisabled("The last good shaders keep running. Fix and save: the next poll recompiles.");
+  for (const std::string& e : errors) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", e.c_str());
   ImGui::End();
 }
 
@@ -462,6 +478,7 @@ void drawPanels(EditorApp& app) {
   albedoPanel(app);
   buffersPanel(app, app.buffersOpen());
   statusBar(app);
+  shaderErrorWindow(app);
   helpWindow(app.showHelp_);
   fileBrowser(app, app.showBrowser_, app.browserDir_);
   loadingPopup(app);

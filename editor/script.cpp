@@ -45,6 +45,16 @@ void Script::step(EditorApp& app) {
     if (app.loading()) return;
     waitLoaded_ = false;
   }
+  if (!waitShaderError_.empty()) {
+    std::vector<std::string> errors = app.shaderReloader() ? app.shaderReloader()->errors() : std::vector<std::string>{};
+    auto hit = std::find_if(errors.begin(), errors.end(), [&](auto& e) { return e.find(waitShaderError_) != std::string::npos; });
+    if (hit == errors.end()) {
+      if (++shaderErrorFrames_ > 120) return fail(app, fmt::format("no shader error containing `{}`", waitShaderError_));
+      return;
+    }
+    fmt::print("script: shader error reported: {}\n", *hit);
+    waitShaderError_.clear();
+  }
   if (waitBake_) {
     if (app.albedoBake()) return;
     waitBake_ = false;
@@ -156,6 +166,15 @@ void Script::step(EditorApp& app) {
           if (got != arg) return fail(app, fmt::format("expected albedo source `{}`, but it is `{}`", arg, got));
           fmt::print("script: albedo source is `{}`\n", got);
         }
+      } else if (cmd == "append-line") {
+        const auto space = arg.find(' ');
+        if (space == std::string::npos) return fail(app, "append-line needs FILE TEXT");
+        std::ofstream(arg.substr(0, space), std::ios::app) << "\n" << arg.substr(space + 1) << "\n";
+      } else if (cmd == "expect-shader-error") {
+        if (!app.shaderReloader()) return fail(app, "no hot shader reload (shader sources not found)");
+        waitShaderError_ = arg;
+        shaderErrorFrames_ = 0;
+        return;
       } else if (cmd == "renderdoc-capture") {
         app.requestRenderDocCapture();
       } else if (cmd == "buffers") {

@@ -32,6 +32,8 @@
 //   keep-b, show-b on|off  A/B against a kept copy
 //   expect-probe X Y TEXT  fail unless texel (X, Y)'s raw or decoded lines contain TEXT
 //   expect-viewer-matches-capture DIR  the viewer's read-back equals DIR/<resource>.exr
+//   append-line FILE TEXT  append a line to a file (tests: break a shader under TWINLIGHT_SHADER_SOURCES)
+//   expect-shader-error T  wait (up to 120 frames) for a hot-reload error containing T
 //   renderdoc-capture      capture the next frame in RenderDoc (fails with the reason outside it)
 //   quit
 #pragma once
@@ -59,6 +61,8 @@ class Script {
   int waitFrames_ = 0;
   bool waitLoaded_ = false;
   bool waitBake_ = false;
+  std::string waitShaderError_;
+  int shaderErrorFrames_ = 0;
   int measureFrames_ = 0;
   uint64_t measureStart_ = 0;
   double measureSeconds_ = 0.0;

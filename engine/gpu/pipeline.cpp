@@ -1,5 +1,7 @@
 #include "gpu/pipeline.h"
 
+#include "gpu/shader_reload.h"
+
 #include <fmt/format.h>
 
 #include <cstdlib>
@@ -16,6 +18,9 @@ std::filesystem::path shaderDirectory() {
 
 std::vector<uint32_t> loadSpirv(const std::string& relative) {
   auto path = shaderDirectory() / (relative + ".spv");
+  // A hot-reloaded shader (shader_reload.h) wins over the build's.
+  if (!shaderOverrideDirectory().empty() && std::filesystem::exists(shaderOverrideDirectory() / (relative + ".spv")))
+    path = shaderOverrideDirectory() / (relative + ".spv");
   std::ifstream f(path, std::ios::binary | std::ios::ate);
   if (!f) throw Error(fmt::format("shader {} not found (was the project built? expected {})", relative, path.string()));
   auto size = f.tellg();
@@ -98,6 +103,8 @@ Pipeline& Pipeline::operator=(Pipeline&& o) noexcept {
     stages_ = o.stages_;
     bindings_ = std::move(o.bindings_);
     sbt_ = std::move(o.sbt_);
+    recipe_ = std::move(o.recipe_);
+    generation_ = o.generation_;
     raygenRegion = o.raygenRegion, missRegion = o.missRegion, hitRegion = o.hitRegion, callableRegion = o.callableRegion;
   }
   return *this;
@@ -121,8 +128,23 @@ void Pipeline::reset() {
   sbt_.reset();
 }
 
+bool Pipeline::refresh() {
+  if (!recipe_ || generation_ == shaderGeneration()) return false;
+  generation_ = shaderGeneration();  // one try per reload, not one per bind
+  try {
+    Pipeline fresh = recipe_();
+    *this = std::move(fresh);  // the old objects are destroyed once the GPU is past them
+    return true;
+  } catch (const std::exception& e) {
+    reportPipelineError(name_, e.what());
+    return false;
+  }
+}
+
 Pipeline createComputePipeline(Device& device, const ComputePipelineDesc& desc) {
   Pipeline p;
+  p.recipe_ = [&device, desc] { return createComputePipeline(device, desc); };
+  p.generation_ = shaderGeneration();
   p.name_ = desc.name;
   p.bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
   p.createLayout(device, desc.layout, VK_SHADER_STAGE_COMPUTE_BIT);
@@ -137,6 +159,8 @@ Pipeline createComputePipeline(Device& device, const ComputePipelineDesc& desc) 
 
 Pipeline createGraphicsPipeline(Device& device, const GraphicsPipelineDesc& desc) {
   Pipeline p;
+  p.recipe_ = [&device, desc] { return createGraphicsPipeline(device, desc); };
+  p.generation_ = shaderGeneration();
   p.name_ = desc.name;
   p.bindPoint_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
   p.createLayout(device, desc.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
@@ -203,6 +227,8 @@ Pipeline createRayTracingPipeline(Device& device, const RayTracingPipelineDesc& 
   const auto& rt = device.rayTracing();
   TL_CHECK(rt.pipeline, "ray-tracing pipeline `{}` needs ray tracing: {}", desc.name, rt.unavailableReason);
   Pipeline p;
+  p.recipe_ = [&device, desc] { return createRayTracingPipeline(device, desc); };
+  p.generation_ = shaderGeneration();
   p.name_ = desc.name;
   p.bindPoint_ = VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR;
   p.createLayout(device, desc.layout,

@@ -7,6 +7,7 @@
 #include "gpu/resources.h"
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,9 @@ class Pipeline {
   uint32_t pushConstantBytes() const { return pushConstantBytes_; }
   const std::vector<Binding>& bindings() const { return bindings_; }
   explicit operator bool() const { return pipeline_ != VK_NULL_HANDLE; }
+  // After a shader reload (shader_reload.h): rebuilds from the same description with the
+  // new SPIR-V. On failure the error is reported and this pipeline stays as it was.
+  bool refresh();
 
   // Ray tracing only: shader binding table regions.
   VkStridedDeviceAddressRegionKHR raygenRegion{}, missRegion{}, hitRegion{}, callableRegion{};
@@ -101,6 +105,8 @@ class Pipeline {
   VkShaderStageFlags stages_ = 0;
   std::vector<Binding> bindings_;
   Buffer sbt_;
+  std::function<Pipeline()> recipe_;  // rebuilds this pipeline from its description
+  uint64_t generation_ = 0;           // shaderGeneration() it was built at
 };
 
 Pipeline createComputePipeline(Device& device, const ComputePipelineDesc& desc);

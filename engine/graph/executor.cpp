@@ -174,6 +174,9 @@ void PassContext::setViewport(uint32_t x, uint32_t y, uint32_t width, uint32_t h
 void PassContext::endRendering() { vkCmdEndRendering(cmd); }
 
 void PassContext::bind(const gpu::Pipeline& pipeline) {
+  // A shader reload swaps the pass's pipeline in place at its next bind (the passes own
+  // their pipelines as non-const members; only this interface is const).
+  const_cast<gpu::Pipeline&>(pipeline).refresh();
   vkCmdBindPipeline(cmd, pipeline.bindPoint(), pipeline.handle());
   bound_ = &pipeline;
 }
