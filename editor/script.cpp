@@ -196,6 +196,10 @@ void Script::step(EditorApp& app) {
         app.viewer().zoom = z, app.viewer().centre = glm::vec2(u, v);
       } else if (cmd == "view-slice") {
         app.viewer().slice = uint32_t(std::stoul(arg));
+      } else if (cmd == "view-probe") {
+        unsigned x, y;
+        if (std::sscanf(arg.c_str(), "%u %u", &x, &y) != 2) return fail(app, "view-probe needs X Y");
+        app.viewer().probe = glm::uvec3(x, y, app.viewer().slice);
       } else if (cmd == "keep-b") {
         app.viewer().keepCopy = true;
       } else if (cmd == "show-b") {

@@ -30,6 +30,7 @@
 //   view-channel C         rgb, r, g, b, a or luminance
 //   view-false-colour on|off, view-zoom Z U V (zoom Z around source UV), view-slice N
 //   keep-b, show-b on|off  A/B against a kept copy
+//   view-probe X Y         probe texel (X, Y) as if hovered
 //   expect-probe X Y TEXT  fail unless texel (X, Y)'s raw or decoded lines contain TEXT
 //   expect-viewer-matches-capture DIR  the viewer's read-back equals DIR/<resource>.exr
 //   append-line FILE TEXT  append a line to a file (tests: break a shader under TWINLIGHT_SHADER_SOURCES)
