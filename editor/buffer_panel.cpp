@@ -131,7 +131,7 @@ void probe(EditorApp& app, const graph::ResourceDesc& desc) {
                              auto c = v.readbacks.find(name);
                              return c == v.readbacks.end() ? nullptr : &c->second;
                            },
-                           &app.session().scene()};
+                           app.session().decodingScene()};
   for (auto& [label, value] : lighting::decodeTexel(desc.decoder, in)) ImGui::Text("  %s: %s", label.c_str(), value.c_str());
 }
 
@@ -225,8 +225,8 @@ void buffersPanel(EditorApp& app, bool& open) {
     ImGui::End();
     return;
   }
-  if (!app.session().hasScene()) {
-    ImGui::TextDisabled("No scene.");
+  if (!app.session().hasScene() && !app.session().hasCapture()) {
+    ImGui::TextDisabled("No scene or capture.");
     ImGui::End();
     return;
   }

@@ -47,6 +47,11 @@ EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<s
       sources && *sources ? std::filesystem::path(sources) : std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "shaders";
   if (std::filesystem::is_directory(shaderSources)) reloader_ = std::make_unique<gpu::ShaderReloader>(shaderSources);
   std::filesystem::path first = scene.value_or(std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "content" / "atrium.gltf");
+  // `twinlight CAPTURE_FOLDER`: the capture's buffers, no scene at all.
+  if (std::filesystem::exists(first / "manifest.json")) {
+    openCapture(first);
+    return;
+  }
   // The first scene loads before the first frame so a script starts on a loaded scene.
   try {
     session_->loadScene(first);
@@ -331,12 +336,14 @@ std::filesystem::path EditorApp::defaultCaptureFolder() const {
 }
 
 void EditorApp::renderEngine() {
-  if (!session_->hasScene() || viewportSize_.x < 1.0f || viewportSize_.y < 1.0f) return;
+  const bool capture = session_->hasCapture();
+  if ((!session_->hasScene() && !capture) || viewportSize_.x < 1.0f || viewportSize_.y < 1.0f) return;
   uint32_t w = std::max(1u, uint32_t(viewportSize_.x * settings_.renderScale));
   uint32_t h = std::max(1u, uint32_t(viewportSize_.y * settings_.renderScale));
   try {
-    if (w != session_->settings().width || h != session_->settings().height) session_->setSize(w, h);
-    session_->setView(camera_.view());
+    if (capture) pendingClick_.reset(), frameCapturePath_.reset();  // a reopened capture has no live frame
+    if (!capture && (w != session_->settings().width || h != session_->settings().height)) session_->setSize(w, h);
+    if (!capture) session_->setView(camera_.view());
     VkFormat hoverFormat = VK_FORMAT_UNDEFINED;
     std::string decoder;
     uint64_t texels = 0;
@@ -415,7 +422,7 @@ void EditorApp::recordAndPresent() {
   vkCmdClearColorImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &clear, 1, &range);
 
   // The engine's image, scaled into the viewport panel (linear filter: render scale).
-  const gpu::Image* display = session_->hasScene() ? session_->displayImage() : nullptr;
+  const gpu::Image* display = session_->hasScene() || session_->hasCapture() ? session_->displayImage() : nullptr;
   if (display && viewportSize_.x >= 1.0f && viewportSize_.y >= 1.0f && !load_.valid()) {
     VkImageLayout layout = session_->displayImageLayout();
     gpu::transitionImage(cmd, display->handle(), VK_IMAGE_ASPECT_COLOR_BIT, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
@@ -532,6 +539,17 @@ void EditorApp::pollShaders() {
     shaderStatus_ = fmt::format("reloaded {}{}", r.recompiled.front(),
                                 r.recompiled.size() > 1 ? fmt::format(" and {} more", r.recompiled.size() - 1) : "");
   if (!r.errors.empty()) shaderStatus_ = "shader error (see the Shader errors window)";
+}
+
+void EditorApp::openCapture(const std::filesystem::path& dir) {
+  try {
+    session_->openCapture(dir);
+    showBuffers_ = true;
+    pinPreview("");
+    selected_.reset();
+  } catch (const std::exception& e) {
+    showError(e.what());
+  }
 }
 
 }  // namespace tl::editor

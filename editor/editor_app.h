@@ -35,6 +35,8 @@ class EditorApp {
   session::Session& session() { return *session_; }
   Settings& settings() { return settings_; }
   void openScene(const std::filesystem::path& file);  // starts a background load
+  // A capture folder (manifest.json + EXRs) in the viewer, without its scene.
+  void openCapture(const std::filesystem::path& dir);
   bool loading() const { return load_.valid(); }
   void cancelLoad();
   void setPath(const std::string& name);

@@ -2,6 +2,7 @@
 #include "albedo_panels.h"
 #include "buffer_panel.h"
 #include "editor_app.h"
+#include "session/captured_frame.h"
 #include "gpu/renderdoc.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -46,6 +47,8 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
       app.requestRenderDocCapture();
     tooltip(renderdoc.attached() ? "Captures the next frame in RenderDoc; passes and resources carry their graph names."
                                  : ("Unavailable: " + renderdoc.unavailableReason()).c_str());
+    if (ImGui::MenuItem("Close capture", nullptr, false, app.session().hasCapture())) app.session().closeCapture();
+    tooltip("Back to the live frame of the scene");
     if (ImGui::MenuItem("Quit")) app.requestQuit();
     ImGui::EndMenu();
   }
@@ -317,7 +320,8 @@ void timingPanel(EditorApp& app) {
   ImGui::SetNextWindowSize(ImVec2(340, 220), ImGuiCond_FirstUseEver);
   ImGui::Begin("Timing");
   auto& session = app.session();
-  std::vector<graph::PassTiming> passes = session.hasScene() ? session.timings() : std::vector<graph::PassTiming>{};
+  std::vector<graph::PassTiming> passes =
+      session.hasScene() || session.hasCapture() ? session.timings() : std::vector<graph::PassTiming>{};
   double total = 0.0, worst = 1e-6;
   for (auto& p : passes) total += p.gpuMs, worst = std::max(worst, p.gpuMs);
   std::sort(passes.begin(), passes.end(), [](auto& a, auto& b) { return a.gpuMs > b.gpuMs; });
@@ -358,7 +362,10 @@ void statusBar(EditorApp& app) {
   auto& s = app.session();
   ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  %.1f fps  |  path %s  |  %s%s%s", s.device().name().c_str(),
               s.settings().width, s.settings().height, app.settings().renderScale, app.fps(), s.path().c_str(),
-              s.hasScene() ? s.scene().name.c_str() : "no scene", app.shaderStatus().empty() ? "" : "  |  shaders: ",
+              s.hasCapture()  ? ("capture " + s.capture()->dir().string() + " (File > Close capture)").c_str()
+              : s.hasScene() ? s.scene().name.c_str()
+                             : "no scene",
+              app.shaderStatus().empty() ? "" : "  |  shaders: ",
               app.shaderStatus().c_str());
   ImGui::End();
 }
@@ -410,7 +417,7 @@ void fileBrowser(EditorApp& app, bool& open, std::filesystem::path& dir) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 280, display.y * 0.5f - 230), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(560, 460), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Open scene", &open);
+  ImGui::Begin("Open scene or capture", &open);
   ImGui::TextWrapped("%s", dir.string().c_str());
   if (ImGui::Button("Up") && dir.has_parent_path()) dir = dir.parent_path();
   ImGui::SameLine();
@@ -426,6 +433,14 @@ void fileBrowser(EditorApp& app, bool& open, std::filesystem::path& dir) {
       if (name[0] != '.' && ImGui::Selectable(("[dir] " + name).c_str())) dir = e.path();
     } else {
       std::string ext = e.path().extension().string();
+      if (name == "manifest.json") {  // a capture: its buffers, without the scene
+        if (ImGui::Selectable("manifest.json (open this capture)", false, ImGuiSelectableFlags_AllowDoubleClick) &&
+            ImGui::IsMouseDoubleClicked(0)) {
+          app.openCapture(e.path().parent_path());
+          open = false;
+        }
+        continue;
+      }
       if (ext != ".gltf" && ext != ".glb") continue;
       if (ImGui::Selectable(name.c_str(), false, ImGuiSelectableFlags_AllowDoubleClick) && ImGui::IsMouseDoubleClicked(0)) {
         app.openScene(e.path());

@@ -31,10 +31,11 @@
 //   view-false-colour on|off, view-zoom Z U V (zoom Z around source UV), view-slice N
 //   keep-b, show-b on|off  A/B against a kept copy
 //   view-probe X Y         probe texel (X, Y) as if hovered
-//   expect-probe X Y TEXT  fail unless texel (X, Y)'s raw or decoded lines contain TEXT
+//   expect-probe X Y TEXT  fail unless texel (X, Y)'s raw or decoded lines contain TEXT (or one of A|B)
 //   expect-viewer-matches-capture DIR  the viewer's read-back equals DIR/<resource>.exr
 //   append-line FILE TEXT  append a line to a file (tests: break a shader under TWINLIGHT_SHADER_SOURCES)
 //   expect-shader-error T  wait (up to 120 frames) for a hot-reload error containing T
+//   open-capture DIR       reopen a capture (its buffers, without the scene); close-capture
 //   renderdoc-capture      capture the next frame in RenderDoc (fails with the reason outside it)
 //   quit
 #pragma once

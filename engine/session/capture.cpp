@@ -40,9 +40,10 @@ void writeExr(const std::filesystem::path& file, const graph::Readback& rb) {
       }
       return out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UINT, values.data()) && out->close();
     }
-    // Float, unorm, snorm, depth: stored as half when the format has 16 bits or fewer per
-    // channel, else as float.
-    const bool half = fi.bytes <= 2u * fi.channels;
+    // Float, unorm, snorm, depth: stored as half where that is exact (16-bit floats, 8-bit
+    // normalised values), else as float (16-bit normalised values need more than half's 11 bits).
+    const uint32_t bytesPerChannel = fi.channels ? fi.bytes / fi.channels : 4;
+    const bool half = (fi.kind == gpu::TexelKind::Float && bytesPerChannel == 2) || bytesPerChannel == 1;
     OIIO::ImageSpec spec(int(w), int(h), channels, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
     spec.attribute("oiio:ColorSpace", fi.kind == gpu::TexelKind::Srgb ? "sRGB" : "Linear");
     const std::vector<float> values = rb.texels();
@@ -99,6 +100,10 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
     manifest["albedoUnsavedEdits"] = lib.unsaved();
   }
   manifest["device"] = session.device().name();
+  // Instance names by index: what gbuffer.instanceId's values mean, for a viewer without the scene.
+  nlohmann::json instances = nlohmann::json::array();
+  for (const auto& i : session.scene().instances) instances.push_back(i.name);
+  manifest["instances"] = instances;
   nlohmann::json timings = nlohmann::json::array();
   for (const auto& t : session.timings()) timings.push_back({{"pass", t.pass}, {"gpuMs", t.gpuMs}});
   manifest["timings"] = timings;
@@ -109,7 +114,12 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
                         {"writer", info.writer},
                         {"persistent", info.persistent},
                         {"imported", info.imported},
-                        {"description", info.desc.description}};
+                        {"aliased", info.aliased},
+                        {"firstUse", info.firstUse == graph::kNone ? -1 : int64_t(info.firstUse)},
+                        {"lastUse", info.lastUse == graph::kNone ? -1 : int64_t(info.lastUse)},
+                        {"memoryBytes", info.bytes},
+                        {"description", info.desc.description},
+                        {"decoder", info.desc.decoder}};
     const graph::Readback* rb = nullptr;
     try {
       rb = &session.buffer(info.name);

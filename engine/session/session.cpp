@@ -4,6 +4,7 @@
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/shadow_pass.h"
+#include "session/captured_frame.h"
 #include "session/image_io.h"
 #include "session/view_math.h"
 
@@ -55,6 +56,7 @@ std::unique_ptr<scene::Scene> Session::parseScene(const std::filesystem::path& f
 void Session::loadScene(const std::filesystem::path& file) { installScene(parseScene(file)); }
 
 void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
+  capture_.reset();  // a scene replaces a reopened capture
   for (auto& w : loaded->warnings) spdlog::warn("{}", w);
   device_->waitIdle();
   gpuScene_ = std::make_unique<scene::GpuScene>(*device_, *loaded);
@@ -261,6 +263,13 @@ void Session::renderOne(bool readback) {
 }
 
 void Session::renderFrames(uint32_t n) {
+  if (capture_) {
+    if (!captureDisplay_) captureDisplay_ = std::make_unique<lighting::DisplayPass>();
+    capture_->display(*executor_, *captureDisplay_, display_.value_or(lighting::DisplayRequest{}));
+    requested_.clear();
+    requestAll_ = false;
+    return;
+  }
   if (!scene_) throw SessionError("no scene is loaded");
   frameGpuMs_.clear();
   passGpuMs_.clear();
@@ -278,7 +287,30 @@ std::optional<uint32_t> Session::instanceAt(uint32_t x, uint32_t y) const {
   return id - 1;
 }
 
+const std::vector<graph::PhysicalInfo>& Session::resources() const {
+  return capture_ ? capture_->resources() : executor_->resources();
+}
+
+const std::vector<graph::PassTiming>& Session::timings() const { return capture_ ? capture_->timings() : executor_->timings(); }
+
+void Session::openCapture(const std::filesystem::path& dir) {
+  auto opened = std::make_unique<CapturedFrame>(*device_, dir);  // throws, keeping what was open
+  device_->waitIdle();
+  capture_ = std::move(opened);
+}
+
+const scene::Scene* Session::decodingScene() const {
+  if (capture_) return &capture_->decodingScene();
+  return scene_.get();
+}
+
+void Session::closeCapture() {
+  device_->waitIdle();
+  capture_.reset();
+}
+
 const graph::Readback& Session::buffer(const std::string& name) const {
+  if (capture_) return capture_->readback(name);
   try {
     return executor_->readback(name);
   } catch (const gpu::Error& e) {

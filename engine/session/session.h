@@ -115,8 +115,17 @@ class Session {
   void renderFrames(uint32_t n);
 
   const graph::Readback& buffer(const std::string& name) const;
-  const std::vector<graph::PhysicalInfo>& resources() const { return executor_->resources(); }
-  const std::vector<graph::PassTiming>& timings() const { return executor_->timings(); }
+  const std::vector<graph::PhysicalInfo>& resources() const;
+  const std::vector<graph::PassTiming>& timings() const;
+
+  // A capture reopened without its scene (T8): while open, frames show its images through
+  // the display pass and resources()/buffer()/timings() describe it. Throws SessionError.
+  void openCapture(const std::filesystem::path& dir);
+  void closeCapture();
+  bool hasCapture() const { return capture_ != nullptr; }
+  const class CapturedFrame* capture() const { return capture_.get(); }
+  // What decoders may know of the scene: the loaded one, or a reopened capture's instance names.
+  const scene::Scene* decodingScene() const;
   std::string graphDump() const { return graphDump_; }
   // GPU milliseconds of each frame of the last renderFrames call, and per pass (in order).
   const std::vector<double>& frameGpuMs() const { return frameGpuMs_; }
@@ -141,6 +150,8 @@ class Session {
   std::unique_ptr<scene::Scene> scene_;
   std::unique_ptr<scene::GpuScene> gpuScene_;
   std::unique_ptr<albedo::AlbedoLibrary> albedo_;
+  std::unique_ptr<class CapturedFrame> capture_;
+  std::unique_ptr<lighting::DisplayPass> captureDisplay_;
   std::optional<std::filesystem::path> albedoDbFile_;
   std::unique_ptr<graph::Executor> executor_;
   std::vector<std::unique_ptr<lighting::LightingPath>> paths_;

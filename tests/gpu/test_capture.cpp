@@ -54,3 +54,44 @@ TEST_F(GpuTest, CaptureWritesEveryResourceAndReadsBackExactly) {
 
 }  // namespace
 }  // namespace tl::test
+
+namespace tl::test {
+namespace {
+
+// A capture reopened without its scene gives the viewer the values the frame had: integer
+// images exactly, float images as stored, decoders and instance names from the manifest.
+TEST_F(GpuTest, CaptureReopensWithoutTheSceneWithTheSameValues) {
+  auto& s = session();
+  s.loadScene(contentFile("cornell.gltf"));
+  s.setPath("direct");
+  s.setSize(40, 30);
+  const fs::path dir = fs::temp_directory_path() / "twinlight-reopen-test";
+  fs::remove_all(dir);
+  session::captureFrame(s, dir, 1);
+  const graph::Readback ids = s.buffer("gbuffer.instanceId"), normal = s.buffer("gbuffer.normal");
+
+  s.openCapture(dir);
+  ASSERT_TRUE(s.hasCapture());
+  const graph::Readback& ids2 = s.buffer("gbuffer.instanceId");
+  ASSERT_EQ(ids2.bytes.size(), ids.bytes.size());
+  EXPECT_EQ(ids2.bytes, ids.bytes) << "instance ids exact";
+  EXPECT_EQ(s.buffer("gbuffer.normal").texels(), normal.texels()) << "normals as stored (snorm16 decoded)";
+  bool decoder = false;
+  for (const auto& r : s.resources()) decoder |= r.name == "gbuffer.normal" && r.desc.decoder == "oct-normal";
+  EXPECT_TRUE(decoder) << "decoders travel in the manifest";
+  ASSERT_NE(s.decodingScene(), nullptr);
+  EXPECT_EQ(s.decodingScene()->instances.size(), s.scene().instances.size());
+  lighting::DisplayRequest show;
+  show.source = "gbuffer.normal";
+  s.setDisplay(show);
+  s.renderFrames(1);  // the display pass over the captured image
+  ASSERT_NE(s.displayImage(), nullptr);
+  EXPECT_EQ(s.displayImage()->extent().width, 40u);
+  s.setDisplay(std::nullopt);
+  s.closeCapture();
+  EXPECT_FALSE(s.hasCapture());
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace tl::test

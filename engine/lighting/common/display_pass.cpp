@@ -9,6 +9,10 @@
 namespace tl::lighting {
 
 void DisplayPass::add(graph::RenderGraph& graph, FrameInputs& in, const DisplayRequest& request) {
+  add(graph, in.device, in.settings.width, in.settings.height, request);
+}
+
+void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w, uint32_t h, const DisplayRequest& request) {
   if (!floatPipeline_) {
     auto make = [&](const char* name, const char* shader) {
       gpu::ComputePipelineDesc d;
@@ -18,12 +22,12 @@ void DisplayPass::add(graph::RenderGraph& graph, FrameInputs& in, const DisplayR
                            {shared::kDisplayInstanceId, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                            {shared::kDisplayOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
       d.layout.pushConstantBytes = sizeof(shared::DisplayPush);
-      return gpu::createComputePipeline(in.device, d);
+      return gpu::createComputePipeline(device, d);
     };
     floatPipeline_ = make("display.float", "common/display_float.comp");
     float3dPipeline_ = make("display.float3d", "common/display_float3d.comp");
     uintPipeline_ = make("display.uint", "common/display_uint.comp");
-    sampler_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "display.point");
+    sampler_ = gpu::Sampler(device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "display.point");
   }
   const std::string requested = request.source.empty() ? kTonemapLdr : request.source;
   auto id = graph.find(requested);
@@ -67,8 +71,6 @@ void DisplayPass::add(graph::RenderGraph& graph, FrameInputs& in, const DisplayR
   push.flags = (request.falseColour ? shared::kDisplayFlagFalseColour : 0u) |
                (request.highlightInvalid ? shared::kDisplayFlagHighlight : 0u) | shared::kDisplayFlagGrid;
   push.slice = volume ? (float(std::min(request.slice, desc.extent.depth - 1)) + 0.5f) / float(desc.extent.depth) : 0.0f;
-  const uint32_t w = in.settings.width, h = in.settings.height;
-
   graph.addPass(
       "display", graph::PassKind::Compute,
       [&](graph::PassBuilder& b) {

@@ -34,6 +34,8 @@ struct DisplayRequest {
 class DisplayPass {
  public:
   void add(graph::RenderGraph& graph, FrameInputs& in, const DisplayRequest& request);
+  // Without a frame: a viewer of captured images (w x h: the display's size).
+  void add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w, uint32_t h, const DisplayRequest& request);
 
  private:
   gpu::Pipeline floatPipeline_, float3dPipeline_, uintPipeline_;
