@@ -23,6 +23,14 @@ graph::Readback oneTexel(VkFormat format, const T& value) {
   return r;
 }
 
+// Appends the bytes of `v` (resize + memcpy: GCC 12 misreads vector::insert of raw bytes).
+template <class T>
+void appendBytes(std::vector<uint8_t>& bytes, const T& v) {
+  const size_t at = bytes.size();
+  bytes.resize(at + sizeof(T));
+  std::memcpy(bytes.data() + at, &v, sizeof(T));
+}
+
 std::string find(const DecodedLines& lines, const std::string& label) {
   for (auto& [l, v] : lines)
     if (l == label) return v;
@@ -86,14 +94,14 @@ TEST(Decoders, ShIrradianceUsesTheCompanionsAtTheSameRelativePosition) {
   graph::Readback shY;
   shY.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   shY.extent = {2, 2, 1};
-  for (int i = 0; i < 4; ++i) shY.bytes.insert(shY.bytes.end(), (uint8_t*)&sh.shY, (uint8_t*)&sh.shY + 16);
+  for (int i = 0; i < 4; ++i) appendBytes(shY.bytes, sh.shY);
   graph::Readback coCg, normal;
   coCg.format = normal.format = VK_FORMAT_R32G32_SFLOAT;
   coCg.extent = normal.extent = {4, 4, 1};
   const glm::vec2 octN = shared::tlOctEncode(n);
   for (int i = 0; i < 16; ++i) {
-    coCg.bytes.insert(coCg.bytes.end(), (uint8_t*)&sh.coCg, (uint8_t*)&sh.coCg + 8);
-    normal.bytes.insert(normal.bytes.end(), (const uint8_t*)&octN, (const uint8_t*)&octN + 8);
+    appendBytes(coCg.bytes, sh.coCg);
+    appendBytes(normal.bytes, octN);
   }
   DecodeInput in{shY, 1, 1, 0, [&](const std::string& name) -> const graph::Readback* {
                    return name == "chroma" ? &coCg : name == "normals" ? &normal : nullptr;
