@@ -52,6 +52,7 @@ struct RenderOptions {
   std::optional<bool> rtPretrace;
   std::optional<bool> rtDenoise;
   std::string albedoDb;
+  std::string renderDoc;  // RenderDoc capture path template for one more frame
 };
 
 void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
@@ -120,6 +121,18 @@ void prepareSession(Session& session, const RenderOptions& o) {
   if (o.rtDenoise) session.settings().rtDenoise = *o.rtDenoise;
 }
 
+// One more frame, captured by RenderDoc into `pathTemplate` (RenderDoc appends the frame).
+void renderDocFrame(Session& session, const std::filesystem::path& pathTemplate) {
+  auto& rd = tl::gpu::RenderDoc::get();
+  if (!rd.attached()) throw tl::session::SessionError("RenderDoc capture unavailable: " + rd.unavailableReason());
+  rd.setCaptureTemplate(std::filesystem::absolute(pathTemplate).string());
+  rd.startFrame(session.device().instance());
+  session.renderFrames(1);
+  if (!rd.endFrame(session.device().instance()) || rd.captureCount() == 0)
+    throw tl::session::SessionError("RenderDoc captured nothing");
+  fmt::print("RenderDoc capture: {}\n", rd.capturePath(rd.captureCount() - 1).value_or("?"));
+}
+
 int runRender(const RenderOptions& o) {
   Session session;
   prepareSession(session, o);
@@ -145,6 +158,7 @@ int runRender(const RenderOptions& o) {
     session.saveImage(out);
     fmt::print("wrote {}\n", std::filesystem::absolute(out).string());
   }
+  if (!o.renderDoc.empty()) renderDocFrame(session, o.renderDoc);
   fmt::print("rendered {} frame(s) of {} with `{}` at {}x{} on {} in {:.2f} s\n", frames, session.scene().name,
              session.path(), w, h, session.device().name(), seconds);
   printFrameTimes(session);
@@ -199,6 +213,8 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--path", render.path, "lighting path: direct, rt, reference (`twinlight info` lists them)");
   renderCmd->add_option("--size", render.size, "image size WxH")->capture_default_str();
   renderCmd->add_option("--frames", render.frames, "frames to render (the last one is saved)")->capture_default_str();
+  renderCmd->add_option("--renderdoc", render.renderDoc,
+                        "then capture one more frame with RenderDoc into this path template (run under RenderDoc)");
   renderCmd->add_option("--out", render.outputs,
                         "output image(s): .exr = scene-linear radiance before exposure, .png = tonemapped display")
       ->required();
@@ -289,16 +305,7 @@ int main(int argc, char** argv) {
       fmt::print("captured {} of {} resources of {} / {} (frame {}) into {}\n", files, manifest["resources"].size(),
                  manifest["scene"].get<std::string>(), manifest["lightingPath"].get<std::string>(),
                  manifest["frame"].get<uint64_t>(), captureOut);
-      if (captureRenderDoc) {
-        auto& rd = tl::gpu::RenderDoc::get();
-        if (!rd.attached()) throw tl::session::SessionError("RenderDoc capture unavailable: " + rd.unavailableReason());
-        rd.setCaptureTemplate((std::filesystem::absolute(captureOut) / "renderdoc").string());
-        rd.startFrame(session.device().instance());
-        session.renderFrames(1);
-        if (!rd.endFrame(session.device().instance()) || rd.captureCount() == 0)
-          throw tl::session::SessionError("RenderDoc captured nothing");
-        fmt::print("RenderDoc capture: {}\n", rd.capturePath(rd.captureCount() - 1).value_or("?"));
-      }
+      if (captureRenderDoc) renderDocFrame(session, std::filesystem::path(captureOut) / "renderdoc");
       return 0;
     }
     if (*compareCmd) {

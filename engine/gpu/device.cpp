@@ -167,7 +167,8 @@ void Device::choosePhysicalDevice(const DeviceOptions& options) {
     if (!wanted.empty()) throw Error(fmt::format("TWINLIGHT_DEVICE=\"{}\" matches no Vulkan 1.3 device (found: {})", wanted, list));
     throw Error(fmt::format("no Vulkan 1.3 device found (found: {}){}", list,
                             RenderDoc::get().attached()
-                                ? "; RenderDoc is attached and offers only the Vulkan version it supports (Debian's 1.24: 1.2)"
+                                ? "; RenderDoc is attached: it offers Vulkan 1.3 only on devices with "
+                                  "bufferDeviceAddressCaptureReplay (lavapipe has none), else 1.2"
                                 : ""));
   }
   physical_ = devices[best];
