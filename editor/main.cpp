@@ -3,6 +3,7 @@
 // stderr and a non-zero exit: 1 for a failure at run time, 2 for bad usage.
 #include "bake_command.h"
 #include "bench.h"
+#include "compare_cameras.h"
 #include "session/capture.h"
 #include "cli_args.h"
 #include "editor_app.h"
@@ -256,6 +257,10 @@ int main(int argc, char** argv) {
   compareCmd->add_option("--frames", compare.framesPerPath, "frames each path runs before it is measured")
       ->capture_default_str();
   compareCmd->add_option("--out", compareOut, "report directory")->capture_default_str();
+  std::string compareCameras;
+  compareCmd->add_option("--cameras", compareCameras,
+                         "one report per camera: `bookmarks` (the editor's, Ctrl+1..9), `scene` (glTF cameras), "
+                         "or a list like 0,b2");
   compareCmd->add_option("--cache", compareCache, "reference cache directory (default: $XDG_CACHE_HOME/twinlight/reference)");
   addViewAndLightOptions(*compareCmd, compareRender);
 
@@ -330,23 +335,47 @@ int main(int argc, char** argv) {
           compare.variants.push_back({v["name"], v["path"], v.value("settings", nlohmann::json::object())});
         }
       }
-      compare.outDir = compareOut;
       compare.cacheDir = compareCache;
-      auto report = tl::session::runCompare(session, compare, [](const std::string& what, double f) {
-        int filled = int(f * 30.0 + 0.5);
-        fmt::print(stderr, "\r[{:30}] {:3.0f}% {:32}", std::string(size_t(filled), '#'), f * 100.0, what);
-        if (f >= 1.0) fmt::print(stderr, "\n");
-      });
-      fmt::print("{:10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>9}\n", "path", "GPU ms", "relMSE", "RMSE", "PSNR", "SSIM",
-                 "FLIP", "HDR-FLIP");
-      auto num = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); };
-      for (auto& p : report["paths"])
-        fmt::print("{:10} {:9.2f} {:9.4f} {:9.4f} {:8.2f} {:7.4f} {:7.4f} {:9.4f}\n", p["path"].get<std::string>(),
-                   p["frameMs"].get<double>(), num(p["relMSE"]), num(p["RMSE"]), num(p["PSNR"]), num(p["SSIM"]),
-                   num(p["FLIP"]), num(p["HDR-FLIP"]));
-      fmt::print("reference: {} spp{}\nwrote {}\n", report["reference"]["spp"].get<int>(),
-                 report["reference"]["cached"].get<bool>() ? " (reused from the cache)" : "",
-                 (std::filesystem::absolute(compareOut) / "report.html").string());
+      auto runOne = [&](const std::filesystem::path& outDir) {
+        compare.outDir = outDir;
+        auto report = tl::session::runCompare(session, compare, [](const std::string& what, double f) {
+          int filled = int(f * 30.0 + 0.5);
+          fmt::print(stderr, "\r[{:30}] {:3.0f}% {:32}", std::string(size_t(filled), '#'), f * 100.0, what);
+          if (f >= 1.0) fmt::print(stderr, "\n");
+        });
+        fmt::print("{:10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>9}\n", "path", "GPU ms", "relMSE", "RMSE", "PSNR", "SSIM",
+                   "FLIP", "HDR-FLIP");
+        auto num = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); };
+        for (auto& p : report["paths"])
+          fmt::print("{:10} {:9.2f} {:9.4f} {:9.4f} {:8.2f} {:7.4f} {:7.4f} {:9.4f}\n", p["path"].get<std::string>(),
+                     p["frameMs"].get<double>(), num(p["relMSE"]), num(p["RMSE"]), num(p["PSNR"]), num(p["SSIM"]),
+                     num(p["FLIP"]), num(p["HDR-FLIP"]));
+        fmt::print("reference: {} spp{}\nwrote {}\n", report["reference"]["spp"].get<int>(),
+                   report["reference"]["cached"].get<bool>() ? " (reused from the cache)" : "",
+                   (std::filesystem::absolute(outDir) / "report.html").string());
+        return report;
+      };
+      if (compareCameras.empty()) {
+        runOne(compareOut);
+        return 0;
+      }
+      // One report per camera, and an index of them.
+      const auto views = tl::editor::resolveCompareCameras(session, compareCameras);
+      nlohmann::json index = nlohmann::json::array();
+      std::string links;
+      for (const auto& v : views) {
+        fmt::print("== {}\n", v.name);
+        session.setView(v.view);
+        session.resetHistory();
+        nlohmann::json report = runOne(std::filesystem::path(compareOut) / v.name);
+        index.push_back({{"camera", v.name}, {"report", v.name + "/report.json"}, {"paths", report["paths"]}});
+        links += fmt::format("<li><a href=\"{0}/report.html\">{0}</a></li>\n", v.name);
+      }
+      std::ofstream(std::filesystem::path(compareOut) / "cameras.json") << index.dump(2) << "\n";
+      std::ofstream(std::filesystem::path(compareOut) / "index.html")
+          << "<!doctype html><meta charset=utf-8><title>Twinlight compare: cameras</title><h1>"
+          << session.scene().name << ": one report per camera</h1><ul>\n" << links << "</ul>\n";
+      fmt::print("wrote {} reports and {}\n", views.size(), (std::filesystem::absolute(compareOut) / "index.html").string());
       return 0;
     }
     if (*benchCmd) {
