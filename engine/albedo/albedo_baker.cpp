@@ -8,14 +8,6 @@
 #include <algorithm>
 
 namespace tl::albedo {
-namespace {
-
-constexpr const char* kVertices = "scene.vertices";
-constexpr const char* kIndices = "scene.indices";
-constexpr const char* kMaterials = "scene.materials";
-
-}  // namespace
-
 glm::mat4 bakeViewProjection(const scene::Bounds& bounds, int view) {
   const int axis = view / 2;
   const float side = view % 2 == 0 ? 1.0f : -1.0f;  // +: seen from the positive side
@@ -123,19 +115,14 @@ std::vector<BakeOutcome> AlbedoBaker::bake(const std::vector<const Combination*>
   }
 
   graph::RenderGraph graph;
-  graph.declareImported(kVertices, graph::ResourceDesc::buffer(gpuScene_.vertexBuffer().size(), "all meshes' vertices"));
-  graph.declareImported(kIndices, graph::ResourceDesc::buffer(gpuScene_.indexBuffer().size(), "all meshes' indices"));
-  graph.declareImported(kMaterials, graph::ResourceDesc::buffer(gpuScene_.materialBuffer().size(), "material table"));
-  executor_.bindImportedBuffer(kVertices, gpuScene_.vertexBuffer());
-  executor_.bindImportedBuffer(kIndices, gpuScene_.indexBuffer());
-  executor_.bindImportedBuffer(kMaterials, gpuScene_.materialBuffer());
+  gpuScene_.importBuffers(graph, executor_);
 
   graph.addPass(
       "albedo.bake.raster", graph::PassKind::Raster,
       [&](graph::PassBuilder& b) {
-        b.read(kVertices, graph::Usage::VertexOrIndex);
-        b.read(kIndices, graph::Usage::VertexOrIndex);
-        b.read(kMaterials, graph::Usage::StorageRead);
+        b.read(scene::kSceneVertices, graph::Usage::VertexOrIndex);
+        b.read(scene::kSceneIndices, graph::Usage::VertexOrIndex);
+        b.read(scene::kSceneMaterials, graph::Usage::StorageRead);
         b.create(kBakeAtlas,
                  graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, side, side,
                                               "hit albedo of 6 views per combination, a = covered"),

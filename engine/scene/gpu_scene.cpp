@@ -122,6 +122,17 @@ void GpuScene::updateInstances(const Scene& scene, const glm::dvec3& camera, con
   if (!out.empty()) instances_.write(out.data(), out.size() * sizeof(GpuInstance));
 }
 
+void GpuScene::importBuffers(graph::RenderGraph& graph, graph::Executor& executor) {
+  auto imported = [&](const char* name, gpu::Buffer& b, const char* what) {
+    graph.declareImported(name, graph::ResourceDesc::buffer(b.size(), what));
+    executor.bindImportedBuffer(name, b);
+  };
+  imported(kSceneVertices, vertices_, "all meshes' vertices");
+  imported(kSceneIndices, indices_, "all meshes' indices");
+  imported(kSceneInstances, instances_, "camera-relative instance table");
+  imported(kSceneMaterials, materials_, "material table");
+}
+
 void GpuScene::bindGeometry(VkCommandBuffer cmd) const {
   VkDeviceSize offset = 0;
   VkBuffer vb = vertices_.handle();

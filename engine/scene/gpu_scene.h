@@ -5,11 +5,19 @@
 
 #include "gpu/descriptor_table.h"
 #include "gpu/resources.h"
+#include "graph/executor.h"
+#include "graph/graph.h"
 #include "scene/scene.h"
 
 #include <vector>
 
 namespace tl::scene {
+
+// The scene's buffers as a frame graph sees them (imported: owned by GpuScene).
+inline constexpr const char* kSceneVertices = "scene.vertices";
+inline constexpr const char* kSceneIndices = "scene.indices";
+inline constexpr const char* kSceneInstances = "scene.instances";
+inline constexpr const char* kSceneMaterials = "scene.materials";
 
 class GpuScene {
  public:
@@ -22,6 +30,9 @@ class GpuScene {
   // Rewrites the instance table relative to `camera` (double precision on the CPU).
   // `previousCamera` and the previous transforms make the motion vectors.
   void updateInstances(const Scene& scene, const glm::dvec3& camera, const glm::dvec3& previousCamera);
+
+  // Declares the four buffers above in `graph` and binds them in `executor`.
+  void importBuffers(graph::RenderGraph& graph, graph::Executor& executor);
 
   // Binds the geometry and draws every instance (instance index via firstInstance).
   void drawAll(VkCommandBuffer cmd) const;

@@ -213,15 +213,10 @@ void Session::renderOne(bool readback) {
   gpuScene_->updateInstances(*scene_, view_.position, previousView_.value_or(view_).position);
 
   graph::RenderGraph graph;
-  auto imported = [&](const char* name, gpu::Buffer& b, const char* what) {
-    graph.declareImported(name, graph::ResourceDesc::buffer(b.size(), what));
-    executor_->bindImportedBuffer(name, b);
-  };
-  imported(lighting::kFrameConstants, constants_, "per-frame constants (shared/frame.h)");
-  imported(lighting::kSceneVertices, gpuScene_->vertexBuffer(), "all meshes' vertices");
-  imported(lighting::kSceneIndices, gpuScene_->indexBuffer(), "all meshes' indices");
-  imported(lighting::kSceneInstances, gpuScene_->instanceBuffer(), "camera-relative instance table");
-  imported(lighting::kSceneMaterials, gpuScene_->materialBuffer(), "material table");
+  graph.declareImported(lighting::kFrameConstants,
+                        graph::ResourceDesc::buffer(constants_.size(), "per-frame constants (shared/frame.h)"));
+  executor_->bindImportedBuffer(lighting::kFrameConstants, constants_);
+  gpuScene_->importBuffers(graph, *executor_);
 
   lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, constants_, *executor_, view_.position};
   in.instanceAlbedo = &albedo_->instanceAlbedo();

@@ -74,12 +74,13 @@ inline float sceneScaledAoRadius(float sceneScale) { return std::clamp(0.05f * s
 inline float sceneScaledRayLength(float sceneScale) { return std::clamp(sceneScale, 1e-3f, 50.0f); }
 inline float sceneScaledBlendDistance(float sceneScale) { return 2.0f * std::max(sceneScale, 1e-3f); }
 
-// Resources the frame imports from outside the graph (owned by the session and scene).
+// Resources the frame imports from outside the graph: the session's constants, and the
+// scene's buffers (named and imported by scene/gpu_scene.h, GpuScene::importBuffers).
 inline constexpr const char* kFrameConstants = "frame.constants";
-inline constexpr const char* kSceneVertices = "scene.vertices";
-inline constexpr const char* kSceneIndices = "scene.indices";
-inline constexpr const char* kSceneInstances = "scene.instances";
-inline constexpr const char* kSceneMaterials = "scene.materials";
+using scene::kSceneIndices;
+using scene::kSceneInstances;
+using scene::kSceneMaterials;
+using scene::kSceneVertices;
 
 // Declares the reads of the frame constants and the scene's tables that every pass drawing
 // or tracing the scene makes; `geometry` is how it reads the vertex and index buffers.
