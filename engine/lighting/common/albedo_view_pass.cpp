@@ -2,6 +2,7 @@
 
 #include "graph/executor.h"
 #include "lighting/common/composite_pass.h"
+#include "lighting/common/copy_pass.h"
 #include "shared/albedo.h"
 
 namespace tl::lighting {
@@ -79,14 +80,7 @@ void AlbedoViewPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   graph.declareCache(kAlbedoImpactBaseline,
                      graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "final image before the albedo edits"));
   if (captureBaseline_) {
-    graph.addPass(
-        "albedo.impactBaseline", graph::PassKind::Transfer,
-        [&](graph::PassBuilder& b) {
-          b.read(kCompositeHdr, graph::Usage::TransferSrc);
-          b.write(kAlbedoImpactBaseline, graph::Usage::TransferDst);
-          b.sideEffect();
-        },
-        [](graph::PassContext& ctx) { gpu::copyImage(ctx.cmd, ctx.image(kCompositeHdr), ctx.image(kAlbedoImpactBaseline)); });
+    addCopyPass(graph, "albedo.impactBaseline", {{kCompositeHdr, kAlbedoImpactBaseline}});
     captureBaseline_ = false;
     haveBaseline_ = true;
   }

@@ -1,5 +1,5 @@
 // A transfer pass that copies images into others of the same size, declared to the graph:
-// how paths keep this frame's results as next frame's history.
+// how paths keep this frame's results as next frame's history, and views keep a copy to compare against.
 #pragma once
 
 #include "graph/graph.h"

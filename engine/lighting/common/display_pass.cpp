@@ -3,6 +3,7 @@
 #include "gpu/formats.h"
 #include "graph/executor.h"
 #include "lighting/common/composite_pass.h"
+#include "lighting/common/copy_pass.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "shared/display.h"
 
@@ -42,16 +43,7 @@ void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w
   if (request.keepCopy) copyDesc_ = desc;
   const bool haveCopy = copyDesc_ && *copyDesc_ == desc;
   if (haveCopy) graph.declareCache(kDisplayCopy, *copyDesc_);
-  if (request.keepCopy) {
-    graph.addPass(
-        "display.keepCopy", graph::PassKind::Transfer,
-        [&](graph::PassBuilder& b) {
-          b.read(requested, graph::Usage::TransferSrc);
-          b.write(kDisplayCopy, graph::Usage::TransferDst);
-          b.sideEffect();
-        },
-        [requested](graph::PassContext& ctx) { gpu::copyImage(ctx.cmd, ctx.image(requested), ctx.image(kDisplayCopy)); });
-  }
+  if (request.keepCopy) addCopyPass(graph, "display.keepCopy", {{requested, kDisplayCopy}});
   const std::string source = request.showCopy && haveCopy && !request.keepCopy ? std::string(kDisplayCopy) : requested;
 
   const gpu::FormatInfo fi = gpu::formatInfo(desc.format);
