@@ -125,14 +125,9 @@ void probe(EditorApp& app, const graph::ResourceDesc& desc) {
   }
   const glm::uvec3 t = *v.probe;
   ImGui::Text("Probe: texel %u, %u%s", t.x, t.y, it->second.extent.depth > 1 ? fmt::format(", slice {}", t.z).c_str() : "");
-  for (auto& [label, value] : lighting::rawTexel(it->second, t.x, t.y, t.z)) ImGui::Text("  %s = %s", label.c_str(), value.c_str());
-  lighting::DecodeInput in{it->second, t.x, t.y, t.z,
-                           [&](const std::string& name) -> const graph::Readback* {
-                             auto c = v.readbacks.find(name);
-                             return c == v.readbacks.end() ? nullptr : &c->second;
-                           },
-                           app.session().decodingScene()};
-  for (auto& [label, value] : lighting::decodeTexel(desc.decoder, in)) ImGui::Text("  %s: %s", label.c_str(), value.c_str());
+  const ProbeLines lines = probeTexel(v, desc.decoder, t, app.session().decodingScene()).value();
+  for (auto& [label, value] : lines.raw) ImGui::Text("  %s = %s", label.c_str(), value.c_str());
+  for (auto& [label, value] : lines.decoded) ImGui::Text("  %s: %s", label.c_str(), value.c_str());
 }
 
 void viewerControls(EditorApp& app) {

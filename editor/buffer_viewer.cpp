@@ -37,6 +37,19 @@ lighting::DisplayRequest displayRequest(const ViewerState& v, const std::string&
   return d;
 }
 
+std::optional<ProbeLines> probeTexel(const ViewerState& v, const std::string& decoder, const glm::uvec3& t,
+                                     const scene::Scene* scene) {
+  auto it = v.readbacks.find(v.resource);
+  if (it == v.readbacks.end()) return std::nullopt;
+  lighting::DecodeInput in{it->second, t.x, t.y, t.z,
+                           [&](const std::string& name) -> const graph::Readback* {
+                             auto c = v.readbacks.find(name);
+                             return c == v.readbacks.end() ? nullptr : &c->second;
+                           },
+                           scene};
+  return ProbeLines{lighting::rawTexel(it->second, t.x, t.y, t.z), lighting::decodeTexel(decoder, in)};
+}
+
 std::vector<float> channelValues(const graph::Readback& r, uint32_t channel, uint32_t slice) {
   const gpu::FormatInfo fi = gpu::formatInfo(r.format);
   if (fi.bytes == 0 || fi.channels == 0) return {};

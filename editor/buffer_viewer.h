@@ -39,6 +39,14 @@ struct ViewerState {
   std::map<std::string, graph::Readback> readbacks;
 };
 
+// What the probe shows for texel `t` of the viewed resource, from the last read-backs: its
+// stored values and what its decoder (with its companions) says. Null when not read back.
+struct ProbeLines {
+  lighting::DecodedLines raw, decoded;
+};
+std::optional<ProbeLines> probeTexel(const ViewerState& v, const std::string& decoder, const glm::uvec3& t,
+                                     const scene::Scene* scene);
+
 // The display request for the state (`hoverPreview` overrides the resource while a pass is
 // hovered in the Timing panel; its range then comes from the format).
 lighting::DisplayRequest displayRequest(const ViewerState& v, const std::string& hoverPreview, VkFormat hoverFormat,

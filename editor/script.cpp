@@ -215,20 +215,14 @@ void Script::step(EditorApp& app) {
         char text[256] = {};
         if (std::sscanf(arg.c_str(), "%u %u %255[^\n]", &x, &y, text) != 3) return fail(app, "expect-probe needs X Y TEXT");
         const ViewerState& v = app.viewer();
-        auto it = v.readbacks.find(v.resource);
-        if (it == v.readbacks.end()) return fail(app, fmt::format("`{}` was not read back", v.resource));
         std::string decoder;
         for (const auto& r : app.session().resources())
           if (r.name == v.resource) decoder = r.desc.decoder;
-        lighting::DecodeInput in{it->second, x, y, 0,
-                                 [&](const std::string& n) -> const graph::Readback* {
-                                   auto c = v.readbacks.find(n);
-                                   return c == v.readbacks.end() ? nullptr : &c->second;
-                                 },
-                                 app.session().decodingScene()};
+        const auto lines = probeTexel(v, decoder, glm::uvec3(x, y, 0), app.session().decodingScene());
+        if (!lines) return fail(app, fmt::format("`{}` was not read back", v.resource));
         std::string all;
-        for (auto& [l, val] : lighting::rawTexel(it->second, x, y)) all += l + " = " + val + "; ";
-        for (auto& [l, val] : lighting::decodeTexel(decoder, in)) all += l + ": " + val + "; ";
+        for (auto& [l, val] : lines->raw) all += l + " = " + val + "; ";
+        for (auto& [l, val] : lines->decoded) all += l + ": " + val + "; ";
         bool found = false;  // TEXT may list alternatives: a|b
         std::istringstream alternatives{std::string(text)};
         for (std::string alt; std::getline(alternatives, alt, '|');) found |= !alt.empty() && all.find(alt) != std::string::npos;
