@@ -2,6 +2,7 @@
 // (AO = 1, irradiance = pi L), AO in a corner of the Cornell box, a box voxelized exactly,
 // colour bleeding, persistent voxels, and light leaking into the atrium's interior room.
 #include "lighting_checks.h"
+#include "../common/test_scenes.h"
 
 #include "lighting/legacy/legacy_path.h"
 #include "lighting/rt/rt_path.h"
@@ -83,32 +84,9 @@ TEST_F(LegacyTest, AoDarkensACornerOfTheCornellBox) {
 // A cube whose faces sit a quarter voxel inside voxels 16 and 47 (so no edge falls on a
 // pixel centre of the voxelizing raster): exactly its 32^3 - 30^3 shell is occupied.
 TEST_F(LegacyTest, VoxelizationCoversAKnownBoxExactly) {
-  auto scene = std::make_unique<scene::Scene>();
-  scene->name = "voxel_box";
-  scene->materials.push_back({});
-  scene->materials[0].metallic = 0.0f;
-  scene::Mesh mesh;
-  mesh.name = "cube";
-  const float h = 15.75f / 32.0f;
-  for (int axis = 0; axis < 3; ++axis)
-    for (int sign = -1; sign <= 1; sign += 2) {
-      glm::vec3 n(0.0f);
-      n[axis] = float(sign);
-      glm::vec3 u(0.0f), v(0.0f);
-      u[(axis + 1) % 3] = h;
-      v[(axis + 2) % 3] = h;
-      uint32_t base = uint32_t(mesh.vertices.size());
-      for (glm::vec2 c : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)})
-        mesh.vertices.push_back({n * h + u * c.x + v * c.y, n});
-      mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-    }
-  for (auto& vtx : mesh.vertices) mesh.bounds.extend(glm::dvec3(vtx.position));
-  scene->meshes.push_back(mesh);
-  scene::Instance inst;
-  inst.name = "cube";
-  inst.worldBounds = mesh.bounds;
-  scene->instances.push_back(inst);
-  scene->bounds = mesh.bounds;
+  scene::Material material;
+  material.metallic = 0.0f;
+  auto scene = makeCubeScene(material, 2.0f * 15.75f / 32.0f);
   auto& s = session();
   s.installScene(std::move(scene));
   s.settings().legacyLevel0Extent = 2.0f;  // 64 voxels of 1/32 m from -1 m: faces at voxel coordinates 16.25, 47.75
