@@ -50,12 +50,7 @@ CapturedFrame::CapturedFrame(gpu::Device& device, const std::filesystem::path& d
     info.lastUse = last < 0 ? graph::kNone : uint32_t(last);
     info.bytes = r.value("memoryBytes", VkDeviceSize(0));
     const std::string format = r.value("format", "?");
-    const gpu::FormatInfo original = [&] {
-      for (VkFormat f : {VK_FORMAT_R32_UINT, VK_FORMAT_R32G32_UINT, VK_FORMAT_R32G32B32A32_UINT})
-        if (format == gpu::formatInfo(f).name) return gpu::formatInfo(f);
-      return gpu::FormatInfo{};
-    }();
-    const bool integer = original.kind == gpu::TexelKind::Uint || format.find("UI") != std::string::npos;
+    const bool integer = format.find("UI") != std::string::npos;  // every unsigned-integer format's name: R32UI, RG32UI, ...
     info.desc = graph::ResourceDesc::image3D(capturedFormat(r.value("channels", 4u), integer), r.value("width", 1u),
                                              r.value("height", 1u), std::max(1u, r.value("depth", 1u)),
                                              fmt::format("{} (captured from {})", r.value("description", ""), format));
