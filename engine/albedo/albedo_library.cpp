@@ -19,10 +19,13 @@ const char* sourceName(AlbedoSource source) {
 AlbedoLibrary::AlbedoLibrary(const scene::Scene& scene, const BakeSettings& settings) {
   SceneKeys keys = sceneKeys(scene, settings);
   instanceCombination_ = std::move(keys.instanceCombination);
+  // Once per material: a texture average touches every texel, and many meshes share one.
+  std::vector<glm::vec3> materialAverage;
+  for (const scene::Material& m : scene.materials) materialAverage.push_back(scene::materialAverageAlbedo(scene, m));
   for (Combination& c : keys.combinations) {
     AlbedoEntry e;
     const scene::Mesh& mesh = scene.meshes.at(c.mesh);
-    e.textureAverage = scene::materialAverageAlbedo(scene, scene.materials.at(std::min<size_t>(mesh.material, scene.materials.size() - 1)));
+    e.textureAverage = materialAverage.at(std::min<size_t>(mesh.material, scene.materials.size() - 1));
     e.combination = std::move(c);
     entries_.push_back(std::move(e));
   }
