@@ -350,6 +350,11 @@ int main(int argc, char** argv) {
           fmt::print("{:10} {:9.2f} {:9.4f} {:9.4f} {:8.2f} {:7.4f} {:7.4f} {:9.4f}\n", p["path"].get<std::string>(),
                      p["frameMs"].get<double>(), num(p["relMSE"]), num(p["RMSE"]), num(p["PSNR"]), num(p["SSIM"]),
                      num(p["FLIP"]), num(p["HDR-FLIP"]));
+        fmt::print("per stage (surface pixels)  {:>13} {:>18}\n", "AO abs error", "irradiance relMSE");
+        for (auto& p : report["paths"])
+          if (p["stages"].contains("ao"))
+            fmt::print("{:27} {:13.4f} {:18.4f}\n", p["path"].get<std::string>(), num(p["stages"]["ao"]["meanAbsError"]),
+                       num(p["stages"]["irradiance"]["relMSE"]));
         fmt::print("reference: {} spp{}\nwrote {}\n", report["reference"]["spp"].get<int>(),
                    report["reference"]["cached"].get<bool>() ? " (reused from the cache)" : "",
                    (std::filesystem::absolute(outDir) / "report.html").string());

@@ -282,6 +282,12 @@ void Executor::realise(const RenderGraph& graph, const CompiledGraph& compiled) 
     for (auto& a : cp.reads) usage[a.resource] |= imageUsageFor(a.usage);
     for (auto& a : cp.writes) usage[a.resource] |= imageUsageFor(a.usage);
   }
+  // A persistent resource outlives this frame's shape: a pass culled now (an on-demand
+  // history's writer) may use it in a later frame, so it gets every declared use.
+  for (const auto& pass : graph.passes())
+    for (auto [names, usages] : {std::pair{&pass.readNames, &pass.readUsages}, std::pair{&pass.writeNames, &pass.writeUsages}})
+      for (size_t i = 0; i < names->size(); ++i)
+        if (auto id = graph.find((*names)[i]); id && decls[*id].persistent) usage[*id] |= imageUsageFor((*usages)[i]);
 
   // Transients: one aliased block, rebuilt only when the graph's shape changes.
   std::vector<ResourceId> transients;

@@ -96,6 +96,11 @@ void RenderGraph::declarePersistent(std::string_view name, const ResourceDesc& d
   resources_.push_back(std::move(r));
 }
 
+void RenderGraph::declareOnDemandHistory(std::string_view name, const ResourceDesc& desc) {
+  declarePersistent(name, desc);
+  resources_.back().onDemand = true;
+}
+
 void RenderGraph::declareCache(std::string_view name, const ResourceDesc& desc) {
   declarePersistent(name, desc);
   resources_.back().cache = true;
@@ -278,7 +283,7 @@ CompiledGraph RenderGraph::compile() const {
     bool root = passes_[p].sideEffect;
     for (auto& w : writes[p]) {
       const auto& r = resources_[w.resource];
-      root |= r.persistent || r.imported ||
+      root |= (r.persistent && !r.onDemand) || r.imported ||
               std::find(outputs_.begin(), outputs_.end(), r.name) != outputs_.end();
     }
     if (root) keepPass(p);

@@ -123,6 +123,7 @@ struct ResourceDecl {
   ResourceDesc desc;
   bool persistent = false;  // survives across frames (history); never aliased
   bool cache = false;       // persistent, but a frame that writes it does so before its readers
+  bool onDemand = false;    // persistent, but writing it does not keep its writer from culling
   bool imported = false;    // owned outside the graph (e.g. scene buffers, swapchain)
   PassId creator = kNone;   // the pass that declared it with create()
 };
@@ -178,6 +179,10 @@ class RenderGraph {
   // first and readers see this frame's contents; in a frame with no writer they see the
   // last contents (e.g. voxels rebuilt only when what they hold changes).
   void declareCache(std::string_view name, const ResourceDesc& desc);
+  // A persistent resource behind an optional output (a progressive sum nobody reads unless
+  // asked): its writer is culled like any other pass when nothing reads its other outputs,
+  // and the history simply waits. Plain persistent resources keep their writers alive.
+  void declareOnDemandHistory(std::string_view name, const ResourceDesc& desc);
   // A resource owned outside the graph (scene geometry, the swapchain image).
   void declareImported(std::string_view name, const ResourceDesc& desc);
 

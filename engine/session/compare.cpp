@@ -19,7 +19,7 @@
 namespace tl::session {
 namespace {
 
-constexpr const char* kReferenceVersion = "reference-1";  // bump when the path tracer changes
+constexpr const char* kReferenceVersion = "reference-2";  // bump when the path tracer changes
 
 metrics::Image rgbOf(const graph::Readback& rb) {
   auto t = rb.texels();
@@ -58,15 +58,38 @@ std::string referenceKey(const Session& s, const CompareOptions& o) {
   return fmt::format("{:016x}", scene::hashBytes(text.data(), text.size()));
 }
 
-metrics::Image renderReference(Session& s, const CompareOptions& o, const Progress& progress, nlohmann::json& info) {
-  std::filesystem::path cache = (o.cacheDir.empty() ? defaultReferenceCache() : o.cacheDir) /
-                                (referenceKey(s, o) + ".exr");
-  info = {{"spp", o.referenceSpp}, {"bounces", o.referenceBounces}, {"cacheFile", cache.string()}};
-  if (auto cached = readExrRgb(cache)) {
-    if (cached->width == s.settings().width && cached->height == s.settings().height) {
-      info["cached"] = true;
-      return metrics::Image::fromTexels(cached->width, cached->height, 3, std::move(cached->rgb));
-    }
+// The reference image and its per-stage quantities at the primary hit: AO at the AO radius
+// (one channel) and the diffuse irradiance (sky + bounce light, no sun; 0 on the sky).
+struct ReferenceImages {
+  metrics::Image radiance, ao, irradiance;
+};
+
+metrics::Image channelOf(const graph::Readback& rb, uint32_t channel) {
+  auto t = rb.texels();
+  const uint32_t c = rb.channels();
+  std::vector<float> v(size_t(rb.extent.width) * rb.extent.height);
+  for (size_t i = 0; i < v.size(); ++i) v[i] = t[i * c + std::min(channel, c - 1)];
+  return metrics::Image::fromTexels(rb.extent.width, rb.extent.height, 1, std::move(v));
+}
+
+ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progress& progress, nlohmann::json& info) {
+  const std::filesystem::path dir = o.cacheDir.empty() ? defaultReferenceCache() : o.cacheDir;
+  const std::string key = referenceKey(s, o);
+  const std::filesystem::path files[3] = {dir / (key + ".exr"), dir / (key + ".ao.exr"), dir / (key + ".irradiance.exr")};
+  info = {{"spp", o.referenceSpp}, {"bounces", o.referenceBounces}, {"cacheFile", files[0].string()}};
+  const uint32_t w = s.settings().width, h = s.settings().height;
+  std::optional<RgbImage> cached[3];
+  bool hit = true;
+  for (int i = 0; i < 3; ++i) {
+    cached[i] = readExrRgb(files[i]);
+    hit = hit && cached[i] && cached[i]->width == w && cached[i]->height == h;
+  }
+  if (hit) {
+    info["cached"] = true;
+    ReferenceImages r{metrics::Image::fromTexels(w, h, 3, std::move(cached[0]->rgb)), metrics::Image::filled(w, h, 1, 0.0f),
+                      metrics::Image::fromTexels(w, h, 3, std::move(cached[2]->rgb))};
+    for (size_t i = 0; i < r.ao.data.size(); ++i) r.ao.data[i] = cached[1]->rgb[3 * i];
+    return r;
   }
   info["cached"] = false;
   s.setPath("reference");
@@ -75,13 +98,52 @@ metrics::Image renderReference(Session& s, const CompareOptions& o, const Progre
   const uint32_t frames = std::max(1u, o.referenceSpp / s.settings().referenceSamplesPerFrame);
   s.resetHistory();
   for (uint32_t f = 0; f < frames; ++f) {
-    if (f + 1 == frames) s.requestBuffer("reference.radiance");
+    // The irradiance pass runs only in frames that read its result: every frame here.
+    s.requestBuffer("reference.irradiance");
+    if (f + 1 == frames) s.requestBuffer("reference.radiance"), s.requestBuffer("reference.ao");
     s.renderFrames(1);
     if (progress) progress(fmt::format("reference {} spp", (f + 1) * s.settings().referenceSamplesPerFrame), double(f + 1) / frames);
   }
-  metrics::Image ref = rgbOf(s.buffer("reference.radiance"));
-  writeExrRgb(cache, ref.width, ref.height, ref.data);
-  return ref;
+  ReferenceImages r{rgbOf(s.buffer("reference.radiance")), channelOf(s.buffer("reference.ao"), 0),
+                    rgbOf(s.buffer("reference.irradiance"))};
+  std::vector<float> aoRgb(r.ao.data.size() * 3);
+  for (size_t i = 0; i < aoRgb.size(); ++i) aoRgb[i] = r.ao.data[i / 3];
+  // The radiance file last: its presence is what a later run looks for first.
+  writeExrRgb(files[2], w, h, r.irradiance.data);
+  writeExrRgb(files[1], w, h, aoRgb);
+  writeExrRgb(files[0], w, h, r.radiance.data);
+  return r;
+}
+
+// Per-stage error over the pixels where the path drew a surface (the sky has no AO or
+// irradiance): AO as mean absolute and RMS error, irradiance as relMSE (same epsilon as the
+// image's) and RMSE. `irradianceMap` receives the per-pixel relMSE (0 on the sky).
+nlohmann::json stageErrors(const metrics::Image& ao, const metrics::Image& irradiance, const std::vector<float>& depth,
+                           const ReferenceImages& ref, std::vector<float>& irradianceMap) {
+  double aoAbs = 0.0, aoSq = 0.0, aoRef = 0.0, irrRel = 0.0, irrSq = 0.0;
+  size_t n = 0;
+  irradianceMap.assign(depth.size(), 0.0f);
+  for (size_t i = 0; i < depth.size(); ++i) {
+    if (!(depth[i] > 0.0f)) continue;
+    ++n;
+    double d = double(ao.data[i]) - ref.ao.data[i];
+    aoAbs += std::abs(d), aoSq += d * d, aoRef += ref.ao.data[i];
+    double pixel = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      double t = irradiance.data[3 * i + k], r = ref.irradiance.data[3 * i + k];
+      pixel += (t - r) * (t - r) / (r * r + metrics::kRelMseEpsilon);
+      irrSq += (t - r) * (t - r);
+    }
+    irrRel += pixel;
+    irradianceMap[i] = float(pixel / 3.0);
+  }
+  auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  if (n == 0) return nlohmann::json::object();
+  return {{"surfacePixels", n},
+          {"ao", {{"buffer", lighting::kCompositeAo}, {"reference", "reference.ao"}, {"meanAbsError", finite(aoAbs / n)},
+                  {"RMSE", finite(std::sqrt(aoSq / n))}, {"referenceMean", aoRef / n}}},
+          {"irradiance", {{"buffer", lighting::kCompositeIrradiance}, {"reference", "reference.irradiance"},
+                          {"relMSE", finite(irrRel / (3.0 * n))}, {"RMSE", finite(std::sqrt(irrSq / (3.0 * n)))}}}};
 }
 
 }  // namespace
@@ -119,7 +181,8 @@ nlohmann::json runCompare(Session& s, const CompareOptions& o, const Progress& p
   const std::string previousPath = s.path();
 
   nlohmann::json refInfo;
-  metrics::Image reference = renderReference(s, o, progress, refInfo);
+  const ReferenceImages referenceImages = renderReference(s, o, progress, refInfo);
+  const metrics::Image& reference = referenceImages.radiance;
   const float exposure = std::exp2(-s.exposureEv());
   metrics::Image referenceDisplay = displayOf(reference, exposure);
   writeExrRgb(o.outDir / "reference.exr", reference.width, reference.height, reference.data);
@@ -131,6 +194,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& o, const Progress& p
     s.setPath(runs[i].path);
     s.settings() = applySettingsJson(baseSettings, runs[i].settings);
     s.resetHistory();
+    for (const char* n : {lighting::kCompositeAo, lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
     s.renderFrames(std::max(1u, o.framesPerPath));
     s.settings() = baseSettings;
     if (progress) progress("path " + name, double(i + 1) / runs.size());
@@ -151,6 +215,15 @@ nlohmann::json runCompare(Session& s, const CompareOptions& o, const Progress& p
     writePngRgb(o.outDir / (name + ".png"), testDisplay.width, testDisplay.height, testDisplay.data);
     writeFalseColourPng(o.outDir / (stem + "_flip.png"), flip.errorMap.width, flip.errorMap.height, flip.errorMap.data, 1.0f);
     writeExrGray(o.outDir / (stem + "_relmse.exr"), rel.errorMap.width, rel.errorMap.height, rel.errorMap.data);
+    // Per-stage error, for paths that go through the shared composite (not the reference).
+    nlohmann::json stages = nlohmann::json::object();
+    if (s.hasBuffer(lighting::kCompositeIrradiance)) {
+      std::vector<float> irradianceMap;
+      stages = stageErrors(channelOf(s.buffer(lighting::kCompositeAo), 0), rgbOf(s.buffer(lighting::kCompositeIrradiance)),
+                           s.buffer("gbuffer.depth").texels(), referenceImages, irradianceMap);
+      writeFalseColourPng(o.outDir / (stem + "_irradiance.png"), test.width, test.height, irradianceMap, 1.0f);
+      stages["irradianceMap"] = stem + "_irradiance.png";
+    }
 
     nlohmann::json passes = nlohmann::json::object();
     for (const auto& [pass, ms] : s.passGpuMs()) passes[pass] = median(ms);
@@ -169,7 +242,8 @@ nlohmann::json runCompare(Session& s, const CompareOptions& o, const Progress& p
                        {"HDR-FLIP", finite(hdrFlip.value)},
                        {"image", name + ".png"},
                        {"flipMap", stem + "_flip.png"},
-                       {"relMSEMap", stem + "_relmse.exr"}});
+                       {"relMSEMap", stem + "_relmse.exr"},
+                       {"stages", stages}});
   }
   s.setPath(previousPath);
 
@@ -195,7 +269,11 @@ nlohmann::json runCompare(Session& s, const CompareOptions& o, const Progress& p
                    {"PSNR", "linear radiance, peak = the reference's maximum"},
                    {"SSIM", "display-encoded luminance, 11x11 Gaussian window"},
                    {"FLIP", "LDR-FLIP of the display images, 67 pixels per degree"},
-                   {"HDR-FLIP", "HDR-FLIP of the linear images"}}},
+                   {"HDR-FLIP", "HDR-FLIP of the linear images"},
+                   {"stages.ao", "the AO the composite applied (composite.ao) against reference.ao, over surface pixels"},
+                   {"stages.irradiance",
+                    "the diffuse irradiance the composite used (composite.irradiance: sky + bounce light, no sun) against "
+                    "reference.irradiance, relMSE (same epsilon) over surface pixels"}}},
       {"paths", results}};
   std::ofstream(o.outDir / "report.json") << report.dump(2) << "\n";
   writeReportHtml(o.outDir / "report.html", report, o.outDir);

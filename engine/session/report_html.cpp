@@ -123,6 +123,18 @@ td:first-child,th:first-child{text-align:left}
                         escape(p["path"].get<std::string>()), p["frameMs"].get<double>(), number(p["relMSE"]),
                         number(p["RMSE"]), number(p["PSNR"], "{:.2f}"), number(p["SSIM"]), number(p["FLIP"]),
                         number(p["HDR-FLIP"]));
+  html += "</table>";
+  html += "<h2>Error per stage</h2><p>What the composite multiplied, against the reference's own estimate of the same "
+          "quantity at the primary hit, over surface pixels: ambient occlusion and the diffuse irradiance (sky and bounce "
+          "light; the sun is added separately).</p>";
+  html += "<table><tr><th>path</th><th>AO mean abs error</th><th>AO RMSE</th><th>irradiance relMSE</th><th>irradiance RMSE</th></tr>";
+  for (auto& p : r["paths"]) {
+    if (!p.contains("stages") || !p["stages"].contains("ao")) continue;
+    const auto& st = p["stages"];
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>", escape(p["path"].get<std::string>()),
+                        number(st["ao"]["meanAbsError"]), number(st["ao"]["RMSE"]), number(st["irradiance"]["relMSE"]),
+                        number(st["irradiance"]["RMSE"]));
+  }
   html += "</table><h2>Speed against error</h2>" + speedErrorPlot(r["paths"]);
   html += "<h2>Where the time goes</h2>" + timingBars(r["paths"]);
   html += "<h2>Images and FLIP error maps</h2><div class='imgs'>";
@@ -134,6 +146,12 @@ td:first-child,th:first-child{text-align:left}
                         pngDataUri(dir / p["flipMap"].get<std::string>()), escape(p["path"].get<std::string>()));
   }
   html += "</div><p>FLIP error 0 <span class='legend' style='display:inline-block'></span> 1</p>";
+  html += "<h2>Irradiance error maps</h2><div class='imgs'>";
+  for (auto& p : r["paths"])
+    if (p.contains("stages") && p["stages"].contains("irradianceMap"))
+      html += fmt::format("<figure><img src='{}'><figcaption>{} — irradiance relMSE</figcaption></figure>",
+                          pngDataUri(dir / p["stages"]["irradianceMap"].get<std::string>()), escape(p["path"].get<std::string>()));
+  html += "</div><p>per-pixel relMSE of the diffuse irradiance 0 <span class='legend' style='display:inline-block'></span> 1</p>";
   html += "<h2>Metrics</h2><ul>";
   for (auto& [k, v] : r["metrics"].items()) html += fmt::format("<li><b>{}</b>: {}</li>", escape(k), escape(v.get<std::string>()));
   html += "</ul><p>Every figure is also in report.json beside this page.</p></body></html>\n";

@@ -313,6 +313,14 @@ const graph::Readback& Session::buffer(const std::string& name) const {
   }
 }
 
+bool Session::hasBuffer(const std::string& name) const {
+  if (capture_) {
+    const auto& r = capture_->resources();
+    return std::any_of(r.begin(), r.end(), [&](auto& info) { return info.name == name; });
+  }
+  return executor_->readbacks().count(name) != 0;
+}
+
 void Session::saveImage(const std::filesystem::path& file) const {
   std::string ext = file.extension().string();
   for (auto& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));

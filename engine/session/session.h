@@ -115,6 +115,8 @@ class Session {
   void renderFrames(uint32_t n);
 
   const graph::Readback& buffer(const std::string& name) const;
+  // Whether the last frame read back `name` (a path may not produce it).
+  bool hasBuffer(const std::string& name) const;
   const std::vector<graph::PhysicalInfo>& resources() const;
   const std::vector<graph::PassTiming>& timings() const;
 

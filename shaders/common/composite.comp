@@ -23,6 +23,7 @@ layout(set = 0, binding = kCompositeCoCg) uniform sampler2D pathCoCg;
 layout(push_constant) uniform Push { CompositePush push; };
 
 #include "common/camera.glsl"
+#include "common/path_indirect.glsl"
 
 #define TL_SUN_SHADOW_PCSS
 layout(set = 0, binding = kCompositeShadowDepth) uniform sampler2D sunShadowDepth;
@@ -50,22 +51,9 @@ void main() {
     vec3 sun = frame.sunIrradiance.rgb * (nl * sunVisibilitySoft(position, n, p));
     radiance += sun * tlBrdf(s, n, v, frame.sunToLight.xyz);
   }
-  // Indirect diffuse. Without a path's GI: the uniform sky, irradiance pi*L on an
-  // unoccluded surface, times AO. With it: the path's irradiance resolved against the normal
-  // (it already holds the sky's occlusion, so AO is not applied twice), fading to the sky
-  // beyond the blend distance. Lambert: radiance = albedo / pi * E.
-  float ao = (push.flags & kCompositeHasAo) != 0u ? clamp(texelFetch(pathAo, p, 0).r, 0.0, 1.0) : 1.0;
-  vec3 skyIrradiance = kPi * frame.skyRadiance.rgb * ao;
-  vec3 irradiance = skyIrradiance;
-  if ((push.flags & kCompositeHasGi) != 0u) {
-    ShLumaCoCg sh = tlShMake(texelFetch(pathShY, p, 0), texelFetch(pathCoCg, p, 0).xy);
-    vec3 gi = tlShResolveIrradiance(sh, n);
-    float fade = push.giBlendDistance > 0.0
-                     ? clamp((push.giBlendDistance - length(position)) / max(push.giBlendWidth, 1e-6), 0.0, 1.0)
-                     : 1.0;
-    if ((push.flags & kCompositeAoOnGi) != 0u) gi *= ao;
-    irradiance = mix(skyIrradiance, gi, fade);
-  }
+  // Indirect diffuse, Lambert: radiance = albedo / pi * E.
+  float ao = pathAmbientOcclusion(p);
+  vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, frame.skyRadiance.rgb);
   radiance += s.diffuse * kInvPi * irradiance;
   // Specular from the sky: the split-sum environment BRDF, occluded by AO.
   radiance += frame.skyRadiance.rgb * tlEnvironmentSpecular(s, max(dot(n, v), 1e-4)) * ao;

@@ -33,6 +33,9 @@ TL_CONST uint kCompositeAo = 8;        // the path's AO (r), 1 = unoccluded
 TL_CONST uint kCompositeShY = 9;       // the path's diffuse irradiance, L1 SH of luma (shared/sh.h)
 TL_CONST uint kCompositeCoCg = 10;     // its chroma (xy)
 TL_CONST uint kCompositeShadowDepth = 11;  // the sun shadow map again, plain sampler (PCSS blocker search)
+// The composite.stages pass: the same inputs (subset), these outputs.
+TL_CONST uint kCompositeStageAo = 12;          // r16f: the AO the composite applied (0 on the sky)
+TL_CONST uint kCompositeStageIrradiance = 13;  // rgba16f: the diffuse irradiance it used (0 on the sky)
 
 TL_CONST uint kCompositeHasAo = 1u;
 TL_CONST uint kCompositeHasGi = 2u;

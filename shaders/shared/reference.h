@@ -14,6 +14,8 @@ TL_CONST uint kRefBindingVertices = 5;   // scene vertices as floats (12 per ver
 TL_CONST uint kRefBindingIndices = 6;    // scene indices
 TL_CONST uint kRefBindingAoAccum = 7;    // r32f: sum of AO samples at the primary hit (persistent)
 TL_CONST uint kRefBindingAo = 8;         // r32f: ambient occlusion at the AO radius, sum / count
+TL_CONST uint kRefBindingIrradianceAccum = 9;  // rgba32f: sum of irradiance samples (rgb) and their count (a)
+TL_CONST uint kRefBindingIrradiance = 10;      // rgba32f: diffuse irradiance at the primary hit, sum / count
 
 TL_CONST uint kVertexFloats = 12;        // tl::scene::Vertex: position 3, normal 3, tangent 4, uv 2
 
@@ -28,7 +30,7 @@ struct RefInstanceGeometry {
 struct RefPush {
   uint samplesSoFar;     // accumulated before this frame (0: start over)
   uint samplesPerFrame;
-  uint maxBounces;       // indirect bounces after the first hit (1 = direct + one bounce)
+  uint maxBounces;       // scattering events per path (1 = direct light only, 2 = plus one bounce)
   uint seed;
   float aoRadius;        // reference AO: one cosine ray per sample from the primary hit, this long (m)
   uint pad0, pad1, pad2;

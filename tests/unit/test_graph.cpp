@@ -71,6 +71,27 @@ TEST(Graph, SideEffectsPersistentAndImportedWritersSurvive) {
   EXPECT_TRUE(c.culled.empty());
 }
 
+// A progressive sum behind an optional output runs only in frames that read the output.
+TEST(Graph, OnDemandHistoryWritersRunOnlyWhenTheirOutputIsRead) {
+  auto frame = [](bool readIrradiance) {
+    RenderGraph g;
+    g.declareOnDemandHistory("irradiance.sum", kImage);
+    g.addPass("irradiance", PassKind::Compute, [](PassBuilder& b) {
+      b.read("irradiance.sum", Usage::StorageRead);
+      b.write("irradiance.sum", Usage::StorageWrite);
+      b.create("irradiance", kImage, Usage::StorageWrite);
+    }, nullptr);
+    compute(g, "final", {}, {"final"});
+    g.markOutput("final");
+    if (readIrradiance) g.markOutput("irradiance");
+    auto c = g.compile();
+    return orderNames(g, c);
+  };
+  EXPECT_EQ(frame(false), (std::vector<std::string>{"final"}));
+  auto withIt = frame(true);
+  EXPECT_NE(std::find(withIt.begin(), withIt.end(), "irradiance"), withIt.end());
+}
+
 TEST(Graph, LifetimesWriterAndReaders) {
   RenderGraph g;
   PassId a = compute(g, "a", {}, {"x"});

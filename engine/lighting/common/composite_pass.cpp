@@ -4,6 +4,8 @@
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/shadow_pass.h"
 
+#include <set>
+
 namespace tl::lighting {
 
 using graph::Usage;
@@ -102,6 +104,61 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
             .sampledImage(shared::kCompositeShY, ctx.image(shY).view(), point, ro)
             .sampledImage(shared::kCompositeCoCg, ctx.image(coCg).view(), point, ro)
             .sampledImage(shared::kCompositeShadowDepth, shadow.view(), point, ro);
+        ctx.pushConstants(push);
+        ctx.dispatch(in.settings.width, in.settings.height);
+      });
+  addStages(graph, in, push, ao, shY, coCg);
+}
+
+void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push,
+                              const std::string& ao, const std::string& shY, const std::string& coCg) {
+  const uint32_t w = in.settings.width, h = in.settings.height;
+  if (!stagesPipeline_) {
+    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    gpu::ComputePipelineDesc d;
+    d.name = "composite.stages";
+    d.shader = "common/composite_stages.comp";
+    d.layout.bindings = {{shared::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                         {shared::kCompositeNormal, sampled},
+                         {shared::kCompositeDepth, sampled},
+                         {shared::kCompositeAo, sampled},
+                         {shared::kCompositeShY, sampled},
+                         {shared::kCompositeCoCg, sampled},
+                         {shared::kCompositeStageAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                         {shared::kCompositeStageIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+    d.layout.pushConstantBytes = sizeof(shared::CompositePush);
+    stagesPipeline_ = gpu::createComputePipeline(in.device, d);
+  }
+  graph.addPass(
+      "composite.stages", graph::PassKind::Compute,
+      [&](graph::PassBuilder& b) {
+        b.read(kFrameConstants, Usage::StorageRead);
+        b.read("gbuffer.normal", Usage::Sampled);
+        b.read(kGbufferDepth, Usage::Sampled);
+        // The stand-in for absent outputs (see add()) is bound, so declared, but never read.
+        std::set<std::string> inputs{ao, shY, coCg};
+        for (const std::string& n : inputs) b.read(n, Usage::Sampled);
+        b.create(kCompositeAo,
+                 graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "the AO the composite applied (0: sky)"),
+                 Usage::StorageWrite);
+        b.create(kCompositeIrradiance,
+                 graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
+                                              "the diffuse irradiance the composite used: sky + bounce, no sun (0: sky)"),
+                 Usage::StorageWrite);
+      },
+      [this, &in, push, ao, shY, coCg](graph::PassContext& ctx) {
+        const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
+        VkSampler point = pointSampler_.handle();
+        ctx.bind(stagesPipeline_);
+        ctx.descriptors()
+            .uniformBuffer(shared::kBindingFrame, in.constantsBuffer.handle())
+            .sampledImage(shared::kCompositeNormal, ctx.image("gbuffer.normal").view(), point, ro)
+            .sampledImage(shared::kCompositeDepth, ctx.image(kGbufferDepth).view(), point, ro)
+            .sampledImage(shared::kCompositeAo, ctx.image(ao).view(), point, ro)
+            .sampledImage(shared::kCompositeShY, ctx.image(shY).view(), point, ro)
+            .sampledImage(shared::kCompositeCoCg, ctx.image(coCg).view(), point, ro)
+            .storageImage(shared::kCompositeStageAo, ctx.image(kCompositeAo).view())
+            .storageImage(shared::kCompositeStageIrradiance, ctx.image(kCompositeIrradiance).view());
         ctx.pushConstants(push);
         ctx.dispatch(in.settings.width, in.settings.height);
       });

@@ -19,6 +19,8 @@ inline constexpr const char* kAccum = "reference.accum";
 inline constexpr const char* kRadiance = "reference.radiance";
 inline constexpr const char* kAoAccum = "reference.aoAccum";
 inline constexpr const char* kAo = "reference.ao";
+inline constexpr const char* kIrradianceAccum = "reference.irradianceAccum";
+inline constexpr const char* kIrradiance = "reference.irradiance";
 
 class ReferencePath final : public LightingPath {
  public:
@@ -36,7 +38,7 @@ class ReferencePath final : public LightingPath {
     buildTopLevel(in);
     const uint32_t w = in.settings.width, h = in.settings.height;
     const uint64_t state = stateHash(in);
-    if (state != state_) samples_ = 0, state_ = state;
+    if (state != state_) samples_ = 0, irradianceSamples_ = 0, state_ = state;
 
     graph.declarePersistent(kAccum, graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                                                  "sum of path samples (rgb) and their count (a)"));
@@ -84,6 +86,7 @@ class ReferencePath final : public LightingPath {
                                         &pipeline_.callableRegion, e.width, e.height, 1);
           samples_ += push.samplesPerFrame;
         });
+    addIrradiancePass(graph, in, push);
     LightingOutputs out;
     out.radiance = kRadiance;
     return out;
@@ -92,12 +95,61 @@ class ReferencePath final : public LightingPath {
   uint32_t samples() const { return samples_; }
 
  private:
+  // The diffuse irradiance at the primary hit (what composite.irradiance holds for the
+  // real-time paths), its own progressive sum. It costs a second path per sample, so it runs
+  // only in frames that read reference.irradiance (compare's per-stage error, the inspector).
+  void addIrradiancePass(graph::RenderGraph& graph, FrameInputs& in, shared::RefPush push) {
+    const uint32_t w = in.settings.width, h = in.settings.height;
+    graph.declareOnDemandHistory(kIrradianceAccum,
+                                 graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                                              "sum of irradiance samples (rgb) and their count (a)"));
+    graph.addPass(
+        "reference.irradiance", graph::PassKind::RayTracing,
+        [&](graph::PassBuilder& b) {
+          readSceneInputs(b, graph::Usage::StorageRead);
+          b.read(kIrradianceAccum, graph::Usage::StorageRead);
+          b.write(kIrradianceAccum, graph::Usage::StorageWrite);
+          b.create(kIrradiance,
+                   graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                                "diffuse irradiance at the primary hit: sky + bounce light, no sun "
+                                                "(0: sky), ground truth"),
+                   graph::Usage::StorageWrite);
+        },
+        [this, &in, push](graph::PassContext& ctx) mutable {
+          if (!ctx.historyValid(kIrradianceAccum)) irradianceSamples_ = 0;
+          push.samplesSoFar = irradianceSamples_;
+          push.seed = 1;  // independent of the radiance samples
+          ctx.bind(irradiancePipeline_);
+          ctx.pushConstants(push);
+          ctx.descriptors()
+              .uniformBuffer(shared::kRefBindingFrame, in.constantsBuffer.handle())
+              .accelerationStructure(shared::kRefBindingTlas, tlas_.handle())
+              .storageBuffer(shared::kRefBindingGeometry, geometry_.handle())
+              .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
+              .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
+              .storageImage(shared::kRefBindingIrradianceAccum, ctx.image(kIrradianceAccum).view())
+              .storageImage(shared::kRefBindingIrradiance, ctx.image(kIrradiance).view());
+          ctx.flushDescriptors();
+          in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, irradiancePipeline_.layout(),
+                                shared::kSceneSet);
+          VkExtent3D e = ctx.extent(kIrradiance);
+          const auto& p = irradiancePipeline_;
+          ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion,
+                                        e.width, e.height, 1);
+          irradianceSamples_ += push.samplesPerFrame;
+        });
+  }
+
   // Bottom-level structures (one per mesh, full resolution: the reference does not
   // simplify), the per-instance geometry table and the pipeline, once per scene.
   void prepareScene(FrameInputs& in) {
     if (sceneId_ == in.scene.id()) return;
     in.device.waitIdle();
     sceneId_ = in.scene.id();
+    // The top level points into the old bottom levels: rebuild it even when the new scene's
+    // transforms are the same (the same file loaded again).
+    tlas_ = {};
+    tlasTransforms_.clear();
     blas_.clear();
     const auto& ranges = in.scene.meshRanges();
     const VkDeviceAddress vertices = in.scene.vertexBuffer().address(), indices = in.scene.indexBuffer().address();
@@ -137,6 +189,18 @@ class ReferencePath final : public LightingPath {
       d.layout.extraSets = {in.scene.table().layout()};
       d.layout.pushConstantBytes = sizeof(shared::RefPush);
       pipeline_ = gpu::createRayTracingPipeline(in.device, d);
+
+      // The irradiance pass: the same paths, misses and hit shader from another ray generation.
+      d.name = "reference.irradiance";
+      d.raygen = "reference/irradiance.rgen";
+      d.layout.bindings = {{shared::kRefBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                           {shared::kRefBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+                           {shared::kRefBindingGeometry, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kRefBindingIrradianceAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                           {shared::kRefBindingIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+      irradiancePipeline_ = gpu::createRayTracingPipeline(in.device, d);
     }
   }
 
@@ -172,8 +236,10 @@ class ReferencePath final : public LightingPath {
   std::vector<glm::mat4> tlasTransforms_;
   gpu::Buffer geometry_;
   gpu::Pipeline pipeline_;
+  gpu::Pipeline irradiancePipeline_;
   uint64_t state_ = 0;
   uint32_t samples_ = 0;
+  uint32_t irradianceSamples_ = 0;
 };
 
 }  // namespace

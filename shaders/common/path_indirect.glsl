@@ -1,0 +1,26 @@
+// What the composite takes from a lighting path, as the quantities it multiplies: the
+// ambient occlusion and the diffuse irradiance (sky and bounce light; the sun is separate).
+// The composite and the composite.stages pass both include it, so the per-stage buffers
+// hold exactly what the final image used. The includer declares `push` (CompositePush) and
+// the samplers pathAo, pathShY and pathCoCg.
+
+// 1 where the path gives no AO.
+float pathAmbientOcclusion(ivec2 p) {
+  return (push.flags & kCompositeHasAo) != 0u ? clamp(texelFetch(pathAo, p, 0).r, 0.0, 1.0) : 1.0;
+}
+
+// Without a path's GI: the uniform sky, irradiance pi*L on an unoccluded surface, times AO.
+// With it: the path's irradiance resolved against the normal (it already holds the sky's
+// occlusion, so AO is not applied twice unless the path asks), fading to the sky beyond the
+// blend distance.
+vec3 pathDiffuseIrradiance(ivec2 p, vec3 n, vec3 position, float ao, vec3 skyRadiance) {
+  vec3 skyIrradiance = kPi * skyRadiance * ao;
+  if ((push.flags & kCompositeHasGi) == 0u) return skyIrradiance;
+  ShLumaCoCg sh = tlShMake(texelFetch(pathShY, p, 0), texelFetch(pathCoCg, p, 0).xy);
+  vec3 gi = tlShResolveIrradiance(sh, n);
+  float fade = push.giBlendDistance > 0.0
+                   ? clamp((push.giBlendDistance - length(position)) / max(push.giBlendWidth, 1e-6), 0.0, 1.0)
+                   : 1.0;
+  if ((push.flags & kCompositeAoOnGi) != 0u) gi *= ao;
+  return mix(skyIrradiance, gi, fade);
+}

@@ -1,0 +1,103 @@
+// The reference path tracer's paths, shared by its ray-generation shaders (trace.rgen:
+// radiance and AO seen by the camera; irradiance.rgen: the diffuse irradiance at the camera's
+// primary hit). The includer declares `frame`, `tlas` and `push` (RefPush) and includes
+// shared/frame.h, reference.h, ray_origin.h, sampling.h and shading.h.
+
+layout(location = 0) rayPayloadEXT RefHit hit;
+layout(location = 1) rayPayloadEXT float visible;
+
+// Deterministic per pixel, per sample and per dimension: the same image for the same spp.
+uvec2 gPixel;
+uint gSample;
+uint gDimension;
+vec2 next2() {
+  uvec3 h = tlPcg3d(uvec3(gPixel.x, gPixel.y, (gSample * 64u + gDimension++) ^ (push.seed * 0x9E3779B9u)));
+  return vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y));
+}
+
+// Ambient occlusion of this sample's primary hit (1 when the camera ray sees the sky): the
+// ground truth the real-time paths' AO is measured against, at the same radius.
+float gAo;
+
+// Radiance arriving at `origin` from direction `dir`, where `firstBounce` scattering events
+// have already happened (0: a camera ray; it also sets gAo).
+vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
+  gAo = 1.0;
+  vec3 throughput = vec3(1.0), radiance = vec3(0.0);
+  for (uint bounce = firstBounce;; ++bounce) {
+    traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+    if (hit.positionT.w < 0.0) {
+      radiance += throughput * frame.skyRadiance.rgb;
+      break;
+    }
+    radiance += throughput * hit.emission.rgb;
+    if (bounce >= push.maxBounces) break;  // no more scattering events allowed
+
+    vec3 n = hit.normal.xyz, geometric = hit.geometric.xyz, v = -dir;
+    SurfaceParams s = tlSurface(hit.baseColor.rgb, hit.baseColor.a, hit.emission.a);
+    vec3 position = tlOffsetRayOrigin(hit.positionT.xyz, geometric);
+
+    if (bounce == 0u && push.aoRadius > 0.0) {
+      // One cosine-distributed ray within the AO radius: the definition RTAO estimates.
+      vec3 a = tlLocalToWorld(tlSampleCosineHemisphere(next2()), n);
+      if (dot(geometric, a) > 0.0) {
+        visible = 0.0;
+        traceRayEXT(tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
+                    0xFF, 0, 0, 1, position, 0.0, a, push.aoRadius, 1);
+        gAo = visible;
+      } else {
+        gAo = 0.0;  // the shading normal points into the surface here: treat as occluded
+      }
+    }
+
+    // The sun: a delta light, reached only by next-event estimation.
+    vec3 toSun = frame.sunToLight.xyz;
+    float sunNl = dot(n, toSun);
+    if ((frame.flags & kFrameFlagSunShadows) != 0u && sunNl > 0.0 && dot(geometric, toSun) > 0.0) {
+      visible = 0.0;
+      traceRayEXT(tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
+                  0xFF, 0, 0, 1, position, 0.0, toSun, 1e30, 1);
+      radiance += throughput * frame.sunIrradiance.rgb * (sunNl * visible) * tlBrdf(s, n, v, toSun);
+    }
+
+    // Next direction: one of the two lobes, chosen by their weight; the pdf is the mixture.
+    float nv = max(dot(n, v), 1e-4);
+    float wd = tlLuminance(s.diffuse), ws = tlLuminance(tlEnvironmentSpecular(s, nv));
+    float pSpec = ws + wd > 0.0 ? clamp(ws / (ws + wd), 0.05, 0.95) : 0.5;
+    if (wd == 0.0) pSpec = 1.0;
+    vec2 u = next2();
+    vec2 choice = next2();
+    vec3 l;
+    if (choice.x < pSpec) {
+      vec3 h = tlLocalToWorld(tlSampleGgxHalfVector(u, s.alpha), n);
+      l = reflect(-v, h);
+    } else {
+      l = tlLocalToWorld(tlSampleCosineHemisphere(u), n);
+    }
+    float nl = dot(n, l);
+    if (nl <= 0.0 || dot(geometric, l) <= 0.0) break;
+    vec3 h = normalize(v + l);
+    float pdf = pSpec * tlGgxHalfVectorPdf(max(dot(n, h), 0.0), s.alpha) / (4.0 * max(dot(v, h), 1e-6)) +
+                (1.0 - pSpec) * tlCosineHemispherePdf(nl);
+    if (!(pdf > 1e-8)) break;
+    throughput *= tlBrdf(s, n, v, l) * (nl / pdf);
+
+    // Russian roulette after three bounces keeps long paths unbiased and cheap.
+    if (bounce >= 3u) {
+      float q = min(max(throughput.r, max(throughput.g, throughput.b)), 0.95);
+      if (choice.y >= q) break;
+      throughput /= q;
+    }
+    origin = position;
+    dir = l;
+  }
+  return radiance;
+}
+
+// The camera ray through a jittered point of pixel p, camera-relative.
+vec3 cameraRayDirection(ivec2 p) {
+  vec2 jitter = next2();
+  vec2 ndc = (vec2(p) + jitter) * frame.viewport.zw * 2.0 - 1.0;
+  vec4 onNear = frame.invViewProj * vec4(ndc, 1.0, 1.0);  // reversed Z: 1 is the near plane
+  return normalize(onNear.xyz / onNear.w);
+}
