@@ -1,6 +1,7 @@
 #include "albedo_panels.h"
 
 #include "editor_app.h"
+#include "ui_helpers.h"
 
 #include <fmt/format.h>
 #include <imgui.h>
@@ -16,10 +17,6 @@ using albedo::AlbedoSource;
 // A view variance above this (a standard deviation of 0.1 between the views' mean albedo)
 // marks an entry whose colour depends on where it is seen from.
 constexpr float kHighViewVariance = 0.01f;
-
-void tip(const char* text) {
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
-}
 
 ImVec4 colour(const glm::vec3& c) { return ImVec4(c.r, c.g, c.b, 1.0f); }
 
@@ -66,7 +63,7 @@ void albedoInspectorSection(EditorApp& app, uint32_t instance) {
   ImGui::Text("%.3f %.3f %.3f  (linear)", e.resolved.r, e.resolved.g, e.resolved.b);
   ImGui::Text("source: %s", albedo::sourceName(e.source));
   ImGui::EndGroup();
-  tip("What the RT path's rays read when they hit this instance (Metro: one pre-filtered albedo per\n"
+  tooltip("What the RT path's rays read when they hit this instance (Metro: one pre-filtered albedo per\n"
       "mesh + material). Order: artist override > baked database entry > texture average.");
   ImGui::TextDisabled("key %s, %zu instance(s) share it", albedo::keyToHex(e.combination.key).c_str(),
                       e.combination.instances.size());
@@ -83,7 +80,7 @@ void albedoInspectorSection(EditorApp& app, uint32_t instance) {
     const bool continuing = ImGui::IsItemActive() && !ImGui::IsItemActivated() && e.override.has_value();
     lib.setOverride(c, edit, continuing);
   }
-  tip("Writes an override for this mesh + material (every instance sharing it). Linear RGB.\n"
+  tooltip("Writes an override for this mesh + material (every instance sharing it). Linear RGB.\n"
       "Changes the RT path's colour bleeding from the next frame. Ctrl+Z / Ctrl+Y undo and redo.");
   ImGui::BeginDisabled(!e.override);
   if (ImGui::Button("Clear override")) lib.clearOverride(c);
@@ -100,20 +97,20 @@ void albedoInspectorSection(EditorApp& app, uint32_t instance) {
   ImGui::BeginDisabled(!lib.unsaved() || !lib.database());
   if (ImGui::Button(lib.unsaved() ? "Save*" : "Save")) saveEdits(app);
   ImGui::EndDisabled();
-  tip(lib.database() ? "Write the overrides to the database (one transaction). Ctrl+S"
+  tooltip(lib.database() ? "Write the overrides to the database (one transaction). Ctrl+S"
                      : "Open or create a database in the Albedo panel to save overrides.");
 
   if (ImGui::Button("Albedo view")) showView(app, "albedo.instance");
-  tip("Viewport: the albedo rays read, per pixel (albedo.instance).");
+  tooltip("Viewport: the albedo rays read, per pixel (albedo.instance).");
   ImGui::SameLine();
   if (ImGui::Button("Difference")) showView(app, "albedo.difference");
-  tip("Viewport: |database albedo - G-buffer albedo| (albedo.difference).");
+  tooltip("Viewport: |database albedo - G-buffer albedo| (albedo.difference).");
   ImGui::SameLine();
   if (ImGui::Button("Impact")) {
     app.session().captureAlbedoBaseline();
     app.pinPreview("albedo.impact");
   }
-  tip("Remembers the current image, then shows how much every later albedo edit changes it\n"
+  tooltip("Remembers the current image, then shows how much every later albedo edit changes it\n"
       "(albedo.impact): the colour bleeding the edit caused. Press again for a new baseline.");
 }
 
@@ -146,7 +143,7 @@ void albedoPanel(EditorApp& app) {
       app.showError(e.what());
     }
   }
-  tip("An SQLite albedo database: baked entries and artist overrides. Created when missing;\n"
+  tooltip("An SQLite albedo database: baked entries and artist overrides. Created when missing;\n"
       "a file that is not one is refused and left untouched.");
   if (const albedo::AlbedoDatabase* db = lib.database())
     ImGui::TextDisabled("%s: schema %d, revision %llu", db->file().filename().string().c_str(), db->schemaVersion(),
@@ -163,7 +160,7 @@ void albedoPanel(EditorApp& app) {
   } else {
     ImGui::BeginDisabled(!lib.database());
     if (ImGui::Button("Bake")) app.startAlbedoBake(false);
-    tip("Render each mesh + material from 6 directions and store its visible average albedo.\n"
+    tooltip("Render each mesh + material from 6 directions and store its visible average albedo.\n"
         "Keys already in the database are skipped.");
     ImGui::SameLine();
     if (ImGui::Button("Re-bake all")) app.startAlbedoBake(true);

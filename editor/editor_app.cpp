@@ -209,6 +209,18 @@ void EditorApp::handleCameraInput(float seconds) {
   in.seconds = seconds;
   in.fast = glfwGetKey(window_, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
 
+  // The compare view's wipe line: a press on it drags the line instead of the camera.
+  if (compareView_ && !compareView_->difference && viewportHovered_ && ImGui::IsMouseClicked(0) &&
+      std::abs(mouse.x - (viewportMin_.x + compareView_->wipe * viewportSize_.x)) < 8.0f)
+    draggingWipe_ = true;
+  if (draggingWipe_) {
+    if (ImGui::IsMouseDown(0) && compareView_ && viewportSize_.x > 0.0f)
+      compareView_->wipe = std::clamp((mouse.x - viewportMin_.x) / viewportSize_.x, 0.0f, 1.0f);
+    else
+      draggingWipe_ = false;
+    camera_.update(in);
+    return;
+  }
   if (viewportHovered_ && ImGui::IsMouseClicked(0)) pressPos_ = mouse, dragged_ = false;
   if (ImGui::IsMouseDown(0) && viewportHovered_) {
     if (glm::length(mouse - pressPos_) > 3.0f) dragged_ = true;
@@ -238,6 +250,7 @@ void EditorApp::handleCameraInput(float seconds) {
     if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) focusSelection();
     if (ImGui::IsKeyPressed(GLFW_KEY_F1, false)) showHelp_ = !showHelp_;
     if (ImGui::IsKeyPressed(GLFW_KEY_F2, false)) showBuffers_ = !showBuffers_;
+    if (ImGui::IsKeyPressed(GLFW_KEY_F3, false)) showCompare_ = !showCompare_;
     if (ImGui::IsKeyPressed(GLFW_KEY_F12, false) && gpu::RenderDoc::get().attached()) requestRenderDocCapture();
     bool ctrl = io.KeyCtrl;
     if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O, false)) showBrowser_ = true;
@@ -255,6 +268,21 @@ void EditorApp::handleCameraInput(float seconds) {
     for (int slot = 1; slot <= 9; ++slot)
       if (ImGui::IsKeyPressed(GLFW_KEY_0 + slot, false)) applyBookmark(slot, ctrl);
   }
+}
+
+void EditorApp::setCompare(bool on) {
+  if (!on) {
+    compareView_.reset();
+    return;
+  }
+  session::CompareView v;
+  // The path in use against the other real-time one: what an artist usually weighs.
+  v.left = session_->path() == "legacy" ? "legacy" : "rt";
+  v.right = v.left == "legacy" ? "rt" : "legacy";
+  for (const auto& p : session_->paths())
+    if (!p.available && (p.name == v.left || p.name == v.right)) (p.name == v.left ? v.left : v.right) = "direct";
+  compareView_ = v;
+  showCompare_ = true;
 }
 
 void EditorApp::focusSelection() {
@@ -364,6 +392,15 @@ void EditorApp::renderEngine() {
         (viewer_.autoFitPending || viewer_.refresh || viewer_.keepCopy || liveReadback)) {
       viewerReads.push_back(viewer_.resource);
       for (const std::string& c : lighting::decoderCompanions(decoder)) viewerReads.push_back(c);
+    }
+    if (!capture) {
+      try {
+        session_->setCompareView(compareView_);
+      } catch (const session::SessionError& e) {
+        compareView_.reset();
+        session_->setCompareView(std::nullopt);
+        showError(e.what());
+      }
     }
     for (const std::string& n : viewerReads) session_->requestBuffer(n);
     if (pendingClick_) session_->requestBuffer("gbuffer.instanceId");

@@ -64,6 +64,11 @@ class EditorApp {
   ViewerState& viewer() { return viewer_; }
   void showBuffers(bool on) { showBuffers_ = on; }
   bool& buffersOpen() { return showBuffers_; }
+  // The Compare panel: while compareView() holds a value the viewport is split between two
+  // paths (applied to the session each frame; an unavailable side is refused with its reason).
+  bool& compareOpen() { return showCompare_; }
+  std::optional<session::CompareView>& compareView() { return compareView_; }
+  void setCompare(bool on);
   // Hot shader reload: null where the shader sources are not around (an installed build).
   const gpu::ShaderReloader* shaderReloader() const { return reloader_.get(); }
   const std::string& shaderStatus() const { return shaderStatus_; }
@@ -114,6 +119,9 @@ class EditorApp {
   std::string preview_;        // resource shown while a pass is hovered ("" = none)
   ViewerState viewer_;         // what is shown otherwise, and how (the Buffers panel)
   bool showBuffers_ = false;
+  bool showCompare_ = false;
+  std::optional<session::CompareView> compareView_;
+  bool draggingWipe_ = false;
   glm::vec2 viewportMin_{0.0f}, viewportSize_{0.0f};
   bool viewportHovered_ = false;
   bool showHelp_ = false, showBrowser_ = false;

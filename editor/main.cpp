@@ -253,7 +253,15 @@ int main(int argc, char** argv) {
   compareCmd->add_option("--size", compareRender.size, "image size WxH")->capture_default_str();
   compareCmd->add_option("--spp", compare.referenceSpp, "reference samples per pixel (<= 16 or a multiple of 16)")
       ->capture_default_str();
-  compareCmd->add_option("--bounces", compare.referenceBounces, "reference scattering events per path")->capture_default_str();
+  auto* bouncesOption =
+      compareCmd->add_option("--bounces", compare.referenceBounces, "reference scattering events per path")->capture_default_str();
+  compareCmd
+      ->add_option("--scope", compare.scope,
+                   "reference scope: `full` (--bounces events: all the GI) or `same` (direct + one bounce: what the "
+                   "real-time paths' rays compute, so their error is not the light they leave out by design)")
+      ->check(CLI::IsMember({"full", "same"}))
+      ->excludes(bouncesOption)
+      ->capture_default_str();
   compareCmd->add_option("--frames", compare.framesPerPath, "frames each path runs before it is measured")
       ->capture_default_str();
   compareCmd->add_option("--out", compareOut, "report directory")->capture_default_str();
@@ -355,7 +363,8 @@ int main(int argc, char** argv) {
           if (p["stages"].contains("ao"))
             fmt::print("{:27} {:13.4f} {:18.4f}\n", p["path"].get<std::string>(), num(p["stages"]["ao"]["meanAbsError"]),
                        num(p["stages"]["irradiance"]["relMSE"]));
-        fmt::print("reference: {} spp{}\nwrote {}\n", report["reference"]["spp"].get<int>(),
+        fmt::print("reference: {} spp{}{}\nwrote {}\n", report["reference"]["spp"].get<int>(),
+                   report["reference"]["scope"] == "same" ? ", same scope (direct + one bounce)" : "",
                    report["reference"]["cached"].get<bool>() ? " (reused from the cache)" : "",
                    (std::filesystem::absolute(outDir) / "report.html").string());
         return report;

@@ -1,7 +1,9 @@
 // The editor's panels, one function per concern. Tooltips state physical units.
 #include "albedo_panels.h"
 #include "buffer_panel.h"
+#include "compare_panel.h"
 #include "editor_app.h"
+#include "ui_helpers.h"
 #include "session/captured_frame.h"
 #include "gpu/renderdoc.h"
 
@@ -15,10 +17,6 @@
 
 namespace tl::editor {
 namespace {
-
-void tooltip(const char* text) {
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
-}
 
 bool contains(const std::string& haystack, const std::string& needle) {
   if (needle.empty()) return true;
@@ -56,6 +54,7 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
     if (ImGui::MenuItem("Vsync", nullptr, app.settings().vsync)) app.settings().vsync = !app.settings().vsync;
     ImGui::MenuItem("Help", "F1", &showHelp);
     ImGui::MenuItem("Buffers", "F2", &app.buffersOpen());
+    ImGui::MenuItem("Compare", "F3", &app.compareOpen());
     ImGui::EndMenu();
   }
   ImGui::EndMainMenuBar();
@@ -360,8 +359,10 @@ void statusBar(EditorApp& app) {
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
                    ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
   auto& s = app.session();
-  ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  %.1f fps  |  path %s  |  %s%s%s", s.device().name().c_str(),
-              s.settings().width, s.settings().height, app.settings().renderScale, app.fps(), s.path().c_str(),
+  const auto& compare = app.compareView();
+  const std::string path = compare ? "compare " + compare->left + " | " + compare->right : "path " + s.path();
+  ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  %.1f fps  |  %s  |  %s%s%s", s.device().name().c_str(),
+              s.settings().width, s.settings().height, app.settings().renderScale, app.fps(), path.c_str(),
               s.hasCapture()  ? ("capture " + s.capture()->dir().string() + " (File > Close capture)").c_str()
               : s.hasScene() ? s.scene().name.c_str()
                              : "no scene",
@@ -491,6 +492,8 @@ void drawPanels(EditorApp& app) {
   lightingPanel(app);
   timingPanel(app);
   albedoPanel(app);
+  comparePanel(app);
+  compareViewportOverlay(app);
   buffersPanel(app, app.buffersOpen());
   statusBar(app);
   shaderErrorWindow(app);

@@ -239,6 +239,33 @@ void Script::step(EditorApp& app) {
         for (size_t i = 0; i < mine.size(); ++i) differ += !(mine[i] == img.values[i] || (std::isnan(mine[i]) && std::isnan(img.values[i])));
         if (differ) return fail(app, fmt::format("{} of {} values differ between the viewer and the capture", differ, mine.size()));
         fmt::print("script: the viewer's `{}` equals the capture ({} values)\n", v.resource, mine.size());
+      } else if (cmd == "compare") {
+        std::istringstream sides(arg);
+        std::string left, right;
+        sides >> left >> right;
+        if (left == "off") {
+          app.setCompare(false);
+        } else {
+          if (right.empty()) return fail(app, "compare needs LEFT RIGHT (or off)");
+          app.setCompare(true);
+          app.compareView()->left = left, app.compareView()->right = right;
+          app.session().setCompareView(app.compareView());  // an unknown side fails here, on its line
+        }
+      } else if (cmd == "compare-mode" || cmd == "compare-wipe") {
+        if (!app.compareView()) return fail(app, "the viewport is not split (compare LEFT RIGHT first)");
+        if (cmd == "compare-mode") app.compareView()->difference = arg == "difference";
+        else app.compareView()->wipe = std::stof(arg);
+      } else if (cmd == "expect-compare-errors") {
+        const session::LiveCompare* live = app.session().liveCompare();
+        if (!live) return fail(app, "the viewport is not split");
+        std::string all;
+        for (const auto& e : live->errors()) {
+          if (e.path == "reference") continue;
+          if (!e.relMse || !std::isfinite(*e.relMse) || !e.flip || !std::isfinite(*e.flip))
+            return fail(app, fmt::format("no finite error for `{}` yet", e.path));
+          all += fmt::format(" {} relMSE {:.4f} FLIP {:.4f} ({:.1f} ms);", e.path, *e.relMse, *e.flip, e.gpuMs);
+        }
+        fmt::print("script: compare against the reference ({} spp):{}\n", live->referenceSamples(), all);
       } else if (cmd == "quit") {
         app.requestQuit();
         return;

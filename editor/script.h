@@ -37,6 +37,9 @@
 //   expect-shader-error T  wait (up to 120 frames) for a hot-reload error containing T
 //   open-capture DIR       reopen a capture (its buffers, without the scene); close-capture
 //   renderdoc-capture      capture the next frame in RenderDoc (fails with the reason outside it)
+//   compare LEFT RIGHT     split the viewport between two lighting paths (Compare panel); compare off
+//   compare-mode wipe|difference, compare-wipe F (0..1 of the width)
+//   expect-compare-errors  fail unless every side has a finite relMSE and FLIP against the reference
 //   quit
 #pragma once
 

@@ -20,6 +20,7 @@ crop status 1600x24+0+876
 oiiotool docs/images/editor_albedo.png --cut 340x256+1260+620 -o docs/images/panel_albedo.png
 oiiotool docs/images/editor_albedo.png --cut 300x440+0+440 -o docs/images/panel_inspector_albedo.png
 oiiotool docs/images/editor_buffers.png --cut 470x720+300+20 -o docs/images/panel_buffers.png
+oiiotool docs/images/editor_compare.png --cut 360x300+320+420 -o docs/images/panel_compare.png
 oiiotool docs/images/editor_help.png --cut 480x360+560+270 -o docs/images/panel_help.png
 oiiotool docs/images/editor_browser.png --cut 560x460+520+220 -o docs/images/panel_browser.png
 echo "screenshots in docs/images/"

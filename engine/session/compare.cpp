@@ -30,17 +30,6 @@ metrics::Image rgbOf(const graph::Readback& rb) {
   return metrics::Image::fromTexels(w, h, 3, std::move(rgb));
 }
 
-// The display encoding the tonemap pass applies, on the CPU: exposure, ACES, sRGB.
-metrics::Image displayOf(const metrics::Image& linear, float exposure) {
-  metrics::Image out = linear;
-  for (size_t i = 0; i < out.data.size(); i += 3) {
-    glm::vec3 c(linear.data[i], linear.data[i + 1], linear.data[i + 2]);
-    glm::vec3 d = shared::tlLinearToSrgb(shared::tlTonemapAces(glm::max(c, glm::vec3(0.0f)) * exposure));
-    out.data[i] = d.x, out.data[i + 1] = d.y, out.data[i + 2] = d.z;
-  }
-  return out;
-}
-
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
@@ -76,7 +65,7 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   const std::filesystem::path dir = o.cacheDir.empty() ? defaultReferenceCache() : o.cacheDir;
   const std::string key = referenceKey(s, o);
   const std::filesystem::path files[3] = {dir / (key + ".exr"), dir / (key + ".ao.exr"), dir / (key + ".irradiance.exr")};
-  info = {{"spp", o.referenceSpp}, {"bounces", o.referenceBounces}, {"cacheFile", files[0].string()}};
+  info = {{"spp", o.referenceSpp}, {"bounces", o.referenceBounces}, {"scope", o.scope}, {"cacheFile", files[0].string()}};
   const uint32_t w = s.settings().width, h = s.settings().height;
   std::optional<RgbImage> cached[3];
   bool hit = true;
@@ -148,13 +137,26 @@ nlohmann::json stageErrors(const metrics::Image& ao, const metrics::Image& irrad
 
 }  // namespace
 
+metrics::Image displayEncode(const metrics::Image& linear, float exposure) {
+  metrics::Image out = linear;
+  for (size_t i = 0; i < out.data.size(); i += 3) {
+    glm::vec3 c(linear.data[i], linear.data[i + 1], linear.data[i + 2]);
+    glm::vec3 d = shared::tlLinearToSrgb(shared::tlTonemapAces(glm::max(c, glm::vec3(0.0f)) * exposure));
+    out.data[i] = d.x, out.data[i + 1] = d.y, out.data[i + 2] = d.z;
+  }
+  return out;
+}
+
 std::filesystem::path defaultReferenceCache() {
   if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::filesystem::path(x) / "twinlight" / "reference";
   if (const char* h = std::getenv("HOME"); h && *h) return std::filesystem::path(h) / ".cache" / "twinlight" / "reference";
   return std::filesystem::temp_directory_path() / "twinlight-reference";
 }
 
-nlohmann::json runCompare(Session& s, const CompareOptions& o, const Progress& progress) {
+nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progress& progress) {
+  CompareOptions o = options;
+  if (o.scope == "same") o.referenceBounces = 2;
+  else if (o.scope != "full") throw SessionError(fmt::format("unknown reference scope `{}` (full or same)", o.scope));
   if (o.referenceSpp == 0 || (o.referenceSpp > 16 && o.referenceSpp % 16))
     throw SessionError("the reference sample count must be at most 16 or a multiple of 16");
   std::vector<CompareVariant> runs;
@@ -184,7 +186,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& o, const Progress& p
   const ReferenceImages referenceImages = renderReference(s, o, progress, refInfo);
   const metrics::Image& reference = referenceImages.radiance;
   const float exposure = std::exp2(-s.exposureEv());
-  metrics::Image referenceDisplay = displayOf(reference, exposure);
+  metrics::Image referenceDisplay = displayEncode(reference, exposure);
   writeExrRgb(o.outDir / "reference.exr", reference.width, reference.height, reference.data);
   writePngRgb(o.outDir / "reference.png", referenceDisplay.width, referenceDisplay.height, referenceDisplay.data);
 
@@ -199,7 +201,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& o, const Progress& p
     s.settings() = baseSettings;
     if (progress) progress("path " + name, double(i + 1) / runs.size());
     metrics::Image test = rgbOf(s.buffer(lighting::kCompositeHdr));
-    metrics::Image testDisplay = displayOf(test, exposure);
+    metrics::Image testDisplay = displayEncode(test, exposure);
 
     auto rel = metrics::relMse(test, reference);
     auto rms = metrics::rmse(test, reference);

@@ -4,6 +4,7 @@
 // report.json (every figure), error maps (EXR + false-colour PNG) and report.html.
 #pragma once
 
+#include "metrics/image.h"
 #include "session/session.h"
 
 #include <nlohmann/json.hpp>
@@ -27,6 +28,9 @@ struct CompareOptions {
   std::vector<CompareVariant> variants;  // measured after `paths` (compare --settings FILE)
   uint32_t referenceSpp = 256;         // multiple of 16
   uint32_t referenceBounces = 8;
+  // "full": referenceBounces scattering events; "same": 2 (direct light + one bounce, the
+  // scope of the RT path's one-hit rays and of legacy's one-bounce cones).
+  std::string scope = "full";
   uint32_t framesPerPath = 8;          // the last one is measured against the reference
   std::filesystem::path outDir = "out/compare";
   std::filesystem::path cacheDir;      // empty: $XDG_CACHE_HOME/twinlight/reference
@@ -39,5 +43,8 @@ using Progress = std::function<void(const std::string& what, double fraction)>;
 nlohmann::json runCompare(Session& session, const CompareOptions& options, const Progress& progress = {});
 
 std::filesystem::path defaultReferenceCache();
+
+// The display encoding the tonemap pass applies, on the CPU (RGB): exposure, ACES, sRGB.
+metrics::Image displayEncode(const metrics::Image& linear, float exposure);
 
 }  // namespace tl::session

@@ -22,6 +22,7 @@ struct Session::Passes {
   lighting::TonemapPass tonemap;
   lighting::DisplayPass display;
   lighting::AlbedoViewPass albedoView;
+  lighting::CompareViewPass compareView;
 };
 
 Session::Session(const gpu::DeviceOptions& options)
@@ -123,6 +124,43 @@ void Session::setPath(const std::string& name) {
   throw SessionError(fmt::format("unknown lighting path `{}` (available: {})", name, known));
 }
 
+lighting::LightingPath* Session::findPath(const std::string& name) const {
+  for (auto& p : paths_)
+    if (p->name() == name) return p.get();
+  return nullptr;
+}
+
+void Session::setCompareView(std::optional<CompareView> view) {
+  if (!view) {
+    compare_.reset();
+    comparePrevious_.clear();
+    return;
+  }
+  for (const std::string& side : {view->left, view->right}) {
+    lighting::LightingPath* p = findPath(side);
+    if (!p) throw SessionError(fmt::format("cannot compare `{}`: no such lighting path", side));
+    if (auto reason = p->unavailableReason(*device_))
+      throw SessionError(fmt::format("cannot compare `{}`: {}", side, *reason));
+  }
+  if (compare_) {
+    compare_->setView(*view);
+    return;
+  }
+  compare_ = std::make_unique<LiveCompare>(*view, findPath("reference")->unavailableReason(*device_));
+}
+
+// Everything the reference image depends on besides the scene's content: a side's image and
+// the reference's are compared only when their stamps agree.
+uint64_t Session::referenceStamp() const {
+  std::vector<double> k;
+  for (const glm::dvec3& v : {view_.position, view_.forward, view_.up, lighting_.sunDirection}) k.insert(k.end(), {v.x, v.y, v.z});
+  for (const glm::vec3& v : {lighting_.sunIrradiance, lighting_.skyRadiance}) k.insert(k.end(), {v.x, v.y, v.z});
+  for (double v : {double(view_.yfovRadians), double(settings_.width), double(settings_.height),
+                   double(lighting_.sunAngularRadius), double(gpuScene_ ? gpuScene_->id() : 0)})
+    k.push_back(v);
+  return scene::hashBytes(k.data(), k.size() * sizeof(double));
+}
+
 void Session::setView(const View& view) {
   View v = view;
   double len = glm::length(v.forward);
@@ -203,6 +241,16 @@ void Session::buildFrameConstants(shared::FrameConstants& fc) const {
 }
 
 void Session::renderOne(bool readback) {
+  // The Compare panel renders its sides and the reference in turn; each path sees its own
+  // previous frame as "previous" (its history and motion vectors refer to it).
+  lighting::LightingPath* path = path_;
+  std::string compared;
+  if (compare_) {
+    compared = compare_->nextPath();
+    path = findPath(compared);
+    auto prev = comparePrevious_.find(compared);
+    previousView_ = prev != comparePrevious_.end() ? std::optional<View>(prev->second) : std::nullopt;
+  }
   if (previousView_ && isCameraCut(*previousView_, view_, scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0)) {
     executor_->resetHistory();
     previousView_.reset();  // no motion across a cut
@@ -223,11 +271,17 @@ void Session::renderOne(bool readback) {
   in.instanceAlbedoVersion = albedo_->version();
   passes_->gbuffer.add(graph, in);
   passes_->shadow.add(graph, in);
-  lighting::LightingOutputs outputs = path_->addPasses(graph, in);
+  lighting::LightingOutputs outputs = path->addPasses(graph, in);
   passes_->composite.add(graph, in, outputs);
   passes_->albedoView.add(graph, in);
   passes_->tonemap.add(graph, in);
-  if (display_) passes_->display.add(graph, in, *display_);
+  if (compare_) {
+    const auto& v = compare_->view();
+    passes_->compareView.add(graph, in, v, compared, compare_->hasImage(v.left) || compared == v.left,
+                             compare_->hasImage(v.right) || compared == v.right);
+  } else if (display_) {
+    passes_->display.add(graph, in, *display_);
+  }
   // What is read back is wanted: debug views nothing else reads (albedo.*) survive culling
   // in the frame that reads them, and a capture gets every buffer the frame can make.
   if (readback) {
@@ -243,6 +297,7 @@ void Session::renderOne(bool readback) {
     executor_->requestReadback(lighting::kCompositeHdr);
     executor_->requestReadback(lighting::kTonemapLdr);
   }
+  if (compare_) executor_->requestReadback(lighting::compareImageName(compared));
   executor_->execute(graph, compiled);
   graphDump_ = graph.dump(compiled);
   double total = 0.0;
@@ -253,6 +308,14 @@ void Session::renderOne(bool readback) {
     it->second.push_back(t.gpuMs);
   }
   frameGpuMs_.push_back(total);
+  if (compare_) {
+    double samples = 0.0;
+    for (auto& [name, value] : path->figures())
+      if (name == "reference.samples") samples = value;
+    compare_->frameDone(compared, executor_->readback(lighting::compareImageName(compared)), total, referenceStamp(),
+                        uint32_t(samples), fc.exposure);
+    comparePrevious_[compared] = view_;
+  }
   previousView_ = view_;
   ++frameIndex_;
 }

@@ -11,8 +11,10 @@
 #include "lighting/common/frame_inputs.h"
 #include "lighting/lighting_path.h"
 #include "scene/scene.h"
+#include "session/live_compare.h"
 
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -101,6 +103,11 @@ class Session {
   void setDisplay(std::optional<lighting::DisplayRequest> request) { display_ = std::move(request); }
   const gpu::Image* displayImage() const { return executor_->image(lighting::kDisplayLdr); }
   VkImageLayout displayImageLayout() const { return executor_->layout(lighting::kDisplayLdr); }
+  // The Compare panel: while set, frames render its two sides and the reference in turn (one
+  // per frame, each with its own history) and display.ldr shows the compare view instead of
+  // the display pass. Throws SessionError naming an unavailable side; nothing changes then.
+  void setCompareView(std::optional<CompareView> view);
+  const LiveCompare* liveCompare() const { return compare_.get(); }
   // Instance under pixel (x, y) of the last frame, which must have read back gbuffer.instanceId.
   std::optional<uint32_t> instanceAt(uint32_t x, uint32_t y) const;
 
@@ -167,6 +174,10 @@ class Session {
   std::optional<View> previousView_;
   Lighting lighting_;
   std::optional<lighting::DisplayRequest> display_;
+  std::unique_ptr<LiveCompare> compare_;
+  std::map<std::string, View> comparePrevious_;  // each compared path's own previous view
+  uint64_t referenceStamp() const;
+  lighting::LightingPath* findPath(const std::string& name) const;
   std::vector<std::string> requested_;
   bool requestAll_ = false;
   std::string graphDump_;

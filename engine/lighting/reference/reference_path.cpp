@@ -93,6 +93,9 @@ class ReferencePath final : public LightingPath {
   }
 
   uint32_t samples() const { return samples_; }
+  std::vector<std::pair<std::string, double>> figures() const override {
+    return {{"reference.samples", double(samples_)}, {"reference.irradianceSamples", double(irradianceSamples_)}};
+  }
 
  private:
   // The diffuse irradiance at the primary hit (what composite.irradiance holds for the

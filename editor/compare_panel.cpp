@@ -1,0 +1,141 @@
+#include "compare_panel.h"
+
+#include "editor_app.h"
+#include "ui_helpers.h"
+
+#include "shared/display.h"
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include <algorithm>
+
+namespace tl::editor {
+namespace {
+
+// A combo of the lighting paths; unavailable ones are listed greyed with their reason.
+bool pathCombo(const char* label, std::string& value, const std::vector<session::PathInfo>& paths) {
+  bool changed = false;
+  if (ImGui::BeginCombo(label, value.c_str())) {
+    for (const auto& p : paths) {
+      ImGui::BeginDisabled(!p.available);
+      if (ImGui::Selectable(p.name.c_str(), p.name == value)) value = p.name, changed = true;
+      ImGui::EndDisabled();
+      if (!p.available) tooltip(p.unavailableReason.c_str());
+    }
+    ImGui::EndCombo();
+  }
+  return changed;
+}
+
+std::string figure(const std::optional<double>& v, const char* format) {
+  return v ? fmt::format(fmt::runtime(format), *v) : std::string("—");
+}
+
+}  // namespace
+
+void comparePanel(EditorApp& app) {
+  if (!app.compareOpen()) return;
+  ImGui::SetNextWindowPos(ImVec2(320, 420), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 300), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Compare", &app.compareOpen())) {
+    ImGui::End();
+    return;
+  }
+  auto& session = app.session();
+  auto& view = app.compareView();
+  bool on = view.has_value();
+  if (ImGui::Checkbox("Split the viewport", &on)) app.setCompare(on);
+  ImGui::SameLine();
+  ImGui::TextDisabled("(F3)");
+  if (!view) {
+    ImGui::TextWrapped("Shows two lighting paths at once, rendered in turn on the same camera, with their error against "
+                       "the reference path tracer.");
+    ImGui::End();
+    return;
+  }
+  const auto paths = session.paths();
+  pathCombo("left", view->left, paths);
+  pathCombo("right", view->right, paths);
+  int mode = view->difference ? 1 : 0;
+  ImGui::RadioButton("wipe", &mode, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("difference", &mode, 1);
+  view->difference = mode == 1;
+  if (view->difference) {
+    ImGui::SliderFloat("scale", &view->differenceScale, 1.0f, 64.0f, "%.0fx", ImGuiSliderFlags_Logarithmic);
+    tooltip("the top of the ramp is a display-value difference of 1/scale");
+  } else {
+    ImGui::SliderFloat("wipe", &view->wipe, 0.0f, 1.0f, "%.2f");
+    tooltip("or drag the line in the viewport");
+  }
+  ImGui::Checkbox("FLIP (CPU, every 1.5 s)", &view->measureFlip);
+
+  ImGui::Separator();
+  const session::LiveCompare* live = session.liveCompare();
+  if (!live) {
+    ImGui::End();
+    return;
+  }
+  if (live->referenceUnavailable()) {
+    ImGui::TextWrapped("No live error: the reference needs ray tracing (%s).", live->referenceUnavailable()->c_str());
+  } else {
+    ImGui::Text("reference: %u samples per pixel", live->referenceSamples());
+    tooltip("accumulates while the camera, light and size stay; restarts when they change");
+  }
+  if (ImGui::BeginTable("compare.errors", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
+    for (const char* h : {"path", "GPU ms", "relMSE", "FLIP"}) ImGui::TableSetupColumn(h);
+    ImGui::TableHeadersRow();
+    for (const auto& e : live->errors()) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(e.path.c_str());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(fmt::format("{:.2f}", e.gpuMs).c_str());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(e.path == "reference" ? "0 (itself)" : figure(e.relMse, "{:.4f}").c_str());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(e.path == "reference" ? "0" : figure(e.flip, "{:.4f}").c_str());
+    }
+    ImGui::EndTable();
+  }
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  ImGui::TextWrapped("Each path renders every %s frame; its history and timing are its own.",
+                     view->left == view->right ? "other" : "third");
+  ImGui::PopStyleColor();
+  ImGui::End();
+}
+
+void compareViewportOverlay(EditorApp& app) {
+  const auto& view = app.compareView();
+  if (!view || !app.session().hasScene()) return;
+  const glm::vec2 min = app.viewportMin(), size = app.viewportSize();
+  if (size.x < 1.0f || size.y < 1.0f) return;
+  // Under the panels, over the engine image (the viewport window draws no background).
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  auto label = [&](ImVec2 at, const std::string& text) {
+    ImVec2 extent = ImGui::CalcTextSize(text.c_str());
+    draw->AddRectFilled(ImVec2(at.x - 4, at.y - 2), ImVec2(at.x + extent.x + 4, at.y + extent.y + 2), IM_COL32(0, 0, 0, 160), 3.0f);
+    draw->AddText(at, IM_COL32(255, 255, 255, 255), text.c_str());
+  };
+  const float top = min.y + 8.0f;
+  if (view->difference) {
+    label(ImVec2(min.x + 8.0f, top), fmt::format("|{} - {}|", view->left, view->right));
+    // The false-colour ramp the compare view uses, 0 .. 1/scale.
+    const float x0 = min.x + 8.0f, y0 = top + 24.0f, width = 160.0f;
+    for (int i = 0; i < 32; ++i) {
+      glm::vec3 c = shared::tlDisplayFalseColour((i + 0.5f) / 32.0f);
+      draw->AddRectFilled(ImVec2(x0 + width * i / 32.0f, y0), ImVec2(x0 + width * (i + 1) / 32.0f, y0 + 10.0f),
+                          IM_COL32(int(c.r * 255), int(c.g * 255), int(c.b * 255), 255));
+    }
+    label(ImVec2(x0, y0 + 14.0f), fmt::format("0 .. {:.3f}", 1.0f / view->differenceScale));
+    return;
+  }
+  const float split = min.x + view->wipe * size.x;
+  label(ImVec2(std::max(min.x + 8.0f, split - 8.0f - ImGui::CalcTextSize(view->left.c_str()).x), top), view->left);
+  label(ImVec2(std::min(split + 8.0f, min.x + size.x - 8.0f - ImGui::CalcTextSize(view->right.c_str()).x), top), view->right);
+  // The handle the artist drags.
+  draw->AddCircleFilled(ImVec2(split, min.y + size.y * 0.5f), 6.0f, IM_COL32(255, 255, 255, 220));
+}
+
+}  // namespace tl::editor

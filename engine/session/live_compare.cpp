@@ -1,0 +1,75 @@
+#include "session/live_compare.h"
+
+#include "metrics/flip.h"
+#include "metrics/metrics.h"
+#include "session/compare.h"
+
+namespace tl::session {
+
+LiveCompare::LiveCompare(CompareView view, std::optional<std::string> referenceReason)
+    : view_(std::move(view)), referenceReason_(std::move(referenceReason)) {}
+
+std::string LiveCompare::nextPath() {
+  std::vector<std::string> order{view_.left};
+  if (view_.right != view_.left) order.push_back(view_.right);
+  if (!referenceReason_ && view_.left != "reference" && view_.right != "reference") order.push_back("reference");
+  return order[turn_++ % order.size()];
+}
+
+void LiveCompare::frameDone(const std::string& path, const graph::Readback& image, double gpuMs, uint64_t stamp,
+                            uint32_t referenceSamples, float exposure) {
+  Side& side = images_[path];
+  auto t = image.texels();
+  const uint32_t c = image.channels(), w = image.extent.width, h = image.extent.height;
+  std::vector<float> rgb(size_t(w) * h * 3);
+  for (size_t i = 0; i < size_t(w) * h; ++i)
+    for (uint32_t k = 0; k < 3; ++k) rgb[i * 3 + k] = t[i * c + std::min(k, c - 1)];
+  side.image = metrics::Image::fromTexels(w, h, 3, std::move(rgb));
+  side.stamp = stamp;
+  side.gpuMs = gpuMs;
+  errors_[path].path = path;
+  errors_[path].gpuMs = gpuMs;
+  if (path == "reference") {
+    referenceSamples_ = referenceSamples;
+    // A converging reference improves every side's figure: re-measure both.
+    for (const std::string& p : {view_.left, view_.right})
+      if (p != "reference") measure(p, exposure);
+  } else {
+    measure(path, exposure);
+  }
+}
+
+void LiveCompare::measure(const std::string& path, float exposure) {
+  auto side = images_.find(path), ref = images_.find("reference");
+  LiveError& e = errors_[path];
+  e.path = path;
+  if (side == images_.end() || ref == images_.end() || side->second.stamp != ref->second.stamp ||
+      side->second.image.width != ref->second.image.width || side->second.image.height != ref->second.image.height) {
+    e.relMse.reset(), e.flip.reset();  // no reference of this view yet: no figure rather than a wrong one
+    return;
+  }
+  e.relMse = metrics::relMse(side->second.image, ref->second.image).value;
+  e.referenceSamples = referenceSamples_;
+  auto now = std::chrono::steady_clock::now();
+  auto last = lastFlip_.find(path);
+  const bool due = last == lastFlip_.end() ||
+                   std::chrono::duration<double>(now - last->second).count() >= view_.flipIntervalSeconds;
+  if (view_.measureFlip && due) {
+    e.flip = metrics::flipLdr(displayEncode(side->second.image, exposure), displayEncode(ref->second.image, exposure)).value;
+    lastFlip_[path] = now;
+  } else if (!view_.measureFlip) {
+    e.flip.reset();
+  }
+}
+
+std::vector<LiveError> LiveCompare::errors() const {
+  std::vector<LiveError> out;
+  for (const std::string& p : {view_.left, view_.right}) {
+    if (!out.empty() && out.back().path == p) continue;
+    auto it = errors_.find(p);
+    out.push_back(it != errors_.end() ? it->second : LiveError{p});
+  }
+  return out;
+}
+
+}  // namespace tl::session
