@@ -130,12 +130,17 @@ TEST_F(ReferenceTest, PlaneIrradianceIsPiLForTheReferenceAndTheComposite) {
   s.settings().referenceBounces = 2;
   s.settings().referenceSamplesPerFrame = 64;
   s.resetHistory();
-  s.requestBuffer("reference.irradiance");
-  s.requestBuffer("gbuffer.depth");
+  for (const char* n : {"reference.irradiance", "reference.ao", "gbuffer.depth"}) s.requestBuffer(n);
   s.renderFrames(4);
   auto reference = worstError("reference.irradiance");
   // Cosine samples of a uniform sky: every sample is pi L, so no noise at all.
   EXPECT_LT(reference.first, 1e-4);
+  // Nothing above the plane: the reference AO is exactly 1 on every surface pixel.
+  auto ao = s.buffer("reference.ao").texels();
+  auto depth = s.buffer("gbuffer.depth").texels();
+  size_t occluded = 0;
+  for (size_t i = 0; i < depth.size(); ++i) occluded += depth[i] > 0.0f && ao[i] != 1.0f;
+  EXPECT_EQ(occluded, 0u);
 
   s.setPath("rt");
   for (const char* n : {lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
