@@ -4,7 +4,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <cstring>
 #include <stdexcept>
 
@@ -232,7 +234,47 @@ int SceneWriter::mesh(const std::string& name, const Shape& shape, int material)
   return int(model_.meshes.size() - 1);
 }
 
-void SceneWriter::node(const std::string& name, int mesh, glm::vec3 t, glm::vec3 euler, glm::vec3 scale) {
+void SceneWriter::morphTargets(int mesh, const std::vector<std::vector<glm::vec3>>& positionDeltas,
+                               const std::vector<std::vector<glm::vec3>>& normalDeltas, const std::vector<double>& weights) {
+  auto& prim = model_.meshes[size_t(mesh)].primitives[0];
+  for (size_t t = 0; t < positionDeltas.size(); ++t) {
+    const auto& p = positionDeltas[t];
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (auto& d : p) lo = glm::min(lo, d), hi = glm::max(hi, d);
+    std::map<std::string, int> target;
+    target["POSITION"] = accessor(p.data(), p.size() * 12, p.size(), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                                  TINYGLTF_TARGET_ARRAY_BUFFER, {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
+    const auto& n = normalDeltas[t];
+    target["NORMAL"] = accessor(n.data(), n.size() * 12, n.size(), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                                TINYGLTF_TARGET_ARRAY_BUFFER);
+    prim.targets.push_back(target);
+  }
+  model_.meshes[size_t(mesh)].weights = weights;
+}
+
+void SceneWriter::weightsChannel(const std::string& animation, int node, const std::vector<float>& times,
+                                 const std::vector<float>& weights) {
+  auto it = std::find_if(model_.animations.begin(), model_.animations.end(), [&](auto& a) { return a.name == animation; });
+  if (it == model_.animations.end()) {
+    model_.animations.emplace_back();
+    model_.animations.back().name = animation;
+    it = std::prev(model_.animations.end());
+  }
+  tinygltf::AnimationSampler sampler;
+  sampler.input = accessor(times.data(), times.size() * 4, times.size(), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, 0,
+                           {times.front()}, {times.back()});
+  sampler.output = accessor(weights.data(), weights.size() * 4, weights.size(), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                            TINYGLTF_TYPE_SCALAR, 0);
+  sampler.interpolation = "LINEAR";
+  it->samplers.push_back(sampler);
+  tinygltf::AnimationChannel channel;
+  channel.sampler = int(it->samplers.size() - 1);
+  channel.target_node = node;
+  channel.target_path = "weights";
+  it->channels.push_back(channel);
+}
+
+int SceneWriter::node(const std::string& name, int mesh, glm::vec3 t, glm::vec3 euler, glm::vec3 scale) {
   tinygltf::Node n;
   n.name = name;
   n.mesh = mesh;
@@ -244,6 +286,7 @@ void SceneWriter::node(const std::string& name, int mesh, glm::vec3 t, glm::vec3
   if (scale != glm::vec3(1.0f)) n.scale = {scale.x, scale.y, scale.z};
   model_.nodes.push_back(n);
   roots_.push_back(int(model_.nodes.size() - 1));
+  return roots_.back();
 }
 
 void SceneWriter::camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees) {

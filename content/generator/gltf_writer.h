@@ -48,7 +48,16 @@ class SceneWriter {
   explicit SceneWriter(std::string name);
   int material(const MaterialSpec& spec);
   int mesh(const std::string& name, const Shape& shape, int material);
-  void node(const std::string& name, int mesh, glm::vec3 translation, glm::vec3 eulerDegrees = glm::vec3(0.0f),
+  // Morph targets of a mesh written by mesh(): per target, position and normal deltas (one
+  // per vertex), and the mesh's default weights.
+  void morphTargets(int mesh, const std::vector<std::vector<glm::vec3>>& positionDeltas,
+                    const std::vector<std::vector<glm::vec3>>& normalDeltas, const std::vector<double>& weights);
+  // A LINEAR channel of morph weights for `node` in the animation called `animation`
+  // (created on first use): per key, one weight per target.
+  void weightsChannel(const std::string& animation, int node, const std::vector<float>& times,
+                      const std::vector<float>& weights);
+  // Returns the node's index.
+  int node(const std::string& name, int mesh, glm::vec3 translation, glm::vec3 eulerDegrees = glm::vec3(0.0f),
             glm::vec3 scale = glm::vec3(1.0f));
   void camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees);
   void sun(glm::vec3 travelDirection, float irradiance, glm::vec3 color = glm::vec3(1.0f));

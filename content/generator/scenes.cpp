@@ -4,6 +4,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -141,6 +142,83 @@ void grove(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// Deforming meshes for the RT module's BLAS refits: 48 cloth banners (a 1 x 2 m grid of
+// 8 x 16 quads each) hang in rows in a walled yard, each swaying and rippling through two
+// morph targets driven by its own animation channel (a phase per banner, 2 s loop). They
+// share one mesh in the file; the importer gives each node its own copy.
+void banners(const std::filesystem::path& dir) {
+  SceneWriter w("banners");
+  int ground = w.material({"flagstones", {0.55f, 0.53f, 0.50f}, 0.0f, 0.85f});
+  int plaster = w.material({"plaster_ochre", {0.75f, 0.55f, 0.25f}, 0.0f, 0.9f});
+  int cloth = w.material({"banner_red", {0.70f, 0.12f, 0.10f}, 0.0f, 0.95f});
+  int wood = w.material({"pole_wood", {0.35f, 0.25f, 0.15f}, 0.0f, 0.8f});
+  w.node("ground", w.mesh("ground", quad(30.0f, 30.0f, 2.0f), ground), {0.0f, 0.0f, 0.0f});
+  w.node("wall_back", w.mesh("wall_back", box({30.0f, 5.0f, 0.4f}), plaster), {0.0f, 2.5f, -15.0f});
+  w.node("wall_left", w.mesh("wall_left", box({0.4f, 5.0f, 30.0f}), plaster), {-15.0f, 2.5f, 0.0f});
+
+  // The banner: a grid in XY hanging from its top edge at y = 0, facing +Z.
+  const int cols = 8, rows = 16;
+  const float width = 1.0f, height = 2.0f;
+  Shape banner;
+  for (int r = 0; r <= rows; ++r)
+    for (int c = 0; c <= cols; ++c) {
+      banner.positions.push_back({width * (float(c) / cols - 0.5f), -height * float(r) / rows, 0.0f});
+      banner.normals.push_back({0.0f, 0.0f, 1.0f});
+      banner.uvs.push_back({float(c) / cols, float(r) / rows});
+    }
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      uint32_t a = uint32_t(r * (cols + 1) + c), b = a + 1, d = a + uint32_t(cols + 1), e = d + 1;
+      banner.indices.insert(banner.indices.end(), {a, d, b, b, d, e});
+    }
+  // Two-sided: the back face as well, so rays and the raster see the cloth from both sides.
+  Shape back = banner;
+  for (auto& n : back.normals) n = -n;
+  for (size_t i = 0; i < back.indices.size(); i += 3) std::swap(back.indices[i + 1], back.indices[i + 2]);
+  const uint32_t frontVertices = uint32_t(banner.positions.size());
+  banner.append(back);
+  // Target 0 sways the cloth out along +Z, more towards the bottom; target 1 ripples it across.
+  std::vector<glm::vec3> sway, ripple, swayN, rippleN;
+  for (size_t v = 0; v < banner.positions.size(); ++v) {
+    const glm::vec3 p = banner.positions[v];
+    const float down = -p.y / height, across = p.x / width + 0.5f;
+    const float sign = v < frontVertices ? 1.0f : -1.0f;
+    sway.push_back({0.0f, 0.1f * down * down, 0.6f * down * down});
+    ripple.push_back({0.0f, 0.0f, 0.15f * down * std::sin(6.2831853f * across)});
+    // The normals' change: the surface tilts by the deltas' slopes (small-angle).
+    swayN.push_back(sign * glm::vec3(0.0f, 0.6f * down, 0.0f));
+    rippleN.push_back(sign * glm::vec3(-0.15f * down * 6.2831853f * std::cos(6.2831853f * across) / width, 0.0f, 0.0f));
+  }
+  int bannerMesh = w.mesh("banner", banner, cloth);
+  w.morphTargets(bannerMesh, {sway, ripple}, {swayN, rippleN}, {0.0, 0.0});
+  int pole = w.mesh("pole", cylinder(0.05f, 3.2f, 8), wood);
+  const int keys = 25;
+  const float seconds = 2.0f;
+  int index = 0;
+  for (int row = 0; row < 6; ++row)
+    for (int k = 0; k < 8; ++k, ++index) {
+      const glm::vec3 at(-10.0f + 2.6f * float(k), 3.0f, -11.0f + 3.8f * float(row));
+      char name[32];
+      std::snprintf(name, sizeof name, "banner_%d_%d", row, k);
+      int node = w.node(name, bannerMesh, at);
+      std::snprintf(name, sizeof name, "pole_%d_%d", row, k);
+      w.node(name, pole, at - glm::vec3(0.0f, 3.0f, 0.0f));
+      std::vector<float> times, weights;
+      const float phase = 0.7f * float(index);
+      for (int t = 0; t < keys; ++t) {
+        const float time = seconds * float(t) / float(keys - 1), angle = 6.2831853f * time / seconds + phase;
+        times.push_back(time);
+        weights.push_back(0.5f + 0.5f * std::sin(angle));
+        weights.push_back(std::sin(2.0f * angle));
+      }
+      w.weightsChannel("wind", node, times, weights);
+    }
+  w.camera("along_rows", {9.0f, 2.2f, 8.0f}, {-4.0f, 1.5f, -6.0f}, 55.0f);
+  w.sun({-0.35f, -0.6f, -0.7f}, 20.0f);
+  w.sky({0.6f, 0.75f, 1.0f});
+  w.write(dir);
+}
+
 }  // namespace
 }  // namespace tl::content
 
@@ -156,6 +234,7 @@ int main(int argc, char** argv) {
     tl::content::furnace(dir);
     tl::content::plane(dir);
     tl::content::grove(dir);
+    tl::content::banners(dir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());
     return 1;

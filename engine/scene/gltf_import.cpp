@@ -9,6 +9,7 @@
 #define TINYGLTF_NO_INCLUDE_STB_IMAGE_WRITE
 #include <tiny_gltf.h>
 
+#include "scene/morph.h"
 #include "scene/scene_internal.h"
 
 #include <fmt/format.h>
@@ -270,6 +271,29 @@ Scene loadGltf(const std::filesystem::path& file) {
         }
       }
       finishVertices(mesh, haveNormals, haveTangents);
+      // Morph targets: displacements of positions (and normals) added with weights.
+      for (size_t ti = 0; ti < prim.targets.size(); ++ti) {
+        MorphTarget target;
+        target.positions.assign(mesh.vertices.size(), glm::vec3(0.0f));
+        for (const auto& [attribute, index] : prim.targets[ti]) {
+          if (attribute != "POSITION" && attribute != "NORMAL") continue;  // tangent deltas are not applied
+          auto deltas = rd.floats<3>(index, "morph target");
+          if (deltas.size() != mesh.vertices.size())
+            rd.fail(fmt::format("mesh `{}` morph target {} has {} {} deltas for {} vertices", name, ti, deltas.size(),
+                                attribute, mesh.vertices.size()));
+          for (const auto& d : deltas)
+            if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z))
+              rd.fail(fmt::format("mesh `{}` morph target {} has a non-finite {} delta", name, ti, attribute));
+          (attribute == "POSITION" ? target.positions : target.normals) = std::move(deltas);
+        }
+        mesh.morphTargets.push_back(std::move(target));
+      }
+      if (!mesh.morphTargets.empty()) {
+        mesh.morphWeights.assign(mesh.morphTargets.size(), 0.0f);
+        for (size_t k = 0; k < gmesh.weights.size() && k < mesh.morphWeights.size(); ++k)
+          mesh.morphWeights[k] = float(gmesh.weights[k]);
+        mesh.bounds = morphBounds(mesh);
+      }
       if (prim.material >= 0 && size_t(prim.material) < scene.materials.size()) {
         mesh.material = uint32_t(prim.material);
       } else {
@@ -292,6 +316,7 @@ Scene loadGltf(const std::filesystem::path& file) {
   for (auto& m : scene.materials) m.contentHash = hashMaterial(m, scene.textures);
 
   // Node hierarchy -> instances, cameras and lights with world transforms.
+  std::vector<bool> meshInstanced(scene.meshes.size(), false);
   std::vector<bool> visited(model.nodes.size(), false);
   std::function<void(int, const glm::dmat4&, int)> visit = [&](int ni, const glm::dmat4& parent, int depth) {
     if (ni < 0 || size_t(ni) >= model.nodes.size()) rd.fail(fmt::format("a node refers to node {}, which does not exist", ni));
@@ -308,6 +333,20 @@ Scene loadGltf(const std::filesystem::path& file) {
         Instance inst;
         inst.name = prims.size() > 1 ? fmt::format("{}#{}", nodeName, k) : nodeName;
         inst.mesh = prims[k];
+        if (scene.meshes[inst.mesh].deforms()) {
+          // A deforming mesh follows its node's weights: every further node gets its own copy.
+          if (meshInstanced[inst.mesh]) {
+            Mesh copy = scene.meshes[inst.mesh];
+            copy.name += "@" + nodeName;
+            inst.mesh = uint32_t(scene.meshes.size());
+            scene.meshes.push_back(std::move(copy));
+            meshInstanced.push_back(false);
+          }
+          Mesh& mesh = scene.meshes[inst.mesh];
+          for (size_t w = 0; w < node.weights.size() && w < mesh.morphWeights.size(); ++w)
+            mesh.morphWeights[w] = float(node.weights[w]);
+        }
+        meshInstanced[inst.mesh] = true;
         inst.node = uint32_t(ni);
         inst.transform = world;
         inst.worldBounds = transformBounds(scene.meshes[prims[k]].bounds, world);
@@ -367,6 +406,48 @@ Scene loadGltf(const std::filesystem::path& file) {
       if (!isChild[i]) roots.push_back(int(i));
   }
   for (int r : roots) visit(r, glm::dmat4(1.0), 0);
+
+  // Animations: channels of morph weights drive the meshes of their node's instances. Node
+  // transforms are not animated (a warning says so once per file).
+  bool warnedTransforms = false;
+  for (size_t ai = 0; ai < model.animations.size(); ++ai) {
+    const auto& anim = model.animations[ai];
+    for (const auto& ch : anim.channels) {
+      if (ch.target_path != "weights") {
+        if (!warnedTransforms)
+          scene.warnings.push_back(fmt::format("{}: node {} animations are not played (only morph weights are)",
+                                               file.string(), ch.target_path));
+        warnedTransforms = true;
+        continue;
+      }
+      if (ch.sampler < 0 || size_t(ch.sampler) >= anim.samplers.size())
+        rd.fail(fmt::format("animation {} has a channel with sampler {}, which does not exist", ai, ch.sampler));
+      const auto& sampler = anim.samplers[size_t(ch.sampler)];
+      auto times = rd.floats<1>(sampler.input, "animation input");
+      auto values = rd.floats<1>(sampler.output, "animation output");
+      for (size_t k = 0; k < times.size(); ++k)
+        if (!std::isfinite(times[k].x) || (k > 0 && times[k].x < times[k - 1].x))
+          rd.fail(fmt::format("animation {} has keyframe times that are not finite and increasing", ai));
+      const bool cubic = sampler.interpolation == "CUBICSPLINE";
+      for (const auto& inst : scene.instances) {
+        if (int(inst.node) != ch.target_node || !scene.meshes[inst.mesh].deforms()) continue;
+        const size_t targets = scene.meshes[inst.mesh].morphTargets.size();
+        const size_t perKey = cubic ? 3 * targets : targets;
+        if (values.size() != times.size() * perKey)
+          rd.fail(fmt::format("animation {} drives {} morph targets of `{}` with {} values for {} keys", ai, targets,
+                              inst.name, values.size(), times.size()));
+        MorphAnimation a;
+        a.mesh = inst.mesh;
+        a.step = sampler.interpolation == "STEP";
+        for (const auto& t : times) a.times.push_back(t.x);
+        // A cubic spline's keys hold in-tangents, values and out-tangents: its values, linearly.
+        for (size_t k = 0; k < times.size(); ++k)
+          for (size_t j = 0; j < targets; ++j) a.weights.push_back(values[k * perKey + (cubic ? targets : 0) + j].x);
+        if (!a.times.empty()) scene.animationSeconds = std::max(scene.animationSeconds, double(a.times.back()));
+        scene.morphAnimations.push_back(std::move(a));
+      }
+    }
+  }
 
   // Environment: the first directional light is the sun; the sky comes from extras.
   for (const auto& l : scene.lights) {

@@ -68,8 +68,16 @@ struct Material {
   uint64_t contentHash = 0;  // parameters + the content hashes of the textures it uses
 };
 
+// A glTF morph target: per-vertex displacements added with a weight.
+struct MorphTarget {
+  std::vector<glm::vec3> positions;  // deltas, one per vertex
+  std::vector<glm::vec3> normals;    // deltas, one per vertex (zeros when the file has none)
+};
+
 // One glTF primitive (triangles). A glTF mesh with several primitives becomes several
-// Meshes named "<mesh>" , "<mesh>#1", ... each with its own material.
+// Meshes named "<mesh>" , "<mesh>#1", ... each with its own material. A mesh with morph
+// targets deforms; it has exactly one instance (the importer gives every node that uses one
+// its own copy), so its vertices can follow that node's weights.
 struct Mesh {
   std::string name;
   std::vector<Vertex> vertices;
@@ -78,6 +86,18 @@ struct Mesh {
   Bounds bounds;                  // object space
   bool generatedTangents = false;
   uint64_t contentHash = 0;       // xxHash64 of vertices + indices
+  std::vector<MorphTarget> morphTargets;
+  std::vector<float> morphWeights;  // the pose without animation (node weights, else the mesh's)
+  bool deforms() const { return !morphTargets.empty(); }
+};
+
+// A glTF animation channel of morph weights, resolved to the mesh it deforms: keyframe times
+// (seconds, increasing) and, per key, one weight per target.
+struct MorphAnimation {
+  uint32_t mesh = 0;
+  std::vector<float> times;
+  std::vector<float> weights;  // times.size() x mesh's target count
+  bool step = false;           // STEP interpolation (else LINEAR)
 };
 
 struct Instance {
@@ -133,6 +153,8 @@ struct Scene {
   std::vector<Camera> cameras;
   std::vector<Light> lights;        // punctual lights other than the sun too
   Environment environment;
+  std::vector<MorphAnimation> morphAnimations;
+  double animationSeconds = 0.0;    // the longest channel: animations loop over it
   Bounds bounds;                    // world bounds of all instances
   std::vector<std::string> warnings;  // e.g. missing texture (placeholder used)
   uint64_t contentHash = 0;         // hash of all meshes, materials, instances, environment
