@@ -54,6 +54,8 @@ struct RenderOptions {
   std::optional<bool> rtDenoise;
   std::string albedoDb;
   std::string renderDoc;  // RenderDoc capture path template for one more frame
+  double time = 0.0;
+  std::optional<double> animateFps;
 };
 
 void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
@@ -75,6 +77,9 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
       ->check(CLI::IsMember({1.0f, 0.5f}));
   cmd.add_option("--pretrace", o.rtPretrace, "rt path: screen-space pre-trace before real rays (true/false)");
   cmd.add_option("--denoise", o.rtDenoise, "rt path: two-pass spatial denoiser after accumulation (true/false)");
+  cmd.add_option("--time", o.time, "animation time in seconds (morph targets) of the first frame")->capture_default_str();
+  cmd.add_option("--animate", o.animateFps, "play the animations: each frame advances 1/FPS seconds")
+      ->check(CLI::Range(1.0, 1000.0));
 }
 
 double median(std::vector<double> v) {
@@ -120,6 +125,8 @@ void prepareSession(Session& session, const RenderOptions& o) {
   if (o.rtRaysPerPixel) session.settings().rtHalfRays = *o.rtRaysPerPixel < 1.0f;
   if (o.rtPretrace) session.settings().rtPretrace = *o.rtPretrace;
   if (o.rtDenoise) session.settings().rtDenoise = *o.rtDenoise;
+  session.setAnimationTime(o.time);
+  session.setAnimationStep(o.animateFps ? 1.0 / *o.animateFps : 0.0);
 }
 
 // One more frame, captured by RenderDoc into `pathTemplate` (RenderDoc appends the frame).

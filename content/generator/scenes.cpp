@@ -156,13 +156,13 @@ void banners(const std::filesystem::path& dir) {
   w.node("wall_back", w.mesh("wall_back", box({30.0f, 5.0f, 0.4f}), plaster), {0.0f, 2.5f, -15.0f});
   w.node("wall_left", w.mesh("wall_left", box({0.4f, 5.0f, 30.0f}), plaster), {-15.0f, 2.5f, 0.0f});
 
-  // The banner: a grid in XY hanging from its top edge at y = 0, facing +Z.
+  // The banner: a grid in XY hanging from its top edge at y = 0 beside its pole, facing +Z.
   const int cols = 8, rows = 16;
   const float width = 1.0f, height = 2.0f;
   Shape banner;
   for (int r = 0; r <= rows; ++r)
     for (int c = 0; c <= cols; ++c) {
-      banner.positions.push_back({width * (float(c) / cols - 0.5f), -height * float(r) / rows, 0.0f});
+      banner.positions.push_back({0.06f + width * float(c) / cols, -height * float(r) / rows, 0.0f});
       banner.normals.push_back({0.0f, 0.0f, 1.0f});
       banner.uvs.push_back({float(c) / cols, float(r) / rows});
     }
@@ -181,7 +181,7 @@ void banners(const std::filesystem::path& dir) {
   std::vector<glm::vec3> sway, ripple, swayN, rippleN;
   for (size_t v = 0; v < banner.positions.size(); ++v) {
     const glm::vec3 p = banner.positions[v];
-    const float down = -p.y / height, across = p.x / width + 0.5f;
+    const float down = -p.y / height, across = (p.x - 0.06f) / width;
     const float sign = v < frontVertices ? 1.0f : -1.0f;
     sway.push_back({0.0f, 0.1f * down * down, 0.6f * down * down});
     ripple.push_back({0.0f, 0.0f, 0.15f * down * std::sin(6.2831853f * across)});

@@ -32,11 +32,13 @@ void createStructure(Device& device, VkAccelerationStructureTypeKHR type, VkDevi
 }
 
 VkAccelerationStructureBuildGeometryInfoKHR buildInfo(VkAccelerationStructureTypeKHR type,
-                                                      const VkAccelerationStructureGeometryKHR& geometry, bool compactable) {
+                                                      const VkAccelerationStructureGeometryKHR& geometry, bool compactable,
+                                                      bool allowUpdate = false) {
   VkAccelerationStructureBuildGeometryInfoKHR info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
   info.type = type;
   info.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR |
-               (compactable ? VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_COMPACTION_BIT_KHR : 0);
+               (compactable ? VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_COMPACTION_BIT_KHR : 0) |
+               (allowUpdate ? VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_UPDATE_BIT_KHR : 0);
   info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
   info.geometryCount = 1;
   info.pGeometries = &geometry;
@@ -60,11 +62,11 @@ VkDeviceAddress alignedScratch(Device& device, const Buffer& scratch) {
 // result is copied into a structure of its compacted size.
 void build(Device& device, VkAccelerationStructureTypeKHR type, const VkAccelerationStructureGeometryKHR& geometry,
            uint32_t primitives, std::string_view name, bool compact, Buffer& storage,
-           VkAccelerationStructureKHR& handle, VkDeviceAddress& address) {
+           VkAccelerationStructureKHR& handle, VkDeviceAddress& address, bool allowUpdate = false) {
   TL_CHECK(device.rayTracing().pipeline, "acceleration structure `{}` needs ray tracing: {}", name,
            device.rayTracing().unavailableReason);
   const auto& ext = device.ext();
-  VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(type, geometry, compact);
+  VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(type, geometry, compact, allowUpdate);
   VkAccelerationStructureBuildSizesInfoKHR sizes = buildSizes(device, info, primitives);
   createStructure(device, type, sizes.accelerationStructureSize, name, storage, handle, address);
 
@@ -151,6 +153,7 @@ AccelerationStructure& AccelerationStructure::operator=(AccelerationStructure&& 
     handle_ = std::exchange(o.handle_, VK_NULL_HANDLE);
     buffer_ = std::move(o.buffer_);
     address_ = std::exchange(o.address_, 0);
+    bytes_ = std::exchange(o.bytes_, 0);
   }
   return *this;
 }
@@ -164,9 +167,10 @@ void AccelerationStructure::reset() {
   handle_ = VK_NULL_HANDLE;
   buffer_.reset();
   address_ = 0;
+  bytes_ = 0;
 }
 
-AccelerationStructure buildBottomLevel(Device& device, const TriangleGeometry& g, std::string_view name, bool compact) {
+VkAccelerationStructureGeometryKHR trianglesGeometry(const TriangleGeometry& g) {
   VkAccelerationStructureGeometryKHR geometry{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
   geometry.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
   geometry.flags = g.opaque ? VK_GEOMETRY_OPAQUE_BIT_KHR : 0;
@@ -178,11 +182,78 @@ AccelerationStructure buildBottomLevel(Device& device, const TriangleGeometry& g
   t.maxVertex = g.vertexCount ? g.vertexCount - 1 : 0;
   t.indexType = VK_INDEX_TYPE_UINT32;
   t.indexData.deviceAddress = g.indices;
+  return geometry;
+}
+
+AccelerationStructure buildBottomLevel(Device& device, const TriangleGeometry& g, std::string_view name, bool compact,
+                                       bool allowUpdate) {
+  VkAccelerationStructureGeometryKHR geometry = trianglesGeometry(g);
   AccelerationStructure as;
   as.device_ = &device;
-  build(device, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, g.triangleCount, name, compact, as.buffer_,
-        as.handle_, as.address_);
+  build(device, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, g.triangleCount, name,
+        compact && !allowUpdate, as.buffer_, as.handle_, as.address_, allowUpdate);
+  as.bytes_ = as.buffer_.size();
   return as;
+}
+
+VkDeviceSize bottomLevelBytes(Device& device, const TriangleGeometry& g, bool allowUpdate) {
+  VkAccelerationStructureGeometryKHR geometry = trianglesGeometry(g);
+  VkAccelerationStructureBuildGeometryInfoKHR info =
+      buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, false, allowUpdate);
+  return (buildSizes(device, info, g.triangleCount).accelerationStructureSize + 255) / 256 * 256;
+}
+
+AccelerationStructure buildBottomLevelAt(Device& device, const TriangleGeometry& g, std::string_view name,
+                                         const Buffer& storage, VkDeviceSize offset, bool allowUpdate) {
+  const auto& ext = device.ext();
+  VkAccelerationStructureGeometryKHR geometry = trianglesGeometry(g);
+  VkAccelerationStructureBuildGeometryInfoKHR info =
+      buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, false, allowUpdate);
+  VkAccelerationStructureBuildSizesInfoKHR sizes = buildSizes(device, info, g.triangleCount);
+  TL_CHECK(offset % 256 == 0 && offset + sizes.accelerationStructureSize <= storage.size(),
+           "bottom level `{}` does not fit its place in `{}`", name, storage.name());
+  AccelerationStructure as;
+  as.device_ = &device;
+  as.bytes_ = sizes.accelerationStructureSize;
+  VkAccelerationStructureCreateInfoKHR ci{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_CREATE_INFO_KHR};
+  ci.buffer = storage.handle();
+  ci.offset = offset;
+  ci.size = sizes.accelerationStructureSize;
+  ci.type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR;
+  TL_VK(ext.createAccelerationStructure(device.handle(), &ci, nullptr, &as.handle_));
+  device.setName(VK_OBJECT_TYPE_ACCELERATION_STRUCTURE_KHR, uint64_t(as.handle_), name);
+  VkAccelerationStructureDeviceAddressInfoKHR ai{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR};
+  ai.accelerationStructure = as.handle_;
+  as.address_ = ext.getAccelerationStructureDeviceAddress(device.handle(), &ai);
+  Buffer scratch(device, sizes.buildScratchSize + scratchAlignment(device), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                 MemoryUsage::GpuOnly, fmt::format("{}.scratch", name));
+  info.dstAccelerationStructure = as.handle_;
+  info.scratchData.deviceAddress = alignedScratch(device, scratch);
+  VkAccelerationStructureBuildRangeInfoKHR range{g.triangleCount, 0, 0, 0};
+  const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
+  device.immediate([&](VkCommandBuffer cmd) { ext.cmdBuildAccelerationStructures(cmd, 1, &info, &ranges); });
+  return as;
+}
+
+VkDeviceSize refitScratchBytes(Device& device, const TriangleGeometry& g) {
+  VkAccelerationStructureGeometryKHR geometry = trianglesGeometry(g);
+  VkAccelerationStructureBuildGeometryInfoKHR info =
+      buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, false, true);
+  return buildSizes(device, info, g.triangleCount).updateScratchSize + scratchAlignment(device);
+}
+
+void recordRefit(VkCommandBuffer cmd, Device& device, const AccelerationStructure& blas, const TriangleGeometry& g,
+                 const Buffer& scratch) {
+  VkAccelerationStructureGeometryKHR geometry = trianglesGeometry(g);
+  VkAccelerationStructureBuildGeometryInfoKHR info =
+      buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, false, true);
+  info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_UPDATE_KHR;
+  info.srcAccelerationStructure = blas.handle();
+  info.dstAccelerationStructure = blas.handle();
+  info.scratchData.deviceAddress = alignedScratch(device, scratch);
+  VkAccelerationStructureBuildRangeInfoKHR range{g.triangleCount, 0, 0, 0};
+  const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
+  device.ext().cmdBuildAccelerationStructures(cmd, 1, &info, &ranges);
 }
 
 AccelerationStructure buildTopLevel(Device& device, const std::vector<TlasInstance>& instances, std::string_view name) {
@@ -196,6 +267,7 @@ AccelerationStructure buildTopLevel(Device& device, const std::vector<TlasInstan
   as.device_ = &device;
   build(device, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, geometry, uint32_t(raw.size()), name, false, as.buffer_,
         as.handle_, as.address_);
+  as.bytes_ = as.buffer_.size();
   return as;
 }
 
@@ -216,6 +288,7 @@ void TopLevelBuilder::prepare(const std::vector<TlasInstance>& instances) {
     structure_.device_ = &device;
     createStructure(device, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, sizes.accelerationStructureSize, name_,
                     structure_.buffer_, structure_.handle_, structure_.address_);
+    structure_.bytes_ = structure_.buffer_.size();
     scratch_ = Buffer(device, sizes.buildScratchSize + scratchAlignment(device), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                       MemoryUsage::GpuOnly, fmt::format("{}.scratch", name_));
   }

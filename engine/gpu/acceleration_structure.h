@@ -21,14 +21,17 @@ class AccelerationStructure {
 
   VkAccelerationStructureKHR handle() const { return handle_; }
   VkDeviceAddress address() const { return address_; }
-  VkDeviceSize bytes() const { return buffer_.size(); }
+  VkDeviceSize bytes() const { return bytes_; }
   explicit operator bool() const { return handle_ != VK_NULL_HANDLE; }
 
  private:
-  friend AccelerationStructure buildBottomLevel(Device&, const struct TriangleGeometry&, std::string_view, bool);
+  friend AccelerationStructure buildBottomLevel(Device&, const struct TriangleGeometry&, std::string_view, bool, bool);
   friend AccelerationStructure buildTopLevel(Device&, const std::vector<struct TlasInstance>&, std::string_view);
+  friend AccelerationStructure buildBottomLevelAt(Device&, const struct TriangleGeometry&, std::string_view, const Buffer&,
+                                                  VkDeviceSize, bool);
   friend class TopLevelBuilder;
   Device* device_ = nullptr;
+  VkDeviceSize bytes_ = 0;
   VkAccelerationStructureKHR handle_ = VK_NULL_HANDLE;
   Buffer buffer_;
   VkDeviceAddress address_ = 0;
@@ -52,8 +55,26 @@ struct TlasInstance {
 
 // Builds and waits (device.immediate). `compact`: build, query the compacted size and copy
 // into a structure of exactly that size (the driver's worst-case estimate is often 2x).
+// `allowUpdate`: the structure can be refitted in place when its vertices move (its
+// triangles stay); such a structure is not compacted (compaction would drop that ability on
+// some drivers, and the refit needs the build's size anyway).
 AccelerationStructure buildBottomLevel(Device& device, const TriangleGeometry& geometry, std::string_view name,
-                                       bool compact = false);
+                                       bool compact = false, bool allowUpdate = false);
+// Bottom levels side by side in one buffer the caller owns (so a frame graph can name them
+// as one resource): bottomLevelBytes() sizes each (rounded to the 256-byte placement
+// alignment), buildBottomLevelAt() builds one at an offset of `storage` (created with
+// VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR) and waits.
+VkDeviceSize bottomLevelBytes(Device& device, const TriangleGeometry& geometry, bool allowUpdate);
+AccelerationStructure buildBottomLevelAt(Device& device, const TriangleGeometry& geometry, std::string_view name,
+                                         const Buffer& storage, VkDeviceSize offset, bool allowUpdate);
+// Scratch bytes a refit of `geometry` needs (alignment included).
+VkDeviceSize refitScratchBytes(Device& device, const TriangleGeometry& geometry);
+// Records an in-place refit of a bottom level built with allowUpdate from the same geometry,
+// reading its vertices as they are now. The caller places the barriers around it (vertex
+// writes before, acceleration-structure reads after) and gives each refit in flight its own
+// `scratch` (refitScratchBytes).
+void recordRefit(VkCommandBuffer cmd, Device& device, const AccelerationStructure& blas, const TriangleGeometry& geometry,
+                 const Buffer& scratch);
 AccelerationStructure buildTopLevel(Device& device, const std::vector<TlasInstance>& instances, std::string_view name);
 
 // A top level rebuilt from scratch every frame inside a command buffer (Metro: "TLAS =

@@ -1,5 +1,6 @@
 #include "scene/gpu_scene.h"
 
+#include "gpu/check.h"
 #include "shared/scene.h"
 
 #include <fmt/format.h>
@@ -34,6 +35,7 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
     vertices.insert(vertices.end(), m.vertices.begin(), m.vertices.end());
     indices.insert(indices.end(), m.indices.begin(), m.indices.end());
   }
+  meshVersions_.assign(meshes_.size(), 0);
   // Acceleration-structure builds read the same buffers (only where the extension exists).
   VkBufferUsageFlags geometryUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   if (device.rayTracing().pipeline) geometryUsage |= VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
@@ -160,6 +162,30 @@ void GpuScene::drawInstances(VkCommandBuffer cmd, const std::vector<uint32_t>& i
     const MeshRange& m = meshes_[drawMesh_[i]];
     vkCmdDrawIndexed(cmd, m.indexCount, 1, m.firstIndex, m.vertexOffset, i);
   }
+}
+
+void GpuScene::updateMeshVertices(const std::vector<uint32_t>& meshes, const std::vector<std::vector<Vertex>>& vertices) {
+  VkDeviceSize total = 0;
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    TL_CHECK(meshes[i] < meshes_.size() && vertices[i].size() == meshes_[meshes[i]].vertexCount,
+             "vertex update of mesh {} does not match its vertex count", meshes[i]);
+    total += vertices[i].size() * sizeof(Vertex);
+  }
+  if (total == 0) return;
+  gpu::Buffer staging(device_, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUsage::Upload, "scene.vertexUpdate");
+  std::vector<VkBufferCopy> regions;
+  VkDeviceSize at = 0;
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    const VkDeviceSize bytes = vertices[i].size() * sizeof(Vertex);
+    staging.write(vertices[i].data(), bytes, at);
+    regions.push_back({at, VkDeviceSize(meshes_[meshes[i]].vertexOffset) * sizeof(Vertex), bytes});
+    at += bytes;
+    ++meshVersions_[meshes[i]];
+  }
+  device_.immediate([&](VkCommandBuffer cmd) {
+    vkCmdCopyBuffer(cmd, staging.handle(), vertices_.handle(), uint32_t(regions.size()), regions.data());
+  });
+  ++geometryVersion_;
 }
 
 VkDeviceSize GpuScene::bytes() const {

@@ -31,6 +31,13 @@ class GpuScene {
   // `previousCamera` and the previous transforms make the motion vectors.
   void updateInstances(const Scene& scene, const glm::dvec3& camera, const glm::dvec3& previousCamera);
 
+  // Replaces the vertices of deforming meshes (morph targets) in one upload, between frames.
+  // `vertices[i]` must have mesh `meshes[i]`'s vertex count.
+  void updateMeshVertices(const std::vector<uint32_t>& meshes, const std::vector<std::vector<Vertex>>& vertices);
+  // Counts vertex updates: per mesh, and of the whole scene (0 until something deforms).
+  uint64_t meshVersion(uint32_t mesh) const { return meshVersions_[mesh]; }
+  uint64_t geometryVersion() const { return geometryVersion_; }
+
   // Declares the four buffers above in `graph` and binds them in `executor`.
   void importBuffers(graph::RenderGraph& graph, graph::Executor& executor);
 
@@ -78,6 +85,8 @@ class GpuScene {
   std::vector<glm::dmat4> previousTransforms_;  // per instance, world
   std::vector<glm::mat4> relative_;             // per instance, camera-relative
   bool havePrevious_ = false;
+  std::vector<uint64_t> meshVersions_;
+  uint64_t geometryVersion_ = 0;
 };
 
 }  // namespace tl::scene

@@ -44,6 +44,7 @@ std::string referenceKey(const Session& s, const CompareOptions& o) {
       v.position.x, v.position.y, v.position.z, v.forward.x, v.forward.y, v.forward.z, v.yfovRadians, l.sunDirection.x,
       l.sunDirection.y, l.sunDirection.z, l.sunIrradiance.x, l.sunIrradiance.y, l.sunIrradiance.z, l.skyRadiance.x,
       l.skyRadiance.y, l.skyRadiance.z, s.settings().width, s.settings().height, o.referenceSpp, o.referenceBounces);
+  if (s.animated()) text += fmt::format("|t{}", s.animationTime());  // the pose of deforming meshes
   return fmt::format("{:016x}", scene::hashBytes(text.data(), text.size()));
 }
 
@@ -181,6 +182,9 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
   std::error_code ec;
   std::filesystem::create_directories(o.outDir, ec);
   const std::string previousPath = s.path();
+  // Every path and the reference show the same pose of any deforming mesh: time stands still.
+  const double animationTime = s.animationTime(), animationStep = s.animationStep();
+  s.setAnimationStep(0.0);
 
   nlohmann::json refInfo;
   const ReferenceImages referenceImages = renderReference(s, o, progress, refInfo);
@@ -248,6 +252,8 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                        {"stages", stages}});
   }
   s.setPath(previousPath);
+  s.setAnimationTime(animationTime);
+  s.setAnimationStep(animationStep);
 
   const auto& d = s.device();
   const View& v = s.view();

@@ -1,5 +1,7 @@
 #include "session/session.h"
 
+#include "scene/morph.h"
+
 #include "lighting/common/albedo_view_pass.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/gbuffer_pass.h"
@@ -74,6 +76,9 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   passes_ = std::make_unique<Passes>();
   executor_->resetHistory();
   previousView_.reset();
+  // The upload holds every mesh at rest (all weights 0).
+  appliedWeights_.assign(scene_->meshes.size(), {});
+  for (size_t m = 0; m < scene_->meshes.size(); ++m) appliedWeights_[m].assign(scene_->meshes[m].morphTargets.size(), 0.0f);
 
   const auto& env = scene_->environment;
   lighting_.sunDirection = env.sunDirection;
@@ -156,7 +161,8 @@ uint64_t Session::referenceStamp() const {
   for (const glm::dvec3& v : {view_.position, view_.forward, view_.up, lighting_.sunDirection}) k.insert(k.end(), {v.x, v.y, v.z});
   for (const glm::vec3& v : {lighting_.sunIrradiance, lighting_.skyRadiance}) k.insert(k.end(), {v.x, v.y, v.z});
   for (double v : {double(view_.yfovRadians), double(settings_.width), double(settings_.height),
-                   double(lighting_.sunAngularRadius), double(gpuScene_ ? gpuScene_->id() : 0)})
+                   double(lighting_.sunAngularRadius), double(gpuScene_ ? gpuScene_->id() : 0),
+                   double(gpuScene_ ? gpuScene_->geometryVersion() : 0)})
     k.push_back(v);
   return scene::hashBytes(k.data(), k.size() * sizeof(double));
 }
@@ -259,6 +265,7 @@ void Session::renderOne(bool readback) {
   buildFrameConstants(fc);
   constants_.write(&fc, sizeof(fc));
   gpuScene_->updateInstances(*scene_, view_.position, previousView_.value_or(view_).position);
+  applyMorphs();
 
   graph::RenderGraph graph;
   graph.declareImported(lighting::kFrameConstants,
@@ -318,6 +325,28 @@ void Session::renderOne(bool readback) {
   }
   previousView_ = view_;
   ++frameIndex_;
+  animationTime_ += animationStep_;
+}
+
+// Deforming meshes take this frame's pose: only those whose weights changed are uploaded.
+void Session::applyMorphs() {
+  deformedLastFrame_ = 0;
+  if (!scene_ || appliedWeights_.empty()) return;
+  bool any = false;
+  for (const auto& m : scene_->meshes) any |= m.deforms();
+  if (!any) return;
+  const auto weights = scene::morphWeightsAt(*scene_, animationTime_);
+  std::vector<uint32_t> meshes;
+  std::vector<std::vector<scene::Vertex>> vertices;
+  for (uint32_t m = 0; m < scene_->meshes.size(); ++m) {
+    if (!scene_->meshes[m].deforms() || weights[m] == appliedWeights_[m]) continue;
+    meshes.push_back(m);
+    vertices.emplace_back();
+    scene::deformVertices(scene_->meshes[m], weights[m], vertices.back());
+    appliedWeights_[m] = weights[m];
+  }
+  gpuScene_->updateMeshVertices(meshes, vertices);
+  deformedLastFrame_ = meshes.size();
 }
 
 void Session::renderFrames(uint32_t n) {

@@ -95,6 +95,18 @@ class Session {
   const Lighting& lighting() const { return lighting_; }
   float exposureEv() const;  // the EV in use (explicit or automatic)
 
+  // Morph animations: the time (seconds, looping over the scene's animations) the next frame
+  // shows; deforming meshes take that pose before it renders. The editor advances it while
+  // playing; headless renders pick one (--time).
+  void setAnimationTime(double seconds) { animationTime_ = seconds; }
+  double animationTime() const { return animationTime_; }
+  // Seconds each rendered frame advances the animation time afterwards (0: it stays).
+  void setAnimationStep(double seconds) { animationStep_ = seconds; }
+  double animationStep() const { return animationStep_; }
+  bool animated() const { return scene_ && !scene_->morphAnimations.empty(); }
+  // Deforming meshes whose vertices the last frame uploaded (0 when none changed).
+  size_t meshesDeformedLastFrame() const { return deformedLastFrame_; }
+
   void setSize(uint32_t width, uint32_t height);
   lighting::RenderSettings& settings() { return settings_; }
   const lighting::RenderSettings& settings() const { return settings_; }
@@ -184,6 +196,10 @@ class Session {
   std::vector<double> frameGpuMs_;
   std::vector<std::pair<std::string, std::vector<double>>> passGpuMs_;
   uint64_t frameIndex_ = 0;
+  double animationTime_ = 0.0, animationStep_ = 0.0;
+  std::vector<std::vector<float>> appliedWeights_;  // per mesh: the pose its vertices hold
+  size_t deformedLastFrame_ = 0;
+  void applyMorphs();
   float brightestEmission_ = 0.0f;  // luminance of the scene's brightest emissive material
 };
 

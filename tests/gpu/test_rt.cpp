@@ -14,6 +14,14 @@ namespace {
 
 using namespace lighting;
 
+struct RtTestAccess {
+  static std::vector<uint32_t> uints(const graph::Readback& rb) {
+    std::vector<uint32_t> v(rb.bytes.size() / 4);
+    std::memcpy(v.data(), rb.bytes.data(), v.size() * 4);
+    return v;
+  }
+};
+
 class RtTest : public RayTracingTest {
  protected:
   // Renders `frames` RT frames at w x h and reads back `names`.
@@ -170,6 +178,64 @@ TEST_F(RtTest, PretraceAgreesWithRealRaysWhereBothHit) {
   EXPECT_GT(saved, 0.05) << "the pre-trace should answer some rays inside a box";
   EXPECT_GE(double(bothHit), 0.95 * double(preHits)) << "a pre-trace hit must be a real surface";
   EXPECT_GE(agreement, 0.9) << "distances of pre-traced and real hits";
+}
+
+// Pre-traced (the deformed depth buffer) against real rays (the bottom levels) on the
+// banners, posed at `seconds`: the share of rays hitting in both whose distances agree.
+double bannerAgreement(session::Session& s, uint32_t frameIndex) {
+  s.setFrameIndex(frameIndex);
+  s.settings().rtPretrace = true;
+  s.setPath("rt");
+  s.setSize(96, 64);
+  for (const char* n : {kPretraceHits, "gbuffer.depth"}) s.requestBuffer(n);
+  s.renderFrames(1);
+  auto pre = RtTestAccess::uints(s.buffer(kPretraceHits));
+  s.settings().rtPretrace = false;
+  s.setFrameIndex(frameIndex);
+  s.requestBuffer(kHits);
+  s.renderFrames(1);
+  auto real = RtTestAccess::uints(s.buffer(kHits));
+  s.settings().rtPretrace = true;
+  size_t both = 0, agree = 0;
+  for (size_t i = 0; i < pre.size(); ++i) {
+    if (!shared::tlRtIsHit(pre[i]) || !shared::tlRtIsHit(real[i])) continue;
+    ++both;
+    double a = shared::tlRtHitDistance(pre[i]), b = shared::tlRtHitDistance(real[i]);
+    agree += std::abs(a - b) <= 0.05 * b + 0.01;
+  }
+  return both ? double(agree) / double(both) : 0.0;
+}
+
+// Deforming meshes: the bottom levels are built in the pose of the first frame (t = 0); at
+// t = 0.55 s, with every stale level refitted, real rays see the pose the raster drew; with
+// refits off they still see the first pose, and disagree with the pre-trace.
+TEST_F(RtTest, RefittedBottomLevelsFollowTheDeformedMeshes) {
+  auto& s = session();
+  auto figure = [&](const char* name) {
+    for (auto& [n, v] : s.pathFigures())
+      if (n == name) return v;
+    return -1.0;
+  };
+  auto agreementAfterAMove = [&](uint32_t top, uint32_t random) {
+    s.loadScene(contentFile("banners.gltf"));
+    s.settings().rtRefitTop = top;
+    s.settings().rtRefitRandom = random;
+    s.setAnimationTime(0.0);
+    bannerAgreement(s, 2);
+    s.setAnimationTime(0.55);
+    return bannerAgreement(s, 3);
+  };
+  const double refitted = agreementAfterAMove(64, 0);
+  EXPECT_EQ(figure("deformingMeshes"), 48.0);
+  EXPECT_EQ(figure("blasStale"), 0.0) << "the second of the pair: nothing moved since the first";
+  const double stale = agreementAfterAMove(0, 0);
+  EXPECT_EQ(figure("blasStale"), 48.0);
+  EXPECT_EQ(figure("blasRefits"), 0.0);
+  RecordProperty("agreement_refitted", std::to_string(refitted));
+  RecordProperty("agreement_never_refitted", std::to_string(stale));
+  std::printf("pre-trace / real-ray agreement on the banners: refitted %.3f, never refitted %.3f\n", refitted, stale);
+  EXPECT_GE(refitted, 0.75);
+  EXPECT_LT(stale, refitted - 0.1);
 }
 
 TEST_F(RtTest, CornellFloorIsRedderNextToTheRedWall) {

@@ -46,6 +46,11 @@ struct RenderSettings {
   uint32_t rtMaxAccumFrames = 32;   // temporal accumulation window
   float rtCullAngle = 0.002f;       // contribution culling: instances subtending less (radians) are dropped
   float rtCullMargin = 0.0f;        // expanded frustum: margin (m) around the view frustum
+  // Deforming meshes' BLAS refits per frame (Metro): the highest priorities, random others,
+  // and a vertex budget (the first pick always goes).
+  uint32_t rtRefitTop = 16;
+  uint32_t rtRefitRandom = 4;
+  uint32_t rtRefitVertexBudget = 1u << 20;
   bool rtRawRayProbe = false;
 
   // Legacy path (T3). Distances <= 0 mean "scaled to the scene" (see legacy_path.cpp).

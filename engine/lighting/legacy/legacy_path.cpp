@@ -274,6 +274,7 @@ class LegacyPath final : public LightingPath {
     for (const glm::vec4* x : {&c.sunToLight, &c.sunIrradiance}) k.insert(k.end(), {x->x, x->y, x->z, x->w});
     k.push_back(double(c.flags));
     k.push_back(double(in.scene.id()));
+    k.push_back(double(in.scene.geometryVersion()));  // deforming meshes moved
     k.push_back(double(fit.clipmap.resolution));
     return scene::hashBytes(k.data(), k.size() * sizeof(double));
   }

@@ -146,7 +146,10 @@ class ReferencePath final : public LightingPath {
   // Bottom-level structures (one per mesh, full resolution: the reference does not
   // simplify), the per-instance geometry table and the pipeline, once per scene.
   void prepareScene(FrameInputs& in) {
-    if (sceneId_ == in.scene.id()) return;
+    if (sceneId_ == in.scene.id()) {
+      rebuildDeformed(in);
+      return;
+    }
     in.device.waitIdle();
     sceneId_ = in.scene.id();
     // The top level points into the old bottom levels: rebuild it even when the new scene's
@@ -154,17 +157,11 @@ class ReferencePath final : public LightingPath {
     tlas_ = {};
     tlasTransforms_.clear();
     blas_.clear();
+    blasVersion_.clear();
     const auto& ranges = in.scene.meshRanges();
-    const VkDeviceAddress vertices = in.scene.vertexBuffer().address(), indices = in.scene.indexBuffer().address();
-    for (size_t m = 0; m < ranges.size(); ++m) {
-      const auto& r = ranges[m];
-      gpu::TriangleGeometry g;
-      g.vertices = vertices + VkDeviceAddress(r.vertexOffset) * sizeof(scene::Vertex);
-      g.vertexStride = sizeof(scene::Vertex);
-      g.vertexCount = r.vertexCount;
-      g.indices = indices + VkDeviceAddress(r.firstIndex) * sizeof(uint32_t);
-      g.triangleCount = r.indexCount / 3;
-      blas_.push_back(gpu::buildBottomLevel(in.device, g, fmt::format("reference.blas.{}", m)));
+    for (uint32_t m = 0; m < ranges.size(); ++m) {
+      blas_.push_back(gpu::buildBottomLevel(in.device, meshGeometry(in, m), fmt::format("reference.blas.{}", m)));
+      blasVersion_.push_back(in.scene.meshVersion(m));
     }
     std::vector<shared::RefInstanceGeometry> table(std::max<size_t>(1, in.scene.instanceCount()));
     for (size_t i = 0; i < in.scene.instanceCount(); ++i) {
@@ -207,6 +204,33 @@ class ReferencePath final : public LightingPath {
     }
   }
 
+  // Mesh m's full triangles in the scene's shared buffers (the reference does not simplify).
+  static gpu::TriangleGeometry meshGeometry(FrameInputs& in, uint32_t m) {
+    const auto& r = in.scene.meshRanges()[m];
+    gpu::TriangleGeometry g;
+    g.vertices = in.scene.vertexBuffer().address() + VkDeviceAddress(r.vertexOffset) * sizeof(scene::Vertex);
+    g.vertexStride = sizeof(scene::Vertex);
+    g.vertexCount = r.vertexCount;
+    g.indices = in.scene.indexBuffer().address() + VkDeviceAddress(r.firstIndex) * sizeof(uint32_t);
+    g.triangleCount = r.indexCount / 3;
+    return g;
+  }
+
+  // Deforming meshes moved: the ground truth rebuilds their bottom levels exactly (no
+  // throttle) and its top level, and the sum starts over (the geometry version is in the state).
+  void rebuildDeformed(FrameInputs& in) {
+    const auto& ranges = in.scene.meshRanges();
+    bool any = false;
+    for (uint32_t m = 0; m < ranges.size(); ++m) {
+      if (in.scene.meshVersion(m) == blasVersion_[m]) continue;
+      if (!any) in.device.waitIdle();
+      any = true;
+      blas_[m] = gpu::buildBottomLevel(in.device, meshGeometry(in, m), fmt::format("reference.blas.{}", m));
+      blasVersion_[m] = in.scene.meshVersion(m);
+    }
+    if (any) tlas_ = {}, tlasTransforms_.clear();
+  }
+
   // The top level is camera-relative like everything the GPU sees, so it follows the
   // camera; it holds a few instances here (T5 adds culling for large scenes).
   void buildTopLevel(FrameInputs& in) {
@@ -230,11 +254,13 @@ class ReferencePath final : public LightingPath {
     key.push_back(float(in.settings.referenceBounces));
     key.push_back(in.settings.rtAoRadius);
     key.push_back(float(sceneId_));
+    key.push_back(float(in.scene.geometryVersion()));
     return scene::hashBytes(key.data(), key.size() * sizeof(float));
   }
 
   uint64_t sceneId_ = 0;
   std::vector<gpu::AccelerationStructure> blas_;
+  std::vector<uint64_t> blasVersion_;  // per mesh: the vertex version its bottom level holds
   gpu::AccelerationStructure tlas_;
   std::vector<glm::mat4> tlasTransforms_;
   gpu::Buffer geometry_;

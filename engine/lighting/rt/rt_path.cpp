@@ -46,7 +46,11 @@ class RtPath final : public LightingPath {
     culling.viewProj = in.constants.viewProj;
     culling.margin = s.rtCullMargin > 0.0f ? s.rtCullMargin : params_.rayLength;
     culling.minAngle = s.rtCullAngle;
-    scene_->prepareTopLevel(in.scene, culling);
+    RefitPolicy refits;
+    refits.top = s.rtRefitTop;
+    refits.random = s.rtRefitRandom;
+    refits.vertexBudget = s.rtRefitVertexBudget;
+    scene_->prepareTopLevel(in.scene, culling, refits);
     sceneInstances_ = uint32_t(in.scene.instanceCount());
 
     RtPush push{};
@@ -73,8 +77,27 @@ class RtPath final : public LightingPath {
     if (screenRadiance)
       graph.declarePersistent(kHistRadiance, image(VK_FORMAT_R16G16B16A16_SFLOAT, "composite radiance, last frame"));
 
+    // Deforming meshes: the throttle's refits, then the top level over the refitted levels.
+    const bool deforming = scene_->hasDeforming();
+    if (deforming) {
+      graph.declareImported(kRtBlasDeforming,
+                            graph::ResourceDesc::buffer(scene_->deformingStorage().size(),
+                                                        "bottom levels of the deforming meshes (refitted under a throttle)"));
+      in.executor.bindImportedBuffer(kRtBlasDeforming, scene_->deformingStorage());
+      graph.addPass(
+          "rt.blas.refit", graph::PassKind::Compute,
+          [&](graph::PassBuilder& b) {
+            b.read(scene::kSceneVertices, Usage::StorageRead);
+            b.write(kRtBlasDeforming, Usage::StorageWrite);
+          },
+          [this](graph::PassContext& ctx) { scene_->recordRefits(ctx.cmd); });
+    }
     graph.addPass(
-        "rt.tlas", graph::PassKind::Compute, [&](graph::PassBuilder& b) { b.write(kRtTlas, Usage::StorageWrite); },
+        "rt.tlas", graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          if (deforming) b.read(kRtBlasDeforming, Usage::StorageRead);
+          b.write(kRtTlas, Usage::StorageWrite);
+        },
         [this](graph::PassContext& ctx) { scene_->topLevel().record(ctx.cmd); });
 
     graph.addPass(
@@ -308,6 +331,10 @@ class RtPath final : public LightingPath {
             {"blasBytes", double(st.blasBytes)},
             {"blasBuildMs", st.blasBuildMs},
             {"simplificationDeviationM", double(st.maxDeviation)},
+            {"deformingMeshes", double(st.deformingMeshes)},
+            {"blasStale", double(st.staleLastFrame)},
+            {"blasRefits", double(st.refitsLastFrame)},
+            {"blasRefitVertices", double(st.refitVerticesLastFrame)},
             {"aoRadiusM", double(params_.aoRadius)},
             {"rayLengthM", double(params_.rayLength)}};
   }

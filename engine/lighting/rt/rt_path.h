@@ -5,6 +5,7 @@
 namespace tl::lighting {
 
 inline constexpr const char* kRtTlas = "rt.tlas";
+inline constexpr const char* kRtBlasDeforming = "rt.blas.deforming";  // imported: the deforming meshes' bottom levels
 inline constexpr const char* kPretraceHits = "rt.pretrace.hits";
 inline constexpr const char* kPretraceSurface = "rt.pretrace.surface";
 inline constexpr const char* kHits = "rt.hits";

@@ -87,7 +87,7 @@ std::vector<uint32_t> cullInstances(const std::vector<glm::vec3>& centres, const
 
 RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene& gpuScene, float simplifyRatio,
                  float simplifyError)
-    : topLevel_(device, "rt.tlas"), ratio_(std::clamp(simplifyRatio, 0.01f, 1.0f)) {
+    : topLevel_(device, "rt.tlas"), ratio_(std::clamp(simplifyRatio, 0.01f, 1.0f)), device_(&device) {
   auto start = std::chrono::steady_clock::now();
   const auto& ranges = gpuScene.meshRanges();
   const VkDeviceAddress vertices = gpuScene.vertexBuffer().address();
@@ -98,10 +98,19 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
     double s = std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
     meshScale[inst.mesh] = std::max(meshScale[inst.mesh], float(s));
   }
+  meshInstance_.assign(scene.meshes.size(), -1);
+  for (size_t i = 0; i < scene.instances.size(); ++i)
+    if (scene.meshes[scene.instances[i].mesh].deforms()) meshInstance_[scene.instances[i].mesh] = int64_t(i);
+  VkDeviceSize deformingBytes = 0;
+  std::vector<VkDeviceSize> deformingOffset(scene.meshes.size(), 0);
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
     const auto& mesh = scene.meshes[i];
     float deviation = 0.0f;
-    std::vector<uint32_t> indices = simplifyForRayTracing(mesh.vertices, mesh.indices, ratio_, simplifyError, &deviation);
+    // A deforming mesh keeps all its triangles: simplification judged on the rest pose (flat,
+    // for cloth) would not hold once it moves.
+    const bool deforms = mesh.deforms();
+    std::vector<uint32_t> indices =
+        simplifyForRayTracing(mesh.vertices, mesh.indices, deforms ? 1.0f : ratio_, simplifyError, &deviation);
     stats_.sourceTriangles += mesh.indices.size() / 3;
     stats_.rtTriangles += indices.size() / 3;
     stats_.maxDeviation = std::max(stats_.maxDeviation, deviation * meshScale[i]);
@@ -116,13 +125,38 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
     g.vertexCount = ranges[i].vertexCount;
     g.indices = ib.address();
     g.triangleCount = uint32_t(indices.size() / 3);
-    blas_.push_back(gpu::buildBottomLevel(device, g, fmt::format("rt.blas.{}", i), true));
-    stats_.blasBytes += blas_.back().bytes();
+    geometry_.push_back(g);
+    if (deforms) {
+      // Built below, into the shared storage, once its size is known.
+      deformingOffset[i] = deformingBytes;
+      deformingBytes += gpu::bottomLevelBytes(device, g, true);
+      blas_.emplace_back();
+      refitScratch_.emplace_back(device, gpu::refitScratchBytes(device, g), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                 gpu::MemoryUsage::GpuOnly, fmt::format("rt.blas.{}.refitScratch", i));
+      ++stats_.deformingMeshes;
+    } else {
+      blas_.push_back(gpu::buildBottomLevel(device, g, fmt::format("rt.blas.{}", i), true));
+      stats_.blasBytes += blas_.back().bytes();
+      refitScratch_.emplace_back();
+    }
     rtIndices_.push_back(std::move(ib));
     glm::vec3 lo(mesh.bounds.min), hi(mesh.bounds.max);
     meshCentre_.push_back(mesh.bounds.valid() ? (lo + hi) * 0.5f : glm::vec3(0.0f));
     meshRadius_.push_back(mesh.bounds.valid() ? glm::length(hi - lo) * 0.5f : 0.0f);
   }
+  if (deformingBytes > 0) {
+    deformingStorage_ = gpu::Buffer(device, deformingBytes,
+                                    VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                    gpu::MemoryUsage::GpuOnly, "rt.blas.deforming");
+    for (size_t i = 0; i < scene.meshes.size(); ++i)
+      if (scene.meshes[i].deforms())
+        blas_[i] = gpu::buildBottomLevelAt(device, geometry_[i], fmt::format("rt.blas.{}", i), deformingStorage_,
+                                           deformingOffset[i], true);
+    stats_.deformingBytes = deformingBytes;
+    stats_.blasBytes += deformingBytes;
+  }
+  refitVersion_.assign(scene.meshes.size(), 0);
+  for (size_t i = 0; i < scene.meshes.size(); ++i) refitVersion_[i] = gpuScene.meshVersion(uint32_t(i));
   stats_.blasBuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
   // Once per material (texture averages touch every texel), then per instance. The albedo
@@ -159,7 +193,7 @@ void RtScene::setInstanceAlbedo(const std::vector<glm::vec4>& albedo) {
   instanceData_.write(instances_.data(), instances_.size() * sizeof(instances_[0]));
 }
 
-void RtScene::prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling) {
+void RtScene::prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling, const RefitPolicy& refits) {
   const auto& transforms = gpuScene.relativeTransforms();
   std::vector<glm::vec3> centres(transforms.size());
   std::vector<float> radii(transforms.size());
@@ -171,9 +205,40 @@ void RtScene::prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& 
     radii[i] = meshRadius_[mesh] * scale;
   }
   std::vector<gpu::TlasInstance> instances;
-  for (uint32_t i : cullInstances(centres, radii, culling))
-    instances.push_back({transforms[i], i, 0xFF, blas_[gpuScene.instanceMesh(i)].address()});
+  const std::vector<uint32_t> kept = cullInstances(centres, radii, culling);
+  for (uint32_t i : kept) instances.push_back({transforms[i], i, 0xFF, blas_[gpuScene.instanceMesh(i)].address()});
   topLevel_.prepare(instances);
+
+  // Deforming meshes whose vertices moved since their last refit: the throttle picks some.
+  pendingRefits_.clear();
+  stats_.staleLastFrame = stats_.refitsLastFrame = 0;
+  stats_.refitVerticesLastFrame = 0;
+  if (!hasDeforming()) return;
+  std::vector<bool> inTopLevel(transforms.size(), false);
+  for (uint32_t i : kept) inTopLevel[i] = true;
+  std::vector<RefitCandidate> stale;
+  for (uint32_t m = 0; m < meshInstance_.size(); ++m) {
+    if (meshInstance_[m] < 0 || gpuScene.meshVersion(m) == refitVersion_[m]) continue;
+    const size_t i = size_t(meshInstance_[m]);
+    stale.push_back({m, geometry_[m].vertexCount, inTopLevel[i], radii[i] / std::max(glm::length(centres[i]), 1e-3f)});
+  }
+  stats_.staleLastFrame = uint32_t(stale.size());
+  for (uint32_t m : scheduler_.choose(stale, refits, frame_++)) {
+    pendingRefits_.push_back({m, gpuScene.meshVersion(m)});
+    stats_.refitVerticesLastFrame += geometry_[m].vertexCount;
+  }
+  stats_.refitsLastFrame = uint32_t(pendingRefits_.size());
+}
+
+void RtScene::recordRefits(VkCommandBuffer cmd) {
+  // The vertices were uploaded and waited for before the frame; last frame's traces are done.
+  for (const auto& [mesh, version] : pendingRefits_) {
+    gpu::recordRefit(cmd, *device_, blas_[mesh], geometry_[mesh], refitScratch_[mesh]);
+    refitVersion_[mesh] = version;
+  }
+  // The top-level build that follows waits for these writes (its own barrier), and the
+  // barrier after it makes both visible to the traces.
+  pendingRefits_.clear();
 }
 
 }  // namespace tl::lighting

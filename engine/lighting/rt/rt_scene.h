@@ -5,6 +5,7 @@
 
 #include "gpu/acceleration_structure.h"
 #include "lighting/common/frame_inputs.h"
+#include "lighting/rt/blas_refit.h"
 #include "shared/rt.h"
 
 #include <vector>
@@ -17,6 +18,12 @@ struct RtSceneStats {
   VkDeviceSize blasBytes = 0;     // compacted
   double blasBuildMs = 0.0;       // CPU wall time of simplify + build + compact, all meshes
   float maxDeviation = 0.0f;      // largest simplification error in world metres
+  // Deforming meshes (morph targets): their bottom levels, refitted under the throttle.
+  uint32_t deformingMeshes = 0;
+  VkDeviceSize deformingBytes = 0;
+  uint32_t staleLastFrame = 0;    // deforming meshes whose vertices moved since their last refit
+  uint32_t refitsLastFrame = 0;   // of those, refitted this frame
+  uint64_t refitVerticesLastFrame = 0;
 };
 
 // Which instances go into this frame's top level.
@@ -43,8 +50,14 @@ class RtScene {
   RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene& gpuScene, float simplifyRatio,
           float simplifyError);
 
-  // Chooses this frame's instances and uploads them; record() builds the top level.
-  void prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling);
+  // Chooses this frame's instances and uploads them, and which deforming meshes to refit;
+  // recordRefits() then topLevel().record() build them.
+  void prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling, const RefitPolicy& refits = {});
+  // Refits the bottom levels chosen by prepareTopLevel from the scene's current vertices.
+  void recordRefits(VkCommandBuffer cmd);
+  bool hasDeforming() const { return stats_.deformingMeshes > 0; }
+  // All deforming meshes' bottom levels, side by side: the graph's rt.blas.deforming.
+  gpu::Buffer& deformingStorage() { return deformingStorage_; }
   gpu::TopLevelBuilder& topLevel() { return topLevel_; }
   gpu::Buffer& instanceData() { return instanceData_; }
   // Per-instance hit albedo resolved outside (T7: override > baked > texture average);
@@ -65,6 +78,17 @@ class RtScene {
   gpu::TopLevelBuilder topLevel_;
   RtSceneStats stats_;
   float ratio_ = 1.0f;
+  // Deforming meshes: geometry as built, the mesh version each bottom level holds, a scratch
+  // buffer each (refits of one frame run together), the throttle and this frame's choice.
+  std::vector<gpu::TriangleGeometry> geometry_;  // per mesh
+  std::vector<int64_t> meshInstance_;             // per mesh: its one instance (deforming meshes), else -1
+  std::vector<uint64_t> refitVersion_;            // per mesh
+  std::vector<gpu::Buffer> refitScratch_;         // per mesh (empty for still ones)
+  gpu::Buffer deformingStorage_;
+  RefitScheduler scheduler_;
+  std::vector<std::pair<uint32_t, uint64_t>> pendingRefits_;  // mesh, the version it will hold
+  uint64_t frame_ = 0;
+  gpu::Device* device_ = nullptr;
 };
 
 }  // namespace tl::lighting
