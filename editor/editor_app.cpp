@@ -190,6 +190,8 @@ void EditorApp::frame() {
   ImGui::NewFrame();
   drawPanels(*this);
   handleCameraInput(seconds);
+  if (playing_ && session_->animated() && !load_.valid())
+    session_->setAnimationTime(std::fmod(session_->animationTime() + seconds, std::max(session_->scene().animationSeconds, 1e-3)));
   renderEngine();
   ImGui::Render();
   recordAndPresent();

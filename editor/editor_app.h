@@ -67,6 +67,8 @@ class EditorApp {
   // The Compare panel: while compareView() holds a value the viewport is split between two
   // paths (applied to the session each frame; an unavailable side is refused with its reason).
   bool& compareOpen() { return showCompare_; }
+  // Morph animations advance with the wall clock while playing (on by default).
+  bool& playing() { return playing_; }
   std::optional<session::CompareView>& compareView() { return compareView_; }
   void setCompare(bool on);
   // Hot shader reload: null where the shader sources are not around (an installed build).
@@ -120,6 +122,7 @@ class EditorApp {
   ViewerState viewer_;         // what is shown otherwise, and how (the Buffers panel)
   bool showBuffers_ = false;
   bool showCompare_ = false;
+  bool playing_ = true;
   std::optional<session::CompareView> compareView_;
   bool draggingWipe_ = false;
   glm::vec2 viewportMin_{0.0f}, viewportSize_{0.0f};

@@ -238,6 +238,14 @@ void pathParameters(EditorApp& app) {
     tooltip("Simplified BLAS meshes (Metro: about 4x fewer triangles); 1 = the full mesh");
     changed |= ImGui::Checkbox("Multi-bounce from the screen##rt", &s.rtScreenRadiance);
     tooltip("Hits seen last frame take its shaded radiance, so light bounces more than once");
+    if (session.animated()) {
+      // Refits change only how fast the rays catch up with moving meshes: no history reset.
+      int top = int(s.rtRefitTop), random = int(s.rtRefitRandom);
+      if (ImGui::SliderInt("Refits: top", &top, 0, 64)) s.rtRefitTop = uint32_t(top);
+      tooltip("Deforming meshes whose BLAS is refitted each frame: the highest priorities (visible, large, waiting)");
+      if (ImGui::SliderInt("Refits: random", &random, 0, 16)) s.rtRefitRandom = uint32_t(random);
+      tooltip("Plus this many others drawn at random, so none waits forever (Metro: 16 + 4)");
+    }
   }
   if (changed) session.resetHistory();
 }
@@ -305,6 +313,14 @@ void lightingPanel(EditorApp& app) {
     l.sunIrradiance = sunColor * sunE;
     l.skyRadiance = skyColor * skyL;
     session.setLighting(l);
+  }
+  if (session.animated()) {
+    ImGui::Separator();
+    ImGui::Checkbox("Play animation", &app.playing());
+    tooltip("Morph-target animations of the scene (deforming meshes), looping");
+    float t = float(session.animationTime());
+    if (ImGui::SliderFloat("Time", &t, 0.0f, float(session.scene().animationSeconds), "%.2f s"))
+      session.setAnimationTime(t);
   }
   pathParameters(app);
   ImGui::Separator();

@@ -266,6 +266,14 @@ void Script::step(EditorApp& app) {
           all += fmt::format(" {} relMSE {:.4f} FLIP {:.4f} ({:.1f} ms);", e.path, *e.relMse, *e.flip, e.gpuMs);
         }
         fmt::print("script: compare against the reference ({} spp):{}\n", live->referenceSamples(), all);
+      } else if (cmd == "animation") {
+        // play, pause, or a time in seconds (pauses there)
+        if (arg == "play" || arg == "pause") {
+          app.playing() = arg == "play";
+        } else {
+          app.playing() = false;
+          app.session().setAnimationTime(std::stod(arg));
+        }
       } else if (cmd == "quit") {
         app.requestQuit();
         return;

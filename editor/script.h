@@ -39,6 +39,7 @@
 //   renderdoc-capture      capture the next frame in RenderDoc (fails with the reason outside it)
 //   compare LEFT RIGHT     split the viewport between two lighting paths (Compare panel); compare off
 //   compare-mode wipe|difference, compare-wipe F (0..1 of the width)
+//   animation play|pause|T play or pause the scene's morph animations, or pause at T seconds
 //   expect-compare-errors  fail unless every side has a finite relMSE and FLIP against the reference
 //   quit
 #pragma once
