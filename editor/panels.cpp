@@ -216,8 +216,11 @@ void pathParameters(EditorApp& app) {
                                  "A hit closer than this occludes (RTAO)");
     changed |= distanceParameter("Ray length", s.rtRayLength, lighting::sceneScaledRayLength(scale),
                                  "GI rays stop after this distance; also the TLAS culling margin");
-    changed |= distanceParameter("RT to sky blend", s.rtBlendDistance, lighting::sceneScaledBlendDistance(scale),
-                                 "Beyond this view distance RT GI fades out (Metro: 250 m)");
+    changed |= distanceParameter("RT blend distance", s.rtBlendDistance, lighting::sceneScaledBlendDistance(scale),
+                                 "Beyond this view distance RT GI fades to the far field (Metro: 250 m)");
+    changed |= ImGui::Checkbox("Legacy GI beyond it", &s.rtFarLegacy);
+    tooltip("The far field: the legacy path's voxel GI (Metro), or else the unoccluded sky. Runs only when part of "
+            "the scene lies beyond the blend distance");
     changed |= ImGui::Checkbox("Denoiser", &s.rtDenoise);
     tooltip("Two-pass spatial denoiser on the SH after accumulation (Metro's): cleaner, slower");
     changed |= distanceParameter("Denoiser radius", s.rtDenoiseRadius, std::clamp(scale / 6.0f, 0.25f, 6.0f),

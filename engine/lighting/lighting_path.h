@@ -23,9 +23,12 @@ struct LightingOutputs {
   std::string specular;          // RGBA16F, indirect specular radiance
   std::string radiance;          // a path that computes the whole image (the reference):
                                  // the composite passes it through unchanged
-  // Beyond this view distance (m) the path's diffuse GI fades out over 20% of it towards the
-  // unoccluded sky (Metro: RT GI to 250 m, then the legacy pipeline). 0: no fade.
+  // Beyond this view distance (m) the path's diffuse GI fades out over 20% of it (Metro: RT
+  // GI to 250 m, then the legacy pipeline): towards the far field below when given, else the
+  // unoccluded sky. 0: no fade.
   float giBlendDistance = 0.0f;
+  // The far field: another path's diffuse GI (SH + chroma, times its AO), e.g. legacy's.
+  std::string farShY, farCoCg, farAo;
   // The AO also darkens the diffuse GI (legacy: coarse voxel GI needs SSAO's contact detail).
   // Off for ray-traced GI, whose rays already saw the occluders.
   bool aoOnGi = false;

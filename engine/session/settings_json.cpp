@@ -46,6 +46,7 @@ const std::map<std::string, Setter>& setters() {
       {"rtMaxAccumFrames", field(&S::rtMaxAccumFrames)},
       {"rtCullAngle", field(&S::rtCullAngle)},
       {"rtCullMargin", field(&S::rtCullMargin)},
+      {"rtFarLegacy", field(&S::rtFarLegacy)},
       {"rtRefitTop", field(&S::rtRefitTop)},
       {"rtRefitRandom", field(&S::rtRefitRandom)},
       {"rtRefitVertexBudget", field(&S::rtRefitVertexBudget)},

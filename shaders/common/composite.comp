@@ -20,6 +20,9 @@ layout(set = 0, binding = kCompositeOutput, rgba16f) uniform writeonly image2D o
 layout(set = 0, binding = kCompositeAo) uniform sampler2D pathAo;
 layout(set = 0, binding = kCompositeShY) uniform sampler2D pathShY;
 layout(set = 0, binding = kCompositeCoCg) uniform sampler2D pathCoCg;
+layout(set = 0, binding = kCompositeFarShY) uniform sampler2D farShY;
+layout(set = 0, binding = kCompositeFarCoCg) uniform sampler2D farCoCg;
+layout(set = 0, binding = kCompositeFarAo) uniform sampler2D farAo;
 layout(push_constant) uniform Push { CompositePush push; };
 
 #include "common/camera.glsl"

@@ -2,7 +2,7 @@
 // ambient occlusion and the diffuse irradiance (sky and bounce light; the sun is separate).
 // The composite and the composite.stages pass both include it, so the per-stage buffers
 // hold exactly what the final image used. The includer declares `push` (CompositePush) and
-// the samplers pathAo, pathShY and pathCoCg.
+// the samplers pathAo, pathShY, pathCoCg, farShY, farCoCg and farAo.
 
 // 1 where the path gives no AO.
 float pathAmbientOcclusion(ivec2 p) {
@@ -11,8 +11,8 @@ float pathAmbientOcclusion(ivec2 p) {
 
 // Without a path's GI: the uniform sky, irradiance pi*L on an unoccluded surface, times AO.
 // With it: the path's irradiance resolved against the normal (it already holds the sky's
-// occlusion, so AO is not applied twice unless the path asks), fading to the sky beyond the
-// blend distance.
+// occlusion, so AO is not applied twice unless the path asks), fading beyond the blend
+// distance to the far field (another path's GI) or, without one, to the sky.
 vec3 pathDiffuseIrradiance(ivec2 p, vec3 n, vec3 position, float ao, vec3 skyRadiance) {
   vec3 skyIrradiance = kPi * skyRadiance * ao;
   if ((push.flags & kCompositeHasGi) == 0u) return skyIrradiance;
@@ -22,5 +22,12 @@ vec3 pathDiffuseIrradiance(ivec2 p, vec3 n, vec3 position, float ao, vec3 skyRad
                    ? clamp((push.giBlendDistance - length(position)) / max(push.giBlendWidth, 1e-6), 0.0, 1.0)
                    : 1.0;
   if ((push.flags & kCompositeAoOnGi) != 0u) gi *= ao;
-  return mix(skyIrradiance, gi, fade);
+  if (fade >= 1.0) return gi;
+  // Beyond the blend distance: the far field's GI (with its own AO), else the sky.
+  vec3 far = skyIrradiance;
+  if ((push.flags & kCompositeHasFarGi) != 0u) {
+    ShLumaCoCg farSh = tlShMake(texelFetch(farShY, p, 0), texelFetch(farCoCg, p, 0).xy);
+    far = tlShResolveIrradiance(farSh, n) * clamp(texelFetch(farAo, p, 0).r, 0.0, 1.0);
+  }
+  return mix(far, gi, fade);
 }

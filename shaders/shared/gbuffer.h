@@ -37,9 +37,15 @@ TL_CONST uint kCompositeShadowDepth = 11;  // the sun shadow map again, plain sa
 TL_CONST uint kCompositeStageAo = 12;          // r16f: the AO the composite applied (0 on the sky)
 TL_CONST uint kCompositeStageIrradiance = 13;  // rgba16f: the diffuse irradiance it used (0 on the sky)
 
+// The far field the GI fades to beyond the blend distance (another path's: legacy's).
+TL_CONST uint kCompositeFarShY = 14;
+TL_CONST uint kCompositeFarCoCg = 15;
+TL_CONST uint kCompositeFarAo = 16;
+
 TL_CONST uint kCompositeHasAo = 1u;
 TL_CONST uint kCompositeHasGi = 2u;
 TL_CONST uint kCompositeAoOnGi = 4u;
+TL_CONST uint kCompositeHasFarGi = 8u;
 struct CompositePush {
   uint flags;               // kCompositeHas*: which path outputs are bound
   float giBlendDistance;    // beyond this view distance GI fades to the unoccluded sky (0: never)

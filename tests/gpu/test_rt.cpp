@@ -3,6 +3,7 @@
 // rays, colour bleeding in the Cornell box, and finite output on the atrium.
 #include "lighting_checks.h"
 
+#include "lighting/common/composite_pass.h"
 #include "lighting/rt/rt_path.h"
 #include "shared/packing.h"
 #include "shared/rt.h"
@@ -236,6 +237,48 @@ TEST_F(RtTest, RefittedBottomLevelsFollowTheDeformedMeshes) {
   std::printf("pre-trace / real-ray agreement on the banners: refitted %.3f, never refitted %.3f\n", refitted, stale);
   EXPECT_GE(refitted, 0.75);
   EXPECT_LT(stale, refitted - 0.1);
+}
+
+// Metro's distance blend: beyond the blend distance the legacy path's GI, not the sky. Its
+// passes join the frame only when part of the scene lies that far.
+TEST_F(RtTest, BeyondTheBlendDistanceTheLegacyGiTakesOver) {
+  auto& s = session();
+  s.loadScene(contentFile("atrium.gltf"));
+  s.setSize(64, 36);
+  auto meanFarIrradiance = [&](const std::string& path, bool farLegacy, float blend) {
+    s.setPath(path);
+    s.settings().rtFarLegacy = farLegacy;
+    s.settings().rtBlendDistance = blend;
+    s.resetHistory();
+    for (const char* n : {lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
+    s.renderFrames(6);
+    auto e = s.buffer(lighting::kCompositeIrradiance).texels();
+    auto depth = s.buffer("gbuffer.depth").texels();
+    double sum = 0.0;
+    size_t n = 0;
+    // Far pixels: view depth beyond the blend distance (reversed Z: depth = near / w).
+    const float near = s.view().znear;
+    for (size_t i = 0; i < depth.size(); ++i) {
+      if (depth[i] <= 0.0f || near / depth[i] < 1.2f * blend) continue;
+      sum += shared::tlLuminance(glm::vec3(e[4 * i], e[4 * i + 1], e[4 * i + 2]));
+      ++n;
+    }
+    EXPECT_GT(n, 100u) << "far pixels";
+    return n ? sum / double(n) : 0.0;
+  };
+  const double legacy = meanFarIrradiance("legacy", true, 8.0f);
+  const double rtFar = meanFarIrradiance("rt", true, 8.0f);
+  EXPECT_NE(s.graphDump().find("legacy.cones"), std::string::npos);
+  const double rtSky = meanFarIrradiance("rt", false, 8.0f);
+  EXPECT_EQ(s.graphDump().find("legacy.cones"), std::string::npos);
+  std::printf("far-field irradiance: legacy %.3f, rt + legacy far field %.3f, rt + sky %.3f\n", legacy, rtFar, rtSky);
+  EXPECT_NEAR(rtFar, legacy, 0.1 * legacy) << "the far field is the legacy GI";
+  EXPECT_GT(std::abs(rtSky - legacy), 0.2 * legacy) << "the sky alone is a different answer";
+  // The default blend distance lies beyond the whole scene: no legacy passes.
+  s.settings() = lighting::RenderSettings{};
+  s.setSize(64, 36);
+  s.renderFrames(1);
+  EXPECT_EQ(s.graphDump().find("legacy."), std::string::npos);
 }
 
 TEST_F(RtTest, CornellFloorIsRedderNextToTheRedWall) {

@@ -51,7 +51,10 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
                          {shared::kCompositeAo, sampled},
                          {shared::kCompositeShY, sampled},
                          {shared::kCompositeCoCg, sampled},
-                         {shared::kCompositeShadowDepth, sampled}};
+                         {shared::kCompositeShadowDepth, sampled},
+                         {shared::kCompositeFarShY, sampled},
+                         {shared::kCompositeFarCoCg, sampled},
+                         {shared::kCompositeFarAo, sampled}};
     d.layout.pushConstantBytes = sizeof(shared::CompositePush);
     pipeline_ = gpu::createComputePipeline(in.device, d);
     pointSampler_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "composite.point");
@@ -67,12 +70,17 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   push.flags = (path.ambientOcclusion.empty() ? 0u : shared::kCompositeHasAo) |
                (path.diffuseShY.empty() || path.diffuseCoCg.empty() ? 0u : shared::kCompositeHasGi) |
                (path.aoOnGi ? shared::kCompositeAoOnGi : 0u);
+  const bool far = !path.farShY.empty() && !path.farCoCg.empty() && !path.farAo.empty() &&
+                   (push.flags & shared::kCompositeHasGi);
+  if (far) push.flags |= shared::kCompositeHasFarGi;
   push.giBlendDistance = path.giBlendDistance;
   push.giBlendWidth = 0.2f * path.giBlendDistance;
   // Absent outputs: the binding still needs an image; the base colour stands in, unread.
   const std::string ao = path.ambientOcclusion.empty() ? "gbuffer.baseColor" : path.ambientOcclusion;
   const std::string shY = (push.flags & shared::kCompositeHasGi) ? path.diffuseShY : "gbuffer.baseColor";
   const std::string coCg = (push.flags & shared::kCompositeHasGi) ? path.diffuseCoCg : "gbuffer.baseColor";
+  const FarField farField{far ? path.farShY : "gbuffer.baseColor", far ? path.farCoCg : "gbuffer.baseColor",
+                          far ? path.farAo : "gbuffer.baseColor"};
   graph.addPass(
       "composite", graph::PassKind::Compute,
       [&](graph::PassBuilder& b) {
@@ -81,11 +89,11 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
           b.read(n, Usage::Sampled);
         b.read(kGbufferDepth, Usage::Sampled);
         if (sun) b.read(kShadowSunDepth, Usage::Sampled);
-        for (const std::string& n : {ao, shY, coCg})
+        for (const std::string& n : {ao, shY, coCg, farField.shY, farField.coCg, farField.ao})
           if (n != "gbuffer.baseColor") b.read(n, Usage::Sampled);
         b.create(kCompositeHdr, hdrDesc, Usage::StorageWrite);
       },
-      [this, &in, sun, push, ao, shY, coCg](graph::PassContext& ctx) {
+      [this, &in, sun, push, ao, shY, coCg, farField](graph::PassContext& ctx) {
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
         VkSampler point = pointSampler_.handle();
         // The binding must still hold a depth image; the G-buffer's depth stands in, unread.
@@ -103,15 +111,19 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
             .sampledImage(shared::kCompositeAo, ctx.image(ao).view(), point, ro)
             .sampledImage(shared::kCompositeShY, ctx.image(shY).view(), point, ro)
             .sampledImage(shared::kCompositeCoCg, ctx.image(coCg).view(), point, ro)
-            .sampledImage(shared::kCompositeShadowDepth, shadow.view(), point, ro);
+            .sampledImage(shared::kCompositeShadowDepth, shadow.view(), point, ro)
+            .sampledImage(shared::kCompositeFarShY, ctx.image(farField.shY).view(), point, ro)
+            .sampledImage(shared::kCompositeFarCoCg, ctx.image(farField.coCg).view(), point, ro)
+            .sampledImage(shared::kCompositeFarAo, ctx.image(farField.ao).view(), point, ro);
         ctx.pushConstants(push);
         ctx.dispatch(in.settings.width, in.settings.height);
       });
-  addStages(graph, in, push, ao, shY, coCg);
+  addStages(graph, in, push, ao, shY, coCg, farField);
 }
 
 void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push,
-                              const std::string& ao, const std::string& shY, const std::string& coCg) {
+                              const std::string& ao, const std::string& shY, const std::string& coCg,
+                              const FarField& farField) {
   const uint32_t w = in.settings.width, h = in.settings.height;
   if (!stagesPipeline_) {
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
@@ -124,6 +136,9 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
                          {shared::kCompositeAo, sampled},
                          {shared::kCompositeShY, sampled},
                          {shared::kCompositeCoCg, sampled},
+                         {shared::kCompositeFarShY, sampled},
+                         {shared::kCompositeFarCoCg, sampled},
+                         {shared::kCompositeFarAo, sampled},
                          {shared::kCompositeStageAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                          {shared::kCompositeStageIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
     d.layout.pushConstantBytes = sizeof(shared::CompositePush);
@@ -136,7 +151,7 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
         b.read("gbuffer.normal", Usage::Sampled);
         b.read(kGbufferDepth, Usage::Sampled);
         // The stand-in for absent outputs (see add()) is bound, so declared, but never read.
-        std::set<std::string> inputs{ao, shY, coCg};
+        std::set<std::string> inputs{ao, shY, coCg, farField.shY, farField.coCg, farField.ao};
         for (const std::string& n : inputs) b.read(n, Usage::Sampled);
         b.create(kCompositeAo,
                  graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "the AO the composite applied (0: sky)"),
@@ -146,7 +161,7 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
                                               "the diffuse irradiance the composite used: sky + bounce, no sun (0: sky)"),
                  Usage::StorageWrite);
       },
-      [this, &in, push, ao, shY, coCg](graph::PassContext& ctx) {
+      [this, &in, push, ao, shY, coCg, farField](graph::PassContext& ctx) {
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
         VkSampler point = pointSampler_.handle();
         ctx.bind(stagesPipeline_);
@@ -157,6 +172,9 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
             .sampledImage(shared::kCompositeAo, ctx.image(ao).view(), point, ro)
             .sampledImage(shared::kCompositeShY, ctx.image(shY).view(), point, ro)
             .sampledImage(shared::kCompositeCoCg, ctx.image(coCg).view(), point, ro)
+            .sampledImage(shared::kCompositeFarShY, ctx.image(farField.shY).view(), point, ro)
+            .sampledImage(shared::kCompositeFarCoCg, ctx.image(farField.coCg).view(), point, ro)
+            .sampledImage(shared::kCompositeFarAo, ctx.image(farField.ao).view(), point, ro)
             .storageImage(shared::kCompositeStageAo, ctx.image(kCompositeAo).view())
             .storageImage(shared::kCompositeStageIrradiance, ctx.image(kCompositeIrradiance).view());
         ctx.pushConstants(push);

@@ -23,8 +23,11 @@ class CompositePass {
   void add(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path);
 
  private:
+  struct FarField {
+    std::string shY, coCg, ao;
+  };
   void addStages(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push, const std::string& ao,
-                 const std::string& shY, const std::string& coCg);
+                 const std::string& shY, const std::string& coCg, const FarField& farField);
 
   gpu::Pipeline pipeline_;
   gpu::Pipeline stagesPipeline_;

@@ -48,6 +48,9 @@ struct RenderSettings {
   float rtCullMargin = 0.0f;        // expanded frustum: margin (m) around the view frustum
   // Deforming meshes' BLAS refits per frame (Metro): the highest priorities, random others,
   // and a vertex budget (the first pick always goes).
+  // Beyond the blend distance, the legacy path's GI (Metro) rather than the unoccluded sky;
+  // it runs only when part of the scene lies that far from the camera.
+  bool rtFarLegacy = true;
   uint32_t rtRefitTop = 16;
   uint32_t rtRefitRandom = 4;
   uint32_t rtRefitVertexBudget = 1u << 20;

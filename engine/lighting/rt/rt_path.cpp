@@ -318,6 +318,16 @@ class RtPath final : public LightingPath {
     out.diffuseShY = giShY;
     out.diffuseCoCg = giCoCg;
     out.giBlendDistance = params_.blendDistance;
+    // Metro: beyond the blend distance, the legacy pipeline's GI. Its passes join the frame
+    // only when some of the scene lies that far away; otherwise nobody pays for them.
+    farLegacy_ = s.rtFarLegacy && farthestSceneDistance(in) > params_.blendDistance;
+    if (farLegacy_) {
+      if (!farField_) farField_ = makeLegacyPath();
+      const LightingOutputs far = farField_->addPasses(graph, in);
+      out.farShY = far.diffuseShY;
+      out.farCoCg = far.diffuseCoCg;
+      out.farAo = far.ambientOcclusion;
+    }
     return out;
   }
 
@@ -331,6 +341,7 @@ class RtPath final : public LightingPath {
             {"blasBytes", double(st.blasBytes)},
             {"blasBuildMs", st.blasBuildMs},
             {"simplificationDeviationM", double(st.maxDeviation)},
+            {"farFieldLegacy", farLegacy_ ? 1.0 : 0.0},
             {"deformingMeshes", double(st.deformingMeshes)},
             {"blasStale", double(st.staleLastFrame)},
             {"blasRefits", double(st.refitsLastFrame)},
@@ -340,6 +351,18 @@ class RtPath final : public LightingPath {
   }
 
  private:
+  // From the camera to the farthest corner of the scene's bounds.
+  static double farthestSceneDistance(const FrameInputs& in) {
+    const auto& b = in.sceneData.bounds;
+    if (!b.valid()) return 0.0;
+    double farthest = 0.0;
+    for (int c = 0; c < 8; ++c) {
+      glm::dvec3 corner((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y, (c & 4) ? b.max.z : b.min.z);
+      farthest = std::max(farthest, glm::length(corner - in.cameraWorld));
+    }
+    return farthest;
+  }
+
   static void readCommon(graph::PassBuilder& b) {
     b.read(kFrameConstants, Usage::StorageRead);
     b.read(kGbufferDepth, Usage::Sampled);
@@ -485,6 +508,8 @@ class RtPath final : public LightingPath {
   }
 
   std::unique_ptr<RtScene> scene_;
+  std::unique_ptr<LightingPath> farField_;  // the legacy path, for GI beyond the blend distance
+  bool farLegacy_ = false;
   uint64_t sceneId_ = 0;
   uint64_t albedoVersion_ = ~0ull;
   uint32_t sceneInstances_ = 0;
