@@ -10,6 +10,7 @@
 #include "gpu/renderdoc.h"
 #include "gpu/self_test.h"
 #include "session/compare.h"
+#include "session/settings_json.h"
 #include "session/session.h"
 
 #include <CLI/CLI.hpp>
@@ -245,6 +246,9 @@ int main(int argc, char** argv) {
   benchCmd->add_flag("--rays", bench.rays,
                      "rt path: the device's raw ray rate on the scene's TLAS (trivial kernel) against rt.trace's");
   benchCmd->add_option("--json", benchJson, "write the figures as JSON to FILE (- for stdout)");
+  std::string benchSettings;
+  benchCmd->add_option("--set", benchSettings,
+                       "render settings to change, as JSON: '{\"rtRefitTop\": 64}' (the names `compare --settings` takes)");
   addViewAndLightOptions(*benchCmd, benchRender);
 
   RenderOptions compareRender;
@@ -402,6 +406,15 @@ int main(int argc, char** argv) {
     if (*benchCmd) {
       Session session;
       prepareSession(session, benchRender);
+      if (!benchSettings.empty()) {
+        nlohmann::json overrides;
+        try {
+          overrides = nlohmann::json::parse(benchSettings);
+        } catch (const nlohmann::json::exception& e) {
+          throw tl::session::SessionError(fmt::format("--set is not JSON: {}", e.what()));
+        }
+        session.settings() = tl::session::applySettingsJson(session.settings(), overrides);
+      }
       if (bench.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
       nlohmann::json report = runBench(session, bench);
       fmt::print("{}", benchTable(report));

@@ -229,7 +229,17 @@ void pathParameters(EditorApp& app) {
     tooltip("Trace a checkerboard that alternates each frame; the other half borrows a neighbour's ray");
     changed |= ImGui::Checkbox("Screen-space pre-trace", &s.rtPretrace);
     tooltip("March the depth buffer first; real rays only where it finds nothing");
-    changed |= ImGui::SliderFloat("Pre-trace length", &s.rtPretracePixels, 8.0f, 512.0f, "%.0f px");
+    {
+      bool autoLength = s.rtPretracePixels <= 0.0f;
+      if (ImGui::Checkbox("Auto##pretrace", &autoLength))
+        s.rtPretracePixels = autoLength ? 0.0f : lighting::pretraceAutoPixels(s.height), changed = true;
+      tooltip("Auto: 128 px per 360 lines of the image, the same share of the view at any size");
+      ImGui::SameLine();
+      float length = autoLength ? lighting::pretraceAutoPixels(s.height) : s.rtPretracePixels;
+      ImGui::BeginDisabled(autoLength);
+      if (ImGui::SliderFloat("Pre-trace length", &length, 8.0f, 1024.0f, "%.0f px")) s.rtPretracePixels = length, changed = true;
+      ImGui::EndDisabled();
+    }
     int steps = int(s.rtPretraceSteps);
     if (ImGui::SliderInt("Pre-trace steps", &steps, 4, 32)) s.rtPretraceSteps = uint32_t(steps), changed = true;
     changed |= ImGui::SliderFloat("Depth thickness", &s.rtThickness, 0.001f, 0.2f, "%.3f x distance");

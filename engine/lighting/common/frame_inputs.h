@@ -41,7 +41,7 @@ struct RenderSettings {
   float rtDenoiseRadius = 0.0f;     // pass 1 base radius (m); pass 2 uses half (Metro: 6 m and 3 m)
   bool rtScreenRadiance = true;     // hits seen on screen last frame reuse its shaded radiance (multi-bounce)
   uint32_t rtPretraceSteps = 16;
-  float rtPretracePixels = 128.0f;  // screen length of a pre-traced ray
+  float rtPretracePixels = 0.0f;    // screen length of a pre-traced ray; 0: scaled to the image (pretraceAutoPixels)
   float rtThickness = 0.02f;        // depth-buffer surface thickness, fraction of view distance
   uint32_t rtMaxAccumFrames = 32;   // temporal accumulation window
   float rtCullAngle = 0.002f;       // contribution culling: instances subtending less (radians) are dropped
@@ -80,6 +80,9 @@ struct RenderSettings {
 // Metro's 50 m (which also bounds how far outside the view the RT top level keeps instances).
 inline float sceneScaledAoRadius(float sceneScale) { return std::clamp(0.05f * sceneScale, 0.1f, 1.0f); }
 inline float sceneScaledRayLength(float sceneScale) { return std::clamp(sceneScale, 1e-3f, 50.0f); }
+// The pre-trace's march in pixels when not set: a constant share of the image height (128 px
+// at 360 lines), so it covers the same part of the view at any resolution.
+inline float pretraceAutoPixels(uint32_t height) { return std::max(16.0f, float(height) * (128.0f / 360.0f)); }
 inline float sceneScaledBlendDistance(float sceneScale) { return 2.0f * std::max(sceneScale, 1e-3f); }
 
 // Resources the frame imports from outside the graph: the session's constants, and the

@@ -60,7 +60,7 @@ class RtPath final : public LightingPath {
     push.pretrace = s.rtPretrace ? 1u : 0u;
     push.halfRays = s.rtHalfRays ? 1u : 0u;
     push.pretraceSteps = s.rtPretraceSteps;
-    push.pretraceLength = s.rtPretracePixels;
+    push.pretraceLength = s.rtPretracePixels > 0.0f ? s.rtPretracePixels : pretraceAutoPixels(s.height);
     push.thickness = s.rtThickness;
     push.maxAccumFrames = s.rtMaxAccumFrames;
     push.aoFilterDepth = 0.02f;
