@@ -186,6 +186,7 @@ TEST_F(RtTest, PretraceAgreesWithRealRaysWhereBothHit) {
 double bannerAgreement(session::Session& s, uint32_t frameIndex) {
   s.setFrameIndex(frameIndex);
   s.settings().rtPretrace = true;
+  s.settings().rtPretracePixels = 128.0f;  // long marches at this small size: more rays to compare
   s.setPath("rt");
   s.setSize(96, 64);
   for (const char* n : {kPretraceHits, "gbuffer.depth"}) s.requestBuffer(n);
