@@ -1,11 +1,10 @@
 #include "session/session.h"
 
-#include "scene/morph.h"
-
 #include "lighting/common/albedo_view_pass.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/shadow_pass.h"
+#include "scene/morph.h"
 #include "session/captured_frame.h"
 #include "session/image_io.h"
 #include "session/view_math.h"
