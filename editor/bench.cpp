@@ -42,10 +42,10 @@ nlohmann::json rayFigures(tl::session::Session& session) {
   size_t surface = 0, pending = 0;
   const uint32_t w = session.settings().width;
   const uint32_t frame = uint32_t(session.frameIndex() - 1);  // the last frame rendered
-  const uint32_t half = session.settings().rtHalfRays ? 1u : 0u;
+  const uint32_t pattern = tl::lighting::rtRayPattern(session.settings());
   for (size_t i = 0; i < hits.size() && i < depth.size(); ++i) {
     if (depth[i] <= 0.0f) continue;
-    if (!tl::shared::tlRtTracesThisFrame(glm::ivec2(int(i % w), int(i / w)), frame, half)) continue;
+    if (!tl::shared::tlRtTracesThisFrame(glm::ivec2(int(i % w), int(i / w)), frame, pattern)) continue;
     ++surface;
     pending += tl::shared::tlRtIsPending(hits[i]);
   }
@@ -53,7 +53,7 @@ nlohmann::json rayFigures(tl::session::Session& session) {
   const double rawRate = rawMs > 0.0 ? double(surface) / (rawMs * 1e-3) : 0.0;
   const double rtRate = traceMs > 0.0 ? double(pending) / (traceMs * 1e-3) : 0.0;
   const double pixels = double(session.settings().width) * session.settings().height;
-  return {{"surfacePixels", surface},  // traced this frame (all, or this frame's checkerboard)
+  return {{"surfacePixels", surface},  // traced this frame (all, this frame's checkerboard or 2x2 pixel)
           {"realRays", pending},
           {"pretraceShare", surface ? 1.0 - double(pending) / double(surface) : 0.0},
           {"realRaysPerPixel", pending / pixels},

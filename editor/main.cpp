@@ -74,8 +74,9 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_flag("--hard-shadows", o.hardShadows, "3x3 PCF sun shadows instead of PCSS soft shadows");
   cmd.add_option("--rt-mesh-ratio", o.rtMeshRatio, "rt path: triangles of the simplified RT meshes / source triangles (1 = full)")
       ->check(CLI::Range(0.01f, 1.0f));
-  cmd.add_option("--rays-per-pixel", o.rtRaysPerPixel, "rt path: 1 or 0.5 (a checkerboard alternating each frame)")
-      ->check(CLI::IsMember({1.0f, 0.5f}));
+  cmd.add_option("--rays-per-pixel", o.rtRaysPerPixel,
+                 "rt path: 1, 0.5 (a checkerboard alternating each frame) or 0.25 (half resolution: one pixel of each 2x2)")
+      ->check(CLI::IsMember({1.0f, 0.5f, 0.25f}));
   cmd.add_option("--pretrace", o.rtPretrace, "rt path: screen-space pre-trace before real rays (true/false)");
   cmd.add_option("--denoise", o.rtDenoise, "rt path: two-pass spatial denoiser after accumulation (true/false)");
   cmd.add_option("--time", o.time, "animation time in seconds (morph targets) of the first frame")->capture_default_str();
@@ -123,7 +124,10 @@ void prepareSession(Session& session, const RenderOptions& o) {
   }
   session.settings().softShadows = !o.hardShadows;
   if (o.rtMeshRatio) session.settings().rtSimplifyRatio = *o.rtMeshRatio;
-  if (o.rtRaysPerPixel) session.settings().rtHalfRays = *o.rtRaysPerPixel < 1.0f;
+  if (o.rtRaysPerPixel) {
+    session.settings().rtHalfRays = *o.rtRaysPerPixel == 0.5f;
+    session.settings().rtHalfResolution = *o.rtRaysPerPixel == 0.25f;
+  }
   if (o.rtPretrace) session.settings().rtPretrace = *o.rtPretrace;
   if (o.rtDenoise) session.settings().rtDenoise = *o.rtDenoise;
   session.setAnimationTime(o.time);

@@ -225,7 +225,12 @@ void pathParameters(EditorApp& app) {
     tooltip("Two-pass spatial denoiser on the SH after accumulation (Metro's): cleaner, slower");
     changed |= distanceParameter("Denoiser radius", s.rtDenoiseRadius, std::clamp(scale / 6.0f, 0.25f, 6.0f),
                                  "Pass 1 base radius; pass 2 uses half (Metro: 6 m and 3 m)");
+    changed |= ImGui::Checkbox("Half resolution", &s.rtHalfResolution);
+    tooltip("Trace one pixel of each 2x2 block (0.25 rays per pixel), cycling through the four; the others take a "
+            "nearby traced sample chosen at random by depth similarity (INSIDE's noisy upsampling)");
+    ImGui::BeginDisabled(s.rtHalfResolution);
     changed |= ImGui::Checkbox("0.5 rays per pixel", &s.rtHalfRays);
+    ImGui::EndDisabled();
     tooltip("Trace a checkerboard that alternates each frame; the other half borrows a neighbour's ray");
     changed |= ImGui::Checkbox("Screen-space pre-trace", &s.rtPretrace);
     tooltip("March the depth buffer first; real rays only where it finds nothing");

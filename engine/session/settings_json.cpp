@@ -51,6 +51,7 @@ const std::map<std::string, Setter>& setters() {
       {"rtRefitRandom", field(&S::rtRefitRandom)},
       {"rtRefitVertexBudget", field(&S::rtRefitVertexBudget)},
       {"rtHalfRays", field(&S::rtHalfRays)},
+      {"rtHalfResolution", field(&S::rtHalfResolution)},
       {"rtDenoise", field(&S::rtDenoise)},
       {"rtDenoiseRadius", field(&S::rtDenoiseRadius)},
       {"rtScreenRadiance", field(&S::rtScreenRadiance)},

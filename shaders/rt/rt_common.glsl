@@ -26,9 +26,11 @@ vec3 pixelRayDirection(ivec2 p, vec3 normal) {
 // The ray starts off the surface by a few ULPs of its position (shared/ray_origin.h).
 vec3 pixelRayOrigin(vec3 position, vec3 normal) { return tlOffsetRayOrigin(position, normal); }
 
-// With 0.5 rays per pixel the passes that trace launch half as many invocations, each mapped
-// to a pixel of this frame's checkerboard (no idle SIMD lanes on skipped pixels).
+// With fewer rays than pixels the passes that trace launch fewer invocations, each mapped to
+// a pixel that traces this frame (no idle SIMD lanes on skipped pixels): half as many for the
+// checkerboard, a quarter (one per 2x2 block) at half resolution.
 ivec2 tracedPixel(ivec2 q) {
-  if (push.halfRays == 0u) return q;
-  return ivec2(2 * q.x + int((uint(q.y) + frame.frameIndex) & 1u), q.y);
+  if (push.rayPattern == kRtRaysCheckerboard) return ivec2(2 * q.x + int((uint(q.y) + frame.frameIndex) & 1u), q.y);
+  if (push.rayPattern == kRtRaysHalfResolution) return 2 * q + tlRtBlockOffset(frame.frameIndex);
+  return q;
 }

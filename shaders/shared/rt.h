@@ -55,9 +55,22 @@ TL_FN uint tlRtPackHit(float distance, vec3 albedo) {
 TL_FN bool tlRtIsMiss(uint hit) { return (hit & 0xFFFFu) == kRtHitMiss; }
 TL_FN bool tlRtIsPending(uint hit) { return (hit & 0xFFFFu) == kRtHitPending; }
 TL_FN bool tlRtIsHit(uint hit) { return (hit & 0xFFFFu) < kRtHitPending; }
-// 0.5 rays per pixel: which pixels trace this frame (a checkerboard, flipped every frame).
-TL_FN bool tlRtTracesThisFrame(ivec2 p, uint frame, uint halfRays) {
-  return halfRays == 0u || ((uint(p.x + p.y) + frame) & 1u) == 0u;
+// Which pixels trace a ray this frame (RtPush::rayPattern).
+TL_CONST uint kRtRaysFull = 0u;            // every pixel: 1 ray per pixel
+TL_CONST uint kRtRaysCheckerboard = 1u;    // 0.5 rays per pixel: a checkerboard flipped every frame
+TL_CONST uint kRtRaysHalfResolution = 2u;  // 0.25: one pixel of each 2x2 block, cycling through all four
+// Half resolution: the pixel of each 2x2 block that traces in this frame.
+TL_FN ivec2 tlRtBlockOffset(uint frame) {
+  uint k = frame & 3u;  // (0,0), (1,1), (1,0), (0,1): opposite corners follow each other
+  return ivec2(int(k == 1u || k == 2u), int(k == 1u || k == 3u));
+}
+TL_FN bool tlRtTracesThisFrame(ivec2 p, uint frame, uint pattern) {
+  if (pattern == kRtRaysCheckerboard) return ((uint(p.x + p.y) + frame) & 1u) == 0u;
+  if (pattern == kRtRaysHalfResolution) {
+    ivec2 o = tlRtBlockOffset(frame);
+    return (p.x & 1) == o.x && (p.y & 1) == o.y;
+  }
+  return true;
 }
 TL_FN float tlRtHitDistance(uint hit) { return tlUnpackHalf2x16(hit & 0xFFFFu).x; }
 TL_FN vec3 tlRtHitAlbedo(uint hit) { return tlRtDecodeAlbedo(hit >> 16u); }
@@ -136,7 +149,7 @@ struct RtPush {
   uint historyValid;     // 0: the history images hold nothing usable (first frame, resize, reset)
   float aoFilterDepth;   // AO filter: relative view-depth difference that halves a tap's weight
   uint screenRadiance;   // hit lighting may reuse last frame's shaded pixels (1: history is valid)
-  uint halfRays;         // 1: 0.5 rays per pixel, a checkerboard that alternates each frame
+  uint rayPattern;       // kRtRays*: which pixels trace this frame
 };
 
 // The two-pass spatial denoiser on the SH (Metro's "little monster"): its own push constants.

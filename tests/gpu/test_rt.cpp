@@ -68,8 +68,9 @@ TEST_F(RtTest, HalfRaysPerPixelStillConvergeOnThePlane) {
 TEST_F(RtTest, HalfRaysPerPixelAgreeWithFullRateOnTheAtrium) {
   auto& s = session();
   s.loadScene(contentFile("atrium.gltf"));
-  auto meanLuminance = [&](bool half) {
+  auto meanLuminance = [&](bool half, bool halfResolution = false) {
     s.settings().rtHalfRays = half;
+    s.settings().rtHalfResolution = halfResolution;
     s.resetHistory();
     render(80, 45, 16, {"composite.hdr"});
     auto c = s.buffer("composite.hdr").texels();
@@ -78,10 +79,29 @@ TEST_F(RtTest, HalfRaysPerPixelAgreeWithFullRateOnTheAtrium) {
     for (size_t i = 0; i < c.size(); i += 4) sum += shared::tlLuminance(glm::vec3(c[i], c[i + 1], c[i + 2]));
     return sum / double(c.size() / 4);
   };
-  const double full = meanLuminance(false), half = meanLuminance(true);
+  const double full = meanLuminance(false), half = meanLuminance(true), quarter = meanLuminance(false, true);
   RecordProperty("mean_full_rate", std::to_string(full));
   RecordProperty("mean_half_rate", std::to_string(half));
+  RecordProperty("mean_half_resolution", std::to_string(quarter));
   EXPECT_NEAR(half / full, 1.0, 0.05);
+  EXPECT_NEAR(quarter / full, 1.0, 0.05) << "half resolution (0.25 rays per pixel)";
+}
+
+TEST_F(RtTest, HalfResolutionStillConvergesOnThePlane) {
+  auto& s = session();
+  s.loadScene(contentFile("plane.gltf"));
+  s.settings().rtHalfResolution = true;
+  render(48, 32, 12, {kShY, kCoCgAo, kAo, "gbuffer.depth"});
+  PlaneErrors e = planeErrors(s, kAo, kShY, kCoCgAo);
+  ASSERT_GT(e.surface, e.pixels / 4);
+  EXPECT_LE(e.worstAo, 0.02);
+  EXPECT_LE(e.worstIrradiance, 0.03);
+  // Every pixel got samples: after 12 frames (three of each 2x2 position) all have history.
+  auto c = s.buffer(kCoCgAo).texels();
+  auto depth = s.buffer("gbuffer.depth").texels();
+  size_t unaccumulated = 0;
+  for (size_t i = 0; i < depth.size(); ++i) unaccumulated += depth[i] > 0.0f && c[4 * i + 3] < 11.0f;
+  EXPECT_EQ(unaccumulated, 0u);
 }
 
 // A camera cut rejects all history: after many still frames, the first frame from a view

@@ -37,6 +37,8 @@ struct RenderSettings {
   float rtBlendDistance = 0.0f;     // beyond this view distance RT GI fades to the fallback (Metro: 250 m)
   bool rtPretrace = true;           // screen-space pre-trace before real rays
   bool rtHalfRays = false;          // 0.5 rays per pixel: a checkerboard alternating each frame
+  bool rtHalfResolution = false;    // 0.25: trace at half resolution (one pixel of each 2x2, cycling),
+                                    // depth-aware noisy upsampling into the accumulation; wins over rtHalfRays
   bool rtDenoise = true;            // two-pass spatial denoiser on the SH after accumulation
   float rtDenoiseRadius = 0.0f;     // pass 1 base radius (m); pass 2 uses half (Metro: 6 m and 3 m)
   bool rtScreenRadiance = true;     // hits seen on screen last frame reuse its shaded radiance (multi-bounce)

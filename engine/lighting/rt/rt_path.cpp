@@ -58,7 +58,7 @@ class RtPath final : public LightingPath {
     push.tMax = params_.rayLength;
     push.aoRadius = params_.aoRadius;
     push.pretrace = s.rtPretrace ? 1u : 0u;
-    push.halfRays = s.rtHalfRays ? 1u : 0u;
+    push.rayPattern = rtRayPattern(s);
     push.pretraceSteps = s.rtPretraceSteps;
     push.pretraceLength = s.rtPretracePixels > 0.0f ? s.rtPretracePixels : pretraceAutoPixels(s.height);
     push.thickness = s.rtThickness;
@@ -122,7 +122,7 @@ class RtPath final : public LightingPath {
               .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
               .storageImage(shared::kRtBindingHitsOut, ctx.image(kPretraceHits).view())
               .storageImage(shared::kRtBindingSurfaceOut, ctx.image(kPretraceSurface).view());
-          ctx.dispatch(tracedWidth(in), in.settings.height);
+          ctx.dispatch(tracedWidth(in), tracedHeight(in));
         });
 
     graph.addPass(
@@ -378,12 +378,15 @@ class RtPath final : public LightingPath {
   }
   // Invocations per row of the passes that trace: half with 0.5 rays per pixel.
   static uint32_t tracedWidth(const FrameInputs& in) {
-    return in.settings.rtHalfRays ? (in.settings.width + 1) / 2 : in.settings.width;
+    return rtRayPattern(in.settings) == shared::kRtRaysFull ? in.settings.width : (in.settings.width + 1) / 2;
+  }
+  static uint32_t tracedHeight(const FrameInputs& in) {
+    return rtRayPattern(in.settings) == shared::kRtRaysHalfResolution ? (in.settings.height + 1) / 2 : in.settings.height;
   }
   static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, FrameInputs& in) {
     ctx.flushDescriptors();
     ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion,
-                                  tracedWidth(in), in.settings.height, 1);
+                                  tracedWidth(in), tracedHeight(in), 1);
   }
 
   // Scene geometry, blue noise and pipelines: once per scene (and RT mesh ratio).

@@ -2,6 +2,9 @@
 // and the parameters it resolves from the settings and the scene's size.
 #pragma once
 
+#include "lighting/common/frame_inputs.h"
+#include "shared/rt.h"
+
 namespace tl::lighting {
 
 inline constexpr const char* kRtTlas = "rt.tlas";
@@ -26,6 +29,13 @@ inline constexpr const char* kHistCoCgAo = "rt.history.coCgAo";
 inline constexpr const char* kHistDepth = "rt.history.viewDepth";
 inline constexpr const char* kHistRadiance = "rt.history.radiance";
 inline constexpr const char* kRawRays = "rt.rawRays";  // benchmark only: distances of the trivial kernel
+
+// Which pixels trace a ray each frame (shared/rt.h kRtRays*) for these settings.
+inline uint32_t rtRayPattern(const RenderSettings& s) {
+  return s.rtHalfResolution ? shared::kRtRaysHalfResolution
+         : s.rtHalfRays     ? shared::kRtRaysCheckerboard
+                            : shared::kRtRaysFull;
+}
 
 struct RtResolvedParams {
   float aoRadius = 0.0f;       // m
