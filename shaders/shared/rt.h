@@ -150,6 +150,8 @@ struct RtPush {
   float aoFilterDepth;   // AO filter: relative view-depth difference that halves a tap's weight
   uint screenRadiance;   // hit lighting may reuse last frame's shaded pixels (1: history is valid)
   uint rayPattern;       // kRtRays*: which pixels trace this frame
+  uint rawPendingOnly;   // benchmark probe: trace only the rays the pre-trace left pending
+  uint pad0, pad1, pad2;
 };
 
 // The two-pass spatial denoiser on the SH (Metro's "little monster"): its own push constants.
@@ -192,7 +194,7 @@ TL_END
 
 #ifdef __cplusplus
 static_assert(sizeof(tl::shared::RtInstance) == 64);
-static_assert(sizeof(tl::shared::RtPush) == 48);
+static_assert(sizeof(tl::shared::RtPush) == 64);
 static_assert(sizeof(tl::shared::RtDenoisePush) == 16);
 #endif
 #endif

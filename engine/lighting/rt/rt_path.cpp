@@ -244,23 +244,33 @@ class RtPath final : public LightingPath {
         });
 
     if (s.rtRawRayProbe) {
-      graph.addPass(
-          "rt.rawRays", graph::PassKind::RayTracing,
-          [&](graph::PassBuilder& b) {
-            readCommon(b);
-            b.read(kRtTlas, Usage::StorageRead);
-            b.create(kRawRays, image(VK_FORMAT_R32_SFLOAT, "benchmark: hit distance of the trivial trace kernel"),
-                     Usage::StorageWrite);
-          },
-          [this, &in, push](graph::PassContext& ctx) {
-            ctx.bind(rawRays_);
-            ctx.pushConstants(push);
-            writeCommon(ctx, in)
-                .accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
-                .storageImage(shared::kRtBindingAo, ctx.image(kRawRays).view());
-            traceRays(ctx, rawRays_, in);
-          });
-      graph.markOutput(kRawRays);
+      // The benchmark's trivial kernel, twice: every pixel's ray, and only the rays rt.trace
+      // had to trace (the pre-trace's pending ones): the fair rate to hold rt.trace against.
+      auto rawProbe = [&](const char* pass, const char* output, uint32_t pendingOnly) {
+        RtPush probe = push;
+        probe.rawPendingOnly = pendingOnly;
+        graph.addPass(
+            pass, graph::PassKind::RayTracing,
+            [&](graph::PassBuilder& b) {
+              readCommon(b);
+              b.read(kRtTlas, Usage::StorageRead);
+              b.read(kPretraceHits, Usage::StorageRead);
+              b.create(output, image(VK_FORMAT_R32_SFLOAT, "benchmark: hit distance of the trivial trace kernel"),
+                       Usage::StorageWrite);
+            },
+            [this, &in, probe, output](graph::PassContext& ctx) {
+              ctx.bind(rawRays_);
+              ctx.pushConstants(probe);
+              writeCommon(ctx, in)
+                  .accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
+                  .storageImage(shared::kRtBindingHitsIn, ctx.image(kPretraceHits).view())
+                  .storageImage(shared::kRtBindingAo, ctx.image(output).view());
+              traceRays(ctx, rawRays_, in);
+            });
+        graph.markOutput(output);
+      };
+      rawProbe("rt.rawRays", kRawRays, 0);
+      rawProbe("rt.rawRays.pending", kRawRaysPending, 1);
     }
 
     if (screenRadiance) addCopyPass(graph, "rt.radiance.store", {{kCompositeHdr, kHistRadiance}});
@@ -505,7 +515,9 @@ class RtPath final : public LightingPath {
       d.raygen = "rt/raw.rgen";
       d.misses = {"rt/raw.rmiss"};
       d.hitGroups = {{"rt/raw.rchit", ""}};
-      d.layout = with({{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR}, {shared::kRtBindingAo, storage}});
+      d.layout = with({{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+                      {shared::kRtBindingAo, storage},
+                      {shared::kRtBindingHitsIn, storage}});
       rawRays_ = gpu::createRayTracingPipeline(in.device, d);
     }
   }

@@ -29,6 +29,7 @@ inline constexpr const char* kHistCoCgAo = "rt.history.coCgAo";
 inline constexpr const char* kHistDepth = "rt.history.viewDepth";
 inline constexpr const char* kHistRadiance = "rt.history.radiance";
 inline constexpr const char* kRawRays = "rt.rawRays";  // benchmark only: distances of the trivial kernel
+inline constexpr const char* kRawRaysPending = "rt.rawRays.pending";  // the same, on the pre-trace's pending rays only
 
 // Which pixels trace a ray each frame (shared/rt.h kRtRays*) for these settings.
 inline uint32_t rtRayPattern(const RenderSettings& s) {
