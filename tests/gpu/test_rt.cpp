@@ -15,13 +15,13 @@ namespace {
 
 using namespace lighting;
 
-struct RtTestAccess {
-  static std::vector<uint32_t> uints(const graph::Readback& rb) {
-    std::vector<uint32_t> v(rb.bytes.size() / 4);
-    std::memcpy(v.data(), rb.bytes.data(), v.size() * 4);
-    return v;
-  }
-};
+// A read-back integer image's texels (`components` per texel).
+std::vector<uint32_t> uints(const graph::Readback& rb, uint32_t components) {
+  std::vector<uint32_t> v(rb.bytes.size() / 4);
+  std::memcpy(v.data(), rb.bytes.data(), v.size() * 4);
+  EXPECT_EQ(v.size(), size_t(rb.extent.width) * rb.extent.height * components);
+  return v;
+}
 
 class RtTest : public RayTracingTest {
  protected:
@@ -32,12 +32,6 @@ class RtTest : public RayTracingTest {
     s.setSize(w, h);
     for (auto& n : names) s.requestBuffer(n);
     s.renderFrames(frames);
-  }
-  static std::vector<uint32_t> uints(const graph::Readback& rb, uint32_t components) {
-    std::vector<uint32_t> v(rb.bytes.size() / 4);
-    std::memcpy(v.data(), rb.bytes.data(), v.size() * 4);
-    EXPECT_EQ(v.size(), size_t(rb.extent.width) * rb.extent.height * components);
-    return v;
   }
 };
 
@@ -211,12 +205,12 @@ double bannerAgreement(session::Session& s, uint32_t frameIndex) {
   s.setSize(96, 64);
   for (const char* n : {kPretraceHits, "gbuffer.depth"}) s.requestBuffer(n);
   s.renderFrames(1);
-  auto pre = RtTestAccess::uints(s.buffer(kPretraceHits));
+  auto pre = uints(s.buffer(kPretraceHits), 1);
   s.settings().rtPretrace = false;
   s.setFrameIndex(frameIndex);
   s.requestBuffer(kHits);
   s.renderFrames(1);
-  auto real = RtTestAccess::uints(s.buffer(kHits));
+  auto real = uints(s.buffer(kHits), 1);
   s.settings().rtPretrace = true;
   size_t both = 0, agree = 0;
   for (size_t i = 0; i < pre.size(); ++i) {
