@@ -100,8 +100,10 @@ void comparePanel(EditorApp& app) {
     ImGui::EndTable();
   }
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-  ImGui::TextWrapped("Each path renders every %s frame; its history and timing are its own.",
-                     view->left == view->right ? "other" : "third");
+  const size_t turns = live->rotationLength();
+  if (turns > 1)
+    ImGui::TextWrapped("Each path renders every %s frame; its history, noise and timing are its own.",
+                       turns == 2 ? "second" : "third");
   ImGui::PopStyleColor();
   ImGui::End();
 }

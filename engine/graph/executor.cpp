@@ -490,8 +490,12 @@ void Executor::execute(const RenderGraph& graph, const CompiledGraph& compiled) 
   }
   device_.wait(device_.submit(cmd));
 
-  for (auto& [name, p] : physical_)
-    if (p.kind == Physical::Kind::Persistent) p.historyValid = true;
+  // A persistent resource holds something for the next frame only if a pass of this frame
+  // wrote it; one nobody wrote keeps what it had (nothing, after a reset or a resize).
+  const auto& decls = graph.resources();
+  for (const auto& cp : compiled.order)
+    for (const auto& a : cp.writes)
+      if (decls[a.resource].persistent) find(decls[a.resource].name).historyValid = true;
   timings_.clear();
   for (auto& s : timestamps_.read()) timings_.push_back({s.name, s.milliseconds});
   for (auto& r : pending_) {

@@ -16,6 +16,10 @@ namespace tl::lighting {
 
 // Names of graph resources a path produced; empty means "not produced" and the composite
 // uses the neutral value (AO = 1, unoccluded sky irradiance, no indirect specular).
+// The GI fade beyond LightingOutputs::giBlendDistance spans this fraction of it (it starts at
+// (1 - fraction) x the distance).
+inline constexpr float kGiBlendWidthFraction = 0.2f;
+
 struct LightingOutputs {
   std::string ambientOcclusion;  // R8/R16F, 1 = unoccluded
   std::string diffuseShY;        // RGBA16F, L1 SH of luma (shared/sh.h)

@@ -317,6 +317,8 @@ Scene loadGltf(const std::filesystem::path& file) {
 
   // Node hierarchy -> instances, cameras and lights with world transforms.
   std::vector<bool> meshInstanced(scene.meshes.size(), false);
+  std::vector<std::vector<float>> meshDefaultWeights;
+  for (const auto& m : scene.meshes) meshDefaultWeights.push_back(m.morphWeights);
   std::vector<bool> visited(model.nodes.size(), false);
   std::function<void(int, const glm::dmat4&, int)> visit = [&](int ni, const glm::dmat4& parent, int depth) {
     if (ni < 0 || size_t(ni) >= model.nodes.size()) rd.fail(fmt::format("a node refers to node {}, which does not exist", ni));
@@ -342,7 +344,9 @@ Scene loadGltf(const std::filesystem::path& file) {
             scene.meshes.push_back(std::move(copy));
             meshInstanced.push_back(false);
           }
+          // The glTF mesh's own weights, then the node's (an earlier node's never carry over).
           Mesh& mesh = scene.meshes[inst.mesh];
+          mesh.morphWeights = meshDefaultWeights[prims[k]];
           for (size_t w = 0; w < node.weights.size() && w < mesh.morphWeights.size(); ++w)
             mesh.morphWeights[w] = float(node.weights[w]);
         }

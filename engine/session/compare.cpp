@@ -45,6 +45,7 @@ std::string referenceKey(const Session& s, const CompareOptions& o) {
       l.sunDirection.y, l.sunDirection.z, l.sunIrradiance.x, l.sunIrradiance.y, l.sunIrradiance.z, l.skyRadiance.x,
       l.skyRadiance.y, l.skyRadiance.z, s.settings().width, s.settings().height, o.referenceSpp, o.referenceBounces);
   if (s.animated()) text += fmt::format("|t{}", s.animationTime());  // the pose of deforming meshes
+  text += fmt::format("|ao{}", s.settings().rtAoRadius);  // reference.ao's radius (0: scaled to the scene)
   return fmt::format("{:016x}", scene::hashBytes(text.data(), text.size()));
 }
 

@@ -9,10 +9,15 @@ namespace tl::session {
 LiveCompare::LiveCompare(CompareView view, std::optional<std::string> referenceReason)
     : view_(std::move(view)), referenceReason_(std::move(referenceReason)) {}
 
-std::string LiveCompare::nextPath() {
+std::vector<std::string> LiveCompare::rotation() const {
   std::vector<std::string> order{view_.left};
   if (view_.right != view_.left) order.push_back(view_.right);
   if (!referenceReason_ && view_.left != "reference" && view_.right != "reference") order.push_back("reference");
+  return order;
+}
+
+std::string LiveCompare::nextPath() {
+  const auto order = rotation();
   return order[turn_++ % order.size()];
 }
 

@@ -44,6 +44,8 @@ class LiveCompare {
 
   // The path the next frame renders: left, right and the reference in turn.
   std::string nextPath();
+  // How many paths take turns (each renders every rotationLength()-th frame).
+  size_t rotationLength() const { return rotation().size(); }
   // Whether compare.<path> holds an image yet.
   bool hasImage(const std::string& path) const { return images_.count(path) != 0; }
   // After a frame of `path`: its image (compare.<path>), its GPU time, a stamp of everything
@@ -56,6 +58,7 @@ class LiveCompare {
   uint32_t referenceSamples() const { return referenceSamples_; }
 
  private:
+  std::vector<std::string> rotation() const;
   void measure(const std::string& path, float exposure);
 
   struct Side {

@@ -75,6 +75,9 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   passes_ = std::make_unique<Passes>();
   executor_->resetHistory();
   previousView_.reset();
+  comparePrevious_.clear();
+  if (compare_) compare_ = std::make_unique<LiveCompare>(compare_->view(), compare_->referenceUnavailable());
+  animationTime_ = 0.0;
   // The upload holds every mesh at rest (all weights 0).
   appliedWeights_.assign(scene_->meshes.size(), {});
   for (size_t m = 0; m < scene_->meshes.size(); ++m) appliedWeights_[m].assign(scene_->meshes[m].morphTargets.size(), 0.0f);
@@ -138,6 +141,7 @@ void Session::setCompareView(std::optional<CompareView> view) {
   if (!view) {
     compare_.reset();
     comparePrevious_.clear();
+    compareFrames_.clear();
     return;
   }
   for (const std::string& side : {view->left, view->right}) {
@@ -262,6 +266,9 @@ void Session::renderOne(bool readback) {
   }
   shared::FrameConstants fc{};
   buildFrameConstants(fc);
+  // A compared path renders every second or third frame: its own count keeps its per-frame
+  // patterns (the ray checkerboard, the 2x2 cycle, the blue-noise offset) moving.
+  if (compare_) fc.frameIndex = uint32_t(compareFrames_[compared]++);
   constants_.write(&fc, sizeof(fc));
   gpuScene_->updateInstances(*scene_, view_.position, previousView_.value_or(view_).position);
   applyMorphs();

@@ -188,6 +188,7 @@ class Session {
   std::optional<lighting::DisplayRequest> display_;
   std::unique_ptr<LiveCompare> compare_;
   std::map<std::string, View> comparePrevious_;  // each compared path's own previous view
+  std::map<std::string, uint64_t> compareFrames_;  // and its own frame count (noise, checkerboards)
   uint64_t referenceStamp() const;
   lighting::LightingPath* findPath(const std::string& name) const;
   std::vector<std::string> requested_;

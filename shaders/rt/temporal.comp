@@ -58,9 +58,13 @@ void main() {
     h = (h ^ (h >> 16u)) * 0x45d9f3bu;
     h ^= h >> 16u;
     float u = float(h & 0xFFFFFFu) / 16777216.0 * total;
-    src = candidates[0];
+    // Rounding may leave u past the last weight: fall back to the heaviest candidate (inside).
+    int heaviest = 0;
+    for (int i = 1; i < 4; ++i)
+      if (weights[i] > weights[heaviest]) heaviest = i;
+    src = candidates[heaviest];
     for (int i = 0; i < 4; ++i) {
-      if (u < weights[i]) {
+      if (weights[i] > 0.0 && u < weights[i]) {
         src = candidates[i];
         break;
       }

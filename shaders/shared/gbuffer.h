@@ -48,7 +48,7 @@ TL_CONST uint kCompositeAoOnGi = 4u;
 TL_CONST uint kCompositeHasFarGi = 8u;
 struct CompositePush {
   uint flags;               // kCompositeHas*: which path outputs are bound
-  float giBlendDistance;    // beyond this view distance GI fades to the unoccluded sky (0: never)
+  float giBlendDistance;    // beyond this view distance GI fades to the far field, else the sky (0: never)
   float giBlendWidth;       // over this many metres
   uint pad;
 };

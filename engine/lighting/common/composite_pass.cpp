@@ -74,7 +74,7 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
                    (push.flags & shared::kCompositeHasGi);
   if (far) push.flags |= shared::kCompositeHasFarGi;
   push.giBlendDistance = path.giBlendDistance;
-  push.giBlendWidth = 0.2f * path.giBlendDistance;
+  push.giBlendWidth = kGiBlendWidthFraction * path.giBlendDistance;
   // Absent outputs: the binding still needs an image; the base colour stands in, unread.
   const std::string ao = path.ambientOcclusion.empty() ? "gbuffer.baseColor" : path.ambientOcclusion;
   const std::string shY = (push.flags & shared::kCompositeHasGi) ? path.diffuseShY : "gbuffer.baseColor";

@@ -48,11 +48,11 @@ struct RenderSettings {
   uint32_t rtMaxAccumFrames = 32;   // temporal accumulation window
   float rtCullAngle = 0.002f;       // contribution culling: instances subtending less (radians) are dropped
   float rtCullMargin = 0.0f;        // expanded frustum: margin (m) around the view frustum
-  // Deforming meshes' BLAS refits per frame (Metro): the highest priorities, random others,
-  // and a vertex budget (the first pick always goes).
   // Beyond the blend distance, the legacy path's GI (Metro) rather than the unoccluded sky;
   // it runs only when part of the scene lies that far from the camera.
   bool rtFarLegacy = true;
+  // Deforming meshes' BLAS refits per frame (Metro): the highest priorities, random others,
+  // and a vertex budget (the first pick always goes).
   uint32_t rtRefitTop = 16;
   uint32_t rtRefitRandom = 4;
   uint32_t rtRefitVertexBudget = 1u << 20;

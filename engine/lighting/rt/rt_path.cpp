@@ -330,7 +330,7 @@ class RtPath final : public LightingPath {
     out.giBlendDistance = params_.blendDistance;
     // Metro: beyond the blend distance, the legacy pipeline's GI. Its passes join the frame
     // only when some of the scene lies that far away; otherwise nobody pays for them.
-    farLegacy_ = s.rtFarLegacy && farthestSceneDistance(in) > params_.blendDistance;
+    farLegacy_ = s.rtFarLegacy && farthestSceneDistance(in) > (1.0f - kGiBlendWidthFraction) * params_.blendDistance;
     if (farLegacy_) {
       if (!farField_) farField_ = makeLegacyPath();
       const LightingOutputs far = farField_->addPasses(graph, in);

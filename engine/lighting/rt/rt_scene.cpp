@@ -231,7 +231,15 @@ void RtScene::prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& 
 }
 
 void RtScene::recordRefits(VkCommandBuffer cmd) {
-  // The vertices were uploaded and waited for before the frame; last frame's traces are done.
+  if (pendingRefits_.empty()) return;
+  // The vertices were copied in an earlier submission the host waited for; this makes those
+  // writes visible to the builds (last frame's traces are done too).
+  VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  before.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
+  before.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR |
+                         VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                       VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0, 1, &before, 0, nullptr, 0, nullptr);
   for (const auto& [mesh, version] : pendingRefits_) {
     gpu::recordRefit(cmd, *device_, blas_[mesh], geometry_[mesh], refitScratch_[mesh]);
     refitVersion_[mesh] = version;
