@@ -56,6 +56,39 @@ TEST_F(GpuTest, PersistentHistoryHoldsLastFramesContents) {
   }
 }
 
+// History is valid only where a pass wrote it: after a reset, a frame that declares an
+// on-demand history but culls its writer leaves it invalid; the frame that runs the writer
+// makes it valid.
+TEST_F(GpuTest, HistoryIsValidOnlyWhereAPassWroteIt) {
+  graph::Executor ex(session().device());
+  auto frame = [&](bool readSum) {
+    graph::RenderGraph g;
+    g.declareOnDemandHistory("sum", kDesc);
+    g.addPass("accumulate", PassKind::Transfer,
+              [](graph::PassBuilder& b) {
+                b.write("sum", Usage::TransferDst);
+                b.create("result", kDesc, Usage::TransferDst);
+              },
+              [](graph::PassContext& ctx) {
+                clear(ctx, "sum", 1.0f);
+                clear(ctx, "result", 1.0f);
+              });
+    g.addPass("final", PassKind::Transfer, [](graph::PassBuilder& b) { b.create("final", kDesc, Usage::TransferDst); },
+              [](graph::PassContext& ctx) { clear(ctx, "final", 0.0f); });
+    g.markOutput("final");
+    if (readSum) g.markOutput("result");
+    auto compiled = g.compile();
+    ex.execute(g, compiled);
+  };
+  frame(true);
+  EXPECT_TRUE(ex.historyValid("sum"));
+  ex.resetHistory();
+  frame(false);  // the writer is culled: nothing new in "sum"
+  EXPECT_FALSE(ex.historyValid("sum")) << "a frame that did not write it must not make it valid";
+  frame(true);
+  EXPECT_TRUE(ex.historyValid("sum"));
+}
+
 TEST_F(GpuTest, AliasedTransientsReadBackTheirOwnValues) {
   graph::Executor ex(session().device());
   graph::RenderGraph g;
