@@ -21,14 +21,6 @@ namespace {
 
 constexpr const char* kReferenceVersion = "reference-2";  // bump when the path tracer changes
 
-metrics::Image rgbOf(const graph::Readback& rb) {
-  auto t = rb.texels();
-  const uint32_t c = rb.channels(), w = rb.extent.width, h = rb.extent.height;
-  std::vector<float> rgb(size_t(w) * h * 3);
-  for (size_t i = 0; i < size_t(w) * h; ++i)
-    for (uint32_t k = 0; k < 3; ++k) rgb[i * 3 + k] = t[i * c + std::min(k, c - 1)];
-  return metrics::Image::fromTexels(w, h, 3, std::move(rgb));
-}
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -95,8 +87,8 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
     s.renderFrames(1);
     if (progress) progress(fmt::format("reference {} spp", (f + 1) * s.settings().referenceSamplesPerFrame), double(f + 1) / frames);
   }
-  ReferenceImages r{rgbOf(s.buffer("reference.radiance")), channelOf(s.buffer("reference.ao"), 0),
-                    rgbOf(s.buffer("reference.irradiance"))};
+  ReferenceImages r{rgbImage(s.buffer("reference.radiance")), channelOf(s.buffer("reference.ao"), 0),
+                    rgbImage(s.buffer("reference.irradiance"))};
   std::vector<float> aoRgb(r.ao.data.size() * 3);
   for (size_t i = 0; i < aoRgb.size(); ++i) aoRgb[i] = r.ao.data[i / 3];
   // The radiance file last: its presence is what a later run looks for first.
@@ -138,6 +130,15 @@ nlohmann::json stageErrors(const metrics::Image& ao, const metrics::Image& irrad
 }
 
 }  // namespace
+
+metrics::Image rgbImage(const graph::Readback& rb) {
+  auto t = rb.texels();
+  const uint32_t c = rb.channels(), w = rb.extent.width, h = rb.extent.height;
+  std::vector<float> rgb(size_t(w) * h * 3);
+  for (size_t i = 0; i < size_t(w) * h; ++i)
+    for (uint32_t k = 0; k < 3; ++k) rgb[i * 3 + k] = t[i * c + std::min(k, c - 1)];
+  return metrics::Image::fromTexels(w, h, 3, std::move(rgb));
+}
 
 metrics::Image displayEncode(const metrics::Image& linear, float exposure) {
   metrics::Image out = linear;
@@ -205,7 +206,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     s.renderFrames(std::max(1u, o.framesPerPath));
     s.settings() = baseSettings;
     if (progress) progress("path " + name, double(i + 1) / runs.size());
-    metrics::Image test = rgbOf(s.buffer(lighting::kCompositeHdr));
+    metrics::Image test = rgbImage(s.buffer(lighting::kCompositeHdr));
     metrics::Image testDisplay = displayEncode(test, exposure);
 
     auto rel = metrics::relMse(test, reference);
@@ -226,7 +227,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     nlohmann::json stages = nlohmann::json::object();
     if (s.hasBuffer(lighting::kCompositeIrradiance)) {
       std::vector<float> irradianceMap;
-      stages = stageErrors(channelOf(s.buffer(lighting::kCompositeAo), 0), rgbOf(s.buffer(lighting::kCompositeIrradiance)),
+      stages = stageErrors(channelOf(s.buffer(lighting::kCompositeAo), 0), rgbImage(s.buffer(lighting::kCompositeIrradiance)),
                            s.buffer("gbuffer.depth").texels(), referenceImages, irradianceMap);
       writeFalseColourPng(o.outDir / (stem + "_irradiance.png"), test.width, test.height, irradianceMap, 1.0f);
       stages["irradianceMap"] = stem + "_irradiance.png";

@@ -44,6 +44,9 @@ nlohmann::json runCompare(Session& session, const CompareOptions& options, const
 
 std::filesystem::path defaultReferenceCache();
 
+// A read-back image as RGB floats (one channel repeated; alpha dropped).
+metrics::Image rgbImage(const graph::Readback& image);
+
 // The display encoding the tonemap pass applies, on the CPU (RGB): exposure, ACES, sRGB.
 metrics::Image displayEncode(const metrics::Image& linear, float exposure);
 

@@ -24,12 +24,7 @@ std::string LiveCompare::nextPath() {
 void LiveCompare::frameDone(const std::string& path, const graph::Readback& image, double gpuMs, uint64_t stamp,
                             uint32_t referenceSamples, float exposure) {
   Side& side = images_[path];
-  auto t = image.texels();
-  const uint32_t c = image.channels(), w = image.extent.width, h = image.extent.height;
-  std::vector<float> rgb(size_t(w) * h * 3);
-  for (size_t i = 0; i < size_t(w) * h; ++i)
-    for (uint32_t k = 0; k < 3; ++k) rgb[i * 3 + k] = t[i * c + std::min(k, c - 1)];
-  side.image = metrics::Image::fromTexels(w, h, 3, std::move(rgb));
+  side.image = rgbImage(image);
   side.stamp = stamp;
   side.gpuMs = gpuMs;
   errors_[path].path = path;

@@ -55,12 +55,7 @@ TEST_F(CompareViewTest, WipeShowsEachSidesOwnImageAndErrorsAreMeasured) {
   // The displayed pixels are each side's image, tonemapped like the final image.
   const float exposure = std::exp2(-s.exposureEv());
   auto sideDisplay = [&](const std::string& path) {
-    const auto& rb = s.buffer(lighting::compareImageName(path));
-    auto t = rb.texels();
-    std::vector<float> rgb(size_t(rb.extent.width) * rb.extent.height * 3);
-    for (size_t i = 0; i < rgb.size() / 3; ++i)
-      for (int k = 0; k < 3; ++k) rgb[3 * i + k] = t[4 * i + k];
-    return session::displayEncode(metrics::Image::fromTexels(rb.extent.width, rb.extent.height, 3, rgb), exposure);
+    return session::displayEncode(session::rgbImage(s.buffer(lighting::compareImageName(path))), exposure);
   };
   metrics::Image left = sideDisplay("direct"), right = sideDisplay("legacy");
   auto shown = s.buffer(lighting::kDisplayLdr).texels();
