@@ -103,30 +103,30 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
 // image's) and RMSE. `irradianceMap` receives the per-pixel relMSE (0 on the sky).
 nlohmann::json stageErrors(const metrics::Image& ao, const metrics::Image& irradiance, const std::vector<float>& depth,
                            const ReferenceImages& ref, std::vector<float>& irradianceMap) {
-  double aoAbs = 0.0, aoSq = 0.0, aoRef = 0.0, irrRel = 0.0, irrSq = 0.0;
-  size_t n = 0;
+  // The surface pixels of each image side by side in one row: the metrics' own relMSE and
+  // RMSE then average over exactly those.
+  std::vector<size_t> surface;
+  for (size_t i = 0; i < depth.size(); ++i)
+    if (depth[i] > 0.0f) surface.push_back(i);
   irradianceMap.assign(depth.size(), 0.0f);
-  for (size_t i = 0; i < depth.size(); ++i) {
-    if (!(depth[i] > 0.0f)) continue;
-    ++n;
-    double d = double(ao.data[i]) - ref.ao.data[i];
-    aoAbs += std::abs(d), aoSq += d * d, aoRef += ref.ao.data[i];
-    double pixel = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      double t = irradiance.data[3 * i + k], r = ref.irradiance.data[3 * i + k];
-      pixel += (t - r) * (t - r) / (r * r + metrics::kRelMseEpsilon);
-      irrSq += (t - r) * (t - r);
-    }
-    irrRel += pixel;
-    irradianceMap[i] = float(pixel / 3.0);
-  }
+  if (surface.empty()) return nlohmann::json::object();
+  auto gather = [&](const metrics::Image& image) {
+    std::vector<float> v;
+    for (size_t i : surface) v.insert(v.end(), &image.data[i * image.channels], &image.data[(i + 1) * image.channels]);
+    return metrics::Image::fromTexels(uint32_t(surface.size()), 1, image.channels, std::move(v));
+  };
+  const metrics::Image aoTest = gather(ao), aoRef = gather(ref.ao), eTest = gather(irradiance), eRef = gather(ref.irradiance);
+  double aoAbs = 0.0, aoRefSum = 0.0;
+  for (size_t k = 0; k < surface.size(); ++k) aoAbs += std::abs(double(aoTest.data[k]) - aoRef.data[k]), aoRefSum += aoRef.data[k];
+  const metrics::MetricResult rel = metrics::relMse(eTest, eRef);
+  for (size_t k = 0; k < surface.size(); ++k) irradianceMap[surface[k]] = rel.errorMap.data[k];
+  const double n = double(surface.size());
   auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-  if (n == 0) return nlohmann::json::object();
-  return {{"surfacePixels", n},
+  return {{"surfacePixels", surface.size()},
           {"ao", {{"buffer", lighting::kCompositeAo}, {"reference", "reference.ao"}, {"meanAbsError", finite(aoAbs / n)},
-                  {"RMSE", finite(std::sqrt(aoSq / n))}, {"referenceMean", aoRef / n}}},
+                  {"RMSE", finite(metrics::rmse(aoTest, aoRef).value)}, {"referenceMean", aoRefSum / n}}},
           {"irradiance", {{"buffer", lighting::kCompositeIrradiance}, {"reference", "reference.irradiance"},
-                          {"relMSE", finite(irrRel / (3.0 * n))}, {"RMSE", finite(std::sqrt(irrSq / (3.0 * n)))}}}};
+                          {"relMSE", finite(rel.value)}, {"RMSE", finite(metrics::rmse(eTest, eRef).value)}}}};
 }
 
 }  // namespace
