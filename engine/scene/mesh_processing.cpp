@@ -60,10 +60,7 @@ void finishVertices(Mesh& mesh, bool haveNormals, bool haveTangents) {
 Bounds transformBounds(const Bounds& local, const glm::dmat4& m) {
   Bounds out;
   if (!local.valid()) return out;
-  for (int i = 0; i < 8; ++i) {
-    glm::dvec3 p((i & 1) ? local.max.x : local.min.x, (i & 2) ? local.max.y : local.min.y, (i & 4) ? local.max.z : local.min.z);
-    out.extend(glm::dvec3(m * glm::dvec4(p, 1.0)));
-  }
+  for (int i = 0; i < 8; ++i) out.extend(glm::dvec3(m * glm::dvec4(local.corner(i), 1.0)));
   return out;
 }
 

@@ -33,6 +33,10 @@ struct Bounds {
   void extend(const Bounds& b) { if (b.valid()) { extend(b.min); extend(b.max); } }
   glm::dvec3 center() const { return (min + max) * 0.5; }
   glm::dvec3 size() const { return max - min; }
+  // Corner i (0..7): bit 0 picks max.x, bit 1 max.y, bit 2 max.z.
+  glm::dvec3 corner(int i) const {
+    return {(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z};
+  }
 };
 
 // Texels are RGBA8 as stored in the file; `srgb` says how the sampler must decode them

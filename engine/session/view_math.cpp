@@ -70,11 +70,7 @@ SunShadowFit fitSunShadow(const View& view, double aspect, const scene::Bounds& 
     zMax = std::max(zMax, z);
   };
   if (haveScene) {
-    for (int i = 0; i < 8; ++i) {
-      glm::dvec3 p((i & 1) ? sceneBounds.max.x : sceneBounds.min.x, (i & 2) ? sceneBounds.max.y : sceneBounds.min.y,
-                   (i & 4) ? sceneBounds.max.z : sceneBounds.min.z);
-      extendZ(p - view.position);
-    }
+    for (int i = 0; i < 8; ++i) extendZ(sceneBounds.corner(i) - view.position);
   }
   extendZ(center + d * radius);
   extendZ(center - d * radius);

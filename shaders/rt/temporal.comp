@@ -5,6 +5,7 @@
 // 1 / n, n growing to maxAccumFrames. Linear space throughout.
 #extension GL_GOOGLE_include_directive : require
 #include "rt/rt_common.glsl"
+#include "shared/sampling.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = kRtBindingMotion) uniform sampler2D gMotion;
@@ -54,10 +55,7 @@ void main() {
     }
     if (total <= 0.0) noSample = true;
     // A hash of pixel and frame chooses (uniform in [0, total)).
-    uint h = uint(p.x) * 73856093u ^ uint(p.y) * 19349663u ^ frame.frameIndex * 83492791u;
-    h = (h ^ (h >> 16u)) * 0x45d9f3bu;
-    h ^= h >> 16u;
-    float u = float(h & 0xFFFFFFu) / 16777216.0 * total;
+    float u = tlUintToUnitFloat(tlPcg3d(uvec3(uvec2(p), frame.frameIndex)).x) * total;
     // Rounding may leave u past the last weight: fall back to the heaviest candidate (inside).
     int heaviest = 0;
     for (int i = 1; i < 4; ++i)

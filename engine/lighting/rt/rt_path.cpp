@@ -366,10 +366,7 @@ class RtPath final : public LightingPath {
     const auto& b = in.sceneData.bounds;
     if (!b.valid()) return 0.0;
     double farthest = 0.0;
-    for (int c = 0; c < 8; ++c) {
-      glm::dvec3 corner((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y, (c & 4) ? b.max.z : b.min.z);
-      farthest = std::max(farthest, glm::length(corner - in.cameraWorld));
-    }
+    for (int c = 0; c < 8; ++c) farthest = std::max(farthest, glm::length(b.corner(c) - in.cameraWorld));
     return farthest;
   }
 
