@@ -33,28 +33,27 @@ class RtTest : public RayTracingTest {
     for (auto& n : names) s.requestBuffer(n);
     s.renderFrames(frames);
   }
+  // `frames` RT frames on content/plane.gltf (48 x 32) with the current settings: AO = 1 and
+  // irradiance = pi L on every surface pixel, within 0.02 and 3%.
+  PlaneErrors expectPlaneConverges(uint32_t frames) {
+    session().loadScene(contentFile("plane.gltf"));
+    render(48, 32, frames, {kShY, kCoCgAo, kAo, "gbuffer.depth"});
+    PlaneErrors e = planeErrors(session(), kAo, kShY, kCoCgAo);
+    EXPECT_GT(e.surface, e.pixels / 4) << "the plane should fill much of the view";
+    EXPECT_LE(e.worstAo, 0.02);
+    EXPECT_LE(e.worstIrradiance, 0.03) << "irradiance relative to pi L";
+    return e;
+  }
 };
 
 TEST_F(RtTest, PlaneUnderUniformSkyHasNoOcclusionAndIrradiancePiL) {
-  auto& s = session();
-  s.loadScene(contentFile("plane.gltf"));
-  render(48, 32, 8, {kShY, kCoCgAo, kAo, "gbuffer.depth"});
-  PlaneErrors e = planeErrors(s, kAo, kShY, kCoCgAo);
-  ASSERT_GT(e.surface, e.pixels / 4) << "the plane should fill much of the view";
-  EXPECT_LE(e.worstAo, 0.02);
-  EXPECT_LE(e.worstIrradiance, 0.03) << "irradiance relative to pi L";
+  PlaneErrors e = expectPlaneConverges(8);
   RecordProperty("worst_irradiance_error", std::to_string(e.worstIrradiance));
 }
 
 TEST_F(RtTest, HalfRaysPerPixelStillConvergeOnThePlane) {
-  auto& s = session();
-  s.loadScene(contentFile("plane.gltf"));
-  s.settings().rtHalfRays = true;
-  render(48, 32, 6, {kShY, kCoCgAo, kAo, "gbuffer.depth"});
-  PlaneErrors e = planeErrors(s, kAo, kShY, kCoCgAo);
-  ASSERT_GT(e.surface, e.pixels / 4);
-  EXPECT_LE(e.worstAo, 0.02);
-  EXPECT_LE(e.worstIrradiance, 0.03);
+  session().settings().rtHalfRays = true;
+  expectPlaneConverges(6);
 }
 
 // Half the rays, the same answer: the mean image after accumulation on the atrium is within a
@@ -83,13 +82,8 @@ TEST_F(RtTest, HalfRaysPerPixelAgreeWithFullRateOnTheAtrium) {
 
 TEST_F(RtTest, HalfResolutionStillConvergesOnThePlane) {
   auto& s = session();
-  s.loadScene(contentFile("plane.gltf"));
   s.settings().rtHalfResolution = true;
-  render(48, 32, 12, {kShY, kCoCgAo, kAo, "gbuffer.depth"});
-  PlaneErrors e = planeErrors(s, kAo, kShY, kCoCgAo);
-  ASSERT_GT(e.surface, e.pixels / 4);
-  EXPECT_LE(e.worstAo, 0.02);
-  EXPECT_LE(e.worstIrradiance, 0.03);
+  expectPlaneConverges(12);
   // Every pixel got samples: after 12 frames (three of each 2x2 position) all have history.
   auto c = s.buffer(kCoCgAo).texels();
   auto depth = s.buffer("gbuffer.depth").texels();
