@@ -17,12 +17,6 @@ layout(set = 0, binding = kCompositeEmissive) uniform sampler2D gEmissive;
 layout(set = 0, binding = kCompositeDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kCompositeShadow) uniform sampler2DShadow sunShadow;
 layout(set = 0, binding = kCompositeOutput, rgba16f) uniform writeonly image2D outRadiance;
-layout(set = 0, binding = kCompositeAo) uniform sampler2D pathAo;
-layout(set = 0, binding = kCompositeShY) uniform sampler2D pathShY;
-layout(set = 0, binding = kCompositeCoCg) uniform sampler2D pathCoCg;
-layout(set = 0, binding = kCompositeFarShY) uniform sampler2D farShY;
-layout(set = 0, binding = kCompositeFarCoCg) uniform sampler2D farCoCg;
-layout(set = 0, binding = kCompositeFarAo) uniform sampler2D farAo;
 layout(push_constant) uniform Push { CompositePush push; };
 
 #include "common/camera.glsl"

@@ -1,8 +1,16 @@
 // What the composite takes from a lighting path, as the quantities it multiplies: the
 // ambient occlusion and the diffuse irradiance (sky and bounce light; the sun is separate).
 // The composite and the composite.stages pass both include it, so the per-stage buffers
-// hold exactly what the final image used. The includer declares `push` (CompositePush) and
-// the samplers pathAo, pathShY, pathCoCg, farShY, farCoCg and farAo.
+// hold exactly what the final image used. The includer includes shared/gbuffer.h and sh.h
+// and declares `push` (CompositePush); the path's images are bound here, at the composite's
+// binding numbers, for both.
+
+layout(set = 0, binding = kCompositeAo) uniform sampler2D pathAo;
+layout(set = 0, binding = kCompositeShY) uniform sampler2D pathShY;
+layout(set = 0, binding = kCompositeCoCg) uniform sampler2D pathCoCg;
+layout(set = 0, binding = kCompositeFarShY) uniform sampler2D farShY;
+layout(set = 0, binding = kCompositeFarCoCg) uniform sampler2D farCoCg;
+layout(set = 0, binding = kCompositeFarAo) uniform sampler2D farAo;
 
 // 1 where the path gives no AO.
 float pathAmbientOcclusion(ivec2 p) {
