@@ -48,13 +48,8 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
                          {shared::kCompositeDepth, sampled},
                          {shared::kCompositeShadow, sampled},
                          {shared::kCompositeOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                         {shared::kCompositeAo, sampled},
-                         {shared::kCompositeShY, sampled},
-                         {shared::kCompositeCoCg, sampled},
-                         {shared::kCompositeShadowDepth, sampled},
-                         {shared::kCompositeFarShY, sampled},
-                         {shared::kCompositeFarCoCg, sampled},
-                         {shared::kCompositeFarAo, sampled}};
+                         {shared::kCompositeShadowDepth, sampled}};
+    for (const auto& b : PathInputs::bindings()) d.layout.bindings.push_back(b);
     d.layout.pushConstantBytes = sizeof(shared::CompositePush);
     pipeline_ = gpu::createComputePipeline(in.device, d);
     pointSampler_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "composite.point");
@@ -76,11 +71,14 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   push.giBlendDistance = path.giBlendDistance;
   push.giBlendWidth = kGiBlendWidthFraction * path.giBlendDistance;
   // Absent outputs: the binding still needs an image; the base colour stands in, unread.
-  const std::string ao = path.ambientOcclusion.empty() ? "gbuffer.baseColor" : path.ambientOcclusion;
-  const std::string shY = (push.flags & shared::kCompositeHasGi) ? path.diffuseShY : "gbuffer.baseColor";
-  const std::string coCg = (push.flags & shared::kCompositeHasGi) ? path.diffuseCoCg : "gbuffer.baseColor";
-  const FarField farField{far ? path.farShY : "gbuffer.baseColor", far ? path.farCoCg : "gbuffer.baseColor",
-                          far ? path.farAo : "gbuffer.baseColor"};
+  const std::string standIn = "gbuffer.baseColor";
+  const bool gi = (push.flags & shared::kCompositeHasGi) != 0;
+  const PathInputs inputs{path.ambientOcclusion.empty() ? standIn : path.ambientOcclusion,
+                          gi ? path.diffuseShY : standIn,
+                          gi ? path.diffuseCoCg : standIn,
+                          far ? path.farShY : standIn,
+                          far ? path.farCoCg : standIn,
+                          far ? path.farAo : standIn};
   graph.addPass(
       "composite", graph::PassKind::Compute,
       [&](graph::PassBuilder& b) {
@@ -89,11 +87,10 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
           b.read(n, Usage::Sampled);
         b.read(kGbufferDepth, Usage::Sampled);
         if (sun) b.read(kShadowSunDepth, Usage::Sampled);
-        for (const std::string& n : {ao, shY, coCg, farField.shY, farField.coCg, farField.ao})
-          if (n != "gbuffer.baseColor") b.read(n, Usage::Sampled);
+        inputs.declareReads(b, "gbuffer.baseColor");
         b.create(kCompositeHdr, hdrDesc, Usage::StorageWrite);
       },
-      [this, &in, sun, push, ao, shY, coCg, farField](graph::PassContext& ctx) {
+      [this, &in, sun, push, inputs](graph::PassContext& ctx) {
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
         VkSampler point = pointSampler_.handle();
         // The binding must still hold a depth image; the G-buffer's depth stands in, unread.
@@ -108,22 +105,40 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
             .sampledImage(shared::kCompositeDepth, ctx.image(kGbufferDepth).view(), point, ro)
             .sampledImage(shared::kCompositeShadow, shadow.view(), shadowSampler_.handle(), ro)
             .storageImage(shared::kCompositeOutput, ctx.image(kCompositeHdr).view())
-            .sampledImage(shared::kCompositeAo, ctx.image(ao).view(), point, ro)
-            .sampledImage(shared::kCompositeShY, ctx.image(shY).view(), point, ro)
-            .sampledImage(shared::kCompositeCoCg, ctx.image(coCg).view(), point, ro)
-            .sampledImage(shared::kCompositeShadowDepth, shadow.view(), point, ro)
-            .sampledImage(shared::kCompositeFarShY, ctx.image(farField.shY).view(), point, ro)
-            .sampledImage(shared::kCompositeFarCoCg, ctx.image(farField.coCg).view(), point, ro)
-            .sampledImage(shared::kCompositeFarAo, ctx.image(farField.ao).view(), point, ro);
+            .sampledImage(shared::kCompositeShadowDepth, shadow.view(), point, ro);
+        inputs.bind(ctx, point);
         ctx.pushConstants(push);
         ctx.dispatch(in.settings.width, in.settings.height);
       });
-  addStages(graph, in, push, ao, shY, coCg, farField);
+  addStages(graph, in, push, inputs);
+}
+
+std::vector<gpu::Binding> CompositePass::PathInputs::bindings() {
+  const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  return {{shared::kCompositeAo, sampled},     {shared::kCompositeShY, sampled},
+          {shared::kCompositeCoCg, sampled},   {shared::kCompositeFarShY, sampled},
+          {shared::kCompositeFarCoCg, sampled}, {shared::kCompositeFarAo, sampled}};
+}
+
+void CompositePass::PathInputs::declareReads(graph::PassBuilder& b, const std::string& alreadyRead) const {
+  // The stand-in may fill several bindings: a set reads it once.
+  for (const std::string& n : std::set<std::string>{ao, shY, coCg, farShY, farCoCg, farAo})
+    if (n != alreadyRead) b.read(n, Usage::Sampled);
+}
+
+void CompositePass::PathInputs::bind(graph::PassContext& ctx, VkSampler sampler) const {
+  const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
+  ctx.descriptors()
+      .sampledImage(shared::kCompositeAo, ctx.image(ao).view(), sampler, ro)
+      .sampledImage(shared::kCompositeShY, ctx.image(shY).view(), sampler, ro)
+      .sampledImage(shared::kCompositeCoCg, ctx.image(coCg).view(), sampler, ro)
+      .sampledImage(shared::kCompositeFarShY, ctx.image(farShY).view(), sampler, ro)
+      .sampledImage(shared::kCompositeFarCoCg, ctx.image(farCoCg).view(), sampler, ro)
+      .sampledImage(shared::kCompositeFarAo, ctx.image(farAo).view(), sampler, ro);
 }
 
 void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push,
-                              const std::string& ao, const std::string& shY, const std::string& coCg,
-                              const FarField& farField) {
+                              const PathInputs& inputs) {
   const uint32_t w = in.settings.width, h = in.settings.height;
   if (!stagesPipeline_) {
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
@@ -133,14 +148,9 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
     d.layout.bindings = {{shared::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                          {shared::kCompositeNormal, sampled},
                          {shared::kCompositeDepth, sampled},
-                         {shared::kCompositeAo, sampled},
-                         {shared::kCompositeShY, sampled},
-                         {shared::kCompositeCoCg, sampled},
-                         {shared::kCompositeFarShY, sampled},
-                         {shared::kCompositeFarCoCg, sampled},
-                         {shared::kCompositeFarAo, sampled},
                          {shared::kCompositeStageAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                          {shared::kCompositeStageIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+    for (const auto& b : PathInputs::bindings()) d.layout.bindings.push_back(b);
     d.layout.pushConstantBytes = sizeof(shared::CompositePush);
     stagesPipeline_ = gpu::createComputePipeline(in.device, d);
   }
@@ -150,9 +160,7 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
         b.read(kFrameConstants, Usage::StorageRead);
         b.read("gbuffer.normal", Usage::Sampled);
         b.read(kGbufferDepth, Usage::Sampled);
-        // The stand-in for absent outputs (see add()) is bound, so declared, but never read.
-        std::set<std::string> inputs{ao, shY, coCg, farField.shY, farField.coCg, farField.ao};
-        for (const std::string& n : inputs) b.read(n, Usage::Sampled);
+        inputs.declareReads(b);
         b.create(kCompositeAo,
                  graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "the AO the composite applied (0: sky)"),
                  Usage::StorageWrite);
@@ -161,7 +169,7 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
                                               "the diffuse irradiance the composite used: sky + bounce, no sun (0: sky)"),
                  Usage::StorageWrite);
       },
-      [this, &in, push, ao, shY, coCg, farField](graph::PassContext& ctx) {
+      [this, &in, push, inputs](graph::PassContext& ctx) {
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
         VkSampler point = pointSampler_.handle();
         ctx.bind(stagesPipeline_);
@@ -169,14 +177,9 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
             .uniformBuffer(shared::kBindingFrame, in.constantsBuffer.handle())
             .sampledImage(shared::kCompositeNormal, ctx.image("gbuffer.normal").view(), point, ro)
             .sampledImage(shared::kCompositeDepth, ctx.image(kGbufferDepth).view(), point, ro)
-            .sampledImage(shared::kCompositeAo, ctx.image(ao).view(), point, ro)
-            .sampledImage(shared::kCompositeShY, ctx.image(shY).view(), point, ro)
-            .sampledImage(shared::kCompositeCoCg, ctx.image(coCg).view(), point, ro)
-            .sampledImage(shared::kCompositeFarShY, ctx.image(farField.shY).view(), point, ro)
-            .sampledImage(shared::kCompositeFarCoCg, ctx.image(farField.coCg).view(), point, ro)
-            .sampledImage(shared::kCompositeFarAo, ctx.image(farField.ao).view(), point, ro)
             .storageImage(shared::kCompositeStageAo, ctx.image(kCompositeAo).view())
             .storageImage(shared::kCompositeStageIrradiance, ctx.image(kCompositeIrradiance).view());
+        inputs.bind(ctx, point);
         ctx.pushConstants(push);
         ctx.dispatch(in.settings.width, in.settings.height);
       });

@@ -23,11 +23,16 @@ class CompositePass {
   void add(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path);
 
  private:
-  struct FarField {
-    std::string shY, coCg, ao;
+  // The path's images both composite passes sample (shaders/common/path_indirect.glsl): an
+  // absent one is bound to a stand-in the shader never reads.
+  struct PathInputs {
+    std::string ao, shY, coCg, farShY, farCoCg, farAo;
+    static std::vector<gpu::Binding> bindings();
+    // Each image once; `alreadyRead` (read by the pass for another binding) is left out.
+    void declareReads(graph::PassBuilder& b, const std::string& alreadyRead = {}) const;
+    void bind(graph::PassContext& ctx, VkSampler sampler) const;
   };
-  void addStages(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push, const std::string& ao,
-                 const std::string& shY, const std::string& coCg, const FarField& farField);
+  void addStages(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push, const PathInputs& inputs);
 
   gpu::Pipeline pipeline_;
   gpu::Pipeline stagesPipeline_;
