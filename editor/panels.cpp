@@ -252,6 +252,14 @@ void pathParameters(EditorApp& app) {
     int frames = int(s.rtMaxAccumFrames);
     if (ImGui::SliderInt("Accumulation", &frames, 1, 128, "%d frames")) s.rtMaxAccumFrames = uint32_t(frames), changed = true;
     tooltip("Temporal accumulation window while the camera holds still");
+    changed |= ImGui::SliderFloat("Firefly clamp", &s.rtFireflyClamp, 0.0f, 64.0f, s.rtFireflyClamp > 0.0f ? "%.1f x RMS" : "off");
+    tooltip("A new sample brighter than this multiple of its history's or neighbours' RMS luma is scaled down to it, "
+            "in linear space. Off by default: where light comes through a few bright rays (an emitter the rays must "
+            "find) it removes real light, 40-90% on cornell");
+    // The light changing must not reset this checkbox's own effect: no history reset for it.
+    ImGui::Checkbox("Luminance rejection", &s.rtLumaRejection);
+    tooltip("When the light changes (sun, sky, albedo), clip each pixel's history to this frame's samples around it, "
+            "so a light switched off does not ghost (RE ENGINE)");
     changed |= ImGui::SliderFloat("RT mesh triangles", &s.rtSimplifyRatio, 0.05f, 1.0f, "%.2f x");
     tooltip("Simplified BLAS meshes (Metro: about 4x fewer triangles); 1 = the full mesh");
     changed |= ImGui::Checkbox("Multi-bounce from the screen##rt", &s.rtScreenRadiance);

@@ -117,6 +117,28 @@ void plane(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// Fireflies on purpose: a ground under a uniform sky and, 0.3 m above it, five 2 cm sparks
+// facing down whose radiance is 1e4 (emissive strength). A ground pixel's ray finds one with
+// a probability near 1e-4 and then brings 1e4 times the sky: a few pixels a frame, and
+// about a third of the ground's light on average. The denoiser's hard case.
+void sparks(const std::filesystem::path& dir) {
+  SceneWriter w("sparks");
+  int grey = w.material({"ground_grey", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  int spark = w.material({"spark", {0.0f, 0.0f, 0.0f}, 0.0f, 1.0f, {1.0f, 0.9f, 0.7f}, 1.0e4f});
+  w.node("ground", w.mesh("ground", quad(20.0f, 20.0f, 0.5f), grey), {0.0f, 0.0f, 0.0f});
+  int sparkMesh = w.mesh("spark", quad(0.02f, 0.02f), spark);
+  const glm::vec3 at[] = {{0.0f, 0.3f, 0.0f}, {-0.8f, 0.3f, 0.4f}, {0.7f, 0.3f, -0.5f}, {0.3f, 0.3f, 0.8f},
+                          {-0.5f, 0.3f, -0.7f}};
+  for (int i = 0; i < 5; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "spark_%d", i + 1);
+    w.node(name, sparkMesh, at[i], {180.0f, 0.0f, 0.0f});
+  }
+  w.camera("down45", {0.0f, 2.0f, 2.0f}, {0.0f, 0.0f, 0.0f}, 60.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
 // Many instances for the RT module's culling: a 100 x 100 grid of crates (10,000 instances of
 // two meshes) on a 220 m ground. The camera stands at a corner looking out, so it sees few.
 void grove(const std::filesystem::path& dir) {
@@ -235,6 +257,7 @@ int main(int argc, char** argv) {
     tl::content::plane(dir);
     tl::content::grove(dir);
     tl::content::banners(dir);
+    tl::content::sparks(dir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());
     return 1;

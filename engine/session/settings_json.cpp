@@ -44,6 +44,8 @@ const std::map<std::string, Setter>& setters() {
       {"rtPretracePixels", field(&S::rtPretracePixels)},
       {"rtThickness", field(&S::rtThickness)},
       {"rtMaxAccumFrames", field(&S::rtMaxAccumFrames)},
+      {"rtFireflyClamp", field(&S::rtFireflyClamp)},
+      {"rtLumaRejection", field(&S::rtLumaRejection)},
       {"rtCullAngle", field(&S::rtCullAngle)},
       {"rtCullMargin", field(&S::rtCullMargin)},
       {"rtFarLegacy", field(&S::rtFarLegacy)},

@@ -2,7 +2,10 @@
 // Temporal accumulation of the RT path's raw SH irradiance and AO, before any spatial
 // filtering (Metro Exodus): reproject with the motion vectors, reject history that falls
 // off screen or belongs to another surface (view-depth test), and average with weight
-// 1 / n, n growing to maxAccumFrames. Linear space throughout.
+// 1 / n, n growing to maxAccumFrames. Linear space throughout, with RE ENGINE's guards in
+// place of a Reinhard curve: non-finite samples are dropped, fireflies are scaled down to a
+// multiple of their neighbourhood's or history's RMS (optional: see shared/rt.h), and when
+// the light changed the history is clipped to this frame's samples (luminance rejection).
 #extension GL_GOOGLE_include_directive : require
 #include "rt/rt_common.glsl"
 #include "shared/sampling.h"
@@ -18,6 +21,60 @@ layout(set = 0, binding = kRtBindingHistDepth) uniform sampler2D historyDepth;
 layout(set = 0, binding = kRtBindingOutShY, rgba16f) uniform writeonly image2D outShY;
 layout(set = 0, binding = kRtBindingOutCoCgAo, rgba16f) uniform writeonly image2D outCoCgAo;
 layout(set = 0, binding = kRtBindingOutDepth, r32f) uniform writeonly image2D outDepth;
+layout(set = 0, binding = kRtBindingHistMoment) uniform sampler2D historyMoment;
+layout(set = 0, binding = kRtBindingOutMoment, r32f) uniform writeonly image2D outMoment;
+
+bool finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
+// This frame's samples around p on the same surface (depth within 5%): the ceiling above
+// which a sample is a firefly, and the range of the samples once clipped to it. Only pixels
+// that traced this frame count; with fewer rays per pixel the window widens to 5x5 so it
+// still holds several.
+//
+// The ceiling (shared/rt.h tlRtFireflyCeiling) is k times an RMS: the pixel's history's, or
+// its neighbours' leaving out the largest sample (one spike must not raise its own limit).
+struct Neighbourhood {
+  float ceiling;        // firefly ceiling on a sample's luma (SH L0); huge when off
+  float lowest;         // smallest and largest luma of the clipped samples
+  float highest;
+  int count;
+};
+Neighbourhood neighbourhood(ivec2 p, float depth, ivec2 size, float historyRms) {
+  const int kMax = 25;
+  float luma[kMax];
+  int count = 0;
+  float sumSquares = 0.0, largest = 0.0;
+  int radius = push.rayPattern == kRtRaysFull ? 1 : 2;
+  for (int y = -radius; y <= radius; ++y)
+    for (int x = -radius; x <= radius; ++x) {
+      ivec2 q = p + ivec2(x, y);
+      if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+      if (!tlRtTracesThisFrame(q, frame.frameIndex, push.rayPattern)) continue;
+      float d = texelFetch(gDepth, q, 0).r;
+      if (d <= 0.0 || abs(d - depth) > 0.05 * depth) continue;
+      float l = texelFetch(rawShY, q, 0).x;
+      if (isnan(l) || isinf(l)) continue;
+      l = max(l, 0.0);
+      luma[count++] = l;
+      sumSquares += l * l;
+      largest = max(largest, l);
+    }
+  Neighbourhood n;
+  n.ceiling = kRtNoCeiling;
+  n.lowest = 0.0;
+  n.highest = 0.0;
+  n.count = count;
+  if (count == 0) return n;
+  float trimmedRms = count > 1 ? sqrt(max(sumSquares - largest * largest, 0.0) / float(count - 1)) : 0.0;
+  n.ceiling = tlRtFireflyCeiling(trimmedRms, historyRms, push.fireflyClamp);
+  n.lowest = 1e30;
+  for (int i = 0; i < count; ++i) {
+    float l = min(luma[i], n.ceiling);
+    n.lowest = min(n.lowest, l);
+    n.highest = max(n.highest, l);
+  }
+  return n;
+}
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -71,14 +128,24 @@ void main() {
   }
   vec4 shY = noSample ? vec4(0.0) : texelFetch(rawShY, src, 0);
   vec4 coCgAo = noSample ? vec4(0.0, 0.0, 1.0, 0.0) : vec4(texelFetch(rawCoCg, src, 0).xy, texelFetch(rawAo, src, 0).r, 1.0);
+  if (!finite4(shY) || !finite4(coCgAo)) {  // a broken sample never reaches the history
+    noSample = true;
+    shY = vec4(0.0);
+    coCgAo = vec4(0.0, 0.0, 1.0, 0.0);
+  }
   if (depth <= 0.0) {
     imageStore(outShY, p, vec4(0.0));
     imageStore(outCoCgAo, p, vec4(0.0, 0.0, 1.0, 0.0));
     imageStore(outDepth, p, vec4(0.0));
+    imageStore(outMoment, p, vec4(0.0));
     return;
   }
   vec3 position = pixelPosition(p, depth);
   float w = viewW(position);
+  // The history at this surface's position last frame, if it is the same surface.
+  bool hasHistory = false;
+  vec4 historySh = vec4(0.0), history = vec4(0.0);
+  float meanSquare = 0.0;  // the history's mean squared sample luma
   if (push.historyValid != 0u) {
     vec2 uv = (vec2(p) + 0.5) * frame.viewport.zw;
     vec2 previousUv = uv - texelFetch(gMotion, p, 0).xy;
@@ -88,20 +155,49 @@ void main() {
     if (onScreen && previousClip.w > 0.0) {
       ivec2 q = ivec2(previousUv * frame.viewport.xy);
       float historyW = texelFetch(historyDepth, q, 0).r;
-      vec4 history = texelFetch(historyCoCgAo, q, 0);
+      history = texelFetch(historyCoCgAo, q, 0);
       bool sameSurface = historyW > 0.0 && abs(historyW - previousClip.w) <= 0.03 * previousClip.w;
-      if (sameSurface && history.w >= 1.0 && noSample) {
-        shY = texelFetch(historyShY, q, 0);  // nothing new this frame: the history as it was
-        coCgAo = history;
-      } else if (sameSurface && history.w >= 1.0) {
-        float n = min(history.w + 1.0, float(max(push.maxAccumFrames, 1u)));
-        float a = 1.0 / n;
-        shY = mix(texelFetch(historyShY, q, 0), shY, a);
-        coCgAo = vec4(mix(history.xyz, coCgAo.xyz, a), n);
+      hasHistory = sameSurface && history.w >= 1.0;
+      if (hasHistory) {
+        historySh = texelFetch(historyShY, q, 0);
+        meanSquare = texelFetch(historyMoment, q, 0).x;
       }
     }
+  }
+  if (hasHistory && noSample) {  // nothing new this frame: the history as it was
+    imageStore(outShY, p, historySh);
+    imageStore(outCoCgAo, p, history);
+    imageStore(outDepth, p, vec4(w));
+    imageStore(outMoment, p, vec4(meanSquare));
+    return;
+  }
+  Neighbourhood nb = neighbourhood(p, depth, size, hasHistory ? sqrt(max(meanSquare, 0.0)) : 0.0);
+  if (!noSample && shY.x > nb.ceiling) {
+    float k = nb.ceiling / shY.x;  // scale the whole sample: its direction and colour stay
+    shY *= k;
+    coCgAo.xy *= k;
+  }
+  float shY0 = max(shY.x, 0.0);  // this frame's (clipped) sample luma
+  if (hasHistory) {
+    float frames = history.w;
+    if (push.lightChanged != 0u && nb.count > 0 && historySh.x > 0.0) {
+      // Luminance rejection: the history keeps its direction and colour at a luma inside
+      // this frame's range, and only a couple of frames' weight.
+      float k = clamp(historySh.x, nb.lowest, nb.highest) / historySh.x;
+      historySh *= k;
+      history.xy *= k;
+      frames = min(frames, kRtLightChangeFrames);
+    }
+    float n = min(frames + 1.0, float(max(push.maxAccumFrames, 1u)));
+    float a = 1.0 / n;
+    shY = mix(historySh, shY, a);
+    coCgAo = vec4(mix(history.xyz, coCgAo.xyz, a), n);
+    if (!noSample) meanSquare = mix(meanSquare, shY0 * shY0, a);
+  } else {
+    meanSquare = shY0 * shY0;
   }
   imageStore(outShY, p, shY);
   imageStore(outCoCgAo, p, coCgAo);
   imageStore(outDepth, p, vec4(w));
+  imageStore(outMoment, p, vec4(meanSquare));
 }

@@ -219,7 +219,7 @@ TEST_F(AlbedoOverrideTest, AnOverrideChangesRtColourBleedingOnTheNextFrame) {
   auto settledLeftRedToGreen = [&] {
     s.resetHistory();
     s.setFrameIndex(7);
-    return cornellBleeding(s, "rt", "rt.gi.shY", "rt.gi.coCgAo", 12).left;
+    return cornellBleeding(s, "rt", "rt.gi.temporal.shY", "rt.gi.temporal.coCgAo", 12).left;
   };
   auto redHits = [&] {
     s.requestBuffer("rt.hits");

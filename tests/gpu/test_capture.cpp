@@ -46,8 +46,8 @@ TEST_F(GpuTest, CaptureWritesEveryResourceAndReadsBackExactly) {
   ASSERT_TRUE(hits.integer);
   ASSERT_EQ(hits.integers.size() * 4, rb.bytes.size());
   EXPECT_EQ(std::memcmp(hits.integers.data(), rb.bytes.data(), rb.bytes.size()), 0);
-  auto shY = session::readCaptureImage(dir / "rt.gi.shY.exr");
-  EXPECT_EQ(shY.values, s.buffer("rt.gi.shY").texels());
+  auto shY = session::readCaptureImage(dir / "rt.gi.temporal.shY.exr");
+  EXPECT_EQ(shY.values, s.buffer("rt.gi.temporal.shY").texels());
   auto depth = session::readCaptureImage(dir / "gbuffer.depth.exr");
   EXPECT_EQ(depth.values, s.buffer("gbuffer.depth").texels()) << "32-bit depth stored as float";
 }

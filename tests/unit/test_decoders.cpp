@@ -45,9 +45,9 @@ glm::vec3 parseVec(const std::string& text) {
 }
 
 TEST(Decoders, SpecNamesTheDecoderAndItsCompanions) {
-  DecoderSpec s = parseDecoderSpec("sh-irradiance coCg=rt.gi.coCgAo normal=gbuffer.normal");
+  DecoderSpec s = parseDecoderSpec("sh-irradiance coCg=rt.gi.temporal.coCgAo normal=gbuffer.normal");
   EXPECT_EQ(s.name, "sh-irradiance");
-  EXPECT_EQ(s.companions.at("coCg"), "rt.gi.coCgAo");
+  EXPECT_EQ(s.companions.at("coCg"), "rt.gi.temporal.coCgAo");
   EXPECT_EQ(decoderCompanions("sh-irradiance coCg=a normal=b").size(), 2u);
   EXPECT_TRUE(decodeTexel("no-such-decoder", {oneTexel(VK_FORMAT_R32_UINT, 0u)}).empty());
 }

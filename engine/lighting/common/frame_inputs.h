@@ -46,6 +46,8 @@ struct RenderSettings {
   float rtPretracePixels = 0.0f;    // screen length of a pre-traced ray; 0: scaled to the image (pretraceAutoPixels)
   float rtThickness = 0.02f;        // depth-buffer surface thickness, fraction of view distance
   uint32_t rtMaxAccumFrames = 32;   // temporal accumulation window
+  float rtFireflyClamp = 0.0f;      // a sample's luma above this multiple of its neighbourhood's / history's RMS is clipped (0: off)
+  bool rtLumaRejection = true;      // when the light changes, clip the history to this frame's samples (no ghosting)
   float rtCullAngle = 0.002f;       // contribution culling: instances subtending less (radians) are dropped
   float rtCullMargin = 0.0f;        // expanded frustum: margin (m) around the view frustum
   // Beyond the blend distance, the legacy path's GI (Metro) rather than the unoccluded sky;

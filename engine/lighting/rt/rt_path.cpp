@@ -64,6 +64,11 @@ class RtPath final : public LightingPath {
     push.thickness = s.rtThickness;
     push.maxAccumFrames = s.rtMaxAccumFrames;
     push.aoFilterDepth = 0.02f;
+    push.fireflyClamp = std::max(s.rtFireflyClamp, 0.0f);
+    // Luminance rejection is triggered by a change of the light (see shared/rt.h).
+    const uint64_t light = lightingKey(in);
+    push.lightChanged = s.rtLumaRejection && light != lightingKey_ ? 1u : 0u;
+    lightingKey_ = light;
 
     const uint32_t w = s.width, h = s.height;
     auto image = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, w, h, what); };
@@ -73,6 +78,7 @@ class RtPath final : public LightingPath {
     graph.declarePersistent(kHistShY, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated SH luma, last frame"));
     graph.declarePersistent(kHistCoCgAo, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated CoCg, AO, frame count, last frame"));
     graph.declarePersistent(kHistDepth, image(VK_FORMAT_R32_SFLOAT, "view depth, last frame"));
+    graph.declarePersistent(kHistLumaMoment, image(VK_FORMAT_R32_SFLOAT, "mean squared sample luma, last frame"));
     const bool screenRadiance = s.rtScreenRadiance;
     if (screenRadiance)
       graph.declarePersistent(kHistRadiance, image(VK_FORMAT_R16G16B16A16_SFLOAT, "composite radiance, last frame"));
@@ -194,7 +200,8 @@ class RtPath final : public LightingPath {
         [&](graph::PassBuilder& b) {
           readCommon(b);
           b.read("gbuffer.motion", Usage::Sampled);
-          for (const char* n : {kRawShY, kRawCoCg, kRawAo, kHistShY, kHistCoCgAo, kHistDepth}) b.read(n, Usage::Sampled);
+          for (const char* n : {kRawShY, kRawCoCg, kRawAo, kHistShY, kHistCoCgAo, kHistDepth, kHistLumaMoment})
+            b.read(n, Usage::Sampled);
           b.create(kShY,
                    image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated irradiance: L1 SH of luma")
                        .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kCoCgAo)),
@@ -203,9 +210,13 @@ class RtPath final : public LightingPath {
                    Usage::StorageWrite);
           b.create(kViewDepth, image(VK_FORMAT_R32_SFLOAT, "view depth (w) for the next frame's disocclusion test"),
                    Usage::StorageWrite);
+          b.create(kLumaMoment,
+                   image(VK_FORMAT_R32_SFLOAT, "mean squared sample luma (the firefly ceiling's scale)"),
+                   Usage::StorageWrite);
         },
         [this, &in, push](graph::PassContext& ctx) mutable {
-          push.historyValid = ctx.historyValid(kHistShY) && ctx.historyValid(kHistCoCgAo) && ctx.historyValid(kHistDepth);
+          push.historyValid = ctx.historyValid(kHistShY) && ctx.historyValid(kHistCoCgAo) && ctx.historyValid(kHistDepth) &&
+                              ctx.historyValid(kHistLumaMoment);
           VkSampler p = point_.handle();
           ctx.bind(temporal_);
           ctx.pushConstants(push);
@@ -217,13 +228,16 @@ class RtPath final : public LightingPath {
               .sampledImage(shared::kRtBindingHistShY, ctx.image(kHistShY).view(), p, kReadOnly)
               .sampledImage(shared::kRtBindingHistCoCgAo, ctx.image(kHistCoCgAo).view(), p, kReadOnly)
               .sampledImage(shared::kRtBindingHistDepth, ctx.image(kHistDepth).view(), p, kReadOnly)
+              .sampledImage(shared::kRtBindingHistMoment, ctx.image(kHistLumaMoment).view(), p, kReadOnly)
+              .storageImage(shared::kRtBindingOutMoment, ctx.image(kLumaMoment).view())
               .storageImage(shared::kRtBindingOutShY, ctx.image(kShY).view())
               .storageImage(shared::kRtBindingOutCoCgAo, ctx.image(kCoCgAo).view())
               .storageImage(shared::kRtBindingOutDepth, ctx.image(kViewDepth).view());
           ctx.dispatch(in.settings.width, in.settings.height);
         });
 
-    addCopyPass(graph, "rt.history", {{kShY, kHistShY}, {kCoCgAo, kHistCoCgAo}, {kViewDepth, kHistDepth}});
+    addCopyPass(graph, "rt.history",
+                {{kShY, kHistShY}, {kCoCgAo, kHistCoCgAo}, {kViewDepth, kHistDepth}, {kLumaMoment, kHistLumaMoment}});
 
     graph.addPass(
         "rt.ao.filter", graph::PassKind::Compute,
@@ -370,6 +384,18 @@ class RtPath final : public LightingPath {
     return farthest;
   }
 
+  // Everything that changes the light the rays gather: the sun, the sky, the instances'
+  // albedos and emission (overrides, the baked database) and the scene itself.
+  static uint64_t lightingKey(const FrameInputs& in) {
+    const auto& c = in.constants;
+    const float values[] = {c.sunToLight.x,   c.sunToLight.y,   c.sunToLight.z,   c.sunIrradiance.x,
+                            c.sunIrradiance.y, c.sunIrradiance.z, c.skyRadiance.x, c.skyRadiance.y,
+                            c.skyRadiance.z,   float(c.flags)};
+    uint64_t k = scene::hashBytes(values, sizeof values);
+    const uint64_t more[] = {k, in.instanceAlbedoVersion, in.scene.id()};
+    return scene::hashBytes(more, sizeof more);
+  }
+
   static void readCommon(graph::PassBuilder& b) {
     b.read(kFrameConstants, Usage::StorageRead);
     b.read(kGbufferDepth, Usage::Sampled);
@@ -455,8 +481,9 @@ class RtPath final : public LightingPath {
                         {{shared::kRtBindingMotion, sampled}, {shared::kRtBindingShY, sampled},
                          {shared::kRtBindingCoCg, sampled}, {shared::kRtBindingAo, sampled},
                          {shared::kRtBindingHistShY, sampled}, {shared::kRtBindingHistCoCgAo, sampled},
-                         {shared::kRtBindingHistDepth, sampled}, {shared::kRtBindingOutShY, storage},
-                         {shared::kRtBindingOutCoCgAo, storage}, {shared::kRtBindingOutDepth, storage}});
+                         {shared::kRtBindingHistDepth, sampled}, {shared::kRtBindingHistMoment, sampled},
+                         {shared::kRtBindingOutShY, storage}, {shared::kRtBindingOutCoCgAo, storage},
+                         {shared::kRtBindingOutDepth, storage}, {shared::kRtBindingOutMoment, storage}});
     {
       gpu::ComputePipelineDesc d;
       d.name = "rt.denoise";
@@ -525,6 +552,7 @@ class RtPath final : public LightingPath {
   uint64_t sceneId_ = 0;
   uint64_t albedoVersion_ = ~0ull;
   uint32_t sceneInstances_ = 0;
+  uint64_t lightingKey_ = 0;
   RtResolvedParams params_;
   gpu::Image blueNoise_;
   gpu::Sampler point_;

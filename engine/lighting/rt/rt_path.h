@@ -16,17 +16,21 @@ inline constexpr const char* kHitSurface = "rt.hitSurface";
 inline constexpr const char* kRawShY = "rt.gi.raw.shY";
 inline constexpr const char* kRawCoCg = "rt.gi.raw.coCg";
 inline constexpr const char* kRawAo = "rt.ao.raw";
-inline constexpr const char* kShY = "rt.gi.shY";
-inline constexpr const char* kCoCgAo = "rt.gi.coCgAo";
+// The GI's stages, each its own resource: raw (one ray), temporal (accumulated), pass1 and
+// pass2 of the spatial denoiser (pass2 is what the composite resolves).
+inline constexpr const char* kShY = "rt.gi.temporal.shY";
+inline constexpr const char* kCoCgAo = "rt.gi.temporal.coCgAo";
+inline constexpr const char* kLumaMoment = "rt.gi.temporal.lumaMoment";
 inline constexpr const char* kViewDepth = "rt.viewDepth";
 inline constexpr const char* kAo = "rt.ao";
-inline constexpr const char* kDenoise1ShY = "rt.gi.denoise1.shY";
-inline constexpr const char* kDenoise1CoCgAo = "rt.gi.denoise1.coCgAo";
-inline constexpr const char* kDenoisedShY = "rt.gi.denoised.shY";
-inline constexpr const char* kDenoisedCoCgAo = "rt.gi.denoised.coCgAo";
+inline constexpr const char* kDenoise1ShY = "rt.gi.pass1.shY";
+inline constexpr const char* kDenoise1CoCgAo = "rt.gi.pass1.coCgAo";
+inline constexpr const char* kDenoisedShY = "rt.gi.pass2.shY";
+inline constexpr const char* kDenoisedCoCgAo = "rt.gi.pass2.coCgAo";
 inline constexpr const char* kHistShY = "rt.history.shY";
 inline constexpr const char* kHistCoCgAo = "rt.history.coCgAo";
 inline constexpr const char* kHistDepth = "rt.history.viewDepth";
+inline constexpr const char* kHistLumaMoment = "rt.history.lumaMoment";
 inline constexpr const char* kHistRadiance = "rt.history.radiance";
 inline constexpr const char* kRawRays = "rt.rawRays";  // benchmark only: distances of the trivial kernel
 inline constexpr const char* kRawRaysPending = "rt.rawRays.pending";  // the same, on the pre-trace's pending rays only
