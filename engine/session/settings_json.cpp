@@ -34,6 +34,7 @@ const std::map<std::string, Setter>& setters() {
       {"shadowMapSize", field(&S::shadowMapSize)},
       {"softShadows", field(&S::softShadows)},
       {"pcssMaxRadiusTexels", field(&S::pcssMaxRadiusTexels)},
+      {"specularGi", field(&S::specularGi)},
       {"referenceBounces", field(&S::referenceBounces)},
       {"rtSimplifyRatio", field(&S::rtSimplifyRatio)},
       {"rtAoRadius", field(&S::rtAoRadius)},

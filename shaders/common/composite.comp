@@ -52,7 +52,7 @@ void main() {
   float ao = pathAmbientOcclusion(p);
   vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, frame.skyRadiance.rgb);
   radiance += s.diffuse * kInvPi * irradiance;
-  // Specular from the sky: the split-sum environment BRDF, occluded by AO.
-  radiance += frame.skyRadiance.rgb * tlEnvironmentSpecular(s, max(dot(n, v), 1e-4)) * ao;
+  // Indirect specular: from the path's SH where it has one, else the sky's (times AO).
+  radiance += pathSpecular(p, n, v, position, ao, s, frame.skyRadiance.rgb);
   imageStore(outRadiance, p, vec4(radiance, 1.0));
 }

@@ -1,9 +1,11 @@
 // What the composite takes from a lighting path, as the quantities it multiplies: the
-// ambient occlusion and the diffuse irradiance (sky and bounce light; the sun is separate).
+// ambient occlusion, the diffuse irradiance (sky and bounce light; the sun is separate) and
+// the indirect specular.
 // The composite and the composite.stages pass both include it, so the per-stage buffers
 // hold exactly what the final image used. The includer includes shared/gbuffer.h and sh.h
 // and declares `push` (CompositePush); the path's images are bound here, at the composite's
 // binding numbers, for both.
+#include "shared/sh_specular.h"
 
 layout(set = 0, binding = kCompositeAo) uniform sampler2D pathAo;
 layout(set = 0, binding = kCompositeShY) uniform sampler2D pathShY;
@@ -17,6 +19,17 @@ float pathAmbientOcclusion(ivec2 p) {
   return (push.flags & kCompositeHasAo) != 0u ? clamp(texelFetch(pathAo, p, 0).r, 0.0, 1.0) : 1.0;
 }
 
+// The weight of the path's own GI at this position: 1 before the blend distance, falling to
+// 0 over the blend width (beyond it the far field, another path's GI, or the sky).
+float pathGiFade(vec3 position) {
+  return push.giBlendDistance > 0.0
+             ? clamp((push.giBlendDistance - length(position)) / max(push.giBlendWidth, 1e-6), 0.0, 1.0)
+             : 1.0;
+}
+ShLumaCoCg pathSh(ivec2 p) { return tlShMake(texelFetch(pathShY, p, 0), texelFetch(pathCoCg, p, 0).xy); }
+ShLumaCoCg farSh(ivec2 p) { return tlShMake(texelFetch(farShY, p, 0), texelFetch(farCoCg, p, 0).xy); }
+float farAmbientOcclusion(ivec2 p) { return clamp(texelFetch(farAo, p, 0).r, 0.0, 1.0); }
+
 // Without a path's GI: the uniform sky, irradiance pi*L on an unoccluded surface, times AO.
 // With it: the path's irradiance resolved against the normal (it already holds the sky's
 // occlusion, so AO is not applied twice unless the path asks), fading beyond the blend
@@ -24,18 +37,28 @@ float pathAmbientOcclusion(ivec2 p) {
 vec3 pathDiffuseIrradiance(ivec2 p, vec3 n, vec3 position, float ao, vec3 skyRadiance) {
   vec3 skyIrradiance = kPi * skyRadiance * ao;
   if ((push.flags & kCompositeHasGi) == 0u) return skyIrradiance;
-  ShLumaCoCg sh = tlShMake(texelFetch(pathShY, p, 0), texelFetch(pathCoCg, p, 0).xy);
-  vec3 gi = tlShResolveIrradiance(sh, n);
-  float fade = push.giBlendDistance > 0.0
-                   ? clamp((push.giBlendDistance - length(position)) / max(push.giBlendWidth, 1e-6), 0.0, 1.0)
-                   : 1.0;
+  vec3 gi = tlShResolveIrradiance(pathSh(p), n);
   if ((push.flags & kCompositeAoOnGi) != 0u) gi *= ao;
+  float fade = pathGiFade(position);
   if (fade >= 1.0) return gi;
-  // Beyond the blend distance: the far field's GI (with its own AO), else the sky.
   vec3 far = skyIrradiance;
-  if ((push.flags & kCompositeHasFarGi) != 0u) {
-    ShLumaCoCg farSh = tlShMake(texelFetch(farShY, p, 0), texelFetch(farCoCg, p, 0).xy);
-    far = tlShResolveIrradiance(farSh, n) * clamp(texelFetch(farAo, p, 0).r, 0.0, 1.0);
-  }
+  if ((push.flags & kCompositeHasFarGi) != 0u) far = tlShResolveIrradiance(farSh(p), n) * farAmbientOcclusion(p);
   return mix(far, gi, fade);
+}
+
+// Indirect specular radiance. Without a path's GI (or with kCompositeSpecularGi off): the
+// uniform sky through the split-sum environment BRDF, times AO. With it: the specular the
+// path's SH implies (shared/sh_specular.h: dominant direction, roughness from the
+// directionality, GGX), so a metal indoors reflects the room, not the sky; it fades beyond
+// the blend distance like the diffuse.
+vec3 pathSpecular(ivec2 p, vec3 n, vec3 v, vec3 position, float ao, SurfaceParams s, vec3 skyRadiance) {
+  vec3 sky = skyRadiance * tlEnvironmentSpecular(s, max(dot(n, v), 1e-4)) * ao;
+  if ((push.flags & kCompositeHasGi) == 0u || (push.flags & kCompositeSpecularGi) == 0u) return sky;
+  vec3 specular = tlShSpecular(pathSh(p), s, n, v);
+  if ((push.flags & kCompositeAoOnGi) != 0u) specular *= ao;
+  float fade = pathGiFade(position);
+  if (fade >= 1.0) return specular;
+  vec3 far = sky;
+  if ((push.flags & kCompositeHasFarGi) != 0u) far = tlShSpecular(farSh(p), s, n, v) * farAmbientOcclusion(p);
+  return mix(far, specular, fade);
 }

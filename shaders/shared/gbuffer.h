@@ -46,6 +46,7 @@ TL_CONST uint kCompositeHasAo = 1u;
 TL_CONST uint kCompositeHasGi = 2u;
 TL_CONST uint kCompositeAoOnGi = 4u;
 TL_CONST uint kCompositeHasFarGi = 8u;
+TL_CONST uint kCompositeSpecularGi = 16u;  // specular from the path's SH (else the sky's, times AO)
 struct CompositePush {
   uint flags;               // kCompositeHas*: which path outputs are bound
   float giBlendDistance;    // beyond this view distance GI fades to the far field, else the sky (0: never)

@@ -3,6 +3,7 @@
 #include "shared/packing.h"
 #include "shared/sampling.h"
 #include "shared/sh.h"
+#include "shared/sh_specular.h"
 #include "shared/shading.h"
 #include "shared/tonemap.h"
 
@@ -565,6 +566,69 @@ TEST(Shading, EnvironmentSpecularIsBoundedAndFinite) {
       EXPECT_GE(e.x, 0.0f);
       EXPECT_LE(e.x, 1.05f);
     }
+}
+
+// ------------------------------------------------------------------------- specular from SH
+
+// A uniform SH (radiance L from everywhere: L0 = 4 pi Y00 L, L1 = 0) reflects exactly the
+// environment term: L times the split-sum BRDF, at every roughness and angle.
+TEST(ShSpecular, UniformLightGivesTheEnvironmentTerm) {
+  const float L = 2.5f;
+  ShLumaCoCg sh = tlShMake(vec4(4.0f * kPi * kShY00 * L, 0.0f, 0.0f, 0.0f), vec2(0.0f));
+  for (float r : {0.1f, 0.5f, 1.0f})
+    for (float nv : {0.2f, 0.7f, 1.0f}) {
+      SurfaceParams s = tlSurface(vec3(1.0f, 0.78f, 0.34f), r, 1.0f);
+      vec3 n(0, 0, 1), v(std::sqrt(1.0f - nv * nv), 0.0f, nv);
+      vec3 expected = L * tlEnvironmentSpecular(s, nv);
+      vec3 got = tlShSpecular(sh, s, n, v);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], 1e-4f * expected[c] + 1e-6f);
+    }
+}
+
+// One sample of radiance I from d (directionality 1) is a light of irradiance I from d,
+// shaded with GGX at the material's own roughness: the reflected highlight and nothing
+// else. Moving the light away from the mirror direction dims it; behind the surface, 0.
+TEST(ShSpecular, SingleDirectionIsAGgxLightAtTheMaterialsRoughness) {
+  SurfaceParams s = tlSurface(vec3(0.9f), 0.3f, 1.0f);
+  vec3 n(0, 0, 1), v = glm::normalize(vec3(0.6f, 0.0f, 0.8f));
+  vec3 mirror = glm::reflect(-v, n);
+  const float I = 3.0f;
+  ShLumaCoCg sh = tlShProjectRadiance(mirror, vec3(I));
+  EXPECT_NEAR(tlShDirectionality(sh), 1.0f, 1e-4f);
+  SurfaceParams lobe = s;
+  lobe.diffuse = vec3(0.0f);
+  vec3 expected = tlBrdf(lobe, n, v, mirror) * (I * glm::dot(n, mirror));
+  vec3 got = tlShSpecular(sh, s, n, v);
+  EXPECT_NEAR(got.x, expected.x, 1e-3f * expected.x);
+  // From behind the viewer (retro-reflection, far off the mirror direction): much dimmer.
+  EXPECT_LT(tlShSpecular(tlShProjectRadiance(v, vec3(I)), s, n, v).x, 0.1f * got.x);
+  EXPECT_NEAR(tlShSpecular(tlShProjectRadiance(vec3(0, 0, -1), vec3(I)), s, n, v).x, 0.0f, 1e-6f);
+}
+
+// Half the light from one direction, half uniform: directionality in between, the lobe
+// rougher than the material, and the result between its two limits' sum; always finite,
+// never negative, zero for no light, and a metal (no diffuse albedo) still reflects.
+TEST(ShSpecular, MixedLightIsBoundedAndMetalsReflect) {
+  SurfaceParams metal = tlSurface(vec3(1.0f, 0.78f, 0.34f), 0.2f, 1.0f);
+  EXPECT_EQ(metal.diffuse.x, 0.0f);
+  vec3 n(0, 0, 1);
+  ShLumaCoCg uniform = tlShMake(vec4(4.0f * kPi * kShY00, 0.0f, 0.0f, 0.0f), vec2(0.0f));
+  ShLumaCoCg single = tlShProjectRadiance(vec3(0, 0, 1), vec3(4.0f * kPi));
+  ShLumaCoCg mixed = tlShScale(tlShAdd(uniform, single), 0.5f);
+  const float a = tlShDirectionality(mixed);
+  EXPECT_GT(a, 0.3f);
+  EXPECT_LT(a, 0.7f);
+  EXPECT_GT(tlShSpecularAlpha(metal.alpha, a), metal.alpha);
+  for (float nv : {1e-4f, 0.3f, 1.0f}) {
+    vec3 v(std::sqrt(1.0f - nv * nv), 0.0f, nv);
+    vec3 e = tlShSpecular(mixed, metal, n, v);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_TRUE(std::isfinite(e[c]));
+      EXPECT_GE(e[c], 0.0f);
+    }
+    EXPECT_GT(e.x, 0.0f) << "a metal reflects indirect light";
+  }
+  EXPECT_EQ(tlShSpecular(tlShZero(), metal, n, n).x, 0.0f);
 }
 
 }  // namespace

@@ -68,6 +68,7 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   const bool far = !path.farShY.empty() && !path.farCoCg.empty() && !path.farAo.empty() &&
                    (push.flags & shared::kCompositeHasGi);
   if (far) push.flags |= shared::kCompositeHasFarGi;
+  if (in.settings.specularGi) push.flags |= shared::kCompositeSpecularGi;
   push.giBlendDistance = path.giBlendDistance;
   push.giBlendWidth = kGiBlendWidthFraction * path.giBlendDistance;
   // Absent outputs: the binding still needs an image; the base colour stands in, unread.

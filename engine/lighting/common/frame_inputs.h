@@ -24,6 +24,7 @@ struct RenderSettings {
   float shadowNormalOffsetTexels = 1.0f;
   bool softShadows = true;            // PCSS: penumbrae from the sun's angular size (else 3x3 PCF)
   float pcssMaxRadiusTexels = 16.0f;  // widest PCSS filter
+  bool specularGi = true;             // indirect specular from a path's SH (Metro); else the sky's, times AO
   // Reference path tracer: scattering events per path (1 = direct light only: sun, sky,
   // emitters; 2 = plus one indirect bounce; ...) and samples per pixel added each frame.
   uint32_t referenceBounces = 8;
