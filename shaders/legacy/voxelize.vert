@@ -1,7 +1,8 @@
 #version 460
 // Voxelization: each triangle is rasterised orthographically along one axis into an R x R
 // viewport covering one clipmap level; the fragment shader writes the voxel it lands in.
-// Three passes (x, y, z) per level catch surfaces at any orientation.
+// Three passes (x, y, z) per level catch surfaces at any orientation. A partial update draws
+// only the instances near its region, with a scissor around it (legacy_path.cpp).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame.h"
 #include "shared/legacy.h"
@@ -12,7 +13,7 @@ layout(location = kAttrNormal) in vec3 inNormal;
 layout(location = kAttrUv) in vec2 inUv;
 layout(set = 0, binding = kLegacyBindingFrame) uniform Frame { FrameConstants frame; };
 layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
-layout(push_constant) uniform Push { LegacyPush push; };
+layout(push_constant) uniform Push { LegacyVoxelPush push; };
 
 layout(location = 0) out vec3 outPosition;
 layout(location = 1) out vec3 outNormal;

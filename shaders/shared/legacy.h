@@ -46,6 +46,21 @@ struct LegacyPush {
   uint aoHistory;          // upsample: frames the AO may accumulate (0: no valid history)
 };
 
+// Push constants of the voxel passes (voxelize, clear, mips), which need none of the
+// screen-space settings above but a region: partial updates clear, re-voxelize and re-filter
+// only the voxels a change can reach. The region is in the voxels of one level (of one mip,
+// for the mips), the same box for each of the six face blocks; a full rebuild's region is
+// the whole level.
+struct LegacyVoxelPush {
+  LegacyClipmap clipmap;
+  uint axis;            // voxelize: projection axis (0 x, 1 y, 2 z) + 3 x level
+  uint voxelRound;      // voxelize: 0 opacity of every face, 1 radiance of the faces a surface looks out of
+  uint screenRadiance;  // voxelize: surfaces seen last frame take their shaded radiance from it
+  uint level;           // clear and mips: the clipmap level the region lies in
+  ivec4 regionMin;      // xyz: first voxel of the region (inclusive)
+  ivec4 regionMax;      // xyz: end of the region (exclusive)
+};
+
 // Bindings (set 0).
 TL_CONST uint kLegacyBindingFrame = 0;
 TL_CONST uint kLegacyBindingDepth = 1;
@@ -70,5 +85,6 @@ TL_END
 #ifdef __cplusplus
 static_assert(sizeof(tl::shared::LegacyClipmap) == 80);
 static_assert(sizeof(tl::shared::LegacyPush) == 128);
+static_assert(sizeof(tl::shared::LegacyVoxelPush) == 128);
 #endif
 #endif
