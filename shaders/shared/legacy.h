@@ -80,6 +80,9 @@ TL_CONST uint kLegacyBindingPrevDepth = 17;     // last frame's G-buffer depth
 TL_CONST uint kLegacyBindingAoHistory = 18;     // last frame's filtered SSAO (r) and frames accumulated (g)
 TL_CONST uint kLegacyBindingMotion = 19;        // gbuffer.motion
 TL_CONST uint kLegacyBindingSsaoOut = 20;       // filtered, accumulated SSAO (r) and its frames (g)
+TL_CONST uint kLegacyBindingVertices = 21;      // voxelize: the scene's vertex buffer (tl::scene::Vertex, 12 floats)
+TL_CONST uint kLegacyBindingIndices = 22;       // voxelize: the scene's index buffer
+TL_CONST uint kLegacyVertexFloats = 12;         // floats per vertex: position 3, normal 3, tangent 4, uv 2
 TL_END
 
 #ifdef __cplusplus

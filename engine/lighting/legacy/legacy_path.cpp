@@ -152,7 +152,7 @@ class LegacyPath final : public LightingPath {
     graph.addPass(
         "legacy.voxelize", graph::PassKind::Raster,
         [&](graph::PassBuilder& b) {
-          readSceneInputs(b, Usage::VertexOrIndex);
+          readSceneInputs(b, Usage::StorageRead);  // voxelize.vert fetches whole triangles
           b.read(shadow, Usage::Sampled);
           if (feedback) {
             b.read(kLegacyHistRadiance, Usage::Sampled);
@@ -194,6 +194,8 @@ class LegacyPath final : public LightingPath {
                 .uniformBuffer(shared::kLegacyBindingFrame, in.constantsBuffer.handle())
                 .sampledImage(shared::kLegacyBindingShadow, ctx.image(shadow).view(), shadowSampler_.handle(), kReadOnly)
                 .storageImage(shared::kLegacyBindingRadiance, radiance.view())
+                .storageBuffer(shared::kLegacyBindingVertices, in.scene.vertexBuffer().handle())
+                .storageBuffer(shared::kLegacyBindingIndices, in.scene.indexBuffer().handle())
                 // Without feedback the bindings still need images: the G-buffer depth stands in, unread.
                 .sampledImage(shared::kLegacyBindingPrevRadiance, ctx.image(feedback ? kLegacyHistRadiance : kGbufferDepth).view(),
                               point_.handle(), kReadOnly)
@@ -213,7 +215,7 @@ class LegacyPath final : public LightingPath {
                   vpush.axis = axis + 3 * level;
                   scissorToRegion(ctx, region, axis);
                   ctx.pushConstants(vpush);
-                  in.scene.drawInstances(ctx.cmd, draw);
+                  in.scene.drawInstancesUnindexed(ctx.cmd, draw);
                 }
               }
             ctx.endRendering();
@@ -557,11 +559,12 @@ class LegacyPath final : public LightingPath {
                          {shared::kLegacyBindingShadow, sampled},
                          {shared::kLegacyBindingRadiance, storage},
                          {shared::kLegacyBindingPrevRadiance, sampled},
-                         {shared::kLegacyBindingPrevDepth, sampled}};
+                         {shared::kLegacyBindingPrevDepth, sampled},
+                         {shared::kLegacyBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                         {shared::kLegacyBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
     d.layout.extraSets = {in.scene.table().layout()};
     d.layout.pushConstantBytes = sizeof(LegacyVoxelPush);
-    d.vertexBindings = scene::GpuScene::vertexBindings();
-    d.vertexAttributes = scene::GpuScene::vertexAttributes();
+    // No vertex input: voxelize.vert fetches the vertices itself.
     d.cullMode = VK_CULL_MODE_NONE;
     d.depthTest = false;
     d.depthWrite = false;
