@@ -377,14 +377,18 @@ class LegacyPath final : public LightingPath {
     const RenderSettings& s = in.settings;
     const bool feedback = s.legacyScreenRadiance;
     if (!placed) settle_ = s.legacySettleFrames + 1;
-    bool partial = placed && !changes.empty() && s.legacyPartialVoxels && !s.legacyVoxelizeEveryFrame;
+    bool changed = !changes.empty();
+    bool partial = placed && changed && s.legacyPartialVoxels && !s.legacyVoxelizeEveryFrame;
     VoxelWork work;
     if (partial) {
       work = partialWork(in, fit, changes);
       const double rebuildVoxels = double(fit.clipmap.levels) * std::pow(double(fit.clipmap.resolution), 3.0);
-      partial = double(work.regionVoxels) <= kPartialVoxelBudget * rebuildVoxels;
+      if (work.regionCount() == 0)
+        partial = changed = false;  // every change lies outside the clipmap: nothing in it changed
+      else
+        partial = double(work.regionVoxels) <= kPartialVoxelBudget * rebuildVoxels;
     }
-    if (!changes.empty() && (!partial || feedback)) settle_ = s.legacySettleFrames + 1;
+    if (changed && (!partial || feedback)) settle_ = s.legacySettleFrames + 1;
     if (partial) return work;
     if (settle_ == 0 && !s.legacyVoxelizeEveryFrame) return {};
     // Bounces through the screen settle over a few rebuilds; only frames with history count.
