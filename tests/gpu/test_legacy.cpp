@@ -234,7 +234,9 @@ TEST_F(LegacyTest, AnimationPatchesTheVoxelsThenSettles) {
   RecordProperty("region_voxels", std::to_string(figure("voxelRegionVoxels")));
   EXPECT_GT(figure("voxelizedInstances"), 0.0);
   EXPECT_LT(figure("voxelizedInstances"), instances);
-  EXPECT_LT(figure("voxelRegionVoxels"), 2.0 * 32 * 32 * 32) << "less than the clipmap's levels";
+  // banners at R = 32 has three levels (8, 16, 32 m): the banners and their shadows are a
+  // small part of them (14% when this was written).
+  EXPECT_LT(figure("voxelRegionVoxels"), 0.25 * 3 * 32 * 32 * 32);
   s.setAnimationStep(0.0);
   render("legacy", 48, 27, 1, {});  // the last animated pose is applied
   render("legacy", 48, 27, 1, {});
