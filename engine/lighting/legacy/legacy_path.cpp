@@ -145,10 +145,87 @@ class LegacyPath final : public LightingPath {
     push.screenRadiance = historyOk ? 1u : 0u;
     const auto work = std::make_shared<VoxelWork>(planVoxelUpdate(in, fit, changes, placed, historyOk));
     lastWork_ = {work->kind, work->instancesDrawn, work->regionVoxels, uint32_t(work->regionCount())};
-    if (work->kind != VoxelWork::Kind::Keep) {
+    if (work->kind != VoxelWork::Kind::Keep) addVoxelPasses(graph, in, fit, work, shadow, feedback, push.screenRadiance);
+
+    graph.addPass(
+        "legacy.cones", graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          for (const char* n : {kVoxelRadiance, kVoxelRadianceMips}) b.read(n, Usage::Sampled);
+          b.create(kConeShY,
+                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced irradiance, SH luma")
+                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kConeCoCgAo)),
+                   Usage::StorageWrite);
+          b.create(kConeCoCgAo,
+                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced chroma (xy), voxel AO (z), view depth (w)"),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push, cw, ch](graph::PassContext& ctx) {
+          VkSampler lin = linear_.handle();
+          ctx.bind(cones_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in)
+              .sampledImage(shared::kLegacyBindingRadiance, ctx.image(kVoxelRadiance).view(), lin, kReadOnly)
+              .sampledImage(shared::kLegacyBindingRadianceMips, ctx.image(kVoxelRadianceMips).view(), lin, kReadOnly)
+              .storageImage(shared::kLegacyBindingConeShY, ctx.image(kConeShY).view())
+              .storageImage(shared::kLegacyBindingConeCoCgAo, ctx.image(kConeCoCgAo).view());
+          ctx.dispatch(cw, ch);
+        });
+
+    graph.addPass(
+        "legacy.upsample", graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          for (const char* n : {kLegacyAoRaw, kConeShY, kConeCoCgAo, kLegacyHistSsao, kLegacyHistDepth, "gbuffer.motion"})
+            b.read(n, Usage::Sampled);
+          b.create(kLegacyAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO"), Usage::StorageWrite);
+          b.create(kLegacySsao, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "GTAO filtered and accumulated, frames"),
+                   Usage::StorageWrite);
+          b.create(kLegacyShY,
+                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "diffuse irradiance, SH luma")
+                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kLegacyCoCg)),
+                   Usage::StorageWrite);
+          b.create(kLegacyCoCg, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "diffuse irradiance, chroma"),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push](graph::PassContext& ctx) {
+          VkSampler p = point_.handle();
+          ctx.bind(upsample_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in)
+              .sampledImage(shared::kLegacyBindingAoRaw, ctx.image(kLegacyAoRaw).view(), p, kReadOnly)
+              .sampledImage(shared::kLegacyBindingConeShY, ctx.image(kConeShY).view(), p, kReadOnly)
+              .sampledImage(shared::kLegacyBindingConeCoCgAo, ctx.image(kConeCoCgAo).view(), p, kReadOnly)
+              .storageImage(shared::kLegacyBindingOutAo, ctx.image(kLegacyAo).view())
+              .storageImage(shared::kLegacyBindingOutShY, ctx.image(kLegacyShY).view())
+              .storageImage(shared::kLegacyBindingOutCoCg, ctx.image(kLegacyCoCg).view())
+              .storageImage(shared::kLegacyBindingSsaoOut, ctx.image(kLegacySsao).view())
+              .sampledImage(shared::kLegacyBindingAoHistory, ctx.image(kLegacyHistSsao).view(), p, kReadOnly)
+              .sampledImage(shared::kLegacyBindingPrevDepth, ctx.image(kLegacyHistDepth).view(), p, kReadOnly)
+              .sampledImage(shared::kLegacyBindingMotion, ctx.image("gbuffer.motion").view(), p, kReadOnly);
+          ctx.dispatch(in.settings.width, in.settings.height);
+        });
+
+    std::vector<ImageCopy> history = {{kGbufferDepth, kLegacyHistDepth}, {kLegacySsao, kLegacyHistSsao}};
+    if (feedback) history.push_back({kCompositeHdr, kLegacyHistRadiance});
+    addCopyPass(graph, "legacy.history", std::move(history));
+
+    LightingOutputs out;
+    out.ambientOcclusion = kLegacyAo;
+    out.diffuseShY = kLegacyShY;
+    out.diffuseCoCg = kLegacyCoCg;
+    out.aoOnGi = true;
+    return out;
+  }
+
+ private:
+  // legacy.voxelize and legacy.voxel.mips over the work's regions (whole levels for a rebuild).
+  void addVoxelPasses(graph::RenderGraph& graph, FrameInputs& in, const LegacyClipmapFit& fit,
+                      std::shared_ptr<const VoxelWork> work, const char* shadow, bool feedback, uint32_t screenRadiance) {
+    const uint32_t R = fit.clipmap.resolution, mips = fit.clipmap.mipCount;
     LegacyVoxelPush vpush{};
     vpush.clipmap = fit.clipmap;
-    vpush.screenRadiance = push.screenRadiance;
+    vpush.screenRadiance = screenRadiance;
     graph.addPass(
         "legacy.voxelize", graph::PassKind::Raster,
         [&](graph::PassBuilder& b) {
@@ -254,80 +331,8 @@ class LegacyPath final : public LightingPath {
               }
           }
         });
-    }
-
-    graph.addPass(
-        "legacy.cones", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          for (const char* n : {kVoxelRadiance, kVoxelRadianceMips}) b.read(n, Usage::Sampled);
-          b.create(kConeShY,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced irradiance, SH luma")
-                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kConeCoCgAo)),
-                   Usage::StorageWrite);
-          b.create(kConeCoCgAo,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced chroma (xy), voxel AO (z), view depth (w)"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push, cw, ch](graph::PassContext& ctx) {
-          VkSampler lin = linear_.handle();
-          ctx.bind(cones_);
-          ctx.pushConstants(push);
-          writeCommon(ctx, in)
-              .sampledImage(shared::kLegacyBindingRadiance, ctx.image(kVoxelRadiance).view(), lin, kReadOnly)
-              .sampledImage(shared::kLegacyBindingRadianceMips, ctx.image(kVoxelRadianceMips).view(), lin, kReadOnly)
-              .storageImage(shared::kLegacyBindingConeShY, ctx.image(kConeShY).view())
-              .storageImage(shared::kLegacyBindingConeCoCgAo, ctx.image(kConeCoCgAo).view());
-          ctx.dispatch(cw, ch);
-        });
-
-    graph.addPass(
-        "legacy.upsample", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          for (const char* n : {kLegacyAoRaw, kConeShY, kConeCoCgAo, kLegacyHistSsao, kLegacyHistDepth, "gbuffer.motion"})
-            b.read(n, Usage::Sampled);
-          b.create(kLegacyAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO"), Usage::StorageWrite);
-          b.create(kLegacySsao, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "GTAO filtered and accumulated, frames"),
-                   Usage::StorageWrite);
-          b.create(kLegacyShY,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "diffuse irradiance, SH luma")
-                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kLegacyCoCg)),
-                   Usage::StorageWrite);
-          b.create(kLegacyCoCg, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "diffuse irradiance, chroma"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push](graph::PassContext& ctx) {
-          VkSampler p = point_.handle();
-          ctx.bind(upsample_);
-          ctx.pushConstants(push);
-          writeCommon(ctx, in)
-              .sampledImage(shared::kLegacyBindingAoRaw, ctx.image(kLegacyAoRaw).view(), p, kReadOnly)
-              .sampledImage(shared::kLegacyBindingConeShY, ctx.image(kConeShY).view(), p, kReadOnly)
-              .sampledImage(shared::kLegacyBindingConeCoCgAo, ctx.image(kConeCoCgAo).view(), p, kReadOnly)
-              .storageImage(shared::kLegacyBindingOutAo, ctx.image(kLegacyAo).view())
-              .storageImage(shared::kLegacyBindingOutShY, ctx.image(kLegacyShY).view())
-              .storageImage(shared::kLegacyBindingOutCoCg, ctx.image(kLegacyCoCg).view())
-              .storageImage(shared::kLegacyBindingSsaoOut, ctx.image(kLegacySsao).view())
-              .sampledImage(shared::kLegacyBindingAoHistory, ctx.image(kLegacyHistSsao).view(), p, kReadOnly)
-              .sampledImage(shared::kLegacyBindingPrevDepth, ctx.image(kLegacyHistDepth).view(), p, kReadOnly)
-              .sampledImage(shared::kLegacyBindingMotion, ctx.image("gbuffer.motion").view(), p, kReadOnly);
-          ctx.dispatch(in.settings.width, in.settings.height);
-        });
-
-    std::vector<ImageCopy> history = {{kGbufferDepth, kLegacyHistDepth}, {kLegacySsao, kLegacyHistSsao}};
-    if (feedback) history.push_back({kCompositeHdr, kLegacyHistRadiance});
-    addCopyPass(graph, "legacy.history", std::move(history));
-
-    LightingOutputs out;
-    out.ambientOcclusion = kLegacyAo;
-    out.diffuseShY = kLegacyShY;
-    out.diffuseCoCg = kLegacyCoCg;
-    out.aoOnGi = true;
-    return out;
   }
 
- private:
   // Everything the voxels depend on: the scene, the levels' place in the world (not
   // camera-relative, so a camera moving within one voxel keeps them), the sun and the settings.
   static uint64_t voxelKey(const FrameInputs& in, const LegacyClipmapFit& fit) {
