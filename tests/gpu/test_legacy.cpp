@@ -227,8 +227,10 @@ TEST_F(LegacyTest, AnimationPatchesTheVoxelsThenSettles) {
   s.loadScene(contentFile("banners.gltf"));
   s.settings().legacyVoxelResolution = 32;
   s.setAnimationStep(1.0 / 30.0);
-  render("legacy", 48, 27, 2, {});
+  render("legacy", 48, 27, 2, {kLegacyShY, kLegacyAo});
   EXPECT_EQ(figure("voxelUpdate"), kVoxelsPatched);
+  EXPECT_EQ(countNonFinite(s.buffer(kLegacyShY).texels()), 0u);
+  EXPECT_EQ(countNonFinite(s.buffer(kLegacyAo).texels()), 0u);
   const double instances = double(s.scene().instances.size());
   RecordProperty("voxelized_instances", std::to_string(figure("voxelizedInstances")));
   RecordProperty("region_voxels", std::to_string(figure("voxelRegionVoxels")));
