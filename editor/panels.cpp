@@ -209,6 +209,9 @@ void pathParameters(EditorApp& app) {
     tooltip("Cone step as a fraction of its diameter: smaller is slower and more exact");
     changed |= ImGui::Checkbox("Multi-bounce from the screen", &s.legacyScreenRadiance);
     tooltip("Voxels seen last frame take its shaded radiance, so light bounces more than once");
+    changed |= ImGui::Checkbox("Partial voxel updates", &s.legacyPartialVoxels);
+    tooltip("When only some instances deform or move, clear and re-voxelize only the voxels they and their sun "
+            "shadows reach (per clipmap level), and re-filter only those mips; off: rebuild the whole clipmap");
   } else if (session.path() == "rt") {
     ImGui::Separator();
     ImGui::TextUnformatted("RT: RTGI + RTAO");

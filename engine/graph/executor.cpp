@@ -171,6 +171,11 @@ void PassContext::setViewport(uint32_t x, uint32_t y, uint32_t width, uint32_t h
   vkCmdSetScissor(cmd, 0, 1, &sc);
 }
 
+void PassContext::setScissor(uint32_t x, uint32_t y, uint32_t width, uint32_t height) {
+  VkRect2D sc{{int32_t(x), int32_t(y)}, {width, height}};
+  vkCmdSetScissor(cmd, 0, 1, &sc);
+}
+
 void PassContext::endRendering() { vkCmdEndRendering(cmd); }
 
 void PassContext::bind(const gpu::Pipeline& pipeline) {

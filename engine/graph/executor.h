@@ -48,6 +48,8 @@ class PassContext {
   // Draws into a sub-rectangle of the attachments (viewport and scissor); beginRendering()
   // resets it to the whole area.
   void setViewport(uint32_t x, uint32_t y, uint32_t width, uint32_t height);
+  // Draws only into a sub-rectangle, keeping the viewport (a region of a voxelizing raster).
+  void setScissor(uint32_t x, uint32_t y, uint32_t width, uint32_t height);
 
   void bind(const gpu::Pipeline& pipeline);
   gpu::DescriptorWriter& descriptors() { return writer_; }

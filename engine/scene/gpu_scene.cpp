@@ -116,6 +116,7 @@ void GpuScene::updateInstances(const Scene& scene, const glm::dvec3& camera, con
     g.normalMatrix = glm::mat4(glm::mat3(glm::transpose(glm::inverse(glm::dmat3(inst.transform)))));
     g.material = scene.meshes[inst.mesh].material;
     g.instanceId = uint32_t(i + 1);
+    g.vertexOffset = uint32_t(meshes_[drawMesh_[i]].vertexOffset);
     out[i] = g;
     previousTransforms_[i] = inst.transform;
   }
@@ -161,6 +162,14 @@ void GpuScene::drawInstances(VkCommandBuffer cmd, const std::vector<uint32_t>& i
     if (i >= drawMesh_.size()) continue;
     const MeshRange& m = meshes_[drawMesh_[i]];
     vkCmdDrawIndexed(cmd, m.indexCount, 1, m.firstIndex, m.vertexOffset, i);
+  }
+}
+
+void GpuScene::drawInstancesUnindexed(VkCommandBuffer cmd, const std::vector<uint32_t>& instances) const {
+  for (uint32_t i : instances) {
+    if (i >= drawMesh_.size()) continue;
+    const MeshRange& m = meshes_[drawMesh_[i]];
+    vkCmdDraw(cmd, m.indexCount, 1, m.firstIndex, i);
   }
 }
 

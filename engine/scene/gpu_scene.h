@@ -45,6 +45,10 @@ class GpuScene {
   void drawAll(VkCommandBuffer cmd) const;
   // Binds the geometry and draws the listed instances only.
   void drawInstances(VkCommandBuffer cmd, const std::vector<uint32_t>& instances) const;
+  // Draws the listed instances without vertex or index buffers: vertex k of instance i is
+  // gl_VertexIndex = its mesh's firstIndex + k (a multiple of 3 starts each mesh's triangles),
+  // for shaders that fetch whole triangles from the buffers themselves (GpuInstance::vertexOffset).
+  void drawInstancesUnindexed(VkCommandBuffer cmd, const std::vector<uint32_t>& instances) const;
   // Binds the vertex and index buffers; then drawMesh() draws one mesh once (instance 0),
   // for passes that place meshes themselves (the albedo baker).
   void bindGeometry(VkCommandBuffer cmd) const;

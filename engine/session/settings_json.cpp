@@ -71,6 +71,7 @@ const std::map<std::string, Setter>& setters() {
       {"legacyConeStep", field(&S::legacyConeStep)},
       {"legacyScreenRadiance", field(&S::legacyScreenRadiance)},
       {"legacySettleFrames", field(&S::legacySettleFrames)},
+      {"legacyPartialVoxels", field(&S::legacyPartialVoxels)},
       {"legacyAoFrames", field(&S::legacyAoFrames)},
   };
   return table;

@@ -17,7 +17,7 @@ layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffe
 layout(set = kSceneSet, binding = kSceneBindingTextures) uniform sampler2D sceneTextures[];
 layout(set = 0, binding = kLegacyBindingPrevRadiance) uniform sampler2D previousRadiance;
 layout(set = 0, binding = kLegacyBindingPrevDepth) uniform sampler2D previousDepth;
-layout(push_constant) uniform Push { LegacyPush push; };
+layout(push_constant) uniform Push { LegacyVoxelPush push; };
 
 #include "common/camera.glsl"
 
@@ -54,6 +54,9 @@ void main() {
   vec4 box = push.clipmap.levelMin[level];
   ivec3 v = ivec3(floor((inPosition - box.xyz) / box.w));
   if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(R)))) return;
+  // A partial update cleared only its region: voxels outside it keep what they hold, and the
+  // scissor bounds only the two raster axes, not depth.
+  if (any(lessThan(v, push.regionMin.xyz)) || any(greaterThanEqual(v, push.regionMax.xyz))) return;
   GpuMaterial m = materials[instances[inInstance].material];
   vec4 base = m.baseColorFactor;
   if (m.baseColorTexture != kNoTexture) base *= texture(sceneTextures[nonuniformEXT(m.baseColorTexture)], inUv);

@@ -46,6 +46,21 @@ struct LegacyPush {
   uint aoHistory;          // upsample: frames the AO may accumulate (0: no valid history)
 };
 
+// Push constants of the voxel passes (voxelize, clear, mips), which need none of the
+// screen-space settings above but a region: partial updates clear, re-voxelize and re-filter
+// only the voxels a change can reach. The region is in the voxels of one level (of one mip,
+// for the mips), the same box for each of the six face blocks; a full rebuild's region is
+// the whole level.
+struct LegacyVoxelPush {
+  LegacyClipmap clipmap;
+  uint axis;            // voxelize: projection axis (0 x, 1 y, 2 z) + 3 x level
+  uint voxelRound;      // voxelize: 0 opacity of every face, 1 radiance of the faces a surface looks out of
+  uint screenRadiance;  // voxelize: surfaces seen last frame take their shaded radiance from it
+  uint level;           // clear and mips: the clipmap level the region lies in
+  ivec4 regionMin;      // xyz: first voxel of the region (inclusive)
+  ivec4 regionMax;      // xyz: end of the region (exclusive)
+};
+
 // Bindings (set 0).
 TL_CONST uint kLegacyBindingFrame = 0;
 TL_CONST uint kLegacyBindingDepth = 1;
@@ -65,10 +80,14 @@ TL_CONST uint kLegacyBindingPrevDepth = 17;     // last frame's G-buffer depth
 TL_CONST uint kLegacyBindingAoHistory = 18;     // last frame's filtered SSAO (r) and frames accumulated (g)
 TL_CONST uint kLegacyBindingMotion = 19;        // gbuffer.motion
 TL_CONST uint kLegacyBindingSsaoOut = 20;       // filtered, accumulated SSAO (r) and its frames (g)
+TL_CONST uint kLegacyBindingVertices = 21;      // voxelize: the scene's vertex buffer (tl::scene::Vertex, 12 floats)
+TL_CONST uint kLegacyBindingIndices = 22;       // voxelize: the scene's index buffer
+TL_CONST uint kLegacyVertexFloats = 12;         // floats per vertex: position 3, normal 3, tangent 4, uv 2
 TL_END
 
 #ifdef __cplusplus
 static_assert(sizeof(tl::shared::LegacyClipmap) == 80);
 static_assert(sizeof(tl::shared::LegacyPush) == 128);
+static_assert(sizeof(tl::shared::LegacyVoxelPush) == 128);
 #endif
 #endif

@@ -44,7 +44,7 @@ struct GpuInstance {
   mat4 normalMatrix;        // inverse transpose of the upper 3x3, in a mat4 for alignment
   uint material;
   uint instanceId;          // written to the G-buffer's instance id (0 is "nothing")
-  uint pad0;
+  uint vertexOffset;        // where its mesh's vertices start in the vertex buffer (for shaders that fetch them)
   uint pad1;
 };
 TL_END

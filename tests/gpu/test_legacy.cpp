@@ -1,6 +1,7 @@
 // The legacy path on lavapipe at small sizes, on scenes with known answers: the open plane
 // (AO = 1, irradiance = pi L), AO in a corner of the Cornell box, a box voxelized exactly,
-// colour bleeding, persistent voxels, and light leaking into the atrium's interior room.
+// colour bleeding, persistent voxels, partial voxel updates of an animation, and light
+// leaking into the atrium's interior room.
 #include "lighting_checks.h"
 #include "../common/test_scenes.h"
 
@@ -30,7 +31,28 @@ class LegacyTest : public GpuTest {
     for (auto& n : names) s.requestBuffer(n);
     s.renderFrames(frames);
   }
+  double figure(const std::string& name) {
+    for (const auto& [n, v] : session().pathFigures())
+      if (n == name) return v;
+    ADD_FAILURE() << "no figure " << name;
+    return -1.0;
+  }
 };
+
+constexpr double kVoxelsKept = 0.0, kVoxelsPatched = 1.0, kVoxelsRebuilt = 2.0;  // figure voxelUpdate
+
+// Largest difference between two read-backs of the same image, and how many values differ
+// by more than `tolerance`.
+std::pair<double, size_t> difference(const std::vector<float>& a, const std::vector<float>& b, double tolerance) {
+  double worst = 0.0;
+  size_t over = 0;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
+    const double d = std::abs(double(a[i]) - double(b[i]));
+    worst = std::max(worst, d);
+    over += d > tolerance;
+  }
+  return {worst, over};
+}
 
 TEST_F(LegacyTest, PlaneUnderUniformSkyHasNoOcclusionAndIrradiancePiL) {
   auto& s = session();
@@ -156,6 +178,78 @@ TEST_F(LegacyTest, VoxelsPersistWhileNothingTheyHoldChanges) {
   s.setLighting(light);
   render("legacy", 80, 45, 1, {});
   EXPECT_NE(s.graphDump().find("legacy.voxelize"), std::string::npos);
+}
+
+// The banners deform between two frames: the second patches the voxels the banners and
+// their shadows reach, and must hold what a rebuild of the same pose holds (mip 0 and the
+// mips). Without screen feedback the voxels depend on nothing but the pose.
+TEST_F(LegacyTest, PartialVoxelUpdateMatchesARebuildOfTheSamePose) {
+  auto& s = session();
+  s.loadScene(contentFile("banners.gltf"));
+  ASSERT_TRUE(s.animated());
+  s.settings().legacyScreenRadiance = false;
+  s.settings().legacyVoxelResolution = 32;
+  s.setAnimationStep(0.0);
+  s.setAnimationTime(0.3);
+  const std::vector<std::string> voxels = {kVoxelRadiance, kVoxelRadianceMips};
+  render("legacy", 48, 27, 1, voxels);
+  EXPECT_EQ(figure("voxelUpdate"), kVoxelsRebuilt);
+  const auto before = s.buffer(kVoxelRadiance).texels();
+  s.setAnimationTime(0.8);
+  render("legacy", 48, 27, 1, voxels);
+  EXPECT_EQ(figure("voxelUpdate"), kVoxelsPatched);
+  EXPECT_LT(figure("voxelizedInstances"), double(s.scene().instances.size()));
+  const auto patched = s.buffer(kVoxelRadiance).texels(), patchedMips = s.buffer(kVoxelRadianceMips).texels();
+  s.resetHistory();  // the voxels are lost: the same pose is rebuilt from nothing
+  render("legacy", 48, 27, 1, voxels);
+  EXPECT_EQ(figure("voxelUpdate"), kVoxelsRebuilt);
+  const auto rebuilt = s.buffer(kVoxelRadiance).texels(), rebuiltMips = s.buffer(kVoxelRadianceMips).texels();
+  ASSERT_EQ(patched.size(), rebuilt.size());
+  ASSERT_EQ(patchedMips.size(), rebuiltMips.size());
+  EXPECT_EQ(countNonFinite(patched), 0u);
+  const double tolerance = 0.02;  // radiance and opacity are fp16 of values up to ~5
+  auto [moved, movedCount] = difference(before, rebuilt, tolerance);
+  auto [worst, over] = difference(patched, rebuilt, tolerance);
+  auto [worstMip, overMip] = difference(patchedMips, rebuiltMips, tolerance);
+  RecordProperty("pose_change_texels", std::to_string(movedCount));
+  RecordProperty("worst_difference", std::to_string(worst));
+  RecordProperty("worst_mip_difference", std::to_string(worstMip));
+  ASSERT_GT(movedCount, 100u) << "the banners' poses must differ for the comparison to mean anything";
+  EXPECT_EQ(over, 0u) << "voxels differing from the rebuild by more than " << tolerance << " (worst " << worst << ")";
+  EXPECT_EQ(overMip, 0u) << "mip texels differing from the rebuild by more than " << tolerance << " (worst " << worstMip << ")";
+}
+
+// While the banners animate, every frame after the first patches the voxels (fewer instances
+// than the scene has); once they stop, the bounces through the screen settle with a few
+// rebuilds, then the voxels are kept. Turned off, every animated frame rebuilds.
+TEST_F(LegacyTest, AnimationPatchesTheVoxelsThenSettles) {
+  auto& s = session();
+  s.loadScene(contentFile("banners.gltf"));
+  s.settings().legacyVoxelResolution = 32;
+  s.setAnimationStep(1.0 / 30.0);
+  render("legacy", 48, 27, 2, {kLegacyShY, kLegacyAo});
+  EXPECT_EQ(figure("voxelUpdate"), kVoxelsPatched);
+  EXPECT_EQ(countNonFinite(s.buffer(kLegacyShY).texels()), 0u);
+  EXPECT_EQ(countNonFinite(s.buffer(kLegacyAo).texels()), 0u);
+  const double instances = double(s.scene().instances.size());
+  RecordProperty("voxelized_instances", std::to_string(figure("voxelizedInstances")));
+  RecordProperty("region_voxels", std::to_string(figure("voxelRegionVoxels")));
+  EXPECT_GT(figure("voxelizedInstances"), 0.0);
+  EXPECT_LT(figure("voxelizedInstances"), instances);
+  // banners at R = 32 has three levels (8, 16, 32 m): the banners and their shadows are a
+  // small part of them (14% when this was written).
+  EXPECT_LT(figure("voxelRegionVoxels"), 0.25 * 3 * 32 * 32 * 32);
+  s.setAnimationStep(0.0);
+  render("legacy", 48, 27, 1, {});  // the last animated pose is applied
+  render("legacy", 48, 27, 1, {});
+  EXPECT_EQ(figure("voxelUpdate"), kVoxelsRebuilt) << "bounces settle once the geometry stops";
+  render("legacy", 48, 27, s.settings().legacySettleFrames + 1, {});
+  EXPECT_EQ(figure("voxelUpdate"), kVoxelsKept);
+  s.settings().legacyPartialVoxels = false;
+  s.setAnimationStep(1.0 / 30.0);
+  render("legacy", 48, 27, 2, {});
+  EXPECT_EQ(figure("voxelUpdate"), kVoxelsRebuilt);
+  EXPECT_EQ(figure("voxelizedInstances"), instances);
 }
 
 // Per-stage error: each path's AO against the reference's AO at the same radius (one

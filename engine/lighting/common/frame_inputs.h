@@ -69,6 +69,7 @@ struct RenderSettings {
   uint32_t legacyAoDivisor = 2;     // SSAO resolution: 1 full, 2 half
   uint32_t legacyConeDivisor = 4;   // cone tracing resolution: 1 full, 2 half, 4 quarter
   bool legacyVoxelizeEveryFrame = false;  // rebuild the voxels even when nothing they hold changed
+  bool legacyPartialVoxels = true;  // deforming or moved instances re-voxelize only the voxels they reach
   bool legacyScreenRadiance = true; // voxels seen last frame take its shaded radiance (multi-bounce)
   uint32_t legacySettleFrames = 4;  // after a change, rebuild this many more frames so bounces settle
   uint32_t legacyAoFrames = 8;      // SSAO temporal accumulation window (1: off)

@@ -1,34 +1,70 @@
 // The legacy lighting path ("RTX OFF"): horizon-based SSAO (GTAO) at half resolution, a voxel
-// clipmap voxelized from the scene's triangles every frame with the sun injected through the
-// shadow map, its mip chain, six diffuse cones per pixel for irradiance (in the RT path's SH
-// layout) and voxel AO from the same cones, then a depth-aware upsample. Every intermediate
-// is a named graph resource.
+// clipmap voxelized from the scene's triangles with the sun injected through the shadow map
+// (kept while nothing it holds changes; when only some instances deform or move, only the
+// voxels they and their shadows reach are redone, as VXAO does), its mip chain, six diffuse
+// cones per pixel for irradiance (in the RT path's SH layout) and voxel AO from the same
+// cones, then a depth-aware upsample. Every intermediate is a named graph resource.
 #include "graph/executor.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/copy_pass.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/shadow_pass.h"
 #include "lighting/legacy/legacy_path.h"
+#include "lighting/legacy/voxel_regions.h"
 #include "lighting/lighting_path.h"
 #include "shared/scene.h"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace tl::lighting {
 namespace {
 
 using graph::Usage;
 using shared::LegacyPush;
+using shared::LegacyVoxelPush;
 
 constexpr VkImageLayout kReadOnly = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
+
+// What the voxels get this frame: nothing, a rebuild, or a partial update of some regions.
+// Per level, the regions to redo (a rebuild's is the whole level) and, per region, the
+// instances that can write into it, in scene order (the full rebuild's draw order).
+struct VoxelWork {
+  enum class Kind { Keep, Partial, Full };
+  Kind kind = Kind::Keep;
+  std::vector<std::vector<VoxelRegion>> regions;
+  std::vector<std::vector<std::vector<uint32_t>>> instances;
+  uint32_t instancesDrawn = 0;  // distinct instances voxelized
+  int64_t regionVoxels = 0;     // voxels per face block cleared and voxelized, all levels
+  size_t regionCount() const {
+    size_t n = 0;
+    for (const auto& r : regions) n += r.size();
+    return n;
+  }
+};
+
+// Which of a region's instances a voxelization round draws.
+enum class DrawSet { All, Plain, Emissive };
+
+// A partial update costing more than this fraction of a rebuild's voxels rebuilds instead:
+// its per-region draws and dispatches would no longer pay for themselves.
+constexpr double kPartialVoxelBudget = 0.5;
 
 class LegacyPath final : public LightingPath {
  public:
   std::string name() const override { return "legacy"; }
   std::string description() const override {
     return "RTX OFF: GTAO + voxel clipmap GI with cone tracing and voxel AO";
+  }
+
+  std::vector<std::pair<std::string, double>> figures() const override {
+    return {{"voxelUpdate", double(int(lastWork_.kind))},  // 0 kept, 1 partial, 2 rebuilt
+            {"voxelizedInstances", double(lastWork_.instancesDrawn)},
+            {"voxelRegions", double(lastWork_.regions)},
+            {"voxelRegionVoxels", double(lastWork_.regionVoxels)}};
   }
 
   LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
@@ -71,8 +107,10 @@ class LegacyPath final : public LightingPath {
         });
 
     // The voxels persist: they are rebuilt only when what they hold changes (where the levels
-    // sit in the world, the sun, the scene), so a still camera pays nothing for them.
+    // sit in the world, the sun, the settings), so a still camera pays nothing for them; when
+    // only some instances changed, only the voxels those reach are redone.
     const uint64_t key = voxelKey(in, fit);
+    const std::vector<scene::Bounds> changes = takeInstanceChanges(in);
     const graph::ResourceDesc voxelDesc = graph::ResourceDesc::image3D(
         VK_FORMAT_R16G16B16A16_SFLOAT, 6 * R, R, N * R,
         fmt::format("voxels per face (+x -x +y -y +z -z blocks along x): radiance, opacity; {} level(s) of {}^3 stacked in z",
@@ -100,93 +138,14 @@ class LegacyPath final : public LightingPath {
     const bool historyOk =
         feedback && ex.historyValid(kLegacyHistRadiance, radianceDesc) && ex.historyValid(kLegacyHistDepth, depthDesc);
     const bool voxelsKept = ex.historyValid(kVoxelRadiance, voxelDesc) && ex.historyValid(kVoxelRadianceMips, voxelMipsDesc);
-    // A change, or voxels lost (a reset, a camera cut): rebuild, and keep rebuilding while the
-    // bounces through the screen settle.
-    if (key != voxelKey_ || !voxelsKept) settle_ = s.legacySettleFrames + 1;
-    const bool revoxelize = settle_ > 0 || s.legacyVoxelizeEveryFrame;
-    // Bounces through the screen settle over a few rebuilds; only frames with history count.
-    if (revoxelize && settle_ > 0 && (historyOk || !feedback)) --settle_;
-    push.screenRadiance = historyOk ? 1u : 0u;
+    // The voxels hold this placement, sun and settings: a change of some instances can be
+    // patched into them.
+    const bool placed = voxelsKept && key == voxelKey_;
     voxelKey_ = key;
-    if (revoxelize) {
-    graph.addPass(
-        "legacy.voxelize", graph::PassKind::Raster,
-        [&](graph::PassBuilder& b) {
-          readSceneInputs(b, Usage::VertexOrIndex);
-          b.read(shadow, Usage::Sampled);
-          if (feedback) {
-            b.read(kLegacyHistRadiance, Usage::Sampled);
-            b.read(kLegacyHistDepth, Usage::Sampled);
-          } else if (std::string(shadow) != kGbufferDepth) {
-            b.read(kGbufferDepth, Usage::Sampled);  // stands in for the history, unread
-          }
-          b.write(kVoxelRadiance, Usage::StorageWrite);
-        },
-        [this, &in, push, shadow, R, N, feedback](graph::PassContext& ctx) mutable {
-          const gpu::Image& radiance = ctx.image(kVoxelRadiance);
-          clearStorage(ctx.cmd, {&radiance});
-          // Round 0 makes every touched voxel opaque on all faces; round 1 writes the faces each
-          // surface looks out of; emitters come last, after a barrier, so where an emitter shares
-          // a voxel with a dark surface (a light panel under a ceiling) the emitter wins.
-          struct Round {
-            uint32_t mode;
-            const std::vector<uint32_t>* instances;
-          };
-          const Round rounds[] = {{0, &allInstances_}, {1, &plainInstances_}, {1, &emissiveInstances_}};
-          bool first = true;
-          for (const Round& round : rounds) {
-            if (round.instances->empty()) continue;
-            if (!first)
-              gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                                 VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-            first = false;
-            ctx.beginRendering({}, std::nullopt, VkExtent2D{R, R});
-            ctx.bind(voxelize_);
-            ctx.descriptors()
-                .uniformBuffer(shared::kLegacyBindingFrame, in.constantsBuffer.handle())
-                .sampledImage(shared::kLegacyBindingShadow, ctx.image(shadow).view(), shadowSampler_.handle(), kReadOnly)
-                .storageImage(shared::kLegacyBindingRadiance, radiance.view())
-                // Without feedback the bindings still need images: the G-buffer depth stands in, unread.
-                .sampledImage(shared::kLegacyBindingPrevRadiance, ctx.image(feedback ? kLegacyHistRadiance : kGbufferDepth).view(),
-                              point_.handle(), kReadOnly)
-                .sampledImage(shared::kLegacyBindingPrevDepth, ctx.image(feedback ? kLegacyHistDepth : kGbufferDepth).view(),
-                              point_.handle(), kReadOnly);
-            ctx.flushDescriptors();
-            in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, voxelize_.layout(), shared::kSceneSet);
-            push.voxelRound = round.mode;
-            for (uint32_t level = 0; level < N; ++level)
-              for (uint32_t axis = 0; axis < 3; ++axis) {
-                push.axis = axis + 3 * level;
-                ctx.pushConstants(push);
-                in.scene.drawInstances(ctx.cmd, *round.instances);
-              }
-            ctx.endRendering();
-          }
-        });
-
-    graph.addPass(
-        "legacy.voxel.mips", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          b.read(kVoxelRadiance, Usage::StorageRead);
-          b.write(kVoxelRadianceMips, Usage::StorageWrite);
-        },
-        [this, mips](graph::PassContext& ctx) {
-          const gpu::Image& r0 = ctx.image(kVoxelRadiance);
-          const gpu::Image& rm = ctx.image(kVoxelRadianceMips);
-          ctx.bind(mip_);
-          for (uint32_t m = 0; m < mips; ++m) {
-            if (m > 0)  // the next mip reads what the previous dispatch wrote
-              gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-            ctx.descriptors()
-                .storageImage(shared::kLegacyBindingMipSrcRadiance, m == 0 ? r0.view() : rm.mipView(m - 1))
-                .storageImage(shared::kLegacyBindingRadianceMips, rm.mipView(m));
-            VkExtent3D e = rm.extent();
-            ctx.dispatch(std::max(1u, e.width >> m), std::max(1u, e.height >> m), std::max(1u, e.depth >> m), 4, 4, 4);
-          }
-        });
-    }
+    push.screenRadiance = historyOk ? 1u : 0u;
+    const auto work = std::make_shared<VoxelWork>(planVoxelUpdate(in, fit, changes, placed, historyOk));
+    lastWork_ = {work->kind, work->instancesDrawn, work->regionVoxels, uint32_t(work->regionCount())};
+    if (work->kind != VoxelWork::Kind::Keep) addVoxelPasses(graph, in, fit, work, shadow, feedback, push.screenRadiance);
 
     graph.addPass(
         "legacy.cones", graph::PassKind::Compute,
@@ -260,6 +219,120 @@ class LegacyPath final : public LightingPath {
   }
 
  private:
+  // legacy.voxelize and legacy.voxel.mips over the work's regions (whole levels for a rebuild).
+  void addVoxelPasses(graph::RenderGraph& graph, FrameInputs& in, const LegacyClipmapFit& fit,
+                      std::shared_ptr<const VoxelWork> work, const char* shadow, bool feedback, uint32_t screenRadiance) {
+    const uint32_t R = fit.clipmap.resolution, mips = fit.clipmap.mipCount;
+    LegacyVoxelPush vpush{};
+    vpush.clipmap = fit.clipmap;
+    vpush.screenRadiance = screenRadiance;
+    graph.addPass(
+        "legacy.voxelize", graph::PassKind::Raster,
+        [&](graph::PassBuilder& b) {
+          readSceneInputs(b, Usage::StorageRead);  // voxelize.vert fetches whole triangles
+          b.read(shadow, Usage::Sampled);
+          if (feedback) {
+            b.read(kLegacyHistRadiance, Usage::Sampled);
+            b.read(kLegacyHistDepth, Usage::Sampled);
+          } else if (std::string(shadow) != kGbufferDepth) {
+            b.read(kGbufferDepth, Usage::Sampled);  // stands in for the history, unread
+          }
+          b.write(kVoxelRadiance, Usage::StorageWrite);
+        },
+        [this, &in, vpush, shadow, R, feedback, work](graph::PassContext& ctx) mutable {
+          const gpu::Image& radiance = ctx.image(kVoxelRadiance);
+          if (work->kind == VoxelWork::Kind::Full)
+            clearStorage(ctx.cmd, {&radiance});
+          else
+            clearRegions(ctx, radiance, vpush, *work);
+          // Round 0 makes every touched voxel opaque on all faces; round 1 writes the faces each
+          // surface looks out of; emitters come last, after a barrier, so where an emitter shares
+          // a voxel with a dark surface (a light panel under a ceiling) the emitter wins.
+          struct Round {
+            uint32_t mode;
+            DrawSet set;
+            const std::vector<uint32_t>* instances;
+          };
+          const Round rounds[] = {{0, DrawSet::All, &allInstances_},
+                                  {1, DrawSet::Plain, &plainInstances_},
+                                  {1, DrawSet::Emissive, &emissiveInstances_}};
+          bool first = true;
+          std::vector<uint32_t> draw;
+          for (const Round& round : rounds) {
+            if (round.instances->empty()) continue;
+            if (!first)
+              gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                 VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+            first = false;
+            ctx.beginRendering({}, std::nullopt, VkExtent2D{R, R});
+            ctx.bind(voxelize_);
+            ctx.descriptors()
+                .uniformBuffer(shared::kLegacyBindingFrame, in.constantsBuffer.handle())
+                .sampledImage(shared::kLegacyBindingShadow, ctx.image(shadow).view(), shadowSampler_.handle(), kReadOnly)
+                .storageImage(shared::kLegacyBindingRadiance, radiance.view())
+                .storageBuffer(shared::kLegacyBindingVertices, in.scene.vertexBuffer().handle())
+                .storageBuffer(shared::kLegacyBindingIndices, in.scene.indexBuffer().handle())
+                // Without feedback the bindings still need images: the G-buffer depth stands in, unread.
+                .sampledImage(shared::kLegacyBindingPrevRadiance, ctx.image(feedback ? kLegacyHistRadiance : kGbufferDepth).view(),
+                              point_.handle(), kReadOnly)
+                .sampledImage(shared::kLegacyBindingPrevDepth, ctx.image(feedback ? kLegacyHistDepth : kGbufferDepth).view(),
+                              point_.handle(), kReadOnly);
+            ctx.flushDescriptors();
+            in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, voxelize_.layout(), shared::kSceneSet);
+            vpush.voxelRound = round.mode;
+            for (uint32_t level = 0; level < work->regions.size(); ++level)
+              for (size_t r = 0; r < work->regions[level].size(); ++r) {
+                selectInstances(work->instances[level][r], round.set, draw);
+                if (draw.empty()) continue;
+                const VoxelRegion& region = work->regions[level][r];
+                vpush.regionMin = glm::ivec4(region.min, 0);
+                vpush.regionMax = glm::ivec4(region.max, 0);
+                for (uint32_t axis = 0; axis < 3; ++axis) {
+                  vpush.axis = axis + 3 * level;
+                  scissorToRegion(ctx, region, axis);
+                  ctx.pushConstants(vpush);
+                  in.scene.drawInstancesUnindexed(ctx.cmd, draw);
+                }
+              }
+            ctx.endRendering();
+          }
+        });
+
+    graph.addPass(
+        "legacy.voxel.mips", graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          b.read(kVoxelRadiance, Usage::StorageRead);
+          b.write(kVoxelRadianceMips, Usage::StorageWrite);
+        },
+        [this, mips, vpush, work](graph::PassContext& ctx) mutable {
+          const gpu::Image& r0 = ctx.image(kVoxelRadiance);
+          const gpu::Image& rm = ctx.image(kVoxelRadianceMips);
+          ctx.bind(mip_);
+          for (uint32_t m = 0; m < mips; ++m) {
+            if (m > 0)  // the next mip reads what the previous dispatches wrote
+              gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+            ctx.descriptors()
+                .storageImage(shared::kLegacyBindingMipSrcRadiance, m == 0 ? r0.view() : rm.mipView(m - 1))
+                .storageImage(shared::kLegacyBindingRadianceMips, rm.mipView(m));
+            ctx.flushDescriptors();
+            // Each region's footprint at this mip; footprints of two regions may share texels
+            // at coarse mips, which they then write with the same value.
+            for (uint32_t level = 0; level < work->regions.size(); ++level)
+              for (const VoxelRegion& region : work->regions[level]) {
+                const VoxelRegion f = mipFootprint(region, m + 1);
+                vpush.level = level;
+                vpush.regionMin = glm::ivec4(f.min, 0);
+                vpush.regionMax = glm::ivec4(f.max, 0);
+                ctx.pushConstants(vpush);
+                const glm::ivec3 size = f.max - f.min;
+                ctx.dispatch(6 * uint32_t(size.x), uint32_t(size.y), uint32_t(size.z), 4, 4, 4);
+              }
+          }
+        });
+  }
+
   // Everything the voxels depend on: the scene, the levels' place in the world (not
   // camera-relative, so a camera moving within one voxel keeps them), the sun and the settings.
   static uint64_t voxelKey(const FrameInputs& in, const LegacyClipmapFit& fit) {
@@ -274,9 +347,146 @@ class LegacyPath final : public LightingPath {
     for (const glm::vec4* x : {&c.sunToLight, &c.sunIrradiance}) k.insert(k.end(), {x->x, x->y, x->z, x->w});
     k.push_back(double(c.flags));
     k.push_back(double(in.scene.id()));
-    k.push_back(double(in.scene.geometryVersion()));  // deforming meshes moved
     k.push_back(double(fit.clipmap.resolution));
     return scene::hashBytes(k.data(), k.size() * sizeof(double));
+  }
+
+  // The world boxes of the instances whose geometry changed since the last frame (where each
+  // was and where it is): deformed meshes and moved instances. A deforming mesh's bounds hold
+  // all its poses (scene::morphBounds), so they cover the old and the new pose alike.
+  std::vector<scene::Bounds> takeInstanceChanges(const FrameInputs& in) {
+    const auto& instances = in.sceneData.instances;
+    std::vector<scene::Bounds> changes;
+    const bool first = seen_.size() != instances.size();
+    if (first) seen_.assign(instances.size(), {});
+    for (size_t i = 0; i < instances.size(); ++i) {
+      const uint64_t version = in.scene.meshVersion(in.scene.instanceMesh(i));
+      Seen& was = seen_[i];
+      if (!first && (was.meshVersion != version || was.transform != instances[i].transform)) {
+        scene::Bounds box = was.bounds;
+        box.extend(instances[i].worldBounds);
+        changes.push_back(box);
+      }
+      was = {version, instances[i].transform, instances[i].worldBounds};
+    }
+    return changes;
+  }
+
+  // Keep, patch or rebuild. A new placement, sun or settings, or voxels lost (a reset, a
+  // camera cut) rebuild, and rebuilds go on for a few frames while bounces through the screen
+  // settle. A change of some instances patches the regions it reaches instead; with screen
+  // feedback the settling rebuilds wait until the geometry stops changing, so an animation
+  // never pays for whole rebuilds.
+  VoxelWork planVoxelUpdate(const FrameInputs& in, const LegacyClipmapFit& fit, const std::vector<scene::Bounds>& changes,
+                            bool placed, bool historyOk) {
+    const RenderSettings& s = in.settings;
+    const bool feedback = s.legacyScreenRadiance;
+    if (!placed) settle_ = s.legacySettleFrames + 1;
+    bool changed = !changes.empty();
+    bool partial = placed && changed && s.legacyPartialVoxels && !s.legacyVoxelizeEveryFrame;
+    VoxelWork work;
+    if (partial) {
+      work = partialWork(in, fit, changes);
+      const double rebuildVoxels = double(fit.clipmap.levels) * std::pow(double(fit.clipmap.resolution), 3.0);
+      if (work.regionCount() == 0)
+        partial = changed = false;  // every change lies outside the clipmap: nothing in it changed
+      else
+        partial = double(work.regionVoxels) <= kPartialVoxelBudget * rebuildVoxels;
+    }
+    if (changed && (!partial || feedback)) settle_ = s.legacySettleFrames + 1;
+    if (partial) return work;
+    if (settle_ == 0 && !s.legacyVoxelizeEveryFrame) return {};
+    // Bounces through the screen settle over a few rebuilds; only frames with history count.
+    if (settle_ > 0 && (historyOk || !feedback)) --settle_;
+    return fullWork(fit);
+  }
+
+  VoxelWork fullWork(const LegacyClipmapFit& fit) const {
+    VoxelWork work;
+    work.kind = VoxelWork::Kind::Full;
+    const int r = int(fit.clipmap.resolution);
+    for (uint32_t level = 0; level < fit.clipmap.levels; ++level) {
+      work.regions.push_back({VoxelRegion{glm::ivec3(0), glm::ivec3(r)}});
+      work.instances.push_back({allInstances_});
+      work.regionVoxels += int64_t(r) * r * r;
+    }
+    work.instancesDrawn = uint32_t(allInstances_.size());
+    return work;
+  }
+
+  // Per level, the voxels the changed boxes and their sun shadows reach, merged into a few
+  // regions, and per region the instances whose bounds reach into it (changed or not: all
+  // of them write there in a rebuild).
+  VoxelWork partialWork(const FrameInputs& in, const LegacyClipmapFit& fit, const std::vector<scene::Bounds>& changes) const {
+    const auto& c = in.constants;
+    const bool shadows = (c.flags & shared::kFrameFlagSunShadows) != 0;
+    // The voxelizer's 3x3 PCF of 2x2 comparisons reaches two texels, plus its normal offset and bias.
+    const double margin = shadows ? double(c.shadowParams.x) * (3.0 + c.shadowParams.z) + c.shadowParams.y : 0.0;
+    std::vector<scene::Bounds> reach;
+    for (const scene::Bounds& box : changes)
+      reach.push_back(shadows ? shadowSweptBounds(box, -glm::dvec3(glm::vec3(c.sunToLight)), in.sceneData.bounds, margin) : box);
+    VoxelWork work;
+    work.kind = VoxelWork::Kind::Partial;
+    std::vector<bool> drawn(in.sceneData.instances.size(), false);
+    for (uint32_t level = 0; level < fit.clipmap.levels; ++level) {
+      std::vector<VoxelRegion> regions;
+      for (const scene::Bounds& box : reach) regions.push_back(voxelRegionOf(fit.clipmap, level, in.cameraWorld, box));
+      regions = mergeVoxelRegions(std::move(regions));
+      std::vector<std::vector<uint32_t>> lists;
+      const double slack = 0.5 * fit.clipmap.levelMin[level].w;  // against rounding at the region's faces
+      for (const VoxelRegion& region : regions) {
+        scene::Bounds world = worldBoundsOf(fit.clipmap, level, in.cameraWorld, region);
+        std::vector<uint32_t> list;
+        for (uint32_t i : allInstances_) {
+          const scene::Bounds& b = in.sceneData.instances[i].worldBounds;
+          if (glm::all(glm::lessThanEqual(b.min, world.max + slack)) && glm::all(glm::lessThanEqual(world.min - slack, b.max)))
+            list.push_back(i), drawn[i] = true;
+        }
+        work.regionVoxels += region.voxels();
+        lists.push_back(std::move(list));
+      }
+      work.regions.push_back(std::move(regions));
+      work.instances.push_back(std::move(lists));
+    }
+    work.instancesDrawn = uint32_t(std::count(drawn.begin(), drawn.end(), true));
+    return work;
+  }
+
+  void selectInstances(const std::vector<uint32_t>& from, DrawSet set, std::vector<uint32_t>& out) const {
+    out.clear();
+    for (uint32_t i : from)
+      if (set == DrawSet::All || (set == DrawSet::Emissive) == bool(emissive_[i])) out.push_back(i);
+  }
+
+  // The raster covers the whole level; the scissor keeps it to the region's two axes on
+  // screen (voxelize.vert swizzles x: yz, y: zx, z: xy).
+  static void scissorToRegion(graph::PassContext& ctx, const VoxelRegion& region, uint32_t axis) {
+    const int u = axis == 0 ? 1 : (axis == 1 ? 2 : 0), v = axis == 0 ? 2 : (axis == 1 ? 0 : 1);
+    ctx.setScissor(uint32_t(region.min[u]), uint32_t(region.min[v]), uint32_t(region.max[u] - region.min[u]),
+                   uint32_t(region.max[v] - region.min[v]));
+  }
+
+  // Empties a partial update's regions with a compute dispatch inside the raster pass (a
+  // transfer clear empties whole images): it waits for everything before it, and the
+  // fragment writes wait for it.
+  void clearRegions(graph::PassContext& ctx, const gpu::Image& radiance, LegacyVoxelPush push, const VoxelWork& work) {
+    gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    ctx.bind(clear_);
+    ctx.descriptors().storageImage(shared::kLegacyBindingRadiance, radiance.view());
+    ctx.flushDescriptors();
+    for (uint32_t level = 0; level < work.regions.size(); ++level)
+      for (const VoxelRegion& region : work.regions[level]) {
+        push.level = level;
+        push.regionMin = glm::ivec4(region.min, 0);
+        push.regionMax = glm::ivec4(region.max, 0);
+        ctx.pushConstants(push);
+        const glm::ivec3 size = region.max - region.min;
+        ctx.dispatch(6 * uint32_t(size.x), uint32_t(size.y), uint32_t(size.z), 4, 4, 4);
+      }
+    gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   }
 
   static void readCommon(graph::PassBuilder& b) {
@@ -306,11 +516,15 @@ class LegacyPath final : public LightingPath {
     plainInstances_.clear();
     emissiveInstances_.clear();
     allInstances_.clear();
+    emissive_.clear();
+    seen_.clear();
+    voxelKey_ = 0;
     for (uint32_t i = 0; i < in.sceneData.instances.size(); ++i) {
       const auto& m = in.sceneData.materials[in.sceneData.meshes[in.sceneData.instances[i].mesh].material];
       const bool emits = glm::length(m.emissiveFactor) * m.emissiveStrength > 0.0f;
       (emits ? emissiveInstances_ : plainInstances_).push_back(i);
       allInstances_.push_back(i);
+      emissive_.push_back(emits ? 1 : 0);
     }
     point_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "legacy.point");
     linear_ = gpu::Sampler(in.device, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "legacy.linear");
@@ -318,7 +532,8 @@ class LegacyPath final : public LightingPath {
                                   "legacy.shadowCompare", true);
     using B = gpu::Binding;
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    auto compute = [&](const char* name, const char* shader, std::vector<B> extra, bool common = true) {
+    auto compute = [&](const char* name, const char* shader, std::vector<B> extra, bool common = true,
+                       uint32_t pushBytes = sizeof(LegacyPush)) {
       gpu::ComputePipelineDesc d;
       d.name = name;
       d.shader = shader;
@@ -327,13 +542,15 @@ class LegacyPath final : public LightingPath {
                              {shared::kLegacyBindingDepth, sampled},
                              {shared::kLegacyBindingNormal, sampled}};
       d.layout.bindings.insert(d.layout.bindings.end(), extra.begin(), extra.end());
-      d.layout.pushConstantBytes = sizeof(LegacyPush);
+      d.layout.pushConstantBytes = pushBytes;
       return gpu::createComputePipeline(in.device, d);
     };
     ssao_ = compute("legacy.ssao", "legacy/ssao.comp", {{shared::kLegacyBindingAoRaw, storage}});
     mip_ = compute("legacy.voxel.mips", "legacy/voxel_mip.comp",
                    {{shared::kLegacyBindingMipSrcRadiance, storage}, {shared::kLegacyBindingRadianceMips, storage}},
-                   false);
+                   false, sizeof(LegacyVoxelPush));
+    clear_ = compute("legacy.voxel.clear", "legacy/voxel_clear.comp", {{shared::kLegacyBindingRadiance, storage}}, false,
+                     sizeof(LegacyVoxelPush));
     cones_ = compute("legacy.cones", "legacy/cones.comp",
                      {{shared::kLegacyBindingRadiance, sampled}, {shared::kLegacyBindingRadianceMips, sampled},
                       {shared::kLegacyBindingConeShY, storage}, {shared::kLegacyBindingConeCoCgAo, storage}});
@@ -351,23 +568,41 @@ class LegacyPath final : public LightingPath {
                          {shared::kLegacyBindingShadow, sampled},
                          {shared::kLegacyBindingRadiance, storage},
                          {shared::kLegacyBindingPrevRadiance, sampled},
-                         {shared::kLegacyBindingPrevDepth, sampled}};
+                         {shared::kLegacyBindingPrevDepth, sampled},
+                         {shared::kLegacyBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                         {shared::kLegacyBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
     d.layout.extraSets = {in.scene.table().layout()};
-    d.layout.pushConstantBytes = sizeof(LegacyPush);
-    d.vertexBindings = scene::GpuScene::vertexBindings();
-    d.vertexAttributes = scene::GpuScene::vertexAttributes();
+    d.layout.pushConstantBytes = sizeof(LegacyVoxelPush);
+    // No vertex input: voxelize.vert fetches the vertices itself.
     d.cullMode = VK_CULL_MODE_NONE;
     d.depthTest = false;
     d.depthWrite = false;
     voxelize_ = gpu::createGraphicsPipeline(in.device, d);
   }
 
+  // What the voxels last saw of each instance.
+  struct Seen {
+    uint64_t meshVersion = 0;
+    glm::dmat4 transform{1.0};
+    scene::Bounds bounds;
+  };
+  // The last frame's voxel work, for figures().
+  struct WorkFigures {
+    VoxelWork::Kind kind = VoxelWork::Kind::Keep;
+    uint32_t instancesDrawn = 0;
+    int64_t regionVoxels = 0;
+    uint32_t regions = 0;
+  };
+
   uint64_t sceneId_ = 0;
   uint64_t voxelKey_ = 0;
   uint32_t settle_ = 0;
   std::vector<uint32_t> plainInstances_, emissiveInstances_, allInstances_;
+  std::vector<uint8_t> emissive_;  // per instance
+  std::vector<Seen> seen_;         // per instance
+  WorkFigures lastWork_;
   gpu::Sampler point_, linear_, shadowSampler_;
-  gpu::Pipeline ssao_, voxelize_, mip_, cones_, upsample_;
+  gpu::Pipeline ssao_, voxelize_, clear_, mip_, cones_, upsample_;
 };
 
 }  // namespace
