@@ -171,7 +171,13 @@ void main() {
     imageStore(outMoment, p, vec4(meanSquare));
     return;
   }
-  Neighbourhood nb = neighbourhood(p, depth, size, hasHistory ? sqrt(max(meanSquare, 0.0)) : 0.0);
+  // The neighbourhood serves only the firefly clamp and a change of light: otherwise it is not
+  // read (up to 25 depth and SH fetches a pixel, a third of this pass on lavapipe).
+  Neighbourhood nb;
+  nb.ceiling = kRtNoCeiling;
+  nb.count = 0;
+  if (push.fireflyClamp > 0.0 || push.lightChanged != 0u)
+    nb = neighbourhood(p, depth, size, hasHistory ? sqrt(max(meanSquare, 0.0)) : 0.0);
   if (!noSample && shY.x > nb.ceiling) {
     float k = nb.ceiling / shY.x;  // scale the whole sample: its direction and colour stay
     shY *= k;
