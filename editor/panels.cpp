@@ -335,6 +335,10 @@ void lightingPanel(EditorApp& app) {
   if (ImGui::SliderFloat("Exposure", &ev, -10.0f, 16.0f, "%.2f EV")) l.exposureEv = ev, changed = true;
   ImGui::EndDisabled();
   tooltip("Radiance is multiplied by 2^-EV before the ACES tonemap");
+  // A composite setting: no history holds it, so nothing restarts.
+  ImGui::Checkbox("Specular GI", &session.settings().specularGi);
+  tooltip("Metals and glossy surfaces reflect the lighting path's SH (dominant direction, roughness widened where the "
+          "light is not directional, GGX), so a metal indoors reflects the room; off: the sky's specular times AO");
   if (changed) {
     double el = glm::radians(double(elevation)), az = glm::radians(double(azimuth));
     toSun = {std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};
