@@ -164,13 +164,6 @@ void main() {
       }
     }
   }
-  if (hasHistory && noSample) {  // nothing new this frame: the history as it was
-    imageStore(outShY, p, historySh);
-    imageStore(outCoCgAo, p, history);
-    imageStore(outDepth, p, vec4(w));
-    imageStore(outMoment, p, vec4(meanSquare));
-    return;
-  }
   // The neighbourhood serves only the firefly clamp and a change of light: otherwise it is not
   // read (up to 25 depth and SH fetches a pixel, a third of this pass on lavapipe).
   Neighbourhood nb;
@@ -184,21 +177,27 @@ void main() {
     coCgAo.xy *= k;
   }
   float shY0 = max(shY.x, 0.0);  // this frame's (clipped) sample luma
-  if (hasHistory) {
-    float frames = history.w;
-    if (push.lightChanged != 0u && nb.count > 0 && historySh.x > 0.0) {
-      // Luminance rejection: the history keeps its direction and colour at a luma inside
-      // this frame's range, and only a couple of frames' weight.
+  if (hasHistory && push.lightChanged != 0u) {
+    // Luminance rejection: the history keeps its direction and colour at a luma inside this
+    // frame's range (where there are samples to say so), and only a couple of frames' weight,
+    // whether the light went off (clipped down) or came on over a dark history (capped).
+    if (nb.count > 0 && historySh.x > 0.0) {
       float k = clamp(historySh.x, nb.lowest, nb.highest) / historySh.x;
       historySh *= k;
       history.xy *= k;
-      frames = min(frames, kRtLightChangeFrames);
+      meanSquare *= k * k;
     }
-    float n = min(frames + 1.0, float(max(push.maxAccumFrames, 1u)));
+    history.w = min(history.w, kRtLightChangeFrames);
+  }
+  if (hasHistory && noSample) {  // nothing new this frame: the (rectified) history as it is
+    shY = historySh;
+    coCgAo = history;
+  } else if (hasHistory) {
+    float n = min(history.w + 1.0, float(max(push.maxAccumFrames, 1u)));
     float a = 1.0 / n;
     shY = mix(historySh, shY, a);
     coCgAo = vec4(mix(history.xyz, coCgAo.xyz, a), n);
-    if (!noSample) meanSquare = mix(meanSquare, shY0 * shY0, a);
+    meanSquare = mix(meanSquare, shY0 * shY0, a);
   } else {
     meanSquare = shY0 * shY0;
   }

@@ -150,7 +150,7 @@ TL_FN float tlRtFireflyCeiling(float neighbourRms, float historyRms, float k) {
 // a few frames. A per-pixel statistical test on one ray per pixel cannot tell a light
 // switched off from a sparse signal (light through a few rays): every variant tried either
 // missed the change or biased the Cornell box by 5-20%; the change itself is known exactly.
-TL_CONST float kRtLightChangeFrames = 2.0f;
+TL_CONST float kRtLightChangeFrames = 1.0f;
 
 // Per-instance data the real rays read at a hit (gl_InstanceCustomIndexEXT), std430.
 struct RtInstance {

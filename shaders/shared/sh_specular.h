@@ -2,16 +2,20 @@
 // irradiance"): the per-pixel SH is a tiny cubemap, enough for the specular of metals, whose
 // diffuse albedo is zero. Shared by the composite and the CPU tests.
 //
-// The SH is split by its directionality a = |L1| / (sqrt(3) L0) (shared/sh.h) into
-//   - a uniform part holding (1 - a) of the incoming light: mean radiance (1 - a) L0 Y00,
-//     whose specular is exactly that radiance times the split-sum environment BRDF;
-//   - a directional part holding a of it, as one light from the dominant direction d whose
-//     irradiance (facing it) is a L0 / Y00 (exact for light from a single direction), shaded
-//     with GGX at a roughness recomputed from a: less directional light is what a rougher
-//     lobe sees, alpha' = mix(1, alpha, a).
-// Limits: a uniform SH gives the environment term exactly; a single-direction SH gives the
-// GGX response to that light at the material's own roughness. The result is in the SH's
-// chroma, like its diffuse resolve.
+// The SH the real-time paths accumulate covers the hemisphere above the surface (the RT
+// path's cosine samples weighted by tlRtShSampleWeight, shared/rt.h), so even a uniform sky
+// has a directionality: a_sky = (ln 3 / 2) / (2 - ln 3) = 0.6094 (exact: the SH's mean is
+// the projection of L cos / (1/4 + cos/2) over the hemisphere). The directionality a is
+// remapped against it, a' = saturate((a - a_sky) / (1 - a_sky)), and the resolved
+// irradiance E(n) is split by a' into
+//   - a uniform part, (1 - a') E(n): radiance (1 - a') E(n) / pi from the whole hemisphere,
+//     whose specular is that radiance times the split-sum environment BRDF;
+//   - a directional part, a' E(n): one light from the dominant direction d giving that
+//     irradiance on the surface, shaded with GGX at a roughness recomputed from a' (light
+//     that is less directional is what a rougher lobe sees): alpha' = mix(1, alpha, a').
+// Limits (unit-tested): an open uniform sky gives L times the environment term exactly; a
+// single direction the GGX response to that light at the material's own roughness. The
+// result is in the SH's chroma, like its diffuse resolve.
 #ifndef TL_SHARED_SH_SPECULAR_H
 #define TL_SHARED_SH_SPECULAR_H
 #include "common.h"
@@ -19,6 +23,14 @@
 #include "sh.h"
 
 TL_BEGIN
+TL_CONST float kShOpenSkyDirectionality = 0.609389f;  // (ln 3 / 2) / (2 - ln 3)
+
+// How directional the light is beyond what an open uniform sky already shows: 0 for the sky
+// (or less directional light), 1 for a single direction.
+TL_FN float tlShExcessDirectionality(ShLumaCoCg sh) {
+  return clamp((tlShDirectionality(sh) - kShOpenSkyDirectionality) / (1.0f - kShOpenSkyDirectionality), 0.0f, 1.0f);
+}
+
 // The roughness the directional part is shaded with: uniform light (a = 0) is seen as fully
 // rough whatever the material, a single direction (a = 1) at the material's own alpha.
 TL_FN float tlShSpecularAlpha(float alpha, float directionality) {
@@ -27,24 +39,23 @@ TL_FN float tlShSpecularAlpha(float alpha, float directionality) {
 
 TL_FN vec3 tlShSpecular(ShLumaCoCg sh, SurfaceParams s, vec3 n, vec3 v) {
   if (!(sh.shY.x > 1e-20f)) return vec3(0.0f);
-  float a = tlShDirectionality(sh);
+  float a = tlShExcessDirectionality(sh);
   float nv = max(dot(n, v), 1e-4f);
-  // Uniform part: mean radiance times the environment BRDF.
-  float uniformLuma = (1.0f - a) * kShY00 * sh.shY.x;
-  vec3 specular = tlEnvironmentSpecular(s, nv) * uniformLuma;
-  // Directional part: GGX (specular lobe only) for a light from d.
+  float irradiance = max(kShIrradianceL0 * sh.shY.x + kShIrradianceL1 * dot(tlShL1(sh), n), 0.0f);
+  // Uniform part: its radiance times the environment BRDF.
+  vec3 specular = tlEnvironmentSpecular(s, nv) * ((1.0f - a) * irradiance * kInvPi);
+  // Directional part: GGX (specular lobe only) for a light from d giving a E(n) on the surface.
   vec3 d = tlShDominantDirection(sh, n);
   float nl = dot(n, d);
-  if (a > 0.0f && nl > 0.0f) {
+  if (a > 0.0f && nl > 1e-4f) {
     SurfaceParams lobe = s;
     lobe.diffuse = vec3(0.0f);
     lobe.alpha = tlShSpecularAlpha(s.alpha, a);
-    float irradiance = a * sh.shY.x / kShY00;
-    specular += tlBrdf(lobe, n, v, d) * (irradiance * nl);
+    // tlBrdf * (I n.l) with I n.l = a E(n).
+    specular += tlBrdf(lobe, n, v, d) * (a * irradiance);
   }
   // Luma -> RGB at the SH's chroma, per channel of the BRDF's colour (F0 of a metal).
-  vec3 white = tlShLumaToRgb(sh, 1.0f);
-  return specular * white;
+  return specular * tlShLumaToRgb(sh, 1.0f);
 }
 TL_END
 #endif

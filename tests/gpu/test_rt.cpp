@@ -366,8 +366,10 @@ double meanAccumulatedLuma(session::Session& s, uint32_t w, uint32_t h, uint32_t
 }
 
 // A light switched off does not ghost (RE ENGINE's temporal luminance rejection): after the
-// atrium's sky and sun go dark without a history reset, the accumulated irradiance is gone
-// at once, where the plain 1/n average would keep most of it for the whole window.
+// atrium's sky and sun go dark without a history reset (default settings: hits that reuse
+// last frame's image are lit afresh in that frame), the accumulated irradiance is gone at
+// once, where the plain 1/n average would keep most of it for the whole window; switched
+// back on over the dark history, it is back within a few frames.
 TEST_F(RtTest, LightSwitchedOffDoesNotGhost) {
   auto& s = session();
   s.loadScene(contentFile("atrium.gltf"));
@@ -375,9 +377,6 @@ TEST_F(RtTest, LightSwitchedOffDoesNotGhost) {
   auto afterSwitchOff = [&](bool rejection) {
     s.settings() = RenderSettings{};
     s.settings().rtLumaRejection = rejection;
-    // Hits re-using last frame's image would carry the old light for a frame or two more:
-    // the change must reach the samples at once for the history's lag to show.
-    s.settings().rtScreenRadiance = false;
     s.setLighting(daylight);
     const double lit = meanAccumulatedLuma(s, 64, 36, 24);
     session::Lighting dark = daylight;
@@ -402,6 +401,29 @@ TEST_F(RtTest, LightSwitchedOffDoesNotGhost) {
   std::printf("6 frames after the light went off: %.3f of it left with rejection, %.3f without\n", kept, keptWithout);
   EXPECT_LT(kept, 0.1);
   EXPECT_GT(keptWithout, 0.5) << "without rejection the 1/n average holds on (the test's premise)";
+  // And switched on over a dark history: the new light is in within a few frames.
+  session::Lighting dark = daylight;
+  dark.skyRadiance = glm::vec3(0.0f);
+  dark.sunIrradiance = glm::vec3(0.0f);
+  s.settings() = RenderSettings{};
+  s.setLighting(daylight);
+  const double lit = meanAccumulatedLuma(s, 64, 36, 24);
+  s.setLighting(dark);
+  s.renderFrames(24);
+  s.setLighting(daylight);
+  s.requestBuffer(kShY);
+  s.requestBuffer("gbuffer.depth");
+  s.renderFrames(6);
+  auto shY = s.buffer(kShY).texels();
+  auto depth = s.buffer("gbuffer.depth").texels();
+  double sum = 0.0;
+  size_t n = 0;
+  for (size_t i = 0; i < depth.size(); ++i)
+    if (depth[i] > 0.0f) sum += shY[4 * i], ++n;
+  const double reached = sum / double(std::max<size_t>(n, 1)) / lit;
+  std::printf("6 frames after the light came back: %.3f of it there\n", reached);
+  RecordProperty("fraction_after_switch_on", std::to_string(reached));
+  EXPECT_GT(reached, 0.75) << "the plain 1/n average would have about 6/30 of it";
 }
 
 // Fireflies of 1e4 (content/sparks.gltf: rays from the ground rarely find tiny emitters 1e4
@@ -473,6 +495,7 @@ IrradianceErrors oneBounceIrradianceErrors(session::Session& s, const char* scen
   auto irradiance = [&](const char* path, uint32_t frames, const char* name) {
     s.setPath(path);
     s.resetHistory();
+    s.setFrameIndex(0);  // the same noise whatever ran before
     // The reference's irradiance accumulates only in frames that read it: read every frame.
     for (uint32_t f = 0; f < frames; ++f) {
       s.requestBuffer(name);
@@ -526,8 +549,8 @@ TEST_F(RtTest, After64FramesIrradianceBeatsLegacyAgainstTheReference) {
   RecordProperty("atrium_legacy_relmse", std::to_string(atrium.legacy));
   EXPECT_LT(cornell.rt, cornell.legacy);
   EXPECT_LT(atrium.rt, atrium.legacy);
-  EXPECT_LT(cornell.rt, 0.5) << "measured 0.37 (legacy 0.52)";
-  EXPECT_LT(atrium.rt, 0.08) << "measured 0.037 (legacy 0.24)";
+  EXPECT_LT(cornell.rt, 0.55) << "measured 0.37-0.47 (legacy 0.52)";
+  EXPECT_LT(atrium.rt, 0.08) << "measured 0.035-0.044 (legacy 0.24)";
 }
 
 }  // namespace

@@ -175,7 +175,10 @@ class RtPath final : public LightingPath {
                    Usage::StorageWrite);
         },
         [this, &in, push, screenRadiance](graph::PassContext& ctx) mutable {
-          push.screenRadiance = screenRadiance && ctx.historyValid(kHistRadiance) && ctx.historyValid(kHistDepth);
+          // Last frame's image shows the old light: when the light changed, hits are lit afresh
+          // (else the luminance rejection would clip the history to samples of the old light).
+          push.screenRadiance = screenRadiance && push.lightChanged == 0u && ctx.historyValid(kHistRadiance) &&
+                                ctx.historyValid(kHistDepth);
           // Without history the binding still needs an image: the depth history stands in, unread.
           const gpu::Image& radiance = ctx.image(screenRadiance ? kHistRadiance : kHistDepth);
           ctx.bind(lighting_);
