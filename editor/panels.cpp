@@ -339,6 +339,17 @@ void lightingPanel(EditorApp& app) {
   ImGui::Checkbox("Specular GI", &session.settings().specularGi);
   tooltip("Metals and glossy surfaces reflect the lighting path's SH (dominant direction, roughness widened where the "
           "light is not directional, GGX), so a metal indoors reflects the room; off: the sky's specular times AO");
+  // TAA keeps its own history: toggling it restarts nothing else.
+  ImGui::Checkbox("TAA", &session.settings().taa);
+  tooltip("Temporal anti-aliasing of the final image: the projection jitters by a sub-pixel Halton offset each "
+          "frame and an exponential history, clipped to the current 3x3 neighbourhood in YCoCg, resolves the "
+          "jittered frames (not for the reference, which jitters its own rays)");
+  if (session.settings().taa) {
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(120);
+    ImGui::SliderFloat("Blend##taa", &session.settings().taaBlend, 0.02f, 1.0f, "%.2f new");
+    tooltip("Weight of the new frame in the history: lower is smoother and slower to follow");
+  }
   if (changed) {
     double el = glm::radians(double(elevation)), az = glm::radians(double(azimuth));
     toSun = {std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};

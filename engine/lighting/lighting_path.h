@@ -49,6 +49,9 @@ class LightingPath {
   // Figures about the last frame beyond pass timings (acceleration-structure sizes, culled
   // instances, ...), name -> value, for the benchmark and the tests.
   virtual std::vector<std::pair<std::string, double>> figures() const { return {}; }
+  // Whether the path shades the G-buffer the rasterizer drew (so TAA's jitter applies); the
+  // reference path tracer computes every pixel itself, jittering its own rays.
+  virtual bool rasterizes() const { return true; }
 };
 
 // Sun + sky without indirect light: the baseline every other path adds to.

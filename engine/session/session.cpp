@@ -4,14 +4,17 @@
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/shadow_pass.h"
+#include "lighting/common/taa_pass.h"
 #include "scene/morph.h"
 #include "session/captured_frame.h"
 #include "session/image_io.h"
 #include "session/view_math.h"
+#include "shared/taa.h"
 
 #include <fmt/format.h>
 
 #include <cstring>
+
 #include <spdlog/spdlog.h>
 
 namespace tl::session {
@@ -20,6 +23,7 @@ struct Session::Passes {
   lighting::GbufferPass gbuffer;
   lighting::ShadowPass shadow;
   lighting::CompositePass composite;
+  lighting::TaaPass taa;
   lighting::TonemapPass tonemap;
   lighting::DisplayPass display;
   lighting::AlbedoViewPass albedoView;
@@ -223,9 +227,21 @@ float Session::exposureEv() const {
   return lighting_.exposureEv.value_or(autoExposureEv(lighting_, brightestEmission_));
 }
 
-void Session::buildFrameConstants(shared::FrameConstants& fc) const {
+void Session::buildFrameConstants(shared::FrameConstants& fc, bool jitter) const {
   const double aspect = double(settings_.width) / double(settings_.height);
   CameraMatrices cam = cameraMatrices(view_, aspect);
+  if (jitter) {
+    // TAA: shift the projection by this frame's sub-pixel offset (clip.xy += offset * clip.w);
+    // positions rebuilt from depth use the same matrix, motion vectors subtract the offset.
+    const glm::vec2 pixels = shared::tlTaaJitterPixels(uint32_t(frameIndex_));
+    const glm::dvec2 ndc(2.0 * pixels.x / settings_.width, 2.0 * pixels.y / settings_.height);
+    glm::dmat4 shift(1.0);
+    shift[3][0] = ndc.x;  // column 3 multiplies w
+    shift[3][1] = ndc.y;
+    cam.proj = shift * cam.proj;
+    cam.viewProj = shift * cam.viewProj;
+    fc.jitter = glm::vec4(float(ndc.x), float(ndc.y), 0.0f, 0.0f);
+  }
   fc.view = glm::mat4(cam.view);
   fc.proj = glm::mat4(cam.proj);
   fc.viewProj = glm::mat4(cam.viewProj);
@@ -264,8 +280,9 @@ void Session::renderOne(bool readback) {
     executor_->resetHistory();
     previousView_.reset();  // no motion across a cut
   }
+  const bool taa = lighting::temporalAntialiasing(settings_, path->rasterizes());
   shared::FrameConstants fc{};
-  buildFrameConstants(fc);
+  buildFrameConstants(fc, taa);
   // A compared path renders every second or third frame: its own count keeps its per-frame
   // patterns (the ray checkerboard, the 2x2 cycle, the blue-noise offset) moving.
   if (compare_) fc.frameIndex = uint32_t(compareFrames_[compared]++);
@@ -282,10 +299,12 @@ void Session::renderOne(bool readback) {
   lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, constants_, *executor_, view_.position};
   in.instanceAlbedo = &albedo_->instanceAlbedo();
   in.instanceAlbedoVersion = albedo_->version();
+  in.temporalAntialiasing = taa;
   passes_->gbuffer.add(graph, in);
   passes_->shadow.add(graph, in);
   lighting::LightingOutputs outputs = path->addPasses(graph, in);
   passes_->composite.add(graph, in, outputs);
+  if (in.temporalAntialiasing) passes_->taa.add(graph, in);
   passes_->albedoView.add(graph, in);
   passes_->tonemap.add(graph, in);
   if (compare_) {

@@ -35,6 +35,8 @@ const std::map<std::string, Setter>& setters() {
       {"softShadows", field(&S::softShadows)},
       {"pcssMaxRadiusTexels", field(&S::pcssMaxRadiusTexels)},
       {"specularGi", field(&S::specularGi)},
+      {"taa", field(&S::taa)},
+      {"taaBlend", field(&S::taaBlend)},
       {"referenceBounces", field(&S::referenceBounces)},
       {"rtSimplifyRatio", field(&S::rtSimplifyRatio)},
       {"rtAoRadius", field(&S::rtAoRadius)},

@@ -21,11 +21,14 @@ layout(location = 5) flat out uint outInstance;
 void main() {
   GpuInstance inst = instances[gl_InstanceIndex];
   vec4 relative = inst.modelRelative * vec4(inPosition, 1.0);
-  outClip = frame.viewProj * relative;
+  vec4 clip = frame.viewProj * relative;
+  // Motion vectors join unjittered positions: TAA's sub-pixel shift (in viewProj, not in
+  // prevViewProj) is taken out again, so a still camera has zero motion.
+  outClip = clip - vec4(frame.jitter.xy * clip.w, 0.0, 0.0);
   outPrevClip = frame.prevViewProj * (inst.prevModelRelative * vec4(inPosition, 1.0));
   outNormal = mat3(inst.normalMatrix) * inNormal;
   outTangent = vec4(mat3(inst.modelRelative) * inTangent.xyz, inTangent.w);
   outUv = inUv;
   outInstance = uint(gl_InstanceIndex);
-  gl_Position = outClip;
+  gl_Position = clip;
 }

@@ -23,6 +23,8 @@ struct FrameConstants {
   uint frameIndex;
   uint flags;            // kFrameFlag*
   float sceneScale;      // characteristic scene size in metres (bounds diagonal)
+  vec4 jitter;           // xy: this frame's TAA offset of the projection, in NDC (0 without TAA); viewProj
+                         // includes it, prevViewProj does not: motion vectors subtract it
 };
 
 TL_CONST uint kFrameFlagSunShadows = 1u;

@@ -1,4 +1,5 @@
 #include "lighting/common/composite_pass.h"
+#include "lighting/common/taa_pass.h"
 
 #include "graph/executor.h"
 #include "lighting/common/gbuffer_pass.h"
@@ -80,6 +81,11 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
                           far ? path.farShY : standIn,
                           far ? path.farCoCg : standIn,
                           far ? path.farAo : standIn};
+  // With TAA the composite is this frame's jittered image; the TAA pass resolves it into
+  // composite.hdr (lighting/common/taa_pass.h).
+  const char* output = in.temporalAntialiasing ? kCompositeUnresolved : kCompositeHdr;
+  const auto unresolvedDesc = graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
+                                                           "scene-linear radiance before exposure, jittered (TAA input)");
   graph.addPass(
       "composite", graph::PassKind::Compute,
       [&](graph::PassBuilder& b) {
@@ -89,9 +95,9 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
         b.read(kGbufferDepth, Usage::Sampled);
         if (sun) b.read(kShadowSunDepth, Usage::Sampled);
         inputs.declareReads(b, "gbuffer.baseColor");
-        b.create(kCompositeHdr, hdrDesc, Usage::StorageWrite);
+        b.create(output, in.temporalAntialiasing ? unresolvedDesc : hdrDesc, Usage::StorageWrite);
       },
-      [this, &in, sun, push, inputs](graph::PassContext& ctx) {
+      [this, &in, sun, push, inputs, output](graph::PassContext& ctx) {
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
         VkSampler point = pointSampler_.handle();
         // The binding must still hold a depth image; the G-buffer's depth stands in, unread.
@@ -105,7 +111,7 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
             .sampledImage(shared::kCompositeEmissive, ctx.image("gbuffer.emissive").view(), point, ro)
             .sampledImage(shared::kCompositeDepth, ctx.image(kGbufferDepth).view(), point, ro)
             .sampledImage(shared::kCompositeShadow, shadow.view(), shadowSampler_.handle(), ro)
-            .storageImage(shared::kCompositeOutput, ctx.image(kCompositeHdr).view())
+            .storageImage(shared::kCompositeOutput, ctx.image(output).view())
             .sampledImage(shared::kCompositeShadowDepth, shadow.view(), point, ro);
         inputs.bind(ctx, point);
         ctx.pushConstants(push);

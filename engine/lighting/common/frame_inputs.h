@@ -25,6 +25,8 @@ struct RenderSettings {
   bool softShadows = true;            // PCSS: penumbrae from the sun's angular size (else 3x3 PCF)
   float pcssMaxRadiusTexels = 16.0f;  // widest PCSS filter
   bool specularGi = true;             // indirect specular from a path's SH (Metro); else the sky's, times AO
+  bool taa = false;                   // temporal anti-aliasing: jittered projection, YCoCg-clipped history (not the reference)
+  float taaBlend = 0.1f;              // TAA: weight of the current frame in the exponential history
   // Reference path tracer: scattering events per path (1 = direct light only: sun, sky,
   // emitters; 2 = plus one indirect bounce; ...) and samples per pixel added each frame.
   uint32_t referenceBounces = 8;
@@ -122,6 +124,9 @@ struct FrameInputs {
   // w: the source, shared/albedo.h kAlbedoSource*), and a counter that changes whenever any
   // value does; null: texture averages.
   const std::vector<glm::vec4>* instanceAlbedo = nullptr;
+  // This frame is anti-aliased temporally (lighting/common/taa_pass.h): the projection is
+  // jittered and the composite writes composite.unresolved for the TAA pass to resolve.
+  bool temporalAntialiasing = false;
   uint64_t instanceAlbedoVersion = 0;
 };
 

@@ -25,6 +25,7 @@ inline constexpr const char* kIrradiance = "reference.irradiance";
 class ReferencePath final : public LightingPath {
  public:
   std::string name() const override { return "reference"; }
+  bool rasterizes() const override { return false; }
   std::string description() const override {
     return "progressive path tracer (ground truth): same materials, sun, sky and emitters";
   }
