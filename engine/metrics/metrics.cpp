@@ -54,6 +54,31 @@ MetricResult relMse(const Image& t, const Image& r, double epsilon) {
   return perPixel(t, r, [epsilon](double tv, double rv) { return (tv - rv) * (tv - rv) / (rv * rv + epsilon); });
 }
 
+double flicker(const Image& previous, const Image& current, const Image& motion) {
+  requireSameSize(previous, current);
+  if (motion.width != current.width || motion.height != current.height || motion.channels < 2)
+    throw std::invalid_argument("flicker: the motion image must match the frames' size and have two channels");
+  auto luma = [](const Image& im, uint32_t x, uint32_t y) {
+    if (im.channels < 3) return double(im.at(x, y, 0));
+    return 0.2126 * im.at(x, y, 0) + 0.7152 * im.at(x, y, 1) + 0.0722 * im.at(x, y, 2);
+  };
+  double change = 0.0, level = 0.0;
+  size_t n = 0;
+  for (uint32_t y = 0; y < current.height; ++y)
+    for (uint32_t x = 0; x < current.width; ++x) {
+      const double u = (x + 0.5) / current.width - motion.at(x, y, 0);
+      const double v = (y + 0.5) / current.height - motion.at(x, y, 1);
+      if (!(u >= 0.0 && u < 1.0 && v >= 0.0 && v < 1.0)) continue;
+      const uint32_t px = std::min(uint32_t(u * current.width), current.width - 1);
+      const uint32_t py = std::min(uint32_t(v * current.height), current.height - 1);
+      const double c = luma(current, x, y);
+      change += std::abs(c - luma(previous, px, py));
+      level += c;
+      ++n;
+    }
+  return n > 0 && level > 0.0 ? change / level : 0.0;
+}
+
 MetricResult rmse(const Image& t, const Image& r) {
   MetricResult m = perPixel(t, r, [](double tv, double rv) { return (tv - rv) * (tv - rv); });
   m.value = std::sqrt(m.value);

@@ -18,6 +18,14 @@ double psnr(const Image& test, const Image& reference, double peak);
 // clamped at the borders. Display-encoded inputs in [0, dynamicRange].
 MetricResult ssim(const Image& test, const Image& reference, double dynamicRange = 1.0);
 
+// Temporal flicker between two consecutive frames of a moving camera: the mean over pixels of
+// |Y(current) - Y(previous at the pixel's reprojected position)| divided by the mean Y of the
+// current frame (Y: Rec. 709 luminance of the first three channels). `motion` holds the
+// screen-space motion per pixel in UV units, two channels, as gbuffer.motion: the previous
+// position is uv - motion, read with the nearest texel. Pixels that come from off screen are
+// left out. 0 for a perfectly steady image; resampling alone gives a small floor.
+double flicker(const Image& previous, const Image& current, const Image& motion);
+
 // Throws std::invalid_argument naming both sizes when they differ.
 void requireSameSize(const Image& a, const Image& b);
 

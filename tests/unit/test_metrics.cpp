@@ -114,4 +114,28 @@ TEST(MetricsErrors, SizeMismatchThrowsAndNonFiniteIsVisible) {
 }
 
 }  // namespace
+// Flicker: a steady image under zero motion has none; a frame twice as bright as the last
+// has exactly 0.5 (|2Y - Y| / 2Y); a shifted image with the matching motion has none again,
+// and pixels that come from off screen are left out.
+TEST(MetricsFlicker, ClosedForms) {
+  Image a = Image::filled(8, 4, 3, 0.0f);
+  for (uint32_t y = 0; y < 4; ++y)
+    for (uint32_t x = 0; x < 8; ++x)
+      for (uint32_t c = 0; c < 3; ++c) a.at(x, y, c) = float(x + 1);
+  Image still = Image::filled(8, 4, 2, 0.0f);
+  EXPECT_EQ(flicker(a, a, still), 0.0);
+  Image twice = a;
+  for (float& v : twice.data) v *= 2.0f;
+  EXPECT_NEAR(flicker(a, twice, still), 0.5, 1e-9);
+  // The camera panned: the current pixel x shows what was at x - 1 (motion +1 px in u).
+  Image shifted = Image::filled(8, 4, 3, 0.0f), motion = Image::filled(8, 4, 2, 0.0f);
+  for (uint32_t y = 0; y < 4; ++y)
+    for (uint32_t x = 0; x < 8; ++x) {
+      for (uint32_t c = 0; c < 3; ++c) shifted.at(x, y, c) = x > 0 ? a.at(x - 1, y, c) : 99.0f;
+      motion.at(x, y, 0) = 1.0f / 8.0f;
+    }
+  EXPECT_NEAR(flicker(a, shifted, motion), 0.0, 1e-9) << "column 0 comes from off screen and is left out";
+  EXPECT_THROW(flicker(a, a, Image::filled(4, 4, 2, 0.0f)), std::invalid_argument);
+}
+
 }  // namespace tl::metrics
