@@ -26,6 +26,20 @@ layout(set = 0, binding = kRtBindingOutMoment, r32f) uniform writeonly image2D o
 
 bool finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
+// The largest change of view depth to a horizontal or vertical neighbour on the same
+// surface (neighbours more than 10% away, another surface, do not count).
+float depthStep(ivec2 p, float w, ivec2 size) {
+  float step = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    ivec2 q = clamp(p + ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1))[i], ivec2(0), size - 1);
+    float d = texelFetch(gDepth, q, 0).r;
+    if (d <= 0.0) continue;
+    float dw = abs(depthToViewW(d) - w);
+    if (dw < 0.1 * w) step = max(step, dw);
+  }
+  return step;
+}
+
 // This frame's samples around p on the same surface (depth within 5%): the ceiling above
 // which a sample is a firefly, and the range of the samples once clipped to it. Only pixels
 // that traced this frame count; with fewer rays per pixel the window widens to 5x5 so it
@@ -156,7 +170,10 @@ void main() {
       ivec2 q = ivec2(previousUv * frame.viewport.xy);
       float historyW = texelFetch(historyDepth, q, 0).r;
       history = texelFetch(historyCoCgAo, q, 0);
-      bool sameSurface = historyW > 0.0 && abs(historyW - previousClip.w) <= 0.03 * previousClip.w;
+      // The history texel's centre lies up to a pixel from this surface point (sub-pixel
+      // motion, TAA's jitter): on a grazing surface that alone moves the depth by its
+      // gradient, so the tolerance grows with this pixel's depth step to its neighbours.
+      bool sameSurface = historyW > 0.0 && abs(historyW - previousClip.w) <= 0.03 * previousClip.w + 1.5 * depthStep(p, w, size);
       hasHistory = sameSurface && history.w >= 1.0;
       if (hasHistory) {
         historySh = texelFetch(historyShY, q, 0);
