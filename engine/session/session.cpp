@@ -227,13 +227,13 @@ float Session::exposureEv() const {
   return lighting_.exposureEv.value_or(autoExposureEv(lighting_, brightestEmission_));
 }
 
-void Session::buildFrameConstants(shared::FrameConstants& fc, bool jitter) const {
+void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumber, bool jitter) const {
   const double aspect = double(settings_.width) / double(settings_.height);
   CameraMatrices cam = cameraMatrices(view_, aspect);
   if (jitter) {
     // TAA: shift the projection by this frame's sub-pixel offset (clip.xy += offset * clip.w);
     // positions rebuilt from depth use the same matrix, motion vectors subtract the offset.
-    const glm::vec2 pixels = shared::tlTaaJitterPixels(uint32_t(frameIndex_));
+    const glm::vec2 pixels = shared::tlTaaJitterPixels(frameNumber);
     const glm::dvec2 ndc(2.0 * pixels.x / settings_.width, 2.0 * pixels.y / settings_.height);
     glm::dmat4 shift(1.0);
     shift[3][0] = ndc.x;  // column 3 multiplies w
@@ -260,7 +260,7 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, bool jitter) const
                               settings_.shadowNormalOffsetTexels, float(settings_.shadowMapSize));
   fc.shadowSoftness = glm::vec4(float(fit.depthRange), settings_.pcssMaxRadiusTexels, settings_.softShadows ? 1.0f : 0.0f, 0.0f);
   fc.exposure = std::exp2(-exposureEv());
-  fc.frameIndex = uint32_t(frameIndex_);
+  fc.frameIndex = frameNumber;
   fc.flags = glm::length(lighting_.sunIrradiance) > 0.0f ? shared::kFrameFlagSunShadows : 0u;
   fc.sceneScale = float(scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0);
 }
@@ -281,11 +281,11 @@ void Session::renderOne(bool readback) {
     previousView_.reset();  // no motion across a cut
   }
   const bool taa = lighting::temporalAntialiasing(settings_, path->rasterizes());
-  shared::FrameConstants fc{};
-  buildFrameConstants(fc, taa);
   // A compared path renders every second or third frame: its own count keeps its per-frame
-  // patterns (the ray checkerboard, the 2x2 cycle, the blue-noise offset) moving.
-  if (compare_) fc.frameIndex = uint32_t(compareFrames_[compared]++);
+  // patterns (the ray checkerboard, the 2x2 cycle, the blue-noise offset, TAA's jitter) moving.
+  const uint32_t frameNumber = compare_ ? uint32_t(compareFrames_[compared]++) : uint32_t(frameIndex_);
+  shared::FrameConstants fc{};
+  buildFrameConstants(fc, frameNumber, taa);
   constants_.write(&fc, sizeof(fc));
   gpuScene_->updateInstances(*scene_, view_.position, previousView_.value_or(view_).position);
   applyMorphs();
@@ -300,6 +300,7 @@ void Session::renderOne(bool readback) {
   in.instanceAlbedo = &albedo_->instanceAlbedo();
   in.instanceAlbedoVersion = albedo_->version();
   in.temporalAntialiasing = taa;
+  in.pathName = path->name();
   passes_->gbuffer.add(graph, in);
   passes_->shadow.add(graph, in);
   lighting::LightingOutputs outputs = path->addPasses(graph, in);

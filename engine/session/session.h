@@ -164,7 +164,7 @@ class Session {
   uint32_t validationErrors() const { return device_->validationErrorCount(); }
 
  private:
-  void buildFrameConstants(shared::FrameConstants& fc, bool jitter) const;
+  void buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumber, bool jitter) const;
   void renderOne(bool readback);
 
   std::unique_ptr<gpu::Device> device_;

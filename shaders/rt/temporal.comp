@@ -26,16 +26,22 @@ layout(set = 0, binding = kRtBindingOutMoment, r32f) uniform writeonly image2D o
 
 bool finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
-// The largest change of view depth to a horizontal or vertical neighbour on the same
-// surface (neighbours more than 10% away, another surface, do not count).
+// How much the view depth changes over one pixel on this pixel's surface: per axis the
+// smaller step to the two opposite neighbours (the plane's gradient; the larger one may cross
+// an edge), the larger of the two axes. Neighbours more than 10% away do not count.
 float depthStep(ivec2 p, float w, ivec2 size) {
   float step = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    ivec2 q = clamp(p + ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1))[i], ivec2(0), size - 1);
-    float d = texelFetch(gDepth, q, 0).r;
-    if (d <= 0.0) continue;
-    float dw = abs(depthToViewW(d) - w);
-    if (dw < 0.1 * w) step = max(step, dw);
+  for (int axis = 0; axis < 2; ++axis) {
+    ivec2 e = axis == 0 ? ivec2(1, 0) : ivec2(0, 1);
+    float smallest = 1e30;
+    for (int side = -1; side <= 1; side += 2) {
+      ivec2 q = clamp(p + side * e, ivec2(0), size - 1);
+      float d = texelFetch(gDepth, q, 0).r;
+      if (d <= 0.0 || q == p) continue;
+      float dw = abs(depthToViewW(d) - w);
+      if (dw < 0.1 * w) smallest = min(smallest, dw);
+    }
+    if (smallest < 1e30) step = max(step, smallest);
   }
   return step;
 }
@@ -173,7 +179,7 @@ void main() {
       // The history texel's centre lies up to a pixel from this surface point (sub-pixel
       // motion, TAA's jitter): on a grazing surface that alone moves the depth by its
       // gradient, so the tolerance grows with this pixel's depth step to its neighbours.
-      bool sameSurface = historyW > 0.0 && abs(historyW - previousClip.w) <= 0.03 * previousClip.w + 1.5 * depthStep(p, w, size);
+      bool sameSurface = historyW > 0.0 && abs(historyW - previousClip.w) <= 0.03 * previousClip.w + depthStep(p, w, size);
       hasHistory = sameSurface && history.w >= 1.0;
       if (hasHistory) {
         historySh = texelFetch(historyShY, q, 0);

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace tl::lighting {
@@ -127,6 +128,7 @@ struct FrameInputs {
   // This frame is anti-aliased temporally (lighting/common/taa_pass.h): the projection is
   // jittered and the composite writes composite.unresolved for the TAA pass to resolve.
   bool temporalAntialiasing = false;
+  std::string pathName;  // the lighting path this frame renders (per-path state such as TAA's history)
   uint64_t instanceAlbedoVersion = 0;
 };
 

@@ -29,32 +29,38 @@ void TaaPass::add(graph::RenderGraph& graph, FrameInputs& in) {
     linearSampler_ = gpu::Sampler(in.device, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "taa.linear");
   }
   const auto hdr = [&](const char* what) { return graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, what); };
-  graph.declarePersistent(kTaaHistory, hdr("TAA: last frame's resolved image"));
+  const std::string history = taaHistoryName(in.pathName);
+  graph.declarePersistent(history, hdr("TAA: this path's last resolved image"));
+  // The history belongs to the previous frame only if TAA ran for this path in it.
+  const uint32_t frame = in.constants.frameIndex;
+  auto last = lastFrame_.find(in.pathName);
+  const bool consecutive = last != lastFrame_.end() && last->second + 1 == frame;
+  lastFrame_[in.pathName] = frame;
   graph.addPass(
       "taa", graph::PassKind::Compute,
       [&](graph::PassBuilder& b) {
         b.read(kFrameConstants, Usage::StorageRead);
         b.read(kCompositeUnresolved, Usage::Sampled);
-        b.read(kTaaHistory, Usage::Sampled);
+        b.read(history, Usage::Sampled);
         b.read("gbuffer.motion", Usage::Sampled);
         b.create(kCompositeHdr, hdr("scene-linear radiance before exposure, resolved by TAA"), Usage::StorageWrite);
       },
-      [this, &in](graph::PassContext& ctx) {
+      [this, &in, history, consecutive](graph::PassContext& ctx) {
         shared::TaaPush push{};
         push.blend = std::clamp(in.settings.taaBlend, 0.01f, 1.0f);
-        push.historyValid = ctx.historyValid(kTaaHistory) ? 1u : 0u;
+        push.historyValid = consecutive && ctx.historyValid(history) ? 1u : 0u;
         ctx.bind(pipeline_);
         ctx.pushConstants(push);
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
         ctx.descriptors()
             .uniformBuffer(shared::kTaaBindingFrame, in.constantsBuffer.handle())
             .sampledImage(shared::kTaaBindingCurrent, ctx.image(kCompositeUnresolved).view(), pointSampler_.handle(), ro)
-            .sampledImage(shared::kTaaBindingHistory, ctx.image(kTaaHistory).view(), linearSampler_.handle(), ro)
+            .sampledImage(shared::kTaaBindingHistory, ctx.image(history).view(), linearSampler_.handle(), ro)
             .sampledImage(shared::kTaaBindingMotion, ctx.image("gbuffer.motion").view(), pointSampler_.handle(), ro)
             .storageImage(shared::kTaaBindingOutput, ctx.image(kCompositeHdr).view());
         ctx.dispatch(in.settings.width, in.settings.height);
       });
-  addCopyPass(graph, "taa.history.store", {{kCompositeHdr, kTaaHistory}});
+  addCopyPass(graph, "taa.history.store", {{kCompositeHdr, history}});
 }
 
 }  // namespace tl::lighting

@@ -8,10 +8,15 @@
 #include "graph/graph.h"
 #include "lighting/common/frame_inputs.h"
 
+#include <map>
+#include <string>
+
 namespace tl::lighting {
 
 inline constexpr const char* kCompositeUnresolved = "composite.unresolved";  // RGBA16F, this frame's jittered composite
-inline constexpr const char* kTaaHistory = "taa.history";                    // RGBA16F, last frame's resolved image
+// RGBA16F, the path's last resolved image: one per path (taa.history.<path>), so the Compare
+// panel's sides, rendered in turn, never blend each other's images.
+inline std::string taaHistoryName(const std::string& path) { return "taa.history." + path; }
 
 // Whether this frame is anti-aliased temporally: the setting, for paths that rasterize a
 // G-buffer (the reference path tracer jitters its own rays).
@@ -25,6 +30,9 @@ class TaaPass {
   gpu::Pipeline pipeline_;
   gpu::Sampler pointSampler_;
   gpu::Sampler linearSampler_;
+  // The frame number (FrameConstants::frameIndex, per path) each path's TAA last ran in: a
+  // history is used only by the very next frame, not after TAA was off or another path ran.
+  std::map<std::string, uint32_t> lastFrame_;
 };
 
 }  // namespace tl::lighting
