@@ -31,6 +31,7 @@
 //   tlShProjectRadiance(dir, rgb)      one sample (dir unit length) -> SH
 //   tlShEvaluate(sh, dir)              RGB radiance estimate towards dir (>= 0)
 //   tlShResolveIrradiance(sh, n)       RGB irradiance on a surface with unit normal n (>= 0)
+//   tlShResolveLuma(sh, n)             its luma
 //   tlShDominantDirection(sh, fallback)  normalize(L1), or fallback when L1 is ~0
 //   tlShDirectionality(sh)             |L1| / (sqrt(3) L0) in [0,1]: 0 uniform, 1 single direction
 //   tlShL1(sh), tlShLumaToRgb(sh, y)   helpers: the L1 vector; a luma value -> RGB at sh's chroma
@@ -83,10 +84,11 @@ TL_FN vec3 tlShEvaluate(ShLumaCoCg sh, vec3 direction) {
   return tlShLumaToRgb(sh, y);
 }
 
-TL_FN vec3 tlShResolveIrradiance(ShLumaCoCg sh, vec3 normal) {
-  float y = max(kShIrradianceL0 * sh.shY.x + kShIrradianceL1 * dot(tlShL1(sh), normal), 0.0f);
-  return tlShLumaToRgb(sh, y);
+// The luma of the irradiance on a surface with unit normal n (>= 0).
+TL_FN float tlShResolveLuma(ShLumaCoCg sh, vec3 normal) {
+  return max(kShIrradianceL0 * sh.shY.x + kShIrradianceL1 * dot(tlShL1(sh), normal), 0.0f);
 }
+TL_FN vec3 tlShResolveIrradiance(ShLumaCoCg sh, vec3 normal) { return tlShLumaToRgb(sh, tlShResolveLuma(sh, normal)); }
 
 TL_FN vec3 tlShDominantDirection(ShLumaCoCg sh, vec3 fallback) {
   vec3 l1 = tlShL1(sh);

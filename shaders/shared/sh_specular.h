@@ -41,7 +41,7 @@ TL_FN vec3 tlShSpecular(ShLumaCoCg sh, SurfaceParams s, vec3 n, vec3 v) {
   if (!(sh.shY.x > 1e-20f)) return vec3(0.0f);
   float a = tlShExcessDirectionality(sh);
   float nv = max(dot(n, v), 1e-4f);
-  float irradiance = max(kShIrradianceL0 * sh.shY.x + kShIrradianceL1 * dot(tlShL1(sh), n), 0.0f);
+  float irradiance = tlShResolveLuma(sh, n);
   // Uniform part: its radiance times the environment BRDF.
   vec3 specular = tlEnvironmentSpecular(s, nv) * ((1.0f - a) * irradiance * kInvPi);
   // Directional part: GGX (specular lobe only) for a light from d giving a E(n) on the surface.

@@ -81,16 +81,21 @@ TEST_F(RtTest, HalfRaysPerPixelAgreeWithFullRateOnTheAtrium) {
   EXPECT_NEAR(quarter / full, 1.0, 0.05) << "half resolution (0.25 rays per pixel)";
 }
 
-TEST_F(RtTest, HalfResolutionStillConvergesOnThePlane) {
-  auto& s = session();
-  s.settings().rtHalfResolution = true;
-  expectPlaneConverges(12);
-  // Every pixel got samples: after 12 frames (three of each 2x2 position) all have history.
+// Half resolution on the plane converges, and every pixel got samples: after 12 frames
+// (three of each 2x2 position) all have history.
+void expectHalfResolutionAccumulatesEverywhere(session::Session& s) {
   auto c = s.buffer(kCoCgAo).texels();
   auto depth = s.buffer("gbuffer.depth").texels();
   size_t unaccumulated = 0;
   for (size_t i = 0; i < depth.size(); ++i) unaccumulated += depth[i] > 0.0f && c[4 * i + 3] < 11.0f;
   EXPECT_EQ(unaccumulated, 0u);
+}
+
+TEST_F(RtTest, HalfResolutionStillConvergesOnThePlane) {
+  auto& s = session();
+  s.settings().rtHalfResolution = true;
+  expectPlaneConverges(12);
+  expectHalfResolutionAccumulatesEverywhere(s);
 }
 
 // The same under TAA's jitter: the history texel's centre moves by up to a pixel on a
@@ -101,12 +106,7 @@ TEST_F(RtTest, HalfResolutionKeepsItsHistoryUnderTaaJitter) {
   s.settings().rtHalfResolution = true;
   s.settings().taa = true;
   expectPlaneConverges(12);
-  // Every pixel got samples: after 12 frames (three of each 2x2 position) all have history.
-  auto c = s.buffer(kCoCgAo).texels();
-  auto depth = s.buffer("gbuffer.depth").texels();
-  size_t unaccumulated = 0;
-  for (size_t i = 0; i < depth.size(); ++i) unaccumulated += depth[i] > 0.0f && c[4 * i + 3] < 11.0f;
-  EXPECT_EQ(unaccumulated, 0u);
+  expectHalfResolutionAccumulatesEverywhere(s);
 }
 
 // A camera cut rejects all history: after many still frames, the first frame from a view
@@ -362,12 +362,9 @@ TEST_F(RtTest, TopLevelCullingKeepsFewInstancesAndChangesNothing) {
   EXPECT_LE(diff / sum, 1e-3) << "culling must not change what rays hit";
 }
 
-// Mean luma of the accumulated irradiance (SH L0) over surface pixels, after `frames` frames
-// from a fresh history with the current settings.
-double meanAccumulatedLuma(session::Session& s, uint32_t w, uint32_t h, uint32_t frames) {
-  s.resetHistory();
-  s.setPath("rt");
-  s.setSize(w, h);
+// Mean luma of the accumulated irradiance (SH L0) over surface pixels after `frames` more
+// frames, history kept; every value finite.
+double meanSurfaceLuma(session::Session& s, uint32_t frames) {
   s.requestBuffer(kShY);
   s.requestBuffer("gbuffer.depth");
   s.renderFrames(frames);
@@ -381,6 +378,14 @@ double meanAccumulatedLuma(session::Session& s, uint32_t w, uint32_t h, uint32_t
   return sum / double(std::max<size_t>(n, 1));
 }
 
+// The same from a fresh history, on the RT path at w x h.
+double meanAccumulatedLuma(session::Session& s, uint32_t w, uint32_t h, uint32_t frames) {
+  s.resetHistory();
+  s.setPath("rt");
+  s.setSize(w, h);
+  return meanSurfaceLuma(s, frames);
+}
+
 // A light switched off does not ghost (RE ENGINE's temporal luminance rejection): after the
 // atrium's sky and sun go dark without a history reset (default settings: hits that reuse
 // last frame's image are lit afresh in that frame), the accumulated irradiance is gone at
@@ -390,26 +395,18 @@ TEST_F(RtTest, LightSwitchedOffDoesNotGhost) {
   auto& s = session();
   s.loadScene(contentFile("atrium.gltf"));
   const session::Lighting daylight = s.lighting();
+  session::Lighting dark = daylight;
+  dark.skyRadiance = glm::vec3(0.0f);
+  dark.sunIrradiance = glm::vec3(0.0f);
   auto afterSwitchOff = [&](bool rejection) {
     s.settings() = RenderSettings{};
     s.settings().rtLumaRejection = rejection;
     s.setLighting(daylight);
     const double lit = meanAccumulatedLuma(s, 64, 36, 24);
-    session::Lighting dark = daylight;
-    dark.skyRadiance = glm::vec3(0.0f);
-    dark.sunIrradiance = glm::vec3(0.0f);
     s.setLighting(dark);
-    s.requestBuffer(kShY);
-    s.requestBuffer("gbuffer.depth");
-    s.renderFrames(6);  // no reset: the history sees the change
-    auto shY = s.buffer(kShY).texels();
-    auto depth = s.buffer("gbuffer.depth").texels();
-    double sum = 0.0;
-    size_t n = 0;
-    for (size_t i = 0; i < depth.size(); ++i)
-      if (depth[i] > 0.0f) sum += shY[4 * i], ++n;
+    const double left = meanSurfaceLuma(s, 6);  // no reset: the history sees the change
     s.setLighting(daylight);
-    return sum / double(std::max<size_t>(n, 1)) / lit;
+    return left / lit;
   };
   const double kept = afterSwitchOff(true), keptWithout = afterSwitchOff(false);
   RecordProperty("fraction_left_with_rejection", std::to_string(kept));
@@ -418,25 +415,13 @@ TEST_F(RtTest, LightSwitchedOffDoesNotGhost) {
   EXPECT_LT(kept, 0.1);
   EXPECT_GT(keptWithout, 0.5) << "without rejection the 1/n average holds on (the test's premise)";
   // And switched on over a dark history: the new light is in within a few frames.
-  session::Lighting dark = daylight;
-  dark.skyRadiance = glm::vec3(0.0f);
-  dark.sunIrradiance = glm::vec3(0.0f);
   s.settings() = RenderSettings{};
   s.setLighting(daylight);
   const double lit = meanAccumulatedLuma(s, 64, 36, 24);
   s.setLighting(dark);
   s.renderFrames(24);
   s.setLighting(daylight);
-  s.requestBuffer(kShY);
-  s.requestBuffer("gbuffer.depth");
-  s.renderFrames(6);
-  auto shY = s.buffer(kShY).texels();
-  auto depth = s.buffer("gbuffer.depth").texels();
-  double sum = 0.0;
-  size_t n = 0;
-  for (size_t i = 0; i < depth.size(); ++i)
-    if (depth[i] > 0.0f) sum += shY[4 * i], ++n;
-  const double reached = sum / double(std::max<size_t>(n, 1)) / lit;
+  const double reached = meanSurfaceLuma(s, 6) / lit;
   std::printf("6 frames after the light came back: %.3f of it there\n", reached);
   RecordProperty("fraction_after_switch_on", std::to_string(reached));
   EXPECT_GT(reached, 0.75) << "the plain 1/n average would have about 6/30 of it";

@@ -320,15 +320,8 @@ class LegacyPath final : public LightingPath {
             // Each region's footprint at this mip; footprints of two regions may share texels
             // at coarse mips, which they then write with the same value.
             for (uint32_t level = 0; level < work->regions.size(); ++level)
-              for (const VoxelRegion& region : work->regions[level]) {
-                const VoxelRegion f = mipFootprint(region, m + 1);
-                vpush.level = level;
-                vpush.regionMin = glm::ivec4(f.min, 0);
-                vpush.regionMax = glm::ivec4(f.max, 0);
-                ctx.pushConstants(vpush);
-                const glm::ivec3 size = f.max - f.min;
-                ctx.dispatch(6 * uint32_t(size.x), uint32_t(size.y), uint32_t(size.z), 4, 4, 4);
-              }
+              for (const VoxelRegion& region : work->regions[level])
+                dispatchOverRegion(ctx, vpush, level, mipFootprint(region, m + 1));
           }
         });
   }
@@ -469,6 +462,17 @@ class LegacyPath final : public LightingPath {
   // Empties a partial update's regions with a compute dispatch inside the raster pass (a
   // transfer clear empties whole images): it waits for everything before it, and the
   // fragment writes wait for it.
+  // One compute dispatch over a box of one level's voxels, all six face blocks (4^3 groups):
+  // the region clear and the region's mips.
+  static void dispatchOverRegion(graph::PassContext& ctx, LegacyVoxelPush push, uint32_t level, const VoxelRegion& region) {
+    push.level = level;
+    push.regionMin = glm::ivec4(region.min, 0);
+    push.regionMax = glm::ivec4(region.max, 0);
+    ctx.pushConstants(push);
+    const glm::ivec3 size = region.max - region.min;
+    ctx.dispatch(6 * uint32_t(size.x), uint32_t(size.y), uint32_t(size.z), 4, 4, 4);
+  }
+
   void clearRegions(graph::PassContext& ctx, const gpu::Image& radiance, LegacyVoxelPush push, const VoxelWork& work) {
     gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
@@ -476,14 +480,7 @@ class LegacyPath final : public LightingPath {
     ctx.descriptors().storageImage(shared::kLegacyBindingRadiance, radiance.view());
     ctx.flushDescriptors();
     for (uint32_t level = 0; level < work.regions.size(); ++level)
-      for (const VoxelRegion& region : work.regions[level]) {
-        push.level = level;
-        push.regionMin = glm::ivec4(region.min, 0);
-        push.regionMax = glm::ivec4(region.max, 0);
-        ctx.pushConstants(push);
-        const glm::ivec3 size = region.max - region.min;
-        ctx.dispatch(6 * uint32_t(size.x), uint32_t(size.y), uint32_t(size.z), 4, 4, 4);
-      }
+      for (const VoxelRegion& region : work.regions[level]) dispatchOverRegion(ctx, push, level, region);
     gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
