@@ -84,12 +84,33 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
     session.requestBuffer(tl::lighting::kPretraceHits);
     session.requestBuffer("gbuffer.depth");
   }
-  session.renderFrames(std::max(1u, o.frames));
+  std::vector<double> frameMs;
+  std::vector<std::pair<std::string, std::vector<double>>> passMs;
+  auto collect = [&] {
+    frameMs.insert(frameMs.end(), session.frameGpuMs().begin(), session.frameGpuMs().end());
+    for (const auto& [pass, ms] : session.passGpuMs()) {
+      auto it = std::find_if(passMs.begin(), passMs.end(), [&](const auto& p) { return p.first == pass; });
+      if (it == passMs.end()) it = passMs.insert(passMs.end(), {pass, {}});
+      it->second.insert(it->second.end(), ms.begin(), ms.end());
+    }
+  };
+  if (o.cutEveryFrame) {
+    // The history is forgotten before each frame, as on a camera cut: what history rejection
+    // costs at worst (the disocclusion rays trace every cell).
+    for (uint32_t i = 0; i < std::max(1u, o.frames); ++i) {
+      session.resetHistory();
+      session.renderFrames(1);
+      collect();
+    }
+  } else {
+    session.renderFrames(std::max(1u, o.frames));
+    collect();
+  }
   const auto& d = session.device();
   nlohmann::json figures = nlohmann::json::object();
   for (const auto& [name, value] : session.pathFigures()) figures[name] = value;
   nlohmann::json passes = nlohmann::json::array();
-  for (const auto& [pass, ms] : session.passGpuMs()) {
+  for (const auto& [pass, ms] : passMs) {
     auto s = stats(ms);
     s["pass"] = pass;
     passes.push_back(s);
@@ -100,12 +121,13 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
           {"height", session.settings().height},
           {"frames", o.frames},
           {"warmupFrames", o.warmup},
+          {"cutEveryFrame", o.cutEveryFrame},
           {"firstFrameMs", firstFrame.empty() ? 0.0 : firstFrame.front()},
           {"device", d.name()},
           {"driver", d.driver()},
           {"vulkan", fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(d.apiVersion()), VK_API_VERSION_MINOR(d.apiVersion()),
                                  VK_API_VERSION_PATCH(d.apiVersion()))},
-          {"frame", stats(session.frameGpuMs())},
+          {"frame", stats(frameMs)},
           {"passes", passes},
           {"rays", o.rays ? rayFigures(session) : nlohmann::json()},
           {"figures", figures}};

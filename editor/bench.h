@@ -13,6 +13,7 @@ struct BenchOptions {
   uint32_t frames = 20;
   uint32_t warmup = 2;
   bool rays = false;  // rt path: raw ray throughput on the scene's TLAS against the path's traced rays/s
+  bool cutEveryFrame = false;  // every measured frame starts without history: a camera cut's cost
 };
 
 nlohmann::json runBench(tl::session::Session& session, const BenchOptions& options);

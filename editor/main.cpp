@@ -249,6 +249,8 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--warmup", bench.warmup, "frames rendered first and left out")->capture_default_str();
   benchCmd->add_flag("--rays", bench.rays,
                      "rt path: the device's raw ray rate on the scene's TLAS (trivial kernel) against rt.trace's");
+  benchCmd->add_flag("--cut-every-frame", bench.cutEveryFrame,
+                     "forget the history before every measured frame, as on a camera cut (what rejection costs at worst)");
   benchCmd->add_option("--json", benchJson, "write the figures as JSON to FILE (- for stdout)");
   std::string benchSettings;
   benchCmd->add_option("--set", benchSettings,

@@ -263,10 +263,18 @@ void pathParameters(EditorApp& app) {
     ImGui::Checkbox("Luminance rejection", &s.rtLumaRejection);
     tooltip("When the light changes (sun, sky, albedo), clip each pixel's history to this frame's samples around it, "
             "so a light switched off does not ghost (RE ENGINE)");
+    int disocclusion = int(s.rtDisocclusionRays);
+    if (ImGui::SliderInt("Disocclusion rays", &disocclusion, 0, 64, disocclusion > 0 ? "%d per 8x8 cell" : "off"))
+      s.rtDisocclusionRays = uint32_t(disocclusion);  // only new disocclusions see it: no history reset
+    tooltip("Where the history was rejected (disocclusion, camera cut), each 8x8 cell holding such a pixel traces "
+            "this many extra rays, and the fresh pixels on the same plane start from their mean (RE ENGINE)");
     changed |= ImGui::SliderFloat("RT mesh triangles", &s.rtSimplifyRatio, 0.05f, 1.0f, "%.2f x");
     tooltip("Simplified BLAS meshes (Metro: about 4x fewer triangles); 1 = the full mesh");
     changed |= ImGui::Checkbox("Multi-bounce from the screen##rt", &s.rtScreenRadiance);
     tooltip("Hits seen last frame take its shaded radiance, so light bounces more than once");
+    changed |= ImGui::Checkbox("Sky at hits##rt", &s.rtHitSky);
+    tooltip("Hits lit afresh (not on screen last frame) see the sky through one more ray, as they see the sun "
+            "through a shadow ray; without it the light they bounce is sun and emission only");
     if (session.animated()) {
       // Refits change only how fast the rays catch up with moving meshes: no history reset.
       int top = int(s.rtRefitTop), random = int(s.rtRefitRandom);

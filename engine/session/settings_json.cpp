@@ -49,6 +49,8 @@ const std::map<std::string, Setter>& setters() {
       {"rtMaxAccumFrames", field(&S::rtMaxAccumFrames)},
       {"rtFireflyClamp", field(&S::rtFireflyClamp)},
       {"rtLumaRejection", field(&S::rtLumaRejection)},
+      {"rtDisocclusionRays", field(&S::rtDisocclusionRays)},
+      {"rtHitSky", field(&S::rtHitSky)},
       {"rtCullAngle", field(&S::rtCullAngle)},
       {"rtCullMargin", field(&S::rtCullMargin)},
       {"rtFarLegacy", field(&S::rtFarLegacy)},

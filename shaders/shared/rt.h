@@ -152,6 +152,24 @@ TL_FN float tlRtFireflyCeiling(float neighbourRms, float historyRms, float k) {
 // missed the change or biased the Cornell box by 5-20%; the change itself is known exactly.
 TL_CONST float kRtLightChangeFrames = 1.0f;
 
+// Disocclusion rays (RE ENGINE 2023): where this frame rejected the history, one sample is all
+// the accumulation has. Each kRtDisocclusionCell x kRtDisocclusionCell cell of the screen with
+// such a pixel traces RtPush::disocclusionRays rays (Hammersley points, rotated per cell and
+// frame) from one of them, the one nearest the cell's centre, and keeps their mean SH; cells
+// without one trace nothing, so a still camera pays almost nothing. Each fresh pixel then takes
+// the cells around it that lie on its own plane, as tlRtDisocclusionFrames(rays) frames of
+// history: the mean of many rays from a few pixels away, more biased than its own ray (a
+// different point, the pixel's normal only through the SH) and far less noisy, which the
+// accumulation then replaces as real frames come in.
+TL_CONST uint kRtDisocclusionCell = 8u;          // pixels per side of a cell
+TL_CONST float kRtDisocclusionFreshFrames = 1.0f; // a pixel with at most this many frames has no history
+TL_FN float tlRtDisocclusionFrames(uint rays) { return 0.25f * min(float(rays), 32.0f); }
+// The Hammersley point i of n, Cranley-Patterson rotated: a disocclusion ray's two uniforms.
+TL_FN vec2 tlRtDisocclusionUniforms(uint i, uint n, vec2 rotation) {
+  vec2 u = vec2((float(i) + 0.5f) / float(n), tlRadicalInverse2(i)) + rotation;
+  return u - floor(u);
+}
+
 // Per-instance data the real rays read at a hit (gl_InstanceCustomIndexEXT), std430.
 struct RtInstance {
   vec4 albedo;         // rgb: resolved hit albedo (T7: override > baked > the texture-average fallback)
@@ -178,7 +196,11 @@ struct RtPush {
   uint rawPendingOnly;   // benchmark probe: trace only the rays the pre-trace left pending
   float fireflyClamp;    // firefly suppression: ceiling in multiples of the neighbourhood / history luma (0: off)
   uint lightChanged;     // 1: the light changed since last frame: rectify the history (luminance rejection)
+  uint disocclusionRays; // rays per low-resolution cell where history was rejected (0: none)
+  uint hitSky;           // 1: hits lit afresh see the sky through one more ray
   uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 // The two-pass spatial denoiser on the SH (Metro's "little monster"): its own push constants.
@@ -219,11 +241,14 @@ TL_CONST uint kRtBindingDenoiseCoCgAo = 25;
 TL_CONST uint kRtBindingInstanceId = 26;     // gbuffer.instanceId (instance + 1, 0 = none)
 TL_CONST uint kRtBindingHistMoment = 27;       // r32f: the history's mean squared sample luma (firefly scale)
 TL_CONST uint kRtBindingOutMoment = 28;
+TL_CONST uint kRtBindingCellShY = 29;          // disocclusion rays, one texel per cell: SH luma
+TL_CONST uint kRtBindingCellCoCgAo = 30;       // chroma (xy), AO (z)
+TL_CONST uint kRtBindingCellPosition = 31;     // rgba32f: world position the rays left from (xyz), 1 if traced (w)
 TL_END
 
 #ifdef __cplusplus
 static_assert(sizeof(tl::shared::RtInstance) == 64);
-static_assert(sizeof(tl::shared::RtPush) == 64);
+static_assert(sizeof(tl::shared::RtPush) == 80);
 static_assert(sizeof(tl::shared::RtDenoisePush) == 16);
 #endif
 #endif

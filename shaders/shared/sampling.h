@@ -19,6 +19,7 @@
 //                                    GPU Rendering"): PCG-RXS-M-XS and pcg3d
 //   tlUintToUnitFloat(x)             top 24 bits -> [0,1), exactly representable, never 1.0
 //   tlRandom2(seed)                  two uniforms from a (pixel.x, pixel.y, frame*K+sample) seed
+//   tlRadicalInverse2(i)             van der Corput in base 2: i's bits mirrored behind the point
 #ifndef TL_SHARED_SAMPLING_H
 #define TL_SHARED_SAMPLING_H
 #include "common.h"
@@ -111,6 +112,16 @@ TL_FN uvec3 tlPcg3d(uvec3 v) {
 }
 
 TL_FN float tlUintToUnitFloat(uint x) { return float(x >> 8u) * (1.0f / 16777216.0f); }
+
+TL_FN float tlRadicalInverse2(uint i) {
+  // Reverse the 32 bits by swapping ever larger halves; the top 24 make an exact float.
+  i = (i << 16u) | (i >> 16u);
+  i = ((i & 0x00FF00FFu) << 8u) | ((i & 0xFF00FF00u) >> 8u);
+  i = ((i & 0x0F0F0F0Fu) << 4u) | ((i & 0xF0F0F0F0u) >> 4u);
+  i = ((i & 0x33333333u) << 2u) | ((i & 0xCCCCCCCCu) >> 2u);
+  i = ((i & 0x55555555u) << 1u) | ((i & 0xAAAAAAAAu) >> 1u);
+  return tlUintToUnitFloat(i);
+}
 
 TL_FN vec2 tlRandom2(uvec3 seed) {
   uvec3 h = tlPcg3d(seed);

@@ -46,12 +46,14 @@ struct RenderSettings {
   bool rtDenoise = true;            // two-pass spatial denoiser on the SH after accumulation
   float rtDenoiseRadius = 0.0f;     // pass 1 base radius (m); pass 2 uses half (Metro: 6 m and 3 m)
   bool rtScreenRadiance = true;     // hits seen on screen last frame reuse its shaded radiance (multi-bounce)
+  bool rtHitSky = true;             // hits lit afresh (off screen) also see the sky, through one more ray
   uint32_t rtPretraceSteps = 16;
   float rtPretracePixels = 0.0f;    // screen length of a pre-traced ray; 0: scaled to the image (pretraceAutoPixels)
   float rtThickness = 0.02f;        // depth-buffer surface thickness, fraction of view distance
   uint32_t rtMaxAccumFrames = 32;   // temporal accumulation window
   float rtFireflyClamp = 0.0f;      // a sample's luma above this multiple of its neighbourhood's / history's RMS is clipped (0: off)
   bool rtLumaRejection = true;      // when the light changes, clip the history to this frame's samples (no ghosting)
+  uint32_t rtDisocclusionRays = 0;  // rays per 8x8 cell holding a pixel whose history was rejected (RE ENGINE; 0: off)
   float rtCullAngle = 0.002f;       // contribution culling: instances subtending less (radians) are dropped
   float rtCullMargin = 0.0f;        // expanded frustum: margin (m) around the view frustum
   // Beyond the blend distance, the legacy path's GI (Metro) rather than the unoccluded sky;

@@ -69,6 +69,8 @@ class RtPath final : public LightingPath {
     const uint64_t light = lightingKey(in);
     push.lightChanged = s.rtLumaRejection && light != lightingKey_ ? 1u : 0u;
     lightingKey_ = light;
+    push.disocclusionRays = std::min(s.rtDisocclusionRays, kMaxDisocclusionRays);
+    push.hitSky = s.rtHitSky ? 1u : 0u;
 
     const uint32_t w = s.width, h = s.height;
     auto image = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, w, h, what); };
@@ -160,12 +162,9 @@ class RtPath final : public LightingPath {
         "rt.lighting", graph::PassKind::RayTracing,
         [&](graph::PassBuilder& b) {
           readCommon(b);
-          b.read(kRtTlas, Usage::StorageRead);
           b.read(kHits, Usage::StorageRead);
           b.read(kHitSurface, Usage::StorageRead);
-          b.read(kHistDepth, Usage::Sampled);
-          if (screenRadiance) b.read(kHistRadiance, Usage::Sampled);
-          for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive"}) b.read(n, Usage::Sampled);
+          readHitLighting(b, screenRadiance);
           b.create(kRawShY,
                    image(VK_FORMAT_R16G16B16A16_SFLOAT, "one-ray irradiance: L1 SH of luma")
                        .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kRawCoCg)),
@@ -175,26 +174,15 @@ class RtPath final : public LightingPath {
                    Usage::StorageWrite);
         },
         [this, &in, push, screenRadiance](graph::PassContext& ctx) mutable {
-          // Last frame's image shows the old light: when the light changed, hits are lit afresh
-          // (else the luminance rejection would clip the history to samples of the old light).
-          push.screenRadiance = screenRadiance && push.lightChanged == 0u && ctx.historyValid(kHistRadiance) &&
-                                ctx.historyValid(kHistDepth);
-          // Without history the binding still needs an image: the depth history stands in, unread.
-          const gpu::Image& radiance = ctx.image(screenRadiance ? kHistRadiance : kHistDepth);
+          push.screenRadiance = useScreenRadiance(ctx, push, screenRadiance);
           ctx.bind(lighting_);
           ctx.pushConstants(push);
-          writeCommon(ctx, in)
-              .accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
+          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance)
               .storageImage(shared::kRtBindingHitsIn, ctx.image(kHits).view())
               .storageImage(shared::kRtBindingSurfaceIn, ctx.image(kHitSurface).view())
               .storageImage(shared::kRtBindingShY, ctx.image(kRawShY).view())
               .storageImage(shared::kRtBindingCoCg, ctx.image(kRawCoCg).view())
-              .storageImage(shared::kRtBindingAo, ctx.image(kRawAo).view())
-              .sampledImage(shared::kRtBindingHistRadiance, radiance.view(), point_.handle(), kReadOnly)
-              .sampledImage(shared::kRtBindingHistDepth, ctx.image(kHistDepth).view(), point_.handle(), kReadOnly)
-              .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), point_.handle(), kReadOnly)
-              .sampledImage(shared::kRtBindingMaterial, ctx.image("gbuffer.material").view(), point_.handle(), kReadOnly)
-              .sampledImage(shared::kRtBindingEmissive, ctx.image("gbuffer.emissive").view(), point_.handle(), kReadOnly);
+              .storageImage(shared::kRtBindingAo, ctx.image(kRawAo).view());
           traceRays(ctx, lighting_, in);
         });
 
@@ -239,22 +227,32 @@ class RtPath final : public LightingPath {
           ctx.dispatch(in.settings.width, in.settings.height);
         });
 
+    // What the history, the AO filter and the denoiser take: the accumulation, with the
+    // disocclusion rays filled into its fresh pixels when they are on.
+    const char* accShY = kShY;
+    const char* accCoCgAo = kCoCgAo;
+    if (push.disocclusionRays > 0) {
+      addDisocclusionPasses(graph, in, push, screenRadiance);
+      accShY = kFilledShY;
+      accCoCgAo = kFilledCoCgAo;
+    }
+
     addCopyPass(graph, "rt.history",
-                {{kShY, kHistShY}, {kCoCgAo, kHistCoCgAo}, {kViewDepth, kHistDepth}, {kLumaMoment, kHistLumaMoment}});
+                {{accShY, kHistShY}, {accCoCgAo, kHistCoCgAo}, {kViewDepth, kHistDepth}, {kLumaMoment, kHistLumaMoment}});
 
     graph.addPass(
         "rt.ao.filter", graph::PassKind::Compute,
         [&](graph::PassBuilder& b) {
           readCommon(b);
-          b.read(kCoCgAo, Usage::Sampled);
+          b.read(accCoCgAo, Usage::Sampled);
           b.read(kViewDepth, Usage::Sampled);
           b.create(kAo, image(VK_FORMAT_R16_SFLOAT, "filtered ambient occlusion"), Usage::StorageWrite);
         },
-        [this, &in, push](graph::PassContext& ctx) {
+        [this, &in, push, accCoCgAo](graph::PassContext& ctx) {
           ctx.bind(aoFilter_);
           ctx.pushConstants(push);
           writeCommon(ctx, in)
-              .sampledImage(shared::kRtBindingCoCg, ctx.image(kCoCgAo).view(), point_.handle(), kReadOnly)
+              .sampledImage(shared::kRtBindingCoCg, ctx.image(accCoCgAo).view(), point_.handle(), kReadOnly)
               .sampledImage(shared::kRtBindingHistDepth, ctx.image(kViewDepth).view(), point_.handle(), kReadOnly)
               .storageImage(shared::kRtBindingAo, ctx.image(kAo).view());
           ctx.dispatch(in.settings.width, in.settings.height);
@@ -292,7 +290,7 @@ class RtPath final : public LightingPath {
 
     if (screenRadiance) addCopyPass(graph, "rt.radiance.store", {{kCompositeHdr, kHistRadiance}});
 
-    std::string giShY = kShY, giCoCg = kCoCgAo;
+    std::string giShY = accShY, giCoCg = accCoCgAo;
     if (s.rtDenoise) {
       // Metro's radii are 6 m and 3 m in its world; here a sixth of the scene, at most 6 m.
       const float base = s.rtDenoiseRadius > 0.0f ? s.rtDenoiseRadius : std::clamp(scale / 6.0f, 0.25f, 6.0f);
@@ -334,7 +332,7 @@ class RtPath final : public LightingPath {
               ctx.dispatch(in.settings.width, in.settings.height);
             });
       };
-      denoise("rt.denoise1", kShY, kCoCgAo, kDenoise1ShY, kDenoise1CoCgAo, base, 0);
+      denoise("rt.denoise1", accShY, accCoCgAo, kDenoise1ShY, kDenoise1CoCgAo, base, 0);
       denoise("rt.denoise2", kDenoise1ShY, kDenoise1CoCgAo, kDenoisedShY, kDenoisedCoCgAo, 0.5f * base, 1);
       giShY = kDenoisedShY;
       giCoCg = kDenoisedCoCgAo;
@@ -378,6 +376,103 @@ class RtPath final : public LightingPath {
   }
 
  private:
+  static constexpr uint32_t kMaxDisocclusionRays = 64;  // RE ENGINE traces 16-64 per low-resolution pixel
+
+  // Disocclusion rays (shared/rt.h): cells with a fresh pixel trace many rays, then the fresh
+  // pixels take them into the accumulation.
+  void addDisocclusionPasses(graph::RenderGraph& graph, FrameInputs& in, const RtPush& push, bool screenRadiance) {
+    const uint32_t cw = cellsAcross(in.settings.width), ch = cellsAcross(in.settings.height);
+    auto cells = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, cw, ch, what); };
+    graph.addPass(
+        "rt.disocclusion", graph::PassKind::RayTracing,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          b.read(kCoCgAo, Usage::Sampled);
+          readHitLighting(b, screenRadiance);
+          b.create(kCellShY, cells(VK_FORMAT_R16G16B16A16_SFLOAT, "disocclusion rays per 8x8 cell: mean SH luma"),
+                   Usage::StorageWrite);
+          b.create(kCellCoCgAo, cells(VK_FORMAT_R16G16B16A16_SFLOAT, "disocclusion rays: mean chroma (xy), AO (z)"),
+                   Usage::StorageWrite);
+          b.create(kCellOrigin, cells(VK_FORMAT_R32G32B32A32_SFLOAT, "disocclusion rays: world origin (xyz), 1 if traced (w)"),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push, screenRadiance, cw, ch](graph::PassContext& ctx) {
+          RtPush rays = push;
+          rays.screenRadiance = useScreenRadiance(ctx, push, screenRadiance);
+          ctx.bind(disocclusion_);
+          ctx.pushConstants(rays);
+          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance)
+              .sampledImage(shared::kRtBindingCoCg, ctx.image(kCoCgAo).view(), point_.handle(), kReadOnly)
+              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
+              .storageImage(shared::kRtBindingCellShY, ctx.image(kCellShY).view())
+              .storageImage(shared::kRtBindingCellCoCgAo, ctx.image(kCellCoCgAo).view())
+              .storageImage(shared::kRtBindingCellPosition, ctx.image(kCellOrigin).view());
+          ctx.flushDescriptors();
+          const gpu::Pipeline& p = disocclusion_;
+          ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion, cw, ch, 1);
+        });
+    const uint32_t w = in.settings.width, h = in.settings.height;
+    graph.addPass(
+        "rt.disocclusion.blend", graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          for (const char* n : {kShY, kCoCgAo, kCellShY, kCellCoCgAo, kCellOrigin}) b.read(n, Usage::Sampled);
+          b.create(kFilledShY,
+                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
+                                                "accumulated irradiance, fresh pixels filled from the disocclusion rays")
+                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kFilledCoCgAo)),
+                   Usage::StorageWrite);
+          b.create(kFilledCoCgAo,
+                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
+                                                "accumulated chroma (xy), AO (z), frames (w), fresh pixels filled"),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push](graph::PassContext& ctx) {
+          VkSampler pt = point_.handle();
+          ctx.bind(disocclusionBlend_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in)
+              .sampledImage(shared::kRtBindingShY, ctx.image(kShY).view(), pt, kReadOnly)
+              .sampledImage(shared::kRtBindingCoCg, ctx.image(kCoCgAo).view(), pt, kReadOnly)
+              .sampledImage(shared::kRtBindingCellShY, ctx.image(kCellShY).view(), pt, kReadOnly)
+              .sampledImage(shared::kRtBindingCellCoCgAo, ctx.image(kCellCoCgAo).view(), pt, kReadOnly)
+              .sampledImage(shared::kRtBindingCellPosition, ctx.image(kCellOrigin).view(), pt, kReadOnly)
+              .storageImage(shared::kRtBindingOutShY, ctx.image(kFilledShY).view())
+              .storageImage(shared::kRtBindingOutCoCgAo, ctx.image(kFilledCoCgAo).view());
+          ctx.dispatch(in.settings.width, in.settings.height);
+        });
+  }
+  static uint32_t cellsAcross(uint32_t pixels) {
+    return (pixels + shared::kRtDisocclusionCell - 1) / shared::kRtDisocclusionCell;
+  }
+
+  // What shading a hit reads (rt/hit_lighting.glsl): the top level, last frame's image and
+  // depth for hits seen on screen, and the G-buffer's material there.
+  static void readHitLighting(graph::PassBuilder& b, bool screenRadiance) {
+    b.read(kRtTlas, Usage::StorageRead);
+    b.read(kHistDepth, Usage::Sampled);
+    if (screenRadiance) b.read(kHistRadiance, Usage::Sampled);
+    for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive"}) b.read(n, Usage::Sampled);
+  }
+  gpu::DescriptorWriter& writeHitLighting(gpu::DescriptorWriter& w, graph::PassContext& ctx, bool screenRadiance) {
+    // Without history the binding still needs an image: the depth history stands in, unread.
+    const gpu::Image& radiance = ctx.image(screenRadiance ? kHistRadiance : kHistDepth);
+    VkSampler pt = point_.handle();
+    return w.accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
+        .sampledImage(shared::kRtBindingHistRadiance, radiance.view(), pt, kReadOnly)
+        .sampledImage(shared::kRtBindingHistDepth, ctx.image(kHistDepth).view(), pt, kReadOnly)
+        .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), pt, kReadOnly)
+        .sampledImage(shared::kRtBindingMaterial, ctx.image("gbuffer.material").view(), pt, kReadOnly)
+        .sampledImage(shared::kRtBindingEmissive, ctx.image("gbuffer.emissive").view(), pt, kReadOnly);
+  }
+  // Last frame's image shows the old light: when the light changed, hits are lit afresh (else
+  // the luminance rejection would clip the history to samples of the old light).
+  static uint32_t useScreenRadiance(graph::PassContext& ctx, const RtPush& push, bool screenRadiance) {
+    return screenRadiance && push.lightChanged == 0u && ctx.historyValid(kHistRadiance) && ctx.historyValid(kHistDepth)
+               ? 1u
+               : 0u;
+  }
+
   // From the camera to the farthest corner of the scene's bounds.
   static double farthestSceneDistance(const FrameInputs& in) {
     const auto& b = in.sceneData.bounds;
@@ -518,24 +613,46 @@ class RtPath final : public LightingPath {
                        {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
       trace_ = gpu::createRayTracingPipeline(in.device, d);
     }
+    const std::vector<B> hitLighting = {{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+                                        {shared::kRtBindingHistRadiance, sampled},
+                                        {shared::kRtBindingHistDepth, sampled},
+                                        {shared::kRtBindingBaseColor, sampled},
+                                        {shared::kRtBindingMaterial, sampled},
+                                        {shared::kRtBindingEmissive, sampled}};
     {
       gpu::RayTracingPipelineDesc d;
       d.name = "rt.lighting";
       d.raygen = "rt/lighting.rgen";
       d.misses = {"rt/shadow.rmiss"};
-      d.layout = with({{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-                       {shared::kRtBindingHitsIn, storage},
-                       {shared::kRtBindingSurfaceIn, storage},
-                       {shared::kRtBindingShY, storage},
-                       {shared::kRtBindingCoCg, storage},
-                       {shared::kRtBindingAo, storage},
-                       {shared::kRtBindingHistRadiance, sampled},
-                       {shared::kRtBindingHistDepth, sampled},
-                       {shared::kRtBindingBaseColor, sampled},
-                       {shared::kRtBindingMaterial, sampled},
-                       {shared::kRtBindingEmissive, sampled}});
+      std::vector<B> extra = hitLighting;
+      extra.insert(extra.end(), {{shared::kRtBindingHitsIn, storage},
+                                 {shared::kRtBindingSurfaceIn, storage},
+                                 {shared::kRtBindingShY, storage},
+                                 {shared::kRtBindingCoCg, storage},
+                                 {shared::kRtBindingAo, storage}});
+      d.layout = with(extra);
       lighting_ = gpu::createRayTracingPipeline(in.device, d);
     }
+    {
+      gpu::RayTracingPipelineDesc d;
+      d.name = "rt.disocclusion";
+      d.raygen = "rt/disocclusion.rgen";
+      d.misses = {"rt/shadow.rmiss", "rt/disocclusion.rmiss"};  // hit_lighting.glsl: the shadow miss is 0
+      d.hitGroups = {{"rt/disocclusion.rchit", ""}};
+      std::vector<B> extra = hitLighting;
+      extra.insert(extra.end(), {{shared::kRtBindingCoCg, sampled},
+                                 {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                 {shared::kRtBindingCellShY, storage},
+                                 {shared::kRtBindingCellCoCgAo, storage},
+                                 {shared::kRtBindingCellPosition, storage}});
+      d.layout = with(extra);
+      disocclusion_ = gpu::createRayTracingPipeline(in.device, d);
+    }
+    disocclusionBlend_ = compute("rt.disocclusion.blend", "rt/disocclusion_blend.comp",
+                                 {{shared::kRtBindingShY, sampled}, {shared::kRtBindingCoCg, sampled},
+                                  {shared::kRtBindingCellShY, sampled}, {shared::kRtBindingCellCoCgAo, sampled},
+                                  {shared::kRtBindingCellPosition, sampled}, {shared::kRtBindingOutShY, storage},
+                                  {shared::kRtBindingOutCoCgAo, storage}});
     {
       gpu::RayTracingPipelineDesc d;
       d.name = "rt.rawRays";
@@ -559,7 +676,7 @@ class RtPath final : public LightingPath {
   RtResolvedParams params_;
   gpu::Image blueNoise_;
   gpu::Sampler point_;
-  gpu::Pipeline pretrace_, trace_, lighting_, temporal_, aoFilter_, rawRays_, denoise_;
+  gpu::Pipeline pretrace_, trace_, lighting_, temporal_, aoFilter_, rawRays_, denoise_, disocclusion_, disocclusionBlend_;
 };
 
 }  // namespace

@@ -21,6 +21,14 @@ inline constexpr const char* kRawAo = "rt.ao.raw";
 inline constexpr const char* kShY = "rt.gi.temporal.shY";
 inline constexpr const char* kCoCgAo = "rt.gi.temporal.coCgAo";
 inline constexpr const char* kLumaMoment = "rt.gi.temporal.lumaMoment";
+// Disocclusion rays (RE ENGINE): per 8x8 cell where history was rejected, many rays' mean;
+// the accumulation with those cells filled into its fresh pixels ("filled") then feeds the
+// history, the AO filter and the denoiser.
+inline constexpr const char* kCellShY = "rt.gi.disocclusion.shY";
+inline constexpr const char* kCellCoCgAo = "rt.gi.disocclusion.coCgAo";
+inline constexpr const char* kCellOrigin = "rt.gi.disocclusion.origin";
+inline constexpr const char* kFilledShY = "rt.gi.filled.shY";
+inline constexpr const char* kFilledCoCgAo = "rt.gi.filled.coCgAo";
 inline constexpr const char* kViewDepth = "rt.viewDepth";
 inline constexpr const char* kAo = "rt.ao";
 inline constexpr const char* kDenoise1ShY = "rt.gi.pass1.shY";
