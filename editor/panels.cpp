@@ -272,6 +272,9 @@ void pathParameters(EditorApp& app) {
     tooltip("Simplified BLAS meshes (Metro: about 4x fewer triangles); 1 = the full mesh");
     changed |= ImGui::Checkbox("Multi-bounce from the screen##rt", &s.rtScreenRadiance);
     tooltip("Hits seen last frame take its shaded radiance, so light bounces more than once");
+    changed |= ImGui::Checkbox("Emitter sampling##rt", &s.rtEmitterSampling);
+    tooltip("Emissive triangles are sampled at each pixel and hit through a shadow ray, instead of being found only by "
+            "the rays that happen to hit them (a small bright lamp: far less noise)");
     changed |= ImGui::Checkbox("Sky at hits##rt", &s.rtHitSky);
     tooltip("Hits lit afresh (not on screen last frame) see the sky through one more ray, as they see the sun "
             "through a shadow ray; without it the light they bounce is sun and emission only");

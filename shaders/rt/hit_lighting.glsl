@@ -2,8 +2,9 @@
 // disocclusion rays (rt/disocclusion.rgen) so both shade a hit the same way: last frame's
 // shaded radiance where the hit was on screen (Metro: "lighting already computed in a deferred
 // way? use it"), re-coloured to the hit's albedo; else the sun through a shadow ray, the sky
-// through one cosine-distributed ray (RtPush::hitSky) and the hit's emission. Include after
-// rt/rt_common.glsl. The shadow miss shader is miss index 0 of
+// through one cosine-distributed ray (RtPush::hitSky), and the emitters through one sample
+// (RtPush::emitterCount) or, without emitter sampling, the hit's own emission. Also the
+// pixel's own emitter sample. Include after rt/rt_common.glsl. The shadow miss shader is miss index 0 of
 // every pipeline that includes this.
 layout(set = 0, binding = kRtBindingTlas) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = kRtBindingHistRadiance) uniform sampler2D previousRadiance;
@@ -12,7 +13,13 @@ layout(set = 0, binding = kRtBindingBaseColor) uniform sampler2D gBaseColor;
 layout(set = 0, binding = kRtBindingMaterial) uniform sampler2D gMaterial;
 layout(set = 0, binding = kRtBindingEmissive) uniform sampler2D gEmissive;
 
+layout(set = 0, binding = kRtBindingEmitters, std430) readonly buffer Emitters { RtEmitter emitters[]; };
+
 layout(location = 1) rayPayloadEXT float visible;
+
+// With emitter sampling on, a ray that finds an emitter leaves its emission out: the emitter
+// sample (emitterLight) counts that light instead.
+bool emissionFromRays() { return push.emitterCount == 0u; }
 
 // Last frame's shaded pixel at the hit, if the hit was on screen there (same depth).
 bool screenRadianceAt(vec3 hitPosition, uint hit, out vec3 radiance) {
@@ -25,36 +32,81 @@ bool screenRadianceAt(vec3 hitPosition, uint hit, out vec3 radiance) {
   if (w <= 0.0 || abs(w - clip.w) > 0.03 * clip.w) return false;
   // This frame's G-buffer at last frame's pixel: the albedo it was shaded with.
   vec3 screenAlbedo = tlRtHitAlbedoFromMaterial(texelFetch(gBaseColor, q, 0).rgb, texelFetch(gMaterial, q, 0).g);
-  radiance = tlRtRecolourScreenRadiance(texelFetch(previousRadiance, q, 0).rgb, texelFetch(gEmissive, q, 0).rgb,
-                                        screenAlbedo, tlRtHitAlbedo(hit));
+  vec3 emission = texelFetch(gEmissive, q, 0).rgb;
+  radiance = tlRtRecolourScreenRadiance(texelFetch(previousRadiance, q, 0).rgb, emission, screenAlbedo, tlRtHitAlbedo(hit));
+  if (!emissionFromRays()) radiance = max(radiance - emission, vec3(0.0));
   return true;
 }
 
-// Whether a ray from just off the hit escapes the scene (miss shader 0 sets `visible`).
-float escapes(vec3 hitPosition, float distance, vec3 normal, vec3 direction) {
-  // The stored distance is a half: the rebuilt point may sit up to 2^-11 of the distance off
-  // the surface, so the ray leaves by more than that.
-  vec3 start = tlOffsetRayOrigin(hitPosition + normal * (distance * (1.0 / 1024.0)), normal);
+// Whether a ray from `start` escapes the scene within `tMax` (miss shader 0 sets `visible`).
+float unoccluded(vec3 start, vec3 direction, float tMax) {
   visible = 0.0;
   traceRayEXT(tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
-              0xFF, 0, 0, 0, start, push.tMin, direction, 1e30, 1);
+              0xFF, 0, 0, 0, start, push.tMin, direction, tMax, 1);
   return visible;
 }
 
-// The hit lit afresh: its emission, the sun through a shadow ray and, with hitSky, the sky
-// through one ray drawn around the hit's normal by cosine: for a uniform sky L the reflected
-// radiance is albedo / pi * (pi L * the escaping share), so one ray's estimate is albedo * L
-// when it escapes. `normal` faces the ray; `seed` draws the sky ray's direction.
+// One emitter sample (shared/rt.h RtEmitter) seen from `start` on a surface with `normal`:
+// the direction, and the emitted radiance over its pdf through a shadow ray that stops short
+// of the emitter (its own, possibly simplified, surface must not hide it). Multiply by the
+// cosine for irradiance. Zero without emitters, behind the surface or when hidden.
+vec3 emitterLight(vec3 start, vec3 normal, uvec3 seed, out vec3 direction) {
+  direction = normal;
+  if (push.emitterCount == 0u) return vec3(0.0);
+  uvec3 h = tlPcg3d(seed);
+  float pick = tlUintToUnitFloat(h.z);
+  uint lo = 0u, hi = push.emitterCount - 1u;
+  while (lo < hi) {  // the first triangle whose cumulative probability exceeds the uniform
+    uint mid = (lo + hi) / 2u;
+    if (pick < emitters[mid].p0.w) hi = mid;
+    else lo = mid + 1u;
+  }
+  RtEmitter e = emitters[lo];
+  vec3 toLight = tlRtEmitterPoint(e, vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y))) - push.cameraWorld.xyz - start;
+  float distance2 = dot(toLight, toLight);
+  if (distance2 <= 1e-12) return vec3(0.0);
+  float distance = sqrt(distance2);
+  direction = toLight / distance;
+  if (dot(normal, direction) <= 0.0) return vec3(0.0);
+  vec3 lightNormal = cross(e.edge1.xyz, e.edge2.xyz);
+  float cosLight = dot(lightNormal, direction) / max(length(lightNormal), 1e-30);
+  if (cosLight == 0.0) return vec3(0.0);
+  float reach = distance * (1.0 - 1e-3) - push.tMin;
+  if (reach <= push.tMin) return vec3(0.0);
+  return e.radiance.rgb * tlRtEmitterInversePdf(e, distance2, cosLight) * unoccluded(start, direction, reach);
+}
+
+// The hit lit afresh: the sun through a shadow ray, the emitters through one sample (when on;
+// else its own emission as found), and with hitSky the sky through one ray drawn around the
+// hit's normal by cosine: for a uniform sky L the reflected radiance is albedo / pi * (pi L *
+// the escaping share), so one ray's estimate is albedo * L when it escapes. `normal` faces
+// the ray; `seed` draws the sky ray and the emitter sample.
 vec3 freshHitRadiance(vec3 hitPosition, float distance, uint hit, vec3 normal, vec3 emission, uvec3 seed) {
-  vec3 radiance = emission;
+  vec3 radiance = emissionFromRays() ? emission : vec3(0.0);
   vec3 albedo = tlRtHitAlbedo(hit);
+  // The stored distance is a half: the rebuilt point may sit up to 2^-11 of the distance off
+  // the surface, so rays from it leave by more than that.
+  vec3 start = tlOffsetRayOrigin(hitPosition + normal * (distance * (1.0 / 1024.0)), normal);
   vec3 toSun = frame.sunToLight.xyz;
   float nl = dot(normal, toSun);
   if ((frame.flags & kFrameFlagSunShadows) != 0u && nl > 0.0)
-    radiance += albedo * kInvPi * frame.sunIrradiance.rgb * (nl * escapes(hitPosition, distance, normal, toSun));
+    radiance += albedo * kInvPi * frame.sunIrradiance.rgb * (nl * unoccluded(start, toSun, 1e30));
   if (push.hitSky != 0u && any(greaterThan(frame.skyRadiance.rgb, vec3(0.0)))) {
     vec3 d = tlLocalToWorld(tlSampleCosineHemisphere(tlRandom2(seed)), normal);
-    radiance += albedo * frame.skyRadiance.rgb * escapes(hitPosition, distance, normal, d);
+    radiance += albedo * frame.skyRadiance.rgb * unoccluded(start, d, 1e30);
+  }
+  if (push.emitterCount > 0u) {
+    vec3 d;
+    vec3 light = emitterLight(start, normal, seed + uvec3(0u, 0u, 0x9E3779B9u), d);
+    radiance += albedo * kInvPi * light * max(dot(normal, d), 0.0);
   }
   return radiance;
+}
+
+// The pixel's own emitter sample as an SH sample that resolves to its irradiance.
+ShLumaCoCg emitterSampleSh(vec3 start, vec3 normal, uvec3 seed) {
+  vec3 d;
+  vec3 light = emitterLight(start, normal, seed, d);
+  if (all(equal(light, vec3(0.0)))) return tlShZero();
+  return tlShScale(tlShProjectRadiance(d, light), tlRtShWeightForPdf(dot(normal, d), 1.0));
 }

@@ -170,6 +170,36 @@ TL_FN vec2 tlRtDisocclusionUniforms(uint i, uint n, vec2 rotation) {
   return u - floor(u);
 }
 
+// Emitter sampling (next-event estimation): the emissive triangles of the scene, chosen with
+// probability proportional to area x emitted luminance (a binary search over `cdf`), a point
+// uniform on the chosen one, a shadow ray to it. Its light arrives with pdf (solid angle)
+// p = prob / area * d^2 / |cos_light|; both faces emit, as the rays see them. With it on,
+// rays that hit an emitter leave its emission out (the sample counts it instead), at pixels
+// and at hits alike, so nothing is counted twice. Without it a small bright emitter is found
+// only by the few rays that happen to hit it: the Cornell box's light.
+struct RtEmitter {
+  vec4 p0;        // xyz: world position of the first corner; w: cumulative probability up to and including this one
+  vec4 edge1;     // xyz: p1 - p0; w: area (m^2)
+  vec4 edge2;     // xyz: p2 - p0; w: probability of choosing this triangle
+  vec4 radiance;  // rgb: emitted radiance
+};
+// A point uniform in area on the triangle (the square-root warp of two uniforms).
+TL_FN vec3 tlRtEmitterPoint(RtEmitter e, vec2 u) {
+  float su = sqrt(u.x);
+  return vec3(e.p0) + (1.0f - su) * vec3(e.edge1) + (u.y * su) * vec3(e.edge2);
+}
+// 1 / pdf in solid angle of that point seen from `distance2` away at `cosLight` to its normal.
+TL_FN float tlRtEmitterInversePdf(RtEmitter e, float distance2, float cosLight) {
+  return e.edge1.w * abs(cosLight) / (max(distance2, 1e-8f) * max(e.edge2.w, 1e-30f));
+}
+// The L1 SH weight of a sample of radiance from `direction` drawn with inverse pdf `inversePdf`
+// (solid angle), so that it resolves to its irradiance L cos / pdf at the normal (shared/sh.h:
+// E(n) = w L (1/4 + cos/2)); tlRtShSampleWeight is the case pdf = cos / pi.
+TL_FN float tlRtShWeightForPdf(float cosTheta, float inversePdf) {
+  float c = clamp(cosTheta, 0.0f, 1.0f);
+  return c * inversePdf / (0.25f + 0.5f * c);
+}
+
 // Per-instance data the real rays read at a hit (gl_InstanceCustomIndexEXT), std430.
 struct RtInstance {
   vec4 albedo;         // rgb: resolved hit albedo (T7: override > baked > the texture-average fallback)
@@ -198,9 +228,10 @@ struct RtPush {
   uint lightChanged;     // 1: the light changed since last frame: rectify the history (luminance rejection)
   uint disocclusionRays; // rays per low-resolution cell where history was rejected (0: none)
   uint hitSky;           // 1: hits lit afresh see the sky through one more ray
+  uint emitterCount;     // emitter triangles sampled at pixels and hits (0: emission found by rays only)
   uint pad0;
   uint pad1;
-  uint pad2;
+  vec4 cameraWorld;      // xyz: the camera's world position (emitters are stored in world space)
 };
 
 // The two-pass spatial denoiser on the SH (Metro's "little monster"): its own push constants.
@@ -244,11 +275,13 @@ TL_CONST uint kRtBindingOutMoment = 28;
 TL_CONST uint kRtBindingCellShY = 29;          // disocclusion rays, one texel per cell: SH luma
 TL_CONST uint kRtBindingCellCoCgAo = 30;       // chroma (xy), AO (z)
 TL_CONST uint kRtBindingCellPosition = 31;     // rgba32f: world position the rays left from (xyz), 1 if traced (w)
+TL_CONST uint kRtBindingEmitters = 32;         // RtEmitter[] (at least one entry; RtPush::emitterCount of them valid)
 TL_END
 
 #ifdef __cplusplus
 static_assert(sizeof(tl::shared::RtInstance) == 64);
-static_assert(sizeof(tl::shared::RtPush) == 80);
+static_assert(sizeof(tl::shared::RtPush) == 96);
+static_assert(sizeof(tl::shared::RtEmitter) == 64);
 static_assert(sizeof(tl::shared::RtDenoisePush) == 16);
 #endif
 #endif

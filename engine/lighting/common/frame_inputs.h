@@ -47,6 +47,7 @@ struct RenderSettings {
   float rtDenoiseRadius = 0.0f;     // pass 1 base radius (m); pass 2 uses half (Metro: 6 m and 3 m)
   bool rtScreenRadiance = true;     // hits seen on screen last frame reuse its shaded radiance (multi-bounce)
   bool rtHitSky = true;             // hits lit afresh (off screen) also see the sky, through one more ray
+  bool rtEmitterSampling = true;    // emissive triangles sampled at pixels and hits (shadow rays), not found by chance
   uint32_t rtPretraceSteps = 16;
   float rtPretracePixels = 0.0f;    // screen length of a pre-traced ray; 0: scaled to the image (pretraceAutoPixels)
   float rtThickness = 0.02f;        // depth-buffer surface thickness, fraction of view distance

@@ -71,6 +71,8 @@ class RtPath final : public LightingPath {
     lightingKey_ = light;
     push.disocclusionRays = std::min(s.rtDisocclusionRays, kMaxDisocclusionRays);
     push.hitSky = s.rtHitSky ? 1u : 0u;
+    push.emitterCount = s.rtEmitterSampling ? scene_->emitterCount() : 0u;
+    push.cameraWorld = glm::vec4(glm::vec3(in.cameraWorld), 0.0f);
 
     const uint32_t w = s.width, h = s.height;
     auto image = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, w, h, what); };
@@ -365,6 +367,7 @@ class RtPath final : public LightingPath {
             {"rtTriangles", double(st.rtTriangles)},
             {"blasBytes", double(st.blasBytes)},
             {"blasBuildMs", st.blasBuildMs},
+            {"emitterTriangles", double(scene_->emitterCount())},
             {"simplificationDeviationM", double(st.maxDeviation)},
             {"farFieldLegacy", farLegacy_ ? 1.0 : 0.0},
             {"deformingMeshes", double(st.deformingMeshes)},
@@ -459,6 +462,7 @@ class RtPath final : public LightingPath {
     const gpu::Image& radiance = ctx.image(screenRadiance ? kHistRadiance : kHistDepth);
     VkSampler pt = point_.handle();
     return w.accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
+        .storageBuffer(shared::kRtBindingEmitters, scene_->emitterData().handle())
         .sampledImage(shared::kRtBindingHistRadiance, radiance.view(), pt, kReadOnly)
         .sampledImage(shared::kRtBindingHistDepth, ctx.image(kHistDepth).view(), pt, kReadOnly)
         .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), pt, kReadOnly)
@@ -614,6 +618,7 @@ class RtPath final : public LightingPath {
       trace_ = gpu::createRayTracingPipeline(in.device, d);
     }
     const std::vector<B> hitLighting = {{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+                                        {shared::kRtBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                         {shared::kRtBindingHistRadiance, sampled},
                                         {shared::kRtBindingHistDepth, sampled},
                                         {shared::kRtBindingBaseColor, sampled},

@@ -1,5 +1,7 @@
 #include "lighting/rt/rt_scene.h"
 
+#include "lighting/rt/emitters.h"
+
 #include "scene/material_average.h"
 
 #include <fmt/format.h>
@@ -182,6 +184,15 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
   instanceData_ = gpu::Buffer(device, data.size() * sizeof(data[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               gpu::MemoryUsage::Upload, "rt.instanceData");
   instanceData_.write(data.data(), data.size() * sizeof(data[0]));
+
+  std::vector<glm::vec3> instanceEmission;
+  for (size_t i = 0; i < scene.instances.size(); ++i) instanceEmission.push_back(glm::vec3(data[i].emission));
+  std::vector<shared::RtEmitter> emitters = buildEmitterTable(scene, instanceEmission);
+  emitterCount_ = uint32_t(emitters.size());
+  if (emitters.empty()) emitters.push_back(shared::RtEmitter{});  // a binding needs a buffer
+  emitterData_ = gpu::Buffer(device, emitters.size() * sizeof(emitters[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                             gpu::MemoryUsage::Upload, "rt.emitters");
+  emitterData_.write(emitters.data(), emitters.size() * sizeof(emitters[0]));
 }
 
 void RtScene::setInstanceAlbedo(const std::vector<glm::vec4>& albedo) {

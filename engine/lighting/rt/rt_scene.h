@@ -60,6 +60,9 @@ class RtScene {
   gpu::Buffer& deformingStorage() { return deformingStorage_; }
   gpu::TopLevelBuilder& topLevel() { return topLevel_; }
   gpu::Buffer& instanceData() { return instanceData_; }
+  // The emissive triangles (lighting/rt/emitters.h): at least one entry, emitterCount() valid.
+  gpu::Buffer& emitterData() { return emitterData_; }
+  uint32_t emitterCount() const { return emitterCount_; }
   // Per-instance hit albedo resolved outside (T7: override > baked > texture average);
   // until called, each instance has its material's texture average.
   void setInstanceAlbedo(const std::vector<glm::vec4>& albedo);
@@ -75,6 +78,8 @@ class RtScene {
   std::vector<shared::RtInstance> instances_;     // CPU copy of instanceData_
   std::vector<glm::vec3> fallbackAlbedo_;         // per instance: its material's texture-average albedo
   gpu::Buffer instanceData_;                      // RtInstance per scene instance
+  gpu::Buffer emitterData_;                       // RtEmitter per emissive triangle
+  uint32_t emitterCount_ = 0;
   gpu::TopLevelBuilder topLevel_;
   RtSceneStats stats_;
   float ratio_ = 1.0f;
