@@ -23,17 +23,21 @@ struct VoxelSample {
 };
 
 // The faces that look back along -dir (towards the cone's apex), weighted by dir's squared
-// components: premultiplied radiance (rgb) and opacity (a).
+// components: premultiplied radiance (rgb) and opacity (a). Axes with under 10% of the weight
+// (more than 72 degrees from the cone) are left out: each face is a trilinear tap across two
+// mips, the cones' whole cost on lavapipe, and those faces barely change the image (see
+// docs/performance.md, legacy section).
+const float kMinFaceWeight = 0.1;
 vec4 facesTowards(vec3 dir, vec3 uvw, float lod, bool mip, uint level, uint levels) {
   vec3 w = dir * dir;
   vec4 sum = vec4(0.0);
   for (int a = 0; a < 3; ++a) {
-    if (w[a] < 0.02) continue;
+    if (w[a] < kMinFaceWeight) continue;
     int face = 2 * a + (dir[a] > 0.0 ? 1 : 0);
     vec3 t = vec3((float(face) + uvw.x) / 6.0, uvw.y, (float(level) + uvw.z) / float(levels));
     sum += w[a] * (mip ? textureLod(radianceMips, t, lod) : textureLod(radiance0, t, 0.0));
   }
-  return sum / (w.x * float(w.x >= 0.02) + w.y * float(w.y >= 0.02) + w.z * float(w.z >= 0.02));
+  return sum / (w.x * float(w.x >= kMinFaceWeight) + w.y * float(w.y >= kMinFaceWeight) + w.z * float(w.z >= kMinFaceWeight));
 }
 
 VoxelSample sampleClipmap(vec3 position, vec3 dir, float diameter) {

@@ -1,7 +1,9 @@
 #version 460
 // Full resolution from the reduced-resolution SSAO and cone tracing: for each, a depth-aware
-// filter over the 2x2 reduced texels around the pixel (for the SSAO this also averages its
-// 2x2 rotation pattern). AO = SSAO x voxel AO. The SSAO then accumulates over frames
+// filter over the 2x2 reduced texels around the pixel, with equal spatial weights for the
+// SSAO (which averages its 2x2 rotation pattern) and bilinear ones for the cone-traced GI.
+// Away from depth edges it reads one gather of view depths and one filtered tap per image
+// (depthAwareTaps). AO = SSAO x voxel AO. The SSAO then accumulates over frames
 // (its directions turn each frame): reprojected with the motion vectors, history rejected off
 // screen or on another surface (view-depth test), weight 1/n up to aoHistory frames.
 #extension GL_GOOGLE_include_directive : require
@@ -37,6 +39,30 @@ ivec2 tapBase(ivec2 p, uint d) {
   return clamp(base, ivec2(0), max(reducedSize(d) - 2, ivec2(0)));
 }
 
+// Four reduced texels around a pixel, in textureGather's order: (0,1), (1,1), (1,0), (0,0)
+// from base. Their weights are a spatial weight times the depth weight, normalised. Where
+// those weights are (nearly) separable, one bilinear tap at `uv` returns the same weighted
+// sum as four fetches: away from depth edges a pass reads one gather (the view depths) and
+// one filtered tap per image instead of four fetches per image (lavapipe pays per fetch).
+// The images are bound with a linear sampler; texelFetch ignores it.
+const ivec2 kGatherOffsets[4] = ivec2[4](ivec2(0, 1), ivec2(1, 1), ivec2(1, 0), ivec2(0, 0));
+struct Taps {
+  vec4 k;          // normalised weights (all 0: no texel on this surface)
+  bool separable;  // k is bilinear at uv within 0.02: one filtered tap will do
+  vec2 uv;
+};
+Taps depthAwareTaps(vec4 viewDepths, vec4 spatial, ivec2 base, ivec2 reduced) {
+  Taps t;
+  t.k = vec4(depthWeight(viewDepths.x), depthWeight(viewDepths.y), depthWeight(viewDepths.z), depthWeight(viewDepths.w)) * spatial;
+  float sum = t.k.x + t.k.y + t.k.z + t.k.w;
+  t.k = sum > 1e-6 ? t.k / sum : vec4(0.0);
+  vec2 g = vec2(t.k.y + t.k.z, t.k.x + t.k.y);  // weight on the second column, on the second row
+  vec4 err = abs(vec4((1.0 - g.x) * g.y, g.x * g.y, g.x * (1.0 - g.y), (1.0 - g.x) * (1.0 - g.y)) - t.k);
+  t.separable = sum > 1e-6 && max(max(err.x, err.y), max(err.z, err.w)) < 0.02;
+  t.uv = (vec2(base) + 0.5 + g) / vec2(reduced);
+  return t;
+}
+
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   size = ivec2(frame.viewport.xy);
@@ -51,32 +77,38 @@ void main() {
   }
   w0 = depthToViewW(depth);
 
-  float ao = 0.0, aoWeight = 0.0;
-  ivec2 aoBase = tapBase(p, push.aoDivisor), aoMax = reducedSize(push.aoDivisor) - 1;
-  int aoTaps = push.aoDivisor == 1u ? 1 : 2;
-  for (int y = 0; y < aoTaps; ++y)
-    for (int x = 0; x < aoTaps; ++x) {
-      ivec2 q = clamp(aoBase + ivec2(x, y), ivec2(0), aoMax);
-      vec2 raw = texelFetch(aoRaw, q, 0).rg;
-      float k = depthWeight(raw.g);
-      ao += k * raw.r;
-      aoWeight += k;
+  // SSAO: equal spatial weights over the 2x2 texels, which averages the 2x2 rotations.
+  float ao = 1.0;
+  ivec2 aoSize = reducedSize(push.aoDivisor), aoBase = tapBase(p, push.aoDivisor);
+  Taps aoTaps = depthAwareTaps(textureGather(aoRaw, vec2(aoBase + 1) / vec2(aoSize), 1), vec4(0.25), aoBase, aoSize);
+  if (push.aoDivisor == 1u) {
+    ao = texelFetch(aoRaw, p, 0).r;
+  } else if (aoTaps.separable) {
+    ao = textureLod(aoRaw, aoTaps.uv, 0.0).r;
+  } else if (aoTaps.k != vec4(0.0)) {
+    ao = 0.0;
+    for (int i = 0; i < 4; ++i) ao += aoTaps.k[i] * texelFetch(aoRaw, min(aoBase + kGatherOffsets[i], aoSize - 1), 0).r;
+  }
+  // GI: bilinear spatial weights from where the pixel lies between the four texels.
+  vec4 shY = vec4(0.0), coCgAo = vec4(0.0, 0.0, 1.0, 0.0);
+  ivec2 giSize = reducedSize(push.coneDivisor);
+  vec2 giPos = (vec2(p) + 0.5) / float(push.coneDivisor) - 0.5;  // in reduced texels, centres on integers
+  ivec2 giBase = clamp(ivec2(floor(giPos)), ivec2(0), max(giSize - 2, ivec2(0)));
+  vec2 f = clamp(giPos - vec2(giBase), vec2(0.0), vec2(1.0));
+  vec4 bilinear = vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
+  Taps giTaps = depthAwareTaps(textureGather(coneCoCgAo, vec2(giBase + 1) / vec2(giSize), 3), bilinear, giBase, giSize);
+  if (giTaps.separable) {
+    shY = textureLod(coneShY, giTaps.uv, 0.0);
+    coCgAo = textureLod(coneCoCgAo, giTaps.uv, 0.0);
+  } else if (giTaps.k != vec4(0.0)) {
+    shY = coCgAo = vec4(0.0);
+    for (int i = 0; i < 4; ++i) {
+      ivec2 q = min(giBase + kGatherOffsets[i], giSize - 1);
+      shY += giTaps.k[i] * texelFetch(coneShY, q, 0);
+      coCgAo += giTaps.k[i] * texelFetch(coneCoCgAo, q, 0);
     }
-
-  vec4 shY = vec4(0.0), coCgAo = vec4(0.0);
-  float giWeight = 0.0;
-  ivec2 giBase = tapBase(p, push.coneDivisor), giMax = reducedSize(push.coneDivisor) - 1;
-  int giTaps = push.coneDivisor == 1u ? 1 : 2;
-  for (int y = 0; y < giTaps; ++y)
-    for (int x = 0; x < giTaps; ++x) {
-      ivec2 q = clamp(giBase + ivec2(x, y), ivec2(0), giMax);
-      vec4 cone = texelFetch(coneCoCgAo, q, 0);
-      float k = depthWeight(cone.w);
-      shY += k * texelFetch(coneShY, q, 0);
-      coCgAo += k * cone;
-      giWeight += k;
-    }
-  float ssao = aoWeight > 0.0 ? clamp(ao / aoWeight, 0.0, 1.0) : 1.0;
+  }
+  float ssao = clamp(ao, 0.0, 1.0);
   float frames = 1.0;
   if (push.aoHistory > 0u) {
     vec2 previousUv = (vec2(p) + 0.5) * frame.viewport.zw - texelFetch(gMotion, p, 0).xy;
@@ -91,9 +123,9 @@ void main() {
       }
     }
   }
-  float vxao = giWeight > 0.0 ? coCgAo.z / giWeight : 1.0;
+  float vxao = coCgAo.z;
   imageStore(aoOut, p, vec4(ssao * vxao));
   imageStore(ssaoOut, p, vec4(ssao, frames, 0.0, 0.0));
-  imageStore(shYOut, p, giWeight > 0.0 ? shY / giWeight : vec4(0.0));
-  imageStore(coCgOut, p, vec4(giWeight > 0.0 ? coCgAo.xy / giWeight : vec2(0.0), 0.0, 0.0));
+  imageStore(shYOut, p, shY);
+  imageStore(coCgOut, p, vec4(coCgAo.xy, 0.0, 0.0));
 }

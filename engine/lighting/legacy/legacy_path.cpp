@@ -189,13 +189,13 @@ class LegacyPath final : public LightingPath {
                    Usage::StorageWrite);
         },
         [this, &in, push](graph::PassContext& ctx) {
-          VkSampler p = point_.handle();
+          VkSampler p = point_.handle(), lin = linear_.handle();
           ctx.bind(upsample_);
           ctx.pushConstants(push);
           writeCommon(ctx, in)
-              .sampledImage(shared::kLegacyBindingAoRaw, ctx.image(kLegacyAoRaw).view(), p, kReadOnly)
-              .sampledImage(shared::kLegacyBindingConeShY, ctx.image(kConeShY).view(), p, kReadOnly)
-              .sampledImage(shared::kLegacyBindingConeCoCgAo, ctx.image(kConeCoCgAo).view(), p, kReadOnly)
+              .sampledImage(shared::kLegacyBindingAoRaw, ctx.image(kLegacyAoRaw).view(), lin, kReadOnly)
+              .sampledImage(shared::kLegacyBindingConeShY, ctx.image(kConeShY).view(), lin, kReadOnly)
+              .sampledImage(shared::kLegacyBindingConeCoCgAo, ctx.image(kConeCoCgAo).view(), lin, kReadOnly)
               .storageImage(shared::kLegacyBindingOutAo, ctx.image(kLegacyAo).view())
               .storageImage(shared::kLegacyBindingOutShY, ctx.image(kLegacyShY).view())
               .storageImage(shared::kLegacyBindingOutCoCg, ctx.image(kLegacyCoCg).view())
