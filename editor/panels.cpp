@@ -235,6 +235,9 @@ void pathParameters(EditorApp& app) {
     changed |= ImGui::Checkbox("0.5 rays per pixel", &s.rtHalfRays);
     ImGui::EndDisabled();
     tooltip("Trace a checkerboard that alternates each frame; the other half borrows a neighbour's ray");
+    changed |= ImGui::Checkbox("2 rays per traced pixel", &s.rtTwoRays);
+    tooltip("Pre-trace, trace and hit lighting run twice with successive rays of the sequence; the raw sample is "
+            "their mean (twice the ray cost, half the variance)");
     changed |= ImGui::Checkbox("Screen-space pre-trace", &s.rtPretrace);
     tooltip("March the depth buffer first; real rays only where it finds nothing");
     {

@@ -51,6 +51,7 @@ const std::map<std::string, Setter>& setters() {
       {"rtLumaRejection", field(&S::rtLumaRejection)},
       {"rtDisocclusionRays", field(&S::rtDisocclusionRays)},
       {"rtHitSky", field(&S::rtHitSky)},
+      {"rtTwoRays", field(&S::rtTwoRays)},
       {"rtEmitterSampling", field(&S::rtEmitterSampling)},
       {"rtCullAngle", field(&S::rtCullAngle)},
       {"rtCullMargin", field(&S::rtCullMargin)},

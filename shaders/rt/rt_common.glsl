@@ -15,11 +15,17 @@ layout(push_constant) uniform Push { RtPush push; };
 
 vec3 pixelNormal(ivec2 p) { return tlOctDecode(texelFetch(gNormal, p, 0).xy); }
 
-// Metro's noise addressing: the 64x64 tile shifts by half a tile on odd frames, and the
-// R2 rotation (tlRtRandom) moves every value each frame.
+// The index of this pass's rays in the sequence of all rays a pixel takes: the frame, or with
+// two rays per pixel twice the frame plus which of the two (so the pair is two successive
+// steps of the same sequence).
+uint rayIndex() { return push.raysPerPixel == 2u ? 2u * frame.frameIndex + push.sampleIndex : frame.frameIndex; }
+
+// Metro's noise addressing: the 64x64 tile shifts by half a tile on odd steps, and the R2
+// rotation (tlRtRandom) moves every value each step.
 vec3 pixelRayDirection(ivec2 p, vec3 normal) {
-  ivec2 t = (p + ivec2(32 * (frame.frameIndex & 1u))) & ivec2(kRtBlueNoiseSize - 1u);
-  vec2 u = tlRtRandom(texelFetch(blueNoise, t, 0).xy, frame.frameIndex);
+  uint index = rayIndex();
+  ivec2 t = (p + ivec2(32 * (index & 1u))) & ivec2(kRtBlueNoiseSize - 1u);
+  vec2 u = tlRtRandom(texelFetch(blueNoise, t, 0).xy, index);
   return tlRtRayDirection(normal, u);
 }
 

@@ -229,8 +229,8 @@ struct RtPush {
   uint disocclusionRays; // rays per low-resolution cell where history was rejected (0: none)
   uint hitSky;           // 1: hits lit afresh see the sky through one more ray
   uint emitterCount;     // emitter triangles sampled at pixels and hits (0: emission found by rays only)
-  uint pad0;
-  uint pad1;
+  uint raysPerPixel;     // rays each traced pixel takes per frame: 1, or 2 (the trace and hit lighting run twice)
+  uint sampleIndex;      // which of them this pass traces (0 or 1)
   vec4 cameraWorld;      // xyz: the camera's world position (emitters are stored in world space)
 };
 
@@ -275,6 +275,9 @@ TL_CONST uint kRtBindingOutMoment = 28;
 TL_CONST uint kRtBindingCellShY = 29;          // disocclusion rays, one texel per cell: SH luma
 TL_CONST uint kRtBindingCellCoCgAo = 30;       // chroma (xy), AO (z)
 TL_CONST uint kRtBindingCellPosition = 31;     // rgba32f: world position the rays left from (xyz), 1 if traced (w)
+TL_CONST uint kRtBindingFirstShY = 33;         // two rays per pixel: the first ray's raw SH, read by the second's hit lighting
+TL_CONST uint kRtBindingFirstCoCg = 34;
+TL_CONST uint kRtBindingFirstAo = 35;
 TL_CONST uint kRtBindingEmitters = 32;         // RtEmitter[] (at least one entry; RtPush::emitterCount of them valid)
 TL_END
 

@@ -199,7 +199,8 @@ TEST_F(RtTest, DisocclusionRaysBringACutCloserToConverged) {
 }
 
 // The spatial denoiser on one frame: its irradiance is closer to the converged one (256
-// accumulated frames, denoiser off) than the raw frame's, by a stated factor.
+// accumulated frames, denoiser off) than the raw frame's, by a stated factor; and the raw
+// frame of two rays per pixel about halves the one ray's error.
 TEST_F(RtTest, DenoisedSingleFrameIsCloserToConvergedThanRaw) {
   auto& s = session();
   s.loadScene(contentFile("cornell.gltf"));
@@ -234,6 +235,26 @@ TEST_F(RtTest, DenoisedSingleFrameIsCloserToConvergedThanRaw) {
   RecordProperty("relmse_raw", std::to_string(rawError));
   RecordProperty("relmse_denoised", std::to_string(denoisedError));
   EXPECT_LT(denoisedError * 2.0, rawError) << "raw " << rawError << ", denoised " << denoisedError;
+
+  // Two rays per pixel: the raw frame is the mean of two independent rays, so its error
+  // against the converged irradiance is about half the one ray's (the mean over 4 frames each;
+  // emitter sampling off, whose rare near-field spikes would decide a single frame's relMSE).
+  auto firstFrameError = [&](bool twoRays) {
+    s.settings().rtTwoRays = twoRays;
+    s.settings().rtEmitterSampling = false;
+    double sum = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      s.resetHistory();
+      render(w, h, 1, {kShY, kCoCgAo, "gbuffer.normal"});
+      sum += relMse(luma(kShY, kCoCgAo));  // the first frame: the raw sample (mean of both rays)
+    }
+    return sum / 4.0;
+  };
+  const double oneRay = firstFrameError(false), twoRays = firstFrameError(true);
+  RecordProperty("relmse_raw_one_ray", std::to_string(oneRay));
+  RecordProperty("relmse_raw_two_rays", std::to_string(twoRays));
+  EXPECT_LT(twoRays, 0.75 * oneRay) << "measured 0.65x; one ray " << oneRay << ", two " << twoRays;
+  EXPECT_GT(twoRays, 0.3 * oneRay) << "two rays, not more";
 }
 
 TEST_F(RtTest, PretraceAgreesWithRealRaysWhereBothHit) {

@@ -43,6 +43,7 @@ struct RenderSettings {
   bool rtHalfRays = false;          // 0.5 rays per pixel: a checkerboard alternating each frame
   bool rtHalfResolution = false;    // 0.25: trace at half resolution (one pixel of each 2x2, cycling),
                                     // depth-aware noisy upsampling into the accumulation; wins over rtHalfRays
+  bool rtTwoRays = false;           // 2 rays per traced pixel (pre-trace, trace and hit lighting run twice)
   bool rtDenoise = true;            // two-pass spatial denoiser on the SH after accumulation
   float rtDenoiseRadius = 0.0f;     // pass 1 base radius (m); pass 2 uses half (Metro: 6 m and 3 m)
   bool rtScreenRadiance = true;     // hits seen on screen last frame reuse its shaded radiance (multi-bounce)

@@ -110,90 +110,22 @@ class RtPath final : public LightingPath {
         },
         [this](graph::PassContext& ctx) { scene_->topLevel().record(ctx.cmd); });
 
-    graph.addPass(
-        "rt.pretrace", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive", "gbuffer.instanceId"})
-            b.read(n, Usage::Sampled);
-          b.create(kPretraceHits, image(VK_FORMAT_R32_UINT, "pre-trace hit records: distance + G-buffer albedo, or pending").decodedAs("rt-hit-record"),
-                   Usage::StorageWrite);
-          b.create(kPretraceSurface, image(VK_FORMAT_R32G32_UINT, "pre-trace hit normal (oct) + emission (rgb9e5)").decodedAs("rt-hit-surface"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push](graph::PassContext& ctx) {
-          ctx.bind(pretrace_);
-          ctx.pushConstants(push);
-          writeCommon(ctx, in)
-              .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), point_.handle(), kReadOnly)
-              .sampledImage(shared::kRtBindingMaterial, ctx.image("gbuffer.material").view(), point_.handle(), kReadOnly)
-              .sampledImage(shared::kRtBindingEmissive, ctx.image("gbuffer.emissive").view(), point_.handle(), kReadOnly)
-              .sampledImage(shared::kRtBindingInstanceId, ctx.image("gbuffer.instanceId").view(), point_.handle(), kReadOnly)
-              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
-              .storageImage(shared::kRtBindingHitsOut, ctx.image(kPretraceHits).view())
-              .storageImage(shared::kRtBindingSurfaceOut, ctx.image(kPretraceSurface).view());
-          ctx.dispatch(tracedWidth(in), tracedHeight(in));
-        });
-
-    graph.addPass(
-        "rt.trace", graph::PassKind::RayTracing,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          b.read(kRtTlas, Usage::StorageRead);
-          b.read(kPretraceHits, Usage::StorageRead);
-          b.read(kPretraceSurface, Usage::StorageRead);
-          b.create(kHits, image(VK_FORMAT_R32_UINT, "hit records: distance (half) + albedo (565), miss code").decodedAs("rt-hit-record"),
-                   Usage::StorageWrite);
-          b.create(kHitSurface, image(VK_FORMAT_R32G32_UINT, "hit normal (oct) + emission (rgb9e5)").decodedAs("rt-hit-surface"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push](graph::PassContext& ctx) {
-          ctx.bind(trace_);
-          ctx.pushConstants(push);
-          writeCommon(ctx, in)
-              .accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
-              .storageImage(shared::kRtBindingHitsIn, ctx.image(kPretraceHits).view())
-              .storageImage(shared::kRtBindingSurfaceIn, ctx.image(kPretraceSurface).view())
-              .storageImage(shared::kRtBindingHitsOut, ctx.image(kHits).view())
-              .storageImage(shared::kRtBindingSurfaceOut, ctx.image(kHitSurface).view())
-              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle());
-          traceRays(ctx, trace_, in);
-        });
-
-    graph.addPass(
-        "rt.lighting", graph::PassKind::RayTracing,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          b.read(kHits, Usage::StorageRead);
-          b.read(kHitSurface, Usage::StorageRead);
-          readHitLighting(b, screenRadiance);
-          b.create(kRawShY,
-                   image(VK_FORMAT_R16G16B16A16_SFLOAT, "one-ray irradiance: L1 SH of luma")
-                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kRawCoCg)),
-                   Usage::StorageWrite);
-          b.create(kRawCoCg, image(VK_FORMAT_R16G16_SFLOAT, "one-ray irradiance: chroma"), Usage::StorageWrite);
-          b.create(kRawAo, image(VK_FORMAT_R16_SFLOAT, "one-ray ambient occlusion (hit closer than the AO radius)"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push, screenRadiance](graph::PassContext& ctx) mutable {
-          push.screenRadiance = useScreenRadiance(ctx, push, screenRadiance);
-          ctx.bind(lighting_);
-          ctx.pushConstants(push);
-          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance)
-              .storageImage(shared::kRtBindingHitsIn, ctx.image(kHits).view())
-              .storageImage(shared::kRtBindingSurfaceIn, ctx.image(kHitSurface).view())
-              .storageImage(shared::kRtBindingShY, ctx.image(kRawShY).view())
-              .storageImage(shared::kRtBindingCoCg, ctx.image(kRawCoCg).view())
-              .storageImage(shared::kRtBindingAo, ctx.image(kRawAo).view());
-          traceRays(ctx, lighting_, in);
-        });
+    // One ray per traced pixel, or two: the second's hit lighting writes the mean of both.
+    push.raysPerPixel = s.rtTwoRays ? 2u : 1u;
+    addRays(graph, in, push, kFirstRay, nullptr, screenRadiance);
+    const RtRayResources* raw = s.rtTwoRays ? &kSecondRay : &kFirstRay;
+    if (s.rtTwoRays) {
+      RtPush second = push;
+      second.sampleIndex = 1;
+      addRays(graph, in, second, kSecondRay, &kFirstRay, screenRadiance);
+    }
 
     graph.addPass(
         "rt.temporal", graph::PassKind::Compute,
         [&](graph::PassBuilder& b) {
           readCommon(b);
           b.read("gbuffer.motion", Usage::Sampled);
-          for (const char* n : {kRawShY, kRawCoCg, kRawAo, kHistShY, kHistCoCgAo, kHistDepth, kHistLumaMoment})
+          for (const char* n : {raw->shY, raw->coCg, raw->ao, kHistShY, kHistCoCgAo, kHistDepth, kHistLumaMoment})
             b.read(n, Usage::Sampled);
           b.create(kShY,
                    image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated irradiance: L1 SH of luma")
@@ -207,7 +139,7 @@ class RtPath final : public LightingPath {
                    image(VK_FORMAT_R32_SFLOAT, "mean squared sample luma (the firefly ceiling's scale)"),
                    Usage::StorageWrite);
         },
-        [this, &in, push](graph::PassContext& ctx) mutable {
+        [this, &in, push, raw](graph::PassContext& ctx) mutable {
           push.historyValid = ctx.historyValid(kHistShY) && ctx.historyValid(kHistCoCgAo) && ctx.historyValid(kHistDepth) &&
                               ctx.historyValid(kHistLumaMoment);
           VkSampler p = point_.handle();
@@ -215,9 +147,9 @@ class RtPath final : public LightingPath {
           ctx.pushConstants(push);
           writeCommon(ctx, in)
               .sampledImage(shared::kRtBindingMotion, ctx.image("gbuffer.motion").view(), p, kReadOnly)
-              .sampledImage(shared::kRtBindingShY, ctx.image(kRawShY).view(), p, kReadOnly)
-              .sampledImage(shared::kRtBindingCoCg, ctx.image(kRawCoCg).view(), p, kReadOnly)
-              .sampledImage(shared::kRtBindingAo, ctx.image(kRawAo).view(), p, kReadOnly)
+              .sampledImage(shared::kRtBindingShY, ctx.image(raw->shY).view(), p, kReadOnly)
+              .sampledImage(shared::kRtBindingCoCg, ctx.image(raw->coCg).view(), p, kReadOnly)
+              .sampledImage(shared::kRtBindingAo, ctx.image(raw->ao).view(), p, kReadOnly)
               .sampledImage(shared::kRtBindingHistShY, ctx.image(kHistShY).view(), p, kReadOnly)
               .sampledImage(shared::kRtBindingHistCoCgAo, ctx.image(kHistCoCgAo).view(), p, kReadOnly)
               .sampledImage(shared::kRtBindingHistDepth, ctx.image(kHistDepth).view(), p, kReadOnly)
@@ -379,6 +311,104 @@ class RtPath final : public LightingPath {
   }
 
  private:
+  // One ray per traced pixel: the screen-space pre-trace, real rays where it found nothing,
+  // hit lighting into raw SH and AO. `first` is the first ray's set when this is the second.
+  void addRays(graph::RenderGraph& graph, FrameInputs& in, const RtPush& push, const RtRayResources& r,
+               const RtRayResources* first, bool screenRadiance) {
+    auto image = [&](VkFormat f, std::string what) {
+      return graph::ResourceDesc::image2D(f, in.settings.width, in.settings.height, std::move(what));
+    };
+    const char* rays = first ? "the mean of two rays" : "one ray";
+    graph.addPass(
+        r.pretracePass, graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive", "gbuffer.instanceId"})
+            b.read(n, Usage::Sampled);
+          b.create(r.pretraceHits, image(VK_FORMAT_R32_UINT, "pre-trace hit records: distance + G-buffer albedo, or pending").decodedAs("rt-hit-record"),
+                   Usage::StorageWrite);
+          b.create(r.pretraceSurface, image(VK_FORMAT_R32G32_UINT, "pre-trace hit normal (oct) + emission (rgb9e5)").decodedAs("rt-hit-surface"),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push, &r](graph::PassContext& ctx) {
+          ctx.bind(pretrace_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in)
+              .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), point_.handle(), kReadOnly)
+              .sampledImage(shared::kRtBindingMaterial, ctx.image("gbuffer.material").view(), point_.handle(), kReadOnly)
+              .sampledImage(shared::kRtBindingEmissive, ctx.image("gbuffer.emissive").view(), point_.handle(), kReadOnly)
+              .sampledImage(shared::kRtBindingInstanceId, ctx.image("gbuffer.instanceId").view(), point_.handle(), kReadOnly)
+              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
+              .storageImage(shared::kRtBindingHitsOut, ctx.image(r.pretraceHits).view())
+              .storageImage(shared::kRtBindingSurfaceOut, ctx.image(r.pretraceSurface).view());
+          ctx.dispatch(tracedWidth(in), tracedHeight(in));
+        });
+
+    graph.addPass(
+        r.tracePass, graph::PassKind::RayTracing,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          b.read(kRtTlas, Usage::StorageRead);
+          b.read(r.pretraceHits, Usage::StorageRead);
+          b.read(r.pretraceSurface, Usage::StorageRead);
+          b.create(r.hits, image(VK_FORMAT_R32_UINT, "hit records: distance (half) + albedo (565), miss code").decodedAs("rt-hit-record"),
+                   Usage::StorageWrite);
+          b.create(r.hitSurface, image(VK_FORMAT_R32G32_UINT, "hit normal (oct) + emission (rgb9e5)").decodedAs("rt-hit-surface"),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push, &r](graph::PassContext& ctx) {
+          ctx.bind(trace_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in)
+              .accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
+              .storageImage(shared::kRtBindingHitsIn, ctx.image(r.pretraceHits).view())
+              .storageImage(shared::kRtBindingSurfaceIn, ctx.image(r.pretraceSurface).view())
+              .storageImage(shared::kRtBindingHitsOut, ctx.image(r.hits).view())
+              .storageImage(shared::kRtBindingSurfaceOut, ctx.image(r.hitSurface).view())
+              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle());
+          traceRays(ctx, trace_, in);
+        });
+
+    graph.addPass(
+        r.lightingPass, graph::PassKind::RayTracing,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          b.read(r.hits, Usage::StorageRead);
+          b.read(r.hitSurface, Usage::StorageRead);
+          readHitLighting(b, screenRadiance);
+          if (first)
+            for (const char* n : {first->shY, first->coCg, first->ao}) b.read(n, Usage::Sampled);
+          b.create(r.shY,
+                   image(VK_FORMAT_R16G16B16A16_SFLOAT, fmt::format("{} irradiance: L1 SH of luma", rays))
+                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", r.coCg)),
+                   Usage::StorageWrite);
+          b.create(r.coCg, image(VK_FORMAT_R16G16_SFLOAT, fmt::format("{} irradiance: chroma", rays)),
+                   Usage::StorageWrite);
+          b.create(r.ao, image(VK_FORMAT_R16_SFLOAT, fmt::format("{} ambient occlusion (hit closer than the AO radius)", rays)),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push, screenRadiance, &r, first](graph::PassContext& ctx) {
+          RtPush p = push;
+          p.screenRadiance = useScreenRadiance(ctx, push, screenRadiance);
+          // The first ray's bindings are read by the second ray only: for the first ray itself the
+          // G-buffer's normal (read-only here) stands in, unread.
+          auto firstRay = [&](const char* name) { return ctx.image(first ? name : "gbuffer.normal").view(); };
+          VkSampler pt = point_.handle();
+          ctx.bind(lighting_);
+          ctx.pushConstants(p);
+          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance)
+              .storageImage(shared::kRtBindingHitsIn, ctx.image(r.hits).view())
+              .storageImage(shared::kRtBindingSurfaceIn, ctx.image(r.hitSurface).view())
+              .storageImage(shared::kRtBindingShY, ctx.image(r.shY).view())
+              .storageImage(shared::kRtBindingCoCg, ctx.image(r.coCg).view())
+              .storageImage(shared::kRtBindingAo, ctx.image(r.ao).view())
+              .sampledImage(shared::kRtBindingFirstShY, firstRay(first ? first->shY : nullptr), pt, kReadOnly)
+              .sampledImage(shared::kRtBindingFirstCoCg, firstRay(first ? first->coCg : nullptr), pt, kReadOnly)
+              .sampledImage(shared::kRtBindingFirstAo, firstRay(first ? first->ao : nullptr), pt, kReadOnly);
+          traceRays(ctx, lighting_, in);
+        });
+  }
+
   static constexpr uint32_t kMaxDisocclusionRays = 64;  // RE ENGINE traces 16-64 per low-resolution pixel
 
   // Disocclusion rays (shared/rt.h): cells with a fresh pixel trace many rays, then the fresh
@@ -634,7 +664,10 @@ class RtPath final : public LightingPath {
                                  {shared::kRtBindingSurfaceIn, storage},
                                  {shared::kRtBindingShY, storage},
                                  {shared::kRtBindingCoCg, storage},
-                                 {shared::kRtBindingAo, storage}});
+                                 {shared::kRtBindingAo, storage},
+                                 {shared::kRtBindingFirstShY, sampled},
+                                 {shared::kRtBindingFirstCoCg, sampled},
+                                 {shared::kRtBindingFirstAo, sampled}});
       d.layout = with(extra);
       lighting_ = gpu::createRayTracingPipeline(in.device, d);
     }

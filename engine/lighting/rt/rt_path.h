@@ -43,6 +43,27 @@ inline constexpr const char* kHistRadiance = "rt.history.radiance";
 inline constexpr const char* kRawRays = "rt.rawRays";  // benchmark only: distances of the trivial kernel
 inline constexpr const char* kRawRaysPending = "rt.rawRays.pending";  // the same, on the pre-trace's pending rays only
 
+// What one ray per traced pixel reads and writes: the first ray's resources, and with two rays
+// per pixel (rtTwoRays) the second's, whose hit lighting writes the mean of both.
+struct RtRayResources {
+  const char* pretracePass;
+  const char* tracePass;
+  const char* lightingPass;
+  const char* pretraceHits;
+  const char* pretraceSurface;
+  const char* hits;
+  const char* hitSurface;
+  const char* shY;
+  const char* coCg;
+  const char* ao;
+};
+inline constexpr RtRayResources kFirstRay{"rt.pretrace", "rt.trace", "rt.lighting", kPretraceHits, kPretraceSurface,
+                                          kHits,         kHitSurface, kRawShY,      kRawCoCg,         kRawAo};
+inline constexpr RtRayResources kSecondRay{"rt.pretrace.2",    "rt.trace.2",     "rt.lighting.2",
+                                           "rt.pretrace.hits.2", "rt.pretrace.surface.2", "rt.hits.2",
+                                           "rt.hitSurface.2",  "rt.gi.raw2.shY", "rt.gi.raw2.coCg",
+                                           "rt.ao.raw2"};
+
 // Which pixels trace a ray each frame (shared/rt.h kRtRays*) for these settings.
 inline uint32_t rtRayPattern(const RenderSettings& s) {
   return s.rtHalfResolution ? shared::kRtRaysHalfResolution
