@@ -3,21 +3,16 @@
 // filter over the 2x2 reduced texels around the pixel, with equal spatial weights for the
 // SSAO (which averages its 2x2 rotation pattern) and bilinear ones for the cone-traced GI.
 // Away from depth edges it reads one gather of view depths and one filtered tap per image
-// (depthAwareTaps). AO = SSAO x voxel AO. The SSAO then accumulates over frames
-// (its directions turn each frame): reprojected with the motion vectors, history rejected off
-// screen or on another surface (view-depth test), weight 1/n up to aoHistory frames.
+// (depthAwareTaps). AO = SSAO x voxel AO. The SSAO arrives already accumulated over frames
+// (legacy.ssao.temporal, at its own resolution).
 #extension GL_GOOGLE_include_directive : require
 #include "legacy/legacy_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = kLegacyBindingAoRaw) uniform sampler2D aoRaw;
+layout(set = 0, binding = kLegacyBindingSsaoOut) uniform sampler2D ssaoIn;  // AO, view depth, frames
 layout(set = 0, binding = kLegacyBindingConeShY) uniform sampler2D coneShY;
 layout(set = 0, binding = kLegacyBindingConeCoCgAo) uniform sampler2D coneCoCgAo;
 layout(set = 0, binding = kLegacyBindingOutAo, r16f) uniform writeonly image2D aoOut;
-layout(set = 0, binding = kLegacyBindingAoHistory) uniform sampler2D aoHistory;
-layout(set = 0, binding = kLegacyBindingSsaoOut, rg16f) uniform writeonly image2D ssaoOut;
-layout(set = 0, binding = kLegacyBindingPrevDepth) uniform sampler2D previousDepth;
-layout(set = 0, binding = kLegacyBindingMotion) uniform sampler2D gMotion;
 layout(set = 0, binding = kLegacyBindingOutShY, rgba16f) uniform writeonly image2D shYOut;
 layout(set = 0, binding = kLegacyBindingOutCoCg, rg16f) uniform writeonly image2D coCgOut;
 
@@ -70,7 +65,6 @@ void main() {
   float depth = texelFetch(gDepth, p, 0).r;
   if (depth <= 0.0) {
     imageStore(aoOut, p, vec4(1.0));
-    imageStore(ssaoOut, p, vec4(1.0, 0.0, 0.0, 0.0));
     imageStore(shYOut, p, vec4(0.0));
     imageStore(coCgOut, p, vec4(0.0));
     return;
@@ -80,14 +74,14 @@ void main() {
   // SSAO: equal spatial weights over the 2x2 texels, which averages the 2x2 rotations.
   float ao = 1.0;
   ivec2 aoSize = reducedSize(push.aoDivisor), aoBase = tapBase(p, push.aoDivisor);
-  Taps aoTaps = depthAwareTaps(textureGather(aoRaw, vec2(aoBase + 1) / vec2(aoSize), 1), vec4(0.25), aoBase, aoSize);
+  Taps aoTaps = depthAwareTaps(textureGather(ssaoIn, vec2(aoBase + 1) / vec2(aoSize), 1), vec4(0.25), aoBase, aoSize);
   if (push.aoDivisor == 1u) {
-    ao = texelFetch(aoRaw, p, 0).r;
+    ao = texelFetch(ssaoIn, p, 0).r;
   } else if (aoTaps.separable) {
-    ao = textureLod(aoRaw, aoTaps.uv, 0.0).r;
+    ao = textureLod(ssaoIn, aoTaps.uv, 0.0).r;
   } else if (aoTaps.k != vec4(0.0)) {
     ao = 0.0;
-    for (int i = 0; i < 4; ++i) ao += aoTaps.k[i] * texelFetch(aoRaw, min(aoBase + kGatherOffsets[i], aoSize - 1), 0).r;
+    for (int i = 0; i < 4; ++i) ao += aoTaps.k[i] * texelFetch(ssaoIn, min(aoBase + kGatherOffsets[i], aoSize - 1), 0).r;
   }
   // GI: bilinear spatial weights from where the pixel lies between the four texels.
   vec4 shY = vec4(0.0), coCgAo = vec4(0.0, 0.0, 1.0, 0.0);
@@ -109,23 +103,8 @@ void main() {
     }
   }
   float ssao = clamp(ao, 0.0, 1.0);
-  float frames = 1.0;
-  if (push.aoHistory > 0u) {
-    vec2 previousUv = (vec2(p) + 0.5) * frame.viewport.zw - texelFetch(gMotion, p, 0).xy;
-    vec4 previousClip = frame.prevViewProj * vec4(pixelPosition(p, depth), 1.0);
-    if (all(greaterThanEqual(previousUv, vec2(0.0))) && all(lessThan(previousUv, vec2(1.0))) && previousClip.w > 0.0) {
-      ivec2 q = ivec2(previousUv * frame.viewport.xy);
-      float previous = texelFetch(previousDepth, q, 0).r;
-      vec2 history = texelFetch(aoHistory, q, 0).rg;
-      if (previous > 0.0 && abs(depthToViewW(previous) - previousClip.w) <= 0.03 * previousClip.w && history.g >= 1.0) {
-        frames = min(history.g + 1.0, float(push.aoHistory));
-        ssao = mix(history.r, ssao, 1.0 / frames);
-      }
-    }
-  }
   float vxao = coCgAo.z;
   imageStore(aoOut, p, vec4(ssao * vxao));
-  imageStore(ssaoOut, p, vec4(ssao, frames, 0.0, 0.0));
   imageStore(shYOut, p, shY);
   imageStore(coCgOut, p, vec4(coCgAo.xy, 0.0, 0.0));
 }

@@ -43,7 +43,7 @@ struct LegacyPush {
   uint coneDivisor;        // cone tracing resolution: 1 full, 2 half, 4 quarter
   uint voxelRound;         // voxelization: 0 opacity of every face, 1 radiance of the faces a surface looks out of
   uint screenRadiance;     // voxelization: surfaces seen last frame take their shaded radiance from it
-  uint aoHistory;          // upsample: frames the AO may accumulate (0: no valid history)
+  uint aoHistory;          // SSAO temporal pass: frames the AO may accumulate (0: no valid history)
 };
 
 // Push constants of the voxel passes (voxelize, clear, mips), which need none of the
@@ -77,9 +77,9 @@ TL_CONST uint kLegacyBindingOutCoCg = 13;
 TL_CONST uint kLegacyBindingMipSrcRadiance = 15;
 TL_CONST uint kLegacyBindingPrevRadiance = 16;  // last frame's composite radiance
 TL_CONST uint kLegacyBindingPrevDepth = 17;     // last frame's G-buffer depth
-TL_CONST uint kLegacyBindingAoHistory = 18;     // last frame's filtered SSAO (r) and frames accumulated (g)
+TL_CONST uint kLegacyBindingAoHistory = 18;     // last frame's accumulated SSAO: AO (r), view depth (g), frames (b)
 TL_CONST uint kLegacyBindingMotion = 19;        // gbuffer.motion
-TL_CONST uint kLegacyBindingSsaoOut = 20;       // filtered, accumulated SSAO (r) and its frames (g)
+TL_CONST uint kLegacyBindingSsaoOut = 20;       // reduced-res accumulated SSAO: AO (r), view depth (g), frames (b)
 TL_CONST uint kLegacyBindingVertices = 21;      // voxelize: the scene's vertex buffer (tl::scene::Vertex, 12 floats)
 TL_CONST uint kLegacyBindingIndices = 22;       // voxelize: the scene's index buffer
 TL_CONST uint kLegacyVertexFloats = 12;         // floats per vertex: position 3, normal 3, tangent 4, uv 2

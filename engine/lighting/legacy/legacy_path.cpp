@@ -3,7 +3,8 @@
 // (kept while nothing it holds changes; when only some instances deform or move, only the
 // voxels they and their shadows reach are redone, as VXAO does), its mip chain, six diffuse
 // cones per pixel for irradiance (in the RT path's SH layout) and voxel AO from the same
-// cones, then a depth-aware upsample. Every intermediate is a named graph resource.
+// cones, the SSAO's temporal accumulation at its own resolution, then a depth-aware upsample.
+// Every intermediate is a named graph resource.
 #include "graph/executor.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/copy_pass.h"
@@ -121,20 +122,45 @@ class LegacyPath final : public LightingPath {
     const graph::ResourceDesc radianceDesc =
         graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "composite radiance, last frame");
     const graph::ResourceDesc depthDesc = graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, w, h, "G-buffer depth, last frame");
-    const graph::ResourceDesc ssaoDesc =
-        graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "filtered SSAO and its frames, last frame");
+    // The SSAO accumulates at its own resolution, before the upsample: a quarter of the pixels.
+    // It keeps the view depth it was taken at, so the next frame's history test needs no depth.
+    const graph::ResourceDesc ssaoDesc = graph::ResourceDesc::image2D(
+        VK_FORMAT_R16G16B16A16_SFLOAT, aw, ah, "GTAO accumulated (r), view depth (g), frames (b), 1/aoDivisor, last frame");
     graph.declareCache(kVoxelRadiance, voxelDesc);
     graph.declareCache(kVoxelRadianceMips, voxelMipsDesc);
     const bool feedback = s.legacyScreenRadiance;
-    if (feedback) graph.declarePersistent(kLegacyHistRadiance, radianceDesc);
-    graph.declarePersistent(kLegacyHistDepth, depthDesc);
+    if (feedback) {  // only the voxelization reads these
+      graph.declarePersistent(kLegacyHistRadiance, radianceDesc);
+      graph.declarePersistent(kLegacyHistDepth, depthDesc);
+    }
     graph.declarePersistent(kLegacyHistSsao, ssaoDesc);
     // History counts only if this frame's declaration keeps it: a resize recreates it with
     // undefined contents (NaN on lavapipe's reused memory, once).
     const auto& ex = in.executor;
-    const bool aoHistory =
-        s.legacyAoFrames > 1 && ex.historyValid(kLegacyHistSsao, ssaoDesc) && ex.historyValid(kLegacyHistDepth, depthDesc);
+    const bool aoHistory = s.legacyAoFrames > 1 && ex.historyValid(kLegacyHistSsao, ssaoDesc);
     push.aoHistory = aoHistory ? s.legacyAoFrames : 0u;
+
+    graph.addPass(
+        "legacy.ssao.temporal", graph::PassKind::Compute,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          for (const char* n : {kLegacyAoRaw, kLegacyHistSsao, "gbuffer.motion"}) b.read(n, Usage::Sampled);
+          b.create(kLegacySsao,
+                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, aw, ah,
+                                                "GTAO accumulated over frames (r), view depth (g), frames (b), 1/aoDivisor"),
+                   Usage::StorageWrite);
+        },
+        [this, &in, push, aw, ah](graph::PassContext& ctx) {
+          VkSampler p = point_.handle();
+          ctx.bind(ssaoTemporal_);
+          ctx.pushConstants(push);
+          writeCommon(ctx, in)
+              .sampledImage(shared::kLegacyBindingAoRaw, ctx.image(kLegacyAoRaw).view(), p, kReadOnly)
+              .sampledImage(shared::kLegacyBindingAoHistory, ctx.image(kLegacyHistSsao).view(), p, kReadOnly)
+              .sampledImage(shared::kLegacyBindingMotion, ctx.image("gbuffer.motion").view(), p, kReadOnly)
+              .storageImage(shared::kLegacyBindingSsaoOut, ctx.image(kLegacySsao).view());
+          ctx.dispatch(aw, ah);
+        });
     const bool historyOk =
         feedback && ex.historyValid(kLegacyHistRadiance, radianceDesc) && ex.historyValid(kLegacyHistDepth, depthDesc);
     const bool voxelsKept = ex.historyValid(kVoxelRadiance, voxelDesc) && ex.historyValid(kVoxelRadianceMips, voxelMipsDesc);
@@ -176,11 +202,8 @@ class LegacyPath final : public LightingPath {
         "legacy.upsample", graph::PassKind::Compute,
         [&](graph::PassBuilder& b) {
           readCommon(b);
-          for (const char* n : {kLegacyAoRaw, kConeShY, kConeCoCgAo, kLegacyHistSsao, kLegacyHistDepth, "gbuffer.motion"})
-            b.read(n, Usage::Sampled);
+          for (const char* n : {kLegacySsao, kConeShY, kConeCoCgAo}) b.read(n, Usage::Sampled);
           b.create(kLegacyAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO"), Usage::StorageWrite);
-          b.create(kLegacySsao, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "GTAO filtered and accumulated, frames"),
-                   Usage::StorageWrite);
           b.create(kLegacyShY,
                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "diffuse irradiance, SH luma")
                        .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kLegacyCoCg)),
@@ -189,25 +212,24 @@ class LegacyPath final : public LightingPath {
                    Usage::StorageWrite);
         },
         [this, &in, push](graph::PassContext& ctx) {
-          VkSampler p = point_.handle(), lin = linear_.handle();
+          VkSampler lin = linear_.handle();
           ctx.bind(upsample_);
           ctx.pushConstants(push);
           writeCommon(ctx, in)
-              .sampledImage(shared::kLegacyBindingAoRaw, ctx.image(kLegacyAoRaw).view(), lin, kReadOnly)
+              .sampledImage(shared::kLegacyBindingSsaoOut, ctx.image(kLegacySsao).view(), lin, kReadOnly)
               .sampledImage(shared::kLegacyBindingConeShY, ctx.image(kConeShY).view(), lin, kReadOnly)
               .sampledImage(shared::kLegacyBindingConeCoCgAo, ctx.image(kConeCoCgAo).view(), lin, kReadOnly)
               .storageImage(shared::kLegacyBindingOutAo, ctx.image(kLegacyAo).view())
               .storageImage(shared::kLegacyBindingOutShY, ctx.image(kLegacyShY).view())
-              .storageImage(shared::kLegacyBindingOutCoCg, ctx.image(kLegacyCoCg).view())
-              .storageImage(shared::kLegacyBindingSsaoOut, ctx.image(kLegacySsao).view())
-              .sampledImage(shared::kLegacyBindingAoHistory, ctx.image(kLegacyHistSsao).view(), p, kReadOnly)
-              .sampledImage(shared::kLegacyBindingPrevDepth, ctx.image(kLegacyHistDepth).view(), p, kReadOnly)
-              .sampledImage(shared::kLegacyBindingMotion, ctx.image("gbuffer.motion").view(), p, kReadOnly);
+              .storageImage(shared::kLegacyBindingOutCoCg, ctx.image(kLegacyCoCg).view());
           ctx.dispatch(in.settings.width, in.settings.height);
         });
 
-    std::vector<ImageCopy> history = {{kGbufferDepth, kLegacyHistDepth}, {kLegacySsao, kLegacyHistSsao}};
-    if (feedback) history.push_back({kCompositeHdr, kLegacyHistRadiance});
+    std::vector<ImageCopy> history = {{kLegacySsao, kLegacyHistSsao}};
+    if (feedback) {
+      history.push_back({kGbufferDepth, kLegacyHistDepth});
+      history.push_back({kCompositeHdr, kLegacyHistRadiance});
+    }
     addCopyPass(graph, "legacy.history", std::move(history));
 
     LightingOutputs out;
@@ -551,12 +573,13 @@ class LegacyPath final : public LightingPath {
     cones_ = compute("legacy.cones", "legacy/cones.comp",
                      {{shared::kLegacyBindingRadiance, sampled}, {shared::kLegacyBindingRadianceMips, sampled},
                       {shared::kLegacyBindingConeShY, storage}, {shared::kLegacyBindingConeCoCgAo, storage}});
+    ssaoTemporal_ = compute("legacy.ssao.temporal", "legacy/ssao_temporal.comp",
+                            {{shared::kLegacyBindingAoRaw, sampled}, {shared::kLegacyBindingAoHistory, sampled},
+                             {shared::kLegacyBindingMotion, sampled}, {shared::kLegacyBindingSsaoOut, storage}});
     upsample_ = compute("legacy.upsample", "legacy/upsample.comp",
-                        {{shared::kLegacyBindingAoRaw, sampled}, {shared::kLegacyBindingConeShY, sampled},
+                        {{shared::kLegacyBindingSsaoOut, sampled}, {shared::kLegacyBindingConeShY, sampled},
                          {shared::kLegacyBindingConeCoCgAo, sampled}, {shared::kLegacyBindingOutAo, storage},
-                         {shared::kLegacyBindingOutShY, storage}, {shared::kLegacyBindingOutCoCg, storage},
-                         {shared::kLegacyBindingSsaoOut, storage}, {shared::kLegacyBindingAoHistory, sampled},
-                         {shared::kLegacyBindingPrevDepth, sampled}, {shared::kLegacyBindingMotion, sampled}});
+                         {shared::kLegacyBindingOutShY, storage}, {shared::kLegacyBindingOutCoCg, storage}});
     gpu::GraphicsPipelineDesc d;
     d.name = "legacy.voxelize";
     d.vertexShader = "legacy/voxelize.vert";
@@ -599,7 +622,7 @@ class LegacyPath final : public LightingPath {
   std::vector<Seen> seen_;         // per instance
   WorkFigures lastWork_;
   gpu::Sampler point_, linear_, shadowSampler_;
-  gpu::Pipeline ssao_, voxelize_, clear_, mip_, cones_, upsample_;
+  gpu::Pipeline ssao_, ssaoTemporal_, voxelize_, clear_, mip_, cones_, upsample_;
 };
 
 }  // namespace

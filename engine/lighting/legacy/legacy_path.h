@@ -16,7 +16,7 @@ inline constexpr const char* kLegacyShY = "legacy.gi.shY";
 inline constexpr const char* kLegacyCoCg = "legacy.gi.coCg";
 inline constexpr const char* kLegacyHistRadiance = "legacy.history.radiance";
 inline constexpr const char* kLegacyHistDepth = "legacy.history.depth";
-inline constexpr const char* kLegacySsao = "legacy.ssao";  // filtered + accumulated SSAO, frames
+inline constexpr const char* kLegacySsao = "legacy.ssao";  // SSAO accumulated over frames, reduced resolution
 inline constexpr const char* kLegacyHistSsao = "legacy.history.ssao";
 
 struct LegacyClipmapFit {
