@@ -26,15 +26,17 @@ nlohmann::json stats(const std::vector<double>& ms) {
 }
 
 
-double medianOf(tl::session::Session& session, const std::string& pass) {
-  for (const auto& [name, ms] : session.passGpuMs())
+using PassTimes = std::vector<std::pair<std::string, std::vector<double>>>;
+
+double medianOf(const PassTimes& passes, const std::string& pass) {
+  for (const auto& [name, ms] : passes)
     if (name == pass) return quantile(ms, 0.5);
   return 0.0;
 }
 
 // Rays the RT path traced (pixels the pre-trace left pending) against the same rays through
 // a trivial kernel, measured in the same frames.
-nlohmann::json rayFigures(tl::session::Session& session) {
+nlohmann::json rayFigures(tl::session::Session& session, const PassTimes& passes) {
   const auto& pre = session.buffer(tl::lighting::kPretraceHits);
   const auto depth = session.buffer("gbuffer.depth").texels();
   std::vector<uint32_t> hits(pre.bytes.size() / 4);
@@ -49,8 +51,8 @@ nlohmann::json rayFigures(tl::session::Session& session) {
     ++surface;
     pending += tl::shared::tlRtIsPending(hits[i]);
   }
-  const double rawMs = medianOf(session, "rt.rawRays"), traceMs = medianOf(session, "rt.trace");
-  const double rawPendingMs = medianOf(session, "rt.rawRays.pending");
+  const double rawMs = medianOf(passes, "rt.rawRays"), traceMs = medianOf(passes, "rt.trace");
+  const double rawPendingMs = medianOf(passes, "rt.rawRays.pending");
   const double rawRate = rawMs > 0.0 ? double(surface) / (rawMs * 1e-3) : 0.0;
   const double rawPendingRate = rawPendingMs > 0.0 ? double(pending) / (rawPendingMs * 1e-3) : 0.0;
   const double rtRate = traceMs > 0.0 ? double(pending) / (traceMs * 1e-3) : 0.0;
@@ -80,12 +82,15 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
   }
   session.renderFrames(std::max(1u, o.warmup));
   std::vector<double> firstFrame = session.frameGpuMs();
-  if (o.rays) {
+  // The ray figures read the last frame's pre-trace records and depth: requested before each
+  // call (a read-back lasts one renderFrames).
+  auto requestRayBuffers = [&] {
+    if (!o.rays) return;
     session.requestBuffer(tl::lighting::kPretraceHits);
     session.requestBuffer("gbuffer.depth");
-  }
+  };
   std::vector<double> frameMs;
-  std::vector<std::pair<std::string, std::vector<double>>> passMs;
+  PassTimes passMs;
   auto collect = [&] {
     frameMs.insert(frameMs.end(), session.frameGpuMs().begin(), session.frameGpuMs().end());
     for (const auto& [pass, ms] : session.passGpuMs()) {
@@ -99,10 +104,12 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
     // costs at worst (the disocclusion rays trace every cell).
     for (uint32_t i = 0; i < std::max(1u, o.frames); ++i) {
       session.resetHistory();
+      requestRayBuffers();
       session.renderFrames(1);
       collect();
     }
   } else {
+    requestRayBuffers();
     session.renderFrames(std::max(1u, o.frames));
     collect();
   }
@@ -129,7 +136,7 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
                                  VK_API_VERSION_PATCH(d.apiVersion()))},
           {"frame", stats(frameMs)},
           {"passes", passes},
-          {"rays", o.rays ? rayFigures(session) : nlohmann::json()},
+          {"rays", o.rays ? rayFigures(session, passMs) : nlohmann::json()},
           {"figures", figures}};
 }
 

@@ -54,7 +54,8 @@ void main() {
       float frames = max(coCgAo.w, 0.0);
       float k = prior / (frames + prior);
       shY = mix(shY, sumShY / total, k);
-      coCgAo = vec4(mix(coCgAo.xyz, sumCoCgAo.xyz / total, k), frames + prior);
+      // At least one frame's weight: the accumulation keeps a history only from one frame up.
+      coCgAo = vec4(mix(coCgAo.xyz, sumCoCgAo.xyz / total, k), max(frames + prior, 1.0));
     }
   }
   imageStore(outShY, p, shY);

@@ -67,7 +67,9 @@ vec3 emitterLight(vec3 start, vec3 normal, uvec3 seed, out vec3 direction) {
   if (distance2 <= 1e-12) return vec3(0.0);
   float distance = sqrt(distance2);
   direction = toLight / distance;
-  if (dot(normal, direction) <= 0.0) return vec3(0.0);
+  // Beyond the ray length the top level may have culled what lies between (and the rays, which
+  // stop there, would not find it either).
+  if (dot(normal, direction) <= 0.0 || distance > push.tMax) return vec3(0.0);
   vec3 lightNormal = cross(e.edge1.xyz, e.edge2.xyz);
   float cosLight = dot(lightNormal, direction) / max(length(lightNormal), 1e-30);
   if (cosLight == 0.0) return vec3(0.0);

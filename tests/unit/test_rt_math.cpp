@@ -346,7 +346,7 @@ TEST(RtEmitters, TableWeighsAreaTimesLuminanceAndSamplesUniformly) {
   EXPECT_NEAR(table[0].edge2.w + table[1].edge2.w, 2.0 / 3.0, 1e-6);
   EXPECT_NEAR(table[0].p0.y, 3.0f, 1e-6) << "world space";
 
-  // Uniform points: the mean lands on the centroid, every point inside the triangle.
+  // Uniform points: their mean lands on the centroid.
   const shared::RtEmitter& e = table[0];
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> uni(0.0f, 1.0f);
@@ -355,7 +355,7 @@ TEST(RtEmitters, TableWeighsAreaTimesLuminanceAndSamplesUniformly) {
   for (int i = 0; i < n; ++i) mean += glm::dvec3(tlRtEmitterPoint(e, vec2(uni(rng), uni(rng))));
   const glm::dvec3 centroid = glm::dvec3(e.p0) + (glm::dvec3(e.edge1) + glm::dvec3(e.edge2)) / 3.0;
   EXPECT_LT(glm::length(mean / double(n) - centroid), 0.02);
-  // 1/pdf (solid angle) = area cos / (d^2 prob).
+  // 1/pdf (solid angle) = area |cos| / (d^2 prob), either face.
   EXPECT_NEAR(tlRtEmitterInversePdf(e, 9.0f, -0.5f), e.edge1.w * 0.5 / (9.0 * e.edge2.w), 1e-5);
   // The SH weight for that pdf resolves to L cos / pdf; for the cosine pdf it is the usual one.
   EXPECT_NEAR(tlRtShWeightForPdf(0.6f, kPi / 0.6f), tlRtShSampleWeight(0.6f), 1e-5);
