@@ -71,8 +71,8 @@ struct RenderSettings {
   // Legacy path (T3). Distances <= 0 mean "scaled to the scene" (see legacy_path.cpp).
   float legacyAoRadius = 0.0f;      // SSAO / voxel AO radius (m)
   float legacyAoThickness = 0.1f;   // GTAO thickness heuristic, 0 (infinitely thick) .. 1 (paper thin)
-  uint32_t legacyAoSlices = 2;
-  uint32_t legacyAoSteps = 6;
+  uint32_t legacyAoSlices = 1;     // GTAO's one slice per pixel and frame: the 2x2 interleave and the
+  uint32_t legacyAoSteps = 4;      // 8-frame accumulation supply the directions (docs/performance.md)
   uint32_t legacyAoDivisor = 2;     // SSAO resolution: 1 full, 2 half
   uint32_t legacyConeDivisor = 4;   // cone tracing resolution: 1 full, 2 half, 4 quarter
   bool legacyVoxelizeEveryFrame = false;  // rebuild the voxels even when nothing they hold changed
