@@ -14,8 +14,6 @@ layout(set = 0, binding = kRtBindingCellPosition) uniform sampler2D cellPosition
 layout(set = 0, binding = kRtBindingOutShY, rgba16f) uniform writeonly image2D outShY;
 layout(set = 0, binding = kRtBindingOutCoCgAo, rgba16f) uniform writeonly image2D outCoCgAo;
 
-bool finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
-
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = ivec2(frame.viewport.xy);

@@ -13,6 +13,8 @@ layout(push_constant) uniform Push { RtPush push; };
 
 #include "common/camera.glsl"
 
+bool finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
 vec3 pixelNormal(ivec2 p) { return tlOctDecode(texelFetch(gNormal, p, 0).xy); }
 
 // The index of this pass's rays in the sequence of all rays a pixel takes: the frame, or with

@@ -24,8 +24,6 @@ layout(set = 0, binding = kRtBindingOutDepth, r32f) uniform writeonly image2D ou
 layout(set = 0, binding = kRtBindingHistMoment) uniform sampler2D historyMoment;
 layout(set = 0, binding = kRtBindingOutMoment, r32f) uniform writeonly image2D outMoment;
 
-bool finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
-
 // How much the view depth changes over one pixel on this pixel's surface: per axis the
 // smaller step to the two opposite neighbours (the plane's gradient; the larger one may cross
 // an edge), the larger of the two axes. Neighbours more than 10% away do not count.

@@ -134,6 +134,27 @@ TEST_F(RtTest, CameraCutRejectsHistory) {
   EXPECT_EQ(old, 0u) << "pixels that kept history across the cut";
 }
 
+// Per pixel, the luminance of the irradiance an SH image pair (coCg with 4 channels) resolves
+// to at the G-buffer normal; the normal must have been read back with them.
+std::vector<double> irradianceLuma(session::Session& s, const char* shYName, const char* coCgName) {
+  auto shY = s.buffer(shYName).texels(), coCg = s.buffer(coCgName).texels();
+  auto n = s.buffer("gbuffer.normal").texels();
+  std::vector<double> out(n.size() / 2);
+  for (size_t i = 0; i < out.size(); ++i)
+    out[i] = shared::tlLuminance(irradianceAt(shY, coCg, 4, i, shared::tlOctDecode(glm::vec2(n[2 * i], n[2 * i + 1]))));
+  return out;
+}
+// relMSE of x against `truth` over the surface pixels (depth > 0), with 0.01 added below.
+double surfaceRelMse(const std::vector<double>& x, const std::vector<double>& truth, const std::vector<float>& depth) {
+  double sum = 0.0;
+  size_t n = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    if (depth[i] <= 0.0f) continue;
+    sum += (x[i] - truth[i]) * (x[i] - truth[i]) / (truth[i] * truth[i] + 0.01), ++n;
+  }
+  return sum / double(std::max<size_t>(n, 1));
+}
+
 // Disocclusion rays (RE ENGINE): after a camera cut every pixel has one sample; with 16 rays
 // per 8x8 cell filled in, the first frame's accumulated irradiance is closer to the converged
 // one by a stated factor. A still camera, once settled, traces no cell at all.
@@ -148,29 +169,14 @@ TEST_F(RtTest, DisocclusionRaysBringACutCloserToConverged) {
   session::View after = before;
   after.position = {5.0, 1.5, -7.0};
   after.forward = glm::normalize(glm::dvec3(0.0, -0.1, -1.0));
-  auto luma = [&](const char* shYName, const char* coCgName) {
-    auto shY = s.buffer(shYName).texels(), coCg = s.buffer(coCgName).texels();
-    auto n = s.buffer("gbuffer.normal").texels();
-    std::vector<double> out(w * h);
-    for (size_t i = 0; i < out.size(); ++i)
-      out[i] = shared::tlLuminance(irradianceAt(shY, coCg, 4, i, shared::tlOctDecode(glm::vec2(n[2 * i], n[2 * i + 1]))));
-    return out;
-  };
+  auto luma = [&](const char* shYName, const char* coCgName) { return irradianceLuma(s, shYName, coCgName); };
   s.setView(after);
   s.settings().rtDenoise = false;
   s.settings().rtMaxAccumFrames = 4096;
   render(w, h, 256, {kShY, kCoCgAo, "gbuffer.normal", "gbuffer.depth"});
   const auto converged = luma(kShY, kCoCgAo);
   const auto depth = s.buffer("gbuffer.depth").texels();
-  auto relMse = [&](const std::vector<double>& x) {
-    double sum = 0.0;
-    size_t n = 0;
-    for (size_t i = 0; i < x.size(); ++i) {
-      if (depth[i] <= 0.0f) continue;
-      sum += (x[i] - converged[i]) * (x[i] - converged[i]) / (converged[i] * converged[i] + 0.01), ++n;
-    }
-    return sum / double(std::max<size_t>(n, 1));
-  };
+  auto relMse = [&](const std::vector<double>& x) { return surfaceRelMse(x, converged, depth); };
   // The cut: a few frames at the first view, then one at the second.
   auto firstFrameAfterCut = [&](uint32_t rays, const char* shYName, const char* coCgName) {
     s.settings() = RenderSettings{};
@@ -205,14 +211,7 @@ TEST_F(RtTest, DenoisedSingleFrameIsCloserToConvergedThanRaw) {
   auto& s = session();
   s.loadScene(contentFile("cornell.gltf"));
   const uint32_t w = 64, h = 64;
-  auto luma = [&](const char* shYName, const char* coCgName) {
-    auto shY = s.buffer(shYName).texels(), coCg = s.buffer(coCgName).texels();
-    auto n = s.buffer("gbuffer.normal").texels();
-    std::vector<double> out(w * h);
-    for (size_t i = 0; i < out.size(); ++i)
-      out[i] = shared::tlLuminance(irradianceAt(shY, coCg, 4, i, shared::tlOctDecode(glm::vec2(n[2 * i], n[2 * i + 1]))));
-    return out;
-  };
+  auto luma = [&](const char* shYName, const char* coCgName) { return irradianceLuma(s, shYName, coCgName); };
   s.settings().rtDenoise = false;
   s.settings().rtMaxAccumFrames = 4096;
   render(w, h, 256, {kShY, kCoCgAo, "gbuffer.normal", "gbuffer.depth"});
@@ -222,15 +221,7 @@ TEST_F(RtTest, DenoisedSingleFrameIsCloserToConvergedThanRaw) {
   s.resetHistory();
   render(w, h, 1, {kShY, kCoCgAo, kDenoisedShY, kDenoisedCoCgAo, "gbuffer.normal"});
   const auto raw = luma(kShY, kCoCgAo), denoised = luma(kDenoisedShY, kDenoisedCoCgAo);
-  auto relMse = [&](const std::vector<double>& x) {
-    double sum = 0.0;
-    size_t n = 0;
-    for (size_t i = 0; i < x.size(); ++i) {
-      if (depth[i] <= 0.0f) continue;
-      sum += (x[i] - converged[i]) * (x[i] - converged[i]) / (converged[i] * converged[i] + 0.01), ++n;
-    }
-    return sum / double(std::max<size_t>(n, 1));
-  };
+  auto relMse = [&](const std::vector<double>& x) { return surfaceRelMse(x, converged, depth); };
   const double rawError = relMse(raw), denoisedError = relMse(denoised);
   RecordProperty("relmse_raw", std::to_string(rawError));
   RecordProperty("relmse_denoised", std::to_string(denoisedError));

@@ -440,9 +440,7 @@ class RtPath final : public LightingPath {
               .storageImage(shared::kRtBindingCellShY, ctx.image(kCellShY).view())
               .storageImage(shared::kRtBindingCellCoCgAo, ctx.image(kCellCoCgAo).view())
               .storageImage(shared::kRtBindingCellPosition, ctx.image(kCellOrigin).view());
-          ctx.flushDescriptors();
-          const gpu::Pipeline& p = disocclusion_;
-          ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion, cw, ch, 1);
+          traceRays(ctx, disocclusion_, cw, ch);
         });
     const uint32_t w = in.settings.width, h = in.settings.height;
     graph.addPass(
@@ -549,9 +547,12 @@ class RtPath final : public LightingPath {
     return rtRayPattern(in.settings) == shared::kRtRaysHalfResolution ? (in.settings.height + 1) / 2 : in.settings.height;
   }
   static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, FrameInputs& in) {
+    traceRays(ctx, p, tracedWidth(in), tracedHeight(in));
+  }
+  static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, uint32_t width, uint32_t height) {
     ctx.flushDescriptors();
-    ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion,
-                                  tracedWidth(in), tracedHeight(in), 1);
+    ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion, width,
+                                  height, 1);
   }
 
   // Scene geometry, blue noise and pipelines: once per scene (and RT mesh ratio).
