@@ -403,6 +403,9 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                     "the diffuse irradiance the composite used (composite.irradiance: sky + bounce light, no sun) against "
                     "reference.irradiance, relMSE (same epsilon) over surface pixels"}}},
       {"paths", results}};
+  // Which form each figure of a path is in, for readers that do not parse the descriptions.
+  report["forms"] = {{"asRendered", {"relMSE", "RMSE", "PSNR", "SSIM", "FLIP", "HDR-FLIP"}},
+                     {"exposureNormalised", {"relMSE_norm", "RMSE_norm", "FLIP_norm"}}};
   if (!o.failAbove.empty()) report["gate"] = evaluateGate(results, o.failAbove);
   std::ofstream(o.outDir / "report.json") << report.dump(2) << "\n";
   writeReportHtml(o.outDir / "report.html", report, o.outDir);
