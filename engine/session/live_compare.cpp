@@ -21,8 +21,29 @@ std::string LiveCompare::nextPath() {
   return order[turn_++ % order.size()];
 }
 
+LiveCompare::~LiveCompare() { collectFlip(true); }
+
+void LiveCompare::collectFlip(bool wait) {
+  for (auto it = pendingFlip_.begin(); it != pendingFlip_.end();) {
+    auto& [path, pending] = *it;
+    if (!wait && pending.value.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+      ++it;
+      continue;
+    }
+    const double value = pending.value.get();
+    auto side = images_.find(path), ref = images_.find("reference");
+    if (side != images_.end() && ref != images_.end() && side->second.stamp == pending.stamp &&
+        ref->second.stamp == pending.stamp && view_.measureFlip)
+      errors_[path].flip = value;
+    it = pendingFlip_.erase(it);
+  }
+}
+
+void LiveCompare::finishFlip() { collectFlip(true); }
+
 void LiveCompare::frameDone(const std::string& path, const graph::Readback& image, double gpuMs, uint64_t stamp,
                             uint32_t referenceSamples, float exposure) {
+  collectFlip(false);
   Side& side = images_[path];
   side.image = rgbImage(image);
   side.stamp = stamp;
@@ -54,8 +75,12 @@ void LiveCompare::measure(const std::string& path, float exposure) {
   auto last = lastFlip_.find(path);
   const bool due = last == lastFlip_.end() ||
                    std::chrono::duration<double>(now - last->second).count() >= view_.flipIntervalSeconds;
-  if (view_.measureFlip && due) {
-    e.flip = metrics::flipLdr(displayEncode(side->second.image, exposure), displayEncode(ref->second.image, exposure)).value;
+  if (view_.measureFlip && due && !pendingFlip_.count(path)) {
+    // The worker gets its own copies: the sides' images change under it on the next frames.
+    auto job = [test = displayEncode(side->second.image, exposure), reference = displayEncode(ref->second.image, exposure)] {
+      return metrics::flipLdr(test, reference).value;
+    };
+    pendingFlip_[path] = {std::async(std::launch::async, std::move(job)), side->second.stamp};
     lastFlip_[path] = now;
   } else if (!view_.measureFlip) {
     e.flip.reset();
