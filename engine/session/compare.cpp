@@ -6,6 +6,7 @@
 #include "metrics/flip.h"
 #include "metrics/metrics.h"
 #include "session/image_io.h"
+#include "session/provenance.h"
 #include "session/report_html.h"
 #include "shared/color.h"
 #include "shared/tonemap.h"
@@ -272,7 +273,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
       {"driver", d.driver()},
       {"vulkan", fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(d.apiVersion()), VK_API_VERSION_MINOR(d.apiVersion()),
                              VK_API_VERSION_PATCH(d.apiVersion()))},
-      {"twinlight", "0.1.0"},
+      {"twinlight", twinlightJson()},
       {"reference", refInfo},
       {"metrics", {{"relMSE", "mean over pixels and channels of (t - r)^2 / (r^2 + 0.01), linear radiance"},
                    {"RMSE", "linear radiance"},
@@ -285,7 +286,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                     "the diffuse irradiance the composite used (composite.irradiance: sky + bounce light, no sun) against "
                     "reference.irradiance, relMSE (same epsilon) over surface pixels"}}},
       {"paths", results}};
-  std::ofstream(o.outDir / "report.json") << report.dump(2) << "\n";
+  writeTextFile(o.outDir / "report.json", report.dump(2) + "\n");
   writeReportHtml(o.outDir / "report.html", report, o.outDir);
   return report;
 }
