@@ -168,7 +168,8 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
       writeFileAtomically(dir / file, [&](const std::string& tmp) {
         std::ofstream out(tmp, std::ios::binary);
         out.write(reinterpret_cast<const char*>(rb->bytes.data()), std::streamsize(rb->bytes.size()));
-        return bool(out);
+        out.close();  // a failed final flush (a full disk) must fail the write too
+        return !out.fail();
       });
       r["file"] = file;
       r["bytes"] = rb->bytes.size();
@@ -176,11 +177,7 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
     resources.push_back(r);
   }
   manifest["resources"] = resources;
-  writeFileAtomically(dir / "manifest.json", [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    out << manifest.dump(2) << "\n";
-    return bool(out);
-  });
+  writeTextFile(dir / "manifest.json", manifest.dump(2) + "\n");
   return manifest;
 }
 
