@@ -1,6 +1,8 @@
 // `twinlight`: one binary. Without a subcommand it shows the default (or given) scene;
 // the headless subcommands work on machines without a display. Errors are one line on
-// stderr and a non-zero exit: 1 for a failure at run time, 2 for bad usage.
+// stderr (`twinlight: error: ...`) and a non-zero exit: 2 when the command line does not
+// parse, 1 for everything else (bad values, files, failures at run time, and Vulkan
+// validation errors when the layers are on).
 #include "bake_command.h"
 #include "bench.h"
 #include "compare_cameras.h"
@@ -183,11 +185,7 @@ int runRender(const RenderOptions& o) {
       fmt::print("wrote {}\n", o.dumpGraph);
     }
   }
-  if (session.validationErrors() > 0) {
-    fmt::print(stderr, "twinlight: error: {} Vulkan validation error(s)\n", session.validationErrors());
-    return 1;
-  }
-  return 0;
+  return exitStatus(session);
 }
 
 int runInfo() {
@@ -205,7 +203,7 @@ int runInfo() {
   fmt::print("lighting paths:\n");
   for (auto& p : session.paths())
     fmt::print("  {:10} {}{}\n", p.name, p.description, p.available ? "" : "  [unavailable: " + p.unavailableReason + "]");
-  return 0;
+  return exitStatus(session);
 }
 
 }  // namespace
@@ -319,7 +317,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    fmt::print(stderr, "twinlight: error: {} (see --help)\n", e.what());
+    return 2;
   }
 
   try {
@@ -336,7 +336,7 @@ int main(int argc, char** argv) {
                  manifest["scene"].get<std::string>(), manifest["lightingPath"].get<std::string>(),
                  manifest["frame"].get<uint64_t>(), captureOut);
       if (captureRenderDoc) renderDocFrame(session, std::filesystem::path(captureOut) / "renderdoc");
-      return 0;
+      return exitStatus(session);
     }
     if (*compareCmd) {
       Session session;
@@ -388,7 +388,7 @@ int main(int argc, char** argv) {
       };
       if (compareCameras.empty()) {
         runOne(compareOut);
-        return 0;
+        return exitStatus(session);
       }
       // One report per camera, and an index of them.
       const auto views = tl::editor::resolveCompareCameras(session, compareCameras);
@@ -407,7 +407,7 @@ int main(int argc, char** argv) {
           << "<!doctype html><meta charset=utf-8><title>Twinlight compare: cameras</title><h1>"
           << session.scene().name << ": one report per camera</h1><ul>\n" << links << "</ul>\n";
       fmt::print("wrote {} reports and {}\n", views.size(), (std::filesystem::absolute(compareOut) / "index.html").string());
-      return 0;
+      return exitStatus(session);
     }
     if (*benchCmd) {
       Session session;
@@ -429,7 +429,7 @@ int main(int argc, char** argv) {
         std::ofstream(benchJson) << report.dump(2) << "\n";
         fmt::print("wrote {}\n", benchJson);
       }
-      return 0;
+      return exitStatus(session);
     }
     // No subcommand: the main job on the default (or given) scene. The interactive editor
     // needs a display; without one the scene is rendered headless.
