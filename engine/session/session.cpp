@@ -106,6 +106,11 @@ void Session::openAlbedoDatabase(const std::filesystem::path& file, bool create)
   albedoDbFile_ = file;
 }
 
+void Session::closeAlbedoDatabase() {
+  albedoDbFile_.reset();
+  if (albedo_) albedo_->attach(nullptr);
+}
+
 void Session::captureAlbedoBaseline() { passes_->albedoView.captureBaseline(); }
 bool Session::hasAlbedoBaseline() const { return passes_->albedoView.hasBaseline(); }
 
