@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Twinlight set-up for Debian 12 (bookworm). Idempotent: installs only what is missing,
 # upgrades lavapipe from bookworm-backports when the installed one has no ray tracing,
-# then configures and builds the Release tree in build/.
+# then configures and builds the Release tree in build/ with warnings as errors.
 #
 #   scripts/setup.sh            install + configure + build
 #   scripts/setup.sh --no-build install only
@@ -58,7 +58,13 @@ fi
 
 if [ "${1:-}" = "--no-build" ]; then exit 0; fi
 
-if [ ! -f "$build_dir/build.ninja" ]; then
-  cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release
+# Compiler warnings are errors (TWINLIGHT_WERROR=OFF in the environment turns that off). A
+# tree configured earlier is configured again with the same switch, keeping its generator
+# and build type: one configured without -Werror does not stay that way.
+werror="${TWINLIGHT_WERROR:-ON}"
+if [ -f "$build_dir/CMakeCache.txt" ]; then
+  cmake -S "$root" -B "$build_dir" -DTWINLIGHT_WERROR="$werror" >/dev/null
+else
+  cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DTWINLIGHT_WERROR="$werror"
 fi
 cmake --build "$build_dir"
