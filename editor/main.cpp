@@ -1,7 +1,8 @@
 // `twinlight`: one binary. Without a subcommand it shows the default (or given) scene;
 // the headless subcommands work on machines without a display. Errors are one line on
-// stderr and a non-zero exit: 1 for a failure at run time, 2 for bad usage, 3 for a
-// regression gate (compare --fail-above) that failed.
+// stderr (`twinlight: error: ...`) and a non-zero exit: 2 when the command line does not
+// parse, 3 for a regression gate (compare --fail-above) that failed, 1 for everything else
+// (bad values, files, failures at run time, and Vulkan validation errors when the layers are on).
 #include "bake_command.h"
 #include "bench.h"
 #include "compare_cameras.h"
@@ -182,11 +183,7 @@ int runRender(const RenderOptions& o) {
       fmt::print("wrote {}\n", o.dumpGraph);
     }
   }
-  if (session.validationErrors() > 0) {
-    fmt::print(stderr, "twinlight: error: {} Vulkan validation error(s)\n", session.validationErrors());
-    return 1;
-  }
-  return 0;
+  return exitStatus(session);
 }
 
 int runInfo() {
@@ -205,7 +202,7 @@ int runInfo() {
   fmt::print("lighting paths:\n");
   for (auto& p : session.paths())
     fmt::print("  {:10} {}{}\n", p.name, p.description, p.available ? "" : "  [unavailable: " + p.unavailableReason + "]");
-  return 0;
+  return exitStatus(session);
 }
 
 }  // namespace
@@ -327,7 +324,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    fmt::print(stderr, "twinlight: error: {} (see --help)\n", e.what());
+    return 2;
   }
 
   try {
@@ -344,7 +343,7 @@ int main(int argc, char** argv) {
                  manifest["scene"].get<std::string>(), manifest["lightingPath"].get<std::string>(),
                  manifest["frame"].get<uint64_t>(), captureOut);
       if (captureRenderDoc) renderDocFrame(session, std::filesystem::path(captureOut) / "renderdoc");
-      return 0;
+      return exitStatus(session);
     }
     if (*compareCmd) {
       // Usage first, before a device or a scene is touched.
@@ -382,7 +381,9 @@ int main(int argc, char** argv) {
       compare.cacheDir = compareCache;
       size_t gateFailures = 0;
       // A failed gate is its own exit code, after every report is written.
+      // Validation errors first (the figures are not trusted then), then the gate.
       auto gateExit = [&]() {
+        if (int status = exitStatus(session); status != 0) return status;
         if (gateFailures == 0) return 0;
         std::fflush(stdout);  // the figures first, then the error line
         fmt::print(stderr, "twinlight: error: regression gate failed: {} figure(s) above their thresholds\n", gateFailures);
@@ -479,7 +480,7 @@ int main(int argc, char** argv) {
         tl::session::writeTextFile(benchJson, report.dump(2) + "\n");
         fmt::print("wrote {}\n", benchJson);
       }
-      return 0;
+      return exitStatus(session);
     }
     // No subcommand: the main job on the default (or given) scene. The interactive editor
     // needs a display; without one the scene is rendered headless.

@@ -164,12 +164,12 @@ void Device::choosePhysicalDevice(const DeviceOptions& options) {
   if (best < 0) {
     std::string list;
     for (auto& s : names) list += (list.empty() ? "" : ", ") + s;
-    if (!wanted.empty()) throw Error(fmt::format("TWINLIGHT_DEVICE=\"{}\" matches no Vulkan 1.3 device (found: {})", wanted, list));
-    throw Error(fmt::format("no Vulkan 1.3 device found (found: {}){}", list,
-                            RenderDoc::get().attached()
-                                ? "; RenderDoc is attached: it offers Vulkan 1.3 only on devices with "
-                                  "bufferDeviceAddressCaptureReplay (lavapipe has none), else 1.2"
-                                : ""));
+    const char* why = RenderDoc::get().attached() ? "; RenderDoc is attached: it offers Vulkan 1.3 only on devices with "
+                                                    "bufferDeviceAddressCaptureReplay (lavapipe has none), else 1.2"
+                                                  : "";
+    if (!wanted.empty())
+      throw Error(fmt::format("TWINLIGHT_DEVICE=\"{}\" matches no Vulkan 1.3 device (found: {}){}", wanted, list, why));
+    throw Error(fmt::format("no Vulkan 1.3 device found (found: {}){}", list, why));
   }
   physical_ = devices[best];
 

@@ -227,17 +227,24 @@ Executor::Physical& Executor::find(std::string_view name) {
   return it->second;
 }
 
-void Executor::bindImportedImage(std::string_view name, gpu::Image& image, VkImageLayout currentLayout) {
+Executor::Physical& Executor::importSlot(std::string_view name) {
   auto& p = physical_[std::string(name)];
+  // A name the executor owned until now (a transient or a history of an earlier graph) gives
+  // up its own resource: nothing may keep pointing into it.
+  if (p.kind != Physical::Kind::Imported) p = Physical{};
   p.kind = Physical::Kind::Imported;
+  return p;
+}
+
+void Executor::bindImportedImage(std::string_view name, gpu::Image& image, VkImageLayout currentLayout) {
+  auto& p = importSlot(name);
   p.image = &image;
   p.buffer = nullptr;
   p.layout = currentLayout;
 }
 
 void Executor::bindImportedBuffer(std::string_view name, gpu::Buffer& buffer) {
-  auto& p = physical_[std::string(name)];
-  p.kind = Physical::Kind::Imported;
+  auto& p = importSlot(name);
   p.buffer = &buffer;
   p.image = nullptr;
 }
@@ -255,6 +262,11 @@ const gpu::Image* Executor::image(std::string_view name) const {
 VkImageLayout Executor::layout(std::string_view name) const {
   auto it = physical_.find(name);
   return it == physical_.end() ? VK_IMAGE_LAYOUT_UNDEFINED : it->second.layout;
+}
+
+void Executor::unbindImported() {
+  for (auto it = physical_.begin(); it != physical_.end();)
+    it = it->second.kind == Physical::Kind::Imported ? physical_.erase(it) : std::next(it);
 }
 
 void Executor::resetHistory() {
@@ -280,6 +292,14 @@ const Readback& Executor::readback(std::string_view name) const {
 
 void Executor::realise(const RenderGraph& graph, const CompiledGraph& compiled) {
   const auto& decls = graph.resources();
+  // An import is bound for the frames that import it: a binding this graph does not import
+  // (a reopened capture's image after the capture closed) points at memory its owner may
+  // have freed, and would shadow a transient of the same name.
+  for (auto it = physical_.begin(); it != physical_.end();) {
+    const auto id = graph.find(it->first);
+    const bool stale = it->second.kind == Physical::Kind::Imported && !(id && decls[*id].imported);
+    it = stale ? physical_.erase(it) : std::next(it);
+  }
   // Usage flags of each resource: the union of how the frame uses it, plus sampling and
   // copies so the inspector can always view and read it back.
   std::vector<VkImageUsageFlags> usage(decls.size(), 0);

@@ -103,9 +103,12 @@ class Executor {
   explicit Executor(gpu::Device& device);
   ~Executor();
 
-  // Resources owned outside the graph; bind before every execute.
+  // Resources owned outside the graph; bind before every execute that imports them. A
+  // binding lasts until the next execute whose graph does not import that name, or until
+  // unbindImported(), which an owner calls before it frees what it bound.
   void bindImportedImage(std::string_view name, gpu::Image& image, VkImageLayout currentLayout);
   void bindImportedBuffer(std::string_view name, gpu::Buffer& buffer);
+  void unbindImported();
 
   // Read-back requests for the next execute: names, or every resource of the frame.
   void requestReadback(std::string_view name) { readbackNames_.insert(std::string(name)); }
@@ -147,6 +150,7 @@ class Executor {
     enum class Kind : uint8_t { Transient, Persistent, Imported } kind = Kind::Transient;
   };
   Physical& find(std::string_view name);
+  Physical& importSlot(std::string_view name);
 
   void realise(const RenderGraph& graph, const CompiledGraph& compiled);
   void placeBarriers(VkCommandBuffer cmd, const RenderGraph& graph, const CompiledPass& pass);

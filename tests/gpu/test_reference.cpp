@@ -146,7 +146,7 @@ TEST_F(ReferenceTest, PlaneIrradianceIsPiLForTheReferenceAndTheComposite) {
   for (const char* n : {lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
   s.renderFrames(8);
   auto rt = worstError(lighting::kCompositeIrradiance);
-  EXPECT_LT(rt.first, 0.03);
+  EXPECT_LT(rt.first, 0.01) << "measured 0.0028 (8 frames accumulated)";
   RecordProperty("rt_composite_irradiance_worst_error", std::to_string(rt.first));
 }
 

@@ -195,7 +195,10 @@ class ReferencePath final : public LightingPath {
     geometry_ = gpu::Buffer(in.device, table.size() * sizeof(table[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                             gpu::MemoryUsage::Upload, "reference.instanceGeometry");
     geometry_.write(table.data(), table.size() * sizeof(table[0]));
-    if (!pipeline_) {
+    // The pipelines' layouts name this scene's descriptor-table layout, which goes with the
+    // scene: built again for each scene (a shader reload rebuilds them from this description,
+    // so a layout of a scene since unloaded would be used after it was destroyed).
+    {
       gpu::RayTracingPipelineDesc d;
       d.name = "reference.trace";
       d.raygen = kRaygen;
