@@ -466,6 +466,9 @@ void EditorApp::recordAndPresent() {
   if (display && viewportSize_.x >= 1.0f && viewportSize_.y >= 1.0f && !load_.valid()) {
     VkImageLayout layout = session_->displayImageLayout();
     gpu::transitionImage(cmd, display->handle(), VK_IMAGE_ASPECT_COLOR_BIT, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    // The blit writes over the clear: it waits for it.
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                       VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkImageBlit blit{};
     blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     blit.srcOffsets[1] = {int32_t(display->extent().width), int32_t(display->extent().height), 1};

@@ -350,7 +350,7 @@ void Session::renderOne(bool readback) {
         graph.markOutput(r.name);
   }
 
-  graph::CompiledGraph compiled = graph.compile();
+  graph::CompiledGraph compiled = graph.compile(executor_->entryStates(graph));
   if (readback) {
     if (requestAll_) executor_->requestReadbackAll();
     for (auto& n : requested_) executor_->requestReadback(n);
