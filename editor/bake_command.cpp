@@ -1,5 +1,7 @@
 #include "bake_command.h"
 
+#include "cli_args.h"
+
 #include "session/session.h"
 #include "session/shard.h"
 
@@ -106,5 +108,9 @@ int runBake(const BakeArgs& a, const std::string& defaultScene) {
   }
   fmt::print("database {}: {} baked, {} overrides, {} bytes\n", a.db, session.albedo().database()->baked().size(),
              session.albedo().database()->overrides().size(), std::filesystem::file_size(a.db));
-  return failed ? 1 : 0;
+  if (failed) {
+    fmt::print(stderr, "twinlight: error: {} key(s) failed to bake (listed above)\n", failed);
+    return 1;
+  }
+  return exitStatus(session);
 }

@@ -1,20 +1,24 @@
 // `twinlight`: one binary. Without a subcommand it shows the default (or given) scene;
 // the headless subcommands work on machines without a display. Errors are one line on
-// stderr and a non-zero exit: 1 for a failure at run time, 2 for bad usage, 3 for a
-// regression gate (compare --fail-above) that failed.
+// stderr (`twinlight: error: ...`) and a non-zero exit: 2 when the command line does not
+// parse, 3 for a regression gate (compare --fail-above) that failed, 1 for everything else
+// (bad values, files, failures at run time, and Vulkan validation errors when the layers are on).
 #include "bake_command.h"
 #include "bench.h"
 #include "compare_cameras.h"
 #include "session/capture.h"
 #include "cli_args.h"
 #include "editor_app.h"
+#include "gpu/install_paths.h"
 #include "gpu/renderdoc.h"
 #include "gpu/self_test.h"
 #include "session/compare.h"
+#include "session/image_io.h"
 #include "session/settings_json.h"
 #include "session/shard.h"
 #include "session/sweep.h"
 #include "session/session.h"
+#include "version/version.h"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -32,12 +36,7 @@ namespace {
 
 using tl::session::Session;
 
-std::filesystem::path contentRoot() {
-  if (const char* env = std::getenv("TWINLIGHT_ROOT"); env && *env) return std::filesystem::path(env) / "content";
-  return std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "content";
-}
-
-std::filesystem::path defaultScene() { return contentRoot() / "atrium.gltf"; }
+std::filesystem::path defaultScene() { return tl::gpu::contentDirectory() / "atrium.gltf"; }
 
 struct RenderOptions {
   std::string scene;
@@ -182,15 +181,11 @@ int runRender(const RenderOptions& o) {
     if (o.dumpGraph == "-") {
       fmt::print("{}", session.graphDump());
     } else {
-      std::ofstream(o.dumpGraph) << session.graphDump();
+      session.writeGraph(o.dumpGraph);  // .dot / .gv: Graphviz
       fmt::print("wrote {}\n", o.dumpGraph);
     }
   }
-  if (session.validationErrors() > 0) {
-    fmt::print(stderr, "twinlight: error: {} Vulkan validation error(s)\n", session.validationErrors());
-    return 1;
-  }
-  return 0;
+  return exitStatus(session);
 }
 
 // compare --settings FILE: [{"name": N, "path": P, "settings": {...}}, ...].
@@ -328,10 +323,11 @@ int runInfo() {
   } else {
     fmt::print("ray tracing: unavailable: {}\n", d.rayTracing().unavailableReason);
   }
+  fmt::print("shaders: {}\ncontent: {}\n", tl::gpu::shaderDirectory().string(), tl::gpu::contentDirectory().string());
   fmt::print("lighting paths:\n");
   for (auto& p : session.paths())
     fmt::print("  {:10} {}{}\n", p.name, p.description, p.available ? "" : "  [unavailable: " + p.unavailableReason + "]");
-  return 0;
+  return exitStatus(session);
 }
 
 }  // namespace
@@ -340,6 +336,7 @@ int main(int argc, char** argv) {
   spdlog::set_level(std::getenv("TWINLIGHT_VERBOSE") ? spdlog::level::debug : spdlog::level::warn);
   CLI::App app{"Twinlight: a lighting lab comparing ray-traced and legacy real-time lighting against a path tracer"};
   app.require_subcommand(0, 1);
+  app.set_version_flag("--version", "twinlight " + tl::versionString());
   std::string sceneArg, scriptArg;
   bool headless = false;
   app.add_option("scene", sceneArg, "glTF scene to open (default: content/atrium.gltf)");
@@ -357,7 +354,7 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--out", render.outputs,
                         "output image(s): .exr = scene-linear radiance before exposure, .png = tonemapped display")
       ->required();
-  renderCmd->add_option("--dump-graph", render.dumpGraph, "write the compiled render graph as text (- for stdout)");
+  renderCmd->add_option("--dump-graph", render.dumpGraph, "write the compiled render graph as text (- for stdout), or Graphviz DOT for a .dot file");
   renderCmd->add_option("--spp", render.spp, "reference path: samples per pixel to accumulate (sets the frames)");
   renderCmd->add_option("--bounces", render.bounces,
                         "reference path: scattering events per path (1 = direct light only, 2 = one indirect bounce)")
@@ -455,7 +452,7 @@ int main(int argc, char** argv) {
                       "content/atrium.gltf");
   bakeCmd->add_option("--db", bake.db, "the albedo database (SQLite), created when missing")->required();
   bakeCmd->add_option("--shard", bake.shard,
-                      "bake only shard i of N (i/N, 0-based): the keys with key % N == i; or `auto` from a Slurm array "
+                      "bake only shard i of N (i/N, 0-based): a fixed subset of the keys; or `auto` from a Slurm array "
                       "(SLURM_ARRAY_TASK_ID) or Kubernetes Indexed Job (JOB_COMPLETION_INDEX)");
   bakeCmd->add_option("--shard-count", bake.shardCount,
                       "with --shard auto under a Kubernetes Indexed Job: the shard count (else TWINLIGHT_SHARD_COUNT)");
@@ -470,7 +467,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    fmt::print(stderr, "twinlight: error: {} (see --help)\n", e.what());
+    return 2;
   }
 
   try {
@@ -487,7 +486,7 @@ int main(int argc, char** argv) {
                  manifest["scene"].get<std::string>(), manifest["lightingPath"].get<std::string>(),
                  manifest["frame"].get<uint64_t>(), captureOut);
       if (captureRenderDoc) renderDocFrame(session, std::filesystem::path(captureOut) / "renderdoc");
-      return 0;
+      return exitStatus(session);
     }
     if (*compareCmd) {
       // Usage first, before a device or a scene is touched.
@@ -563,12 +562,14 @@ int main(int argc, char** argv) {
         // The merge's exit code carries the gate: a failing shard would keep a scheduler's
         // dependent merge job from running.
         if (outcome.gateFailures) fmt::print("gate: {} figure(s) above their thresholds (the merge fails)\n", outcome.gateFailures);
-        return 0;
+        return exitStatus(session);
       }
       if (outcome.sweepReport) {
         printSweepReport(*outcome.sweepReport);
         fmt::print("wrote {} reports and {}\n", outcome.views, (std::filesystem::absolute(compareOut) / "report.html").string());
       }
+      // Validation errors first (the figures are not trusted then), then the gate.
+      if (int status = exitStatus(session); status != 0) return status;
       return gateExit(outcome.gateFailures);
     }
     if (*benchCmd) {
@@ -588,10 +589,10 @@ int main(int argc, char** argv) {
       fmt::print("{}", benchTable(report));
       if (benchJson == "-") fmt::print("{}\n", report.dump(2));
       else if (!benchJson.empty()) {
-        std::ofstream(benchJson) << report.dump(2) << "\n";
+        tl::session::writeTextFile(benchJson, report.dump(2) + "\n");
         fmt::print("wrote {}\n", benchJson);
       }
-      return 0;
+      return exitStatus(session);
     }
     // No subcommand: the main job on the default (or given) scene. The interactive editor
     // needs a display; without one the scene is rendered headless.

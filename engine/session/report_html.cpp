@@ -1,5 +1,7 @@
 #include "session/report_html.h"
 
+#include "session/image_io.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -189,7 +191,7 @@ void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r,
   html += "<h2>Metrics</h2><ul>";
   for (auto& [k, v] : r["metrics"].items()) html += fmt::format("<li><b>{}</b>: {}</li>", escape(k), escape(v.get<std::string>()));
   html += "</ul><p>Every figure is also in report.json beside this page.</p></body></html>\n";
-  std::ofstream(file) << html;
+  writeTextFile(file, html);
 }
 
 void writeSweepReportHtml(const std::filesystem::path& file, const nlohmann::json& r) {
@@ -245,7 +247,7 @@ void writeSweepReportHtml(const std::filesystem::path& file, const nlohmann::jso
     html += "</tr>";
   }
   html += "</table><p>Every figure is also in report.json beside this page.</p></body></html>\n";
-  std::ofstream(file) << html;
+  writeTextFile(file, html);
 }
 
 }  // namespace tl::session

@@ -62,9 +62,11 @@ std::unique_ptr<scene::Scene> Session::parseScene(const std::filesystem::path& f
 void Session::loadScene(const std::filesystem::path& file) { installScene(parseScene(file)); }
 
 void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
-  capture_.reset();  // a scene replaces a reopened capture
   for (auto& w : loaded->warnings) spdlog::warn("{}", w);
   device_->waitIdle();
+  // The executor forgets the old scene's buffers and any capture's images before they go.
+  executor_->unbindImported();
+  capture_.reset();  // a scene replaces a reopened capture
   gpuScene_ = std::make_unique<scene::GpuScene>(*device_, *loaded);
   scene_ = std::move(loaded);
   albedo_ = std::make_unique<albedo::AlbedoLibrary>(*scene_);
@@ -102,6 +104,11 @@ void Session::openAlbedoDatabase(const std::filesystem::path& file, bool create)
   if (!albedo_) throw SessionError("load a scene before opening an albedo database");
   albedo_->attach(std::make_unique<albedo::AlbedoDatabase>(file, create));
   albedoDbFile_ = file;
+}
+
+void Session::closeAlbedoDatabase() {
+  albedoDbFile_.reset();
+  if (albedo_) albedo_->attach(nullptr);
 }
 
 void Session::captureAlbedoBaseline() { passes_->albedoView.captureBaseline(); }
@@ -343,7 +350,7 @@ void Session::renderOne(bool readback) {
         graph.markOutput(r.name);
   }
 
-  graph::CompiledGraph compiled = graph.compile();
+  graph::CompiledGraph compiled = graph.compile(executor_->entryStates(graph));
   if (readback) {
     if (requestAll_) executor_->requestReadbackAll();
     for (auto& n : requested_) executor_->requestReadback(n);
@@ -353,6 +360,7 @@ void Session::renderOne(bool readback) {
   if (compare_) executor_->requestReadback(lighting::compareImageName(compared));
   executor_->execute(graph, compiled);
   graphDump_ = graph.dump(compiled);
+  if (readback) graphDot_ = graph.dot(compiled);
   double total = 0.0;
   for (const auto& t : executor_->timings()) {
     total += t.gpuMs;
@@ -432,6 +440,7 @@ const std::vector<graph::PassTiming>& Session::timings() const { return capture_
 void Session::openCapture(const std::filesystem::path& dir) {
   auto opened = std::make_unique<CapturedFrame>(*device_, dir);  // throws, keeping what was open
   device_->waitIdle();
+  executor_->unbindImported();  // a capture open before this one is freed now
   capture_ = std::move(opened);
 }
 
@@ -442,7 +451,12 @@ const scene::Scene* Session::decodingScene() const {
 
 void Session::closeCapture() {
   device_->waitIdle();
+  executor_->unbindImported();  // the capture's images are freed with it
   capture_.reset();
+  // The capture's frames bound its images under the live resources' names (gbuffer.normal,
+  // gbuffer.instanceId, ...): a fresh executor forgets those bindings, which would otherwise
+  // outlive the images, and the live frame starts its resources and histories afresh.
+  executor_ = std::make_unique<graph::Executor>(*device_);
 }
 
 const graph::Readback& Session::buffer(const std::string& name) const {
@@ -460,6 +474,12 @@ bool Session::hasBuffer(const std::string& name) const {
     return std::any_of(r.begin(), r.end(), [&](auto& info) { return info.name == name; });
   }
   return executor_->readbacks().count(name) != 0;
+}
+
+void Session::writeGraph(const std::filesystem::path& file) const {
+  std::string ext = file.extension().string();
+  for (auto& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  writeTextFile(file, ext == ".dot" || ext == ".gv" ? graphDot_ : graphDump_);
 }
 
 void Session::saveImage(const std::filesystem::path& file) const {

@@ -27,14 +27,7 @@ nlohmann::json readJson(const std::filesystem::path& file) {
   }
 }
 
-void writeJson(const std::filesystem::path& file, const nlohmann::json& value) {
-  writeFileAtomically(file, [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    out << value.dump(2) << "\n";
-    out.close();
-    return bool(out);
-  });
-}
+void writeJson(const std::filesystem::path& file, const nlohmann::json& value) { writeTextFile(file, value.dump(2) + "\n"); }
 
 // A one-view sweep without folders is a plain compare: its report is the top-level one.
 bool oneReport(const nlohmann::json& views) { return views.size() == 1 && views[0]["dir"].get<std::string>().empty(); }

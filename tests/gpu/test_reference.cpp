@@ -146,7 +146,7 @@ TEST_F(ReferenceTest, PlaneIrradianceIsPiLForTheReferenceAndTheComposite) {
   for (const char* n : {lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
   s.renderFrames(8);
   auto rt = worstError(lighting::kCompositeIrradiance);
-  EXPECT_LT(rt.first, 0.03);
+  EXPECT_LT(rt.first, 0.01) << "measured 0.0028 (8 frames accumulated)";
   RecordProperty("rt_composite_irradiance_worst_error", std::to_string(rt.first));
 }
 
@@ -201,6 +201,38 @@ TEST_F(ReferenceTest, ErrorFallsAsOneOverSqrtSpp) {
   EXPECT_LT(e16 / e64, 2.6) << e16 << " " << e64;
   EXPECT_GT(e64 / e256, 1.6) << e64 << " " << e256;
   EXPECT_LT(e64 / e256, 2.6) << e64 << " " << e256;
+}
+
+// Deforming meshes: when their vertices move, the reference rebuilds their bottom levels in
+// a graph pass (reference.blas.rebuild, then reference.tlas). A pose reached by animating must
+// then render exactly as the same pose built at load, with the same samples; the pose it left
+// renders differently, so the comparison can fail.
+TEST_F(ReferenceTest, RebuiltBottomLevelsFollowTheDeformedMeshes) {
+  auto& s = session();
+  auto image = [&] {
+    s.setFrameIndex(0);
+    renderReference(s, 32, 2, 16);
+    return s.buffer("reference.radiance").texels();
+  };
+  auto relativeDifference = [](const std::vector<float>& a, const std::vector<float>& b) {
+    double diff = 0.0, sum = 0.0;
+    for (size_t i = 0; i < a.size(); i += 4)
+      for (int c = 0; c < 3; ++c) diff += std::abs(a[i + c] - b[i + c]), sum += std::abs(b[i + c]);
+    return diff / std::max(sum, 1e-12);
+  };
+  s.loadScene(contentFile("banners.gltf"));
+  s.setAnimationTime(0.0);
+  const auto rest = image();
+  s.setAnimationTime(0.55);
+  const auto animated = image();
+  s.loadScene(contentFile("banners.gltf"));
+  s.setAnimationTime(0.55);
+  const auto loaded = image();
+  const double moved = relativeDifference(animated, loaded), left = relativeDifference(rest, loaded);
+  std::printf("reference on the banners at t = 0.55: animated vs loaded %.2e, rest pose vs loaded %.2e\n", moved, left);
+  EXPECT_LT(moved, 1e-4);
+  EXPECT_GT(left, 100.0 * std::max(moved, 1e-6));
+  s.setAnimationTime(0.0);
 }
 
 }  // namespace

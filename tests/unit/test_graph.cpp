@@ -59,6 +59,28 @@ TEST(Graph, CullsPassesWhoseOutputsNobodyReadsTransitively) {
   EXPECT_NE(g.dump(c).find("culled:"), std::string::npos);
 }
 
+// The Graphviz form: every pass a box, every resource an ellipse, writer -> resource ->
+// readers, culled passes grey; labels quoted so names with dots are one node.
+TEST(Graph, DotListsPassesResourcesAndEdges) {
+  RenderGraph g;
+  compute(g, "producer", {}, {"a.b"});
+  compute(g, "consumer", {"a.b"}, {"out"});
+  compute(g, "unused", {"a.b"}, {"nobody \"reads\""});
+  g.markOutput("out");
+  const std::string d = g.dot(g.compile());
+  EXPECT_EQ(d.rfind("digraph twinlight {", 0), 0u);
+  EXPECT_EQ(d.back(), '\n');
+  EXPECT_NE(d.find("\"pass:producer\" [shape=box"), std::string::npos) << d;
+  EXPECT_NE(d.find("\"resource:a.b\" [shape=ellipse"), std::string::npos) << d;
+  EXPECT_NE(d.find("\"pass:producer\" -> \"resource:a.b\""), std::string::npos) << d;
+  EXPECT_NE(d.find("\"resource:a.b\" -> \"pass:consumer\""), std::string::npos) << d;
+  EXPECT_NE(d.find("\"pass:unused\" [shape=box, style=dashed, color=grey"), std::string::npos) << "culled, grey";
+  EXPECT_NE(d.find("resource:nobody \\\"reads\\\""), std::string::npos) << "quotes escaped: " << d;
+  EXPECT_NE(d.find("label=\"[0] producer\\ncompute\""), std::string::npos) << "DOT's line break: " << d;
+  // Every attribute list closed.
+  EXPECT_EQ(std::count(d.begin(), d.end(), '['), std::count(d.begin(), d.end(), ']'));
+}
+
 TEST(Graph, SideEffectsPersistentAndImportedWritersSurvive) {
   RenderGraph g;
   g.declarePersistent("history", kImage);
@@ -124,13 +146,13 @@ TEST(Graph, BarriersFollowHazards) {
   };
   const Barrier* first = barrierFor(0, "color");
   ASSERT_NE(first, nullptr);
-  EXPECT_FALSE(first->before.has_value());  // transient's first use: contents undefined
-  EXPECT_EQ(first->after, Usage::ColorAttachment);
-  const Barrier* war = barrierFor(1, "color");
-  ASSERT_NE(war, nullptr);
-  EXPECT_EQ(*war->before, Usage::ColorAttachment);
-  EXPECT_EQ(war->after, Usage::Sampled);
-  EXPECT_EQ(war->beforeKind, PassKind::Raster);
+  EXPECT_EQ(first->oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);  // transient's first use: contents undefined
+  EXPECT_EQ(first->newLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  const Barrier* raw = barrierFor(1, "color");
+  ASSERT_NE(raw, nullptr);
+  EXPECT_EQ(raw->src.stages, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
+  EXPECT_EQ(raw->dst.stages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+  EXPECT_EQ(raw->newLayout, VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL);
   EXPECT_EQ(barrierFor(2, "color"), nullptr);
 }
 
@@ -144,7 +166,9 @@ TEST(Graph, WriteAfterReadGetsABarrier) {
   ASSERT_EQ(orderNames(g, c), (std::vector<std::string>{"reader", "writer"}));
   bool found = false;
   for (auto& b : c.order[1].barriers)
-    if (b.resource == *g.find("history")) found = b.before == Usage::Sampled && b.after == Usage::StorageWrite;
+    if (b.resource == *g.find("history"))
+      found = b.src.stages == VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT && b.oldLayout == VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL &&
+              b.newLayout == VK_IMAGE_LAYOUT_GENERAL;
   EXPECT_TRUE(found);
 }
 
@@ -187,7 +211,8 @@ TEST(Graph, ReadModifyWriteIsOneBarrierWithTheWriteUsage) {
   }, nullptr);
   auto c = h.compile();
   ASSERT_EQ(c.order[0].barriers.size(), 1u);
-  EXPECT_EQ(c.order[0].barriers[0].after, Usage::StorageWrite);
+  EXPECT_EQ(c.order[0].barriers[0].newLayout, VK_IMAGE_LAYOUT_GENERAL);
+  EXPECT_EQ(c.order[0].barriers[0].dst.access, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 TEST(GraphErrors, ReadOfUnwrittenResourceNamesBoth) {

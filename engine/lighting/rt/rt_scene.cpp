@@ -133,13 +133,13 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
       deformingOffset[i] = deformingBytes;
       deformingBytes += gpu::bottomLevelBytes(device, g, true);
       blas_.emplace_back();
-      refitScratch_.emplace_back(device, gpu::refitScratchBytes(device, g), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                 gpu::MemoryUsage::GpuOnly, fmt::format("rt.blas.{}.refitScratch", i));
+      refitScratchOffset_.push_back(refitScratchBytes_);
+      refitScratchBytes_ += gpu::refitScratchBytes(device, g);
       ++stats_.deformingMeshes;
     } else {
       blas_.push_back(gpu::buildBottomLevel(device, g, fmt::format("rt.blas.{}", i), true));
       stats_.blasBytes += blas_.back().bytes();
-      refitScratch_.emplace_back();
+      refitScratchOffset_.push_back(0);
     }
     rtIndices_.push_back(std::move(ib));
     glm::vec3 lo(mesh.bounds.min), hi(mesh.bounds.max);
@@ -241,22 +241,12 @@ void RtScene::prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& 
   stats_.refitsLastFrame = uint32_t(pendingRefits_.size());
 }
 
-void RtScene::recordRefits(VkCommandBuffer cmd) {
-  if (pendingRefits_.empty()) return;
-  // The vertices were copied in an earlier submission the host waited for; this makes those
-  // writes visible to the builds (last frame's traces are done too).
-  VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  before.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
-  before.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR |
-                         VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
-                       VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0, 1, &before, 0, nullptr, 0, nullptr);
+void RtScene::recordRefits(VkCommandBuffer cmd, const gpu::Buffer& scratch) {
+  // Each refit of the frame has its own range of the scratch buffer: they run together.
   for (const auto& [mesh, version] : pendingRefits_) {
-    gpu::recordRefit(cmd, *device_, blas_[mesh], geometry_[mesh], refitScratch_[mesh]);
+    gpu::recordRefit(cmd, *device_, blas_[mesh], geometry_[mesh], scratch, refitScratchOffset_[mesh]);
     refitVersion_[mesh] = version;
   }
-  // The top-level build that follows waits for these writes (its own barrier), and the
-  // barrier after it makes both visible to the traces.
   pendingRefits_.clear();
 }
 

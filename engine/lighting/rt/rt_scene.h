@@ -56,10 +56,15 @@ class RtScene {
           float simplifyError);
 
   // Chooses this frame's instances and uploads them, and which deforming meshes to refit;
-  // recordRefits() then topLevel().record() build them.
+  // recordRefits() then topLevel().record() build them, each in a graph pass of kind
+  // AccelerationStructureBuild (the graph places the barriers).
   void prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling, const RefitPolicy& refits = {});
-  // Refits the bottom levels chosen by prepareTopLevel from the scene's current vertices.
-  void recordRefits(VkCommandBuffer cmd);
+  bool refitsPending() const { return !pendingRefits_.empty(); }
+  // Scratch for every deforming mesh refitted at once: what the refit pass creates.
+  VkDeviceSize refitScratchBytes() const { return refitScratchBytes_; }
+  // Refits the bottom levels chosen by prepareTopLevel from the scene's current vertices,
+  // into deformingStorage(), with `scratch` of refitScratchBytes().
+  void recordRefits(VkCommandBuffer cmd, const gpu::Buffer& scratch);
   bool hasDeforming() const { return stats_.deformingMeshes > 0; }
   // All deforming meshes' bottom levels, side by side: the graph's rt.blas.deforming.
   gpu::Buffer& deformingStorage() { return deformingStorage_; }
@@ -88,12 +93,14 @@ class RtScene {
   gpu::TopLevelBuilder topLevel_;
   RtSceneStats stats_;
   float ratio_ = 1.0f;
-  // Deforming meshes: geometry as built, the mesh version each bottom level holds, a scratch
-  // buffer each (refits of one frame run together), the throttle and this frame's choice.
+  // Deforming meshes: geometry as built, the mesh version each bottom level holds, each one's
+  // range of the refit scratch (refits of one frame run together), the throttle and this
+  // frame's choice.
   std::vector<gpu::TriangleGeometry> geometry_;  // per mesh
   std::vector<int64_t> meshInstance_;             // per mesh: its one instance (deforming meshes), else -1
   std::vector<uint64_t> refitVersion_;            // per mesh
-  std::vector<gpu::Buffer> refitScratch_;         // per mesh (empty for still ones)
+  std::vector<VkDeviceSize> refitScratchOffset_;  // per mesh (0 for still ones)
+  VkDeviceSize refitScratchBytes_ = 0;
   gpu::Buffer deformingStorage_;
   RefitScheduler scheduler_;
   std::vector<std::pair<uint32_t, uint64_t>> pendingRefits_;  // mesh, the version it will hold
