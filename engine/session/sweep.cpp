@@ -1,6 +1,7 @@
 #include "session/sweep.h"
 
 #include "session/image_io.h"
+#include "session/provenance.h"
 #include "session/report_html.h"
 
 #include <fmt/format.h>
@@ -89,6 +90,7 @@ nlohmann::json writeSweepReport(const std::filesystem::path& root, const nlohman
     configurations.push_back(c);
   }
   nlohmann::json report = {{"kind", "sweep"},
+                           {"twinlight", twinlightJson()},
                            {"grid", grid},
                            {"views", views},
                            {"configurations", configurations},
@@ -114,6 +116,17 @@ void copyView(const std::filesystem::path& from, const std::filesystem::path& to
     if (ec)
       throw SessionError(fmt::format("{}: cannot copy into {}: {}", entry.path().string(), to.string(), ec.message()));
   }
+}
+
+// "0.1.0 (commit 1a2b3c4d5e6f, modified)" for an error message; a manifest without the field
+// was written before shards recorded their build.
+std::string buildName(const nlohmann::json& twinlight) {
+  if (!twinlight.is_object()) return "an unrecorded build";
+  const std::string commit = twinlight.value("commit", nlohmann::json()).is_string()
+                                 ? twinlight["commit"].get<std::string>().substr(0, 12)
+                                 : std::string("unknown");
+  return fmt::format("{} (commit {}{})", twinlight.value("version", std::string("?")), commit,
+                     twinlight.value("modified", false) ? ", modified" : "");
 }
 
 bool sameFolder(const std::filesystem::path& a, const std::filesystem::path& b) {
@@ -196,6 +209,7 @@ SweepOutcome runSweep(Session& s, const SweepPlan& plan, const CompareOptions& o
   }
   if (shard) {
     writeJson(options.outDir / kShardManifest, {{"kind", kShardKind},
+                                                {"twinlight", twinlightJson()},
                                                 {"shard", {{"index", shard->index}, {"count", shard->count},
                                                            {"source", shard->source}}},
                                                 {"views", done},
@@ -232,6 +246,13 @@ nlohmann::json mergeSweep(const std::vector<std::filesystem::path>& dirs, const 
       throw SessionError(fmt::format("{} is a shard of another sweep than {} (scenes, cameras, configurations or "
                                      "settings differ)",
                                      dirs[k].string(), dirs[0].string()));
+    // Shards from two builds would mix figures of two programs in one report (a task rerun
+    // after an update is the usual way this happens).
+    if (m.value("twinlight", nlohmann::json()) != manifests[0].value("twinlight", nlohmann::json()))
+      throw SessionError(fmt::format("{} was measured by twinlight {}, but {} by {}: the shards of one sweep must "
+                                     "come from one build (rerun the odd shard)",
+                                     dirs[k].string(), buildName(m.value("twinlight", nlohmann::json())),
+                                     dirs[0].string(), buildName(manifests[0].value("twinlight", nlohmann::json()))));
     if (n != count)
       throw SessionError(fmt::format("{} is shard {}/{}, but {} is one of {} shards", dirs[k].string(), index, n,
                                      dirs[0].string(), count));

@@ -1,6 +1,7 @@
 // Shards: --shard i/N and --shard auto from a Slurm array or a Kubernetes Indexed Job, every
 // malformed value refused by name; views to shards in balanced contiguous blocks; and the
 // merge of a compare sweep's shard folders, which must be the shards 0..N-1 of one sweep.
+#include "session/provenance.h"
 #include "session/shard.h"
 #include "session/sweep.h"
 
@@ -200,7 +201,8 @@ class SweepMerge : public ::testing::Test {
     std::ofstream(file) << j.dump(2);
   }
   // Shard `index` of `count`: its views' reports (FLIP of `direct` = 0.1 * (view + 1)) and its manifest.
-  void shard(uint32_t index, uint32_t count, const nlohmann::json& grid) {
+  void shard(uint32_t index, uint32_t count, const nlohmann::json& grid,
+             const nlohmann::json& build = twinlightJson()) {
     const std::filesystem::path dir = root / ("shard" + std::to_string(index));
     nlohmann::json held = nlohmann::json::array();
     for (size_t v = 0; v < plan.views.size(); ++v) {
@@ -215,6 +217,7 @@ class SweepMerge : public ::testing::Test {
       std::ofstream(dir / plan.views[v].dir / "direct.png") << "image " << v;
     }
     write(dir / "shard.json", {{"kind", "twinlight compare shard"},
+                               {"twinlight", build},
                                {"shard", {{"index", index}, {"count", count}, {"source", "test"}}},
                                {"views", held},
                                {"grid", grid}});
@@ -245,6 +248,7 @@ TEST_F(SweepMerge, AssemblesEveryViewAndTheMeans) {
   EXPECT_DOUBLE_EQ(report["configurations"][0]["FLIP"].get<double>(), (0.1 + 0.2 + 0.3) / 3.0);
   EXPECT_TRUE(report["configurations"][1]["FLIP"].is_null()) << "a missing figure must not vanish into a mean";
   EXPECT_EQ(report["grid"], grid);
+  EXPECT_EQ(report["twinlight"], twinlightJson()) << "the merged report names the build that merged it";
 }
 
 TEST_F(SweepMerge, RefusesIncompleteForeignAndDuplicateShards) {
@@ -258,6 +262,13 @@ TEST_F(SweepMerge, RefusesIncompleteForeignAndDuplicateShards) {
   other.referenceSpp = 1024;
   shard(2, 3, sweepGrid(plan, other));
   EXPECT_NE(mergeRefusal({dir(0), dir(1), dir(2)}).find("is a shard of another sweep"), std::string::npos);
+  nlohmann::json otherBuild = twinlightJson();
+  otherBuild["commit"] = "0123456789abcdef0123456789abcdef01234567";
+  otherBuild["modified"] = true;
+  shard(2, 3, grid, otherBuild);
+  const std::string mixed = mergeRefusal({dir(0), dir(1), dir(2)});
+  EXPECT_NE(mixed.find("must come from one build"), std::string::npos) << mixed;
+  EXPECT_NE(mixed.find("commit 0123456789ab, modified"), std::string::npos) << mixed;
   shard(2, 4, grid);
   EXPECT_NE(mergeRefusal({dir(0), dir(1), dir(2)}).find("is shard 2/4, but"), std::string::npos);
   EXPECT_NE(mergeRefusal({dir(0), dir(1), dir(0)}).find("are both shard 0/3"), std::string::npos);
