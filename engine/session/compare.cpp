@@ -19,7 +19,7 @@
 namespace tl::session {
 namespace {
 
-constexpr const char* kReferenceVersion = "reference-2";  // bump when the path tracer changes
+constexpr const char* kReferenceVersion = "reference-3";  // bump when the path tracer changes
 
 
 double median(std::vector<double> v) {
@@ -38,7 +38,15 @@ std::string referenceKey(const Session& s, const CompareOptions& o) {
       l.skyRadiance.y, l.skyRadiance.z, s.settings().width, s.settings().height, o.referenceSpp, o.referenceBounces);
   if (s.animated()) text += fmt::format("|t{}", s.animationTime());  // the pose of deforming meshes
   text += fmt::format("|ao{}", s.settings().rtAoRadius);  // reference.ao's radius (0: scaled to the scene)
+  text += fmt::format("|m{}", lighting::materialModeName(s.settings().materials));
   return fmt::format("{:016x}", scene::hashBytes(text.data(), text.size()));
+}
+
+// How the reference ends its paths (shaders/reference/path.glsl), for the report.
+std::string referenceBouncePolicy(uint32_t cap) {
+  return fmt::format("Russian roulette from the 4th scattering event (survival = the path throughput's largest "
+                     "component, at most 0.95), hard cap {} scattering events",
+                     cap);
 }
 
 // The reference image and its per-stage quantities at the primary hit: AO at the AO radius
@@ -59,7 +67,12 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   const std::filesystem::path dir = o.cacheDir.empty() ? defaultReferenceCache() : o.cacheDir;
   const std::string key = referenceKey(s, o);
   const std::filesystem::path files[3] = {dir / (key + ".exr"), dir / (key + ".ao.exr"), dir / (key + ".irradiance.exr")};
-  info = {{"spp", o.referenceSpp}, {"bounces", o.referenceBounces}, {"scope", o.scope}, {"cacheFile", files[0].string()}};
+  info = {{"spp", o.referenceSpp},
+          {"bounces", o.referenceBounces},
+          {"bouncePolicy", referenceBouncePolicy(o.referenceBounces)},
+          {"materials", lighting::materialModeName(s.settings().materials)},
+          {"scope", o.scope},
+          {"cacheFile", files[0].string()}};
   const uint32_t w = s.settings().width, h = s.settings().height;
   std::optional<RgbImage> cached[3];
   bool hit = true;

@@ -113,11 +113,13 @@ td:first-child,th:first-child{text-align:left}
   html += fmt::format("<h1>Speed against error: {}</h1>", escape(r["scene"].get<std::string>()));
   const auto& ref = r["reference"];
   const bool same = ref.value("scope", "full") == "same";
-  html += fmt::format("<p>{}×{} on {} ({}), Vulkan {}. Reference: {} samples per pixel, {} scattering events{}{}. Exposure {:.2f} EV.</p>",
+  html += fmt::format("<p>{}×{} on {} ({}), Vulkan {}. Reference: {} samples per pixel, {} scattering events{}{}; "
+                      "bounces: {}; materials: {}. Exposure {:.2f} EV.</p>",
                       r["width"].get<int>(), r["height"].get<int>(), escape(r["device"].get<std::string>()),
                       escape(r["driver"].get<std::string>()), r["vulkan"].get<std::string>(), ref["spp"].get<int>(),
                       ref["bounces"].get<int>(), same ? " (same scope as the real-time paths: direct + one bounce)" : "",
                       ref["cached"].get<bool>() ? " (reused from the cache)" : "",
+                      escape(ref.value("bouncePolicy", "")), escape(ref.value("materials", "authored")),
                       r["exposureEV"].get<double>());
   html += "<table><tr><th>path</th><th>GPU ms</th><th>relMSE</th><th>RMSE</th><th>PSNR dB</th><th>SSIM</th><th>FLIP</th><th>HDR-FLIP</th></tr>";
   for (auto& p : r["paths"])

@@ -237,6 +237,7 @@ class LegacyPath final : public LightingPath {
     out.diffuseShY = kLegacyShY;
     out.diffuseCoCg = kLegacyCoCg;
     out.aoOnGi = true;
+    out.openSkyDirectionality = shared::tlLegacyOpenSkyDirectionality();
     return out;
   }
 

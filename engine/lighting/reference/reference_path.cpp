@@ -5,6 +5,7 @@
 #include "graph/executor.h"
 #include "lighting/lighting_path.h"
 #include "scene/scene.h"
+#include "shared/brdf_lut.h"
 #include "shared/reference.h"
 #include "shared/scene.h"
 
@@ -53,6 +54,7 @@ class ReferencePath final : public LightingPath {
         "reference.trace", graph::PassKind::RayTracing,
         [&](graph::PassBuilder& b) {
           readSceneInputs(b, graph::Usage::StorageRead);
+          b.read(kBrdfTables, graph::Usage::StorageRead);
           b.read(kAccum, graph::Usage::StorageRead);
           b.write(kAccum, graph::Usage::StorageWrite);
           b.read(kAoAccum, graph::Usage::StorageRead);
@@ -79,7 +81,8 @@ class ReferencePath final : public LightingPath {
               .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
               .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
               .storageImage(shared::kRefBindingAoAccum, ctx.image(kAoAccum).view())
-              .storageImage(shared::kRefBindingAo, ctx.image(kAo).view());
+              .storageImage(shared::kRefBindingAo, ctx.image(kAo).view())
+              .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle());
           ctx.flushDescriptors();
           in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_.layout(), shared::kSceneSet);
           VkExtent3D e = ctx.extent(kRadiance);
@@ -111,6 +114,7 @@ class ReferencePath final : public LightingPath {
         "reference.irradiance", graph::PassKind::RayTracing,
         [&](graph::PassBuilder& b) {
           readSceneInputs(b, graph::Usage::StorageRead);
+          b.read(kBrdfTables, graph::Usage::StorageRead);
           b.read(kIrradianceAccum, graph::Usage::StorageRead);
           b.write(kIrradianceAccum, graph::Usage::StorageWrite);
           b.create(kIrradiance,
@@ -132,7 +136,8 @@ class ReferencePath final : public LightingPath {
               .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
               .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
               .storageImage(shared::kRefBindingIrradianceAccum, ctx.image(kIrradianceAccum).view())
-              .storageImage(shared::kRefBindingIrradiance, ctx.image(kIrradiance).view());
+              .storageImage(shared::kRefBindingIrradiance, ctx.image(kIrradiance).view())
+              .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle());
           ctx.flushDescriptors();
           in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, irradiancePipeline_.layout(),
                                 shared::kSceneSet);
@@ -186,7 +191,8 @@ class ReferencePath final : public LightingPath {
                            {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingAoAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kRefBindingAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+                           {shared::kRefBindingAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
       d.layout.extraSets = {in.scene.table().layout()};
       d.layout.pushConstantBytes = sizeof(shared::RefPush);
       pipeline_ = gpu::createRayTracingPipeline(in.device, d);
@@ -200,7 +206,8 @@ class ReferencePath final : public LightingPath {
                            {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingIrradianceAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kRefBindingIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+                           {shared::kRefBindingIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
       irradiancePipeline_ = gpu::createRayTracingPipeline(in.device, d);
     }
   }
