@@ -85,7 +85,8 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
                           {"rtHalfRays", s.rtHalfRays}, {"rtPretrace", s.rtPretrace},
                           {"rtSimplifyRatio", s.rtSimplifyRatio}, {"legacyVoxelResolution", s.legacyVoxelResolution},
                           {"legacyAoDivisor", s.legacyAoDivisor}, {"legacyConeDivisor", s.legacyConeDivisor},
-                          {"referenceBounces", s.referenceBounces}};
+                          {"referenceBounces", s.referenceBounces},
+                          {"materials", lighting::materialModeName(s.materials)}};
   // Which albedo the RT hits read: the database (file, schema, revision) and how many
   // combinations resolve to each source; null database: texture averages and unsaved edits.
   {

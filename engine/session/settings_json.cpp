@@ -28,6 +28,15 @@ Setter field(T lighting::RenderSettings::*member) {
   };
 }
 
+// The material override mode by name: "authored", "diffuse" or "clay".
+Setter materialModeField() {
+  return [](lighting::RenderSettings& s, const nlohmann::json& v) {
+    const auto mode = v.is_string() ? lighting::parseMaterialMode(v.get<std::string>()) : std::nullopt;
+    if (!mode) throw std::invalid_argument("\"authored\", \"diffuse\" or \"clay\"");
+    s.materials = *mode;
+  };
+}
+
 const std::map<std::string, Setter>& setters() {
   using S = lighting::RenderSettings;
   static const std::map<std::string, Setter> table = {
@@ -37,6 +46,7 @@ const std::map<std::string, Setter>& setters() {
       {"specularGi", field(&S::specularGi)},
       {"taa", field(&S::taa)},
       {"taaBlend", field(&S::taaBlend)},
+      {"materials", materialModeField()},
       {"referenceBounces", field(&S::referenceBounces)},
       {"rtSimplifyRatio", field(&S::rtSimplifyRatio)},
       {"rtAoRadius", field(&S::rtAoRadius)},

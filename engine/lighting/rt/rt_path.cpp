@@ -286,6 +286,7 @@ class RtPath final : public LightingPath {
       out.farShY = far.diffuseShY;
       out.farCoCg = far.diffuseCoCg;
       out.farAo = far.ambientOcclusion;
+      out.farOpenSkyDirectionality = far.openSkyDirectionality;
     }
     return out;
   }
@@ -564,9 +565,11 @@ class RtPath final : public LightingPath {
       sceneId_ = in.scene.id();
       albedoVersion_ = ~0ull;
     }
-    if (in.instanceAlbedo && albedoVersion_ != in.instanceAlbedoVersion) {
-      scene_->setInstanceAlbedo(*in.instanceAlbedo);  // an override shows in the next frame's bounce
+    const uint32_t materials = uint32_t(in.settings.materials);
+    if (albedoVersion_ != in.instanceAlbedoVersion || materials_ != materials) {
+      scene_->setInstanceAlbedo(in.instanceAlbedo, materials);  // an override shows in the next frame's bounce
       albedoVersion_ = in.instanceAlbedoVersion;
+      materials_ = materials;
     }
     if (pretrace_) return;
     point_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "rt.point");
@@ -710,6 +713,7 @@ class RtPath final : public LightingPath {
   bool farLegacy_ = false;
   uint64_t sceneId_ = 0;
   uint64_t albedoVersion_ = ~0ull;
+  uint32_t materials_ = 0;  // the material override mode the instance albedos were set for
   uint32_t sceneInstances_ = 0;
   uint64_t lightingKey_ = 0;
   RtResolvedParams params_;
