@@ -4,8 +4,15 @@
 #include "session/session.h"
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
+
+// Bad usage found after parsing (options that contradict each other, a malformed value that
+// CLI11 cannot check): one `twinlight: error:` line and exit code 2, like a parse error.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 struct ViewArgs {
   std::optional<size_t> camera;

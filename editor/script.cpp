@@ -266,6 +266,26 @@ void Script::step(EditorApp& app) {
           all += fmt::format(" {} relMSE {:.4f} FLIP {:.4f} ({:.1f} ms);", e.path, *e.relMse, *e.flip, e.gpuMs);
         }
         fmt::print("script: compare against the reference ({} spp):{}\n", live->referenceSamples(), all);
+      } else if (cmd == "camera-move") {
+        double x, y, z;
+        if (std::sscanf(arg.c_str(), "%lf %lf %lf", &x, &y, &z) != 3) return fail(app, "camera-move needs X Y Z (metres)");
+        app.moveCamera({x, y, z});
+        if (const session::LiveCompare* live = app.session().liveCompare())
+          samplesAtMove_ = live->referenceSamples(), restartsAtMove_ = live->referenceRestarts();
+      } else if (cmd == "expect-reference-restarted") {
+        const session::LiveCompare* live = app.session().liveCompare();
+        if (!live) return fail(app, "the viewport is not split");
+        const std::string causes = lighting::describeParts(live->lastReferenceRestart());
+        if (live->referenceRestarts() == restartsAtMove_)
+          return fail(app, fmt::format("the reference did not restart: {} samples per pixel, {} before the move",
+                                       live->referenceSamples(), samplesAtMove_));
+        if ((", " + causes + ",").find(", " + arg + ",") == std::string::npos)
+          return fail(app, fmt::format("the reference restarted for {}, not {}", causes, arg));
+        if (live->referenceSamples() >= samplesAtMove_)
+          return fail(app, fmt::format("the reference holds {} samples per pixel, not fewer than the {} before the move",
+                                       live->referenceSamples(), samplesAtMove_));
+        fmt::print("script: the reference restarted ({}): {} -> {} samples per pixel\n", causes, samplesAtMove_,
+                   live->referenceSamples());
       } else if (cmd == "animation") {
         // play, pause, or a time in seconds (pauses there)
         if (arg == "play" || arg == "pause") {

@@ -21,15 +21,20 @@ std::string LiveCompare::nextPath() {
   return order[turn_++ % order.size()];
 }
 
-void LiveCompare::frameDone(const std::string& path, const graph::Readback& image, double gpuMs, uint64_t stamp,
-                            uint32_t referenceSamples, float exposure) {
+void LiveCompare::frameDone(const std::string& path, const graph::Readback& image, double gpuMs,
+                            const lighting::FrameKey& key, uint32_t referenceSamples, float exposure,
+                            const std::optional<lighting::HistoryDecision>& referenceAccumulation) {
   Side& side = images_[path];
   side.image = rgbImage(image);
-  side.stamp = stamp;
+  side.key = key;
   side.gpuMs = gpuMs;
   errors_[path].path = path;
   errors_[path].gpuMs = gpuMs;
   if (path == "reference") {
+    // Only a sum this compare saw under way restarts; its first frame starts one.
+    if (referenceSeen_ && referenceAccumulation && referenceAccumulation->action == lighting::HistoryAction::Restart)
+      ++referenceRestarts_, lastRestart_ = referenceAccumulation->acted;
+    referenceSeen_ = true;
     referenceSamples_ = referenceSamples;
     // A converging reference improves every side's figure: re-measure both.
     for (const std::string& p : {view_.left, view_.right})
@@ -43,7 +48,8 @@ void LiveCompare::measure(const std::string& path, float exposure) {
   auto side = images_.find(path), ref = images_.find("reference");
   LiveError& e = errors_[path];
   e.path = path;
-  if (side == images_.end() || ref == images_.end() || side->second.stamp != ref->second.stamp ||
+  if (side == images_.end() || ref == images_.end() ||
+      (lighting::differingParts(side->second.key, ref->second.key) & kComparedParts) != 0 ||
       side->second.image.width != ref->second.image.width || side->second.image.height != ref->second.image.height) {
     e.relMse.reset(), e.flip.reset();  // no reference of this view yet: no figure rather than a wrong one
     return;

@@ -128,7 +128,15 @@ class Session {
   void requestAllBuffers() { requestAll_ = true; }
 
   // Drops every persistent (history) resource: the next frame starts accumulating afresh.
+  // Changes of the camera, the light, the scene or a setting need no call: every history
+  // decides from the frame key what it keeps (lighting/common/frame_key.h).
   void resetHistory() { executor_->resetHistory(); }
+
+  // The frame key of the current state (camera, projection, light, scene, geometry, albedo,
+  // every path's history settings) for a frame numbered `frame` of its path.
+  lighting::FrameKey frameKey(uint64_t frame = 0) const;
+  // What each history did in the last frame (kept, rejected or restarted, and why).
+  const std::vector<lighting::HistoryDecision>& historyDecisions() const { return historyLog_; }
 
   // Renders n frames; the last one reads back the final images and the requested buffers.
   void renderFrames(uint32_t n);
@@ -190,7 +198,7 @@ class Session {
   std::unique_ptr<LiveCompare> compare_;
   std::map<std::string, View> comparePrevious_;  // each compared path's own previous view
   std::map<std::string, uint64_t> compareFrames_;  // and its own frame count (noise, checkerboards)
-  uint64_t referenceStamp() const;
+  std::vector<lighting::HistoryDecision> historyLog_;
   lighting::LightingPath* findPath(const std::string& name) const;
   std::vector<std::string> requested_;
   bool requestAll_ = false;

@@ -51,6 +51,32 @@ TEST(MetricsBasic, ConstantOffsetHasClosedForms) {
   EXPECT_EQ(map.channels, 1u);
 }
 
+// Exposure-normalised relMSE: both images scaled so the reference's mean luminance is 0.18.
+// Scaling both images alike (a dark scene against a bright one) leaves it unchanged, while
+// the plain relMSE, whose epsilon is absolute, moves by orders of magnitude.
+TEST(MetricsNormalised, RelMseIsInvariantToScalingBothImages) {
+  const Image ref = textured(32, 32, 5), test = noisy(ref, 0.05f, 9);
+  const double base = relMseNormalised(test, ref).value;
+  ASSERT_GT(base, 0.0);
+  for (double k : {1e-4, 1e-2, 0.5, 3.0, 1e3}) {
+    const double normalised = relMseNormalised(scaled(test, k), scaled(ref, k)).value;
+    EXPECT_NEAR(normalised, base, 1e-5 * base) << "both scaled by " << k;
+  }
+  const double dark = relMse(scaled(test, 1e-3), scaled(ref, 1e-3)).value, bright = relMse(test, ref).value;
+  EXPECT_LT(dark, 1e-3 * bright) << "the plain relMSE of a dark image says almost nothing";
+}
+
+TEST(MetricsNormalised, ConstantImagesHaveTheClosedForm) {
+  // Reference r, test r + delta: the factor is 0.18 / r, so the error is (0.18 delta / r)^2 / (0.18^2 + eps).
+  const float r = 0.02f, delta = 0.004f;
+  const Image ref = Image::filled(8, 8, 3, r), test = Image::filled(8, 8, 3, r + delta);
+  EXPECT_NEAR(exposureNormalisation(ref), 0.18 / r, 1e-4 * 0.18 / r);
+  const double k = 0.18 / r;
+  EXPECT_NEAR(relMseNormalised(test, ref).value, (k * delta) * (k * delta) / (0.18 * 0.18 + kRelMseEpsilon), 1e-5);
+  // A black reference has no exposure to normalise: the factor is 1.
+  EXPECT_EQ(exposureNormalisation(Image::filled(4, 4, 3, 0.0f)), 1.0);
+}
+
 TEST(MetricsBasic, SsimFallsWithStructureLossAndIsSymmetric) {
   Image a = textured(48, 48), b = noisy(a, 0.1f, 3);
   double ab = ssim(a, b).value, ba = ssim(b, a).value;
