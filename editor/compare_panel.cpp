@@ -70,6 +70,7 @@ void comparePanel(EditorApp& app) {
     tooltip("or drag the line in the viewport");
   }
   ImGui::Checkbox("FLIP (CPU, every 1.5 s)", &view->measureFlip);
+  tooltip("measured on a worker thread: the figure is the last one finished, the viewport never waits for it");
 
   ImGui::Separator();
   const session::LiveCompare* live = session.liveCompare();

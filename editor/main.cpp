@@ -8,11 +8,14 @@
 #include "session/capture.h"
 #include "cli_args.h"
 #include "editor_app.h"
+#include "gpu/install_paths.h"
 #include "gpu/renderdoc.h"
 #include "gpu/self_test.h"
 #include "session/compare.h"
+#include "session/image_io.h"
 #include "session/settings_json.h"
 #include "session/session.h"
+#include "version/version.h"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -30,12 +33,7 @@ namespace {
 
 using tl::session::Session;
 
-std::filesystem::path contentRoot() {
-  if (const char* env = std::getenv("TWINLIGHT_ROOT"); env && *env) return std::filesystem::path(env) / "content";
-  return std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "content";
-}
-
-std::filesystem::path defaultScene() { return contentRoot() / "atrium.gltf"; }
+std::filesystem::path defaultScene() { return tl::gpu::contentDirectory() / "atrium.gltf"; }
 
 struct RenderOptions {
   std::string scene;
@@ -195,7 +193,7 @@ int runRender(const RenderOptions& o) {
     if (o.dumpGraph == "-") {
       fmt::print("{}", session.graphDump());
     } else {
-      std::ofstream(o.dumpGraph) << session.graphDump();
+      session.writeGraph(o.dumpGraph);  // .dot / .gv: Graphviz
       fmt::print("wrote {}\n", o.dumpGraph);
     }
   }
@@ -218,6 +216,7 @@ int runInfo() {
   } else {
     fmt::print("ray tracing: unavailable: {}\n", d.rayTracing().unavailableReason);
   }
+  fmt::print("shaders: {}\ncontent: {}\n", tl::gpu::shaderDirectory().string(), tl::gpu::contentDirectory().string());
   fmt::print("lighting paths:\n");
   for (auto& p : session.paths())
     fmt::print("  {:10} {}{}\n", p.name, p.description, p.available ? "" : "  [unavailable: " + p.unavailableReason + "]");
@@ -230,6 +229,7 @@ int main(int argc, char** argv) {
   spdlog::set_level(std::getenv("TWINLIGHT_VERBOSE") ? spdlog::level::debug : spdlog::level::warn);
   CLI::App app{"Twinlight: a lighting lab comparing ray-traced and legacy real-time lighting against a path tracer"};
   app.require_subcommand(0, 1);
+  app.set_version_flag("--version", "twinlight " + tl::versionString());
   std::string sceneArg, scriptArg, materialsArg = "authored";
   bool headless = false;
   app.add_option("scene", sceneArg, "glTF scene to open (default: content/atrium.gltf)");
@@ -248,7 +248,7 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--out", render.outputs,
                         "output image(s): .exr = scene-linear radiance before exposure, .png = tonemapped display")
       ->required();
-  renderCmd->add_option("--dump-graph", render.dumpGraph, "write the compiled render graph as text (- for stdout)");
+  renderCmd->add_option("--dump-graph", render.dumpGraph, "write the compiled render graph as text (- for stdout), or Graphviz DOT for a .dot file");
   renderCmd->add_option("--spp", render.spp, "reference path: samples per pixel to accumulate (sets the frames)");
   renderCmd->add_option("--bounces", render.bounces,
                         "reference path: scattering events per path (1 = direct light only, 2 = one indirect bounce)")
@@ -495,7 +495,7 @@ int main(int argc, char** argv) {
       fmt::print("{}", benchTable(report));
       if (benchJson == "-") fmt::print("{}\n", report.dump(2));
       else if (!benchJson.empty()) {
-        std::ofstream(benchJson) << report.dump(2) << "\n";
+        tl::session::writeTextFile(benchJson, report.dump(2) + "\n");
         fmt::print("wrote {}\n", benchJson);
       }
       return 0;

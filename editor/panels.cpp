@@ -5,6 +5,7 @@
 #include "editor_app.h"
 #include "ui_helpers.h"
 #include "session/captured_frame.h"
+#include "gpu/install_paths.h"
 #include "gpu/renderdoc.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -506,7 +507,7 @@ void fileBrowser(EditorApp& app, bool& open, std::filesystem::path& dir) {
   ImGui::TextWrapped("%s", dir.string().c_str());
   if (ImGui::Button("Up") && dir.has_parent_path()) dir = dir.parent_path();
   ImGui::SameLine();
-  if (ImGui::Button("Project content")) dir = std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "content";
+  if (ImGui::Button("Project content")) dir = gpu::contentDirectory();
   ImGui::BeginChild("files");
   std::error_code ec;
   std::vector<std::filesystem::directory_entry> entries;

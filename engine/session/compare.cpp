@@ -8,6 +8,7 @@
 #include "metrics/flip.h"
 #include "metrics/metrics.h"
 #include "session/image_io.h"
+#include "session/provenance.h"
 #include "session/report_html.h"
 #include "shared/brdf_tables.h"
 #include "shared/color.h"
@@ -405,7 +406,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
       {"driver", d.driver()},
       {"vulkan", fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(d.apiVersion()), VK_API_VERSION_MINOR(d.apiVersion()),
                              VK_API_VERSION_PATCH(d.apiVersion()))},
-      {"twinlight", "0.1.0"},
+      {"twinlight", twinlightJson()},
       {"reference", refInfo},
       {"metrics", {{"relMSE", "as rendered: mean over pixels and channels of (t - r)^2 / (r^2 + 0.01), linear radiance"},
                    {"RMSE", "as rendered: linear radiance"},
@@ -427,7 +428,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
   report["forms"] = {{"asRendered", {"relMSE", "RMSE", "PSNR", "SSIM", "FLIP", "HDR-FLIP"}},
                      {"exposureNormalised", {"relMSE_norm", "RMSE_norm", "FLIP_norm"}}};
   if (!o.failAbove.empty()) report["gate"] = evaluateGate(results, o.failAbove);
-  std::ofstream(o.outDir / "report.json") << report.dump(2) << "\n";
+  writeTextFile(o.outDir / "report.json", report.dump(2) + "\n");
   writeReportHtml(o.outDir / "report.html", report, o.outDir);
   return report;
 }

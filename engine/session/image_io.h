@@ -20,6 +20,10 @@ enum class ImageEncoding { LinearHalf, Display8 };
 // the temporary is removed and the error names `file`.
 void writeFileAtomically(const std::filesystem::path& file, const std::function<bool(const std::string& tmp)>& write);
 
+// Writes `text` to `file` atomically (writeFileAtomically); throws SessionError naming the
+// file and the system's reason when it cannot.
+void writeTextFile(const std::filesystem::path& file, const std::string& text);
+
 // A read-back buffer as an image (alpha dropped).
 void writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding);
 

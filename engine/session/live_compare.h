@@ -12,6 +12,7 @@
 #include "metrics/image.h"
 
 #include <chrono>
+#include <future>
 #include <map>
 #include <optional>
 #include <string>
@@ -20,7 +21,9 @@
 namespace tl::session {
 
 struct CompareView : lighting::CompareViewRequest {
-  bool measureFlip = true;  // LDR-FLIP on the CPU as well as relMSE (at most every flipInterval)
+  // LDR-FLIP on the CPU as well as relMSE, started at most every flipInterval on a worker
+  // thread: the figure shown is the last one finished, frames never wait for it.
+  bool measureFlip = true;
   double flipIntervalSeconds = 1.5;
 };
 
@@ -38,6 +41,7 @@ class LiveCompare {
   // `referenceReason`: why the reference cannot run here (no ray tracing); then the sides
   // still alternate but no error is measured.
   LiveCompare(CompareView view, std::optional<std::string> referenceReason);
+  ~LiveCompare();  // waits for a FLIP measurement under way
 
   const CompareView& view() const { return view_; }
   // Changing the sides keeps what was rendered (each path's image stays until replaced).
@@ -58,6 +62,8 @@ class LiveCompare {
 
   // Left and right, in that order (one entry when both sides show the same path).
   std::vector<LiveError> errors() const;
+  // Waits for the FLIP measurements under way and takes their figures (tests, scripts).
+  void finishFlip();
   uint32_t referenceSamples() const { return referenceSamples_; }
   // How often the reference's accumulation started over while a sum was under way, and the
   // frame-key parts that made it do so the last time (e.g. camera.position; none when its
@@ -85,6 +91,14 @@ class LiveCompare {
   std::map<std::string, Side> images_;
   std::map<std::string, LiveError> errors_;
   std::map<std::string, std::chrono::steady_clock::time_point> lastFlip_;
+  // FLIP under way per path, with the frame key of the images it measures: a result arrives only
+  // while both images still show that view.
+  struct PendingFlip {
+    std::future<double> value;
+    lighting::FrameKey key;
+  };
+  std::map<std::string, PendingFlip> pendingFlip_;
+  void collectFlip(bool wait);
   uint32_t referenceSamples_ = 0;
   bool referenceSeen_ = false;
   uint32_t referenceRestarts_ = 0;

@@ -1,5 +1,7 @@
 #include "session/report_html.h"
 
+#include "session/image_io.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -186,7 +188,7 @@ td:first-child,th:first-child{text-align:left}
   html += "<h2>Metrics</h2><ul>";
   for (auto& [k, v] : r["metrics"].items()) html += fmt::format("<li><b>{}</b>: {}</li>", escape(k), escape(v.get<std::string>()));
   html += "</ul><p>Every figure is also in report.json beside this page.</p></body></html>\n";
-  std::ofstream(file) << html;
+  writeTextFile(file, html);
 }
 
 }  // namespace tl::session

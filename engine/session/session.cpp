@@ -361,6 +361,7 @@ void Session::renderOne(bool readback) {
   if (compare_) executor_->requestReadback(lighting::compareImageName(compared));
   executor_->execute(graph, compiled);
   graphDump_ = graph.dump(compiled);
+  if (readback) graphDot_ = graph.dot(compiled);
   double total = 0.0;
   for (const auto& t : executor_->timings()) {
     total += t.gpuMs;
@@ -451,6 +452,10 @@ const scene::Scene* Session::decodingScene() const {
 void Session::closeCapture() {
   device_->waitIdle();
   capture_.reset();
+  // The capture's frames bound its images under the live resources' names (gbuffer.normal,
+  // gbuffer.instanceId, ...): a fresh executor forgets those bindings, which would otherwise
+  // outlive the images, and the live frame starts its resources and histories afresh.
+  executor_ = std::make_unique<graph::Executor>(*device_);
 }
 
 const graph::Readback& Session::buffer(const std::string& name) const {
@@ -468,6 +473,12 @@ bool Session::hasBuffer(const std::string& name) const {
     return std::any_of(r.begin(), r.end(), [&](auto& info) { return info.name == name; });
   }
   return executor_->readbacks().count(name) != 0;
+}
+
+void Session::writeGraph(const std::filesystem::path& file) const {
+  std::string ext = file.extension().string();
+  for (auto& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  writeTextFile(file, ext == ".dot" || ext == ".gv" ? graphDot_ : graphDump_);
 }
 
 void Session::saveImage(const std::filesystem::path& file) const {

@@ -120,6 +120,7 @@ class Session {
   // the display pass. Throws SessionError naming an unavailable side; nothing changes then.
   void setCompareView(std::optional<CompareView> view);
   const LiveCompare* liveCompare() const { return compare_.get(); }
+  LiveCompare* liveCompare() { return compare_.get(); }
   // Instance under pixel (x, y) of the last frame, which must have read back gbuffer.instanceId.
   std::optional<uint32_t> instanceAt(uint32_t x, uint32_t y) const;
 
@@ -156,6 +157,11 @@ class Session {
   // What decoders may know of the scene: the loaded one, or a reopened capture's instance names.
   const scene::Scene* decodingScene() const;
   std::string graphDump() const { return graphDump_; }
+  // The last rendered frame's graph as Graphviz DOT (graph::RenderGraph::dot).
+  const std::string& graphDot() const { return graphDot_; }
+  // Writes the graph to `file`: DOT for a .dot or .gv file, else the text dump. Atomic;
+  // throws SessionError naming the file when it cannot be written.
+  void writeGraph(const std::filesystem::path& file) const;
   // GPU milliseconds of each frame of the last renderFrames call, and per pass (in order).
   const std::vector<double>& frameGpuMs() const { return frameGpuMs_; }
   const std::vector<std::pair<std::string, std::vector<double>>>& passGpuMs() const { return passGpuMs_; }
@@ -202,7 +208,7 @@ class Session {
   lighting::LightingPath* findPath(const std::string& name) const;
   std::vector<std::string> requested_;
   bool requestAll_ = false;
-  std::string graphDump_;
+  std::string graphDump_, graphDot_;
   std::vector<double> frameGpuMs_;
   std::vector<std::pair<std::string, std::vector<double>>> passGpuMs_;
   uint64_t frameIndex_ = 0;

@@ -10,11 +10,15 @@
 namespace tl::session {
 namespace {
 
-using Setter = std::function<void(lighting::RenderSettings&, const nlohmann::json&)>;
+// One setting by name: how to apply a JSON value to it, and its value as JSON.
+struct Field {
+  std::function<void(lighting::RenderSettings&, const nlohmann::json&)> set;
+  std::function<nlohmann::json(const lighting::RenderSettings&)> get;
+};
 
 template <class T>
-Setter field(T lighting::RenderSettings::*member) {
-  return [member](lighting::RenderSettings& s, const nlohmann::json& v) {
+Field field(T lighting::RenderSettings::*member) {
+  auto set = [member](lighting::RenderSettings& s, const nlohmann::json& v) {
     if constexpr (std::is_same_v<T, bool>) {
       if (!v.is_boolean()) throw std::invalid_argument("true or false");
       s.*member = v.get<bool>();
@@ -26,20 +30,22 @@ Setter field(T lighting::RenderSettings::*member) {
       s.*member = v.get<T>();
     }
   };
+  return {set, [member](const lighting::RenderSettings& s) { return nlohmann::json(s.*member); }};
 }
 
 // The material override mode by name: "authored", "diffuse" or "clay".
-Setter materialModeField() {
-  return [](lighting::RenderSettings& s, const nlohmann::json& v) {
+Field materialModeField() {
+  auto set = [](lighting::RenderSettings& s, const nlohmann::json& v) {
     const auto mode = v.is_string() ? lighting::parseMaterialMode(v.get<std::string>()) : std::nullopt;
     if (!mode) throw std::invalid_argument("\"authored\", \"diffuse\" or \"clay\"");
     s.materials = *mode;
   };
+  return {set, [](const lighting::RenderSettings& s) { return nlohmann::json(lighting::materialModeName(s.materials)); }};
 }
 
-const std::map<std::string, Setter>& setters() {
+const std::map<std::string, Field>& fields() {
   using S = lighting::RenderSettings;
-  static const std::map<std::string, Setter> table = {
+  static const std::map<std::string, Field> table = {
       {"shadowMapSize", field(&S::shadowMapSize)},
       {"softShadows", field(&S::softShadows)},
       {"pcssMaxRadiusTexels", field(&S::pcssMaxRadiusTexels)},
@@ -99,19 +105,25 @@ lighting::RenderSettings applySettingsJson(const lighting::RenderSettings& base,
   if (!overrides.is_object()) throw SessionError("settings must be a JSON object of setting names and values");
   lighting::RenderSettings s = base;
   for (const auto& [key, value] : overrides.items()) {
-    auto it = setters().find(key);
-    if (it == setters().end()) {
+    auto it = fields().find(key);
+    if (it == fields().end()) {
       std::string known;
-      for (const auto& [name, setter] : setters()) known += (known.empty() ? "" : ", ") + name;
+      for (const auto& [name, f] : fields()) known += (known.empty() ? "" : ", ") + name;
       throw SessionError(fmt::format("unknown setting `{}` (known: {})", key, known));
     }
     try {
-      it->second(s, value);
+      it->second.set(s, value);
     } catch (const std::invalid_argument& e) {
       throw SessionError(fmt::format("setting `{}` must be {}, not {}", key, e.what(), value.dump()));
     }
   }
   return s;
+}
+
+nlohmann::json settingsJson(const lighting::RenderSettings& settings) {
+  nlohmann::json out = {{"width", settings.width}, {"height", settings.height}};
+  for (const auto& [name, f] : fields()) out[name] = f.get(settings);
+  return out;
 }
 
 }  // namespace tl::session

@@ -11,5 +11,8 @@ namespace tl::session {
 
 // Returns `base` with the keys of `overrides` (an object) applied.
 lighting::RenderSettings applySettingsJson(const lighting::RenderSettings& base, const nlohmann::json& overrides);
+// Every setting applySettingsJson knows, with its value, plus the image size: what a capture
+// manifest records, and what applySettingsJson takes back (less width and height).
+nlohmann::json settingsJson(const lighting::RenderSettings& settings);
 
 }  // namespace tl::session

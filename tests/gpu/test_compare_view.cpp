@@ -39,8 +39,9 @@ TEST_F(CompareViewTest, WipeShowsEachSidesOwnImageAndErrorsAreMeasured) {
   v.wipe = 0.5f;
   s.setCompareView(v);
   render(6, v);  // direct, legacy, reference, twice
-  const auto* live = s.liveCompare();
+  auto* live = s.liveCompare();
   ASSERT_NE(live, nullptr);
+  live->finishFlip();  // FLIP runs on a worker thread, beside the frames
   EXPECT_EQ(live->referenceSamples(), 8u);
   auto errors = live->errors();
   ASSERT_EQ(errors.size(), 2u);

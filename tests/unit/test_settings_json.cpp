@@ -53,5 +53,25 @@ TEST(SettingsJson, MaterialModeByName) {
   }
 }
 
+// What a capture manifest records is every setting by name with its value: applied to default
+// settings it gives the recorded settings back.
+TEST(SettingsJson, EverySettingRoundTrips) {
+  lighting::RenderSettings changed;
+  changed.width = 320, changed.height = 200;
+  changed.rtDenoise = !changed.rtDenoise;
+  changed.legacyAoSteps = 7;
+  changed.rtFireflyClamp = 12.5f;
+  nlohmann::json all = settingsJson(changed);
+  EXPECT_EQ(all["width"], 320);
+  EXPECT_EQ(all["rtDenoise"], changed.rtDenoise);
+  EXPECT_EQ(all["legacyAoSteps"], 7);
+  EXPECT_GT(all.size(), 40u) << "every setting, not a few";
+  all.erase("width"), all.erase("height");
+  const lighting::RenderSettings back = applySettingsJson(lighting::RenderSettings{}, all);
+  nlohmann::json again = settingsJson(back);
+  again.erase("width"), again.erase("height");
+  EXPECT_EQ(again, all);
+}
+
 }  // namespace
 }  // namespace tl::session
