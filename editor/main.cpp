@@ -48,7 +48,8 @@ struct RenderOptions {
   LightArgs light;
   std::string dumpGraph;
   std::optional<uint32_t> spp;
-  uint32_t bounces = 8;
+  uint32_t bounces = tl::lighting::RenderSettings{}.referenceBounces;
+  std::string materials = "authored";
   std::optional<float> sunSizeDegrees;
   bool hardShadows = false;
   std::optional<float> rtMeshRatio;
@@ -61,7 +62,19 @@ struct RenderOptions {
   std::optional<double> animateFps;
 };
 
+constexpr const char* kMaterialsHelp =
+    "material override, every path and the reference: authored (as the scene says), diffuse (Lambert with the "
+    "authored base colour and textures: no specular, no normal maps) or clay (Lambert 0.8 grey, no textures)";
+
+// The material override mode by name (one `twinlight: error:` line for anything else).
+tl::lighting::MaterialMode parseMaterials(const std::string& name) {
+  const auto mode = tl::lighting::parseMaterialMode(name);
+  if (!mode) throw tl::session::SessionError(fmt::format("--materials must be authored, diffuse or clay, not `{}`", name));
+  return *mode;
+}
+
 void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
+  cmd.add_option("--materials", o.materials, kMaterialsHelp)->capture_default_str();
   cmd.add_option("--camera", o.view.camera, "use the scene's glTF camera N (0-based)");
   cmd.add_option("--albedo-db", o.albedoDb, "albedo database whose baked values and overrides the RT path's hits use");
   cmd.add_option("--look-from", o.view.lookFrom, "camera position x,y,z (metres, y up)");
@@ -112,7 +125,9 @@ void printFrameTimes(const Session& session) {
 
 // Scene, path, size, view and light from the options every headless subcommand shares.
 void prepareSession(Session& session, const RenderOptions& o) {
+  const tl::lighting::MaterialMode materials = parseMaterials(o.materials);
   session.loadScene(o.scene.empty() ? defaultScene() : std::filesystem::path(o.scene));
+  session.settings().materials = materials;
   session.setPath(o.path);
   auto [w, h] = parseSize(o.size);
   session.setSize(w, h);
@@ -221,6 +236,7 @@ nlohmann::json renderOptionsJson(const RenderOptions& o) {
           {"sun", o.light.sun},
           {"sky", o.light.sky},
           {"exposure", opt(o.light.exposureEv)},
+          {"materials", o.materials},
           {"albedoDb", o.albedoDb},
           {"sunSize", opt(o.sunSizeDegrees)},
           {"hardShadows", o.hardShadows},
@@ -257,11 +273,14 @@ void printCompareReport(const nlohmann::json& report, const std::vector<tl::sess
       fmt::print("{:27} {:13.4f} {:18.4f}\n", p["path"].get<std::string>(), figure(p["stages"]["ao"]["meanAbsError"]),
                  figure(p["stages"]["irradiance"]["relMSE"]));
   const auto& ref = report["reference"];
-  if (ref["source"] == "file")
+  if (ref["source"] == "file") {
     fmt::print("reference: {} (external)\n", ref["file"].get<std::string>());
-  else
+  } else {
     fmt::print("reference: {} spp{}{}\n", ref["spp"].get<int>(), ref["scope"] == "same" ? ", same scope (direct + one bounce)" : "",
                ref["cached"].get<bool>() ? " (reused from the cache)" : "");
+    fmt::print("reference bounces: {}\n", ref["bouncePolicy"].get<std::string>());
+  }
+  fmt::print("materials: {}\n", ref["materials"].get<std::string>());
   if (report.contains("gate")) {
     const auto& gate = report["gate"];
     for (auto& f : gate["failures"])
@@ -337,9 +356,10 @@ int main(int argc, char** argv) {
   CLI::App app{"Twinlight: a lighting lab comparing ray-traced and legacy real-time lighting against a path tracer"};
   app.require_subcommand(0, 1);
   app.set_version_flag("--version", "twinlight " + tl::versionString());
-  std::string sceneArg, scriptArg;
+  std::string sceneArg, scriptArg, materialsArg = "authored";
   bool headless = false;
   app.add_option("scene", sceneArg, "glTF scene to open (default: content/atrium.gltf)");
+  app.add_option("--materials", materialsArg, kMaterialsHelp)->capture_default_str();
   app.add_option("--script", scriptArg, "run editor actions from FILE (see editor/script.h), then quit");
   app.add_flag("--headless", headless, "render the scene to out/ instead of opening the editor");
 
@@ -545,8 +565,9 @@ int main(int argc, char** argv) {
         if (!view.camera.empty()) tl::editor::useCompareCamera(s, view.camera);
         if (headers) fmt::print("== {}\n", view.dir);
       };
-      callbacks.viewDone = [&](const tl::session::SweepView&, const nlohmann::json& report) {
+      callbacks.viewDone = [&](const tl::session::SweepView& view, const nlohmann::json& report) {
         printCompareReport(report, compare.failAbove);
+        fmt::print("wrote {}\n", (std::filesystem::absolute(compareOut) / view.dir / "report.html").lexically_normal().string());
       };
       callbacks.progress = [](const std::string& what, double f) {
         int filled = int(f * 30.0 + 0.5);
@@ -599,15 +620,17 @@ int main(int argc, char** argv) {
     const char* x11 = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
     bool haveDisplay = (x11 && *x11) || (wayland && *wayland);
+    const tl::lighting::MaterialMode materials = parseMaterials(materialsArg);
     if (!headless && (haveDisplay || !scriptArg.empty())) {
       std::optional<std::filesystem::path> scene, script;
       if (!sceneArg.empty()) scene = sceneArg;
       if (!scriptArg.empty()) script = scriptArg;
-      tl::editor::EditorApp editor(scene, script);
+      tl::editor::EditorApp editor(scene, script, materials);
       return editor.run();
     }
     RenderOptions o;
     o.scene = sceneArg;
+    o.materials = materialsArg;
     std::filesystem::path stem = sceneArg.empty() ? defaultScene().stem() : std::filesystem::path(sceneArg).stem();
     o.outputs = {(std::filesystem::path("out") / (stem.string() + ".png")).string(),
                  (std::filesystem::path("out") / (stem.string() + ".exr")).string()};

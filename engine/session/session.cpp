@@ -9,6 +9,7 @@
 #include "session/captured_frame.h"
 #include "session/image_io.h"
 #include "session/view_math.h"
+#include "shared/brdf_tables.h"
 #include "shared/taa.h"
 
 #include <fmt/format.h>
@@ -42,6 +43,9 @@ Session::Session(const gpu::DeviceOptions& options)
   pathName_ = path_->name();
   constants_ = gpu::Buffer(*device_, sizeof(shared::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                            gpu::MemoryUsage::Upload, lighting::kFrameConstants);
+  brdfTables_ = gpu::Buffer(*device_, sizeof(shared::BrdfTables), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                            gpu::MemoryUsage::Upload, lighting::kBrdfTables);
+  brdfTables_.write(&shared::kBrdfTables, sizeof(shared::BrdfTables));
 }
 
 Session::~Session() {
@@ -287,6 +291,7 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
   fc.exposure = std::exp2(-exposureEv());
   fc.frameIndex = frameNumber;
   fc.flags = glm::length(lighting_.sunIrradiance) > 0.0f ? shared::kFrameFlagSunShadows : 0u;
+  fc.flags |= uint32_t(settings_.materials) << shared::kFrameMaterialsShift;
   fc.sceneScale = float(scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0);
 }
 
@@ -319,6 +324,9 @@ void Session::renderOne(bool readback) {
   graph.declareImported(lighting::kFrameConstants,
                         graph::ResourceDesc::buffer(constants_.size(), "per-frame constants (shared/frame.h)"));
   executor_->bindImportedBuffer(lighting::kFrameConstants, constants_);
+  graph.declareImported(lighting::kBrdfTables,
+                        graph::ResourceDesc::buffer(brdfTables_.size(), "the shared BRDF's tables (shared/brdf_lut.h)"));
+  executor_->bindImportedBuffer(lighting::kBrdfTables, brdfTables_);
   gpuScene_->importBuffers(graph, *executor_);
 
   lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, constants_, *executor_, view_.position};

@@ -198,6 +198,7 @@ class Session {
   struct Passes;
   std::unique_ptr<Passes> passes_;
   gpu::Buffer constants_;
+  gpu::Buffer brdfTables_;  // shared/brdf_lut.h BrdfTables, written once
   lighting::RenderSettings settings_;
   View view_;
   std::optional<View> previousView_;

@@ -72,13 +72,14 @@ class LegacyPath final : public LightingPath {
   }
 
   // What the voxels and the SSAO history hold: AO reach and sampling, the clipmap's size and
-  // levels, and whether the screen feeds light back into the voxels. Cone settings are
+  // levels, whether the screen feeds light back into the voxels, and the material override
+  // mode (the albedo the voxels were lit with). Cone settings are
   // per frame (no history), the update policy (partial updates, settling) changes only work.
   uint64_t historySettings(const RenderSettings& s) const override {
     return KeyHasher()
         .all(double(s.legacyAoRadius), double(s.legacyAoThickness), double(s.legacyAoSlices), double(s.legacyAoSteps),
              double(s.legacyAoDivisor), double(s.legacyVoxelResolution), double(s.legacyLevel0Extent),
-             double(s.legacyMaxLevels), double(s.legacyScreenRadiance))
+             double(s.legacyMaxLevels), double(s.legacyScreenRadiance), double(s.materials))
         .done();
   }
 
@@ -264,6 +265,7 @@ class LegacyPath final : public LightingPath {
     out.diffuseShY = kLegacyShY;
     out.diffuseCoCg = kLegacyCoCg;
     out.aoOnGi = true;
+    out.openSkyDirectionality = shared::tlLegacyOpenSkyDirectionality();
     return out;
   }
 

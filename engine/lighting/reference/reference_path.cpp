@@ -7,6 +7,7 @@
 #include "lighting/lighting_path.h"
 #include "lighting/reference/reference_path.h"
 #include "scene/scene.h"
+#include "shared/brdf_lut.h"
 #include "shared/reference.h"
 #include "shared/scene.h"
 
@@ -78,6 +79,7 @@ class ReferencePath final : public LightingPath {
         [&](graph::PassBuilder& b) {
           readSceneInputs(b, graph::Usage::StorageRead);
           readStructures(b);
+          b.read(kBrdfTables, graph::Usage::StorageRead);
           b.read(kAccum, graph::Usage::StorageRead);
           b.write(kAccum, graph::Usage::StorageWrite);
           b.read(kAoAccum, graph::Usage::StorageRead);
@@ -104,7 +106,8 @@ class ReferencePath final : public LightingPath {
               .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
               .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
               .storageImage(shared::kRefBindingAoAccum, ctx.image(kAoAccum).view())
-              .storageImage(shared::kRefBindingAo, ctx.image(kAo).view());
+              .storageImage(shared::kRefBindingAo, ctx.image(kAo).view())
+              .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle());
           ctx.flushDescriptors();
           in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_.layout(), shared::kSceneSet);
           VkExtent3D e = ctx.extent(kRadiance);
@@ -119,9 +122,10 @@ class ReferencePath final : public LightingPath {
   }
 
   uint32_t samples() const { return samples_; }
-  // referenceBounces; rtAoRadius is also the reference's AO radius (reference.ao).
+  // referenceBounces; rtAoRadius is also the reference's AO radius (reference.ao); the material
+  // override mode.
   uint64_t historySettings(const RenderSettings& s) const override {
-    return KeyHasher().all(double(s.referenceBounces), double(s.rtAoRadius)).done();
+    return KeyHasher().all(double(s.referenceBounces), double(s.rtAoRadius), double(s.materials)).done();
   }
   std::vector<std::pair<std::string, double>> figures() const override {
     return {{"reference.samples", double(samples_)}, {"reference.irradianceSamples", double(irradianceSamples_)}};
@@ -141,6 +145,7 @@ class ReferencePath final : public LightingPath {
         [&](graph::PassBuilder& b) {
           readSceneInputs(b, graph::Usage::StorageRead);
           readStructures(b);
+          b.read(kBrdfTables, graph::Usage::StorageRead);
           b.read(kIrradianceAccum, graph::Usage::StorageRead);
           b.write(kIrradianceAccum, graph::Usage::StorageWrite);
           b.create(kIrradiance,
@@ -162,7 +167,8 @@ class ReferencePath final : public LightingPath {
               .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
               .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
               .storageImage(shared::kRefBindingIrradianceAccum, ctx.image(kIrradianceAccum).view())
-              .storageImage(shared::kRefBindingIrradiance, ctx.image(kIrradiance).view());
+              .storageImage(shared::kRefBindingIrradiance, ctx.image(kIrradiance).view())
+              .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle());
           ctx.flushDescriptors();
           in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, irradiancePipeline_.layout(),
                                 shared::kSceneSet);
@@ -248,7 +254,8 @@ class ReferencePath final : public LightingPath {
                            {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingAoAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kRefBindingAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+                           {shared::kRefBindingAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
       d.layout.extraSets = {in.scene.table().layout()};
       d.layout.pushConstantBytes = sizeof(shared::RefPush);
       pipeline_ = gpu::createRayTracingPipeline(in.device, d);
@@ -262,7 +269,8 @@ class ReferencePath final : public LightingPath {
                            {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingIrradianceAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kRefBindingIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+                           {shared::kRefBindingIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
       irradiancePipeline_ = gpu::createRayTracingPipeline(in.device, d);
     }
   }

@@ -275,22 +275,23 @@ class RtPath final : public LightingPath {
       out.farShY = far.diffuseShY;
       out.farCoCg = far.diffuseCoCg;
       out.farAo = far.ambientOcclusion;
+      out.farOpenSkyDirectionality = far.openSkyDirectionality;
     }
     return out;
   }
 
   // What the accumulated samples estimate: the rays' reach and targets, the geometry they
-  // hit, what lights a hit, the pre-trace and the firefly clamp. The ray pattern (half rays,
-  // half resolution, two rays) and the accumulation window change only the noise and the
-  // weights: the history is kept across them. Post-accumulation settings (the denoiser)
-  // hold no history; the blend distance does, since the top level's distance culling
-  // follows it.
+  // hit, what lights a hit, the pre-trace, the firefly clamp and the material override mode.
+  // The ray pattern (half rays, half resolution, two rays) and the accumulation window change
+  // only the noise and the weights: the history is kept across them. Post-accumulation
+  // settings (the denoiser) hold no history; the blend distance does, since the top level's
+  // distance culling follows it.
   uint64_t historySettings(const RenderSettings& s) const override {
     return KeyHasher()
         .all(double(s.rtAoRadius), double(s.rtRayLength), double(s.rtSimplifyRatio), double(s.rtSimplifyError),
              double(s.rtPretrace), double(s.rtPretraceSteps), double(s.rtPretracePixels), double(s.rtThickness),
              double(s.rtFireflyClamp), double(s.rtHitSky), double(s.rtEmitterSampling), double(s.rtScreenRadiance),
-             double(s.rtCullAngle), double(s.rtCullMargin), double(s.rtBlendDistance))
+             double(s.rtCullAngle), double(s.rtCullMargin), double(s.rtBlendDistance), double(s.materials))
         .done();
   }
 
@@ -602,9 +603,11 @@ class RtPath final : public LightingPath {
       sceneId_ = in.scene.id();
       albedoVersion_ = ~0ull;
     }
-    if (in.instanceAlbedo && albedoVersion_ != in.instanceAlbedoVersion) {
-      scene_->setInstanceAlbedo(*in.instanceAlbedo);  // an override shows in the next frame's bounce
+    const uint32_t materials = uint32_t(in.settings.materials);
+    if (albedoVersion_ != in.instanceAlbedoVersion || materials_ != materials) {
+      scene_->setInstanceAlbedo(in.instanceAlbedo, materials);  // an override shows in the next frame's bounce
       albedoVersion_ = in.instanceAlbedoVersion;
+      materials_ = materials;
     }
     if (pretrace_) return;
     point_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "rt.point");
@@ -748,6 +751,7 @@ class RtPath final : public LightingPath {
   bool farLegacy_ = false;
   uint64_t sceneId_ = 0;
   uint64_t albedoVersion_ = ~0ull;
+  uint32_t materials_ = 0;  // the material override mode the instance albedos were set for
   uint32_t sceneInstances_ = 0;
   HistoryKeeper temporalHistory_;
   bool restart_ = false;  // this frame drops the temporal history (a cut, a new scene, a setting)

@@ -164,9 +164,11 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
   // Once per material (texture averages touch every texel), then per instance. The albedo
   // is the texture-average fallback until setInstanceAlbedo() gives the resolved one.
   std::vector<glm::vec4> albedo, emission;
+  std::vector<glm::vec3> modeAlbedo[3];
   for (const auto& m : scene.materials) {
     albedo.push_back(glm::vec4(scene::materialAverageAlbedo(scene, m), 0.0f));
     emission.push_back(glm::vec4(scene::materialAverageEmission(scene, m), 0.0f));
+    for (uint32_t mode = 0; mode < 3; ++mode) modeAlbedo[mode].push_back(scene::materialAverageAlbedo(scene, m, mode));
   }
   std::vector<shared::RtInstance>& data = instances_;
   data.assign(std::max<size_t>(1, scene.instances.size()), shared::RtInstance{});
@@ -180,7 +182,9 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
     data[i].indexAddress = glm::uvec2(uint32_t(ia), uint32_t(ia >> 32));
     data[i].vertexAddress = glm::uvec2(uint32_t(va), uint32_t(va >> 32));
   }
-  for (size_t i = 0; i < scene.instances.size(); ++i) fallbackAlbedo_.push_back(glm::vec3(data[i].albedo));
+  for (uint32_t mode = 0; mode < 3; ++mode)
+    for (size_t i = 0; i < scene.instances.size(); ++i)
+      fallbackAlbedo_[mode].push_back(modeAlbedo[mode][scene.meshes[scene.instances[i].mesh].material]);
   instanceData_ = gpu::Buffer(device, data.size() * sizeof(data[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               gpu::MemoryUsage::Upload, "rt.instanceData");
   instanceData_.write(data.data(), data.size() * sizeof(data[0]));
@@ -195,11 +199,16 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
   emitterData_.write(emitters.data(), emitters.size() * sizeof(emitters[0]));
 }
 
-void RtScene::setInstanceAlbedo(const std::vector<glm::vec4>& albedo) {
+void RtScene::setInstanceAlbedo(const std::vector<glm::vec4>* resolved, uint32_t materials) {
   // The executor waits for each frame, so the upload-heap table is not in flight here.
-  for (size_t i = 0; i < albedo.size() && i < fallbackAlbedo_.size(); ++i) {
-    instances_[i].albedo = glm::vec4(glm::vec3(albedo[i]), 0.0f);
-    instances_[i].albedoScale = glm::vec4(glm::vec3(albedo[i]) / glm::max(fallbackAlbedo_[i], glm::vec3(1e-4f)), 0.0f);
+  const std::vector<glm::vec3>& fallback = fallbackAlbedo_[std::min(materials, 2u)];
+  for (size_t i = 0; i < fallback.size(); ++i) {
+    const bool authored = materials == shared::kMaterialsAuthored && resolved && i < resolved->size();
+    const glm::vec3 albedo = authored ? glm::vec3((*resolved)[i]) : fallback[i];
+    instances_[i].albedo = glm::vec4(albedo, 0.0f);
+    // Pre-traced hits read the G-buffer, which already shows the mode: only an override or a
+    // database entry re-colours them.
+    instances_[i].albedoScale = glm::vec4(albedo / glm::max(fallback[i], glm::vec3(1e-4f)), 0.0f);
   }
   instanceData_.write(instances_.data(), instances_.size() * sizeof(instances_[0]));
 }

@@ -73,9 +73,12 @@ class RtScene {
   // The emissive triangles (lighting/rt/emitters.h): at least one entry, emitterCount() valid.
   gpu::Buffer& emitterData() { return emitterData_; }
   uint32_t emitterCount() const { return emitterCount_; }
-  // Per-instance hit albedo resolved outside (T7: override > baked > texture average);
-  // until called, each instance has its material's texture average.
-  void setInstanceAlbedo(const std::vector<glm::vec4>& albedo);
+  // Per-instance hit albedo under a material override mode (shared/material_mode.h): as
+  // authored, the one resolved outside (T7: override > baked > texture average; null: texture
+  // averages); in the Lambertian modes what the mode reflects (the base colour's texture
+  // average, or the clay albedo), which no override or database entry changes. Until called,
+  // each instance has its material's authored texture average.
+  void setInstanceAlbedo(const std::vector<glm::vec4>* resolved, uint32_t materials);
   const RtSceneStats& stats() const { return stats_; }
   uint32_t instancesInTopLevel() const { return topLevel_.instanceCount(); }
   float simplifyRatio() const { return ratio_; }
@@ -86,7 +89,8 @@ class RtScene {
   std::vector<glm::vec3> meshCentre_;             // object space bounding sphere per mesh
   std::vector<float> meshRadius_;
   std::vector<shared::RtInstance> instances_;     // CPU copy of instanceData_
-  std::vector<glm::vec3> fallbackAlbedo_;         // per instance: its material's texture-average albedo
+  // Per material override mode, per instance: its material's texture-average albedo.
+  std::vector<glm::vec3> fallbackAlbedo_[3];
   gpu::Buffer instanceData_;                      // RtInstance per scene instance
   gpu::Buffer emitterData_;                       // RtEmitter per emissive triangle
   uint32_t emitterCount_ = 0;
