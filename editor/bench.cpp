@@ -76,12 +76,20 @@ nlohmann::json rayFigures(tl::session::Session& session, const PassTimes& passes
 
 }  // namespace
 
-nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
+nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o,
+                        const std::function<void(const std::string& what, double fraction)>& progress) {
+  const uint32_t warmup = std::max(1u, o.warmup), measured = std::max(1u, o.frames);
+  auto report = [&](uint32_t done) {
+    if (progress)
+      progress(done <= warmup ? fmt::format("warm-up {}/{}", done, warmup)
+                              : fmt::format("frame {}/{}", done - warmup, measured),
+               double(done) / double(warmup + measured));
+  };
   if (o.rays) {
     if (session.path() != "rt") throw tl::session::SessionError("--rays measures the rt path: add --path rt");
     session.settings().rtRawRayProbe = true;
   }
-  session.renderFrames(std::max(1u, o.warmup));
+  session.renderFrames(warmup, report);
   std::vector<double> firstFrame = session.frameGpuMs();
   // The ray figures read the last frame's pre-trace records and depth: requested before each
   // call (a read-back lasts one renderFrames).
@@ -103,15 +111,16 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
   if (o.cutEveryFrame) {
     // The history is forgotten before each frame, as on a camera cut: what history rejection
     // costs at worst (the disocclusion rays trace every cell).
-    for (uint32_t i = 0; i < std::max(1u, o.frames); ++i) {
+    for (uint32_t i = 0; i < measured; ++i) {
       session.resetHistory();
       requestRayBuffers();
       session.renderFrames(1);
       collect();
+      report(warmup + i + 1);
     }
   } else {
     requestRayBuffers();
-    session.renderFrames(std::max(1u, o.frames));
+    session.renderFrames(measured, [&](uint32_t done) { report(warmup + done); });
     collect();
   }
   const auto& d = session.device();

@@ -414,7 +414,7 @@ void Session::applyMorphs() {
   deformedLastFrame_ = meshes.size();
 }
 
-void Session::renderFrames(uint32_t n) {
+void Session::renderFrames(uint32_t n, const std::function<void(uint32_t done)>& afterEach) {
   if (capture_) {
     if (!captureDisplay_) captureDisplay_ = std::make_unique<lighting::DisplayPass>();
     capture_->display(*executor_, *captureDisplay_, display_.value_or(lighting::DisplayRequest{}));
@@ -425,7 +425,10 @@ void Session::renderFrames(uint32_t n) {
   if (!scene_) throw SessionError("no scene is loaded");
   frameGpuMs_.clear();
   passGpuMs_.clear();
-  for (uint32_t i = 0; i < n; ++i) renderOne(i + 1 == n);
+  for (uint32_t i = 0; i < n; ++i) {
+    renderOne(i + 1 == n);
+    if (afterEach) afterEach(i + 1);
+  }
   requested_.clear();
   requestAll_ = false;
 }

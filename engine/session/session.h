@@ -14,6 +14,7 @@
 #include "session/live_compare.h"
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -143,7 +144,9 @@ class Session {
   const std::vector<lighting::HistoryDecision>& historyDecisions() const { return historyLog_; }
 
   // Renders n frames; the last one reads back the final images and the requested buffers.
-  void renderFrames(uint32_t n);
+  // `afterEach` (optional) is called with the count of frames done after each one: progress
+  // for long renders (a reference image is many frames).
+  void renderFrames(uint32_t n, const std::function<void(uint32_t done)>& afterEach = {});
 
   const graph::Readback& buffer(const std::string& name) const;
   // Whether the last frame read back `name` (a path may not produce it).
