@@ -8,10 +8,12 @@
 #include "compare_cameras.h"
 #include "session/capture.h"
 #include "cli_args.h"
+#include "cli_output.h"
 #include "editor_app.h"
 #include "gpu/install_paths.h"
 #include "gpu/renderdoc.h"
 #include "gpu/self_test.h"
+#include "output_paths.h"
 #include "session/compare.h"
 #include "session/image_io.h"
 #include "session/settings_json.h"
@@ -105,9 +107,26 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
+using tl::editor::Progress;
+
+// GPU milliseconds of every frame and pass, gathered over several renderFrames calls.
+struct FrameTimes {
+  std::vector<double> frames;
+  std::vector<std::pair<std::string, std::vector<double>>> passes;
+
+  void add(const Session& session) {
+    frames.insert(frames.end(), session.frameGpuMs().begin(), session.frameGpuMs().end());
+    for (const auto& [pass, ms] : session.passGpuMs()) {
+      auto it = std::find_if(passes.begin(), passes.end(), [&](const auto& p) { return p.first == pass; });
+      if (it == passes.end()) it = passes.insert(passes.end(), {pass, {}});
+      it->second.insert(it->second.end(), ms.begin(), ms.end());
+    }
+  }
+};
+
 // The first frame compiles pipelines on first use: it is reported apart from the median.
-void printFrameTimes(const Session& session) {
-  const auto& frames = session.frameGpuMs();
+void printFrameTimes(const FrameTimes& times) {
+  const auto& frames = times.frames;
   if (frames.empty()) return;
   if (frames.size() == 1) {
     fmt::print("GPU frame time: {:.2f} ms (one frame, includes first-use pipeline compilation)\n", frames[0]);
@@ -117,7 +136,7 @@ void printFrameTimes(const Session& session) {
   fmt::print("GPU frame time: median {:.2f} ms over {} frames (min {:.2f}, max {:.2f}); first frame {:.2f} ms\n",
              median(steady), steady.size(), *std::min_element(steady.begin(), steady.end()),
              *std::max_element(steady.begin(), steady.end()), frames[0]);
-  for (const auto& [pass, ms] : session.passGpuMs()) {
+  for (const auto& [pass, ms] : times.passes) {
     std::vector<double> s(ms.begin() + (ms.size() > 1 ? 1 : 0), ms.end());
     fmt::print("  {:24} {:8.2f} ms\n", pass, median(s));
   }
@@ -164,34 +183,72 @@ void renderDocFrame(Session& session, const std::filesystem::path& pathTemplate)
 }
 
 int runRender(const RenderOptions& o) {
-  Session session;
-  prepareSession(session, o);
-  const uint32_t w = session.settings().width, h = session.settings().height;
+  // Usage and outputs first, before a device or a scene is touched: a typo costs no render.
+  bool sequence = false;
+  for (const auto& out : o.outputs) {
+    tl::editor::checkImageOutput(out);
+    sequence = sequence || tl::editor::isFrameSequence(out);
+  }
+  if (!o.dumpGraph.empty()) tl::editor::checkGraphOutput(o.dumpGraph);
+  if (sequence && !o.animateFps)
+    throw UsageError("--out with # writes one image per frame of an animation: add --animate FPS (and --frames N)");
+  if (sequence && o.spp) throw UsageError("--spp accumulates one image: it cannot write a --out sequence");
   if (o.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
   if (o.bounces == 0) throw tl::session::SessionError("--bounces must be at least 1");
   uint32_t frames = o.frames;
-  session.settings().referenceBounces = o.bounces;
   if (o.spp) {
     if (o.path != "reference") throw tl::session::SessionError("--spp applies to --path reference");
     if (*o.spp == 0) throw tl::session::SessionError("--spp must be at least 1");
-    // Up to 16 samples a frame: fewer submissions, and each frame stays short.
-    session.settings().referenceSamplesPerFrame = std::min(*o.spp, 16u);
+    if (*o.spp > 16 && *o.spp % 16) throw tl::session::SessionError("--spp must be a multiple of 16, or at most 16");
     frames = (*o.spp + 15) / 16;
-    if (*o.spp % 16) throw tl::session::SessionError("--spp must be a multiple of 16, or at most 16");
   }
 
+  Session session;
+  prepareSession(session, o);
+  const uint32_t w = session.settings().width, h = session.settings().height;
+  session.settings().referenceBounces = o.bounces;
+  // Up to 16 samples a frame: fewer submissions, and each frame stays short.
+  if (o.spp) session.settings().referenceSamplesPerFrame = std::min(*o.spp, 16u);
+
+  FrameTimes times;
+  std::vector<std::filesystem::path> written;
   auto start = std::chrono::steady_clock::now();
-  session.renderFrames(frames);
+  {
+    Progress progress("render");
+    auto report = [&](uint32_t done) {
+      progress.update(double(done) / frames,
+                      o.spp ? fmt::format("{}/{} spp", done * session.settings().referenceSamplesPerFrame, *o.spp)
+                            : fmt::format("frame {}/{}", done, frames));
+    };
+    if (!sequence) {
+      session.renderFrames(frames, report);
+      times.add(session);
+    } else {
+      // One frame at a time, each read back and written as it is done: frame_0001 is the first.
+      for (uint32_t f = 1; f <= frames; ++f) {
+        session.renderFrames(1);
+        times.add(session);
+        for (const auto& out : o.outputs)
+          if (tl::editor::isFrameSequence(out)) {
+            written.push_back(tl::editor::sequenceFrame(out, f));
+            session.saveImage(written.back());
+          }
+        report(f);
+      }
+    }
+  }
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   for (const auto& out : o.outputs) {
+    if (tl::editor::isFrameSequence(out)) continue;
     session.saveImage(out);
-    fmt::print("wrote {}\n", std::filesystem::absolute(out).string());
+    written.push_back(out);
   }
+  for (const auto& file : written) fmt::print("wrote {}\n", std::filesystem::absolute(file).string());
   if (!o.renderDoc.empty()) renderDocFrame(session, o.renderDoc);
   fmt::print("rendered {} frame(s) of {} with `{}` at {}x{} on {} in {:.2f} s\n", frames, session.scene().name,
              session.path(), w, h, session.device().name(), seconds);
-  printFrameTimes(session);
+  printFrameTimes(times);
   if (!o.dumpGraph.empty()) {
     if (o.dumpGraph == "-") {
       fmt::print("{}", session.graphDump());
@@ -352,10 +409,19 @@ int runInfo() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  spdlog::set_level(std::getenv("TWINLIGHT_VERBOSE") ? spdlog::level::debug : spdlog::level::warn);
+  tl::editor::configureLogging(tl::editor::Verbosity::Normal, true);
   CLI::App app{"Twinlight: a lighting lab comparing ray-traced and legacy real-time lighting against a path tracer"};
   app.require_subcommand(0, 1);
   app.set_version_flag("--version", "twinlight " + tl::versionString());
+  app.footer(tl::editor::helpFooter());
+  // -q / -v before or after the subcommand: each takes them (not a fallthrough, which would
+  // also hand a subcommand's stray positional argument to the editor's scene).
+  bool quiet = false, verbose = false;
+  auto addVerbosityFlags = [&](CLI::App& cmd) {
+    auto* quietFlag = cmd.add_flag("-q,--quiet", quiet, "errors only: no warnings, no progress (results still on stdout)");
+    cmd.add_flag("-v,--verbose", verbose, "info and debug messages on stderr too")->excludes(quietFlag);
+  };
+  addVerbosityFlags(app);
   std::string sceneArg, scriptArg, materialsArg = "authored";
   bool headless = false;
   app.add_option("scene", sceneArg, "glTF scene to open (default: content/atrium.gltf)");
@@ -484,11 +550,21 @@ int main(int argc, char** argv) {
 
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
 
+  for (CLI::App* cmd : app.get_subcommands(std::function<bool(CLI::App*)>())) addVerbosityFlags(*cmd);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     fmt::print(stderr, "twinlight: error: {} (see --help)\n", e.what());
+    return 2;
+  }
+  const bool cli = *renderCmd || *benchCmd || *compareCmd || *captureCmd || *bakeCmd || *infoCmd;
+  tl::editor::configureLogging(quiet     ? tl::editor::Verbosity::Quiet
+                               : verbose ? tl::editor::Verbosity::Verbose
+                                         : tl::editor::Verbosity::Normal,
+                               cli);
+  if (quiet && verbose) {
+    fmt::print(stderr, "twinlight: error: -q and -v contradict each other (see --help)\n");
     return 2;
   }
 
@@ -497,9 +573,18 @@ int main(int argc, char** argv) {
     if (*infoCmd) return runInfo();
     if (*bakeCmd) return runBake(bake, defaultScene().string());
     if (*captureCmd) {
+      tl::session::checkOutputFolder(captureOut);
+      if (captureRender.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
       Session session;
       prepareSession(session, captureRender);
-      auto manifest = tl::session::captureFrame(session, captureOut, captureRender.frames);
+      session.requestAllBuffers();
+      {
+        Progress progress("capture");
+        session.renderFrames(captureRender.frames, [&](uint32_t done) {
+          progress.update(double(done) / captureRender.frames, fmt::format("frame {}/{}", done, captureRender.frames));
+        });
+      }
+      auto manifest = tl::session::writeCapture(session, captureOut);
       size_t files = 0;
       for (const auto& r : manifest["resources"]) files += !r["file"].is_null();
       fmt::print("captured {} of {} resources of {} / {} (frame {}) into {}\n", files, manifest["resources"].size(),
@@ -520,6 +605,7 @@ int main(int argc, char** argv) {
       if (!compareMerge.empty()) {
         if (!compareShard.empty() || compareShardCount)
           throw UsageError("--merge assembles finished shards: it takes no --shard");
+        tl::session::checkOutputFolder(compareOut);
         std::vector<std::filesystem::path> dirs(compareMerge.begin(), compareMerge.end());
         return compareMergeCommand(dirs, compareOut);
       }
@@ -539,6 +625,7 @@ int main(int argc, char** argv) {
       if (!compareSettings.empty()) compare.variants = readCompareVariants(compareSettings);
       compare.cacheDir = compareCache;
       compare.outDir = compareOut;
+      tl::session::checkOutputFolder(compareOut);
 
       tl::session::SweepPlan plan = tl::session::planSweep(
           scenes, compareCameras.empty() ? std::function<std::vector<std::string>(const std::string&)>()
@@ -569,11 +656,8 @@ int main(int argc, char** argv) {
         printCompareReport(report, compare.failAbove);
         fmt::print("wrote {}\n", (std::filesystem::absolute(compareOut) / view.dir / "report.html").lexically_normal().string());
       };
-      callbacks.progress = [](const std::string& what, double f) {
-        int filled = int(f * 30.0 + 0.5);
-        fmt::print(stderr, "\r[{:30}] {:3.0f}% {:32}", std::string(size_t(filled), '#'), f * 100.0, what);
-        if (f >= 1.0) fmt::print(stderr, "\n");
-      };
+      Progress progress("compare");
+      callbacks.progress = [&](const std::string& what, double f) { progress.update(f, what); };
       Session session;
       const tl::session::SweepOutcome outcome = tl::session::runSweep(session, plan, compare, shard, callbacks);
       if (shard) {
@@ -594,6 +678,8 @@ int main(int argc, char** argv) {
       return gateExit(outcome.gateFailures);
     }
     if (*benchCmd) {
+      tl::editor::checkJsonOutput(benchJson);
+      if (bench.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
       Session session;
       prepareSession(session, benchRender);
       if (!benchSettings.empty()) {
@@ -606,10 +692,19 @@ int main(int argc, char** argv) {
         session.settings() = tl::session::applySettingsJson(session.settings(), overrides);
       }
       if (bench.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
-      nlohmann::json report = runBench(session, bench);
-      fmt::print("{}", benchTable(report));
-      if (benchJson == "-") fmt::print("{}\n", report.dump(2));
-      else if (!benchJson.empty()) {
+      nlohmann::json report;
+      {
+        Progress progress("bench");
+        report = runBench(session, bench, [&](const std::string& what, double f) { progress.update(f, what); });
+      }
+      // With the JSON on stdout, stdout is that one document: the table goes to stderr.
+      if (benchJson == "-") {
+        if (tl::editor::verbosity() != tl::editor::Verbosity::Quiet) fmt::print(stderr, "{}", benchTable(report));
+        fmt::print("{}\n", report.dump(2));
+      } else {
+        fmt::print("{}", benchTable(report));
+      }
+      if (!benchJson.empty() && benchJson != "-") {
         tl::session::writeTextFile(benchJson, report.dump(2) + "\n");
         fmt::print("wrote {}\n", benchJson);
       }

@@ -1,5 +1,7 @@
 #include "settings.h"
 
+#include "session/image_io.h"
+
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -41,19 +43,10 @@ Settings loadSettings() {
 }
 
 void saveSettings(const Settings& s) {
-  auto dir = configDirectory();
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
   nlohmann::json j{{"recentScenes", s.recentScenes}, {"renderScale", s.renderScale}, {"vsync", s.vsync},
                    {"lightingPath", s.lightingPath}, {"windowWidth", s.windowWidth}, {"windowHeight", s.windowHeight},
                    {"bookmarks", s.bookmarks}};
-  auto tmp = dir / "settings.json.tmp";
-  {
-    std::ofstream out(tmp);
-    out << j.dump(2);
-    if (!out) return;
-  }
-  std::filesystem::rename(tmp, dir / "settings.json", ec);
+  session::writeTextFile(configDirectory() / "settings.json", j.dump(2) + "\n");
 }
 
 }  // namespace tl::editor

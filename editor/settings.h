@@ -25,6 +25,7 @@ struct Settings {
 std::filesystem::path configDirectory();
 // A missing or unreadable file gives the defaults (and a warning), never an error.
 Settings loadSettings();
-void saveSettings(const Settings& settings);  // written atomically
+// Written atomically; throws SessionError naming the file when it cannot be written.
+void saveSettings(const Settings& settings);
 
 }  // namespace tl::editor

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <system_error>
+#include <stdlib.h>
 #include <unistd.h>
 
 namespace tl::session {
@@ -65,6 +66,50 @@ void writeTextFile(const std::filesystem::path& file, const std::string& text) {
       throw SessionError(fmt::format("cannot write {}: {}", file.string(), std::strerror(written ? errno : writeErrno)));
     return true;
   });
+}
+
+namespace {
+
+// Whether `dir` (an existing folder) takes a new file: one is created and removed again. As
+// root, access(W_OK) says yes to /proc and to read-only mounts; only trying tells.
+std::optional<std::string> cannotCreateIn(const std::filesystem::path& dir) {
+  std::string probe = (dir / ".twinlight-probe-XXXXXX").string();
+  const int fd = ::mkstemp(probe.data());
+  if (fd < 0) return std::string(std::strerror(errno));
+  ::close(fd);
+  ::unlink(probe.c_str());
+  return std::nullopt;
+}
+
+// `failure`: "cannot write FILE" or "cannot write into FOLDER", the start of every message.
+void checkOutputPath(const std::string& failure, const std::filesystem::path& folder) {
+  std::error_code ec;
+  // The nearest folder that exists: the rest would be created when writing.
+  std::filesystem::path existing = std::filesystem::absolute(folder, ec).lexically_normal();
+  while (!existing.empty() && !std::filesystem::exists(existing, ec)) {
+    if (existing == existing.parent_path()) break;
+    existing = existing.parent_path();
+  }
+  if (!std::filesystem::is_directory(existing, ec))
+    throw SessionError(fmt::format("{}: {} is not a folder", failure, existing.string()));
+  if (auto reason = cannotCreateIn(existing))
+    throw SessionError(fmt::format("{}: cannot create a file in {}: {}", failure, existing.string(), *reason));
+}
+
+}  // namespace
+
+void checkOutputFile(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw SessionError(fmt::format("cannot write {}: it is a folder", file.string()));
+  checkOutputPath("cannot write " + file.string(), file.has_parent_path() ? file.parent_path() : std::filesystem::path("."));
+}
+
+void checkOutputFolder(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+    throw SessionError(fmt::format("cannot write into {}: it is a file, not a folder", dir.string()));
+  checkOutputPath("cannot write into " + dir.string(), dir);
 }
 
 void writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding) {

@@ -24,6 +24,13 @@ void writeFileAtomically(const std::filesystem::path& file, const std::function<
 // file and the system's reason when it cannot.
 void writeTextFile(const std::filesystem::path& file, const std::string& text);
 
+// Checks before any work that `file` could be written later, creating nothing: it is not a
+// folder, and its folder exists and takes a new file or could be created (the nearest
+// existing ancestor takes a new entry). Throws SessionError "cannot write FILE: reason".
+void checkOutputFile(const std::filesystem::path& file);
+// The same for a folder that files will be written into.
+void checkOutputFolder(const std::filesystem::path& dir);
+
 // A read-back buffer as an image (alpha dropped).
 void writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding);
 
