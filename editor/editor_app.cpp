@@ -3,6 +3,7 @@
 #include "gpu/install_paths.h"
 #include "gpu/renderdoc.h"
 #include "session/capture.h"
+#include "session/image_io.h"
 
 #include "script.h"
 
@@ -59,6 +60,7 @@ EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<s
   try {
     session_->loadScene(first);
     camera_.reset(session_->view(), glm::length(session_->scene().bounds.size()));
+    watchScene();
     settings_.addRecent(std::filesystem::absolute(first).string());
   } catch (const std::exception& e) {
     showError(e.what());
@@ -145,7 +147,12 @@ int EditorApp::run() {
   int w, h;
   glfwGetWindowSize(window_, &w, &h);
   if (w > 0 && h > 0) settings_.windowWidth = w, settings_.windowHeight = h;
-  saveSettings(settings_);
+  try {
+    saveSettings(settings_);
+  } catch (const std::exception& e) {
+    // The session's work is done; the next start uses the settings it finds.
+    spdlog::warn("editor settings not saved: {}", e.what());
+  }
   if (script_ && script_->failed()) {
     fmt::print(stderr, "twinlight: error: script: {}\n", script_->failure());
     return 1;
@@ -184,6 +191,7 @@ void EditorApp::frame() {
   for (auto& f : droppedFiles) openScene(f);
   droppedFiles.clear();
   if (load_.valid() && load_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) finishLoad();
+  if (!load_.valid() && sceneWatcher_.changed(now)) reloadScene();
   if (script_) script_->step(*this);
   stepAlbedoBake();
   if (framesDrawn_ % 15 == 0) pollShaders();
@@ -305,7 +313,11 @@ void EditorApp::applyBookmark(int slot, bool save) {
   std::string key = std::to_string(slot);
   if (save) {
     marks[key] = camera_.save();
-    saveSettings(settings_);
+    try {
+      saveSettings(settings_);
+    } catch (const std::exception& e) {
+      showError(fmt::format("camera bookmark {} not saved: {}", slot, e.what()));
+    }
   } else if (marks.contains(key)) {
     try {
       camera_.load(marks[key]);
@@ -340,6 +352,7 @@ void EditorApp::openScene(const std::filesystem::path& file) {
 void EditorApp::cancelLoad() {
   // Parsing cannot be interrupted safely; its result is dropped when it arrives.
   if (!load_.valid()) return;
+  keptAcrossReload_.reset();
   std::thread([f = std::move(load_)]() mutable {
     try {
       f.get();
@@ -352,12 +365,19 @@ void EditorApp::cancelLoad() {
 void EditorApp::finishLoad() {
   try {
     session_->installScene(load_.get());
-    camera_.reset(session_->view(), glm::length(session_->scene().bounds.size()));
-    selected_.reset();
-    preview_.clear();
+    if (keptAcrossReload_) {
+      restoreAfterReload();
+    } else {
+      camera_.reset(session_->view(), glm::length(session_->scene().bounds.size()));
+      selected_.reset();
+      preview_.clear();
+    }
+    watchScene();
     settings_.addRecent(std::filesystem::absolute(loadingPath_).string());
     saveSettings(settings_);
   } catch (const std::exception& e) {
+    keptAcrossReload_.reset();
+    watchScene();  // a broken export is not retried until the file changes again
     showError(e.what());
   }
   load_ = {};
@@ -524,12 +544,14 @@ void EditorApp::writeScreenshot(const gpu::Buffer& pixels, VkExtent2D ext) {
     rgb[i * 3 + 1] = src[i * 4 + 1];
     rgb[i * 3 + 2] = src[i * 4 + (bgra ? 0 : 2)];
   }
-  std::error_code ec;
-  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), ec);
-  auto out = OIIO::ImageOutput::create(file.string());
-  OIIO::ImageSpec spec(int(ext.width), int(ext.height), 3, OIIO::TypeDesc::UINT8);
-  if (!out || !out->open(file.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close()) {
-    showError(fmt::format("{}: cannot write the screenshot", file.string()));
+  try {
+    session::writeFileAtomically(file, [&](const std::string& tmp) {
+      auto out = OIIO::ImageOutput::create(file.string());
+      OIIO::ImageSpec spec(int(ext.width), int(ext.height), 3, OIIO::TypeDesc::UINT8);
+      return out && out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) && out->close();
+    });
+  } catch (const std::exception& e) {
+    showError(fmt::format("cannot write the screenshot: {}", e.what()));
     return;
   }
   fmt::print("wrote {}\n", std::filesystem::absolute(file).string());
@@ -589,6 +611,7 @@ void EditorApp::pollShaders() {
 void EditorApp::openCapture(const std::filesystem::path& dir) {
   try {
     session_->openCapture(dir);
+    sceneWatcher_.watch({}, 0.0);  // the capture replaced the scene
     showBuffers_ = true;
     pinPreview("");
     selected_.reset();

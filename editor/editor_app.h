@@ -5,6 +5,7 @@
 
 #include "buffer_viewer.h"
 #include "camera_controller.h"
+#include "scene_watcher.h"
 #include "settings.h"
 
 #include "gpu/descriptor_pool.h"
@@ -40,6 +41,16 @@ class EditorApp {
   // A capture folder (manifest.json + EXRs) in the viewer, without its scene.
   void openCapture(const std::filesystem::path& dir);
   bool loading() const { return load_.valid(); }
+  // Loads the scene's file again, keeping the camera, the selection (by instance name), the
+  // albedo overrides of unchanged mesh + material combinations, edited lighting and the
+  // animation time. Called when the file changes on disk (scene_reload.cpp).
+  void reloadScene();
+  uint64_t sceneReloads() const { return sceneReloads_; }
+  session::View cameraView() const { return camera_.view(); }
+  // File > Save image: the last frame as .png (display) or .exr (linear radiance). Throws
+  // SessionError naming the file when it cannot be written.
+  void saveImage(const std::filesystem::path& file);
+  std::filesystem::path defaultImagePath(const char* extension) const;
   void cancelLoad();
   void setPath(const std::string& name);
   void select(std::optional<uint32_t> instance) { selected_ = instance; }
@@ -152,6 +163,18 @@ class EditorApp {
   std::string shaderStatus_;
   void pollShaders();
   std::string albedoDbField_;     // the Albedo panel's database path
+  // Reloading the scene when its file changes (scene_reload.cpp).
+  struct KeptAcrossReload {
+    std::string selected;  // instance name
+    std::vector<std::pair<albedo::AlbedoKey, glm::vec3>> overrides;
+    std::optional<session::Lighting> lighting;  // when edited away from the scene's own
+    double animationTime = 0.0;
+  };
+  SceneWatcher sceneWatcher_;
+  std::optional<KeptAcrossReload> keptAcrossReload_;  // while a reload is loading
+  uint64_t sceneReloads_ = 0;
+  void watchScene();
+  void restoreAfterReload();
   std::string lastBakeSummary_;
   void stepAlbedoBake();
 };

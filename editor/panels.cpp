@@ -3,6 +3,7 @@
 #include "buffer_panel.h"
 #include "compare_panel.h"
 #include "editor_app.h"
+#include "key_help.h"
 #include "ui_helpers.h"
 #include "session/captured_frame.h"
 #include "gpu/install_paths.h"
@@ -15,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace tl::editor {
 namespace {
@@ -37,7 +39,22 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
         if (ImGui::MenuItem(r.c_str())) app.openScene(r);
       ImGui::EndMenu();
     }
+    if (ImGui::MenuItem("Reload scene", nullptr, false, app.session().hasScene() && !app.loading())) app.reloadScene();
+    tooltip("Loads the scene's file again, keeping the camera, the selection and the albedo overrides.\n"
+            "Happens by itself when the file changes on disk (a re-export).");
     ImGui::Separator();
+    for (const char* ext : {".png", ".exr"}) {
+      if (ImGui::MenuItem(ext[1] == 'p' ? "Save image (PNG)" : "Save image (EXR)", nullptr, false,
+                          app.session().hasScene())) {
+        try {
+          app.saveImage(app.defaultImagePath(ext));
+        } catch (const std::exception& e) {
+          app.showError(e.what());
+        }
+      }
+      tooltip(ext[1] == 'p' ? "The viewport's engine image as shown (tonemapped, sRGB) into renders/"
+                            : "The viewport's engine image as scene-linear radiance before exposure (half float) into renders/");
+    }
     if (ImGui::MenuItem("Capture frame", nullptr, false, app.session().hasScene()))
       app.requestFrameCapture(app.defaultCaptureFolder());
     tooltip("Writes every buffer of the next frame as EXR, with manifest.json, into captures/");
@@ -474,27 +491,27 @@ void shaderErrorWindow(EditorApp& app) {
 void helpWindow(bool& open) {
   if (!open) return;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 240, display.y * 0.5f - 180), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(480, 360), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 390, display.y * 0.5f - 300), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(780, 600), ImGuiCond_FirstUseEver);
   ImGui::Begin("Help", &open);
-  const char* rows[][2] = {{"Left drag", "orbit around the pivot"},     {"Left click", "select the instance under the cursor"},
-                           {"Middle drag", "pan"},                      {"Wheel", "dolly towards the pivot"},
-                           {"Right drag", "fly: look around"},          {"Right + W A S D", "fly forwards / left / back / right"},
-                           {"Right + Q E", "fly down / up"},             {"Shift", "move 4x faster while flying"},
-                           {"F", "focus on the selection (or the scene)"}, {"1 .. 9", "recall camera bookmark"},
-                           {"Ctrl + 1 .. 9", "save camera bookmark"},   {"Ctrl + O", "open a scene"},
-                           {"F1", "this window"}};
   if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingFixedFit)) {
-    for (auto& r : rows) {
+    const char* section = "";
+    for (const KeyHelp& k : keyHelp()) {
+      if (std::strcmp(section, k.section) != 0) {
+        section = k.section;
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextDisabled("%s", section);
+      }
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(r[0]);
+      ImGui::TextUnformatted(k.keys);
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(r[1]);
+      ImGui::TextUnformatted(k.action);
     }
     ImGui::EndTable();
   }
-  ImGui::TextDisabled("Scenes can also be dropped onto the window.");
+  ImGui::TextDisabled("The scene reloads by itself when its file changes on disk.");
   ImGui::End();
 }
 

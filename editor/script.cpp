@@ -58,6 +58,18 @@ void Script::step(EditorApp& app) {
     fmt::print("script: shader error reported: {}\n", *hit);
     waitShaderError_.clear();
   }
+  if (reloadWaitFrames_ >= 0) {
+    if (app.sceneReloads() == reloadsAtCopy_ || app.loading()) {
+      if (++reloadWaitFrames_ > 600) return fail(app, "the scene was not reloaded after its file changed");
+      return;
+    }
+    reloadWaitFrames_ = -1;
+    const glm::dvec3 now = app.cameraView().position;
+    if (glm::length(now - cameraAtCopy_) > 1e-6)
+      return fail(app, fmt::format("the reload moved the camera from {:.3f},{:.3f},{:.3f} to {:.3f},{:.3f},{:.3f}",
+                                   cameraAtCopy_.x, cameraAtCopy_.y, cameraAtCopy_.z, now.x, now.y, now.z));
+    fmt::print("script: the scene reloaded; the camera stayed at {:.3f},{:.3f},{:.3f}\n", now.x, now.y, now.z);
+  }
   if (waitBake_) {
     if (app.albedoBake()) return;
     waitBake_ = false;
@@ -169,10 +181,30 @@ void Script::step(EditorApp& app) {
           if (got != arg) return fail(app, fmt::format("expected albedo source `{}`, but it is `{}`", arg, got));
           fmt::print("script: albedo source is `{}`\n", got);
         }
+      } else if (cmd == "copy-file") {
+        std::istringstream files(arg);
+        std::string src, dst;
+        if (!(files >> src >> dst)) return fail(app, "copy-file needs SRC DST");
+        // As an exporter writes: the whole file under another name, then renamed over the old.
+        const std::filesystem::path tmp = dst + ".part";
+        std::error_code ec;
+        std::filesystem::copy_file(src, tmp, std::filesystem::copy_options::overwrite_existing, ec);
+        if (!ec) std::filesystem::rename(tmp, dst, ec);
+        if (ec) return fail(app, fmt::format("cannot copy {} to {}: {}", src, dst, ec.message()));
+        reloadsAtCopy_ = app.sceneReloads();
+        cameraAtCopy_ = app.cameraView().position;
+      } else if (cmd == "expect-reload") {
+        reloadWaitFrames_ = 0;
+        return;
+      } else if (cmd == "save-image") {
+        app.saveImage(arg);
       } else if (cmd == "append-line") {
         const auto space = arg.find(' ');
         if (space == std::string::npos) return fail(app, "append-line needs FILE TEXT");
-        std::ofstream(arg.substr(0, space), std::ios::app) << "\n" << arg.substr(space + 1) << "\n";
+        std::ofstream out(arg.substr(0, space), std::ios::app);
+        out << "\n" << arg.substr(space + 1) << "\n";
+        out.close();
+        if (out.fail()) return fail(app, fmt::format("cannot append to {}", arg.substr(0, space)));
       } else if (cmd == "expect-shader-error") {
         if (!app.shaderReloader()) return fail(app, "no hot shader reload (shader sources not found)");
         waitShaderError_ = arg;

@@ -45,8 +45,14 @@
 //   expect-reference-restarted PART  fail unless the Compare panel's reference started over since
 //                          the last camera-move, PART (a frame-key part, e.g. camera.position)
 //                          among its causes, and now holds fewer samples than it did then
+//   copy-file SRC DST      copy SRC over DST as an exporter does (a temporary, then a rename)
+//   expect-reload          wait (up to 600 frames) until the scene reloaded after the last
+//                          copy-file, and fail unless the camera is where it was then
+//   save-image FILE        File > Save image: the last frame as .png or .exr
 //   quit
 #pragma once
+
+#include <glm/glm.hpp>
 
 #include <filesystem>
 #include <string>
@@ -80,6 +86,10 @@ class Script {
   enum class Capture { None, Snapshot, Compare } capture_ = Capture::None;
   std::vector<float> snapshot_;
   uint32_t samplesAtMove_ = 0, restartsAtMove_ = 0;  // the live reference when the camera last moved
+  // The last copy-file: the reload count and the camera then, for expect-reload.
+  uint64_t reloadsAtCopy_ = 0;
+  glm::dvec3 cameraAtCopy_{0.0};
+  int reloadWaitFrames_ = -1;  // >= 0 while expect-reload waits
 };
 
 }  // namespace tl::editor
