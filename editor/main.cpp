@@ -406,6 +406,12 @@ int runInfo() {
   return exitStatus(session);
 }
 
+bool hasDisplay() {
+  const char* x11 = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  return (x11 && *x11) || (wayland && *wayland);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -558,7 +564,11 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "twinlight: error: {} (see --help)\n", e.what());
     return 2;
   }
-  const bool cli = *renderCmd || *benchCmd || *compareCmd || *captureCmd || *bakeCmd || *infoCmd;
+  // Timestamps only in the interactive editor's log; a subcommand or a headless render is a
+  // command in a pipeline.
+  const bool subcommand = *renderCmd || *benchCmd || *compareCmd || *captureCmd || *bakeCmd || *infoCmd;
+  const bool editorWindow = !subcommand && !headless && (hasDisplay() || !scriptArg.empty());
+  const bool cli = !editorWindow;
   tl::editor::configureLogging(quiet     ? tl::editor::Verbosity::Quiet
                                : verbose ? tl::editor::Verbosity::Verbose
                                          : tl::editor::Verbosity::Normal,
@@ -712,11 +722,8 @@ int main(int argc, char** argv) {
     }
     // No subcommand: the main job on the default (or given) scene. The interactive editor
     // needs a display; without one the scene is rendered headless.
-    const char* x11 = std::getenv("DISPLAY");
-    const char* wayland = std::getenv("WAYLAND_DISPLAY");
-    bool haveDisplay = (x11 && *x11) || (wayland && *wayland);
     const tl::lighting::MaterialMode materials = parseMaterials(materialsArg);
-    if (!headless && (haveDisplay || !scriptArg.empty())) {
+    if (editorWindow) {
       std::optional<std::filesystem::path> scene, script;
       if (!sceneArg.empty()) scene = sceneArg;
       if (!scriptArg.empty()) script = scriptArg;
