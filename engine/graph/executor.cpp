@@ -219,7 +219,13 @@ std::vector<float> Readback::texels() const { return gpu::decodeTexels(format, b
 
 Executor::Executor(gpu::Device& device) : device_(device), timestamps_(device, 256) {}
 
-Executor::~Executor() { device_.waitIdle(); }
+Executor::~Executor() {
+  try {
+    finish();
+  } catch (const std::exception&) {
+  }
+  device_.waitIdle();
+}
 
 Executor::Physical& Executor::find(std::string_view name) {
   auto it = physical_.find(name);
@@ -258,6 +264,7 @@ VkImageLayout Executor::layout(std::string_view name) const {
 }
 
 void Executor::resetHistory() {
+  finish();  // a frame in flight would mark what it wrote valid afterwards
   for (auto& [name, p] : physical_)
     if (p.kind == Physical::Kind::Persistent) p.historyValid = false, p.layout = VK_IMAGE_LAYOUT_UNDEFINED;
 }
@@ -460,11 +467,16 @@ void Executor::copyForReadback(VkCommandBuffer cmd, const std::string& name, Phy
 }
 
 void Executor::execute(const RenderGraph& graph, const CompiledGraph& compiled) {
+  submit(graph, compiled);
+  finish();
+}
+
+void Executor::submit(const RenderGraph& graph, const CompiledGraph& compiled) {
+  TL_CHECK(!inFlight_, "a frame is already in flight: finish() it before submitting another");
   realise(graph, compiled);
   VkCommandBuffer cmd = device_.beginCommands();
   timestamps_.reset(cmd);
   pending_.clear();
-  readbacks_.clear();
 
   for (const CompiledPass& cp : compiled.order) {
     const PassDecl& decl = graph.passes()[cp.pass];
@@ -493,24 +505,36 @@ void Executor::execute(const RenderGraph& graph, const CompiledGraph& compiled) 
     if (std::any_of(pending_.begin(), pending_.end(), [&](const PendingReadback& r) { return r.name == name; })) continue;
     copyForReadback(cmd, name, p, Usage::Sampled, PassKind::Compute);
   }
-  device_.wait(device_.submit(cmd));
-
   // A persistent resource holds something for the next frame only if a pass of this frame
   // wrote it; one nobody wrote keeps what it had (nothing, after a reset or a resize).
+  writtenPersistent_.clear();
   const auto& decls = graph.resources();
   for (const auto& cp : compiled.order)
     for (const auto& a : cp.writes)
-      if (decls[a.resource].persistent) find(decls[a.resource].name).historyValid = true;
+      if (decls[a.resource].persistent) writtenPersistent_.push_back(decls[a.resource].name);
+  readbackNames_.clear();  // requests made from now on are the next frame's
+  readbackAll_ = false;
+  inFlight_ = device_.submit(cmd);
+}
+
+bool Executor::frameDone() const { return !inFlight_ || device_.completedValue() >= inFlight_; }
+
+void Executor::finish() {
+  if (!inFlight_) return;
+  device_.wait(inFlight_);
+  inFlight_ = 0;
+  for (const std::string& name : writtenPersistent_)
+    if (auto it = physical_.find(name); it != physical_.end()) it->second.historyValid = true;
+  writtenPersistent_.clear();
   timings_.clear();
   for (auto& s : timestamps_.read()) timings_.push_back({s.name, s.milliseconds});
+  readbacks_.clear();
   for (auto& r : pending_) {
     Readback out{r.name, r.format, r.extent, std::vector<uint8_t>(r.staging.size())};
     std::memcpy(out.bytes.data(), r.staging.mapped(), out.bytes.size());
     readbacks_[r.name] = std::move(out);
   }
   pending_.clear();
-  readbackNames_.clear();
-  readbackAll_ = false;
   ++frame_;
 }
 
