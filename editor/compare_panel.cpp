@@ -59,8 +59,10 @@ void comparePanel(EditorApp& app) {
   pathCombo("right", view->right, paths);
   int mode = view->difference ? 1 : 0;
   ImGui::RadioButton("wipe", &mode, 0);
+  trackItem("compare.wipe");
   ImGui::SameLine();
   ImGui::RadioButton("difference", &mode, 1);
+  trackItem("compare.difference");
   view->difference = mode == 1;
   if (view->difference) {
     ImGui::SliderFloat("scale", &view->differenceScale, 1.0f, 64.0f, "%.0fx", ImGuiSliderFlags_Logarithmic);

@@ -65,9 +65,12 @@ void viewportPanel(EditorApp& app, glm::vec2& min, glm::vec2& size, bool& hovere
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(300, 20), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(display.x - 640, display.y - 44), ImGuiCond_FirstUseEver);
-  // No background: the engine's image is blitted into the window's area underneath.
+  // No background: the engine's image is blitted into the window's area underneath. It stays
+  // behind every other window when clicked, so floating panels over it keep their clicks.
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
-  ImGui::Begin("Viewport", nullptr, ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  ImGui::Begin("Viewport", nullptr,
+               ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImVec2 pos = ImGui::GetCursorScreenPos();
   ImVec2 avail = ImGui::GetContentRegionAvail();
   min = {pos.x, pos.y};
@@ -460,30 +463,63 @@ void shaderErrorWindow(EditorApp& app) {
   ImGui::End();
 }
 
+// Every key and mouse action the editor knows, grouped; the file browser's keys with it.
 void helpWindow(bool& open) {
   if (!open) return;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 240, display.y * 0.5f - 180), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(480, 360), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 260, display.y * 0.5f - 300), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(520, 600), ImGuiCond_FirstUseEver);
   ImGui::Begin("Help", &open);
-  const char* rows[][2] = {{"Left drag", "orbit around the pivot"},     {"Left click", "select the instance under the cursor"},
-                           {"Middle drag", "pan"},                      {"Wheel", "dolly towards the pivot"},
-                           {"Right drag", "fly: look around"},          {"Right + W A S D", "fly forwards / left / back / right"},
-                           {"Right + Q E", "fly down / up"},             {"Shift", "move 4x faster while flying"},
-                           {"F", "focus on the selection (or the scene)"}, {"1 .. 9", "recall camera bookmark"},
-                           {"Ctrl + 1 .. 9", "save camera bookmark"},   {"Ctrl + O", "open a scene"},
-                           {"F1", "this window"}};
-  if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingFixedFit)) {
-    for (auto& r : rows) {
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(r[0]);
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(r[1]);
+  struct Row {
+    const char* keys;
+    const char* what;
+  };
+  const std::pair<const char*, std::vector<Row>> groups[] = {
+      {"Camera (over the viewport)",
+       {{"Left drag", "orbit around the pivot"},
+        {"Left click", "select the instance under the cursor"},
+        {"Middle drag", "pan"},
+        {"Wheel", "dolly towards the pivot"},
+        {"Right drag", "fly: look around"},
+        {"Right + W A S D", "fly forwards / left / back / right"},
+        {"Right + Q E", "fly down / up"},
+        {"Shift", "move 4x faster while flying"},
+        {"F", "focus on the selection (or the scene)"},
+        {"1 .. 9", "recall camera bookmark"},
+        {"Ctrl + 1 .. 9", "save camera bookmark"}}},
+      {"Edits",
+       {{"Ctrl + Z", "undo the last lighting, setting or albedo change"},
+        {"Ctrl + Y, Ctrl + Shift + Z", "redo"},
+        {"Ctrl + S", "save the albedo overrides to the database"}}},
+      {"Windows",
+       {{"F1", "this window"},
+        {"F2", "Buffers: every resource of the frame, the viewer"},
+        {"F3", "Compare: two paths side by side, their error"},
+        {"F12", "RenderDoc capture of the next engine frame (under RenderDoc)"},
+        {"Ctrl + O", "open a scene or a capture"}}},
+      {"Buffer viewer (a resource in the viewport)",
+       {{"Ctrl + wheel", "zoom around the cursor (texel grid from 8x)"},
+        {"Hover", "probe: stored values and what they mean"},
+        {"Meaning / Raw", "what the buffer means, or its stored channels"},
+        {"Keep as B / show B", "A/B against a kept copy"}}},
+      {"Compare view",
+       {{"Drag the line", "move the wipe"}}},
+  };
+  for (const auto& [title, rows] : groups) {
+    ImGui::TextDisabled("%s", title);
+    if (ImGui::BeginTable(title, 2, ImGuiTableFlags_SizingFixedFit)) {
+      for (const Row& r : rows) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(r.keys);
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(r.what);
+      }
+      ImGui::EndTable();
     }
-    ImGui::EndTable();
   }
   ImGui::TextDisabled("Scenes can also be dropped onto the window.");
+  trackItem("help.text");
   ImGui::End();
 }
 
@@ -559,6 +595,7 @@ void errorPopup(std::string& error) {
 }  // namespace
 
 void drawPanels(EditorApp& app) {
+  beginTrackedFrame();
   mainMenu(app, app.showHelp_, app.showBrowser_);
   viewportPanel(app, app.viewportMin_, app.viewportSize_, app.viewportHovered_);
   outlinerPanel(app);
