@@ -81,3 +81,9 @@ void applyLight(tl::session::Session& session, const LightArgs& a) {
   if (a.exposureEv) l.exposureEv = *a.exposureEv;
   session.setLighting(l);
 }
+
+int exitStatus(const tl::session::Session& session) {
+  if (session.validationErrors() == 0) return 0;
+  fmt::print(stderr, "twinlight: error: {} Vulkan validation error(s)\n", session.validationErrors());
+  return 1;
+}

@@ -42,7 +42,8 @@ void checkVk(VkResult r) {
 
 }  // namespace
 
-EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<std::filesystem::path> script) {
+EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<std::filesystem::path> script,
+                     lighting::MaterialMode materials) {
   settings_ = loadSettings();
   browserDir_ = std::filesystem::current_path();
   createWindow();
@@ -59,6 +60,7 @@ EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<s
     openCapture(first);
     return;
   }
+  session_->settings().materials = materials;
   // The first scene loads before the first frame so a script starts on a loaded scene.
   try {
     session_->loadScene(first);

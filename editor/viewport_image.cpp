@@ -41,6 +41,9 @@ void ViewportImage::record(VkCommandBuffer cmd, VkImage target, VkExtent2D targe
   const int32_t x0 = std::clamp(min.x, 0, int32_t(targetExtent.width)), y0 = std::clamp(min.y, 0, int32_t(targetExtent.height));
   const int32_t x1 = std::clamp(max.x, 0, int32_t(targetExtent.width)), y1 = std::clamp(max.y, 0, int32_t(targetExtent.height));
   if (x1 <= x0 || y1 <= y0) return;
+  // The blit writes over the target's clear: it waits for it.
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT);
   VkImageBlit blit{};
   blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   blit.srcOffsets[1] = {int32_t(image_.extent().width), int32_t(image_.extent().height), 1};

@@ -33,6 +33,16 @@ Field field(T lighting::RenderSettings::*member) {
   return {set, [member](const lighting::RenderSettings& s) { return nlohmann::json(s.*member); }};
 }
 
+// The material override mode by name: "authored", "diffuse" or "clay".
+Field materialModeField() {
+  auto set = [](lighting::RenderSettings& s, const nlohmann::json& v) {
+    const auto mode = v.is_string() ? lighting::parseMaterialMode(v.get<std::string>()) : std::nullopt;
+    if (!mode) throw std::invalid_argument("\"authored\", \"diffuse\" or \"clay\"");
+    s.materials = *mode;
+  };
+  return {set, [](const lighting::RenderSettings& s) { return nlohmann::json(lighting::materialModeName(s.materials)); }};
+}
+
 const std::map<std::string, Field>& fields() {
   using S = lighting::RenderSettings;
   static const std::map<std::string, Field> table = {
@@ -42,6 +52,7 @@ const std::map<std::string, Field>& fields() {
       {"specularGi", field(&S::specularGi)},
       {"taa", field(&S::taa)},
       {"taaBlend", field(&S::taaBlend)},
+      {"materials", materialModeField()},
       {"referenceBounces", field(&S::referenceBounces)},
       {"rtSimplifyRatio", field(&S::rtSimplifyRatio)},
       {"rtAoRadius", field(&S::rtAoRadius)},
