@@ -45,6 +45,7 @@ void checkVk(VkResult r) {
 EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<std::filesystem::path> script,
                      lighting::MaterialMode materials) {
   settings_ = loadSettings();
+  savedSettings_ = toJson(settings_);
   browserDir_ = std::filesystem::current_path();
   createWindow();
   initImgui();
@@ -182,10 +183,7 @@ void EditorApp::initImgui() {
 int EditorApp::run() {
   lastTime_ = glfwGetTime();
   while (!glfwWindowShouldClose(window_) && !quit_) frame();
-  int w, h;
-  glfwGetWindowSize(window_, &w, &h);
-  if (w > 0 && h > 0) settings_.windowWidth = w, settings_.windowHeight = h;
-  saveSettings(settings_);
+  saveSettingsIfChanged();
   if (script_ && script_->failed()) {
     fmt::print(stderr, "twinlight: error: script: {}\n", script_->failure());
     return 1;
@@ -246,7 +244,7 @@ void EditorApp::frame() {
   if (script_) script_->step(*this);
   // A bake uses the engine's device between its frames (its batches wait for their own work).
   if (!session_->frameInFlight()) stepAlbedoBake();
-  if (framesDrawn_ % 15 == 0) pollShaders();
+  if (framesDrawn_ % 15 == 0) pollShaders(), saveSettingsIfChanged();
 
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
@@ -364,12 +362,24 @@ std::string EditorApp::sceneKey() const {
   return session_->hasScene() ? std::filesystem::absolute(session_->scene().path).string() : "";
 }
 
+// Settings are written when they change (checked every few frames), not only on a clean
+// exit: a crash or a killed editor keeps the path, render scale, recent scenes, bookmarks.
+void EditorApp::saveSettingsIfChanged() {
+  int w, h;
+  glfwGetWindowSize(window_, &w, &h);
+  if (w > 0 && h > 0) settings_.windowWidth = w, settings_.windowHeight = h;
+  nlohmann::json now = toJson(settings_);
+  if (now == savedSettings_) return;
+  saveSettings(settings_);
+  savedSettings_ = std::move(now);
+}
+
 void EditorApp::applyBookmark(int slot, bool save) {
   auto& marks = settings_.bookmarks[sceneKey()];
   std::string key = std::to_string(slot);
   if (save) {
     marks[key] = camera_.save();
-    saveSettings(settings_);
+    saveSettingsIfChanged();
   } else if (marks.contains(key)) {
     try {
       camera_.load(marks[key]);
@@ -420,7 +430,7 @@ void EditorApp::finishLoad() {
     selected_.reset();
     preview_.clear();
     settings_.addRecent(std::filesystem::absolute(loadingPath_).string());
-    saveSettings(settings_);
+    saveSettingsIfChanged();
   } catch (const std::exception& e) {
     showError(e.what());
   }
@@ -499,6 +509,11 @@ void EditorApp::requestRenderDocCapture() {
 void EditorApp::notify(const std::string& text) {
   notices_.push_back({text, glfwGetTime()});
   if (notices_.size() > 50) notices_.pop_front();
+}
+
+const EditorApp::Notice* EditorApp::recentNotice() const {
+  constexpr double kShownSeconds = 8.0;
+  return !notices_.empty() && glfwGetTime() - notices_.back().time < kShownSeconds ? &notices_.back() : nullptr;
 }
 
 void EditorApp::pollShaders() {

@@ -81,6 +81,8 @@ class EditorApp {
     double time = 0.0;  // glfwGetTime()
   };
   const std::deque<Notice>& notices() const { return notices_; }
+  // The latest notice if it is recent enough to show (a few seconds), else null.
+  const Notice* recentNotice() const;
   void previewResource(const std::string& name) { preview_ = name; }  // while hovering a pass
   // Shows a resource in the viewport until changed ("" = the final image); its range is fitted.
   void pinPreview(const std::string& name) {
@@ -128,10 +130,12 @@ class EditorApp {
   void recordAndPresent();
   void finishLoad();
   void applyBookmark(int slot, bool save);
+  void saveSettingsIfChanged();
   std::string sceneKey() const;
   void writeScreenshot(const gpu::Buffer& pixels, VkExtent2D extent);
 
   Settings settings_;
+  nlohmann::json savedSettings_;  // what settings.json holds now
   GLFWwindow* window_ = nullptr;
   VkSurfaceKHR surface_ = VK_NULL_HANDLE;
   std::unique_ptr<gpu::Device> uiDevice_;  // the window's: swapchain, Dear ImGui, the viewport image

@@ -449,13 +449,21 @@ void statusBar(EditorApp& app) {
   auto& s = app.session();
   const auto& compare = app.compareView();
   const std::string path = compare ? "compare " + compare->left + " | " + compare->right : "path " + s.path();
-  ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  %.1f fps  |  %s  |  %s%s%s", s.device().name().c_str(),
-              s.settings().width, s.settings().height, app.settings().renderScale, app.fps(), path.c_str(),
+  // The interface and the engine run at their own rates: both are shown, with the age of the
+  // engine frame on screen (how far behind the input it is).
+  ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  UI %.0f fps, engine %.1f fps, frame %.0f ms old  |  %s  |  %s%s%s",
+              s.device().name().c_str(), s.settings().width, s.settings().height, app.settings().renderScale, app.fps(),
+              app.engineFps(), 1000.0 * app.shownFrameAge(), path.c_str(),
               s.hasCapture()  ? ("capture " + s.capture()->dir().string() + " (File > Close capture)").c_str()
               : s.hasScene() ? s.scene().name.c_str()
                              : "no scene",
               app.shaderStatus().empty() ? "" : "  |  shaders: ",
               app.shaderStatus().c_str());
+  // The latest confirmation or note (a capture written, a fallback made) for a few seconds.
+  if (const EditorApp::Notice* notice = app.recentNotice()) {
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(0.55f, 0.85f, 0.55f, 1.0f), "  |  %s", notice->text.c_str());
+  }
   ImGui::End();
 }
 

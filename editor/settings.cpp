@@ -40,13 +40,17 @@ Settings loadSettings() {
   return s;
 }
 
+nlohmann::json toJson(const Settings& s) {
+  return {{"recentScenes", s.recentScenes}, {"renderScale", s.renderScale}, {"vsync", s.vsync},
+          {"lightingPath", s.lightingPath}, {"windowWidth", s.windowWidth}, {"windowHeight", s.windowHeight},
+          {"bookmarks", s.bookmarks}};
+}
+
 void saveSettings(const Settings& s) {
   auto dir = configDirectory();
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  nlohmann::json j{{"recentScenes", s.recentScenes}, {"renderScale", s.renderScale}, {"vsync", s.vsync},
-                   {"lightingPath", s.lightingPath}, {"windowWidth", s.windowWidth}, {"windowHeight", s.windowHeight},
-                   {"bookmarks", s.bookmarks}};
+  const nlohmann::json j = toJson(s);
   auto tmp = dir / "settings.json.tmp";
   {
     std::ofstream out(tmp);

@@ -25,6 +25,7 @@ struct Settings {
 std::filesystem::path configDirectory();
 // A missing or unreadable file gives the defaults (and a warning), never an error.
 Settings loadSettings();
+nlohmann::json toJson(const Settings& settings);
 void saveSettings(const Settings& settings);  // written atomically
 
 }  // namespace tl::editor
