@@ -337,7 +337,10 @@ void Script::step(EditorApp& app) {
             return fail(app, fmt::format("no finite error for `{}` yet", e.path));
           all += fmt::format(" {} relMSE {:.4f} FLIP {:.4f} ({:.1f} ms);", e.path, *e.relMse, *e.flip, e.gpuMs);
         }
-        fmt::print("script: compare against the reference ({} spp):{}\n", live->referenceSamples(), all);
+        const auto noise = live->referenceNoise();
+        fmt::print("script: compare against the reference ({} spp, its noise relMSE {}, {}):{}\n", live->referenceSamples(),
+                   noise ? fmt::format("{:.4f}", *noise) : std::string("not known yet"),
+                   live->referenceTrusted() ? "ranks the paths" : "still converging", all);
       } else if (cmd == "camera-move") {
         double x, y, z;
         if (std::sscanf(arg.c_str(), "%lf %lf %lf", &x, &y, &z) != 3) return fail(app, "camera-move needs X Y Z (metres)");
