@@ -158,6 +158,8 @@ void EditorApp::initImgui() {
   imguiIniPath = (configDirectory() / "imgui.ini").string();
   io.IniFilename = imguiIniPath.c_str();
   ImGui::StyleColorsDark();
+  // Opaque panels: text of a panel behind a floating one does not show through and mix with it.
+  ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 1.0f;
   ImGui::GetStyle().WindowRounding = 2.0f;
   // No backend callbacks: input reaches Dear ImGui through the queue (input_queue.h).
   ImGui_ImplGlfw_InitForVulkan(window_, false);
@@ -261,8 +263,11 @@ void EditorApp::frame() {
   ++framesDrawn_;
   frameHistory_.push_back(seconds * 1000.0);
   if (frameHistory_.size() > 240) frameHistory_.pop_front();
-  // At most 60 UI frames a second: what the interface does not need, the engine gets.
-  const double spare = 1.0 / 60.0 - (glfwGetTime() - frameStart);
+  // At most 60 UI frames a second, 40 while the engine renders (above the 30 an artist
+  // needs): what the interface does not need, the engine gets (on a software device both
+  // share the CPU).
+  const double frameBudget = session_->frameInFlight() ? 1.0 / 40.0 : 1.0 / 60.0;
+  const double spare = frameBudget - (glfwGetTime() - frameStart);
   if (spare > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(spare));
 }
 
@@ -431,6 +436,7 @@ void EditorApp::finishLoad() {
     preview_.clear();
     settings_.addRecent(std::filesystem::absolute(loadingPath_).string());
     saveSettingsIfChanged();
+    reopenAlbedoDatabase();
   } catch (const std::exception& e) {
     showError(e.what());
   }
@@ -469,6 +475,34 @@ void EditorApp::openAlbedoDatabase(const std::filesystem::path& file) {
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
   session_->openAlbedoDatabase(file);
   albedoDbField_ = file.string();
+  // Remembered for the scene: reopened when the scene is loaded again.
+  if (session_->hasScene()) settings_.albedoDatabases[sceneKey()] = std::filesystem::absolute(file).string();
+}
+
+// The scene's database from the last session, if it still exists (the RT path's hits use it).
+void EditorApp::reopenAlbedoDatabase() {
+  const std::string key = sceneKey();
+  if (!settings_.albedoDatabases.contains(key) || !settings_.albedoDatabases[key].is_string()) return;
+  const std::filesystem::path file = settings_.albedoDatabases[key].get<std::string>();
+  if (!std::filesystem::exists(file)) {
+    notify(fmt::format("the albedo database {} of this scene is gone: rays read texture averages", file.string()));
+    return;
+  }
+  try {
+    openAlbedoDatabase(file);
+    notify(fmt::format("reopened the albedo database {}", file.string()));
+  } catch (const std::exception& e) {
+    showError(fmt::format("cannot reopen the albedo database {}: {}", file.string(), e.what()));
+  }
+}
+
+std::filesystem::path EditorApp::defaultAlbedoDatabase() const {
+  const std::string key = sceneKey();
+  if (settings_.albedoDatabases.contains(key) && settings_.albedoDatabases[key].is_string())
+    return settings_.albedoDatabases[key].get<std::string>();
+  const uint64_t hash = scene::hashBytes(key.data(), key.size());
+  return std::filesystem::path("out") /
+         fmt::format("{}-{:08x}.albedo.db", session_->scene().path.stem().string(), uint32_t(hash));
 }
 
 void EditorApp::startAlbedoBake(bool force) {

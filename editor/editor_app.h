@@ -109,6 +109,9 @@ class EditorApp {
   void cancelAlbedoBake() { if (bake_) bake_->cancel(); }
   const albedo::BakeJob* albedoBake() const { return bake_.get(); }
   std::string& albedoDbField() { return albedoDbField_; }
+  // The database proposed for the scene: the one last opened for it, else
+  // out/<file stem>-<hash of its absolute path>.albedo.db (two scene.gltf files differ).
+  std::filesystem::path defaultAlbedoDatabase() const;
   const std::string& lastBakeSummary() const { return lastBakeSummary_; }
   const std::string& pinnedPreview() const { return viewer_.resource; }
   void showBrowser(bool on) { showBrowser_ = on; }
@@ -131,6 +134,7 @@ class EditorApp {
   void finishLoad();
   void applyBookmark(int slot, bool save);
   void saveSettingsIfChanged();
+  void reopenAlbedoDatabase();
   std::string sceneKey() const;
   void writeScreenshot(const gpu::Buffer& pixels, VkExtent2D extent);
 
