@@ -301,6 +301,9 @@ void lightingPanel(EditorApp& app) {
   ImGui::SetNextWindowPos(ImVec2(display.x - 340, 20), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(340, 380), ImGuiCond_FirstUseEver);
   ImGui::Begin("Lighting");
+  // Widgets leave room on their right for the longest label ("Sun irradiance", "Voxels per
+  // side"), so no label is cut off at the panel's default width.
+  ImGui::PushItemWidth(-(ImGui::CalcTextSize("Voxels per side").x + 2.0f * ImGui::GetStyle().ItemInnerSpacing.x));
   auto& session = app.session();
   ImGui::TextUnformatted("Lighting path");
   for (const auto& p : session.paths()) {
@@ -314,6 +317,7 @@ void lightingPanel(EditorApp& app) {
     tooltip(session.device().rayTracing().unavailableReason.c_str());
   }
   if (!session.hasScene()) {
+    ImGui::PopItemWidth();
     ImGui::End();
     return;
   }
@@ -398,6 +402,7 @@ void lightingPanel(EditorApp& app) {
   ImGui::Separator();
   ImGui::SliderFloat("Render scale", &app.settings().renderScale, 0.1f, 1.0f, "%.2f");
   tooltip("Engine resolution relative to the viewport panel; lower keeps software rendering interactive");
+  ImGui::PopItemWidth();
   ImGui::End();
 }
 
@@ -507,8 +512,8 @@ void helpWindow(bool& open) {
         {"1 .. 9", "recall camera bookmark"},
         {"Ctrl + 1 .. 9", "save camera bookmark"}}},
       {"Edits",
-       {{"Ctrl + Z", "undo the last lighting, setting or albedo change"},
-        {"Ctrl + Y, Ctrl + Shift + Z", "redo"},
+       {{"Ctrl + Z", "undo the last albedo override (lighting and settings: no undo yet)"},
+        {"Ctrl + Y, Ctrl + Shift + Z", "redo the albedo override undone"},
         {"Ctrl + S", "save the albedo overrides to the database"}}},
       {"Windows",
        {{"F1", "this window"},
