@@ -82,9 +82,12 @@ void viewportPanel(EditorApp& app, glm::vec2& min, glm::vec2& size, bool& hovere
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(300, 20), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(display.x - 640, display.y - 44), ImGuiCond_FirstUseEver);
-  // No background: the engine's image is blitted into the window's area underneath.
+  // No background: the engine's image is blitted into the window's area underneath. It stays
+  // behind every other window when clicked, so floating panels over it keep their clicks.
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
-  ImGui::Begin("Viewport", nullptr, ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  ImGui::Begin("Viewport", nullptr,
+               ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImVec2 pos = ImGui::GetCursorScreenPos();
   ImVec2 avail = ImGui::GetContentRegionAvail();
   min = {pos.x, pos.y};
@@ -315,6 +318,9 @@ void lightingPanel(EditorApp& app) {
   ImGui::SetNextWindowPos(ImVec2(display.x - 340, 20), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(340, 380), ImGuiCond_FirstUseEver);
   ImGui::Begin("Lighting");
+  // Widgets leave room on their right for the longest label ("Sun irradiance", "Voxels per
+  // side"), so no label is cut off at the panel's default width.
+  ImGui::PushItemWidth(-(ImGui::CalcTextSize("Voxels per side").x + 2.0f * ImGui::GetStyle().ItemInnerSpacing.x));
   auto& session = app.session();
   ImGui::TextUnformatted("Lighting path");
   for (const auto& p : session.paths()) {
@@ -328,6 +334,7 @@ void lightingPanel(EditorApp& app) {
     tooltip(session.device().rayTracing().unavailableReason.c_str());
   }
   if (!session.hasScene()) {
+    ImGui::PopItemWidth();
     ImGui::End();
     return;
   }
@@ -412,6 +419,7 @@ void lightingPanel(EditorApp& app) {
   ImGui::Separator();
   ImGui::SliderFloat("Render scale", &app.settings().renderScale, 0.1f, 1.0f, "%.2f");
   tooltip("Engine resolution relative to the viewport panel; lower keeps software rendering interactive");
+  ImGui::PopItemWidth();
   ImGui::End();
 }
 
@@ -463,13 +471,21 @@ void statusBar(EditorApp& app) {
   auto& s = app.session();
   const auto& compare = app.compareView();
   const std::string path = compare ? "compare " + compare->left + " | " + compare->right : "path " + s.path();
-  ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  %.1f fps  |  %s  |  %s%s%s", s.device().name().c_str(),
-              s.settings().width, s.settings().height, app.settings().renderScale, app.fps(), path.c_str(),
+  // The interface and the engine run at their own rates: both are shown, with the age of the
+  // engine frame on screen (how far behind the input it is).
+  ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  UI %.0f fps, engine %.1f fps, frame %.0f ms old  |  %s  |  %s%s%s",
+              s.device().name().c_str(), s.settings().width, s.settings().height, app.settings().renderScale, app.fps(),
+              app.engineFps(), 1000.0 * app.shownFrameAge(), path.c_str(),
               s.hasCapture()  ? ("capture " + s.capture()->dir().string() + " (File > Close capture)").c_str()
               : s.hasScene() ? s.scene().name.c_str()
                              : "no scene",
               app.shaderStatus().empty() ? "" : "  |  shaders: ",
               app.shaderStatus().c_str());
+  // The latest confirmation or note (a capture written, a fallback made) for a few seconds.
+  if (const EditorApp::Notice* notice = app.recentNotice()) {
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(0.55f, 0.85f, 0.55f, 1.0f), "  |  %s", notice->text.c_str());
+  }
   ImGui::End();
 }
 
@@ -488,30 +504,33 @@ void shaderErrorWindow(EditorApp& app) {
   ImGui::End();
 }
 
+// Every key and mouse action the editor knows, grouped; the file browser's keys with it.
 void helpWindow(bool& open) {
   if (!open) return;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 390, display.y * 0.5f - 300), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(780, 600), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 330, display.y * 0.5f - 320), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(660, 640), ImGuiCond_FirstUseEver);
   ImGui::Begin("Help", &open);
-  if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingFixedFit)) {
-    const char* section = "";
-    for (const KeyHelp& k : keyHelp()) {
-      if (std::strcmp(section, k.section) != 0) {
-        section = k.section;
+  // One table per section of editor/key_help.cpp (a test checks it names every key handled).
+  const auto rows = keyHelp();
+  for (size_t first = 0; first < rows.size();) {
+    size_t end = first;
+    while (end < rows.size() && std::strcmp(rows[end].section, rows[first].section) == 0) ++end;
+    ImGui::TextDisabled("%s", rows[first].section);
+    if (ImGui::BeginTable(rows[first].section, 2, ImGuiTableFlags_SizingFixedFit)) {
+      for (size_t i = first; i < end; ++i) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
-        ImGui::TextDisabled("%s", section);
+        ImGui::TextUnformatted(rows[i].keys);
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(rows[i].action);
       }
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(k.keys);
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(k.action);
+      ImGui::EndTable();
     }
-    ImGui::EndTable();
+    first = end;
   }
-  ImGui::TextDisabled("The scene reloads by itself when its file changes on disk.");
+  ImGui::TextDisabled("Scenes can also be dropped onto the window; a scene reloads when its file changes on disk.");
+  trackItem("help.text");
   ImGui::End();
 }
 
@@ -587,6 +606,7 @@ void errorPopup(std::string& error) {
 }  // namespace
 
 void drawPanels(EditorApp& app) {
+  beginTrackedFrame();
   mainMenu(app, app.showHelp_, app.showBrowser_);
   viewportPanel(app, app.viewportMin_, app.viewportSize_, app.viewportHovered_);
   outlinerPanel(app);

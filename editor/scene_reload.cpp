@@ -65,7 +65,9 @@ void EditorApp::restoreAfterReload() {
   if (kept.lighting) session_->setLighting(*kept.lighting);
   session_->setAnimationTime(kept.animationTime);
   ++sceneReloads_;
-  fmt::print("reloaded {} (changed on disk): camera, selection and overrides kept\n", s.path.string());
+  const std::string text = fmt::format("reloaded {} (changed on disk): camera, selection and overrides kept", s.path.string());
+  fmt::print("{}\n", text);
+  notify(text);
 }
 
 std::filesystem::path EditorApp::defaultImagePath(const char* extension) const {
@@ -80,7 +82,9 @@ void EditorApp::saveImage(const std::filesystem::path& file) {
   if (ext != ".png" && ext != ".exr")
     throw session::SessionError(fmt::format("{}: unsupported image type `{}` (use .exr or .png)", file.string(), ext));
   session_->saveImage(file);  // the last frame's final images are always read back
-  fmt::print("wrote {}\n", std::filesystem::absolute(file).string());
+  const std::string text = fmt::format("wrote {}", std::filesystem::absolute(file).string());
+  fmt::print("{}\n", text);
+  notify(text);
 }
 
 }  // namespace tl::editor

@@ -2,7 +2,7 @@
 """The F1 help names every key the editor handles.
 
 Reads the editor's sources (editor/*.cpp) for the keys and mouse buttons they react to
-(ImGui::IsKeyPressed / glfwGetKey with GLFW_KEY_*, the mouse wheel with or without Ctrl, mouse
+(ImGui::IsKeyPressed / IsKeyDown / glfwGetKey with GLFW_KEY_*, the mouse wheel with or without Ctrl, mouse
 buttons) and the help table (editor/key_help.cpp, which the F1 window shows row by row), and
 fails naming each binding the table does not list.
 
@@ -18,7 +18,7 @@ if len(rows) < 10:
     sys.exit(f"check_key_help: only {len(rows)} rows read from key_help.cpp: the table's format changed?")
 keys_columns = [keys for _, keys, _ in rows]
 
-DISPLAY = {"LEFT_SHIFT": "Left Shift", "RIGHT_SHIFT": "Right Shift", "0": "1 .. 9"}
+DISPLAY = {"LEFT_SHIFT": "Shift", "RIGHT_SHIFT": "Shift", "0": "1 .. 9"}
 BUTTONS = {"0": "Left", "1": "Right", "2": "Middle"}
 
 
@@ -40,7 +40,10 @@ for source in sorted(editor.glob("*.cpp")):
     for number, line in enumerate(source.read_text().splitlines(), 1):
         where = f"{source.name}:{number}"
         ctrl = re.search(r"\bctrl\b|KeyCtrl", line) and "!io.KeyCtrl" not in line
-        for key in re.findall(r"GLFW_KEY_(\w+)", line):
+        # A binding reads a key's state: ImGui's IsKeyPressed/IsKeyDown, glfwGetKey, or a
+        # local key(...) helper; key tables (the input queue, the script's key names) are not.
+        is_binding = re.search(r"IsKeyPressed\(|IsKeyDown\(|glfwGetKey\(|\bkey\(GLFW_KEY_", line)
+        for key in re.findall(r"GLFW_KEY_(\w+)", line) if is_binding else []:
             name = DISPLAY.get(key, key)
             combos = [f"Ctrl + {name}" if ctrl else name]
             if "KeyShift" in line:
