@@ -419,7 +419,6 @@ int main(int argc, char** argv) {
   CLI::App app{"Twinlight: a lighting lab comparing ray-traced and legacy real-time lighting against a path tracer"};
   app.require_subcommand(0, 1);
   app.set_version_flag("--version", "twinlight " + tl::versionString());
-  app.footer(tl::editor::helpFooter());
   // -q / -v before or after the subcommand: each takes them (not a fallthrough, which would
   // also hand a subcommand's stray positional argument to the editor's scene).
   bool quiet = false, verbose = false;
@@ -557,6 +556,8 @@ int main(int argc, char** argv) {
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
 
   for (CLI::App* cmd : app.get_subcommands(std::function<bool(CLI::App*)>())) addVerbosityFlags(*cmd);
+  // Set after the subcommands are added, which would inherit it: `twinlight --help` alone.
+  app.footer(tl::editor::helpFooter());
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
