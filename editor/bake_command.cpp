@@ -74,7 +74,7 @@ int runBake(const BakeArgs& a, const std::string& defaultScene) {
   }
 
   tl::session::Session session;
-  session.loadScene(a.scene.empty() ? defaultScene : a.scene);
+  session.loadScene(a.scene.empty() ? defaultScene : a.scene, tl::scene::LoadOptions{a.allowOutsideFiles});
   session.openAlbedoDatabase(a.db);
   const auto start = std::chrono::steady_clock::now();
   auto job = session.startAlbedoBake(options);

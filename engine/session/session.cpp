@@ -53,13 +53,15 @@ const scene::Scene& Session::scene() const {
   return *scene_;
 }
 
-std::unique_ptr<scene::Scene> Session::parseScene(const std::filesystem::path& file) {
-  auto loaded = std::make_unique<scene::Scene>(scene::loadGltf(file));
+std::unique_ptr<scene::Scene> Session::parseScene(const std::filesystem::path& file, const scene::LoadOptions& options) {
+  auto loaded = std::make_unique<scene::Scene>(scene::loadGltf(file, options));
   if (loaded->instances.empty()) throw scene::SceneError(fmt::format("{}: the scene has no meshes to draw", file.string()));
   return loaded;
 }
 
-void Session::loadScene(const std::filesystem::path& file) { installScene(parseScene(file)); }
+void Session::loadScene(const std::filesystem::path& file, const scene::LoadOptions& options) {
+  installScene(parseScene(file, options));
+}
 
 void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   capture_.reset();  // a scene replaces a reopened capture

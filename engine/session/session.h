@@ -58,10 +58,10 @@ class Session {
   gpu::Device& device() { return *device_; }
 
   // Throws scene::SceneError (one line naming the file) and keeps the previous scene.
-  void loadScene(const std::filesystem::path& file);
+  void loadScene(const std::filesystem::path& file, const scene::LoadOptions& options = {});
   // The two halves of loadScene: parsing touches no device and may run on another thread
   // (the editor keeps its UI alive meanwhile); installing uploads to the GPU.
-  static std::unique_ptr<scene::Scene> parseScene(const std::filesystem::path& file);
+  static std::unique_ptr<scene::Scene> parseScene(const std::filesystem::path& file, const scene::LoadOptions& options = {});
   void installScene(std::unique_ptr<scene::Scene> scene);
   bool hasScene() const { return scene_ != nullptr; }
   const scene::Scene& scene() const;
