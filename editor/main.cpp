@@ -9,6 +9,7 @@
 #include "editor_app.h"
 #include "gpu/renderdoc.h"
 #include "gpu/self_test.h"
+#include "scene/input_limits.h"
 #include "session/compare.h"
 #include "session/settings_json.h"
 #include "session/session.h"
@@ -54,6 +55,7 @@ struct RenderOptions {
   std::optional<bool> rtPretrace;
   std::optional<bool> rtDenoise;
   std::string albedoDb;
+  bool allowOutsideFiles = false;
   std::string renderDoc;  // RenderDoc capture path template for one more frame
   double time = 0.0;
   std::optional<double> animateFps;
@@ -62,6 +64,8 @@ struct RenderOptions {
 void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--camera", o.view.camera, "use the scene's glTF camera N (0-based)");
   cmd.add_option("--albedo-db", o.albedoDb, "albedo database whose baked values and overrides the RT path's hits use");
+  cmd.add_flag("--allow-outside-files", o.allowOutsideFiles,
+               "let the scene read buffers and images outside its own folder (../, absolute paths, links out)");
   cmd.add_option("--look-from", o.view.lookFrom, "camera position x,y,z (metres, y up)");
   cmd.add_option("--look-at", o.view.lookAt, "point the camera looks at, x,y,z");
   cmd.add_option("--fov", o.view.fovDegrees, "vertical field of view in degrees");
@@ -110,7 +114,8 @@ void printFrameTimes(const Session& session) {
 
 // Scene, path, size, view and light from the options every headless subcommand shares.
 void prepareSession(Session& session, const RenderOptions& o) {
-  session.loadScene(o.scene.empty() ? defaultScene() : std::filesystem::path(o.scene));
+  session.loadScene(o.scene.empty() ? defaultScene() : std::filesystem::path(o.scene),
+                    tl::scene::LoadOptions{o.allowOutsideFiles});
   session.setPath(o.path);
   auto [w, h] = parseSize(o.size);
   session.setSize(w, h);
@@ -158,9 +163,9 @@ int runRender(const RenderOptions& o) {
     if (o.path != "reference") throw tl::session::SessionError("--spp applies to --path reference");
     if (*o.spp == 0) throw tl::session::SessionError("--spp must be at least 1");
     // Up to 16 samples a frame: fewer submissions, and each frame stays short.
+    if (*o.spp > 16 && *o.spp % 16) throw tl::session::SessionError("--spp must be a multiple of 16, or at most 16");
     session.settings().referenceSamplesPerFrame = std::min(*o.spp, 16u);
     frames = (*o.spp + 15) / 16;
-    if (*o.spp % 16) throw tl::session::SessionError("--spp must be a multiple of 16, or at most 16");
   }
 
   auto start = std::chrono::steady_clock::now();
@@ -225,16 +230,20 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--scene", render.scene, "glTF file (.gltf/.glb); default content/atrium.gltf");
   renderCmd->add_option("--path", render.path, "lighting path: direct, rt, reference (`twinlight info` lists them)");
   renderCmd->add_option("--size", render.size, "image size WxH")->capture_default_str();
-  renderCmd->add_option("--frames", render.frames, "frames to render (the last one is saved)")->capture_default_str();
+  renderCmd->add_option("--frames", render.frames, "frames to render (the last one is saved)")
+      ->check(CLI::Range(1u, kMaxFrames))
+      ->capture_default_str();
   renderCmd->add_option("--renderdoc", render.renderDoc,
                         "then capture one more frame with RenderDoc into this path template (run under RenderDoc)");
   renderCmd->add_option("--out", render.outputs,
                         "output image(s): .exr = scene-linear radiance before exposure, .png = tonemapped display")
       ->required();
   renderCmd->add_option("--dump-graph", render.dumpGraph, "write the compiled render graph as text (- for stdout)");
-  renderCmd->add_option("--spp", render.spp, "reference path: samples per pixel to accumulate (sets the frames)");
+  renderCmd->add_option("--spp", render.spp, "reference path: samples per pixel to accumulate (sets the frames)")
+      ->check(CLI::Range(1u, kMaxSpp));
   renderCmd->add_option("--bounces", render.bounces,
                         "reference path: scattering events per path (1 = direct light only, 2 = one indirect bounce)")
+      ->check(CLI::Range(1u, kMaxBounces))
       ->capture_default_str();
   addViewAndLightOptions(*renderCmd, render);
 
@@ -245,8 +254,10 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--scene", benchRender.scene, "glTF file; default content/atrium.gltf");
   benchCmd->add_option("--path", benchRender.path, "lighting path")->capture_default_str();
   benchCmd->add_option("--size", benchRender.size, "image size WxH")->capture_default_str();
-  benchCmd->add_option("--frames", bench.frames, "frames measured")->capture_default_str();
-  benchCmd->add_option("--warmup", bench.warmup, "frames rendered first and left out")->capture_default_str();
+  benchCmd->add_option("--frames", bench.frames, "frames measured")->check(CLI::Range(1u, kMaxFrames))->capture_default_str();
+  benchCmd->add_option("--warmup", bench.warmup, "frames rendered first and left out")
+      ->check(CLI::Range(0u, kMaxWarmupFrames))
+      ->capture_default_str();
   benchCmd->add_flag("--rays", bench.rays,
                      "rt path: the device's raw ray rate on the scene's TLAS (trivial kernel) against rt.trace's");
   benchCmd->add_flag("--cut-every-frame", bench.cutEveryFrame,
@@ -269,9 +280,11 @@ int main(int argc, char** argv) {
                          "JSON file: [{\"name\": N, \"path\": P, \"settings\": {setting: value, ...}}, ...] measured after --paths");
   compareCmd->add_option("--size", compareRender.size, "image size WxH")->capture_default_str();
   compareCmd->add_option("--spp", compare.referenceSpp, "reference samples per pixel (<= 16 or a multiple of 16)")
+      ->check(CLI::Range(1u, kMaxSpp))
       ->capture_default_str();
-  auto* bouncesOption =
-      compareCmd->add_option("--bounces", compare.referenceBounces, "reference scattering events per path")->capture_default_str();
+  auto* bouncesOption = compareCmd->add_option("--bounces", compare.referenceBounces, "reference scattering events per path")
+                            ->check(CLI::Range(1u, kMaxBounces))
+                            ->capture_default_str();
   compareCmd
       ->add_option("--scope", compare.scope,
                    "reference scope: `full` (--bounces events: all the GI) or `same` (direct + one bounce: what the "
@@ -280,6 +293,7 @@ int main(int argc, char** argv) {
       ->excludes(bouncesOption)
       ->capture_default_str();
   compareCmd->add_option("--frames", compare.framesPerPath, "frames each path runs before it is measured")
+      ->check(CLI::Range(1u, kMaxFrames))
       ->capture_default_str();
   compareCmd->add_option("--out", compareOut, "report directory")->capture_default_str();
   std::string compareCameras;
@@ -296,7 +310,9 @@ int main(int argc, char** argv) {
   captureCmd->add_option("--scene", captureRender.scene, "glTF file; default content/atrium.gltf");
   captureCmd->add_option("--path", captureRender.path, "lighting path")->capture_default_str();
   captureCmd->add_option("--size", captureRender.size, "image size WxH")->capture_default_str();
-  captureCmd->add_option("--frames", captureRender.frames, "frames rendered first (the last is captured)")->capture_default_str();
+  captureCmd->add_option("--frames", captureRender.frames, "frames rendered first (the last is captured)")
+      ->check(CLI::Range(1u, kMaxFrames))
+      ->capture_default_str();
   captureCmd->add_option("--out", captureOut, "folder to write into")->required();
   bool captureRenderDoc = false;
   captureCmd->add_flag("--renderdoc", captureRenderDoc,
@@ -313,13 +329,21 @@ int main(int argc, char** argv) {
   bakeCmd->add_flag("--force", bake.force, "re-bake keys the database already holds");
   bakeCmd->add_flag("--list", bake.list, "print the database's baked entries and overrides, bake nothing");
   bakeCmd->add_option("--merge", bake.merge, "merge these databases into --db (conflicts reported, overrides kept)");
+  bakeCmd->add_flag("--allow-outside-files", bake.allowOutsideFiles,
+                    "let the scene read buffers and images outside its own folder (../, absolute paths, links out)");
 
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
 
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // Bad usage: one line like every other error, exit status 2.
+    fmt::print(stderr, "twinlight: error: {} (see --help)\n", e.what());
+    return 2;
   }
 
   try {
@@ -345,11 +369,12 @@ int main(int argc, char** argv) {
       for (std::string p; std::getline(list, p, ',');)
         if (!p.empty()) compare.paths.push_back(p);
       if (!compareSettings.empty()) {
-        std::ifstream in(compareSettings);
-        if (!in) throw tl::session::SessionError(fmt::format("{}: cannot read the settings file", compareSettings));
+        const auto bytes = tl::scene::readRegularFile(compareSettings, tl::scene::InputLimits::kMaxSettingsBytes);
+        const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        tl::scene::requireJsonDepth(text, compareSettings);
         nlohmann::json list;
         try {
-          list = nlohmann::json::parse(in);
+          list = nlohmann::json::parse(text);
         } catch (const nlohmann::json::exception& e) {
           throw tl::session::SessionError(fmt::format("{}: not JSON: {}", compareSettings, e.what()));
         }
