@@ -173,8 +173,14 @@ int runRender(const RenderOptions& o) {
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   for (const auto& out : o.outputs) {
-    session.saveImage(out);
-    fmt::print("wrote {}\n", std::filesystem::absolute(out).string());
+    const auto written = session.saveImage(out);
+    std::string note;
+    if (written.float32)
+      note = fmt::format(" (32-bit float: {} of {} pixels exceed the half-float range, 65504, and would have clipped)",
+                         written.beyondHalf, written.pixels);
+    fmt::print("wrote {}{}\n", std::filesystem::absolute(out).string(), note);
+    if (written.nonFinite > 0)
+      throw tl::session::SessionError(fmt::format("{}: {} of {} pixels are not finite", out, written.nonFinite, written.pixels));
   }
   if (!o.renderDoc.empty()) renderDocFrame(session, o.renderDoc);
   fmt::print("rendered {} frame(s) of {} with `{}` at {}x{} on {} in {:.2f} s\n", frames, session.scene().name,

@@ -441,12 +441,12 @@ bool Session::hasBuffer(const std::string& name) const {
   return executor_->readbacks().count(name) != 0;
 }
 
-void Session::saveImage(const std::filesystem::path& file) const {
+ImageWriteReport Session::saveImage(const std::filesystem::path& file) const {
   std::string ext = file.extension().string();
   for (auto& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  if (ext == ".exr") writeImageAtomically(file, buffer(lighting::kCompositeHdr), ImageEncoding::LinearHalf);
-  else if (ext == ".png") writeImageAtomically(file, buffer(lighting::kTonemapLdr), ImageEncoding::Display8);
-  else throw SessionError(fmt::format("{}: unsupported image type `{}` (use .exr or .png)", file.string(), ext));
+  if (ext == ".exr") return writeImageAtomically(file, buffer(lighting::kCompositeHdr), ImageEncoding::Linear);
+  if (ext == ".png") return writeImageAtomically(file, buffer(lighting::kTonemapLdr), ImageEncoding::Display8);
+  throw SessionError(fmt::format("{}: unsupported image type `{}` (use .exr or .png)", file.string(), ext));
 }
 
 }  // namespace tl::session

@@ -11,6 +11,7 @@
 #include "lighting/common/frame_inputs.h"
 #include "lighting/lighting_path.h"
 #include "scene/scene.h"
+#include "session/image_io.h"
 #include "session/live_compare.h"
 
 #include <filesystem>
@@ -157,9 +158,10 @@ class Session {
   // Pins the next frame's index (it seeds per-frame noise): reproducible frames for tests.
   void setFrameIndex(uint64_t index) { frameIndex_ = index; }
 
-  // .exr: scene-linear radiance before exposure (composite.hdr);
+  // .exr: scene-linear radiance before exposure (composite.hdr), in half floats when every
+  // value fits them and in 32-bit floats when some do not (the report says how many);
   // .png: the tonemapped display image (tonemap.ldr). Written atomically.
-  void saveImage(const std::filesystem::path& file) const;
+  ImageWriteReport saveImage(const std::filesystem::path& file) const;
 
   uint32_t validationErrors() const { return device_->validationErrorCount(); }
 

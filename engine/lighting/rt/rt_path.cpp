@@ -85,7 +85,7 @@ class RtPath final : public LightingPath {
     graph.declarePersistent(kHistLumaMoment, image(VK_FORMAT_R32_SFLOAT, "mean squared sample luma, last frame"));
     const bool screenRadiance = s.rtScreenRadiance;
     if (screenRadiance)
-      graph.declarePersistent(kHistRadiance, image(VK_FORMAT_R16G16B16A16_SFLOAT, "composite radiance, last frame"));
+      graph.declarePersistent(kHistRadiance, image(kCompositeHdrFormat, "composite radiance, last frame"));
 
     // Deforming meshes: the throttle's refits, then the top level over the refitted levels.
     const bool deforming = scene_->hasDeforming();
