@@ -246,6 +246,16 @@ Scene loadGltf(const std::filesystem::path& file, const LoadOptions& options) {
   std::vector<uint8_t> bytes;
   try {
     bytes = readRegularFile(file, binary ? InputLimits::kMaxFileBytes : InputLimits::kMaxGltfJsonBytes);
+  } catch (const InputFileError& e) {
+    throw SceneError(e.what());
+  }
+  return loadGltfBytes(std::move(bytes), binary, file, options);
+}
+
+Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesystem::path& file, const LoadOptions& options) {
+  try {
+    if (bytes.size() > (binary ? InputLimits::kMaxFileBytes : InputLimits::kMaxGltfJsonBytes))
+      throw InputFileError(fmt::format("{}: {} bytes, more than a glTF may have", file.string(), bytes.size()));
     requireJsonDepth(jsonText(bytes, binary), file.string());
   } catch (const InputFileError& e) {
     throw SceneError(e.what());

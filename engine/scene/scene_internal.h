@@ -29,6 +29,10 @@ class TextureCache {
   std::map<std::pair<int, bool>, uint32_t> cache_;
 };
 
+// loadGltf after reading the file: `bytes` are its contents (a .glb when `binary`); files it
+// names resolve next to `file`. The fuzz target (fuzz/fuzz_gltf.cpp) enters here.
+Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesystem::path& file, const LoadOptions& options);
+
 // A file the glTF `gltfFile` names by `uri` (percent-encoded, relative to the glTF's folder),
 // read under `maxBytes`; throws InputFileError naming the reason (missing, not a regular file,
 // too large, outside the folder unless options allow it).

@@ -1,5 +1,6 @@
 #include "session/settings_json.h"
 
+#include "scene/input_limits.h"
 #include "session/session.h"
 #include "shared/legacy.h"
 
@@ -105,6 +106,19 @@ const std::map<std::string, Setter>& setters() {
 }
 
 }  // namespace
+
+nlohmann::json parseSettingsText(std::string_view text, const std::string& what) {
+  try {
+    scene::requireJsonDepth(text, what);
+  } catch (const scene::InputFileError& e) {
+    throw SessionError(e.what());
+  }
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw SessionError(fmt::format("{} is not JSON: {}", what, e.what()));
+  }
+}
 
 lighting::RenderSettings applySettingsJson(const lighting::RenderSettings& base, const nlohmann::json& overrides) {
   if (!overrides.is_object()) throw SessionError("settings must be a JSON object of setting names and values");
