@@ -11,6 +11,7 @@
 #include "gpu/self_test.h"
 #include "scene/input_limits.h"
 #include "session/compare.h"
+#include "session/doctor.h"
 #include "session/settings_json.h"
 #include "session/session.h"
 
@@ -338,6 +339,27 @@ int main(int argc, char** argv) {
   bakeCmd->add_flag("--allow-outside-files", bake.allowOutsideFiles,
                     "let the scene read buffers and images outside its own folder (../, absolute paths, links out)");
 
+  RenderOptions doctorRender;
+  doctorRender.size = "128x72";
+  tl::session::DoctorOptions doctor;
+  std::string doctorJson;
+  auto* doctorCmd = app.add_subcommand(
+      "doctor", "stability report: every lighting path on SCENE, NaN/Inf/negative counts per buffer, energy against the "
+                "reference, flicker over a short camera orbit, validation messages; exit status 1 when not healthy");
+  doctorCmd->add_option("scene", doctorRender.scene, "glTF file")->required();
+  doctorCmd->add_option("--size", doctorRender.size, "image size WxH")->capture_default_str();
+  doctorCmd->add_option("--frames", doctor.frames, "frames each real-time path renders before its buffers are read")
+      ->check(CLI::Range(1u, kMaxFrames))
+      ->capture_default_str();
+  doctorCmd->add_option("--spp", doctor.referenceSpp, "the reference's samples per pixel")
+      ->check(CLI::Range(1u, kMaxSpp))
+      ->capture_default_str();
+  doctorCmd->add_option("--orbit-frames", doctor.orbitFrames, "frames of the camera orbit that measures flicker (0: none)")
+      ->check(CLI::Range(0u, kMaxFrames))
+      ->capture_default_str();
+  doctorCmd->add_option("--json", doctorJson, "also write the report as JSON to FILE (- for stdout)");
+  addViewAndLightOptions(*doctorCmd, doctorRender);
+
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
 
   try {
@@ -376,14 +398,8 @@ int main(int argc, char** argv) {
         if (!p.empty()) compare.paths.push_back(p);
       if (!compareSettings.empty()) {
         const auto bytes = tl::scene::readRegularFile(compareSettings, tl::scene::InputLimits::kMaxSettingsBytes);
-        const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-        tl::scene::requireJsonDepth(text, compareSettings);
-        nlohmann::json list;
-        try {
-          list = nlohmann::json::parse(text);
-        } catch (const nlohmann::json::exception& e) {
-          throw tl::session::SessionError(fmt::format("{}: not JSON: {}", compareSettings, e.what()));
-        }
+        const nlohmann::json list = tl::session::parseSettingsText(
+            std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), compareSettings);
         if (!list.is_array()) throw tl::session::SessionError(fmt::format("{}: expected a JSON array of configurations", compareSettings));
         for (const auto& v : list) {
           if (!v.is_object() || !v.contains("name") || !v.contains("path") || !v["name"].is_string() || !v["path"].is_string())
@@ -440,17 +456,28 @@ int main(int argc, char** argv) {
       fmt::print("wrote {} reports and {}\n", views.size(), (std::filesystem::absolute(compareOut) / "index.html").string());
       return 0;
     }
+    if (*doctorCmd) {
+      // The validation layers are part of the report: they are always on here.
+      tl::gpu::DeviceOptions device;
+      device.validation = true;
+      Session session(device);
+      prepareSession(session, doctorRender);
+      const auto report = tl::session::runDoctor(session, doctor);
+      fmt::print("{}", report.toText());
+      if (doctorJson == "-") fmt::print("{}\n", report.toJson().dump(2));
+      else if (!doctorJson.empty()) std::ofstream(doctorJson) << report.toJson().dump(2) << "\n";
+      if (!report.healthy())
+        throw tl::session::SessionError(fmt::format("{} is not healthy: non-finite or negative values or validation "
+                                                    "messages (the report above names them)",
+                                                    doctorRender.scene));
+      return 0;
+    }
     if (*benchCmd) {
       Session session;
       prepareSession(session, benchRender);
       if (!benchSettings.empty()) {
-        nlohmann::json overrides;
-        try {
-          overrides = nlohmann::json::parse(benchSettings);
-        } catch (const nlohmann::json::exception& e) {
-          throw tl::session::SessionError(fmt::format("--set is not JSON: {}", e.what()));
-        }
-        session.settings() = tl::session::applySettingsJson(session.settings(), overrides);
+        session.settings() =
+            tl::session::applySettingsJson(session.settings(), tl::session::parseSettingsText(benchSettings, "--set"));
       }
       if (bench.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
       nlohmann::json report = runBench(session, bench);

@@ -1,6 +1,7 @@
 // The project's own scenes (units: metres, +Y up). Each one exists to make a lighting
 // question measurable; content/README.md says which. Usage: tl_content_gen <content-dir>
 #include "gltf_writer.h"
+#include "hard_scenes.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -258,6 +259,7 @@ int main(int argc, char** argv) {
     tl::content::grove(dir);
     tl::content::banners(dir);
     tl::content::sparks(dir);
+    tl::content::writeHardScenes(dir / "hard");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());
     return 1;
