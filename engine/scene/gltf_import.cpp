@@ -37,9 +37,26 @@ std::string oneLine(std::string s) {
 }
 
 // tinygltf would otherwise decode images itself; we keep the bytes (for embedded images)
-// and decode later so a missing texture is a warning, not a failed load.
-bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
-                    int size, void*) {
+// and decode later so a missing texture is a warning, not a failed load. `user` is the model
+// being loaded: tinygltf 2.7 hands over an image's bufferView without checking that the view
+// lies inside its buffer (fuzz_gltf: a heap-buffer-overflow reading past a 209-byte buffer),
+// so the view is checked here before a byte of it is read.
+bool keepImageBytes(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                    const unsigned char* bytes, int size, void* user) {
+  const auto& model = *static_cast<const tinygltf::Model*>(user);
+  if (image->bufferView >= 0) {
+    const auto& views = model.bufferViews;
+    const bool viewExists = size_t(image->bufferView) < views.size();
+    const auto* view = viewExists ? &views[size_t(image->bufferView)] : nullptr;
+    uint64_t end = 0;
+    if (!view || view->buffer < 0 || size_t(view->buffer) >= model.buffers.size() ||
+        __builtin_add_overflow(uint64_t(view->byteOffset), uint64_t(view->byteLength), &end) ||
+        end > model.buffers[size_t(view->buffer)].data.size() || view->byteLength > uint64_t(INT32_MAX)) {
+      if (err) *err += fmt::format("image {} refers to bufferView {}, which reaches past the end of its buffer", index,
+                                   image->bufferView);
+      return false;
+    }
+  }
   if (bytes && size > 0) image->image.assign(bytes, bytes + size);
   image->as_is = true;
   return true;
@@ -262,10 +279,10 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
   }
 
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(keepImageBytes, nullptr);
+  tinygltf::Model model;
+  loader.SetImageLoader(keepImageBytes, &model);
   BufferAccess access{file, options, {}};
   loader.SetFsCallbacks({fileExists, expandNothing, readBuffer, writeNothing, &access});
-  tinygltf::Model model;
   std::string err, warn;
   const std::string baseDir = file.parent_path().string();
   bool ok = false;

@@ -167,6 +167,27 @@ TEST(HardImport, GlbJsonChunkNestedDeepIsRefused) {
   EXPECT_CONTAINS(loadError(tmp.path / "deep.glb"), "JSON nests deeper than 64 levels");
 }
 
+TEST(HardImport, ImageBufferViewPastItsBufferIsRefused) {
+  // fuzz_gltf's first finding: tinygltf passes an image's bufferView to the image callback
+  // without checking it lies inside its buffer (a heap-buffer-overflow read under ASan).
+  TempDir tmp;
+  std::string bin(64, '\0');
+  nlohmann::json j = {{"asset", {{"version", "2.0"}}},
+                      {"buffers", {{{"byteLength", bin.size()}}}},
+                      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 16}, {"byteLength", 4096}}}},
+                      {"images", {{{"bufferView", 0}, {"mimeType", "image/png"}}}}};
+  std::string json = j.dump();
+  while (json.size() % 4) json += ' ';
+  auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  const uint32_t total = uint32_t(12 + 8 + json.size() + 8 + bin.size());
+  writeBytes(tmp.path / "view.glb", "glTF" + u32(2) + u32(total) + u32(uint32_t(json.size())) + "JSON" + json +
+                                         u32(uint32_t(bin.size())) + std::string("BIN\0", 4) + bin);
+  EXPECT_CONTAINS(loadError(tmp.path / "view.glb"), "image 0 refers to bufferView 0, which reaches past the end of its buffer");
+  // The input the fuzzer found, as it found it.
+  const fs::path found = fs::path(TWINLIGHT_SOURCE_ROOT) / "fuzz/regressions/gltf/image_view_past_buffer.glb";
+  EXPECT_CONTAINS(loadError(found), "reaches past the end of its buffer");
+}
+
 TEST(HardImport, SceneFileMustBeRegular) {
   TempDir tmp;
   ASSERT_EQ(::mkfifo((tmp.path / "fifo.gltf").c_str(), 0600), 0);
