@@ -1,6 +1,7 @@
 #include "bench.h"
 
 #include "lighting/rt/rt_path.h"
+#include "session/provenance.h"
 #include "shared/rt.h"
 
 #include <fmt/format.h>
@@ -122,7 +123,8 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
     s["pass"] = pass;
     passes.push_back(s);
   }
-  return {{"scene", session.scene().name},
+  return {{"twinlight", tl::session::twinlightJson()},
+          {"scene", session.scene().name},
           {"path", session.path()},
           {"width", session.settings().width},
           {"height", session.settings().height},

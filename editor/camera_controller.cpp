@@ -52,6 +52,13 @@ void CameraController::update(const CameraInput& in) {
   }
 }
 
+void CameraController::translate(const glm::dvec3& d) {
+  const glm::dvec3 f = forward();
+  const glm::dvec3 right = glm::normalize(glm::cross(f, glm::dvec3(0, 1, 0)));
+  const glm::dvec3 up = glm::cross(right, f);
+  position_ += right * d.x + up * d.y + f * d.z;
+}
+
 void CameraController::focus(const scene::Bounds& b) {
   if (!b.valid()) return;
   double radius = std::max(0.5 * glm::length(b.size()), 1e-3);

@@ -24,6 +24,8 @@ class CameraController {
   void reset(const session::View& view, double sceneSize);
   void update(const CameraInput& in);
   void focus(const scene::Bounds& bounds);
+  // Moves the camera by metres along its own right, up and forward axes (the scripts' step).
+  void translate(const glm::dvec3& rightUpForward);
   session::View view() const;
   void setFov(float yfovRadians) { fov_ = yfovRadians; }
 

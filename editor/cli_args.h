@@ -4,6 +4,7 @@
 #include "session/session.h"
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -16,6 +17,11 @@ inline constexpr uint32_t kMaxWarmupFrames = 1000;
 inline constexpr uint32_t kMaxSpp = 65536;
 inline constexpr uint32_t kMaxBounces = 64;
 inline constexpr uint64_t kMaxImageSide = 16384;
+// Bad usage found after parsing (options that contradict each other, a malformed value that
+// CLI11 cannot check): one `twinlight: error:` line and exit code 2, like a parse error.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 struct ViewArgs {
   std::optional<size_t> camera;

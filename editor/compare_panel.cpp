@@ -70,6 +70,7 @@ void comparePanel(EditorApp& app) {
     tooltip("or drag the line in the viewport");
   }
   ImGui::Checkbox("FLIP (CPU, every 1.5 s)", &view->measureFlip);
+  tooltip("measured on a worker thread: the figure is the last one finished, the viewport never waits for it");
 
   ImGui::Separator();
   const session::LiveCompare* live = session.liveCompare();
@@ -81,7 +82,14 @@ void comparePanel(EditorApp& app) {
     ImGui::TextWrapped("No live error: the reference needs ray tracing (%s).", live->referenceUnavailable()->c_str());
   } else {
     ImGui::Text("reference: %u samples per pixel", live->referenceSamples());
-    tooltip("accumulates while the camera, light and size stay; restarts when they change");
+    tooltip("accumulates while the camera, projection, light, scene, geometry and its settings stay (the frame key); "
+            "starts over when one of them changes");
+    if (live->referenceRestarts() > 0) {
+      ImGui::SameLine();
+      const lighting::FrameParts cause = live->lastReferenceRestart();
+      ImGui::TextDisabled("restarted %ux, last by %s", live->referenceRestarts(),
+                          cause ? lighting::describeParts(cause).c_str() : "a reset or a resize");
+    }
   }
   if (ImGui::BeginTable("compare.errors", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
     for (const char* h : {"path", "GPU ms", "relMSE", "FLIP"}) ImGui::TableSetupColumn(h);

@@ -1,5 +1,6 @@
 #include "editor_app.h"
 
+#include "gpu/install_paths.h"
 #include "gpu/renderdoc.h"
 #include "session/capture.h"
 
@@ -42,11 +43,11 @@ EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<s
   initImgui();
   if (script) script_ = std::make_unique<Script>(*script);
   // Edit a shader under shaders/ while the editor runs: it is recompiled and swapped in.
-  const char* sources = std::getenv("TWINLIGHT_SHADER_SOURCES");
-  const std::filesystem::path shaderSources =
-      sources && *sources ? std::filesystem::path(sources) : std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "shaders";
-  if (std::filesystem::is_directory(shaderSources)) reloader_ = std::make_unique<gpu::ShaderReloader>(shaderSources);
-  std::filesystem::path first = scene.value_or(std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "content" / "atrium.gltf");
+  // An installed program without the source tree has none to watch.
+  const std::filesystem::path shaderSources = gpu::shaderSourceDirectory();
+  if (!shaderSources.empty() && std::filesystem::is_directory(shaderSources))
+    reloader_ = std::make_unique<gpu::ShaderReloader>(shaderSources);
+  std::filesystem::path first = scene.value_or(gpu::contentDirectory() / "atrium.gltf");
   // `twinlight CAPTURE_FOLDER`: the capture's buffers, no scene at all.
   if (std::filesystem::exists(first / "manifest.json")) {
     openCapture(first);

@@ -54,6 +54,8 @@ class EditorApp {
   void requestViewportCapture() { captureRequested_ = true, capture_.clear(); }
   const std::vector<float>& viewportCapture() const { return capture_; }
   void focusSelection();
+  // Moves the editor camera by metres along its right, up and forward axes.
+  void moveCamera(const glm::dvec3& rightUpForward) { camera_.translate(rightUpForward); }
   void showError(const std::string& message) { error_ = message; }
   void previewResource(const std::string& name) { preview_ = name; }  // while hovering a pass
   // Shows a resource in the viewport until changed ("" = the final image); its range is fitted.

@@ -1,19 +1,23 @@
 // `twinlight`: one binary. Without a subcommand it shows the default (or given) scene;
 // the headless subcommands work on machines without a display. Errors are one line on
-// stderr and a non-zero exit: 1 for a failure at run time, 2 for bad usage.
+// stderr and a non-zero exit: 1 for a failure at run time, 2 for bad usage, 3 for a
+// regression gate (compare --fail-above) that failed.
 #include "bake_command.h"
 #include "bench.h"
 #include "compare_cameras.h"
 #include "session/capture.h"
 #include "cli_args.h"
 #include "editor_app.h"
+#include "gpu/install_paths.h"
 #include "gpu/renderdoc.h"
 #include "gpu/self_test.h"
 #include "scene/input_limits.h"
 #include "session/compare.h"
 #include "session/doctor.h"
+#include "session/image_io.h"
 #include "session/settings_json.h"
 #include "session/session.h"
+#include "version/version.h"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -31,12 +35,7 @@ namespace {
 
 using tl::session::Session;
 
-std::filesystem::path contentRoot() {
-  if (const char* env = std::getenv("TWINLIGHT_ROOT"); env && *env) return std::filesystem::path(env) / "content";
-  return std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "content";
-}
-
-std::filesystem::path defaultScene() { return contentRoot() / "atrium.gltf"; }
+std::filesystem::path defaultScene() { return tl::gpu::contentDirectory() / "atrium.gltf"; }
 
 struct RenderOptions {
   std::string scene;
@@ -191,7 +190,7 @@ int runRender(const RenderOptions& o) {
     if (o.dumpGraph == "-") {
       fmt::print("{}", session.graphDump());
     } else {
-      std::ofstream(o.dumpGraph) << session.graphDump();
+      session.writeGraph(o.dumpGraph);  // .dot / .gv: Graphviz
       fmt::print("wrote {}\n", o.dumpGraph);
     }
   }
@@ -214,6 +213,7 @@ int runInfo() {
   } else {
     fmt::print("ray tracing: unavailable: {}\n", d.rayTracing().unavailableReason);
   }
+  fmt::print("shaders: {}\ncontent: {}\n", tl::gpu::shaderDirectory().string(), tl::gpu::contentDirectory().string());
   fmt::print("lighting paths:\n");
   for (auto& p : session.paths())
     fmt::print("  {:10} {}{}\n", p.name, p.description, p.available ? "" : "  [unavailable: " + p.unavailableReason + "]");
@@ -226,6 +226,7 @@ int main(int argc, char** argv) {
   spdlog::set_level(std::getenv("TWINLIGHT_VERBOSE") ? spdlog::level::debug : spdlog::level::warn);
   CLI::App app{"Twinlight: a lighting lab comparing ray-traced and legacy real-time lighting against a path tracer"};
   app.require_subcommand(0, 1);
+  app.set_version_flag("--version", "twinlight " + tl::versionString());
   std::string sceneArg, scriptArg;
   bool headless = false;
   app.add_option("scene", sceneArg, "glTF scene to open (default: content/atrium.gltf)");
@@ -245,7 +246,7 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--out", render.outputs,
                         "output image(s): .exr = scene-linear radiance before exposure, .png = tonemapped display")
       ->required();
-  renderCmd->add_option("--dump-graph", render.dumpGraph, "write the compiled render graph as text (- for stdout)");
+  renderCmd->add_option("--dump-graph", render.dumpGraph, "write the compiled render graph as text (- for stdout), or Graphviz DOT for a .dot file");
   renderCmd->add_option("--spp", render.spp, "reference path: samples per pixel to accumulate (sets the frames)")
       ->check(CLI::Range(1u, kMaxSpp));
   renderCmd->add_option("--bounces", render.bounces,
@@ -308,6 +309,13 @@ int main(int argc, char** argv) {
                          "one report per camera: `bookmarks` (the editor's, Ctrl+1..9), `scene` (glTF cameras), "
                          "or a list like 0,b2");
   compareCmd->add_option("--cache", compareCache, "reference cache directory (default: $XDG_CACHE_HOME/twinlight/reference)");
+  std::string compareReference, compareFailAbove;
+  compareCmd->add_option("--reference", compareReference,
+                         "compare against this image (linear RGB EXR from another renderer, same camera and --size) "
+                         "instead of rendering the path tracer's");
+  compareCmd->add_option("--fail-above", compareFailAbove,
+                         "regression gate: exit 3 when any path's figure exceeds its threshold, METRIC=VALUE[,...] "
+                         "(relMSE, relMSE_norm, RMSE, RMSE_norm, FLIP, FLIP_norm, HDR-FLIP; e.g. relMSE_norm=0.05,flip=0.1)");
   addViewAndLightOptions(*compareCmd, compareRender);
 
   RenderOptions captureRender;
@@ -368,6 +376,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // Bad usage: one line like every other error, exit status 2.
     fmt::print(stderr, "twinlight: error: {} (see --help)\n", e.what());
@@ -391,6 +401,17 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*compareCmd) {
+      // Usage first, before a device or a scene is touched.
+      if (!compareFailAbove.empty()) {
+        try {
+          compare.failAbove = tl::session::parseFailAbove(compareFailAbove);
+        } catch (const tl::session::SessionError& e) {
+          throw UsageError(e.what());
+        }
+      }
+      if (!compareReference.empty() && !compareCameras.empty())
+        throw UsageError("--reference is one camera's image: it cannot be compared with --cameras");
+      compare.referenceFile = compareReference;
       Session session;
       prepareSession(session, compareRender);
       std::stringstream list(comparePaths);
@@ -408,6 +429,14 @@ int main(int argc, char** argv) {
         }
       }
       compare.cacheDir = compareCache;
+      size_t gateFailures = 0;
+      // A failed gate is its own exit code, after every report is written.
+      auto gateExit = [&]() {
+        if (gateFailures == 0) return 0;
+        std::fflush(stdout);  // the figures first, then the error line
+        fmt::print(stderr, "twinlight: error: regression gate failed: {} figure(s) above their thresholds\n", gateFailures);
+        return 3;
+      };
       auto runOne = [&](const std::filesystem::path& outDir) {
         compare.outDir = outDir;
         auto report = tl::session::runCompare(session, compare, [](const std::string& what, double f) {
@@ -415,27 +444,50 @@ int main(int argc, char** argv) {
           fmt::print(stderr, "\r[{:30}] {:3.0f}% {:32}", std::string(size_t(filled), '#'), f * 100.0, what);
           if (f >= 1.0) fmt::print(stderr, "\n");
         });
+        auto num = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); };
+        fmt::print("as rendered (linear radiance; SSIM and FLIP of the display images at {:.2f} EV)\n",
+                   report["exposureEV"].get<double>());
         fmt::print("{:10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>9}\n", "path", "GPU ms", "relMSE", "RMSE", "PSNR", "SSIM",
                    "FLIP", "HDR-FLIP");
-        auto num = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); };
         for (auto& p : report["paths"])
           fmt::print("{:10} {:9.2f} {:9.4f} {:9.4f} {:8.2f} {:7.4f} {:7.4f} {:9.4f}\n", p["path"].get<std::string>(),
                      p["frameMs"].get<double>(), num(p["relMSE"]), num(p["RMSE"]), num(p["PSNR"]), num(p["SSIM"]),
                      num(p["FLIP"]), num(p["HDR-FLIP"]));
+        fmt::print("exposure-normalised (both images x{:.4g}: the reference's mean Y {:.4g} -> 0.18)\n",
+                   report["reference"]["normalisation"].get<double>(), report["reference"]["meanLuminance"].get<double>());
+        fmt::print("{:10} {:>11} {:>11} {:>11}\n", "path", "relMSE_norm", "RMSE_norm", "FLIP_norm");
+        for (auto& p : report["paths"])
+          fmt::print("{:10} {:11.4f} {:11.4f} {:11.4f}\n", p["path"].get<std::string>(), num(p["relMSE_norm"]),
+                     num(p["RMSE_norm"]), num(p["FLIP_norm"]));
         fmt::print("per stage (surface pixels)  {:>13} {:>18}\n", "AO abs error", "irradiance relMSE");
         for (auto& p : report["paths"])
           if (p["stages"].contains("ao"))
             fmt::print("{:27} {:13.4f} {:18.4f}\n", p["path"].get<std::string>(), num(p["stages"]["ao"]["meanAbsError"]),
                        num(p["stages"]["irradiance"]["relMSE"]));
-        fmt::print("reference: {} spp{}{}\nwrote {}\n", report["reference"]["spp"].get<int>(),
-                   report["reference"]["scope"] == "same" ? ", same scope (direct + one bounce)" : "",
-                   report["reference"]["cached"].get<bool>() ? " (reused from the cache)" : "",
-                   (std::filesystem::absolute(outDir) / "report.html").string());
+        const auto& ref = report["reference"];
+        if (ref["source"] == "file")
+          fmt::print("reference: {} (external)\n", ref["file"].get<std::string>());
+        else
+          fmt::print("reference: {} spp{}{}\n", ref["spp"].get<int>(),
+                     ref["scope"] == "same" ? ", same scope (direct + one bounce)" : "",
+                     ref["cached"].get<bool>() ? " (reused from the cache)" : "");
+        fmt::print("wrote {}\n", (std::filesystem::absolute(outDir) / "report.html").string());
+        if (report.contains("gate")) {
+          const auto& gate = report["gate"];
+          for (auto& f : gate["failures"])
+            fmt::print("gate: FAIL {} {} {} > {}\n", f["path"].get<std::string>(), f["metric"].get<std::string>(),
+                       f["value"].is_number() ? fmt::format("{:.4f}", f["value"].get<double>()) : std::string("non-finite"),
+                       f["threshold"].get<double>());
+          std::string limits;  // in the order given
+          for (const auto& t : compare.failAbove) limits += fmt::format("{}{} <= {}", limits.empty() ? "" : ", ", t.metric, t.value);
+          fmt::print("gate: {} ({})\n", gate["passed"].get<bool>() ? "passed" : "FAILED", limits);
+          gateFailures += gate["failures"].size();
+        }
         return report;
       };
       if (compareCameras.empty()) {
         runOne(compareOut);
-        return 0;
+        return gateExit();
       }
       // One report per camera, and an index of them.
       const auto views = tl::editor::resolveCompareCameras(session, compareCameras);
@@ -454,7 +506,7 @@ int main(int argc, char** argv) {
           << "<!doctype html><meta charset=utf-8><title>Twinlight compare: cameras</title><h1>"
           << session.scene().name << ": one report per camera</h1><ul>\n" << links << "</ul>\n";
       fmt::print("wrote {} reports and {}\n", views.size(), (std::filesystem::absolute(compareOut) / "index.html").string());
-      return 0;
+      return gateExit();
     }
     if (*doctorCmd) {
       // The validation layers are part of the report: they are always on here.
@@ -484,7 +536,7 @@ int main(int argc, char** argv) {
       fmt::print("{}", benchTable(report));
       if (benchJson == "-") fmt::print("{}\n", report.dump(2));
       else if (!benchJson.empty()) {
-        std::ofstream(benchJson) << report.dump(2) << "\n";
+        tl::session::writeTextFile(benchJson, report.dump(2) + "\n");
         fmt::print("wrote {}\n", benchJson);
       }
       return 0;
@@ -508,6 +560,9 @@ int main(int argc, char** argv) {
                  (std::filesystem::path("out") / (stem.string() + ".exr")).string()};
     fmt::print("no display found (DISPLAY/WAYLAND_DISPLAY unset); rendering {} headless\n", stem.string());
     return runRender(o);
+  } catch (const UsageError& e) {
+    fmt::print(stderr, "twinlight: error: {}\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "twinlight: error: {}\n", e.what());
     return 1;

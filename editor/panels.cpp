@@ -5,6 +5,7 @@
 #include "editor_app.h"
 #include "ui_helpers.h"
 #include "session/captured_frame.h"
+#include "gpu/install_paths.h"
 #include "gpu/renderdoc.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -173,116 +174,116 @@ bool divisorParameter(const char* label, uint32_t& divisor, std::initializer_lis
   return changed;
 }
 
-// The active path's parameters, with units; changing one restarts accumulation.
+// The active path's parameters, with units. A setting its history depends on restarts that
+// history by itself (the frame key's settings part, LightingPath::historySettings).
 void pathParameters(EditorApp& app) {
   auto& session = app.session();
   auto& s = session.settings();
   const auto& b = session.scene().bounds;
   const float scale = b.valid() ? float(glm::length(b.size())) : 1.0f;
-  bool changed = false;
   if (session.path() == "legacy") {
     ImGui::Separator();
     ImGui::TextUnformatted("Legacy: GTAO + voxel GI");
-    changed |= distanceParameter("AO radius", s.legacyAoRadius, lighting::sceneScaledAoRadius(scale),
+    distanceParameter("AO radius", s.legacyAoRadius, lighting::sceneScaledAoRadius(scale),
                                  "Reach of SSAO and voxel AO");
-    changed |= ImGui::SliderFloat("AO thickness", &s.legacyAoThickness, 0.0f, 1.0f, "%.2f");
+    ImGui::SliderFloat("AO thickness", &s.legacyAoThickness, 0.0f, 1.0f, "%.2f");
     tooltip("How fast a horizon falls back behind thin occluders: 0 = infinitely thick, 1 = paper thin");
     int slices = int(s.legacyAoSlices), steps = int(s.legacyAoSteps);
-    if (ImGui::SliderInt("AO directions", &slices, 1, 4)) s.legacyAoSlices = uint32_t(slices), changed = true;
+    if (ImGui::SliderInt("AO directions", &slices, 1, 4)) s.legacyAoSlices = uint32_t(slices);
     tooltip("Slice directions per pixel (the 2x2 upsample averages four rotations of them)");
-    if (ImGui::SliderInt("AO steps", &steps, 2, 12)) s.legacyAoSteps = uint32_t(steps), changed = true;
+    if (ImGui::SliderInt("AO steps", &steps, 2, 12)) s.legacyAoSteps = uint32_t(steps);
     tooltip("Depth samples per direction and side");
-    changed |= divisorParameter("SSAO", s.legacyAoDivisor, {1, 2}, "SSAO resolution");
-    changed |= divisorParameter("Cones", s.legacyConeDivisor, {1, 2, 4}, "Cone tracing resolution");
+    divisorParameter("SSAO", s.legacyAoDivisor, {1, 2}, "SSAO resolution");
+    divisorParameter("Cones", s.legacyConeDivisor, {1, 2, 4}, "Cone tracing resolution");
     int resolution = int(s.legacyVoxelResolution);
     if (ImGui::SliderInt("Voxels per side", &resolution, 32, 128)) {
       uint32_t r = 32;
       while (r < uint32_t(resolution) && r < 128) r *= 2;
-      s.legacyVoxelResolution = r, changed = true;
+      s.legacyVoxelResolution = r;
     }
     tooltip("Clipmap resolution R (a power of two): each level holds R^3 voxels");
-    changed |= distanceParameter("Finest level", s.legacyLevel0Extent, std::min(scale, 0.25f * float(s.legacyVoxelResolution)),
+    distanceParameter("Finest level", s.legacyLevel0Extent, std::min(scale, 0.25f * float(s.legacyVoxelResolution)),
                                  "Side of the finest clipmap level; coarser levels double it until the scene is covered");
-    changed |= distanceParameter("Cone range", s.legacyConeRange, lighting::sceneScaledRayLength(scale),
+    distanceParameter("Cone range", s.legacyConeRange, lighting::sceneScaledRayLength(scale),
                                  "Cones stop after this distance");
-    changed |= ImGui::SliderFloat("Cone step", &s.legacyConeStep, 0.25f, 1.5f, "%.2f x diameter");
+    ImGui::SliderFloat("Cone step", &s.legacyConeStep, 0.25f, 1.5f, "%.2f x diameter");
     tooltip("Cone step as a fraction of its diameter: smaller is slower and more exact");
-    changed |= ImGui::Checkbox("Multi-bounce from the screen", &s.legacyScreenRadiance);
+    ImGui::Checkbox("Multi-bounce from the screen", &s.legacyScreenRadiance);
     tooltip("Voxels seen last frame take its shaded radiance, so light bounces more than once");
-    changed |= ImGui::Checkbox("Partial voxel updates", &s.legacyPartialVoxels);
+    ImGui::Checkbox("Partial voxel updates", &s.legacyPartialVoxels);
     tooltip("When only some instances deform or move, clear and re-voxelize only the voxels they and their sun "
             "shadows reach (per clipmap level), and re-filter only those mips; off: rebuild the whole clipmap");
   } else if (session.path() == "rt") {
     ImGui::Separator();
     ImGui::TextUnformatted("RT: RTGI + RTAO");
-    changed |= distanceParameter("AO radius##rt", s.rtAoRadius, lighting::sceneScaledAoRadius(scale),
+    distanceParameter("AO radius##rt", s.rtAoRadius, lighting::sceneScaledAoRadius(scale),
                                  "A hit closer than this occludes (RTAO)");
-    changed |= distanceParameter("Ray length", s.rtRayLength, lighting::sceneScaledRayLength(scale),
+    distanceParameter("Ray length", s.rtRayLength, lighting::sceneScaledRayLength(scale),
                                  "GI rays stop after this distance; also the TLAS culling margin");
-    changed |= distanceParameter("RT blend distance", s.rtBlendDistance, lighting::sceneScaledBlendDistance(scale),
+    distanceParameter("RT blend distance", s.rtBlendDistance, lighting::sceneScaledBlendDistance(scale),
                                  "Beyond this view distance RT GI fades to the far field (Metro: 250 m)");
-    changed |= ImGui::Checkbox("Legacy GI beyond it", &s.rtFarLegacy);
+    ImGui::Checkbox("Legacy GI beyond it", &s.rtFarLegacy);
     tooltip("The far field: the legacy path's voxel GI (Metro), or else the unoccluded sky. Runs only when part of "
             "the scene lies beyond the blend distance");
-    changed |= ImGui::Checkbox("Denoiser", &s.rtDenoise);
+    ImGui::Checkbox("Denoiser", &s.rtDenoise);
     tooltip("Two-pass spatial denoiser on the SH after accumulation (Metro's): cleaner, slower");
-    changed |= distanceParameter("Denoiser radius", s.rtDenoiseRadius, std::clamp(scale / 6.0f, 0.25f, 6.0f),
+    distanceParameter("Denoiser radius", s.rtDenoiseRadius, std::clamp(scale / 6.0f, 0.25f, 6.0f),
                                  "Pass 1 base radius; pass 2 uses half (Metro: 6 m and 3 m)");
-    changed |= ImGui::Checkbox("Half resolution", &s.rtHalfResolution);
+    ImGui::Checkbox("Half resolution", &s.rtHalfResolution);
     tooltip("Trace one pixel of each 2x2 block (0.25 rays per pixel), cycling through the four; the others take a "
             "nearby traced sample chosen at random by depth similarity (INSIDE's noisy upsampling)");
     ImGui::BeginDisabled(s.rtHalfResolution);
-    changed |= ImGui::Checkbox("0.5 rays per pixel", &s.rtHalfRays);
+    ImGui::Checkbox("0.5 rays per pixel", &s.rtHalfRays);
     ImGui::EndDisabled();
     tooltip("Trace a checkerboard that alternates each frame; the other half borrows a neighbour's ray");
-    changed |= ImGui::Checkbox("2 rays per traced pixel", &s.rtTwoRays);
+    ImGui::Checkbox("2 rays per traced pixel", &s.rtTwoRays);
     tooltip("Pre-trace, trace and hit lighting run twice with successive rays of the sequence; the raw sample is "
             "their mean (twice the ray cost, half the variance)");
-    changed |= ImGui::Checkbox("Screen-space pre-trace", &s.rtPretrace);
+    ImGui::Checkbox("Screen-space pre-trace", &s.rtPretrace);
     tooltip("March the depth buffer first; real rays only where it finds nothing");
     {
       bool autoLength = s.rtPretracePixels <= 0.0f;
       if (ImGui::Checkbox("Auto##pretrace", &autoLength))
-        s.rtPretracePixels = autoLength ? 0.0f : lighting::pretraceAutoPixels(s.height), changed = true;
+        s.rtPretracePixels = autoLength ? 0.0f : lighting::pretraceAutoPixels(s.height);
       tooltip("Auto: 128 px per 360 lines of the image, the same share of the view at any size");
       ImGui::SameLine();
       float length = autoLength ? lighting::pretraceAutoPixels(s.height) : s.rtPretracePixels;
       ImGui::BeginDisabled(autoLength);
-      if (ImGui::SliderFloat("Pre-trace length", &length, 8.0f, 1024.0f, "%.0f px")) s.rtPretracePixels = length, changed = true;
+      if (ImGui::SliderFloat("Pre-trace length", &length, 8.0f, 1024.0f, "%.0f px")) s.rtPretracePixels = length;
       ImGui::EndDisabled();
     }
     int steps = int(s.rtPretraceSteps);
-    if (ImGui::SliderInt("Pre-trace steps", &steps, 4, 32)) s.rtPretraceSteps = uint32_t(steps), changed = true;
-    changed |= ImGui::SliderFloat("Depth thickness", &s.rtThickness, 0.001f, 0.2f, "%.3f x distance");
+    if (ImGui::SliderInt("Pre-trace steps", &steps, 4, 32)) s.rtPretraceSteps = uint32_t(steps);
+    ImGui::SliderFloat("Depth thickness", &s.rtThickness, 0.001f, 0.2f, "%.3f x distance");
     tooltip("Assumed thickness of what the depth buffer shows, as a fraction of its distance");
     int frames = int(s.rtMaxAccumFrames);
-    if (ImGui::SliderInt("Accumulation", &frames, 1, 128, "%d frames")) s.rtMaxAccumFrames = uint32_t(frames), changed = true;
+    if (ImGui::SliderInt("Accumulation", &frames, 1, 128, "%d frames")) s.rtMaxAccumFrames = uint32_t(frames);
     tooltip("Temporal accumulation window while the camera holds still");
-    changed |= ImGui::SliderFloat("Firefly clamp", &s.rtFireflyClamp, 0.0f, 64.0f, s.rtFireflyClamp > 0.0f ? "%.1f x RMS" : "off");
+    ImGui::SliderFloat("Firefly clamp", &s.rtFireflyClamp, 0.0f, 64.0f, s.rtFireflyClamp > 0.0f ? "%.1f x RMS" : "off");
     tooltip("A new sample brighter than this multiple of its history's or neighbours' RMS luma is scaled down to it, "
             "in linear space. Off by default: where light comes through a few bright rays (an emitter the rays must "
             "find) it removes real light, 40-90% on cornell");
-    // The light changing must not reset this checkbox's own effect: no history reset for it.
+    // The light changing must not reset this checkbox's own effect: not in rt's history settings.
     ImGui::Checkbox("Luminance rejection", &s.rtLumaRejection);
     tooltip("When the light changes (sun, sky, albedo), clip each pixel's history to this frame's samples around it, "
             "so a light switched off does not ghost (RE ENGINE)");
     int disocclusion = int(s.rtDisocclusionRays);
     if (ImGui::SliderInt("Disocclusion rays", &disocclusion, 0, 64, disocclusion > 0 ? "%d per 8x8 cell" : "off"))
-      s.rtDisocclusionRays = uint32_t(disocclusion);  // only new disocclusions see it: no history reset
+      s.rtDisocclusionRays = uint32_t(disocclusion);  // only new disocclusions see it: not a history setting
     tooltip("Where the history was rejected (disocclusion, camera cut), each 8x8 cell holding such a pixel traces "
             "this many extra rays, and the fresh pixels on the same plane start from their mean (RE ENGINE)");
-    changed |= ImGui::SliderFloat("RT mesh triangles", &s.rtSimplifyRatio, 0.05f, 1.0f, "%.2f x");
+    ImGui::SliderFloat("RT mesh triangles", &s.rtSimplifyRatio, 0.05f, 1.0f, "%.2f x");
     tooltip("Simplified BLAS meshes (Metro: about 4x fewer triangles); 1 = the full mesh");
-    changed |= ImGui::Checkbox("Multi-bounce from the screen##rt", &s.rtScreenRadiance);
+    ImGui::Checkbox("Multi-bounce from the screen##rt", &s.rtScreenRadiance);
     tooltip("Hits seen last frame take its shaded radiance, so light bounces more than once");
-    changed |= ImGui::Checkbox("Emitter sampling##rt", &s.rtEmitterSampling);
+    ImGui::Checkbox("Emitter sampling##rt", &s.rtEmitterSampling);
     tooltip("Emissive triangles are sampled at each pixel and hit through a shadow ray, instead of being found only by "
             "the rays that happen to hit them (a small bright lamp: far less noise)");
-    changed |= ImGui::Checkbox("Sky at hits##rt", &s.rtHitSky);
+    ImGui::Checkbox("Sky at hits##rt", &s.rtHitSky);
     tooltip("Hits lit afresh (not on screen last frame) see the sky through one more ray, as they see the sun "
             "through a shadow ray; without it the light they bounce is sun and emission only");
     if (session.animated()) {
-      // Refits change only how fast the rays catch up with moving meshes: no history reset.
+      // Refits change only how fast the rays catch up with moving meshes: not history settings.
       int top = int(s.rtRefitTop), random = int(s.rtRefitRandom);
       if (ImGui::SliderInt("Refits: top", &top, 0, 64)) s.rtRefitTop = uint32_t(top);
       tooltip("Deforming meshes whose BLAS is refitted each frame: the highest priorities (visible, large, waiting)");
@@ -290,7 +291,6 @@ void pathParameters(EditorApp& app) {
       tooltip("Plus this many others drawn at random, so none waits forever (Metro: 16 + 4)");
     }
   }
-  if (changed) session.resetHistory();
 }
 
 void lightingPanel(EditorApp& app) {
@@ -496,7 +496,7 @@ void fileBrowser(EditorApp& app, bool& open, std::filesystem::path& dir) {
   ImGui::TextWrapped("%s", dir.string().c_str());
   if (ImGui::Button("Up") && dir.has_parent_path()) dir = dir.parent_path();
   ImGui::SameLine();
-  if (ImGui::Button("Project content")) dir = std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "content";
+  if (ImGui::Button("Project content")) dir = gpu::contentDirectory();
   ImGui::BeginChild("files");
   std::error_code ec;
   std::vector<std::filesystem::directory_entry> entries;

@@ -1,7 +1,10 @@
 #include "script.h"
 
 #include "editor_app.h"
+#include "gpu/install_paths.h"
 #include "session/capture.h"
+#include "session/capture_encoding.h"
+#include "gpu/formats.h"
 
 #include <fmt/format.h>
 
@@ -85,7 +88,7 @@ void Script::step(EditorApp& app) {
     try {
       if (cmd == "open") {
         std::filesystem::path p = arg;
-        if (p.is_relative() && !std::filesystem::exists(p)) p = std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / p;
+        if (p.is_relative() && !std::filesystem::exists(p)) p = gpu::contentDirectory().parent_path() / p;  // "content/x.gltf"
         app.openScene(p);
         waitLoaded_ = true;
       } else if (cmd == "wait-loaded") {
@@ -232,11 +235,21 @@ void Script::step(EditorApp& app) {
         const ViewerState& v = app.viewer();
         auto it = v.readbacks.find(v.resource);
         if (it == v.readbacks.end()) return fail(app, fmt::format("`{}` was not read back", v.resource));
-        session::CapturedImage img = session::readCaptureImage(std::filesystem::path(arg) / (v.resource + ".exr"));
+        // The capture's file as its manifest describes it, decoded back to the frame's texels.
+        const nlohmann::json manifest = nlohmann::json::parse(std::ifstream(std::filesystem::path(arg) / "manifest.json"));
+        nlohmann::json entry;
+        for (const auto& r : manifest["resources"])
+          if (r.value("name", "") == v.resource) entry = r;
+        if (!entry.is_object() || !entry["file"].is_string()) return fail(app, fmt::format("`{}` is not in the capture", v.resource));
+        session::CapturedImage img = session::readCaptureImage(std::filesystem::path(arg) / entry["file"].get<std::string>(),
+                                                               entry.value("channelNames", std::vector<std::string>{}));
         const std::vector<float> mine = it->second.texels();
-        if (img.values.size() != mine.size()) return fail(app, fmt::format("{} values in the viewer, {} in the capture", mine.size(), img.values.size()));
+        const std::vector<float> theirs = img.integer ? img.values
+            : session::decodeCaptureValues(entry.value("encoding", "linear"), entry.value("format", ""), img.values, img.channels,
+                                           gpu::formatInfo(it->second.format).channels, manifest["camera"].value("znear", 0.0f));
+        if (theirs.size() != mine.size()) return fail(app, fmt::format("{} values in the viewer, {} in the capture", mine.size(), theirs.size()));
         size_t differ = 0;
-        for (size_t i = 0; i < mine.size(); ++i) differ += !(mine[i] == img.values[i] || (std::isnan(mine[i]) && std::isnan(img.values[i])));
+        for (size_t i = 0; i < mine.size(); ++i) differ += !(mine[i] == theirs[i] || (std::isnan(mine[i]) && std::isnan(theirs[i])));
         if (differ) return fail(app, fmt::format("{} of {} values differ between the viewer and the capture", differ, mine.size()));
         fmt::print("script: the viewer's `{}` equals the capture ({} values)\n", v.resource, mine.size());
       } else if (cmd == "compare") {
@@ -256,8 +269,9 @@ void Script::step(EditorApp& app) {
         if (cmd == "compare-mode") app.compareView()->difference = arg == "difference";
         else app.compareView()->wipe = std::stof(arg);
       } else if (cmd == "expect-compare-errors") {
-        const session::LiveCompare* live = app.session().liveCompare();
+        session::LiveCompare* live = app.session().liveCompare();
         if (!live) return fail(app, "the viewport is not split");
+        live->finishFlip();  // FLIP runs beside the frames: take the one under way
         std::string all;
         for (const auto& e : live->errors()) {
           if (e.path == "reference") continue;
@@ -266,6 +280,26 @@ void Script::step(EditorApp& app) {
           all += fmt::format(" {} relMSE {:.4f} FLIP {:.4f} ({:.1f} ms);", e.path, *e.relMse, *e.flip, e.gpuMs);
         }
         fmt::print("script: compare against the reference ({} spp):{}\n", live->referenceSamples(), all);
+      } else if (cmd == "camera-move") {
+        double x, y, z;
+        if (std::sscanf(arg.c_str(), "%lf %lf %lf", &x, &y, &z) != 3) return fail(app, "camera-move needs X Y Z (metres)");
+        app.moveCamera({x, y, z});
+        if (const session::LiveCompare* live = app.session().liveCompare())
+          samplesAtMove_ = live->referenceSamples(), restartsAtMove_ = live->referenceRestarts();
+      } else if (cmd == "expect-reference-restarted") {
+        const session::LiveCompare* live = app.session().liveCompare();
+        if (!live) return fail(app, "the viewport is not split");
+        const std::string causes = lighting::describeParts(live->lastReferenceRestart());
+        if (live->referenceRestarts() == restartsAtMove_)
+          return fail(app, fmt::format("the reference did not restart: {} samples per pixel, {} before the move",
+                                       live->referenceSamples(), samplesAtMove_));
+        if ((", " + causes + ",").find(", " + arg + ",") == std::string::npos)
+          return fail(app, fmt::format("the reference restarted for {}, not {}", causes, arg));
+        if (live->referenceSamples() >= samplesAtMove_)
+          return fail(app, fmt::format("the reference holds {} samples per pixel, not fewer than the {} before the move",
+                                       live->referenceSamples(), samplesAtMove_));
+        fmt::print("script: the reference restarted ({}): {} -> {} samples per pixel\n", causes, samplesAtMove_,
+                   live->referenceSamples());
       } else if (cmd == "animation") {
         // play, pause, or a time in seconds (pauses there)
         if (arg == "play" || arg == "pause") {

@@ -41,6 +41,10 @@
 //   compare-mode wipe|difference, compare-wipe F (0..1 of the width)
 //   animation play|pause|T play or pause the scene's morph animations, or pause at T seconds
 //   expect-compare-errors  fail unless every side has a finite relMSE and FLIP against the reference
+//   camera-move X Y Z      move the camera X, Y, Z metres along its right, up and forward axes
+//   expect-reference-restarted PART  fail unless the Compare panel's reference started over since
+//                          the last camera-move, PART (a frame-key part, e.g. camera.position)
+//                          among its causes, and now holds fewer samples than it did then
 //   quit
 #pragma once
 
@@ -75,6 +79,7 @@ class Script {
   std::string failure_;
   enum class Capture { None, Snapshot, Compare } capture_ = Capture::None;
   std::vector<float> snapshot_;
+  uint32_t samplesAtMove_ = 0, restartsAtMove_ = 0;  // the live reference when the camera last moved
 };
 
 }  // namespace tl::editor

@@ -1,10 +1,15 @@
 #!/usr/bin/env bash
-# Twinlight set-up for Debian 12 (bookworm). Idempotent: installs only what is missing,
-# upgrades lavapipe from bookworm-backports when the installed one has no ray tracing,
-# then configures and builds the Release tree in build/.
+# Twinlight set-up for Debian 12 (bookworm). Idempotent: says what it will change, installs
+# only what is missing, upgrades lavapipe from bookworm-backports when the installed one has
+# no ray tracing (on Debian 12 only: the backports source is bookworm's), then configures and
+# builds the Release tree in build/.
 #
 #   scripts/setup.sh            install + configure + build
 #   scripts/setup.sh --no-build install only
+#   scripts/setup.sh --packages print the Debian packages needed, one line, and change nothing
+#
+# Without root (no sudo): install the printed packages some other way, then build by hand:
+#   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release && cmake --build build
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -25,8 +30,30 @@ packages=(
 # Lavapipe gained VK_KHR_acceleration_structure / ray_tracing_pipeline / ray_query in Mesa 24.1.
 min_mesa="24.1"
 
+if [ "${1:-}" = "--packages" ]; then
+  echo "${packages[*]}"
+  exit 0
+fi
+
+# The package names and the backports source are Debian 12's.
+os_id="" os_version=""
+if [ -r /etc/os-release ]; then
+  os_id="$(. /etc/os-release && echo "${ID:-}")"
+  os_version="$(. /etc/os-release && echo "${VERSION_ID:-}")"
+fi
+debian12=0
+if [ "$os_id" = "debian" ] && [ "$os_version" = "12" ]; then debian12=1; fi
+
 sudo_cmd=()
-if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+if [ "$(id -u)" -ne 0 ]; then
+  if ! command -v sudo >/dev/null; then
+    echo "setup: not root and no sudo: install these packages yourself, then build with" >&2
+    echo "  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release && cmake --build build" >&2
+    echo "  ${packages[*]}" >&2
+    exit 1
+  fi
+  sudo_cmd=(sudo)
+fi
 apt_get() { DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get -y -q "$@"; }
 
 is_installed() {
@@ -37,7 +64,10 @@ missing=()
 for p in "${packages[@]}"; do is_installed "$p" || missing+=("$p"); done
 updated=0
 if [ "${#missing[@]}" -gt 0 ]; then
-  echo "setup: installing ${missing[*]}"
+  if [ "$debian12" -ne 1 ]; then
+    echo "setup: warning: this is ${os_id:-an unknown system} ${os_version}, not Debian 12: package names may differ" >&2
+  fi
+  echo "setup: will run apt-get update and install (${#missing[@]} missing): ${missing[*]}"
   apt_get update
   updated=1
   apt_get install --no-install-recommends "${missing[@]}"
@@ -45,10 +75,21 @@ fi
 
 mesa_version="$(dpkg-query -W -f='${Version}' mesa-vulkan-drivers 2>/dev/null || echo 0)"
 if dpkg --compare-versions "$mesa_version" lt "$min_mesa"; then
-  echo "setup: mesa-vulkan-drivers $mesa_version has no ray tracing in lavapipe; using bookworm-backports"
+  if [ "$debian12" -ne 1 ]; then
+    echo "setup: mesa-vulkan-drivers $mesa_version has no ray tracing in lavapipe (needs $min_mesa)." >&2
+    echo "setup: the bookworm-backports source is for Debian 12 only; this is ${os_id:-unknown} ${os_version}:" >&2
+    echo "setup: not adding it. Install Mesa >= $min_mesa from your distribution; the rt and reference paths need it." >&2
+    exit 1
+  fi
   list=/etc/apt/sources.list.d/twinlight-bookworm-backports.list
   if ! grep -rqs "bookworm-backports" /etc/apt/sources.list /etc/apt/sources.list.d/; then
+    echo "setup: mesa-vulkan-drivers $mesa_version has no ray tracing in lavapipe (needs $min_mesa): will add"
+    echo "setup:   $list (deb http://deb.debian.org/debian bookworm-backports main),"
+    echo "setup:   run apt-get update and install mesa-vulkan-drivers from bookworm-backports"
     echo "deb http://deb.debian.org/debian bookworm-backports main" | "${sudo_cmd[@]}" tee "$list" >/dev/null
+  else
+    echo "setup: mesa-vulkan-drivers $mesa_version has no ray tracing in lavapipe (needs $min_mesa): will run"
+    echo "setup:   apt-get update and install mesa-vulkan-drivers from bookworm-backports (already a source)"
   fi
   apt_get update
   apt_get install --no-install-recommends -t bookworm-backports mesa-vulkan-drivers

@@ -11,11 +11,6 @@
 
 namespace tl::gpu {
 
-std::filesystem::path shaderDirectory() {
-  if (const char* env = std::getenv("TWINLIGHT_SHADER_DIR"); env && *env) return env;
-  return TWINLIGHT_SHADER_DIR;
-}
-
 std::vector<uint32_t> loadSpirv(const std::string& relative) {
   auto path = shaderDirectory() / (relative + ".spv");
   // A hot-reloaded shader (shader_reload.h) wins over the build's.

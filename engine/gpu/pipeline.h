@@ -4,6 +4,7 @@
 // table) are passed in as layouts. DescriptorWriter fills set 0 at record time.
 #pragma once
 
+#include "gpu/install_paths.h"
 #include "gpu/resources.h"
 
 #include <filesystem>
@@ -13,10 +14,9 @@
 
 namespace tl::gpu {
 
-// Loads <shader dir>/<relative>.spv, e.g. "common/composite.comp". The shader dir is the
-// build's, or TWINLIGHT_SHADER_DIR at run time.
+// Loads <shader dir>/<relative>.spv, e.g. "common/composite.comp" (shaderDirectory(),
+// gpu/install_paths.h).
 std::vector<uint32_t> loadSpirv(const std::string& relative);
-std::filesystem::path shaderDirectory();
 
 struct Binding {
   uint32_t binding = 0;

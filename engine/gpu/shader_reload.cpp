@@ -1,5 +1,7 @@
 #include "gpu/shader_reload.h"
 
+#include "gpu/install_paths.h"
+
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -78,7 +80,7 @@ void reportPipelineError(const std::string& pipeline, const std::string& message
 }
 
 ShaderReloader::ShaderReloader(std::filesystem::path sources, std::filesystem::path output)
-    : sources_(sources.empty() ? std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "shaders" : std::move(sources)),
+    : sources_(sources.empty() ? shaderSourceDirectory() : std::move(sources)),
       output_(output.empty() ? std::filesystem::temp_directory_path() / fmt::format("twinlight-shaders-{}", getpid())
                              : std::move(output)) {
   setShaderOverrideDirectory(output_);

@@ -452,4 +452,58 @@ std::string RenderGraph::dump(const CompiledGraph& c) const {
   return s;
 }
 
+namespace {
+
+// A DOT string literal: quotes and backslashes escaped, line breaks as DOT's \n.
+std::string dotQuote(std::string_view text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string RenderGraph::dot(const CompiledGraph& c) const {
+  // Passes are boxes in execution order, resources ellipses between their writer and their
+  // readers; persistent resources have a double border, imported ones a dashed one; culled
+  // passes and the resources only they touch are grey.
+  std::string s = "digraph twinlight {\n  rankdir=LR;\n  node [fontname=\"Helvetica\", fontsize=10];\n"
+                  "  edge [color=\"#555555\"];\n";
+  auto passNode = [](std::string_view name) { return dotQuote("pass:" + std::string(name)); };
+  auto resourceNode = [](std::string_view name) { return dotQuote("resource:" + std::string(name)); };
+  for (size_t i = 0; i < c.order.size(); ++i) {
+    const PassDecl& p = passes_[c.order[i].pass];
+    s += fmt::format("  {} [shape=box, style=filled, fillcolor=\"#dde6f7\", label={}];\n", passNode(p.name),
+                     dotQuote(fmt::format("[{}] {}\n{}", i, p.name, kindName(p.kind))));
+  }
+  for (PassId p : c.culled)
+    s += fmt::format("  {} [shape=box, style=dashed, color=grey, fontcolor=grey, label={}];\n", passNode(passes_[p].name),
+                     dotQuote(passes_[p].name + "\nculled"));
+  for (const ResourceInfo& info : c.resources) {
+    const ResourceDecl& r = resources_[info.id];
+    std::string style = r.imported ? "dashed" : "solid";
+    s += fmt::format("  {} [shape=ellipse, style={}{}{}, label={}];\n", resourceNode(r.name), style,
+                     r.persistent ? ", peripheries=2" : "", info.culled ? ", color=grey, fontcolor=grey" : "",
+                     dotQuote(r.name + "\n" + describe(r.desc)));
+  }
+  auto edges = [&](PassId pass, bool culled) {
+    const PassDecl& p = passes_[pass];
+    const char* grey = culled ? " [color=grey]" : "";
+    for (const auto& name : p.readNames) s += fmt::format("  {} -> {}{};\n", resourceNode(name), passNode(p.name), grey);
+    for (size_t w = 0; w < p.writeNames.size(); ++w)
+      s += fmt::format("  {} -> {} [label={}{}];\n", passNode(p.name), resourceNode(p.writeNames[w]),
+                       dotQuote(usageName(p.writeUsages[w])), culled ? ", color=grey" : "");
+  };
+  for (const CompiledPass& cp : c.order) edges(cp.pass, false);
+  for (PassId p : c.culled) edges(p, true);
+  return s + "}\n";
+}
+
 }  // namespace tl::graph

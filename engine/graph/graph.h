@@ -40,6 +40,13 @@ struct ResourceDesc {
   // How a viewer turns a texel into meaning, declared by whoever writes the resource:
   // "NAME key=resource ..." (lighting/common/decoders.h lists the names). Empty: raw values.
   std::string decoder;
+  // Conventional names of the stored channels where they mean something other than colour
+  // (e.g. "motion.u motion.v"), declared by the writer; captures name the EXR channels so.
+  // Empty: R, G, B, A.
+  std::string channels;
+  // Display-referred values (tonemapped, sRGB-encoded for a screen), not scene-linear data:
+  // captures write such an image as PNG, never as an EXR a reader would take as linear.
+  bool display = false;
 
   static ResourceDesc image2D(VkFormat f, uint32_t w, uint32_t h, std::string what = {}, uint32_t mips = 1);
   static ResourceDesc image3D(VkFormat f, uint32_t w, uint32_t h, uint32_t d, std::string what = {},
@@ -48,6 +55,16 @@ struct ResourceDesc {
   ResourceDesc decodedAs(std::string spec) const {
     ResourceDesc d = *this;
     d.decoder = std::move(spec);
+    return d;
+  }
+  ResourceDesc named(std::string channelNames) const {
+    ResourceDesc d = *this;
+    d.channels = std::move(channelNames);
+    return d;
+  }
+  ResourceDesc displayReferred() const {
+    ResourceDesc d = *this;
+    d.display = true;
     return d;
   }
   bool operator==(const ResourceDesc&) const = default;
@@ -198,6 +215,9 @@ class RenderGraph {
   // A readable text dump: passes in order with reads/writes/barriers, then resources with
   // format, size, writer and lifetime, then culled passes.
   std::string dump(const CompiledGraph& compiled) const;
+  // The same graph as Graphviz DOT (`dot -Tsvg`): passes as boxes, resources as ellipses,
+  // an edge from each writer to its resource and from each resource to its readers.
+  std::string dot(const CompiledGraph& compiled) const;
 
   const std::vector<PassDecl>& passes() const { return passes_; }
   const std::vector<ResourceDecl>& resources() const { return resources_; }

@@ -52,6 +52,10 @@ class LightingPath {
   // Whether the path shades the G-buffer the rasterizer drew (so TAA's jitter applies); the
   // reference path tracer computes every pixel itself, jittering its own rays.
   virtual bool rasterizes() const { return true; }
+  // A hash of the settings this path's history depends on (what its accumulated samples
+  // estimate): the frame key's `settings` part for the path, so changing one of them restarts
+  // its history and changing any other setting does not. 0: no setting matters.
+  virtual uint64_t historySettings(const RenderSettings&) const { return 0; }
 };
 
 // Sun + sky without indirect light: the baseline every other path adds to.

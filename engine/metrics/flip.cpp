@@ -4,8 +4,11 @@
 #include "shared/color.h"
 #include "shared/tonemap.h"
 
+#include <OpenImageIO/parallel.h>
+
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 namespace tl::metrics {
@@ -47,94 +50,151 @@ Vec3 huntLab(Vec3 rgb) {
 }
 double hyab(Vec3 p, Vec3 q) { return std::abs(p.x - q.x) + std::hypot(p.y - q.y, p.z - q.z); }
 
-std::vector<double> csfKernel(const Csf& c, double ppd, int radius) {
-  std::vector<double> k(size_t(2 * radius + 1) * (2 * radius + 1));
-  double sum = 0.0;
-  for (int y = -radius; y <= radius; ++y)
-    for (int x = -radius; x <= radius; ++x) {
-      double d2 = (double(x) * x + double(y) * y) / (ppd * ppd);  // squared visual angle, degrees
-      double g = c.a1 * std::sqrt(kPi / c.b1) * std::exp(-kPi * kPi * d2 / c.b1) +
-                 c.a2 * std::sqrt(kPi / c.b2) * std::exp(-kPi * kPi * d2 / c.b2);
-      k[size_t(y + radius) * (2 * radius + 1) + (x + radius)] = g;
-      sum += g;
-    }
-  for (double& v : k) v /= sum;
-  return k;
-}
+// FLIP's filters are all separable, which turns each (2r+1)^2-tap 2D filter into two
+// (2r+1)-tap passes (r = 10 for the CSF, 9 for the features at 67 pixels per degree):
+//  - each contrast-sensitivity filter is a sum of one or two isotropic Gaussians, and a
+//    Gaussian in d^2 = x^2 + y^2 is g(x) g(y);
+//  - the edge and point detectors are the first and second derivative of a Gaussian along one
+//    axis times the Gaussian along the other, and their normalisation (positive weights sum to
+//    1, negative to -1) factors the same way.
+// Borders clamp to the edge in x and in y independently, so the separable passes give the 2D
+// filter's result; only the order of the double-precision sums differs (see docs/accuracy.md).
+struct Kernel1D {
+  int radius = 0;
+  std::vector<double> w;  // taps -radius..radius
+};
 
 struct Plane {
   int w, h;
   std::vector<double> v;
-  double at(int x, int y) const { return v[size_t(std::clamp(y, 0, h - 1)) * w + std::clamp(x, 0, w - 1)]; }
 };
 
-Plane convolve(const Plane& in, const std::vector<double>& k, int radius) {
-  Plane out{in.w, in.h, std::vector<double>(in.v.size())};
-  const int side = 2 * radius + 1;
-  for (int y = 0; y < in.h; ++y)
+// Runs rows [0, count) over OpenImageIO's thread pool; each row is written by one task, so the
+// result does not depend on how the rows are split.
+void forEachRow(int count, const std::function<void(int)>& row) {
+  OIIO::parallel_for_range(int64_t(0), int64_t(count), [&](int64_t begin, int64_t end) {
+    for (int64_t y = begin; y < end; ++y) row(int(y));
+  });
+}
+
+// Correlation with kx along x, then ky along y, clamping coordinates at the borders.
+Plane convolveSeparable(const Plane& in, const Kernel1D& kx, const Kernel1D& ky) {
+  Plane mid{in.w, in.h, std::vector<double>(in.v.size())};
+  forEachRow(in.h, [&](int y) {
+    const double* src = &in.v[size_t(y) * in.w];
+    double* dst = &mid.v[size_t(y) * in.w];
     for (int x = 0; x < in.w; ++x) {
       double s = 0.0;
-      for (int j = -radius; j <= radius; ++j)
-        for (int i = -radius; i <= radius; ++i) s += k[size_t(j + radius) * side + (i + radius)] * in.at(x + i, y + j);
-      out.v[size_t(y) * in.w + x] = s;
+      for (int i = -kx.radius; i <= kx.radius; ++i) s += kx.w[size_t(i + kx.radius)] * src[std::clamp(x + i, 0, in.w - 1)];
+      dst[x] = s;
     }
+  });
+  Plane out{in.w, in.h, std::vector<double>(in.v.size())};
+  forEachRow(in.h, [&](int y) {
+    double* dst = &out.v[size_t(y) * in.w];
+    for (int j = -ky.radius; j <= ky.radius; ++j) {
+      const double k = ky.w[size_t(j + ky.radius)];
+      const double* src = &mid.v[size_t(std::clamp(y + j, 0, in.h - 1)) * in.w];
+      if (j == -ky.radius)
+        for (int x = 0; x < in.w; ++x) dst[x] = k * src[x];
+      else
+        for (int x = 0; x < in.w; ++x) dst[x] += k * src[x];
+    }
+  });
   return out;
 }
 
-// Edge (first derivative of a Gaussian) and point (second derivative) kernels along x,
-// each scaled so its positive weights sum to 1 and its negative weights to -1.
-void featureKernels(double ppd, std::vector<double>& edge, std::vector<double>& point, int& radius) {
-  const double sigma = 0.5 * kFeatureWidth * ppd;
-  radius = int(std::ceil(3.0 * sigma));
-  const int side = 2 * radius + 1;
-  edge.assign(size_t(side) * side, 0.0);
-  point.assign(size_t(side) * side, 0.0);
-  double ep = 0, en = 0, pp = 0, pn = 0;
-  for (int y = -radius; y <= radius; ++y)
-    for (int x = -radius; x <= radius; ++x) {
-      double g = std::exp(-(double(x) * x + double(y) * y) / (2.0 * sigma * sigma));
-      double e = -x * g, p = (x * x / (sigma * sigma) - 1.0) * g;
-      size_t i = size_t(y + radius) * side + (x + radius);
-      edge[i] = e, point[i] = p;
-      (e > 0 ? ep : en) += e;
-      (p > 0 ? pp : pn) += p;
-    }
-  for (double& e : edge) e /= e > 0 ? ep : -en;
-  for (double& p : point) p /= p > 0 ? pp : -pn;
+// One contrast-sensitivity filter: the normalised sum of its Gaussians as weighted separable
+// terms. Term k is A_k e_k(x) e_k(y) with e_k(x) = exp(-pi^2 x^2 / (ppd^2 b_k)); with E_k the
+// sum of e_k over the taps and S the sum of the whole 2D kernel (sum over k of A_k E_k^2),
+// term k contributes A_k E_k^2 / S times the filter by (e_k / E_k) in x and in y.
+struct CsfFilter {
+  std::vector<std::pair<double, Kernel1D>> terms;  // weight, normalised 1D Gaussian
+};
+
+CsfFilter csfFilter(const Csf& c, double ppd, int radius) {
+  CsfFilter f;
+  double total = 0.0;
+  for (auto [a, b] : {std::pair{c.a1, c.b1}, std::pair{c.a2, c.b2}}) {
+    if (a == 0.0) continue;  // an absent second Gaussian
+    Kernel1D k{radius, std::vector<double>(size_t(2 * radius + 1))};
+    double sum = 0.0;
+    for (int x = -radius; x <= radius; ++x) sum += k.w[size_t(x + radius)] = std::exp(-kPi * kPi * (double(x) * x) / (ppd * ppd * b));
+    for (double& v : k.w) v /= sum;
+    const double weight = a * std::sqrt(kPi / b) * sum * sum;
+    total += weight;
+    f.terms.push_back({weight, std::move(k)});
+  }
+  for (auto& t : f.terms) t.first /= total;
+  return f;
 }
 
-// |response| in x and y (the kernel transposed) of an achromatic plane.
-Plane featureMagnitude(const Plane& a, const std::vector<double>& k, int radius) {
-  const int side = 2 * radius + 1;
-  std::vector<double> kt(k.size());
-  for (int y = 0; y < side; ++y)
-    for (int x = 0; x < side; ++x) kt[size_t(y) * side + x] = k[size_t(x) * side + y];
-  Plane gx = convolve(a, k, radius), gy = convolve(a, kt, radius);
+Plane applyCsf(const Plane& in, const CsfFilter& f) {
+  Plane out{in.w, in.h, std::vector<double>(in.v.size(), 0.0)};
+  for (const auto& [weight, k] : f.terms) {
+    const Plane term = convolveSeparable(in, k, k);
+    for (size_t i = 0; i < out.v.size(); ++i) out.v[i] += weight * term.v[i];
+  }
+  return out;
+}
+
+// The feature detectors' 1D factors along the derivative's axis (edge: first derivative,
+// point: second), each scaled so its positive taps sum to 1 and its negative ones to -1, and
+// the normalised Gaussian across it.
+struct FeatureKernels {
+  Kernel1D gauss, edge, point;
+};
+
+FeatureKernels featureKernels(double ppd) {
+  const double sigma = 0.5 * kFeatureWidth * ppd;
+  const int radius = int(std::ceil(3.0 * sigma));
+  FeatureKernels k;
+  for (Kernel1D* kernel : {&k.gauss, &k.edge, &k.point}) *kernel = {radius, std::vector<double>(size_t(2 * radius + 1))};
+  double gs = 0, ep = 0, en = 0, pp = 0, pn = 0;
+  for (int x = -radius; x <= radius; ++x) {
+    const size_t i = size_t(x + radius);
+    const double g = std::exp(-(double(x) * x) / (2.0 * sigma * sigma));
+    const double e = -x * g, p = (x * x / (sigma * sigma) - 1.0) * g;
+    k.gauss.w[i] = g, k.edge.w[i] = e, k.point.w[i] = p;
+    gs += g;
+    (e > 0 ? ep : en) += e;
+    (p > 0 ? pp : pn) += p;
+  }
+  for (double& g : k.gauss.w) g /= gs;
+  for (double& e : k.edge.w) e /= e > 0 ? ep : -en;
+  for (double& p : k.point.w) p /= p > 0 ? pp : -pn;
+  return k;
+}
+
+// |response| of an achromatic plane to a detector along x and along y (the kernel transposed).
+Plane featureMagnitude(const Plane& a, const Kernel1D& detector, const Kernel1D& gauss) {
+  Plane gx = convolveSeparable(a, detector, gauss), gy = convolveSeparable(a, gauss, detector);
   for (size_t i = 0; i < gx.v.size(); ++i) gx.v[i] = std::hypot(gx.v[i], gy.v[i]);
   return gx;
 }
 
 struct Prepared {
   Plane channel[3];   // Y, Cx, Cz filtered
-  Plane achromatic;   // unfiltered Y / Yn, for features
+  Plane edges, points;
 };
 
-Prepared prepare(const Image& img, const std::vector<double>* kernels, int radius, int featureRadius,
-                 const std::vector<double>& edgeK, const std::vector<double>& pointK, Plane* edges, Plane* points) {
+Prepared prepare(const Image& img, const CsfFilter* filters, const FeatureKernels& features) {
   const int w = int(img.width), h = int(img.height);
   Prepared p;
-  for (auto& c : p.channel) c = {w, h, std::vector<double>(size_t(w) * h)};
-  p.achromatic = {w, h, std::vector<double>(size_t(w) * h)};
-  for (size_t i = 0; i < img.pixels(); ++i) {
-    const float* s = &img.data[i * img.channels];
-    auto lin = [](float v) { return std::isfinite(v) ? double(shared::tlSrgbToLinear1(v)) : 0.0; };
-    Vec3 ycc = xyzToYcxcz(linearRgbToXyz({lin(s[0]), lin(s[1]), lin(s[2])}));
-    p.channel[0].v[i] = ycc.x, p.channel[1].v[i] = ycc.y, p.channel[2].v[i] = ycc.z;
-    p.achromatic.v[i] = (ycc.x + 16.0) / 116.0;
-  }
-  for (int c = 0; c < 3; ++c) p.channel[c] = convolve(p.channel[c], kernels[c], radius);
-  *edges = featureMagnitude(p.achromatic, edgeK, featureRadius);
-  *points = featureMagnitude(p.achromatic, pointK, featureRadius);
+  Plane raw[3], achromatic{w, h, std::vector<double>(size_t(w) * h)};
+  for (auto& c : raw) c = {w, h, std::vector<double>(size_t(w) * h)};
+  forEachRow(h, [&](int y) {
+    for (size_t i = size_t(y) * w; i < size_t(y + 1) * w; ++i) {
+      const float* s = &img.data[i * img.channels];
+      auto lin = [](float v) { return std::isfinite(v) ? double(shared::tlSrgbToLinear1(v)) : 0.0; };
+      Vec3 ycc = xyzToYcxcz(linearRgbToXyz({lin(s[0]), lin(s[1]), lin(s[2])}));
+      raw[0].v[i] = ycc.x, raw[1].v[i] = ycc.y, raw[2].v[i] = ycc.z;
+      achromatic.v[i] = (ycc.x + 16.0) / 116.0;
+    }
+  });
+  for (int c = 0; c < 3; ++c) p.channel[c] = applyCsf(raw[c], filters[c]);
+  p.edges = featureMagnitude(achromatic, features.edge, features.gauss);
+  p.points = featureMagnitude(achromatic, features.point, features.gauss);
   return p;
 }
 
@@ -145,36 +205,37 @@ MetricResult flipLdr(const Image& test, const Image& reference, double ppd) {
   if (test.channels < 3) throw std::invalid_argument("FLIP needs RGB images");
   double maxB = std::max({kCsfA.b1, kCsfA.b2, kCsfRg.b1, kCsfRg.b2, kCsfBy.b1, kCsfBy.b2});
   const int radius = int(std::ceil(3.0 * std::sqrt(maxB / (2.0 * kPi * kPi)) * ppd));
-  const std::vector<double> kernels[3] = {csfKernel(kCsfA, ppd, radius), csfKernel(kCsfRg, ppd, radius),
-                                          csfKernel(kCsfBy, ppd, radius)};
-  std::vector<double> edgeK, pointK;
-  int fr = 0;
-  featureKernels(ppd, edgeK, pointK, fr);
-  Plane te, tp, re, rp;
-  Prepared t = prepare(test, kernels, radius, fr, edgeK, pointK, &te, &tp);
-  Prepared r = prepare(reference, kernels, radius, fr, edgeK, pointK, &re, &rp);
+  const CsfFilter filters[3] = {csfFilter(kCsfA, ppd, radius), csfFilter(kCsfRg, ppd, radius), csfFilter(kCsfBy, ppd, radius)};
+  const FeatureKernels features = featureKernels(ppd);
+  const Prepared t = prepare(test, filters, features);
+  const Prepared r = prepare(reference, filters, features);
 
   const double cmax = std::pow(hyab(huntLab({0, 1, 0}), huntLab({0, 0, 1})), kQc);
   MetricResult out;
   out.errorMap = Image::filled(test.width, test.height, 1, 0.0f);
+  std::vector<double> errors(test.pixels());
+  forEachRow(int(test.height), [&](int y) {
+    for (size_t i = size_t(y) * test.width; i < size_t(y + 1) * test.width; ++i) {
+      auto rgbOf = [i](const Prepared& p) {
+        Vec3 c = xyzToLinearRgb(ycxczToXyz({p.channel[0].v[i], p.channel[1].v[i], p.channel[2].v[i]}));
+        return Vec3{std::clamp(c.x, 0.0, 1.0), std::clamp(c.y, 0.0, 1.0), std::clamp(c.z, 0.0, 1.0)};
+      };
+      double colour = std::pow(hyab(huntLab(rgbOf(t)), huntLab(rgbOf(r))), kQc);
+      colour = colour < kPc * cmax ? kPt / (kPc * cmax) * colour
+                                   : kPt + (colour - kPc * cmax) / (cmax - kPc * cmax) * (1.0 - kPt);
+      colour = std::clamp(colour, 0.0, 1.0);
+      double feature = std::pow(
+          std::max(std::abs(r.edges.v[i] - t.edges.v[i]), std::abs(r.points.v[i] - t.points.v[i])) / std::sqrt(2.0), kQf);
+      double e = std::pow(colour, 1.0 - std::clamp(feature, 0.0, 1.0));
+      const float* s = &test.data[i * test.channels];
+      if (!std::isfinite(s[0]) || !std::isfinite(s[1]) || !std::isfinite(s[2])) e = 1.0;
+      errors[i] = e;
+      out.errorMap.data[i] = float(e);
+    }
+  });
+  // The mean in pixel order, on one thread: the same sum every run.
   double sum = 0.0;
-  for (size_t i = 0; i < test.pixels(); ++i) {
-    auto rgbOf = [i](const Prepared& p) {
-      Vec3 c = xyzToLinearRgb(ycxczToXyz({p.channel[0].v[i], p.channel[1].v[i], p.channel[2].v[i]}));
-      return Vec3{std::clamp(c.x, 0.0, 1.0), std::clamp(c.y, 0.0, 1.0), std::clamp(c.z, 0.0, 1.0)};
-    };
-    double colour = std::pow(hyab(huntLab(rgbOf(t)), huntLab(rgbOf(r))), kQc);
-    colour = colour < kPc * cmax ? kPt / (kPc * cmax) * colour
-                                 : kPt + (colour - kPc * cmax) / (cmax - kPc * cmax) * (1.0 - kPt);
-    colour = std::clamp(colour, 0.0, 1.0);
-    double feature = std::pow(
-        std::max(std::abs(re.v[i] - te.v[i]), std::abs(rp.v[i] - tp.v[i])) / std::sqrt(2.0), kQf);
-    double e = std::pow(colour, 1.0 - std::clamp(feature, 0.0, 1.0));
-    const float* s = &test.data[i * test.channels];
-    if (!std::isfinite(s[0]) || !std::isfinite(s[1]) || !std::isfinite(s[2])) e = 1.0;
-    out.errorMap.data[i] = float(e);
-    sum += e;
-  }
+  for (double e : errors) sum += e;
   out.value = test.pixels() ? sum / double(test.pixels()) : 0.0;
   return out;
 }

@@ -79,6 +79,25 @@ double flicker(const Image& previous, const Image& current, const Image& motion)
   return n > 0 && level > 0.0 ? change / level : 0.0;
 }
 
+double exposureNormalisation(const Image& reference) {
+  const std::vector<double> y = luminance(reference);
+  double sum = 0.0;
+  for (double v : y) sum += v;  // luminance() zeroes non-finite pixels
+  const double mean = y.empty() ? 0.0 : sum / double(y.size());
+  return mean > 0.0 ? kNormalisedMeanLuminance / mean : 1.0;
+}
+
+Image scaled(const Image& image, double factor) {
+  Image out = image;
+  for (float& v : out.data) v = float(double(v) * factor);
+  return out;
+}
+
+MetricResult relMseNormalised(const Image& t, const Image& r, double epsilon) {
+  const double k = exposureNormalisation(r);
+  return relMse(scaled(t, k), scaled(r, k), epsilon);
+}
+
 MetricResult rmse(const Image& t, const Image& r) {
   MetricResult m = perPixel(t, r, [](double tv, double rv) { return (tv - rv) * (tv - rv); });
   m.value = std::sqrt(m.value);

@@ -26,6 +26,16 @@ MetricResult ssim(const Image& test, const Image& reference, double dynamicRange
 // left out. 0 for a perfectly steady image; resampling alone gives a small floor.
 double flicker(const Image& previous, const Image& current, const Image& motion);
 
+// Exposure normalisation: both images scaled by one factor so the reference's mean luminance
+// (Rec. 709 weights of the first three channels, non-finite pixels left out) becomes 0.18,
+// so relMSE's fixed epsilon means the same in a dark scene as in a bright one. The factor is
+// 1 for a reference with no light (nothing to normalise).
+inline constexpr double kNormalisedMeanLuminance = 0.18;
+double exposureNormalisation(const Image& reference);
+Image scaled(const Image& image, double factor);
+// relMSE of the two images after exposure normalisation: unchanged when both are scaled alike.
+MetricResult relMseNormalised(const Image& test, const Image& reference, double epsilon = kRelMseEpsilon);
+
 // Throws std::invalid_argument naming both sizes when they differ.
 void requireSameSize(const Image& a, const Image& b);
 

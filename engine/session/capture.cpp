@@ -1,16 +1,25 @@
 #include "session/capture.h"
 
 #include "gpu/formats.h"
+#include "session/capture_encoding.h"
 #include "session/image_io.h"
+#include "session/provenance.h"
+#include "session/settings_json.h"
+#include "version/version.h"
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <system_error>
 
 namespace tl::session {
 namespace {
+
+// Version 2: decoded and named channels (capture_encoding.h), display images as PNG, every
+// setting, the program's version. Version 1 (no "schema" key) stored raw values.
+constexpr int kCaptureSchema = 2;
 
 // Names become file names: everything but letters, digits, '.', '-' and '_' turns into '_'.
 std::string fileStem(const std::string& name) {
@@ -20,34 +29,38 @@ std::string fileStem(const std::string& name) {
   return s;
 }
 
-void writeExr(const std::filesystem::path& file, const graph::Readback& rb) {
-  const gpu::FormatInfo fi = gpu::formatInfo(rb.format);
-  const uint32_t w = rb.extent.width, h = rb.extent.height * std::max(1u, rb.extent.depth);
-  const bool integer = fi.kind == gpu::TexelKind::Uint || fi.kind == gpu::TexelKind::Sint;
-  const int channels = int(fi.channels);
+// Writes one stored image (capture_encoding.h) with its channel names and what it holds in
+// the header, so a reader needs neither the manifest nor Twinlight to take it right.
+void writeStoredImage(const std::filesystem::path& file, const StoredImage& img, const std::string& resource) {
   writeFileAtomically(file, [&](const std::string& tmp) {
     auto out = OIIO::ImageOutput::create(file.string());
-    if (!out) return false;
-    if (integer) {
-      // 32-bit integer channels: lossless for every uint/sint format.
-      OIIO::ImageSpec spec(int(w), int(h), channels, OIIO::TypeDesc::UINT);
-      std::vector<uint32_t> values(size_t(w) * h * channels);
-      const std::vector<float> decoded = rb.texels();
-      if (fi.bytes == 4u * fi.channels) {
-        std::memcpy(values.data(), rb.bytes.data(), values.size() * 4);
-      } else {
-        for (size_t i = 0; i < values.size() && i < decoded.size(); ++i) values[i] = uint32_t(int64_t(decoded[i]));
-      }
-      return out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UINT, values.data()) && out->close();
+    if (!out) throw SessionError(fmt::format("{}: cannot write this image type", file.string()));
+    const bool integer = img.encoding == "uint", display = img.encoding == "display";
+    const OIIO::TypeDesc type = integer ? OIIO::TypeDesc::UINT
+                                : display ? OIIO::TypeDesc::UINT8
+                                : img.half ? OIIO::TypeDesc::HALF
+                                           : OIIO::TypeDesc::FLOAT;
+    OIIO::ImageSpec spec(int(img.width), int(img.height), int(img.channels.size()), type);
+    spec.channelnames = img.channels;
+    spec.alpha_channel = -1;
+    spec.z_channel = -1;
+    for (size_t c = 0; c < img.channels.size(); ++c) {
+      if (img.channels[c] == "A") spec.alpha_channel = int(c);
+      if (img.channels[c] == "Z") spec.z_channel = int(c);
     }
-    // Float, unorm, snorm, depth: stored as half where that is exact (16-bit floats, 8-bit
-    // normalised values), else as float (16-bit normalised values need more than half's 11 bits).
-    const uint32_t bytesPerChannel = fi.channels ? fi.bytes / fi.channels : 4;
-    const bool half = (fi.kind == gpu::TexelKind::Float && bytesPerChannel == 2) || bytesPerChannel == 1;
-    OIIO::ImageSpec spec(int(w), int(h), channels, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
-    spec.attribute("oiio:ColorSpace", fi.kind == gpu::TexelKind::Srgb ? "sRGB" : "Linear");
-    const std::vector<float> values = rb.texels();
-    return out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, values.data()) && out->close();
+    spec.attribute("oiio:ColorSpace", display ? "sRGB" : "Linear");
+    spec.attribute("Software", "Twinlight " + versionString());
+    spec.attribute("ImageDescription", resource + ": " + img.meaning);
+    if (!display) {
+      spec.attribute("twinlight:resource", resource);
+      spec.attribute("twinlight:encoding", img.encoding);
+    }
+    const bool ok = out->open(tmp, spec) &&
+                    (integer ? out->write_image(OIIO::TypeDesc::UINT, img.integers.data())
+                             : out->write_image(OIIO::TypeDesc::FLOAT, img.values.data())) &&
+                    out->close();
+    if (!ok) throw SessionError(fmt::format("{}: write failed: {}", file.string(), out->geterror()));
+    return true;
   });
 }
 
@@ -66,6 +79,8 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
 
   const View& v = session.view();
   nlohmann::json manifest;
+  manifest["schema"] = kCaptureSchema;
+  manifest["twinlight"] = twinlightJson();
   manifest["scene"] = session.scene().name;
   manifest["scenePath"] = session.scene().path.string();
   manifest["lightingPath"] = session.path();
@@ -73,19 +88,15 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
   manifest["camera"] = {{"position", {v.position.x, v.position.y, v.position.z}},
                         {"forward", {v.forward.x, v.forward.y, v.forward.z}},
                         {"up", {v.up.x, v.up.y, v.up.z}},
-                        {"yfovRadians", v.yfovRadians}};
+                        {"yfovRadians", v.yfovRadians},
+                        {"znear", v.znear}};
   const auto& l = session.lighting();
   manifest["lighting"] = {{"sunDirection", {l.sunDirection.x, l.sunDirection.y, l.sunDirection.z}},
                           {"sunIrradiance", {l.sunIrradiance.r, l.sunIrradiance.g, l.sunIrradiance.b}},
                           {"sunAngularRadius", l.sunAngularRadius},
                           {"skyRadiance", {l.skyRadiance.r, l.skyRadiance.g, l.skyRadiance.b}},
                           {"exposureEv", session.exposureEv()}};
-  const auto& s = session.settings();
-  manifest["settings"] = {{"width", s.width}, {"height", s.height}, {"softShadows", s.softShadows},
-                          {"rtHalfRays", s.rtHalfRays}, {"rtPretrace", s.rtPretrace},
-                          {"rtSimplifyRatio", s.rtSimplifyRatio}, {"legacyVoxelResolution", s.legacyVoxelResolution},
-                          {"legacyAoDivisor", s.legacyAoDivisor}, {"legacyConeDivisor", s.legacyConeDivisor},
-                          {"referenceBounces", s.referenceBounces}};
+  manifest["settings"] = settingsJson(session.settings());
   // Which albedo the RT hits read: the database (file, schema, revision) and how many
   // combinations resolve to each source; null database: texture averages and unsaved edits.
   {
@@ -100,10 +111,16 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
     manifest["albedoUnsavedEdits"] = lib.unsaved();
   }
   manifest["device"] = session.device().name();
-  // Instance names by index: what gbuffer.instanceId's values mean, for a viewer without the scene.
-  nlohmann::json instances = nlohmann::json::array();
-  for (const auto& i : session.scene().instances) instances.push_back(i.name);
+  // Instance names by index, and the same as the table of the values gbuffer.instanceId's
+  // `id` channel holds (index + 1; 0 where nothing was drawn): for readers without the scene.
+  nlohmann::json instances = nlohmann::json::array(), ids = nlohmann::json::array();
+  ids.push_back({{"id", 0}, {"name", nullptr}});
+  for (const auto& i : session.scene().instances) {
+    ids.push_back({{"id", instances.size() + 1}, {"name", i.name}});
+    instances.push_back(i.name);
+  }
   manifest["instances"] = instances;
+  manifest["instanceIds"] = ids;
   nlohmann::json timings = nlohmann::json::array();
   for (const auto& t : session.timings()) timings.push_back({{"pass", t.pass}, {"gpuMs", t.gpuMs}});
   manifest["timings"] = timings;
@@ -131,9 +148,13 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
     }
     if (info.desc.type == graph::ResourceType::Image) {
       const gpu::FormatInfo fi = gpu::formatInfo(rb->format);
-      const std::string file = fileStem(info.name) + ".exr";
-      writeExr(dir / file, *rb);
+      const StoredImage stored = encodeCaptureImage(info.desc, *rb, v.znear);
+      const std::string file = fileStem(info.name) + stored.fileExtension;
+      writeStoredImage(dir / file, stored, info.name);
       r["file"] = file;
+      r["encoding"] = stored.encoding;
+      r["channelNames"] = stored.channels;
+      r["values"] = stored.meaning;
       r["format"] = fi.name;
       r["width"] = rb->extent.width;
       r["height"] = rb->extent.height;
@@ -147,7 +168,8 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
       writeFileAtomically(dir / file, [&](const std::string& tmp) {
         std::ofstream out(tmp, std::ios::binary);
         out.write(reinterpret_cast<const char*>(rb->bytes.data()), std::streamsize(rb->bytes.size()));
-        return bool(out);
+        out.close();  // a failed final flush (a full disk) must fail the write too
+        return !out.fail();
       });
       r["file"] = file;
       r["bytes"] = rb->bytes.size();
@@ -155,15 +177,11 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
     resources.push_back(r);
   }
   manifest["resources"] = resources;
-  writeFileAtomically(dir / "manifest.json", [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    out << manifest.dump(2) << "\n";
-    return bool(out);
-  });
+  writeTextFile(dir / "manifest.json", manifest.dump(2) + "\n");
   return manifest;
 }
 
-CapturedImage readCaptureImage(const std::filesystem::path& file) {
+CapturedImage readCaptureImage(const std::filesystem::path& file, const std::vector<std::string>& channels) {
   auto in = OIIO::ImageInput::open(file.string());
   if (!in) throw SessionError(fmt::format("{}: not a readable capture image", file.string()));
   const auto& spec = in->spec();
@@ -171,7 +189,7 @@ CapturedImage readCaptureImage(const std::filesystem::path& file) {
   img.width = uint32_t(spec.width);
   img.height = uint32_t(spec.height);
   img.channels = uint32_t(spec.nchannels);
-  const size_t n = size_t(img.width) * img.height * img.channels;
+  const size_t texels = size_t(img.width) * img.height, n = texels * img.channels;
   img.integer = spec.format == OIIO::TypeDesc::UINT;
   if (img.integer) {
     img.integers.resize(n);
@@ -183,6 +201,22 @@ CapturedImage readCaptureImage(const std::filesystem::path& file) {
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.values.data()))
       throw SessionError(fmt::format("{}: read failed", file.string()));
   }
+  if (channels.empty() || channels == spec.channelnames) return img;
+  // Reorder to the names asked for.
+  if (channels.size() != spec.channelnames.size())
+    throw SessionError(fmt::format("{}: holds {} channels, the manifest names {}", file.string(), spec.channelnames.size(), channels.size()));
+  std::vector<size_t> from;
+  for (const std::string& name : channels) {
+    auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
+    if (it == spec.channelnames.end()) throw SessionError(fmt::format("{}: no channel `{}`", file.string(), name));
+    from.push_back(size_t(it - spec.channelnames.begin()));
+  }
+  const CapturedImage stored = img;
+  for (size_t t = 0; t < texels; ++t)
+    for (size_t c = 0; c < from.size(); ++c) {
+      img.values[t * from.size() + c] = stored.values[t * from.size() + from[c]];
+      if (img.integer) img.integers[t * from.size() + c] = stored.integers[t * from.size() + from[c]];
+    }
   return img;
 }
 

@@ -1,8 +1,10 @@
-// Captures: every resource of the last frame written to a folder, images as EXR (float
-// buffers at their precision, integer buffers as lossless 32-bit integers, 3D images as their
-// z slices stacked downwards), buffers as raw bytes, plus manifest.json describing each one
-// with the frame, camera, lighting path, settings and per-pass timings. A capture reads back
-// without the scene (readCaptureImage).
+// Captures: every resource of the last frame written to a folder, images in files that other
+// tools read right (session/capture_encoding.h: linear EXR with conventional channel names,
+// display images as PNG, integers exact, 3D images as their z slices stacked downwards),
+// buffers as raw bytes, plus manifest.json (schema 2): each resource with its file, encoding
+// and channels, the frame, camera, lighting path, every render setting, the instance id table,
+// per-pass timings and the Twinlight version. A capture reads back without the scene
+// (readCaptureImage, session/captured_frame.h).
 #pragma once
 
 #include "session/session.h"
@@ -28,6 +30,8 @@ struct CapturedImage {
   bool integer = false;
   std::vector<uint32_t> integers;  // integer images: the exact stored values
 };
-CapturedImage readCaptureImage(const std::filesystem::path& file);
+// `channels`: the names in the order wanted (the manifest's channelNames). EXR files keep
+// their channels sorted by name, so a reader must ask by name; empty: the file's order.
+CapturedImage readCaptureImage(const std::filesystem::path& file, const std::vector<std::string>& channels = {});
 
 }  // namespace tl::session

@@ -3,6 +3,7 @@
 #include "gpu/formats.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "session/capture.h"
+#include "session/capture_encoding.h"
 
 #include <fmt/format.h>
 
@@ -35,6 +36,7 @@ CapturedFrame::CapturedFrame(gpu::Device& device, const std::filesystem::path& d
     names_.instances.emplace_back();
     names_.instances.back().name = n.is_string() ? n.get<std::string>() : "?";
   }
+  znear_ = manifest_.value("/camera/znear"_json_pointer, View{}.znear);
   width_ = manifest_.value("/settings/width"_json_pointer, 0u);
   height_ = manifest_.value("/settings/height"_json_pointer, 0u);
   for (const auto& t : manifest_.value("timings", nlohmann::json::array())) timings_.push_back({t.value("pass", ""), t.value("gpuMs", 0.0)});
@@ -55,7 +57,9 @@ CapturedFrame::CapturedFrame(gpu::Device& device, const std::filesystem::path& d
                                              r.value("height", 1u), std::max(1u, r.value("depth", 1u)),
                                              fmt::format("{} (captured from {})", r.value("description", ""), format));
     info.desc.decoder = r.value("decoder", "");
-    files_[info.name] = r["file"].get<std::string>();
+    // Schema 1 captures (no "encoding") stored every value raw.
+    files_[info.name] = {r["file"].get<std::string>(), r.value("encoding", integer ? "uint" : "linear"), format,
+                         r.value("channelNames", std::vector<std::string>{})};
     resources_.push_back(std::move(info));
   }
   if (resources_.empty()) throw SessionError(fmt::format("{}: the capture holds no images", dir.string()));
@@ -66,25 +70,26 @@ const graph::Readback& CapturedFrame::readback(const std::string& name) {
   if (auto it = readbacks_.find(name); it != readbacks_.end()) return it->second;
   auto info = std::find_if(resources_.begin(), resources_.end(), [&](auto& r) { return r.name == name; });
   if (info == resources_.end()) throw SessionError(fmt::format("`{}` is not an image of capture {}", name, dir_.string()));
-  CapturedImage img = readCaptureImage(dir_ / files_.at(name));
+  const Stored& stored = files_.at(name);
+  CapturedImage img = readCaptureImage(dir_ / stored.file, stored.channels);
   graph::Readback r;
   r.name = name;
   r.format = info->desc.format;
   r.extent = info->desc.extent;
-  const uint32_t stored = std::max(1u, img.channels), channels = gpu::formatInfo(r.format).channels;
+  const uint32_t storedChannels = std::max(1u, img.channels), channels = gpu::formatInfo(r.format).channels;
   const size_t texels = size_t(img.width) * img.height;
   r.bytes.resize(texels * channels * 4, 0);
-  for (size_t t = 0; t < texels; ++t)
-    for (uint32_t c = 0; c < channels; ++c) {
-      uint8_t* dst = r.bytes.data() + (t * channels + c) * 4;
-      if (img.integer) {
-        const uint32_t v = c < stored ? img.integers[t * stored + c] : 0u;
-        std::memcpy(dst, &v, 4);
-      } else {
-        const float v = c < stored ? img.values[t * stored + c] : 1.0f;  // a padded alpha is opaque
-        std::memcpy(dst, &v, 4);
+  if (img.integer) {
+    for (size_t t = 0; t < texels; ++t)
+      for (uint32_t c = 0; c < channels; ++c) {
+        const uint32_t v = c < storedChannels ? img.integers[t * storedChannels + c] : 0u;
+        std::memcpy(r.bytes.data() + (t * channels + c) * 4, &v, 4);
       }
-    }
+  } else {
+    const std::vector<float> values =
+        decodeCaptureValues(stored.encoding, stored.format, img.values, storedChannels, channels, znear_);
+    std::memcpy(r.bytes.data(), values.data(), std::min(r.bytes.size(), values.size() * 4));
+  }
   return readbacks_[name] = std::move(r);
 }
 

@@ -44,7 +44,12 @@ class CapturedFrame {
   nlohmann::json manifest_;
   std::vector<graph::PhysicalInfo> resources_;
   std::vector<graph::PassTiming> timings_;
-  std::map<std::string, std::string> files_;
+  struct Stored {
+    std::string file, encoding, format;  // format: the original's name (gpu::FormatInfo::name)
+    std::vector<std::string> channels;   // names in the frame's order (schema 2)
+  };
+  std::map<std::string, Stored> files_;
+  float znear_ = 0.0f;  // the camera's near plane: view depth back to reversed Z
   std::map<std::string, graph::Readback> readbacks_;
   std::map<std::string, gpu::Image> images_;
   gpu::Image noInstances_;

@@ -2,10 +2,13 @@
 
 #include "session/settings_json.h"
 
+#include "gpu/pipeline.h"
 #include "lighting/common/composite_pass.h"
+#include "lighting/reference/reference_path.h"
 #include "metrics/flip.h"
 #include "metrics/metrics.h"
 #include "session/image_io.h"
+#include "session/provenance.h"
 #include "session/report_html.h"
 #include "shared/color.h"
 #include "shared/tonemap.h"
@@ -13,14 +16,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 
 namespace tl::session {
 namespace {
-
-constexpr const char* kReferenceVersion = "reference-2";  // bump when the path tracer changes
-
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -28,16 +30,30 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
+// The reference's shaders as compiled (includes and all): any change to the path tracer's
+// GPU code gives new SPIR-V and so a new cache key, with no version to remember to bump.
+uint64_t referenceSpirvHash() {
+  std::vector<uint64_t> hashes;
+  for (const std::string& shader : lighting::referenceShaders()) {
+    const std::vector<uint32_t> words = gpu::loadSpirv(shader);
+    hashes.push_back(scene::hashBytes(words.data(), words.size() * sizeof(uint32_t)));
+  }
+  return scene::hashBytes(hashes.data(), hashes.size() * sizeof(uint64_t));
+}
+
+// The cache file's name: the frame key's parts that hold values (the whole camera: position,
+// orientation, projection with the size; the sun; the sky; the reference's settings), the
+// scene's content hash (the key's scene part is a per-process upload id), the pose of
+// deforming meshes, the sample count and the SPIR-V. The session's settings must be the ones
+// the reference renders with.
 std::string referenceKey(const Session& s, const CompareOptions& o) {
-  const View& v = s.view();
-  const Lighting& l = s.lighting();
-  std::string text = fmt::format(
-      "{}|{:x}|{},{},{}|{},{},{}|{}|{},{},{}|{},{},{}|{},{},{}|{}x{}|{}|{}", kReferenceVersion, s.scene().contentHash,
-      v.position.x, v.position.y, v.position.z, v.forward.x, v.forward.y, v.forward.z, v.yfovRadians, l.sunDirection.x,
-      l.sunDirection.y, l.sunDirection.z, l.sunIrradiance.x, l.sunIrradiance.y, l.sunIrradiance.z, l.skyRadiance.x,
-      l.skyRadiance.y, l.skyRadiance.z, s.settings().width, s.settings().height, o.referenceSpp, o.referenceBounces);
+  using lighting::FramePart;
+  const lighting::FrameKey key = s.frameKey();
+  std::string text = fmt::format("{:x}|{:x}|{:x}|{:x}|{:x}|{:x}|scene {:x}|spirv {:x}|spp {}",
+                                 key.hash(FramePart::CameraPosition), key.hash(FramePart::CameraOrientation),
+                                 key.hash(FramePart::Projection), key.hash(FramePart::Sun), key.hash(FramePart::Sky),
+                                 key.settingsOf("reference"), s.scene().contentHash, referenceSpirvHash(), o.referenceSpp);
   if (s.animated()) text += fmt::format("|t{}", s.animationTime());  // the pose of deforming meshes
-  text += fmt::format("|ao{}", s.settings().rtAoRadius);  // reference.ao's radius (0: scaled to the scene)
   return fmt::format("{:016x}", scene::hashBytes(text.data(), text.size()));
 }
 
@@ -57,9 +73,11 @@ metrics::Image channelOf(const graph::Readback& rb, uint32_t channel) {
 
 ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progress& progress, nlohmann::json& info) {
   const std::filesystem::path dir = o.cacheDir.empty() ? defaultReferenceCache() : o.cacheDir;
+  s.settings().referenceBounces = o.referenceBounces;  // before the key, which holds the reference's settings
   const std::string key = referenceKey(s, o);
   const std::filesystem::path files[3] = {dir / (key + ".exr"), dir / (key + ".ao.exr"), dir / (key + ".irradiance.exr")};
-  info = {{"spp", o.referenceSpp}, {"bounces", o.referenceBounces}, {"scope", o.scope}, {"cacheFile", files[0].string()}};
+  info = {{"source", "path tracer"}, {"spp", o.referenceSpp}, {"bounces", o.referenceBounces}, {"scope", o.scope},
+          {"cacheFile", files[0].string()}};
   const uint32_t w = s.settings().width, h = s.settings().height;
   std::optional<RgbImage> cached[3];
   bool hit = true;
@@ -76,7 +94,6 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   }
   info["cached"] = false;
   s.setPath("reference");
-  s.settings().referenceBounces = o.referenceBounces;
   s.settings().referenceSamplesPerFrame = std::min(o.referenceSpp, 16u);
   const uint32_t frames = std::max(1u, o.referenceSpp / s.settings().referenceSamplesPerFrame);
   s.resetHistory();
@@ -129,7 +146,82 @@ nlohmann::json stageErrors(const metrics::Image& ao, const metrics::Image& irrad
                           {"relMSE", finite(rel.value)}, {"RMSE", finite(metrics::rmse(eTest, eRef).value)}}}};
 }
 
+// Another renderer's image as the reference: it must be readable, of the size compare
+// renders and finite everywhere (a NaN would make every figure meaningless).
+metrics::Image readReferenceFile(const std::filesystem::path& file, uint32_t width, uint32_t height) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec))
+    throw SessionError(fmt::format("reference image {}: no such file", file.string()));
+  std::optional<RgbImage> image = readExrRgb(file);
+  if (!image) throw SessionError(fmt::format("reference image {}: cannot be read as an RGB EXR", file.string()));
+  if (image->width != width || image->height != height)
+    throw SessionError(fmt::format("reference image {} is {}x{}, but compare renders {}x{} (--size must match the "
+                                   "reference's camera and size)",
+                                   file.string(), image->width, image->height, width, height));
+  const size_t bad = size_t(std::count_if(image->rgb.begin(), image->rgb.end(), [](float v) { return !std::isfinite(v); }));
+  if (bad) throw SessionError(fmt::format("reference image {} holds {} non-finite value(s)", file.string(), bad));
+  return metrics::Image::fromTexels(width, height, 3, std::move(image->rgb));
+}
+
+std::string lowercase(std::string text) {
+  for (char& c : text) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+// The gate: every path's figure against every threshold; a missing (non-finite) figure fails.
+nlohmann::json evaluateGate(const nlohmann::json& results, const std::vector<GateThreshold>& thresholds) {
+  nlohmann::json limits = nlohmann::json::object(), failures = nlohmann::json::array();
+  for (const auto& t : thresholds) limits[t.metric] = t.value;
+  for (const auto& r : results)
+    for (const auto& t : thresholds) {
+      const nlohmann::json& figure = r[t.metric];
+      if (figure.is_number() && figure.get<double>() <= t.value) continue;
+      failures.push_back({{"path", r["path"]}, {"metric", t.metric}, {"value", figure}, {"threshold", t.value}});
+    }
+  return {{"failAbove", limits}, {"failures", failures}, {"passed", failures.empty()}};
+}
+
 }  // namespace
+
+const std::vector<std::string>& gateMetrics() {
+  static const std::vector<std::string> names = {"relMSE", "relMSE_norm", "RMSE", "RMSE_norm", "FLIP", "FLIP_norm", "HDR-FLIP"};
+  return names;
+}
+
+std::vector<GateThreshold> parseFailAbove(const std::string& spec) {
+  std::string known;
+  for (const auto& m : gateMetrics()) known += (known.empty() ? "" : ", ") + m;
+  std::vector<GateThreshold> out;
+  std::stringstream items(spec);
+  for (std::string item; std::getline(items, item, ',');) {
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw SessionError(fmt::format("--fail-above: `{}` is not METRIC=VALUE (e.g. relMSE=0.05,flip=0.1)", item));
+    const std::string name = item.substr(0, eq), value = item.substr(eq + 1);
+    auto it = std::find_if(gateMetrics().begin(), gateMetrics().end(), [&](auto& m) { return lowercase(m) == lowercase(name); });
+    if (it == gateMetrics().end()) {
+      const std::string l = lowercase(name);
+      if (l == "psnr" || l == "ssim")
+        throw SessionError(fmt::format("--fail-above: `{}` cannot gate, larger is better (gate on: {})", name, known));
+      throw SessionError(fmt::format("--fail-above: unknown metric `{}` (gate on: {})", name, known));
+    }
+    double threshold = 0.0;
+    try {
+      size_t used = 0;
+      threshold = std::stod(value, &used);
+      if (used != value.size()) throw std::invalid_argument(value);
+    } catch (const std::exception&) {
+      throw SessionError(fmt::format("--fail-above: the threshold of {} `{}` is not a number", *it, value));
+    }
+    if (!std::isfinite(threshold) || threshold < 0.0)
+      throw SessionError(fmt::format("--fail-above: the threshold of {} must be a number >= 0, not `{}`", *it, value));
+    if (std::any_of(out.begin(), out.end(), [&](auto& t) { return t.metric == *it; }))
+      throw SessionError(fmt::format("--fail-above: {} is given twice", *it));
+    out.push_back({*it, threshold});
+  }
+  if (out.empty()) throw SessionError("--fail-above needs METRIC=VALUE[,...] (e.g. relMSE=0.05,flip=0.1)");
+  return out;
+}
 
 metrics::Image rgbImage(const graph::Readback& rb) {
   auto t = rb.texels();
@@ -158,6 +250,9 @@ std::filesystem::path defaultReferenceCache() {
 
 nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progress& progress) {
   CompareOptions o = options;
+  // Another renderer's image is checked before anything renders.
+  std::optional<metrics::Image> external;
+  if (!o.referenceFile.empty()) external = readReferenceFile(o.referenceFile, s.settings().width, s.settings().height);
   if (o.scope == "same") o.referenceBounces = 2;
   else if (o.scope != "full") throw SessionError(fmt::format("unknown reference scope `{}` (full or same)", o.scope));
   if (o.referenceSpp == 0 || (o.referenceSpp > 16 && o.referenceSpp % 16))
@@ -189,10 +284,22 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
   s.setAnimationStep(0.0);
 
   nlohmann::json refInfo;
-  const ReferenceImages referenceImages = renderReference(s, o, progress, refInfo);
+  ReferenceImages referenceImages;
+  if (external) {
+    referenceImages.radiance = std::move(*external);
+    refInfo = {{"source", "file"}, {"file", std::filesystem::absolute(o.referenceFile).string()}};
+  } else {
+    referenceImages = renderReference(s, o, progress, refInfo);
+  }
   const metrics::Image& reference = referenceImages.radiance;
   const float exposure = std::exp2(-s.exposureEv());
   metrics::Image referenceDisplay = displayEncode(reference, exposure);
+  // Exposure-normalised figures: both images scaled so the reference's mean luminance is 0.18.
+  const double normalisation = metrics::exposureNormalisation(reference);
+  refInfo["meanLuminance"] = metrics::kNormalisedMeanLuminance / normalisation;
+  refInfo["normalisation"] = normalisation;
+  const metrics::Image referenceNormalised = metrics::scaled(reference, normalisation);
+  const metrics::Image referenceNormalisedDisplay = displayEncode(reference, float(normalisation));
   writeExrRgb(o.outDir / "reference.exr", reference.width, reference.height, reference.data);
   writePngRgb(o.outDir / "reference.png", referenceDisplay.width, referenceDisplay.height, referenceDisplay.data);
 
@@ -217,6 +324,10 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     auto ssim = metrics::ssim(testDisplay, referenceDisplay, 1.0);
     auto flip = metrics::flipLdr(testDisplay, referenceDisplay);
     auto hdrFlip = metrics::flipHdr(test, reference);
+    const metrics::Image testNormalised = metrics::scaled(test, normalisation);
+    const double relNorm = metrics::relMse(testNormalised, referenceNormalised).value;
+    const double rmsNorm = metrics::rmse(testNormalised, referenceNormalised).value;
+    const double flipNorm = metrics::flipLdr(displayEncode(test, float(normalisation)), referenceNormalisedDisplay).value;
 
     std::string stem = "error_" + name;
     writeExrRgb(o.outDir / (name + ".exr"), test.width, test.height, test.data);
@@ -225,7 +336,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     writeExrGray(o.outDir / (stem + "_relmse.exr"), rel.errorMap.width, rel.errorMap.height, rel.errorMap.data);
     // Per-stage error, for paths that go through the shared composite (not the reference).
     nlohmann::json stages = nlohmann::json::object();
-    if (s.hasBuffer(lighting::kCompositeIrradiance)) {
+    if (!external && s.hasBuffer(lighting::kCompositeIrradiance)) {
       std::vector<float> irradianceMap;
       stages = stageErrors(channelOf(s.buffer(lighting::kCompositeAo), 0), rgbImage(s.buffer(lighting::kCompositeIrradiance)),
                            s.buffer("gbuffer.depth").texels(), referenceImages, irradianceMap);
@@ -248,6 +359,9 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                        {"SSIM", finite(ssim.value)},
                        {"FLIP", finite(flip.value)},
                        {"HDR-FLIP", finite(hdrFlip.value)},
+                       {"relMSE_norm", finite(relNorm)},
+                       {"RMSE_norm", finite(rmsNorm)},
+                       {"FLIP_norm", finite(flipNorm)},
                        {"image", name + ".png"},
                        {"flipMap", stem + "_flip.png"},
                        {"relMSEMap", stem + "_relmse.exr"},
@@ -272,20 +386,29 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
       {"driver", d.driver()},
       {"vulkan", fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(d.apiVersion()), VK_API_VERSION_MINOR(d.apiVersion()),
                              VK_API_VERSION_PATCH(d.apiVersion()))},
-      {"twinlight", "0.1.0"},
+      {"twinlight", twinlightJson()},
       {"reference", refInfo},
-      {"metrics", {{"relMSE", "mean over pixels and channels of (t - r)^2 / (r^2 + 0.01), linear radiance"},
-                   {"RMSE", "linear radiance"},
-                   {"PSNR", "linear radiance, peak = the reference's maximum"},
-                   {"SSIM", "display-encoded luminance, 11x11 Gaussian window"},
-                   {"FLIP", "LDR-FLIP of the display images, 67 pixels per degree"},
-                   {"HDR-FLIP", "HDR-FLIP of the linear images"},
+      {"metrics", {{"relMSE", "as rendered: mean over pixels and channels of (t - r)^2 / (r^2 + 0.01), linear radiance"},
+                   {"RMSE", "as rendered: linear radiance"},
+                   {"PSNR", "as rendered: linear radiance, peak = the reference's maximum (unchanged by exposure)"},
+                   {"SSIM", "as rendered: display-encoded luminance at the report's exposure, 11x11 Gaussian window"},
+                   {"FLIP", "as rendered: LDR-FLIP of the display images at the report's exposure, 67 pixels per degree"},
+                   {"HDR-FLIP", "as rendered: HDR-FLIP of the linear images (its exposures come from the reference)"},
+                   {"relMSE_norm", "exposure-normalised: relMSE of both images scaled so the reference's mean luminance is "
+                                   "0.18 (reference.normalisation), so a dark scene's figure means what a bright one's does"},
+                   {"RMSE_norm", "exposure-normalised: RMSE of both images scaled as for relMSE_norm"},
+                   {"FLIP_norm", "exposure-normalised: LDR-FLIP of the display images at the exposure that maps the "
+                                 "reference's mean luminance to 0.18"},
                    {"stages.ao", "the AO the composite applied (composite.ao) against reference.ao, over surface pixels"},
                    {"stages.irradiance",
                     "the diffuse irradiance the composite used (composite.irradiance: sky + bounce light, no sun) against "
                     "reference.irradiance, relMSE (same epsilon) over surface pixels"}}},
       {"paths", results}};
-  std::ofstream(o.outDir / "report.json") << report.dump(2) << "\n";
+  // Which form each figure of a path is in, for readers that do not parse the descriptions.
+  report["forms"] = {{"asRendered", {"relMSE", "RMSE", "PSNR", "SSIM", "FLIP", "HDR-FLIP"}},
+                     {"exposureNormalised", {"relMSE_norm", "RMSE_norm", "FLIP_norm"}}};
+  if (!o.failAbove.empty()) report["gate"] = evaluateGate(results, o.failAbove);
+  writeTextFile(o.outDir / "report.json", report.dump(2) + "\n");
   writeReportHtml(o.outDir / "report.html", report, o.outDir);
   return report;
 }

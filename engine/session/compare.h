@@ -1,7 +1,9 @@
 // Speed against error: render the reference (cached on disk by everything that determines
-// it), run each lighting path for a fixed number of frames on the same scene, camera and
-// light, and measure its per-pass GPU time and its error against the reference. Writes
-// report.json (every figure), error maps (EXR + false-colour PNG) and report.html.
+// it) or read another renderer's image, run each lighting path for a fixed number of frames
+// on the same scene, camera and light, and measure its per-pass GPU time and its error
+// against the reference, as rendered and exposure-normalised. Thresholds on the errors make
+// it a regression gate. Writes report.json (every figure), error maps (EXR + false-colour
+// PNG) and report.html.
 #pragma once
 
 #include "metrics/image.h"
@@ -15,6 +17,17 @@
 #include <vector>
 
 namespace tl::session {
+
+// A regression gate's threshold: the compare fails when a path's `metric` exceeds `value`.
+struct GateThreshold {
+  std::string metric;  // canonical name, one of gateMetrics()
+  double value = 0.0;
+};
+// The figures a gate can hold (errors: larger is worse), by their report.json names.
+const std::vector<std::string>& gateMetrics();
+// "relMSE=0.05,flip=0.1": metric names in any case. Throws SessionError naming what is wrong
+// (an unknown metric, a figure where larger is better, a value that is not a number >= 0).
+std::vector<GateThreshold> parseFailAbove(const std::string& spec);
 
 // One measured configuration: a lighting path with settings changed from the session's.
 struct CompareVariant {
@@ -34,12 +47,19 @@ struct CompareOptions {
   uint32_t framesPerPath = 8;          // the last one is measured against the reference
   std::filesystem::path outDir = "out/compare";
   std::filesystem::path cacheDir;      // empty: $XDG_CACHE_HOME/twinlight/reference
+  // Another renderer's image (linear RGB EXR, same camera and size) instead of the path
+  // tracer: read and checked before anything renders (SessionError when unreadable, of
+  // another size or holding non-finite values). Per-stage errors need the path tracer's
+  // AO and irradiance and are left out.
+  std::filesystem::path referenceFile;
+  std::vector<GateThreshold> failAbove;  // report.json's "gate": the figures over their thresholds
 };
 
 // `what` and a fraction in [0,1], for a progress bar.
 using Progress = std::function<void(const std::string& what, double fraction)>;
 
-// The session must have its scene, view, light and size set. Returns report.json's content.
+// The session must have its scene, view, light and size set. Returns report.json's content;
+// report["gate"]["passed"] is false when any path exceeds a threshold of options.failAbove.
 nlohmann::json runCompare(Session& session, const CompareOptions& options, const Progress& progress = {});
 
 std::filesystem::path defaultReferenceCache();

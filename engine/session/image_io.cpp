@@ -6,7 +6,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <system_error>
 #include <unistd.h>
 
@@ -49,6 +52,19 @@ void writeFileAtomically(const std::filesystem::path& file, const std::function<
     std::filesystem::remove(tmp, ec);
     throw SessionError(fmt::format("{}: cannot move the finished file into place", file.string()));
   }
+}
+
+void writeTextFile(const std::filesystem::path& file, const std::string& text) {
+  writeFileAtomically(file, [&](const std::string& tmp) {
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw SessionError(fmt::format("cannot write {}: {}", file.string(), std::strerror(errno)));
+    const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+    const int writeErrno = errno;
+    const bool closed = std::fclose(f) == 0;
+    if (!written || !closed)
+      throw SessionError(fmt::format("cannot write {}: {}", file.string(), std::strerror(written ? errno : writeErrno)));
+    return true;
+  });
 }
 
 ImageWriteReport writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding) {

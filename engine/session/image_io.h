@@ -31,6 +31,10 @@ struct ImageWriteReport {
 // the temporary is removed and the error names `file`.
 void writeFileAtomically(const std::filesystem::path& file, const std::function<bool(const std::string& tmp)>& write);
 
+// Writes `text` to `file` atomically (writeFileAtomically); throws SessionError naming the
+// file and the system's reason when it cannot.
+void writeTextFile(const std::filesystem::path& file, const std::string& text);
+
 // A read-back buffer as an image (alpha dropped).
 ImageWriteReport writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding);
 

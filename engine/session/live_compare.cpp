@@ -21,15 +21,48 @@ std::string LiveCompare::nextPath() {
   return order[turn_++ % order.size()];
 }
 
-void LiveCompare::frameDone(const std::string& path, const graph::Readback& image, double gpuMs, uint64_t stamp,
-                            uint32_t referenceSamples, float exposure) {
+namespace {
+// Whether two frames agree on everything a compared image depends on (see kComparedParts).
+bool sameCompared(const lighting::FrameKey& a, const lighting::FrameKey& b) {
+  return (lighting::differingParts(a, b) & LiveCompare::kComparedParts) == 0;
+}
+}  // namespace
+
+LiveCompare::~LiveCompare() { collectFlip(true); }
+
+void LiveCompare::collectFlip(bool wait) {
+  for (auto it = pendingFlip_.begin(); it != pendingFlip_.end();) {
+    auto& [path, pending] = *it;
+    if (!wait && pending.value.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+      ++it;
+      continue;
+    }
+    const double value = pending.value.get();
+    auto side = images_.find(path), ref = images_.find("reference");
+    if (side != images_.end() && ref != images_.end() && sameCompared(side->second.key, pending.key) &&
+        sameCompared(ref->second.key, pending.key) && view_.measureFlip)
+      errors_[path].flip = value;
+    it = pendingFlip_.erase(it);
+  }
+}
+
+void LiveCompare::finishFlip() { collectFlip(true); }
+
+void LiveCompare::frameDone(const std::string& path, const graph::Readback& image, double gpuMs,
+                            const lighting::FrameKey& key, uint32_t referenceSamples, float exposure,
+                            const std::optional<lighting::HistoryDecision>& referenceAccumulation) {
+  collectFlip(false);
   Side& side = images_[path];
   side.image = rgbImage(image);
-  side.stamp = stamp;
+  side.key = key;
   side.gpuMs = gpuMs;
   errors_[path].path = path;
   errors_[path].gpuMs = gpuMs;
   if (path == "reference") {
+    // Only a sum this compare saw under way restarts; its first frame starts one.
+    if (referenceSeen_ && referenceAccumulation && referenceAccumulation->action == lighting::HistoryAction::Restart)
+      ++referenceRestarts_, lastRestart_ = referenceAccumulation->acted;
+    referenceSeen_ = true;
     referenceSamples_ = referenceSamples;
     // A converging reference improves every side's figure: re-measure both.
     for (const std::string& p : {view_.left, view_.right})
@@ -43,7 +76,8 @@ void LiveCompare::measure(const std::string& path, float exposure) {
   auto side = images_.find(path), ref = images_.find("reference");
   LiveError& e = errors_[path];
   e.path = path;
-  if (side == images_.end() || ref == images_.end() || side->second.stamp != ref->second.stamp ||
+  if (side == images_.end() || ref == images_.end() ||
+      !sameCompared(side->second.key, ref->second.key) ||
       side->second.image.width != ref->second.image.width || side->second.image.height != ref->second.image.height) {
     e.relMse.reset(), e.flip.reset();  // no reference of this view yet: no figure rather than a wrong one
     return;
@@ -54,8 +88,12 @@ void LiveCompare::measure(const std::string& path, float exposure) {
   auto last = lastFlip_.find(path);
   const bool due = last == lastFlip_.end() ||
                    std::chrono::duration<double>(now - last->second).count() >= view_.flipIntervalSeconds;
-  if (view_.measureFlip && due) {
-    e.flip = metrics::flipLdr(displayEncode(side->second.image, exposure), displayEncode(ref->second.image, exposure)).value;
+  if (view_.measureFlip && due && !pendingFlip_.count(path)) {
+    // The worker gets its own copies: the sides' images change under it on the next frames.
+    auto job = [test = displayEncode(side->second.image, exposure), reference = displayEncode(ref->second.image, exposure)] {
+      return metrics::flipLdr(test, reference).value;
+    };
+    pendingFlip_[path] = {std::async(std::launch::async, std::move(job)), side->second.key};
     lastFlip_[path] = now;
   } else if (!view_.measureFlip) {
     e.flip.reset();

@@ -1,15 +1,18 @@
 // The Compare panel's engine side, without any UI: two lighting paths and the reference
 // render in turn, one per frame, on the same camera; each keeps its last image
 // (compare.<path>) for the compare view, and every side's image is measured against the
-// reference's latest one when both show the same view, light and size. The reference
-// accumulates while nothing changes, so the figures sharpen as it converges.
+// reference's latest one when both frames' keys agree on what the reference depends on
+// (camera, projection, light, scene, geometry). The reference accumulates while nothing
+// changes, so the figures sharpen as it converges; its restarts are counted with their cause.
 #pragma once
 
 #include "lighting/common/compare_view_pass.h"
+#include "lighting/common/frame_key.h"
 #include "graph/executor.h"
 #include "metrics/image.h"
 
 #include <chrono>
+#include <future>
 #include <map>
 #include <optional>
 #include <string>
@@ -18,7 +21,9 @@
 namespace tl::session {
 
 struct CompareView : lighting::CompareViewRequest {
-  bool measureFlip = true;  // LDR-FLIP on the CPU as well as relMSE (at most every flipInterval)
+  // LDR-FLIP on the CPU as well as relMSE, started at most every flipInterval on a worker
+  // thread: the figure shown is the last one finished, frames never wait for it.
+  bool measureFlip = true;
   double flipIntervalSeconds = 1.5;
 };
 
@@ -36,6 +41,7 @@ class LiveCompare {
   // `referenceReason`: why the reference cannot run here (no ray tracing); then the sides
   // still alternate but no error is measured.
   LiveCompare(CompareView view, std::optional<std::string> referenceReason);
+  ~LiveCompare();  // waits for a FLIP measurement under way
 
   const CompareView& view() const { return view_; }
   // Changing the sides keeps what was rendered (each path's image stays until replaced).
@@ -48,14 +54,27 @@ class LiveCompare {
   size_t rotationLength() const { return rotation().size(); }
   // Whether compare.<path> holds an image yet.
   bool hasImage(const std::string& path) const { return images_.count(path) != 0; }
-  // After a frame of `path`: its image (compare.<path>), its GPU time, a stamp of everything
-  // the reference depends on (view, light, size, scene) and, for the reference, its samples.
-  void frameDone(const std::string& path, const graph::Readback& image, double gpuMs, uint64_t stamp,
-                 uint32_t referenceSamples, float exposure);
+  // After a frame of `path`: its image (compare.<path>), its GPU time, its frame key and, for
+  // the reference, its samples and what its accumulation did in that frame.
+  void frameDone(const std::string& path, const graph::Readback& image, double gpuMs, const lighting::FrameKey& key,
+                 uint32_t referenceSamples, float exposure,
+                 const std::optional<lighting::HistoryDecision>& referenceAccumulation = std::nullopt);
 
   // Left and right, in that order (one entry when both sides show the same path).
   std::vector<LiveError> errors() const;
+  // Waits for the FLIP measurements under way and takes their figures (tests, scripts).
+  void finishFlip();
   uint32_t referenceSamples() const { return referenceSamples_; }
+  // How often the reference's accumulation started over while a sum was under way, and the
+  // frame-key parts that made it do so the last time (e.g. camera.position; none when its
+  // history was lost to a resize or a reset).
+  uint32_t referenceRestarts() const { return referenceRestarts_; }
+  lighting::FrameParts lastReferenceRestart() const { return lastRestart_; }
+
+  // The parts of the frame key a side's image and the reference's must share to be compared.
+  static constexpr lighting::FrameParts kComparedParts =
+      lighting::kCameraParts | lighting::parts(lighting::FramePart::Sun, lighting::FramePart::Sky,
+                                               lighting::FramePart::Scene, lighting::FramePart::Geometry);
 
  private:
   std::vector<std::string> rotation() const;
@@ -63,7 +82,7 @@ class LiveCompare {
 
   struct Side {
     metrics::Image image;
-    uint64_t stamp = 0;
+    lighting::FrameKey key;
     double gpuMs = 0.0;
   };
   CompareView view_;
@@ -72,7 +91,18 @@ class LiveCompare {
   std::map<std::string, Side> images_;
   std::map<std::string, LiveError> errors_;
   std::map<std::string, std::chrono::steady_clock::time_point> lastFlip_;
+  // FLIP under way per path, with the frame key of the images it measures: a result arrives only
+  // while both images still show that view.
+  struct PendingFlip {
+    std::future<double> value;
+    lighting::FrameKey key;
+  };
+  std::map<std::string, PendingFlip> pendingFlip_;
+  void collectFlip(bool wait);
   uint32_t referenceSamples_ = 0;
+  bool referenceSeen_ = false;
+  uint32_t referenceRestarts_ = 0;
+  lighting::FrameParts lastRestart_ = 0;
 };
 
 }  // namespace tl::session

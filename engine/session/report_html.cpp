@@ -1,5 +1,7 @@
 #include "session/report_html.h"
 
+#include "session/image_io.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -112,19 +114,47 @@ td:first-child,th:first-child{text-align:left}
 </style></head><body>)";
   html += fmt::format("<h1>Speed against error: {}</h1>", escape(r["scene"].get<std::string>()));
   const auto& ref = r["reference"];
-  const bool same = ref.value("scope", "full") == "same";
-  html += fmt::format("<p>{}×{} on {} ({}), Vulkan {}. Reference: {} samples per pixel, {} scattering events{}{}. Exposure {:.2f} EV.</p>",
-                      r["width"].get<int>(), r["height"].get<int>(), escape(r["device"].get<std::string>()),
-                      escape(r["driver"].get<std::string>()), r["vulkan"].get<std::string>(), ref["spp"].get<int>(),
-                      ref["bounces"].get<int>(), same ? " (same scope as the real-time paths: direct + one bounce)" : "",
-                      ref["cached"].get<bool>() ? " (reused from the cache)" : "",
-                      r["exposureEV"].get<double>());
+  std::string reference;
+  if (ref.value("source", "") == "file") {
+    reference = fmt::format("Reference: the image {} (another renderer's, same camera and size)", escape(ref["file"].get<std::string>()));
+  } else {
+    const bool same = ref.value("scope", "full") == "same";
+    reference = fmt::format("Reference: {} samples per pixel, {} scattering events{}{}", ref["spp"].get<int>(),
+                            ref["bounces"].get<int>(), same ? " (same scope as the real-time paths: direct + one bounce)" : "",
+                            ref["cached"].get<bool>() ? " (reused from the cache)" : "");
+  }
+  html += fmt::format("<p>{}×{} on {} ({}), Vulkan {}. {}. Exposure {:.2f} EV.</p>", r["width"].get<int>(),
+                      r["height"].get<int>(), escape(r["device"].get<std::string>()), escape(r["driver"].get<std::string>()),
+                      r["vulkan"].get<std::string>(), reference, r["exposureEV"].get<double>());
+  if (r.contains("gate")) {
+    const auto& g = r["gate"];
+    std::string limits;
+    for (auto& [m, v] : g["failAbove"].items()) limits += fmt::format("{}{} ≤ {}", limits.empty() ? "" : ", ", escape(m), v.get<double>());
+    html += fmt::format("<p><b>Regression gate {}</b> ({}).</p>", g["passed"].get<bool>() ? "passed" : "FAILED", limits);
+    if (!g["failures"].empty()) {
+      html += "<table><tr><th>path</th><th>metric</th><th>value</th><th>threshold</th></tr>";
+      for (auto& f : g["failures"])
+        html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>", escape(f["path"].get<std::string>()),
+                            escape(f["metric"].get<std::string>()), number(f["value"]), f["threshold"].get<double>());
+      html += "</table>";
+    }
+  }
+  html += "<h2>Error as rendered</h2><p>Linear radiance as each path rendered it; the display metrics at the report's "
+          "exposure.</p>";
   html += "<table><tr><th>path</th><th>GPU ms</th><th>relMSE</th><th>RMSE</th><th>PSNR dB</th><th>SSIM</th><th>FLIP</th><th>HDR-FLIP</th></tr>";
   for (auto& p : r["paths"])
     html += fmt::format("<tr><td>{}</td><td>{:.2f}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
                         escape(p["path"].get<std::string>()), p["frameMs"].get<double>(), number(p["relMSE"]),
                         number(p["RMSE"]), number(p["PSNR"], "{:.2f}"), number(p["SSIM"]), number(p["FLIP"]),
                         number(p["HDR-FLIP"]));
+  html += "</table>";
+  html += fmt::format("<h2>Error exposure-normalised</h2><p>Both images scaled by {:.4g} so the reference's mean luminance "
+                      "({:.4g}) becomes 0.18: a dark scene's figures mean what a bright one's do.</p>",
+                      ref["normalisation"].get<double>(), ref["meanLuminance"].get<double>());
+  html += "<table><tr><th>path</th><th>relMSE_norm</th><th>RMSE_norm</th><th>FLIP_norm</th></tr>";
+  for (auto& p : r["paths"])
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>", escape(p["path"].get<std::string>()),
+                        number(p["relMSE_norm"]), number(p["RMSE_norm"]), number(p["FLIP_norm"]));
   html += "</table>";
   html += "<h2>Error per stage</h2><p>What the composite multiplied, against the reference's own estimate of the same "
           "quantity at the primary hit, over surface pixels: ambient occlusion and the diffuse irradiance (sky and bounce "
@@ -157,7 +187,7 @@ td:first-child,th:first-child{text-align:left}
   html += "<h2>Metrics</h2><ul>";
   for (auto& [k, v] : r["metrics"].items()) html += fmt::format("<li><b>{}</b>: {}</li>", escape(k), escape(v.get<std::string>()));
   html += "</ul><p>Every figure is also in report.json beside this page.</p></body></html>\n";
-  std::ofstream(file) << html;
+  writeTextFile(file, html);
 }
 
 }  // namespace tl::session

@@ -163,17 +163,35 @@ void Session::setCompareView(std::optional<CompareView> view) {
   compare_ = std::make_unique<LiveCompare>(*view, findPath("reference")->unavailableReason(*device_));
 }
 
-// Everything the reference image depends on besides the scene's content: a side's image and
-// the reference's are compared only when their stamps agree.
-uint64_t Session::referenceStamp() const {
-  std::vector<double> k;
-  for (const glm::dvec3& v : {view_.position, view_.forward, view_.up, lighting_.sunDirection}) k.insert(k.end(), {v.x, v.y, v.z});
-  for (const glm::vec3& v : {lighting_.sunIrradiance, lighting_.skyRadiance}) k.insert(k.end(), {v.x, v.y, v.z});
-  for (double v : {double(view_.yfovRadians), double(settings_.width), double(settings_.height),
-                   double(lighting_.sunAngularRadius), double(gpuScene_ ? gpuScene_->id() : 0),
-                   double(gpuScene_ ? gpuScene_->geometryVersion() : 0)})
-    k.push_back(v);
-  return scene::hashBytes(k.data(), k.size() * sizeof(double));
+lighting::FrameKey Session::frameKey(uint64_t frame) const {
+  using lighting::FramePart;
+  using lighting::KeyHasher;
+  lighting::FrameKey key;
+  key.hash(FramePart::CameraPosition) = KeyHasher().add(view_.position).done();
+  key.hash(FramePart::CameraOrientation) = KeyHasher().all(view_.forward, view_.up).done();
+  key.hash(FramePart::Projection) =
+      KeyHasher().all(double(view_.yfovRadians), double(view_.znear), double(settings_.width), double(settings_.height)).done();
+  key.hash(FramePart::Sun) = KeyHasher()
+                                 .all(glm::normalize(lighting_.sunDirection), lighting_.sunIrradiance,
+                                      double(lighting_.sunAngularRadius))
+                                 .done();
+  key.hash(FramePart::Sky) = KeyHasher().add(lighting_.skyRadiance).done();
+  key.hash(FramePart::Scene) = gpuScene_ ? gpuScene_->id() : 0;
+  if (scene_) {
+    std::vector<glm::dmat4> transforms;
+    transforms.reserve(scene_->instances.size());
+    for (const auto& instance : scene_->instances) transforms.push_back(instance.transform);
+    const uint64_t geometry[] = {gpuScene_ ? gpuScene_->geometryVersion() : 0,
+                                 scene::hashBytes(transforms.data(), transforms.size() * sizeof(glm::dmat4))};
+    key.hash(FramePart::Geometry) = scene::hashBytes(geometry, sizeof geometry);
+    key.sceneScale = scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0;
+  }
+  key.hash(FramePart::Albedo) = albedo_ ? albedo_->version() : 0;
+  for (const auto& p : paths_) key.settings[p->name()] = p->historySettings(settings_);
+  key.cameraPosition = view_.position;
+  key.cameraForward = view_.forward;
+  key.frame = frame;
+  return key;
 }
 
 void Session::setView(const View& view) {
@@ -278,10 +296,9 @@ void Session::renderOne(bool readback) {
     auto prev = comparePrevious_.find(compared);
     previousView_ = prev != comparePrevious_.end() ? std::optional<View>(prev->second) : std::nullopt;
   }
-  if (previousView_ && isCameraCut(*previousView_, view_, scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0)) {
-    executor_->resetHistory();
-    previousView_.reset();  // no motion across a cut
-  }
+  // No motion vectors across a cut; the histories see it in the frame key and restart.
+  if (previousView_ && isCameraCut(*previousView_, view_, scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0))
+    previousView_.reset();
   const bool taa = lighting::temporalAntialiasing(settings_, path->rasterizes());
   // A compared path renders every second or third frame: its own count keeps its per-frame
   // patterns (the ray checkerboard, the 2x2 cycle, the blue-noise offset, TAA's jitter) moving.
@@ -291,6 +308,7 @@ void Session::renderOne(bool readback) {
   constants_.write(&fc, sizeof(fc));
   gpuScene_->updateInstances(*scene_, view_.position, previousView_.value_or(view_).position);
   applyMorphs();
+  historyLog_.clear();
 
   graph::RenderGraph graph;
   graph.declareImported(lighting::kFrameConstants,
@@ -303,6 +321,8 @@ void Session::renderOne(bool readback) {
   in.instanceAlbedoVersion = albedo_->version();
   in.temporalAntialiasing = taa;
   in.pathName = path->name();
+  in.key = frameKey(frameNumber);  // after applyMorphs: the geometry this frame shows
+  in.historyLog = &historyLog_;
   passes_->gbuffer.add(graph, in);
   passes_->shadow.add(graph, in);
   lighting::LightingOutputs outputs = path->addPasses(graph, in);
@@ -335,6 +355,7 @@ void Session::renderOne(bool readback) {
   if (compare_) executor_->requestReadback(lighting::compareImageName(compared));
   executor_->execute(graph, compiled);
   graphDump_ = graph.dump(compiled);
+  if (readback) graphDot_ = graph.dot(compiled);
   double total = 0.0;
   for (const auto& t : executor_->timings()) {
     total += t.gpuMs;
@@ -347,8 +368,11 @@ void Session::renderOne(bool readback) {
     double samples = 0.0;
     for (auto& [name, value] : path->figures())
       if (name == "reference.samples") samples = value;
-    compare_->frameDone(compared, executor_->readback(lighting::compareImageName(compared)), total, referenceStamp(),
-                        uint32_t(samples), fc.exposure);
+    std::optional<lighting::HistoryDecision> accumulation;
+    for (const auto& d : historyLog_)
+      if (d.history == "reference.accumulation") accumulation = d;
+    compare_->frameDone(compared, executor_->readback(lighting::compareImageName(compared)), total, in.key,
+                        uint32_t(samples), fc.exposure, accumulation);
     comparePrevious_[compared] = view_;
   }
   previousView_ = view_;
@@ -422,6 +446,10 @@ const scene::Scene* Session::decodingScene() const {
 void Session::closeCapture() {
   device_->waitIdle();
   capture_.reset();
+  // The capture's frames bound its images under the live resources' names (gbuffer.normal,
+  // gbuffer.instanceId, ...): a fresh executor forgets those bindings, which would otherwise
+  // outlive the images, and the live frame starts its resources and histories afresh.
+  executor_ = std::make_unique<graph::Executor>(*device_);
 }
 
 const graph::Readback& Session::buffer(const std::string& name) const {
@@ -439,6 +467,12 @@ bool Session::hasBuffer(const std::string& name) const {
     return std::any_of(r.begin(), r.end(), [&](auto& info) { return info.name == name; });
   }
   return executor_->readbacks().count(name) != 0;
+}
+
+void Session::writeGraph(const std::filesystem::path& file) const {
+  std::string ext = file.extension().string();
+  for (auto& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  writeTextFile(file, ext == ".dot" || ext == ".gv" ? graphDot_ : graphDump_);
 }
 
 ImageWriteReport Session::saveImage(const std::filesystem::path& file) const {

@@ -121,6 +121,7 @@ class Session {
   // the display pass. Throws SessionError naming an unavailable side; nothing changes then.
   void setCompareView(std::optional<CompareView> view);
   const LiveCompare* liveCompare() const { return compare_.get(); }
+  LiveCompare* liveCompare() { return compare_.get(); }
   // Instance under pixel (x, y) of the last frame, which must have read back gbuffer.instanceId.
   std::optional<uint32_t> instanceAt(uint32_t x, uint32_t y) const;
 
@@ -129,7 +130,15 @@ class Session {
   void requestAllBuffers() { requestAll_ = true; }
 
   // Drops every persistent (history) resource: the next frame starts accumulating afresh.
+  // Changes of the camera, the light, the scene or a setting need no call: every history
+  // decides from the frame key what it keeps (lighting/common/frame_key.h).
   void resetHistory() { executor_->resetHistory(); }
+
+  // The frame key of the current state (camera, projection, light, scene, geometry, albedo,
+  // every path's history settings) for a frame numbered `frame` of its path.
+  lighting::FrameKey frameKey(uint64_t frame = 0) const;
+  // What each history did in the last frame (kept, rejected or restarted, and why).
+  const std::vector<lighting::HistoryDecision>& historyDecisions() const { return historyLog_; }
 
   // Renders n frames; the last one reads back the final images and the requested buffers.
   void renderFrames(uint32_t n);
@@ -149,6 +158,11 @@ class Session {
   // What decoders may know of the scene: the loaded one, or a reopened capture's instance names.
   const scene::Scene* decodingScene() const;
   std::string graphDump() const { return graphDump_; }
+  // The last rendered frame's graph as Graphviz DOT (graph::RenderGraph::dot).
+  const std::string& graphDot() const { return graphDot_; }
+  // Writes the graph to `file`: DOT for a .dot or .gv file, else the text dump. Atomic;
+  // throws SessionError naming the file when it cannot be written.
+  void writeGraph(const std::filesystem::path& file) const;
   // GPU milliseconds of each frame of the last renderFrames call, and per pass (in order).
   const std::vector<double>& frameGpuMs() const { return frameGpuMs_; }
   const std::vector<std::pair<std::string, std::vector<double>>>& passGpuMs() const { return passGpuMs_; }
@@ -191,11 +205,11 @@ class Session {
   std::unique_ptr<LiveCompare> compare_;
   std::map<std::string, View> comparePrevious_;  // each compared path's own previous view
   std::map<std::string, uint64_t> compareFrames_;  // and its own frame count (noise, checkerboards)
-  uint64_t referenceStamp() const;
+  std::vector<lighting::HistoryDecision> historyLog_;
   lighting::LightingPath* findPath(const std::string& name) const;
   std::vector<std::string> requested_;
   bool requestAll_ = false;
-  std::string graphDump_;
+  std::string graphDump_, graphDot_;
   std::vector<double> frameGpuMs_;
   std::vector<std::pair<std::string, std::vector<double>>> passGpuMs_;
   uint64_t frameIndex_ = 0;

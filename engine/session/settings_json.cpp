@@ -12,47 +12,60 @@
 
 namespace tl::session {
 namespace {
+// One setting by name: how to apply a JSON value to it (checked against its range first),
+// and its value as JSON.
+struct Field {
+  std::function<void(lighting::RenderSettings&, const nlohmann::json&)> set;
+  std::function<nlohmann::json(const lighting::RenderSettings&)> get;
+};
 
-using Setter = std::function<void(lighting::RenderSettings&, const nlohmann::json&)>;
+template <class T>
+std::function<nlohmann::json(const lighting::RenderSettings&)> getter(T lighting::RenderSettings::*member) {
+  return [member](const lighting::RenderSettings& s) { return nlohmann::json(s.*member); };
+}
 
 // A bool field: true or false.
-Setter field(bool lighting::RenderSettings::*member) {
-  return [member](lighting::RenderSettings& s, const nlohmann::json& v) {
-    if (!v.is_boolean()) throw std::invalid_argument("true or false");
-    s.*member = v.get<bool>();
-  };
+Field field(bool lighting::RenderSettings::*member) {
+  return {[member](lighting::RenderSettings& s, const nlohmann::json& v) {
+            if (!v.is_boolean()) throw std::invalid_argument("true or false");
+            s.*member = v.get<bool>();
+          },
+          getter(member)};
 }
 
 // A whole-number field in [lo, hi], checked before the conversion (4294967297 would become 1).
-Setter field(uint32_t lighting::RenderSettings::*member, uint32_t lo, uint32_t hi) {
-  return [member, lo, hi](lighting::RenderSettings& s, const nlohmann::json& v) {
-    const std::string range = fmt::format("a whole number from {} to {}", lo, hi);
-    if (!v.is_number_integer()) throw std::invalid_argument(range);
-    if (v.is_number_unsigned() ? v.get<uint64_t>() > hi || v.get<uint64_t>() < lo : v.get<int64_t>() < int64_t(lo) || v.get<int64_t>() > int64_t(hi))
-      throw std::invalid_argument(range);
-    s.*member = uint32_t(v.get<uint64_t>());
-  };
+Field field(uint32_t lighting::RenderSettings::*member, uint32_t lo, uint32_t hi) {
+  return {[member, lo, hi](lighting::RenderSettings& s, const nlohmann::json& v) {
+            const std::string range = fmt::format("a whole number from {} to {}", lo, hi);
+            if (!v.is_number_integer()) throw std::invalid_argument(range);
+            if (v.is_number_unsigned() ? v.get<uint64_t>() > hi || v.get<uint64_t>() < lo
+                                       : v.get<int64_t>() < int64_t(lo) || v.get<int64_t>() > int64_t(hi))
+              throw std::invalid_argument(range);
+            s.*member = uint32_t(v.get<uint64_t>());
+          },
+          getter(member)};
 }
 
 // A float field: finite once stored as a float, and in [lo, hi].
-Setter field(float lighting::RenderSettings::*member, float lo, float hi) {
-  return [member, lo, hi](lighting::RenderSettings& s, const nlohmann::json& v) {
-    const std::string range = fmt::format("a number from {:g} to {:g}", lo, hi);
-    if (!v.is_number()) throw std::invalid_argument(range);
-    const float f = float(v.get<double>());
-    if (!std::isfinite(f) || f < lo || f > hi) throw std::invalid_argument(range);
-    s.*member = f;
-  };
+Field field(float lighting::RenderSettings::*member, float lo, float hi) {
+  return {[member, lo, hi](lighting::RenderSettings& s, const nlohmann::json& v) {
+            const std::string range = fmt::format("a number from {:g} to {:g}", lo, hi);
+            if (!v.is_number()) throw std::invalid_argument(range);
+            const float f = float(v.get<double>());
+            if (!std::isfinite(f) || f < lo || f > hi) throw std::invalid_argument(range);
+            s.*member = f;
+          },
+          getter(member)};
 }
 
 // Every setting JSON may change, with the range its value must lie in (inclusive). Distances
 // and radii of 0 mean "scaled to the scene" (frame_inputs.h); 1e6 m is their ceiling. The
 // ceilings on counts bound the work a frame does (pre-trace steps, rays, frames, levels).
 // [T13]'s settings schema will replace this table; until then it is where the ranges live.
-const std::map<std::string, Setter>& setters() {
+const std::map<std::string, Field>& fields() {
   using S = lighting::RenderSettings;
   constexpr float kDistance = 1e6f;
-  static const std::map<std::string, Setter> table = {
+  static const std::map<std::string, Field> table = {
       {"shadowMapSize", field(&S::shadowMapSize, 64, 8192)},
       {"softShadows", field(&S::softShadows)},
       {"pcssMaxRadiusTexels", field(&S::pcssMaxRadiusTexels, 0.0f, 64.0f)},
@@ -124,14 +137,14 @@ lighting::RenderSettings applySettingsJson(const lighting::RenderSettings& base,
   if (!overrides.is_object()) throw SessionError("settings must be a JSON object of setting names and values");
   lighting::RenderSettings s = base;
   for (const auto& [key, value] : overrides.items()) {
-    auto it = setters().find(key);
-    if (it == setters().end()) {
+    auto it = fields().find(key);
+    if (it == fields().end()) {
       std::string known;
-      for (const auto& [name, setter] : setters()) known += (known.empty() ? "" : ", ") + name;
+      for (const auto& [name, f] : fields()) known += (known.empty() ? "" : ", ") + name;
       throw SessionError(fmt::format("unknown setting `{}` (known: {})", key, known));
     }
     try {
-      it->second(s, value);
+      it->second.set(s, value);
     } catch (const std::invalid_argument& e) {
       std::string given = value.dump();
       if (given.size() > 60) given = given.substr(0, 60) + "...";
@@ -139,6 +152,12 @@ lighting::RenderSettings applySettingsJson(const lighting::RenderSettings& base,
     }
   }
   return s;
+}
+
+nlohmann::json settingsJson(const lighting::RenderSettings& settings) {
+  nlohmann::json out = {{"width", settings.width}, {"height", settings.height}};
+  for (const auto& [name, f] : fields()) out[name] = f.get(settings);
+  return out;
 }
 
 }  // namespace tl::session

@@ -18,5 +18,8 @@ nlohmann::json parseSettingsText(std::string_view text, const std::string& what)
 
 // Returns `base` with the keys of `overrides` (an object) applied.
 lighting::RenderSettings applySettingsJson(const lighting::RenderSettings& base, const nlohmann::json& overrides);
+// Every setting applySettingsJson knows, with its value, plus the image size: what a capture
+// manifest records, and what applySettingsJson takes back (less width and height).
+nlohmann::json settingsJson(const lighting::RenderSettings& settings);
 
 }  // namespace tl::session

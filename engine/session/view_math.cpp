@@ -1,5 +1,7 @@
 #include "session/view_math.h"
 
+#include "lighting/common/frame_key.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -88,9 +90,7 @@ SunShadowFit fitSunShadow(const View& view, double aspect, const scene::Bounds& 
 }
 
 bool isCameraCut(const View& previous, const View& current, double sceneScale) {
-  const double moved = glm::length(current.position - previous.position);
-  const double turned = glm::dot(glm::normalize(previous.forward), glm::normalize(current.forward));
-  return moved > 0.2 * std::max(sceneScale, 1e-6) || turned < 0.5;
+  return lighting::cameraJumped(previous.position, previous.forward, current.position, current.forward, sceneScale);
 }
 
 }  // namespace tl::session

@@ -17,8 +17,8 @@ struct CameraMatrices {
 CameraMatrices cameraMatrices(const View& view, double aspect);
 
 // A camera cut: between two frames the camera jumped more than a fifth of the scene's size or
-// turned by more than 60 degrees. Temporal history from before a cut is meaningless even where
-// a surface happens to reproject onto the same depth, so the session drops all of it.
+// turned by more than 60 degrees (lighting::cameraJumped). No motion vectors span it; the
+// histories that reproject see it in the frame key (FramePart::CameraCut) and restart.
 bool isCameraCut(const View& previous, const View& current, double sceneScale);
 
 // The previous frame's view-projection, applied to points relative to *this* frame's

@@ -4,6 +4,9 @@
 
 #include "session/capture.h"
 
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
 #include <cstring>
 #include <fstream>
 
@@ -48,8 +51,21 @@ TEST_F(GpuTest, CaptureWritesEveryResourceAndReadsBackExactly) {
   EXPECT_EQ(std::memcmp(hits.integers.data(), rb.bytes.data(), rb.bytes.size()), 0);
   auto shY = session::readCaptureImage(dir / "rt.gi.temporal.shY.exr");
   EXPECT_EQ(shY.values, s.buffer("rt.gi.temporal.shY").texels());
+  // Depth as view depth in metres (near / reversed Z), float.
   auto depth = session::readCaptureImage(dir / "gbuffer.depth.exr");
-  EXPECT_EQ(depth.values, s.buffer("gbuffer.depth").texels()) << "32-bit depth stored as float";
+  const std::vector<float> reversedZ = s.buffer("gbuffer.depth").texels();
+  ASSERT_EQ(depth.values.size(), reversedZ.size());
+  const float znear = s.view().znear;
+  size_t drawn = 0;
+  for (size_t i = 0; i < reversedZ.size(); ++i) {
+    if (reversedZ[i] == 0.0f) {
+      EXPECT_TRUE(std::isinf(depth.values[i])) << i;
+      continue;
+    }
+    ++drawn;
+    EXPECT_FLOAT_EQ(depth.values[i], znear / reversedZ[i]) << i;
+  }
+  EXPECT_GT(drawn, reversedZ.size() / 2);
 }
 
 }  // namespace
@@ -68,14 +84,22 @@ TEST_F(GpuTest, CaptureReopensWithoutTheSceneWithTheSameValues) {
   const fs::path dir = fs::temp_directory_path() / "twinlight-reopen-test";
   fs::remove_all(dir);
   session::captureFrame(s, dir, 1);
-  const graph::Readback ids = s.buffer("gbuffer.instanceId"), normal = s.buffer("gbuffer.normal");
+  const graph::Readback ids = s.buffer("gbuffer.instanceId"), normal = s.buffer("gbuffer.normal"),
+                        depth = s.buffer("gbuffer.depth"), material = s.buffer("gbuffer.material");
 
   s.openCapture(dir);
   ASSERT_TRUE(s.hasCapture());
   const graph::Readback& ids2 = s.buffer("gbuffer.instanceId");
   ASSERT_EQ(ids2.bytes.size(), ids.bytes.size());
   EXPECT_EQ(ids2.bytes, ids.bytes) << "instance ids exact";
-  EXPECT_EQ(s.buffer("gbuffer.normal").texels(), normal.texels()) << "normals as stored (snorm16 decoded)";
+  EXPECT_EQ(s.buffer("gbuffer.normal").texels(), normal.texels())
+      << "normals stored decoded (N.x N.y N.z) come back as the frame's octahedral snorm16 values";
+  EXPECT_EQ(s.buffer("gbuffer.material").texels(), material.texels())
+      << "roughness metalness B A come back in that order (EXR sorts channels by name)";
+  const graph::Readback depth2 = s.buffer("gbuffer.depth");
+  ASSERT_EQ(depth2.texels().size(), depth.texels().size());
+  for (size_t i = 0; i < depth.texels().size(); ++i)
+    EXPECT_NEAR(depth2.texels()[i], depth.texels()[i], 1e-6f * depth.texels()[i]) << "reversed Z back from view depth";
   bool decoder = false;
   for (const auto& r : s.resources()) decoder |= r.name == "gbuffer.normal" && r.desc.decoder == "oct-normal";
   EXPECT_TRUE(decoder) << "decoders travel in the manifest";
@@ -90,6 +114,64 @@ TEST_F(GpuTest, CaptureReopensWithoutTheSceneWithTheSameValues) {
   s.setDisplay(std::nullopt);
   s.closeCapture();
   EXPECT_FALSE(s.hasCapture());
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace tl::test
+
+namespace tl::test {
+namespace {
+
+// What other tools read from a capture's files alone: colour decoded to linear (cornell's red
+// wall is its albedo, 0.63 0.065 0.05, not the sRGB encoding 0.816 0.282 0.247), conventional
+// channel names, the display image as PNG, ids with the manifest's table, the program's version
+// and every setting in the manifest.
+TEST_F(GpuTest, CaptureFilesAreLinearWithConventionalChannels) {
+  auto& s = session();
+  s.loadScene(contentFile("cornell.gltf"));
+  s.setPath("direct");
+  s.setSize(40, 30);
+  const fs::path dir = fs::temp_directory_path() / "twinlight-capture-channels-test";
+  fs::remove_all(dir);
+  const nlohmann::json manifest = session::captureFrame(s, dir, 1);
+
+  EXPECT_EQ(manifest["schema"], 2);
+  EXPECT_TRUE(manifest["twinlight"]["version"].is_string());
+  EXPECT_FALSE(manifest["twinlight"]["version"].get<std::string>().empty());
+  EXPECT_EQ(manifest["settings"]["rtDenoise"], s.settings().rtDenoise) << "every setting, not a few";
+  EXPECT_EQ(manifest["settings"]["width"], 40);
+  auto channelsOf = [&](const std::string& resource) {
+    auto in = OIIO::ImageInput::open((dir / resource).string());
+    EXPECT_NE(in, nullptr) << resource;
+    return in ? in->spec().channelnames : std::vector<std::string>{};
+  };
+  EXPECT_EQ(channelsOf("gbuffer.depth.exr"), (std::vector<std::string>{"Z"}));
+  EXPECT_EQ(channelsOf("gbuffer.normal.exr"), (std::vector<std::string>{"N.x", "N.y", "N.z"}));
+  EXPECT_EQ(channelsOf("gbuffer.motion.exr"), (std::vector<std::string>{"motion.u", "motion.v"}));
+  EXPECT_EQ(channelsOf("gbuffer.instanceId.exr"), (std::vector<std::string>{"id"}));
+  EXPECT_EQ(channelsOf("gbuffer.baseColor.exr"), (std::vector<std::string>{"R", "G", "B", "A"}));
+  EXPECT_TRUE(fs::exists(dir / "tonemap.ldr.png")) << "the display image is a PNG";
+  EXPECT_FALSE(fs::exists(dir / "tonemap.ldr.exr"));
+
+  // Every pixel whose id names the red wall has its albedo in the base colour file.
+  auto ids = session::readCaptureImage(dir / "gbuffer.instanceId.exr");
+  auto base = session::readCaptureImage(dir / "gbuffer.baseColor.exr");
+  uint32_t red = 0;
+  for (const auto& e : manifest["instanceIds"])
+    if (e["name"] == "left_wall_red") red = e["id"];
+  ASSERT_NE(red, 0u);
+  size_t wall = 0;
+  for (size_t i = 0; i < ids.integers.size(); ++i) {
+    if (ids.integers[i] != red) continue;
+    ++wall;
+    // 8-bit sRGB steps near 0.63 are 0.005 wide; 0.05 and 0.065 lie on finer ones.
+    EXPECT_NEAR(base.values[i * 4 + 0], 0.63f, 0.004f) << i;
+    EXPECT_NEAR(base.values[i * 4 + 1], 0.065f, 0.002f) << i;
+    EXPECT_NEAR(base.values[i * 4 + 2], 0.05f, 0.002f) << i;
+    EXPECT_EQ(base.values[i * 4 + 3], 1.0f) << "coverage";
+  }
+  EXPECT_GT(wall, 20u);
   fs::remove_all(dir);
 }
 

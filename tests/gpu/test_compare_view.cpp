@@ -39,8 +39,9 @@ TEST_F(CompareViewTest, WipeShowsEachSidesOwnImageAndErrorsAreMeasured) {
   v.wipe = 0.5f;
   s.setCompareView(v);
   render(6, v);  // direct, legacy, reference, twice
-  const auto* live = s.liveCompare();
+  auto* live = s.liveCompare();
   ASSERT_NE(live, nullptr);
+  live->finishFlip();  // FLIP runs on a worker thread, beside the frames
   EXPECT_EQ(live->referenceSamples(), 8u);
   auto errors = live->errors();
   ASSERT_EQ(errors.size(), 2u);
@@ -103,6 +104,38 @@ TEST_F(CompareViewTest, DifferenceOfAPathWithItselfIsZeroAndAMovedCameraWaitsFor
   EXPECT_FALSE(s.liveCompare()->errors()[0].relMse.has_value()) << "measured against the reference of another view";
   render(1, v);
   EXPECT_TRUE(s.liveCompare()->errors()[0].relMse.has_value());
+}
+
+// The live reference follows the camera: a 0.2 m sideways step (no cut, no turn) restarts its
+// sum, and the panel's figures say so and why.
+TEST_F(CompareViewTest, ASidewaysStepRestartsTheLiveReference) {
+  auto& s = session();
+  s.loadScene(contentFile("cornell.gltf"));
+  s.setSize(24, 24);
+  s.settings().referenceSamplesPerFrame = 4;
+  session::CompareView v;
+  v.left = "direct";
+  v.right = "legacy";
+  s.setCompareView(v);
+  render(6, v);  // direct, legacy, reference, twice
+  const auto* live = s.liveCompare();
+  ASSERT_NE(live, nullptr);
+  EXPECT_EQ(live->referenceSamples(), 8u);
+  EXPECT_EQ(live->referenceRestarts(), 0u) << "the first sum is a start, not a restart";
+  session::View view = s.view();
+  view.position += 0.2 * glm::normalize(glm::cross(view.forward, view.up));
+  s.setView(view);
+  render(3, v);
+  std::printf("live reference: 8 samples per pixel before the step, %u after one reference frame past it\n",
+              live->referenceSamples());
+  EXPECT_EQ(live->referenceSamples(), 4u) << "the sum restarted at the new position";
+  EXPECT_EQ(live->referenceRestarts(), 1u);
+  EXPECT_EQ(live->lastReferenceRestart(), lighting::partBit(lighting::FramePart::CameraPosition))
+      << lighting::describeParts(live->lastReferenceRestart());
+  for (const auto& e : live->errors()) EXPECT_TRUE(e.relMse.has_value()) << e.path << " measured against the new view";
+  render(3, v);
+  EXPECT_EQ(live->referenceSamples(), 8u);
+  EXPECT_EQ(live->referenceRestarts(), 1u) << "a still camera accumulates";
 }
 
 TEST_F(CompareViewTest, AnUnavailableSideIsRefusedAndNothingChanges) {

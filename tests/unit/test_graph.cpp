@@ -59,6 +59,28 @@ TEST(Graph, CullsPassesWhoseOutputsNobodyReadsTransitively) {
   EXPECT_NE(g.dump(c).find("culled:"), std::string::npos);
 }
 
+// The Graphviz form: every pass a box, every resource an ellipse, writer -> resource ->
+// readers, culled passes grey; labels quoted so names with dots are one node.
+TEST(Graph, DotListsPassesResourcesAndEdges) {
+  RenderGraph g;
+  compute(g, "producer", {}, {"a.b"});
+  compute(g, "consumer", {"a.b"}, {"out"});
+  compute(g, "unused", {"a.b"}, {"nobody \"reads\""});
+  g.markOutput("out");
+  const std::string d = g.dot(g.compile());
+  EXPECT_EQ(d.rfind("digraph twinlight {", 0), 0u);
+  EXPECT_EQ(d.back(), '\n');
+  EXPECT_NE(d.find("\"pass:producer\" [shape=box"), std::string::npos) << d;
+  EXPECT_NE(d.find("\"resource:a.b\" [shape=ellipse"), std::string::npos) << d;
+  EXPECT_NE(d.find("\"pass:producer\" -> \"resource:a.b\""), std::string::npos) << d;
+  EXPECT_NE(d.find("\"resource:a.b\" -> \"pass:consumer\""), std::string::npos) << d;
+  EXPECT_NE(d.find("\"pass:unused\" [shape=box, style=dashed, color=grey"), std::string::npos) << "culled, grey";
+  EXPECT_NE(d.find("resource:nobody \\\"reads\\\""), std::string::npos) << "quotes escaped: " << d;
+  EXPECT_NE(d.find("label=\"[0] producer\\ncompute\""), std::string::npos) << "DOT's line break: " << d;
+  // Every attribute list closed.
+  EXPECT_EQ(std::count(d.begin(), d.end(), '['), std::count(d.begin(), d.end(), ']'));
+}
+
 TEST(Graph, SideEffectsPersistentAndImportedWritersSurvive) {
   RenderGraph g;
   g.declarePersistent("history", kImage);

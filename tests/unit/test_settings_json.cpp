@@ -61,29 +61,24 @@ TEST(SettingsJson, ValuesOutsideTheirStatedRangeAreRefused) {
   EXPECT_EQ(applySettingsJson(base, {{"rtPretraceSteps", 256}}).rtPretraceSteps, 256u);
 }
 
-// The defaults lie inside the stated ranges: a capture manifest or a saved configuration that
-// repeats them is accepted.
-TEST(SettingsJson, DefaultsLieInTheirRanges) {
-  const lighting::RenderSettings d;
-  const nlohmann::json defaults = {
-      {"shadowMapSize", d.shadowMapSize},         {"pcssMaxRadiusTexels", d.pcssMaxRadiusTexels},
-      {"taaBlend", d.taaBlend},                   {"referenceBounces", d.referenceBounces},
-      {"rtSimplifyRatio", d.rtSimplifyRatio},     {"rtAoRadius", d.rtAoRadius},
-      {"rtRayLength", d.rtRayLength},             {"rtBlendDistance", d.rtBlendDistance},
-      {"rtPretraceSteps", d.rtPretraceSteps},     {"rtPretracePixels", d.rtPretracePixels},
-      {"rtThickness", d.rtThickness},             {"rtMaxAccumFrames", d.rtMaxAccumFrames},
-      {"rtFireflyClamp", d.rtFireflyClamp},       {"rtDisocclusionRays", d.rtDisocclusionRays},
-      {"rtCullAngle", d.rtCullAngle},             {"rtCullMargin", d.rtCullMargin},
-      {"rtRefitTop", d.rtRefitTop},               {"rtRefitRandom", d.rtRefitRandom},
-      {"rtRefitVertexBudget", d.rtRefitVertexBudget}, {"rtDenoiseRadius", d.rtDenoiseRadius},
-      {"legacyAoRadius", d.legacyAoRadius},       {"legacyAoThickness", d.legacyAoThickness},
-      {"legacyAoSlices", d.legacyAoSlices},       {"legacyAoSteps", d.legacyAoSteps},
-      {"legacyAoDivisor", d.legacyAoDivisor},     {"legacyConeDivisor", d.legacyConeDivisor},
-      {"legacyVoxelResolution", d.legacyVoxelResolution}, {"legacyLevel0Extent", d.legacyLevel0Extent},
-      {"legacyMaxLevels", d.legacyMaxLevels},     {"legacyConeRange", d.legacyConeRange},
-      {"legacyConeStep", d.legacyConeStep},       {"legacySettleFrames", d.legacySettleFrames},
-      {"legacyAoFrames", d.legacyAoFrames}};
-  EXPECT_NO_THROW(applySettingsJson(d, defaults));
+// What a capture manifest records is every setting by name with its value: applied to default
+// settings it gives the recorded settings back.
+TEST(SettingsJson, EverySettingRoundTrips) {
+  lighting::RenderSettings changed;
+  changed.width = 320, changed.height = 200;
+  changed.rtDenoise = !changed.rtDenoise;
+  changed.legacyAoSteps = 7;
+  changed.rtFireflyClamp = 12.5f;
+  nlohmann::json all = settingsJson(changed);
+  EXPECT_EQ(all["width"], 320);
+  EXPECT_EQ(all["rtDenoise"], changed.rtDenoise);
+  EXPECT_EQ(all["legacyAoSteps"], 7);
+  EXPECT_GT(all.size(), 40u) << "every setting, not a few";
+  all.erase("width"), all.erase("height");
+  const lighting::RenderSettings back = applySettingsJson(lighting::RenderSettings{}, all);
+  nlohmann::json again = settingsJson(back);
+  again.erase("width"), again.erase("height");
+  EXPECT_EQ(again, all);
 }
 
 }  // namespace

@@ -44,7 +44,7 @@ void CompareViewPass::add(graph::RenderGraph& graph, FrameInputs& in, const Comp
       [&](graph::PassBuilder& b) {
         b.read(kFrameConstants, graph::Usage::StorageRead);
         for (const std::string& n : std::set<std::string>{left, right}) b.read(n, graph::Usage::Sampled);
-        b.create(kDisplayLdr, graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "compare view: wipe or difference"),
+        b.create(kDisplayLdr, graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "compare view: wipe or difference").displayReferred(),
                  graph::Usage::StorageWrite);
       },
       [this, &in, push, left, right](graph::PassContext& ctx) {

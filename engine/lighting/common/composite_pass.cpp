@@ -210,7 +210,7 @@ void TonemapPass::add(graph::RenderGraph& graph, FrameInputs& in) {
         b.read(kFrameConstants, Usage::StorageRead);
         b.read(kCompositeHdr, Usage::Sampled);
         b.create(kTonemapLdr,
-                 graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "display image: exposure, ACES, sRGB"),
+                 graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "display image: exposure, ACES, sRGB").displayReferred(),
                  Usage::StorageWrite);
       },
       [this, &in](graph::PassContext& ctx) {

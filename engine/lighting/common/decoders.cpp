@@ -2,6 +2,7 @@
 
 #include "gpu/formats.h"
 #include "shared/albedo.h"
+#include "shared/color.h"
 #include "shared/packing.h"
 #include "shared/rt.h"
 #include "shared/sh.h"
@@ -136,7 +137,13 @@ DecodedLines rawTexel(const graph::Readback& r, uint32_t x, uint32_t y, uint32_t
     return out;
   }
   auto v = gpu::decodeTexels(r.format, std::span<const uint8_t>(p, fi.bytes));
-  for (size_t c = 0; c < v.size() && c < 4; ++c) out.push_back({kChannels[c], fmt::format("{:.6g}", v[c])});
+  for (size_t c = 0; c < v.size() && c < 4; ++c) {
+    // sRGB-encoded colour: also the linear value a shader samples (and a capture stores).
+    if (fi.kind == gpu::TexelKind::Srgb && c < 3)
+      out.push_back({kChannels[c], fmt::format("{:.6g} (linear {:.6g})", v[c], shared::tlSrgbToLinear1(v[c]))});
+    else
+      out.push_back({kChannels[c], fmt::format("{:.6g}", v[c])});
+  }
   return out;
 }
 

@@ -68,7 +68,7 @@ void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w
       [&](graph::PassBuilder& b) {
         b.read(source, graph::Usage::Sampled);
         if (source != kGbufferChannels[5].name) b.read(kGbufferChannels[5].name, graph::Usage::Sampled);
-        b.create(kDisplayLdr, graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "editor viewport image"),
+        b.create(kDisplayLdr, graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "editor viewport image").displayReferred(),
                  graph::Usage::StorageWrite);
       },
       [this, push, source, volume](graph::PassContext& ctx) {

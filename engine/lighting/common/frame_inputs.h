@@ -6,6 +6,7 @@
 #include "gpu/device.h"
 #include "graph/executor.h"
 #include "graph/graph.h"
+#include "lighting/common/frame_key.h"
 #include "scene/gpu_scene.h"
 #include "scene/scene.h"
 #include "shared/frame.h"
@@ -134,6 +135,10 @@ struct FrameInputs {
   bool temporalAntialiasing = false;
   std::string pathName;  // the lighting path this frame renders (per-path state such as TAA's history)
   uint64_t instanceAlbedoVersion = 0;
+  // What this frame shows, in named parts: every history decides from it what it keeps
+  // (lighting/common/frame_key.h), and writes its decision into the log (may be null).
+  FrameKey key;
+  std::vector<HistoryDecision>* historyLog = nullptr;
 };
 
 }  // namespace tl::lighting

@@ -29,10 +29,11 @@ void GbufferPass::add(graph::RenderGraph& graph, FrameInputs& in) {
       [&](graph::PassBuilder& b) {
         readSceneInputs(b, graph::Usage::VertexOrIndex);
         for (auto& c : kGbufferChannels)
-          b.create(c.name, graph::ResourceDesc::image2D(c.format, w, h, c.description).decodedAs(c.decoder),
+          b.create(c.name, graph::ResourceDesc::image2D(c.format, w, h, c.description).decodedAs(c.decoder).named(c.channels),
                    graph::Usage::ColorAttachment);
         b.create(kGbufferDepth,
-                 graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, w, h, "depth, reversed Z (1 near, 0 at infinity)"),
+                 graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, w, h, "depth, reversed Z (1 near, 0 at infinity)")
+                     .named("Z"),  // captures store view depth in metres (session/capture_encoding.h)
                  graph::Usage::DepthAttachment);
       },
       [this, &in](graph::PassContext& ctx) {

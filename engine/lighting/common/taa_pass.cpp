@@ -11,6 +11,11 @@ namespace tl::lighting {
 
 using graph::Usage;
 
+// The resolved image is reprojected along the motion vectors, which span one frame: it is
+// kept across camera motion and any change of the light (neighbourhood clipping follows it),
+// restarted by a cut, a new scene or a frame it did not see.
+constexpr HistoryPolicy kTaaHistory{"taa", parts(FramePart::Scene, FramePart::CameraCut, FramePart::FrameGap), 0};
+
 void TaaPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   const uint32_t w = in.settings.width, h = in.settings.height;
   if (!pipeline_) {
@@ -30,12 +35,11 @@ void TaaPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   }
   const auto hdr = [&](const char* what) { return graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, what); };
   const std::string history = taaHistoryName(in.pathName);
-  graph.declarePersistent(history, hdr("TAA: this path's last resolved image"));
-  // The history belongs to the previous frame only if TAA ran for this path in it.
-  const uint32_t frame = in.constants.frameIndex;
-  auto last = lastFrame_.find(in.pathName);
-  const bool consecutive = last != lastFrame_.end() && last->second + 1 == frame;
-  lastFrame_[in.pathName] = frame;
+  const graph::ResourceDesc historyDesc = hdr("TAA: this path's last resolved image");
+  const bool stored = in.executor.historyValid(history, historyDesc);
+  const bool kept =
+      keepers_[in.pathName].advance(kTaaHistory, in.key, in.pathName, in.historyLog, {stored}).action != HistoryAction::Restart;
+  graph.declarePersistent(history, historyDesc);
   graph.addPass(
       "taa", graph::PassKind::Compute,
       [&](graph::PassBuilder& b) {
@@ -45,10 +49,10 @@ void TaaPass::add(graph::RenderGraph& graph, FrameInputs& in) {
         b.read("gbuffer.motion", Usage::Sampled);
         b.create(kCompositeHdr, hdr("scene-linear radiance before exposure, resolved by TAA"), Usage::StorageWrite);
       },
-      [this, &in, history, consecutive](graph::PassContext& ctx) {
+      [this, &in, history, kept](graph::PassContext& ctx) {
         shared::TaaPush push{};
         push.blend = std::clamp(in.settings.taaBlend, 0.01f, 1.0f);
-        push.historyValid = consecutive && ctx.historyValid(history) ? 1u : 0u;
+        push.historyValid = kept && ctx.historyValid(history) ? 1u : 0u;
         ctx.bind(pipeline_);
         ctx.pushConstants(push);
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;

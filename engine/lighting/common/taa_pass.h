@@ -30,9 +30,10 @@ class TaaPass {
   gpu::Pipeline pipeline_;
   gpu::Sampler pointSampler_;
   gpu::Sampler linearSampler_;
-  // The frame number (FrameConstants::frameIndex, per path) each path's TAA last ran in: a
-  // history is used only by the very next frame, not after TAA was off or another path ran.
-  std::map<std::string, uint32_t> lastFrame_;
+  // Per path, the frame key of the last frame its TAA ran in: a history is used only by the
+  // very next frame of that path (not after TAA was off or another path ran), and not across
+  // a camera cut or a new scene.
+  std::map<std::string, HistoryKeeper> keepers_;
 };
 
 }  // namespace tl::lighting

@@ -54,11 +54,32 @@ enum class DrawSet { All, Plain, Emissive };
 // its per-region draws and dispatches would no longer pay for themselves.
 constexpr double kPartialVoxelBudget = 0.5;
 
+// The voxels hold world-space light: the sun injected through the shadow map, emission and,
+// with screen feedback, the light of the last frames (so the sky too). A new sun, scene or
+// setting rebuilds them, and so does a camera move that shifts their placement in the world;
+// geometry that deforms or moves is patched where it reaches (takeInstanceChanges).
+constexpr FrameParts kVoxelRestarts = parts(FramePart::Sun, FramePart::Scene, FramePart::Settings);
+// The screen-space histories, SSAO's accumulation and the last frame's radiance and depth the
+// voxelization reuses: reprojected as the camera moves, restarted by a cut, a new scene or a
+// setting.
+constexpr HistoryPolicy kScreenHistory{"legacy.ssao", parts(FramePart::Scene, FramePart::Settings, FramePart::CameraCut), 0};
+
 class LegacyPath final : public LightingPath {
  public:
   std::string name() const override { return "legacy"; }
   std::string description() const override {
     return "RTX OFF: GTAO + voxel clipmap GI with cone tracing and voxel AO";
+  }
+
+  // What the voxels and the SSAO history hold: AO reach and sampling, the clipmap's size and
+  // levels, and whether the screen feeds light back into the voxels. Cone settings are
+  // per frame (no history), the update policy (partial updates, settling) changes only work.
+  uint64_t historySettings(const RenderSettings& s) const override {
+    return KeyHasher()
+        .all(double(s.legacyAoRadius), double(s.legacyAoThickness), double(s.legacyAoSlices), double(s.legacyAoSteps),
+             double(s.legacyAoDivisor), double(s.legacyVoxelResolution), double(s.legacyLevel0Extent),
+             double(s.legacyMaxLevels), double(s.legacyScreenRadiance))
+        .done();
   }
 
   std::vector<std::pair<std::string, double>> figures() const override {
@@ -110,7 +131,6 @@ class LegacyPath final : public LightingPath {
     // The voxels persist: they are rebuilt only when what they hold changes (where the levels
     // sit in the world, the sun, the settings), so a still camera pays nothing for them; when
     // only some instances changed, only the voxels those reach are redone.
-    const uint64_t key = voxelKey(in, fit);
     const std::vector<scene::Bounds> changes = takeInstanceChanges(in);
     const graph::ResourceDesc voxelDesc = graph::ResourceDesc::image3D(
         VK_FORMAT_R16G16B16A16_SFLOAT, 6 * R, R, N * R,
@@ -137,7 +157,10 @@ class LegacyPath final : public LightingPath {
     // History counts only if this frame's declaration keeps it: a resize recreates it with
     // undefined contents (NaN on lavapipe's reused memory, once).
     const auto& ex = in.executor;
-    const bool aoHistory = s.legacyAoFrames > 1 && ex.historyValid(kLegacyHistSsao, ssaoDesc);
+    const bool screenKept =
+        screen_.advance(kScreenHistory, in.key, name(), in.historyLog, {ex.historyValid(kLegacyHistSsao, ssaoDesc)}).action !=
+        HistoryAction::Restart;
+    const bool aoHistory = s.legacyAoFrames > 1 && screenKept && ex.historyValid(kLegacyHistSsao, ssaoDesc);
     push.aoHistory = aoHistory ? s.legacyAoFrames : 0u;
 
     graph.addPass(
@@ -161,13 +184,17 @@ class LegacyPath final : public LightingPath {
               .storageImage(shared::kLegacyBindingSsaoOut, ctx.image(kLegacySsao).view());
           ctx.dispatch(aw, ah);
         });
-    const bool historyOk =
-        feedback && ex.historyValid(kLegacyHistRadiance, radianceDesc) && ex.historyValid(kLegacyHistDepth, depthDesc);
+    const bool historyOk = feedback && screenKept && ex.historyValid(kLegacyHistRadiance, radianceDesc) &&
+                           ex.historyValid(kLegacyHistDepth, depthDesc);
     const bool voxelsKept = ex.historyValid(kVoxelRadiance, voxelDesc) && ex.historyValid(kVoxelRadianceMips, voxelMipsDesc);
     // The voxels hold this placement, sun and settings: a change of some instances can be
     // patched into them.
-    const bool placed = voxelsKept && key == voxelKey_;
-    voxelKey_ = key;
+    const std::vector<glm::dvec4> placement = voxelPlacement(in, fit);
+    const HistoryPolicy voxelPolicy{"legacy.voxels", kVoxelRestarts | (feedback ? partBit(FramePart::Sky) : 0u), 0};
+    const FrameParts moved = placement != placement_ ? partBit(FramePart::CameraPosition) : 0u;
+    const bool placed =
+        voxels_.advance(voxelPolicy, in.key, name(), in.historyLog, {voxelsKept, moved}).action != HistoryAction::Restart;
+    placement_ = placement;
     push.screenRadiance = historyOk ? 1u : 0u;
     const auto work = std::make_shared<VoxelWork>(planVoxelUpdate(in, fit, changes, placed, historyOk));
     lastWork_ = {work->kind, work->instancesDrawn, work->regionVoxels, uint32_t(work->regionCount())};
@@ -348,22 +375,16 @@ class LegacyPath final : public LightingPath {
         });
   }
 
-  // Everything the voxels depend on: the scene, the levels' place in the world (not
-  // camera-relative, so a camera moving within one voxel keeps them), the sun and the settings.
-  static uint64_t voxelKey(const FrameInputs& in, const LegacyClipmapFit& fit) {
-    std::vector<double> k;
+  // Where the levels sit in the world, per level: the corner in whole voxels and the voxel
+  // size (not camera-relative, so a camera moving within one voxel keeps them).
+  static std::vector<glm::dvec4> voxelPlacement(const FrameInputs& in, const LegacyClipmapFit& fit) {
+    std::vector<glm::dvec4> placement;
     for (uint32_t l = 0; l < fit.clipmap.levels; ++l) {
-      glm::dvec3 world = glm::dvec3(glm::vec3(fit.clipmap.levelMin[l])) + in.cameraWorld;
-      double v = fit.clipmap.levelMin[l].w;
-      for (int a = 0; a < 3; ++a) k.push_back(std::round(world[a] / v));
-      k.push_back(v);
+      const glm::dvec3 world = glm::dvec3(glm::vec3(fit.clipmap.levelMin[l])) + in.cameraWorld;
+      const double v = fit.clipmap.levelMin[l].w;
+      placement.emplace_back(glm::round(world / v), v);
     }
-    const auto& c = in.constants;
-    for (const glm::vec4* x : {&c.sunToLight, &c.sunIrradiance}) k.insert(k.end(), {x->x, x->y, x->z, x->w});
-    k.push_back(double(c.flags));
-    k.push_back(double(in.scene.id()));
-    k.push_back(double(fit.clipmap.resolution));
-    return scene::hashBytes(k.data(), k.size() * sizeof(double));
+    return placement;
   }
 
   // The world boxes of the instances whose geometry changed since the last frame (where each
@@ -537,7 +558,6 @@ class LegacyPath final : public LightingPath {
     allInstances_.clear();
     emissive_.clear();
     seen_.clear();
-    voxelKey_ = 0;
     for (uint32_t i = 0; i < in.sceneData.instances.size(); ++i) {
       const auto& m = in.sceneData.materials[in.sceneData.meshes[in.sceneData.instances[i].mesh].material];
       const bool emits = glm::length(m.emissiveFactor) * m.emissiveStrength > 0.0f;
@@ -615,7 +635,8 @@ class LegacyPath final : public LightingPath {
   };
 
   uint64_t sceneId_ = 0;
-  uint64_t voxelKey_ = 0;
+  HistoryKeeper voxels_, screen_;
+  std::vector<glm::dvec4> placement_;  // the voxels' placement in the last frame
   uint32_t settle_ = 0;
   std::vector<uint32_t> plainInstances_, emissiveInstances_, allInstances_;
   std::vector<uint8_t> emissive_;  // per instance

@@ -1,9 +1,11 @@
 // The reference path: a progressive path tracer on the ray-tracing pipeline. It
-// accumulates into a persistent sum while nothing that changes the image changes (view,
-// light, size, scene, settings) and starts over when something does.
+// accumulates into a persistent sum while nothing that changes the image changes (camera,
+// projection, light, scene, geometry, its settings: the frame key) and starts over when
+// something does.
 #include "gpu/acceleration_structure.h"
 #include "graph/executor.h"
 #include "lighting/lighting_path.h"
+#include "lighting/reference/reference_path.h"
 #include "scene/scene.h"
 #include "shared/reference.h"
 #include "shared/scene.h"
@@ -22,6 +24,20 @@ inline constexpr const char* kAo = "reference.ao";
 inline constexpr const char* kIrradianceAccum = "reference.irradianceAccum";
 inline constexpr const char* kIrradiance = "reference.irradiance";
 
+// Every part of the frame key changes the converged image except the per-instance hit
+// albedo (the RT path's, not the materials the reference shades with): the sums start over.
+constexpr HistoryPolicy kAccumulation{
+    "reference.accumulation",
+    parts(FramePart::CameraPosition, FramePart::CameraOrientation, FramePart::Projection, FramePart::Sun, FramePart::Sky,
+          FramePart::Scene, FramePart::Geometry, FramePart::Settings),
+    0};
+
+// The ray-tracing shaders of both pipelines, in their stages' order.
+constexpr const char* kRaygen = "reference/trace.rgen";
+constexpr const char* kIrradianceRaygen = "reference/irradiance.rgen";
+constexpr const char* kMisses[] = {"reference/trace.rmiss", "reference/shadow.rmiss"};
+constexpr const char* kClosestHit = "reference/trace.rchit";
+
 class ReferencePath final : public LightingPath {
  public:
   std::string name() const override { return "reference"; }
@@ -38,12 +54,15 @@ class ReferencePath final : public LightingPath {
     prepareScene(in);
     buildTopLevel(in);
     const uint32_t w = in.settings.width, h = in.settings.height;
-    const uint64_t state = stateHash(in);
-    if (state != state_) samples_ = 0, irradianceSamples_ = 0, state_ = state;
+    const auto accumDesc =
+        graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "sum of path samples (rgb) and their count (a)");
+    const auto aoAccumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h, "sum of AO samples");
+    const bool stored = in.executor.historyValid(kAccum, accumDesc) && in.executor.historyValid(kAoAccum, aoAccumDesc);
+    if (accumulation_.advance(kAccumulation, in.key, name(), in.historyLog, {stored}).action == HistoryAction::Restart)
+      samples_ = 0, irradianceSamples_ = 0;
 
-    graph.declarePersistent(kAccum, graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                                 "sum of path samples (rgb) and their count (a)"));
-    graph.declarePersistent(kAoAccum, graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h, "sum of AO samples"));
+    graph.declarePersistent(kAccum, accumDesc);
+    graph.declarePersistent(kAoAccum, aoAccumDesc);
     shared::RefPush push{};
     push.aoRadius = in.settings.rtAoRadius > 0.0f ? in.settings.rtAoRadius
                                                   : sceneScaledAoRadius(std::max(in.constants.sceneScale, 1e-3f));
@@ -94,6 +113,10 @@ class ReferencePath final : public LightingPath {
   }
 
   uint32_t samples() const { return samples_; }
+  // referenceBounces; rtAoRadius is also the reference's AO radius (reference.ao).
+  uint64_t historySettings(const RenderSettings& s) const override {
+    return KeyHasher().all(double(s.referenceBounces), double(s.rtAoRadius)).done();
+  }
   std::vector<std::pair<std::string, double>> figures() const override {
     return {{"reference.samples", double(samples_)}, {"reference.irradianceSamples", double(irradianceSamples_)}};
   }
@@ -175,9 +198,9 @@ class ReferencePath final : public LightingPath {
     if (!pipeline_) {
       gpu::RayTracingPipelineDesc d;
       d.name = "reference.trace";
-      d.raygen = "reference/trace.rgen";
-      d.misses = {"reference/trace.rmiss", "reference/shadow.rmiss"};
-      d.hitGroups = {{"reference/trace.rchit", ""}};
+      d.raygen = kRaygen;
+      d.misses.assign(std::begin(kMisses), std::end(kMisses));
+      d.hitGroups = {{kClosestHit, ""}};
       d.layout.bindings = {{shared::kRefBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                            {shared::kRefBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
                            {shared::kRefBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
@@ -193,7 +216,7 @@ class ReferencePath final : public LightingPath {
 
       // The irradiance pass: the same paths, misses and hit shader from another ray generation.
       d.name = "reference.irradiance";
-      d.raygen = "reference/irradiance.rgen";
+      d.raygen = kIrradianceRaygen;
       d.layout.bindings = {{shared::kRefBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                            {shared::kRefBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
                            {shared::kRefBindingGeometry, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -244,21 +267,6 @@ class ReferencePath final : public LightingPath {
     tlasTransforms_ = transforms;
   }
 
-  // Everything that changes the converged image.
-  uint64_t stateHash(const FrameInputs& in) const {
-    const auto& c = in.constants;
-    std::vector<float> key;
-    auto add = [&](const float* p, size_t n) { key.insert(key.end(), p, p + n); };
-    add(&c.viewProj[0][0], 16);
-    for (const glm::vec4* v : {&c.sunToLight, &c.sunIrradiance, &c.skyRadiance, &c.viewport}) add(&v->x, 4);
-    key.push_back(float(c.flags));
-    key.push_back(float(in.settings.referenceBounces));
-    key.push_back(in.settings.rtAoRadius);
-    key.push_back(float(sceneId_));
-    key.push_back(float(in.scene.geometryVersion()));
-    return scene::hashBytes(key.data(), key.size() * sizeof(float));
-  }
-
   uint64_t sceneId_ = 0;
   std::vector<gpu::AccelerationStructure> blas_;
   std::vector<uint64_t> blasVersion_;  // per mesh: the vertex version its bottom level holds
@@ -267,7 +275,7 @@ class ReferencePath final : public LightingPath {
   gpu::Buffer geometry_;
   gpu::Pipeline pipeline_;
   gpu::Pipeline irradiancePipeline_;
-  uint64_t state_ = 0;
+  HistoryKeeper accumulation_;
   uint32_t samples_ = 0;
   uint32_t irradianceSamples_ = 0;
 };
@@ -275,5 +283,12 @@ class ReferencePath final : public LightingPath {
 }  // namespace
 
 std::unique_ptr<LightingPath> makeReferencePath() { return std::make_unique<ReferencePath>(); }
+
+std::vector<std::string> referenceShaders() {
+  std::vector<std::string> all{kRaygen, kIrradianceRaygen};
+  all.insert(all.end(), std::begin(kMisses), std::end(kMisses));
+  all.push_back(kClosestHit);
+  return all;
+}
 
 }  // namespace tl::lighting

@@ -21,6 +21,13 @@ using shared::RtPush;
 
 constexpr VkImageLayout kReadOnly = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
 
+// The temporal accumulation (SH, chroma, AO, depth, luma moment) and last frame's radiance
+// that hits on screen reuse. Camera motion is reprojected, except a cut; a new scene or a
+// setting its samples depend on restarts it; a change of the light the rays gather (sun,
+// sky, hit albedo) clips it to this frame's samples (luminance rejection, when on).
+constexpr FrameParts kTemporalRestarts = parts(FramePart::Scene, FramePart::Settings, FramePart::CameraCut);
+constexpr FrameParts kTemporalRejects = parts(FramePart::Sun, FramePart::Sky, FramePart::Albedo);
+
 class RtPath final : public LightingPath {
  public:
   std::string name() const override { return "rt"; }
@@ -65,24 +72,29 @@ class RtPath final : public LightingPath {
     push.maxAccumFrames = s.rtMaxAccumFrames;
     push.aoFilterDepth = 0.02f;
     push.fireflyClamp = std::max(s.rtFireflyClamp, 0.0f);
+    const uint32_t w = s.width, h = s.height;
+    auto image = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, w, h, what); };
+    const graph::ResourceDesc histDescs[] = {
+        image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated SH luma, last frame"),
+        image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated CoCg, AO, frame count, last frame"),
+        image(VK_FORMAT_R32_SFLOAT, "view depth, last frame"), image(VK_FORMAT_R32_SFLOAT, "mean squared sample luma, last frame")};
+    const char* histNames[] = {kHistShY, kHistCoCgAo, kHistDepth, kHistLumaMoment};
+    bool stored = true;
+    for (int i = 0; i < 4; ++i) stored = stored && in.executor.historyValid(histNames[i], histDescs[i]);
     // Luminance rejection is triggered by a change of the light (see shared/rt.h).
-    const uint64_t light = lightingKey(in);
-    push.lightChanged = s.rtLumaRejection && light != lightingKey_ ? 1u : 0u;
-    lightingKey_ = light;
+    const HistoryPolicy temporal{"rt.temporal", kTemporalRestarts, s.rtLumaRejection ? kTemporalRejects : 0u};
+    const HistoryAction action = temporalHistory_.advance(temporal, in.key, name(), in.historyLog, {stored}).action;
+    restart_ = action == HistoryAction::Restart;
+    push.lightChanged = action == HistoryAction::Reject ? 1u : 0u;
     push.disocclusionRays = std::min(s.rtDisocclusionRays, kMaxDisocclusionRays);
     push.hitSky = s.rtHitSky ? 1u : 0u;
     push.emitterCount = s.rtEmitterSampling ? scene_->emitterCount() : 0u;
     push.cameraWorld = glm::vec4(glm::vec3(in.cameraWorld), 0.0f);
 
-    const uint32_t w = s.width, h = s.height;
-    auto image = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, w, h, what); };
     graph.declareImported(kRtTlas, graph::ResourceDesc::buffer(scene_->topLevel().storage().size(),
                                                                "top-level acceleration structure (culled instances)"));
     in.executor.bindImportedBuffer(kRtTlas, scene_->topLevel().storage());
-    graph.declarePersistent(kHistShY, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated SH luma, last frame"));
-    graph.declarePersistent(kHistCoCgAo, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated CoCg, AO, frame count, last frame"));
-    graph.declarePersistent(kHistDepth, image(VK_FORMAT_R32_SFLOAT, "view depth, last frame"));
-    graph.declarePersistent(kHistLumaMoment, image(VK_FORMAT_R32_SFLOAT, "mean squared sample luma, last frame"));
+    for (int i = 0; i < 4; ++i) graph.declarePersistent(histNames[i], histDescs[i]);
     const bool screenRadiance = s.rtScreenRadiance;
     if (screenRadiance)
       graph.declarePersistent(kHistRadiance, image(kCompositeHdrFormat, "composite radiance, last frame"));
@@ -140,8 +152,8 @@ class RtPath final : public LightingPath {
                    Usage::StorageWrite);
         },
         [this, &in, push, raw](graph::PassContext& ctx) mutable {
-          push.historyValid = ctx.historyValid(kHistShY) && ctx.historyValid(kHistCoCgAo) && ctx.historyValid(kHistDepth) &&
-                              ctx.historyValid(kHistLumaMoment);
+          push.historyValid = !restart_ && ctx.historyValid(kHistShY) && ctx.historyValid(kHistCoCgAo) &&
+                              ctx.historyValid(kHistDepth) && ctx.historyValid(kHistLumaMoment);
           VkSampler p = point_.handle();
           ctx.bind(temporal_);
           ctx.pushConstants(push);
@@ -290,6 +302,20 @@ class RtPath final : public LightingPath {
     return out;
   }
 
+  // What the accumulated samples estimate: the rays' reach and targets, the geometry they
+  // hit, what lights a hit, the pre-trace and the firefly clamp. The ray pattern (half rays,
+  // half resolution, two rays) and the accumulation window change only the noise and the
+  // weights: the history is kept across them. Post-accumulation settings (the denoiser, the
+  // blend to the far field) hold no history.
+  uint64_t historySettings(const RenderSettings& s) const override {
+    return KeyHasher()
+        .all(double(s.rtAoRadius), double(s.rtRayLength), double(s.rtSimplifyRatio), double(s.rtSimplifyError),
+             double(s.rtPretrace), double(s.rtPretraceSteps), double(s.rtPretracePixels), double(s.rtThickness),
+             double(s.rtFireflyClamp), double(s.rtHitSky), double(s.rtEmitterSampling), double(s.rtScreenRadiance),
+             double(s.rtCullAngle), double(s.rtCullMargin))
+        .done();
+  }
+
   std::vector<std::pair<std::string, double>> figures() const override {
     if (!scene_) return {};
     const RtSceneStats& st = scene_->stats();
@@ -389,7 +415,7 @@ class RtPath final : public LightingPath {
         },
         [this, &in, push, screenRadiance, &r, first](graph::PassContext& ctx) {
           RtPush p = push;
-          p.screenRadiance = useScreenRadiance(ctx, push, screenRadiance);
+          p.screenRadiance = useScreenRadiance(ctx, push, screenRadiance && !restart_);
           // The first ray's bindings are read by the second ray only: for the first ray itself the
           // G-buffer's normal (read-only here) stands in, unread.
           auto firstRay = [&](const char* name) { return ctx.image(first ? name : "gbuffer.normal").view(); };
@@ -431,7 +457,7 @@ class RtPath final : public LightingPath {
         },
         [this, &in, push, screenRadiance, cw, ch](graph::PassContext& ctx) {
           RtPush rays = push;
-          rays.screenRadiance = useScreenRadiance(ctx, push, screenRadiance);
+          rays.screenRadiance = useScreenRadiance(ctx, push, screenRadiance && !restart_);
           ctx.bind(disocclusion_);
           ctx.pushConstants(rays);
           writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance)
@@ -512,18 +538,6 @@ class RtPath final : public LightingPath {
     double farthest = 0.0;
     for (int c = 0; c < 8; ++c) farthest = std::max(farthest, glm::length(b.corner(c) - in.cameraWorld));
     return farthest;
-  }
-
-  // Everything that changes the light the rays gather: the sun, the sky, the instances'
-  // albedos and emission (overrides, the baked database) and the scene itself.
-  static uint64_t lightingKey(const FrameInputs& in) {
-    const auto& c = in.constants;
-    const float values[] = {c.sunToLight.x,   c.sunToLight.y,   c.sunToLight.z,   c.sunIrradiance.x,
-                            c.sunIrradiance.y, c.sunIrradiance.z, c.skyRadiance.x, c.skyRadiance.y,
-                            c.skyRadiance.z,   float(c.flags)};
-    uint64_t k = scene::hashBytes(values, sizeof values);
-    const uint64_t more[] = {k, in.instanceAlbedoVersion, in.scene.id()};
-    return scene::hashBytes(more, sizeof more);
   }
 
   static void readCommon(graph::PassBuilder& b) {
@@ -711,7 +725,8 @@ class RtPath final : public LightingPath {
   uint64_t sceneId_ = 0;
   uint64_t albedoVersion_ = ~0ull;
   uint32_t sceneInstances_ = 0;
-  uint64_t lightingKey_ = 0;
+  HistoryKeeper temporalHistory_;
+  bool restart_ = false;  // this frame drops the temporal history (a cut, a new scene, a setting)
   RtResolvedParams params_;
   gpu::Image blueNoise_;
   gpu::Sampler point_;
