@@ -1,5 +1,7 @@
 #include "bake_command.h"
 
+#include "cli_args.h"
+
 #include "session/session.h"
 
 #include <fmt/format.h>
@@ -97,5 +99,9 @@ int runBake(const BakeArgs& a, const std::string& defaultScene) {
              p.failed, seconds, p.gpuSeconds > 0.0 ? p.baked / p.gpuSeconds : 0.0);
   fmt::print("database {}: {} baked, {} overrides, {} bytes\n", a.db, session.albedo().database()->baked().size(),
              session.albedo().database()->overrides().size(), std::filesystem::file_size(a.db));
-  return p.failed ? 1 : 0;
+  if (p.failed) {
+    fmt::print(stderr, "twinlight: error: {} of {} keys failed to bake (listed above)\n", p.failed, p.total);
+    return 1;
+  }
+  return exitStatus(session);
 }

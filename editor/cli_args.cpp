@@ -109,3 +109,9 @@ void applyLight(tl::session::Session& session, const LightArgs& a) {
   }
   session.setLighting(l);
 }
+
+int exitStatus(const tl::session::Session& session) {
+  if (session.validationErrors() == 0) return 0;
+  fmt::print(stderr, "twinlight: error: {} Vulkan validation error(s)\n", session.validationErrors());
+  return 1;
+}

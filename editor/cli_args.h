@@ -1,4 +1,5 @@
-// Parsing and applying the command line's view and light options.
+// Parsing and applying the command line's view and light options, and the exit status every
+// headless subcommand ends with.
 #pragma once
 
 #include "session/session.h"
@@ -43,3 +44,7 @@ glm::vec3 parseColor(const std::string& text, const char* what);
 
 void applyView(tl::session::Session& session, const ViewArgs& args);
 void applyLight(tl::session::Session& session, const LightArgs& args);
+
+// What a subcommand that otherwise succeeded returns: 1, with one error line, when the Vulkan
+// validation layers reported errors during it (a result produced with them is not trusted).
+int exitStatus(const tl::session::Session& session);

@@ -36,7 +36,8 @@ void checkVk(VkResult r) {
 
 }  // namespace
 
-EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<std::filesystem::path> script) {
+EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<std::filesystem::path> script,
+                     lighting::MaterialMode materials) {
   settings_ = loadSettings();
   browserDir_ = std::filesystem::current_path();
   createWindow();
@@ -53,6 +54,7 @@ EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<s
     openCapture(first);
     return;
   }
+  session_->settings().materials = materials;
   // The first scene loads before the first frame so a script starts on a loaded scene.
   try {
     session_->loadScene(first);
@@ -466,6 +468,9 @@ void EditorApp::recordAndPresent() {
   if (display && viewportSize_.x >= 1.0f && viewportSize_.y >= 1.0f && !load_.valid()) {
     VkImageLayout layout = session_->displayImageLayout();
     gpu::transitionImage(cmd, display->handle(), VK_IMAGE_ASPECT_COLOR_BIT, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    // The blit writes over the clear: it waits for it.
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                       VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkImageBlit blit{};
     blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     blit.srcOffsets[1] = {int32_t(display->extent().width), int32_t(display->extent().height), 1};

@@ -27,7 +27,9 @@ class Script;
 
 class EditorApp {
  public:
-  EditorApp(std::optional<std::filesystem::path> scene, std::optional<std::filesystem::path> script);
+  // `materials`: the material override mode the session starts with (`--materials`).
+  EditorApp(std::optional<std::filesystem::path> scene, std::optional<std::filesystem::path> script,
+            lighting::MaterialMode materials = lighting::MaterialMode::Authored);
   ~EditorApp();
   int run();  // exit code
 

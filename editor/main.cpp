@@ -1,7 +1,8 @@
 // `twinlight`: one binary. Without a subcommand it shows the default (or given) scene;
 // the headless subcommands work on machines without a display. Errors are one line on
-// stderr and a non-zero exit: 1 for a failure at run time, 2 for bad usage, 3 for a
-// regression gate (compare --fail-above) that failed.
+// stderr (`twinlight: error: ...`) and a non-zero exit: 2 when the command line does not
+// parse, 3 for a regression gate (compare --fail-above) that failed, 1 for everything else
+// (bad values, files, failures at run time, and Vulkan validation errors when the layers are on).
 #include "bake_command.h"
 #include "bench.h"
 #include "compare_cameras.h"
@@ -47,7 +48,8 @@ struct RenderOptions {
   LightArgs light;
   std::string dumpGraph;
   std::optional<uint32_t> spp;
-  uint32_t bounces = 8;
+  uint32_t bounces = tl::lighting::RenderSettings{}.referenceBounces;
+  std::string materials = "authored";
   std::optional<float> sunSizeDegrees;
   bool hardShadows = false;
   std::optional<float> rtMeshRatio;
@@ -61,7 +63,19 @@ struct RenderOptions {
   std::optional<double> animateFps;
 };
 
+constexpr const char* kMaterialsHelp =
+    "material override, every path and the reference: authored (as the scene says), diffuse (Lambert with the "
+    "authored base colour and textures: no specular, no normal maps) or clay (Lambert 0.8 grey, no textures)";
+
+// The material override mode by name (one `twinlight: error:` line for anything else).
+tl::lighting::MaterialMode parseMaterials(const std::string& name) {
+  const auto mode = tl::lighting::parseMaterialMode(name);
+  if (!mode) throw tl::session::SessionError(fmt::format("--materials must be authored, diffuse or clay, not `{}`", name));
+  return *mode;
+}
+
 void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
+  cmd.add_option("--materials", o.materials, kMaterialsHelp)->capture_default_str();
   cmd.add_option("--camera", o.view.camera, "use the scene's glTF camera N (0-based)");
   cmd.add_option("--albedo-db", o.albedoDb, "albedo database whose baked values and overrides the RT path's hits use");
   cmd.add_flag("--allow-outside-files", o.allowOutsideFiles,
@@ -114,8 +128,10 @@ void printFrameTimes(const Session& session) {
 
 // Scene, path, size, view and light from the options every headless subcommand shares.
 void prepareSession(Session& session, const RenderOptions& o) {
+  const tl::lighting::MaterialMode materials = parseMaterials(o.materials);
   session.loadScene(o.scene.empty() ? defaultScene() : std::filesystem::path(o.scene),
                     tl::scene::LoadOptions{o.allowOutsideFiles});
+  session.settings().materials = materials;
   session.setPath(o.path);
   auto [w, h] = parseSize(o.size);
   session.setSize(w, h);
@@ -194,11 +210,7 @@ int runRender(const RenderOptions& o) {
       fmt::print("wrote {}\n", o.dumpGraph);
     }
   }
-  if (session.validationErrors() > 0) {
-    fmt::print(stderr, "twinlight: error: {} Vulkan validation error(s)\n", session.validationErrors());
-    return 1;
-  }
-  return 0;
+  return exitStatus(session);
 }
 
 int runInfo() {
@@ -217,7 +229,7 @@ int runInfo() {
   fmt::print("lighting paths:\n");
   for (auto& p : session.paths())
     fmt::print("  {:10} {}{}\n", p.name, p.description, p.available ? "" : "  [unavailable: " + p.unavailableReason + "]");
-  return 0;
+  return exitStatus(session);
 }
 
 }  // namespace
@@ -227,9 +239,10 @@ int main(int argc, char** argv) {
   CLI::App app{"Twinlight: a lighting lab comparing ray-traced and legacy real-time lighting against a path tracer"};
   app.require_subcommand(0, 1);
   app.set_version_flag("--version", "twinlight " + tl::versionString());
-  std::string sceneArg, scriptArg;
+  std::string sceneArg, scriptArg, materialsArg = "authored";
   bool headless = false;
   app.add_option("scene", sceneArg, "glTF scene to open (default: content/atrium.gltf)");
+  app.add_option("--materials", materialsArg, kMaterialsHelp)->capture_default_str();
   app.add_option("--script", scriptArg, "run editor actions from FILE (see editor/script.h), then quit");
   app.add_flag("--headless", headless, "render the scene to out/ instead of opening the editor");
 
@@ -372,14 +385,8 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    // Bad usage: one line like every other error, exit status 2.
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     fmt::print(stderr, "twinlight: error: {} (see --help)\n", e.what());
     return 2;
   }
@@ -398,7 +405,7 @@ int main(int argc, char** argv) {
                  manifest["scene"].get<std::string>(), manifest["lightingPath"].get<std::string>(),
                  manifest["frame"].get<uint64_t>(), captureOut);
       if (captureRenderDoc) renderDocFrame(session, std::filesystem::path(captureOut) / "renderdoc");
-      return 0;
+      return exitStatus(session);
     }
     if (*compareCmd) {
       // Usage first, before a device or a scene is touched.
@@ -431,7 +438,9 @@ int main(int argc, char** argv) {
       compare.cacheDir = compareCache;
       size_t gateFailures = 0;
       // A failed gate is its own exit code, after every report is written.
+      // Validation errors first (the figures are not trusted then), then the gate.
       auto gateExit = [&]() {
+        if (int status = exitStatus(session); status != 0) return status;
         if (gateFailures == 0) return 0;
         std::fflush(stdout);  // the figures first, then the error line
         fmt::print(stderr, "twinlight: error: regression gate failed: {} figure(s) above their thresholds\n", gateFailures);
@@ -465,12 +474,15 @@ int main(int argc, char** argv) {
             fmt::print("{:27} {:13.4f} {:18.4f}\n", p["path"].get<std::string>(), num(p["stages"]["ao"]["meanAbsError"]),
                        num(p["stages"]["irradiance"]["relMSE"]));
         const auto& ref = report["reference"];
-        if (ref["source"] == "file")
+        if (ref["source"] == "file") {
           fmt::print("reference: {} (external)\n", ref["file"].get<std::string>());
-        else
+        } else {
           fmt::print("reference: {} spp{}{}\n", ref["spp"].get<int>(),
                      ref["scope"] == "same" ? ", same scope (direct + one bounce)" : "",
                      ref["cached"].get<bool>() ? " (reused from the cache)" : "");
+          fmt::print("reference bounces: {}\n", ref["bouncePolicy"].get<std::string>());
+        }
+        fmt::print("materials: {}\n", ref["materials"].get<std::string>());
         fmt::print("wrote {}\n", (std::filesystem::absolute(outDir) / "report.html").string());
         if (report.contains("gate")) {
           const auto& gate = report["gate"];
@@ -539,22 +551,24 @@ int main(int argc, char** argv) {
         tl::session::writeTextFile(benchJson, report.dump(2) + "\n");
         fmt::print("wrote {}\n", benchJson);
       }
-      return 0;
+      return exitStatus(session);
     }
     // No subcommand: the main job on the default (or given) scene. The interactive editor
     // needs a display; without one the scene is rendered headless.
     const char* x11 = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
     bool haveDisplay = (x11 && *x11) || (wayland && *wayland);
+    const tl::lighting::MaterialMode materials = parseMaterials(materialsArg);
     if (!headless && (haveDisplay || !scriptArg.empty())) {
       std::optional<std::filesystem::path> scene, script;
       if (!sceneArg.empty()) scene = sceneArg;
       if (!scriptArg.empty()) script = scriptArg;
-      tl::editor::EditorApp editor(scene, script);
+      tl::editor::EditorApp editor(scene, script, materials);
       return editor.run();
     }
     RenderOptions o;
     o.scene = sceneArg;
+    o.materials = materialsArg;
     std::filesystem::path stem = sceneArg.empty() ? defaultScene().stem() : std::filesystem::path(sceneArg).stem();
     o.outputs = {(std::filesystem::path("out") / (stem.string() + ".png")).string(),
                  (std::filesystem::path("out") / (stem.string() + ".exr")).string()};

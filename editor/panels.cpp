@@ -349,6 +349,17 @@ void lightingPanel(EditorApp& app) {
   if (ImGui::SliderFloat("Exposure", &ev, -10.0f, 16.0f, "%.2f EV")) l.exposureEv = ev, changed = true;
   ImGui::EndDisabled();
   tooltip("Radiance is multiplied by 2^-EV before the ACES tonemap");
+  // Every path's history and the reference's sum see the mode in the frame's flags, so they
+  // restart by themselves.
+  auto& materials = session.settings().materials;
+  if (ImGui::BeginCombo("Materials", lighting::materialModeName(materials))) {
+    for (lighting::MaterialMode m : lighting::kMaterialModes)
+      if (ImGui::Selectable(lighting::materialModeName(m), m == materials)) materials = m;
+    ImGui::EndCombo();
+  }
+  tooltip("Material override, every path and the reference. authored: as the scene says; diffuse: Lambert with the "
+          "authored base colour and textures (no specular, no normal maps); clay: Lambert 0.8 grey, no textures. "
+          "Emission stays. Diffuse and clay compare exactly with any other renderer's Lambertian images");
   // A composite setting: no history holds it, so nothing restarts.
   ImGui::Checkbox("Specular GI", &session.settings().specularGi);
   tooltip("Metals and glossy surfaces reflect the lighting path's SH (dominant direction, roughness widened where the "

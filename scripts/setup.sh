@@ -2,7 +2,7 @@
 # Twinlight set-up for Debian 12 (bookworm). Idempotent: says what it will change, installs
 # only what is missing, upgrades lavapipe from bookworm-backports when the installed one has
 # no ray tracing (on Debian 12 only: the backports source is bookworm's), then configures and
-# builds the Release tree in build/.
+# builds the Release tree in build/ with warnings as errors.
 #
 #   scripts/setup.sh            install + configure + build
 #   scripts/setup.sh --no-build install only
@@ -99,7 +99,13 @@ fi
 
 if [ "${1:-}" = "--no-build" ]; then exit 0; fi
 
-if [ ! -f "$build_dir/build.ninja" ]; then
-  cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release
+# Compiler warnings are errors (TWINLIGHT_WERROR=OFF in the environment turns that off). A
+# tree configured earlier is configured again with the same switch, keeping its generator
+# and build type: one configured without -Werror does not stay that way.
+werror="${TWINLIGHT_WERROR:-ON}"
+if [ -f "$build_dir/CMakeCache.txt" ]; then
+  cmake -S "$root" -B "$build_dir" -DTWINLIGHT_WERROR="$werror" >/dev/null
+else
+  cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DTWINLIGHT_WERROR="$werror"
 fi
 cmake --build "$build_dir"

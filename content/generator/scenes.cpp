@@ -109,6 +109,56 @@ void furnace(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// The white furnace: a convex object whose base colour is 1 (roughness 1, dielectric) under a
+// uniform sky of radiance 1. An energy-conserving BRDF and a correct renderer show exactly 1 on
+// every pixel, whatever the angle and however many bounces: nothing is absorbed, nothing
+// created. Finely tessellated so the shading normal stays within ~1.5 degrees of the triangle's
+// (a path tracer loses the light that leaves between the two planes: under 0.1% here).
+void whiteFurnace(const std::filesystem::path& dir) {
+  SceneWriter w("white_furnace");
+  int white = w.material({"furnace_white", {1.0f, 1.0f, 1.0f}, 0.0f, 1.0f});
+  w.node("sphere", w.mesh("sphere", sphere(1.0f, 160, 80), white), {0.0f, 0.0f, 0.0f});
+  w.camera("front", {0.0f, 0.0f, 3.2f}, {0.0f, 0.0f, 0.0f}, 45.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
+// A closed white corridor, 2 x 2.5 x 12 m inside 0.2 m walls, lit only through a door at its
+// south end by the sun and the sky: the far end sees light only after many bounces, so a
+// bounce cap shows as missing light (the reference's bounce policy is measured here).
+void corridor(const std::filesystem::path& dir) {
+  SceneWriter w("corridor");
+  int white = w.material({"plaster_white", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  const float t = 0.2f, width = 2.0f, height = 2.5f, length = 12.0f;
+  const float zMid = -length / 2;
+  wall(w, "floor", white, {0.0f, -t / 2, zMid}, {width + 2 * t, t, length + 2 * t});
+  wall(w, "ceiling", white, {0.0f, height + t / 2, zMid}, {width + 2 * t, t, length + 2 * t});
+  wall(w, "wall_west", white, {-width / 2 - t / 2, height / 2, zMid}, {t, height, length});
+  wall(w, "wall_east", white, {width / 2 + t / 2, height / 2, zMid}, {t, height, length});
+  wall(w, "wall_north", white, {0.0f, height / 2, -length - t / 2}, {width, height, t});
+  // The south wall around a 0.8 x 2 m door.
+  const float door = 0.8f, doorHeight = 2.0f, side = (width - door) / 2;
+  wall(w, "wall_south_west", white, {-(door + side) / 2, height / 2, t / 2}, {side, height, t});
+  wall(w, "wall_south_east", white, {(door + side) / 2, height / 2, t / 2}, {side, height, t});
+  wall(w, "door_lintel", white, {0.0f, (doorHeight + height) / 2, t / 2}, {door, height - doorHeight, t});
+  w.camera("inside", {0.0f, 1.5f, -0.6f}, {0.0f, 1.0f, -length}, 60.0f);
+  w.sun({0.1f, -0.45f, -1.0f}, 10.0f);
+  w.sky({0.6f, 0.75f, 1.0f});
+  w.write(dir);
+}
+
+// A closed 2 m box whose six walls (base colour 0.8) all emit radiance 0.2, seen from inside:
+// with Lambertian walls (the diffuse and clay override modes) the radiance is the same
+// everywhere, L = Le / (1 - rho) = 1.
+void closedBox(const std::filesystem::path& dir) {
+  SceneWriter w("closed_box");
+  int glowing = w.material({"glowing_white", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f, {1.0f, 1.0f, 1.0f}, 0.2f});
+  w.node("box", w.mesh("box", box({2.0f, 2.0f, 2.0f}), glowing), {0.0f, 0.0f, 0.0f});
+  w.camera("inside", {0.0f, 0.0f, 0.5f}, {0.0f, 0.0f, -1.0f}, 70.0f);
+  w.sky({0.0f, 0.0f, 0.0f});
+  w.write(dir);
+}
+
 void plane(const std::filesystem::path& dir) {
   SceneWriter w("plane");
   int grey = w.material({"ground_grey", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
@@ -259,6 +309,9 @@ int main(int argc, char** argv) {
     tl::content::grove(dir);
     tl::content::banners(dir);
     tl::content::sparks(dir);
+    tl::content::whiteFurnace(dir);
+    tl::content::corridor(dir);
+    tl::content::closedBox(dir);
     tl::content::writeHardScenes(dir / "hard");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());

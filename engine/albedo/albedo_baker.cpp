@@ -162,7 +162,7 @@ std::vector<BakeOutcome> AlbedoBaker::bake(const std::vector<const Combination*>
   graph.markOutput(kBakeSums);
   executor_.requestReadback(kBakeSums);
   if (keepAtlas_) executor_.requestReadback(kBakeAtlas);
-  executor_.execute(graph, graph.compile());
+  executor_.execute(graph, graph.compile(executor_.entryStates(graph)));
 
   const graph::Readback& back = executor_.readback(kBakeSums);
   const auto* sums = reinterpret_cast<const shared::AlbedoTileSum*>(back.bytes.data());

@@ -53,9 +53,9 @@ VkAccelerationStructureBuildSizesInfoKHR buildSizes(Device& device, const VkAcce
   return sizes;
 }
 
-VkDeviceAddress alignedScratch(Device& device, const Buffer& scratch) {
+VkDeviceAddress alignedScratch(Device& device, const Buffer& scratch, VkDeviceSize offset = 0) {
   const VkDeviceSize align = scratchAlignment(device);
-  return (scratch.address() + align - 1) / align * align;
+  return (scratch.address() + offset + align - 1) / align * align;
 }
 
 // Sizes, allocates, builds and waits: the shared tail of both levels. With `compact`, the
@@ -242,15 +242,32 @@ VkDeviceSize refitScratchBytes(Device& device, const TriangleGeometry& g) {
   return buildSizes(device, info, g.triangleCount).updateScratchSize + scratchAlignment(device);
 }
 
+VkDeviceSize rebuildScratchBytes(Device& device, const TriangleGeometry& g) {
+  VkAccelerationStructureGeometryKHR geometry = trianglesGeometry(g);
+  VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, false);
+  return buildSizes(device, info, g.triangleCount).buildScratchSize + scratchAlignment(device);
+}
+
 void recordRefit(VkCommandBuffer cmd, Device& device, const AccelerationStructure& blas, const TriangleGeometry& g,
-                 const Buffer& scratch) {
+                 const Buffer& scratch, VkDeviceSize scratchOffset) {
   VkAccelerationStructureGeometryKHR geometry = trianglesGeometry(g);
   VkAccelerationStructureBuildGeometryInfoKHR info =
       buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, false, true);
   info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_UPDATE_KHR;
   info.srcAccelerationStructure = blas.handle();
   info.dstAccelerationStructure = blas.handle();
-  info.scratchData.deviceAddress = alignedScratch(device, scratch);
+  info.scratchData.deviceAddress = alignedScratch(device, scratch, scratchOffset);
+  VkAccelerationStructureBuildRangeInfoKHR range{g.triangleCount, 0, 0, 0};
+  const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
+  device.ext().cmdBuildAccelerationStructures(cmd, 1, &info, &ranges);
+}
+
+void recordRebuild(VkCommandBuffer cmd, Device& device, const AccelerationStructure& blas, const TriangleGeometry& g,
+                   const Buffer& scratch, VkDeviceSize scratchOffset) {
+  VkAccelerationStructureGeometryKHR geometry = trianglesGeometry(g);
+  VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, false);
+  info.dstAccelerationStructure = blas.handle();
+  info.scratchData.deviceAddress = alignedScratch(device, scratch, scratchOffset);
   VkAccelerationStructureBuildRangeInfoKHR range{g.triangleCount, 0, 0, 0};
   const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
   device.ext().cmdBuildAccelerationStructures(cmd, 1, &info, &ranges);
@@ -289,33 +306,22 @@ void TopLevelBuilder::prepare(const std::vector<TlasInstance>& instances) {
     createStructure(device, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, sizes.accelerationStructureSize, name_,
                     structure_.buffer_, structure_.handle_, structure_.address_);
     structure_.bytes_ = structure_.buffer_.size();
-    scratch_ = Buffer(device, sizes.buildScratchSize + scratchAlignment(device), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                      MemoryUsage::GpuOnly, fmt::format("{}.scratch", name_));
+    scratchBytes_ = sizes.buildScratchSize + scratchAlignment(device);
   }
   std::vector<VkAccelerationStructureInstanceKHR> raw = rawInstances(instances);
   if (!raw.empty()) instances_.write(raw.data(), raw.size() * sizeof(raw[0]));
 }
 
-void TopLevelBuilder::record(VkCommandBuffer cmd) {
+void TopLevelBuilder::record(VkCommandBuffer cmd, const Buffer& scratch) {
+  TL_CHECK(scratch.size() >= scratchBytes_, "`{}` needs {} bytes of build scratch, `{}` has {}", name_, scratchBytes_,
+           scratch.name(), scratch.size());
   VkAccelerationStructureGeometryKHR geometry = instancesGeometry(instances_.address());
   VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, geometry, false);
   info.dstAccelerationStructure = structure_.handle_;
-  info.scratchData.deviceAddress = alignedScratch(*device_, scratch_);
+  info.scratchData.deviceAddress = alignedScratch(*device_, scratch);
   VkAccelerationStructureBuildRangeInfoKHR range{count_, 0, 0, 0};
   const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
-  // The previous frame's traces finished (the caller waited); its build's scratch writes too.
-  VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  before.srcAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR | VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR;
-  before.dstAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR | VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR;
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR | VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR,
-                       VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0, 1, &before, 0, nullptr, 0, nullptr);
   device_->ext().cmdBuildAccelerationStructures(cmd, 1, &info, &ranges);
-  VkMemoryBarrier after{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  after.srcAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
-  after.dstAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR;
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
-                       VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &after, 0,
-                       nullptr, 0, nullptr);
 }
 
 }  // namespace tl::gpu

@@ -1,6 +1,7 @@
 // Acceleration structures for ray tracing: bottom level from a triangle mesh in GPU
-// buffers, top level from instances. Builds are recorded into a command buffer or run
-// immediately; the RT lighting module schedules them (T5).
+// buffers, top level from instances. Builds at load time run immediately (and wait); builds
+// in a frame are recorded into a render-graph pass of kind AccelerationStructureBuild, which
+// places their barriers (nothing here records a barrier between passes).
 #pragma once
 
 #include "gpu/resources.h"
@@ -67,37 +68,50 @@ AccelerationStructure buildBottomLevel(Device& device, const TriangleGeometry& g
 VkDeviceSize bottomLevelBytes(Device& device, const TriangleGeometry& geometry, bool allowUpdate);
 AccelerationStructure buildBottomLevelAt(Device& device, const TriangleGeometry& geometry, std::string_view name,
                                          const Buffer& storage, VkDeviceSize offset, bool allowUpdate);
-// Scratch bytes a refit of `geometry` needs (alignment included).
+// Scratch bytes a refit (or an in-place rebuild) of `geometry` needs, alignment included: the
+// caller's scratch buffer holds one such range per build recorded together.
 VkDeviceSize refitScratchBytes(Device& device, const TriangleGeometry& geometry);
+VkDeviceSize rebuildScratchBytes(Device& device, const TriangleGeometry& geometry);
 // Records an in-place refit of a bottom level built with allowUpdate from the same geometry,
-// reading its vertices as they are now. The caller places the barriers around it (vertex
-// writes before, acceleration-structure reads after) and gives each refit in flight its own
-// `scratch` (refitScratchBytes).
+// reading its vertices as they are now, with scratch at `scratchOffset` of `scratch`.
+// Recorded inside a render-graph pass of kind AccelerationStructureBuild, which places every
+// barrier around it (vertex writes before, acceleration-structure reads after).
 void recordRefit(VkCommandBuffer cmd, Device& device, const AccelerationStructure& blas, const TriangleGeometry& geometry,
-                 const Buffer& scratch);
+                 const Buffer& scratch, VkDeviceSize scratchOffset);
+// Records a full build of `geometry` into an existing bottom level made for the same geometry
+// without allowUpdate (buildBottomLevelAt); the same contract as recordRefit.
+void recordRebuild(VkCommandBuffer cmd, Device& device, const AccelerationStructure& blas, const TriangleGeometry& geometry,
+                   const Buffer& scratch, VkDeviceSize scratchOffset);
 AccelerationStructure buildTopLevel(Device& device, const std::vector<TlasInstance>& instances, std::string_view name);
 
-// A top level rebuilt from scratch every frame inside a command buffer (Metro: "TLAS =
-// rebuild only from scratch"): storage, scratch and the instance upload buffer grow to the
-// largest instance count seen and are reused. The caller waits for the frame before the
-// next record() (the upload buffer is rewritten).
+// A top level rebuilt from scratch inside a command buffer (Metro: "TLAS = rebuild only from
+// scratch"): storage and the instance upload buffer grow to the largest instance count seen
+// and are reused. The caller waits for the frame before the next prepare() (the upload buffer
+// is rewritten) and records the build inside a render-graph pass of kind
+// AccelerationStructureBuild, which derives its barriers: the pass reads instances() as
+// BuildInput (and any bottom levels it writes in the frame), writes storage() and a transient
+// scratch buffer of scratchBytes().
 class TopLevelBuilder {
  public:
   TopLevelBuilder() = default;
   TopLevelBuilder(Device& device, std::string name) : device_(&device), name_(std::move(name)) {}
   // Sizes everything for `instances.size()` and uploads the instances (host side).
   void prepare(const std::vector<TlasInstance>& instances);
-  // Records the build and a barrier making it visible to ray-tracing and compute shaders.
-  void record(VkCommandBuffer cmd);
+  // Records the build, with `scratch` (at least scratchBytes()); no barriers.
+  void record(VkCommandBuffer cmd, const Buffer& scratch);
   const AccelerationStructure& structure() const { return structure_; }
   Buffer& storage() { return structure_.buffer_; }
+  Buffer& instances() { return instances_; }
+  VkDeviceSize scratchBytes() const { return scratchBytes_; }
   uint32_t instanceCount() const { return count_; }
+  explicit operator bool() const { return bool(structure_); }
 
  private:
   Device* device_ = nullptr;
   std::string name_;
   AccelerationStructure structure_;
-  Buffer instances_, scratch_;
+  Buffer instances_;
+  VkDeviceSize scratchBytes_ = 0;
   uint32_t capacity_ = 0, count_ = 0;
 };
 

@@ -115,6 +115,18 @@ void Device::createInstance(const DeviceOptions& options) {
                              [](auto& l) { return !std::strcmp(l.layerName, "VK_LAYER_KHRONOS_validation"); });
     if (!found) throw Error("validation was requested but VK_LAYER_KHRONOS_validation is not installed (package vulkan-validationlayers)");
     layers.push_back("VK_LAYER_KHRONOS_validation");
+    // The layer provides the extension whose struct switches synchronization validation on.
+    uint32_t count = 0;
+    vkEnumerateInstanceExtensionProperties("VK_LAYER_KHRONOS_validation", &count, nullptr);
+    std::vector<VkExtensionProperties> layerExts(count);
+    vkEnumerateInstanceExtensionProperties("VK_LAYER_KHRONOS_validation", &count, layerExts.data());
+    const bool features = std::any_of(layerExts.begin(), layerExts.end(), [](auto& p) {
+      return !std::strcmp(p.extensionName, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+    });
+    if (!features)
+      throw Error("validation was requested but the validation layer lacks " VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME
+                  " (synchronization validation)");
+    exts.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
   }
 
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
@@ -129,13 +141,22 @@ void Device::createInstance(const DeviceOptions& options) {
   dbg.pfnUserCallback = &Device::debugCallback;
   dbg.pUserData = this;
 
+  // With validation on, synchronization validation is on too: a missing barrier is a
+  // validation error like any other (SYNC-HAZARD-* messages have error severity), so every
+  // GPU, CLI and editor test checks the render graph's barriers.
+  const VkValidationFeatureEnableEXT syncValidation = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+  VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = &syncValidation;
+  features.pNext = debugUtils_ ? &dbg : nullptr;
+
   VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   ci.pApplicationInfo = &app;
   ci.enabledExtensionCount = uint32_t(exts.size());
   ci.ppEnabledExtensionNames = exts.data();
   ci.enabledLayerCount = uint32_t(layers.size());
   ci.ppEnabledLayerNames = layers.data();
-  if (validation_ && debugUtils_) ci.pNext = &dbg;
+  if (validation_) ci.pNext = &features;
   VkResult r = vkCreateInstance(&ci, nullptr, &instance_);
   if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
     throw Error("no Vulkan 1.3 driver found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)");
@@ -179,12 +200,12 @@ void Device::choosePhysicalDevice(const DeviceOptions& options) {
   if (best < 0) {
     std::string list;
     for (auto& s : names) list += (list.empty() ? "" : ", ") + s;
-    if (!wanted.empty()) throw Error(fmt::format("TWINLIGHT_DEVICE=\"{}\" matches no Vulkan 1.3 device (found: {})", wanted, list));
-    throw Error(fmt::format("no Vulkan 1.3 device found (found: {}){}", list,
-                            RenderDoc::get().attached()
-                                ? "; RenderDoc is attached: it offers Vulkan 1.3 only on devices with "
-                                  "bufferDeviceAddressCaptureReplay (lavapipe has none), else 1.2"
-                                : ""));
+    const char* why = RenderDoc::get().attached() ? "; RenderDoc is attached: it offers Vulkan 1.3 only on devices with "
+                                                    "bufferDeviceAddressCaptureReplay (lavapipe has none), else 1.2"
+                                                  : "";
+    if (!wanted.empty())
+      throw Error(fmt::format("TWINLIGHT_DEVICE=\"{}\" matches no Vulkan 1.3 device (found: {}){}", wanted, list, why));
+    throw Error(fmt::format("no Vulkan 1.3 device found (found: {}){}", list, why));
   }
   physical_ = devices[best];
 

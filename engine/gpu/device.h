@@ -30,7 +30,7 @@ struct DeviceOptions {
 };
 
 // Exit status of a process the watchdog stopped.
-inline constexpr int kExitDeviceHung = 3;
+inline constexpr int kExitDeviceHung = 4;
 
 // Extension entry points, loaded once.
 struct Extensions {

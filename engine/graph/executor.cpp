@@ -11,54 +11,6 @@
 namespace tl::graph {
 namespace {
 
-struct State {
-  VkPipelineStageFlags2 stage;
-  VkAccessFlags2 access;
-  VkImageLayout layout;
-};
-
-VkPipelineStageFlags2 shaderStage(PassKind kind) {
-  switch (kind) {
-    case PassKind::Raster: return VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-    case PassKind::Compute: return VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    case PassKind::RayTracing: return VK_PIPELINE_STAGE_2_RAY_TRACING_SHADER_BIT_KHR;
-    case PassKind::Transfer: return VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-  }
-  return VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-}
-
-// The whole barrier vocabulary of the engine: a usage in a kind of pass fixes the stage,
-// the access and the image layout.
-State stateFor(Usage usage, PassKind kind) {
-  switch (usage) {
-    case Usage::Sampled: return {shaderStage(kind), VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL};
-    case Usage::StorageRead: return {shaderStage(kind), VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_IMAGE_LAYOUT_GENERAL};
-    case Usage::StorageWrite:
-      return {shaderStage(kind), VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-              VK_IMAGE_LAYOUT_GENERAL};
-    case Usage::ColorAttachment:
-      return {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-              VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-              VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-    case Usage::DepthAttachment:
-      return {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-              VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-              VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL};
-    case Usage::DepthRead:
-      return {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-              VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
-    case Usage::TransferSrc:
-      return {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
-    case Usage::TransferDst:
-      return {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
-    case Usage::VertexOrIndex:
-      return {VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT,
-              VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
-  }
-  return {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
-          VK_IMAGE_LAYOUT_GENERAL};
-}
-
 VkImageUsageFlags imageUsageFor(Usage u) {
   switch (u) {
     case Usage::Sampled: return VK_IMAGE_USAGE_SAMPLED_BIT;
@@ -67,35 +19,63 @@ VkImageUsageFlags imageUsageFor(Usage u) {
     case Usage::DepthAttachment: case Usage::DepthRead: return VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
     case Usage::TransferSrc: return VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     case Usage::TransferDst: return VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    case Usage::VertexOrIndex: return 0;
+    default: return 0;  // buffer-only usages
   }
-  return 0;
 }
 
-void imageBarrier(VkCommandBuffer cmd, const gpu::Image& image, const State& src, const State& dst) {
-  VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-  b.srcStageMask = src.stage;
-  b.srcAccessMask = src.access;
-  b.dstStageMask = dst.stage;
-  b.dstAccessMask = dst.access;
-  b.oldLayout = src.layout;
-  b.newLayout = dst.layout;
-  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = image.handle();
-  b.subresourceRange = {image.aspect(), 0, image.info().mipLevels, 0, 1};
-  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dep.imageMemoryBarrierCount = 1;
-  dep.pImageMemoryBarriers = &b;
-  vkCmdPipelineBarrier2(cmd, &dep);
-}
+// Barriers of one point in the command buffer, recorded together in one vkCmdPipelineBarrier2.
+class BarrierBatch {
+ public:
+  void image(const gpu::Image& image, const StageAccess& src, const StageAccess& dst, VkImageLayout oldLayout,
+             VkImageLayout newLayout) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = src.stages;
+    b.srcAccessMask = src.access;
+    b.dstStageMask = dst.stages;
+    b.dstAccessMask = dst.access;
+    b.oldLayout = oldLayout;
+    b.newLayout = newLayout;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image.handle();
+    b.subresourceRange = {image.aspect(), 0, image.info().mipLevels, 0, 1};
+    images_.push_back(b);
+  }
+  void buffer(const gpu::Buffer& buffer, const StageAccess& src, const StageAccess& dst) {
+    VkBufferMemoryBarrier2 b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
+    b.srcStageMask = src.stages;
+    b.srcAccessMask = src.access;
+    b.dstStageMask = dst.stages;
+    b.dstAccessMask = dst.access;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.buffer = buffer.handle();
+    b.offset = 0;
+    b.size = VK_WHOLE_SIZE;
+    buffers_.push_back(b);
+  }
+  void record(VkCommandBuffer cmd) {
+    if (images_.empty() && buffers_.empty()) return;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = uint32_t(images_.size());
+    dep.pImageMemoryBarriers = images_.data();
+    dep.bufferMemoryBarrierCount = uint32_t(buffers_.size());
+    dep.pBufferMemoryBarriers = buffers_.data();
+    vkCmdPipelineBarrier2(cmd, &dep);
+    images_.clear();
+    buffers_.clear();
+  }
 
-void memoryBarrier(VkCommandBuffer cmd, const State& src, const State& dst) {
-  gpu::memoryBarrier(cmd, src.stage, src.access, dst.stage, dst.access);
-}
+ private:
+  std::vector<VkImageMemoryBarrier2> images_;
+  std::vector<VkBufferMemoryBarrier2> buffers_;
+};
 
-// Contents of a transient do not survive, and the memory may have held another resource:
-// wait for everything before it, and discard the old layout.
-const State kUndefined{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED};
+const StageAccess kTransferRead{VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT};
+// What an owner may do with an imported image once the frame hands it back.
+const StageAccess kAnything{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT};
+
+uint64_t handleOf(const gpu::Image* image, const gpu::Buffer* buffer) {
+  return image ? uint64_t(image->handle()) : buffer ? uint64_t(buffer->handle()) : 0;
+}
 
 }  // namespace
 
@@ -125,6 +105,14 @@ const gpu::Buffer& PassContext::buffer(std::string_view name) const {
 
 bool PassContext::historyValid(std::string_view name) const { return executor_.find(name).historyValid; }
 
+VkImageLayout PassContext::layout(std::string_view name) const {
+  image(name);  // checks the declaration and the type
+  const auto id = graph_.find(name);
+  for (const PassAccess& a : compiled_.accesses)
+    if (id && a.resource == *id) return a.layout;
+  return VK_IMAGE_LAYOUT_UNDEFINED;
+}
+
 void PassContext::beginRendering(const std::vector<Attachment>& colors, const std::optional<Attachment>& depth,
                                  std::optional<VkExtent2D> area) {
   std::vector<VkRenderingAttachmentInfo> colorInfos;
@@ -134,7 +122,7 @@ void PassContext::beginRendering(const std::vector<Attachment>& colors, const st
     extent = img.extent();
     VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     a.imageView = img.view();
-    a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    a.imageLayout = layout(c.name);
     a.loadOp = c.clearColor ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
     a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     if (c.clearColor) std::memcpy(a.clearValue.color.float32, &c.clearColor->x, sizeof(float) * 4);
@@ -145,7 +133,7 @@ void PassContext::beginRendering(const std::vector<Attachment>& colors, const st
     const gpu::Image& img = image(depth->name);
     extent = img.extent();
     depthInfo.imageView = img.view();
-    depthInfo.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depthInfo.imageLayout = layout(depth->name);
     depthInfo.loadOp = depth->clearDepth ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
     depthInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     depthInfo.clearValue.depthStencil.depth = depth->clearDepth.value_or(0.0f);
@@ -227,24 +215,52 @@ Executor::Physical& Executor::find(std::string_view name) {
   return it->second;
 }
 
-void Executor::bindImportedImage(std::string_view name, gpu::Image& image, VkImageLayout currentLayout) {
+Executor::Physical& Executor::importSlot(std::string_view name) {
   auto& p = physical_[std::string(name)];
+  // A name the executor owned until now (a transient or a history of an earlier graph) gives
+  // up its own resource: nothing may keep pointing into it.
+  if (p.kind != Physical::Kind::Imported) p = Physical{};
   p.kind = Physical::Kind::Imported;
+  return p;
+}
+
+void Executor::bindImportedImage(std::string_view name, gpu::Image& image, VkImageLayout currentLayout) {
+  auto& p = importSlot(name);
   p.image = &image;
   p.buffer = nullptr;
-  p.layout = currentLayout;
+  p.boundLayout = currentLayout;
+  auto it = importedStates_.find(name);
+  p.state = it != importedStates_.end() && it->second.handle == handleOf(&image, nullptr) ? it->second.state
+                                                                                          : ResourceState{};
+  p.state.layout = currentLayout;  // the owner's word: the frame before handed it back so
 }
 
 void Executor::bindImportedBuffer(std::string_view name, gpu::Buffer& buffer) {
-  auto& p = physical_[std::string(name)];
-  p.kind = Physical::Kind::Imported;
+  auto& p = importSlot(name);
   p.buffer = &buffer;
   p.image = nullptr;
+  auto it = importedStates_.find(name);
+  p.state = it != importedStates_.end() && it->second.handle == handleOf(nullptr, &buffer) ? it->second.state
+                                                                                           : ResourceState{};
+}
+
+EntryStates Executor::entryStates(const RenderGraph& graph) const {
+  EntryStates out;
+  for (const auto& decl : graph.resources()) {
+    if (!decl.persistent && !decl.imported) continue;
+    auto it = physical_.find(decl.name);
+    if (it == physical_.end()) continue;
+    const Physical& p = it->second;
+    if (decl.imported ? p.kind != Physical::Kind::Imported : p.kind != Physical::Kind::Persistent || !(p.desc == decl.desc))
+      continue;
+    out.emplace(decl.name, p.state);
+  }
+  return out;
 }
 
 VkImageLayout Executor::importedLayout(std::string_view name) const {
-  auto it = physical_.find(name);
-  return it == physical_.end() ? VK_IMAGE_LAYOUT_UNDEFINED : it->second.layout;
+  auto it = importedStates_.find(name);
+  return it == importedStates_.end() ? VK_IMAGE_LAYOUT_UNDEFINED : it->second.state.layout;
 }
 
 const gpu::Image* Executor::image(std::string_view name) const {
@@ -254,12 +270,18 @@ const gpu::Image* Executor::image(std::string_view name) const {
 
 VkImageLayout Executor::layout(std::string_view name) const {
   auto it = physical_.find(name);
-  return it == physical_.end() ? VK_IMAGE_LAYOUT_UNDEFINED : it->second.layout;
+  return it == physical_.end() ? VK_IMAGE_LAYOUT_UNDEFINED : it->second.state.layout;
+}
+
+void Executor::unbindImported() {
+  for (auto it = physical_.begin(); it != physical_.end();)
+    it = it->second.kind == Physical::Kind::Imported ? physical_.erase(it) : std::next(it);
 }
 
 void Executor::resetHistory() {
+  // The contents go (the next first use discards them); the accesses stay, to be waited for.
   for (auto& [name, p] : physical_)
-    if (p.kind == Physical::Kind::Persistent) p.historyValid = false, p.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    if (p.kind == Physical::Kind::Persistent) p.historyValid = false, p.state.layout = VK_IMAGE_LAYOUT_UNDEFINED;
 }
 
 bool Executor::historyValid(std::string_view name) const {
@@ -280,6 +302,14 @@ const Readback& Executor::readback(std::string_view name) const {
 
 void Executor::realise(const RenderGraph& graph, const CompiledGraph& compiled) {
   const auto& decls = graph.resources();
+  // An import is bound for the frames that import it: a binding this graph does not import
+  // (a reopened capture's image after the capture closed) points at memory its owner may
+  // have freed, and would shadow a transient of the same name.
+  for (auto it = physical_.begin(); it != physical_.end();) {
+    const auto id = graph.find(it->first);
+    const bool stale = it->second.kind == Physical::Kind::Imported && !(id && decls[*id].imported);
+    it = stale ? physical_.erase(it) : std::next(it);
+  }
   // Usage flags of each resource: the union of how the frame uses it, plus sampling and
   // copies so the inspector can always view and read it back.
   std::vector<VkImageUsageFlags> usage(decls.size(), 0);
@@ -350,6 +380,23 @@ void Executor::realise(const RenderGraph& graph, const CompiledGraph& compiled) 
     p.image = p.ownedImage ? &p.ownedImage : nullptr;
     p.buffer = p.ownedBuffer ? &p.ownedBuffer : nullptr;
   }
+  // A transient image's first use discards its contents, but its bytes may have held an
+  // earlier transient of this frame: that first barrier also waits for those last accesses.
+  for (size_t i = 0; i < transients.size(); ++i) {
+    Physical& p = physical_.at(decls[transients[i]].name);
+    p.state = {};
+    p.aliasWait = {};
+    const auto& mine = compiled.resources[transients[i]];
+    for (size_t j = 0; j < transients.size(); ++j) {
+      const auto& other = compiled.resources[transients[j]];
+      const bool overlap = plan.offsets[i] < plan.offsets[j] + requests[j].size &&
+                           plan.offsets[j] < plan.offsets[i] + requests[i].size;
+      if (j == i || !overlap || other.lastUse >= mine.firstUse) continue;
+      const StageAccess pending = pendingAccesses(compiled.exit[transients[j]]);
+      p.aliasWait.stages |= pending.stages;
+      p.aliasWait.access |= pending.access;
+    }
+  }
 
   // Persistent resources: created once, recreated (and their history dropped) on change.
   for (ResourceId id = 0; id < decls.size(); ++id) {
@@ -399,31 +446,53 @@ void Executor::realise(const RenderGraph& graph, const CompiledGraph& compiled) 
   }
 }
 
-void Executor::placeBarriers(VkCommandBuffer cmd, const RenderGraph& graph, const CompiledPass& pass) {
-  for (const Barrier& b : pass.barriers) {
-    const auto& decl = graph.resources()[b.resource];
-    Physical& p = find(decl.name);
-    State dst = stateFor(b.after, b.afterKind);
-    if (p.image) {
-      // A transient's first use discards its contents. Persistent and imported images keep
-      // theirs: the old layout is the one the executor tracked (previous frame, owner).
-      State src = kUndefined;
-      if (p.layout != VK_IMAGE_LAYOUT_UNDEFINED && (b.before || p.kind != Physical::Kind::Transient)) {
-        src = b.before ? stateFor(*b.before, b.beforeKind)
-                       : State{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, p.layout};
-        src.layout = p.layout;
-      }
-      imageBarrier(cmd, *p.image, src, dst);
-      p.layout = dst.layout;
-    } else {
-      State src = b.before ? stateFor(*b.before, b.beforeKind) : kUndefined;
-      memoryBarrier(cmd, src, dst);
-    }
+void Executor::checkEntry(const RenderGraph& graph, const CompiledGraph& compiled) {
+  // The compiled barriers start from the states the graph was compiled against: they must be
+  // the ones this executor holds, or the first barriers would name the wrong layouts.
+  const auto& decls = graph.resources();
+  for (ResourceId id = 0; id < decls.size(); ++id) {
+    const auto& d = decls[id];
+    if ((!d.persistent && !d.imported) || compiled.resources[id].culled) continue;
+    const ResourceState held = carriedOver(find(d.name).state);
+    TL_CHECK(compiled.entry[id] == held,
+             "`{}` was compiled against another entry state than the executor holds (layout {} vs {}): compile "
+             "with graph.compile(executor.entryStates(graph))",
+             d.name, layoutName(compiled.entry[id].layout), layoutName(held.layout));
   }
 }
 
-void Executor::copyForReadback(VkCommandBuffer cmd, const std::string& name, Physical& p, Usage usage, PassKind kind) {
-  State now = stateFor(usage, kind);
+void Executor::placeBarriers(VkCommandBuffer cmd, const RenderGraph& graph, const CompiledPass& pass) {
+  BarrierBatch batch;
+  for (const Barrier& b : pass.barriers) {
+    Physical& p = find(graph.resources()[b.resource].name);
+    StageAccess src = b.src;
+    if (p.kind == Physical::Kind::Transient && b.oldLayout == VK_IMAGE_LAYOUT_UNDEFINED) {
+      src.stages |= p.aliasWait.stages;
+      src.access |= p.aliasWait.access;
+    }
+    if (p.image)
+      batch.image(*p.image, src, b.dst, b.oldLayout, b.newLayout);
+    else if (p.buffer)
+      batch.buffer(*p.buffer, src, b.dst);
+  }
+  batch.record(cmd);
+}
+
+void Executor::copyForReadback(VkCommandBuffer cmd, const std::string& name, Physical& p, const PassAccess* writer) {
+  ResourceState& state = p.state;
+  if (writer) state = ResourceState{writer->layout, PastAccess{writer->scope, kNone}, {}};
+  PassAccess copy{kNone, kTransferRead, p.image ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED, false};
+  BarrierBatch batch;
+  auto place = [&](const std::optional<Barrier>& b) {
+    if (!b) return;
+    if (p.image)
+      batch.image(*p.image, b->src, b->dst, b->oldLayout, b->newLayout);
+    else
+      batch.buffer(*p.buffer, b->src, b->dst);
+    batch.record(cmd);
+  };
+  place(advance(state, kNone, copy, p.image != nullptr, kNone));
+
   if (p.image) {
     const gpu::Image& img = *p.image;
     auto fi = gpu::formatInfo(img.format());
@@ -433,72 +502,102 @@ void Executor::copyForReadback(VkCommandBuffer cmd, const std::string& name, Phy
     PendingReadback r{name, img.format(), e,
                       gpu::Buffer(device_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUsage::Readback,
                                   "readback." + name)};
-    State copy{VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
-    now.layout = p.layout;
-    imageBarrier(cmd, img, now, copy);
     VkBufferImageCopy region{};
     region.imageSubresource = {img.aspect(), 0, 0, 1};
     region.imageExtent = e;
     vkCmdCopyImageToBuffer(cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r.staging.handle(), 1, &region);
-    State back = now;
-    back.stage = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    back.access = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-    imageBarrier(cmd, img, {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL}, back);
     pending_.push_back(std::move(r));
   } else if (p.buffer) {
     PendingReadback r{name, VK_FORMAT_UNDEFINED, {uint32_t(p.buffer->size()), 1, 1},
                       gpu::Buffer(device_, p.buffer->size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUsage::Readback,
                                   "readback." + name)};
-    memoryBarrier(cmd, now, {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED});
     VkBufferCopy region{0, 0, p.buffer->size()};
     vkCmdCopyBuffer(cmd, p.buffer->handle(), r.staging.handle(), 1, &region);
-    memoryBarrier(cmd, {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0, VK_IMAGE_LAYOUT_UNDEFINED},
-                  {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
-                   VK_IMAGE_LAYOUT_UNDEFINED});
     pending_.push_back(std::move(r));
   }
+  // Host reads of the staging buffers are ordered by the wait for the frame.
+
+  if (writer) {
+    // Back to what the compiled barriers expect after the writer: its layout, and the copy
+    // finished before the writer's stages, which the next barrier waits on (so it chains).
+    PassAccess back{kNone, writer->scope, writer->layout, false};
+    StageAccess src{kTransferRead.stages, 0};
+    if (p.image)
+      batch.image(*p.image, src, back.scope, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, back.layout);
+    else
+      batch.buffer(*p.buffer, src, back.scope);
+    batch.record(cmd);
+  }
+}
+
+void Executor::handBackImports(VkCommandBuffer cmd, const RenderGraph& graph) {
+  // An imported image leaves the frame in the layout it came in, ready for anything its owner
+  // does next; then the executor forgets the import (its owner may destroy it) and keeps what
+  // the frame did to it by name and handle.
+  BarrierBatch batch;
+  for (auto it = physical_.begin(); it != physical_.end();) {
+    Physical& p = it->second;
+    if (p.kind != Physical::Kind::Imported) {
+      ++it;
+      continue;
+    }
+    if (p.image && graph.find(it->first) && p.state.layout != p.boundLayout) {
+      PassAccess back{kNone, kAnything, p.boundLayout, false};
+      if (auto b = advance(p.state, kNone, back, true, kNone))
+        batch.image(*p.image, b->src, b->dst, b->oldLayout, b->newLayout);
+    }
+    importedStates_[it->first] = ImportedState{handleOf(p.image, p.buffer), p.state};
+    it = physical_.erase(it);
+  }
+  batch.record(cmd);
 }
 
 void Executor::execute(const RenderGraph& graph, const CompiledGraph& compiled) {
   realise(graph, compiled);
+  checkEntry(graph, compiled);
   VkCommandBuffer cmd = device_.beginCommands();
   timestamps_.reset(cmd);
   pending_.clear();
   readbacks_.clear();
 
+  const auto& decls = graph.resources();
   for (const CompiledPass& cp : compiled.order) {
     const PassDecl& decl = graph.passes()[cp.pass];
     device_.beginLabel(cmd, decl.name);
     timestamps_.begin(cmd, decl.name);
     placeBarriers(cmd, graph, cp);
-    PassContext ctx(device_, *this, decl, cp);
+    PassContext ctx(device_, *this, graph, decl, cp);
     ctx.cmd = cmd;
     ctx.frameIndex = frame_;
     if (decl.execute) decl.execute(ctx);
     timestamps_.end(cmd);
     device_.endLabel(cmd);
     // A resource has one writer, so its contents are final right after it: read back
-    // there, before aliasing can reuse the memory.
-    for (const Access& w : cp.writes) {
-      const auto& name = graph.resources()[w.resource].name;
-      if (readbackAll_ || readbackNames_.count(name)) copyForReadback(cmd, name, find(name), w.usage, decl.kind);
+    // there, before aliasing can reuse the memory. Imports belong to their owners.
+    for (const PassAccess& a : cp.accesses) {
+      const auto& name = decls[a.resource].name;
+      if (!a.writes || decls[a.resource].imported || !(readbackAll_ || readbackNames_.count(name))) continue;
+      copyForReadback(cmd, name, find(name), &a);
     }
   }
+  // Every resource now stands where the frame left it.
+  for (ResourceId id = 0; id < decls.size(); ++id)
+    if (!compiled.resources[id].culled) find(decls[id].name).state = carriedOver(compiled.exit[id]);
   // Persistent resources no pass wrote this frame (history read but not rewritten, a cache
   // that was not rebuilt) hold their last contents: read those back at the end.
   for (auto& [name, p] : physical_) {
     if (p.kind != Physical::Kind::Persistent || !p.historyValid || !graph.find(name)) continue;
-    if (p.image && p.layout == VK_IMAGE_LAYOUT_UNDEFINED) continue;
+    if (p.image && p.state.layout == VK_IMAGE_LAYOUT_UNDEFINED) continue;
     if (!readbackAll_ && !readbackNames_.count(name)) continue;
     const std::string& resource = name;  // clang 14 cannot capture a structured binding
     if (std::any_of(pending_.begin(), pending_.end(), [&](const PendingReadback& r) { return r.name == resource; })) continue;
-    copyForReadback(cmd, name, p, Usage::Sampled, PassKind::Compute);
+    copyForReadback(cmd, name, p, nullptr);
   }
+  handBackImports(cmd, graph);
   device_.wait(device_.submit(cmd));
 
   // A persistent resource holds something for the next frame only if a pass of this frame
   // wrote it; one nobody wrote keeps what it had (nothing, after a reset or a resize).
-  const auto& decls = graph.resources();
   for (const auto& cp : compiled.order)
     for (const auto& a : cp.writes)
       if (decls[a.resource].persistent) find(decls[a.resource].name).historyValid = true;

@@ -40,6 +40,9 @@ class PassContext {
   VkExtent3D extent(std::string_view name) const { return image(name).extent(); }
   // True when a persistent resource holds last frame's contents (false after creation or resize).
   bool historyValid(std::string_view name) const;
+  // The layout the graph put an image in for this pass (what its descriptors must say): the
+  // usage's layout, or the merged one when the pass uses the image two ways (graph.h).
+  VkImageLayout layout(std::string_view name) const;
 
   // `area`: the render area when there are no attachments (e.g. voxelization into storage images).
   void beginRendering(const std::vector<Attachment>& colors, const std::optional<Attachment>& depth,
@@ -63,10 +66,11 @@ class PassContext {
 
  private:
   friend class Executor;
-  PassContext(gpu::Device& d, class Executor& e, const PassDecl& p, const CompiledPass& c)
-      : device(d), executor_(e), pass_(p), compiled_(c) {}
+  PassContext(gpu::Device& d, class Executor& e, const RenderGraph& g, const PassDecl& p, const CompiledPass& c)
+      : device(d), executor_(e), graph_(g), pass_(p), compiled_(c) {}
   bool declares(std::string_view name) const;
   Executor& executor_;
+  const RenderGraph& graph_;
   const PassDecl& pass_;
   const CompiledPass& compiled_;
   const gpu::Pipeline* bound_ = nullptr;
@@ -103,15 +107,27 @@ class Executor {
   explicit Executor(gpu::Device& device);
   ~Executor();
 
-  // Resources owned outside the graph; bind before every execute.
+  // Resources owned outside the graph; bind before every compile and execute that imports
+  // them. An image is handed back in `currentLayout` at the end of the frame, and the executor
+  // then forgets the binding (its owner may free what it bound), remembering each import's
+  // last accesses by name and handle so the next frame that binds the same object waits for
+  // them. unbindImported() drops bindings made for a frame that was not executed.
   void bindImportedImage(std::string_view name, gpu::Image& image, VkImageLayout currentLayout);
   void bindImportedBuffer(std::string_view name, gpu::Buffer& buffer);
+  void unbindImported();
+
+  // The states the persistent and imported resources of `graph` enter the next frame in:
+  // what the previous frames left (layout, last write, reads since). Compile with them:
+  // graph.compile(executor.entryStates(graph)). A persistent resource the graph declares with
+  // another description is recreated, so it enters fresh.
+  EntryStates entryStates(const RenderGraph& graph) const;
 
   // Read-back requests for the next execute: names, or every resource of the frame.
   void requestReadback(std::string_view name) { readbackNames_.insert(std::string(name)); }
   void requestReadbackAll() { readbackAll_ = true; }
 
   // Records and submits the frame, waits for it, then collects timings and read-backs.
+  // `compiled` must come from entryStates() of this executor (checked).
   void execute(const RenderGraph& graph, const CompiledGraph& compiled);
 
   const std::vector<PassTiming>& timings() const { return timings_; }
@@ -129,7 +145,7 @@ class Executor {
   // another description (a resize), which recreates it with undefined contents.
   bool historyValid(std::string_view name, const ResourceDesc& declared) const;
   uint64_t frameIndex() const { return frame_; }
-  // Layout an imported image was left in by the frame (to hand it back to its owner).
+  // Layout an imported image was left in by the frame: the one it was bound with.
   VkImageLayout importedLayout(std::string_view name) const;
   // Drops persistent history (e.g. a camera cut or a scene change).
   void resetHistory();
@@ -142,21 +158,37 @@ class Executor {
     gpu::Buffer ownedBuffer;
     gpu::Image* image = nullptr;
     gpu::Buffer* buffer = nullptr;
-    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    ResourceState state;                // what the barrier model knows, carried across frames
+    VkImageLayout boundLayout = VK_IMAGE_LAYOUT_UNDEFINED;  // imported images: the owner's layout
+    StageAccess aliasWait;              // transients: the earlier users of its aliased bytes
     bool historyValid = false;
     enum class Kind : uint8_t { Transient, Persistent, Imported } kind = Kind::Transient;
   };
   Physical& find(std::string_view name);
+  Physical& importSlot(std::string_view name);
 
   void realise(const RenderGraph& graph, const CompiledGraph& compiled);
+  void checkEntry(const RenderGraph& graph, const CompiledGraph& compiled);
   void placeBarriers(VkCommandBuffer cmd, const RenderGraph& graph, const CompiledPass& pass);
-  void copyForReadback(VkCommandBuffer cmd, const std::string& name, Physical& p, Usage usage, PassKind kind);
+  // Copies a resource into a read-back buffer. Mid-frame, right after its writer (`writer`
+  // set): the resource is returned to the state the compiled barriers expect. Otherwise the
+  // copy is one more access in its carried state.
+  void copyForReadback(VkCommandBuffer cmd, const std::string& name, Physical& p, const PassAccess* writer);
+  void handBackImports(VkCommandBuffer cmd, const RenderGraph& graph);
 
   gpu::Device& device_;
   gpu::TimestampPool timestamps_;
   // By resource name. Transients are rebuilt when the graph's shape changes; persistent
-  // entries survive frames; imported entries point at images owned elsewhere.
+  // entries survive frames; imported entries point at objects owned elsewhere, for the frame
+  // that bound them.
   std::map<std::string, Physical, std::less<>> physical_;
+  // Imports are forgotten after each frame (their owner may destroy them); what the frame
+  // did to each stays here, by name with the handle it was bound to.
+  struct ImportedState {
+    uint64_t handle = 0;
+    ResourceState state;
+  };
+  std::map<std::string, ImportedState, std::less<>> importedStates_;
   gpu::Memory transientBlock_;
   std::string transientSignature_;
   std::vector<PhysicalInfo> physicalInfo_;

@@ -25,26 +25,6 @@ ResourceDesc ResourceDesc::buffer(VkDeviceSize bytes, std::string what) {
   return {ResourceType::Buffer, VK_FORMAT_UNDEFINED, {1, 1, 1}, 1, bytes, std::move(what)};
 }
 
-bool isWrite(Usage u) {
-  return u == Usage::StorageWrite || u == Usage::ColorAttachment || u == Usage::DepthAttachment ||
-         u == Usage::TransferDst;
-}
-
-const char* usageName(Usage u) {
-  switch (u) {
-    case Usage::Sampled: return "Sampled";
-    case Usage::StorageRead: return "StorageRead";
-    case Usage::DepthRead: return "DepthRead";
-    case Usage::TransferSrc: return "TransferSrc";
-    case Usage::VertexOrIndex: return "VertexOrIndex";
-    case Usage::StorageWrite: return "StorageWrite";
-    case Usage::ColorAttachment: return "ColorAttachment";
-    case Usage::DepthAttachment: return "DepthAttachment";
-    case Usage::TransferDst: return "TransferDst";
-  }
-  return "?";
-}
-
 std::string formatName(VkFormat format) {
   auto fi = gpu::formatInfo(format);
   return fi.bytes ? fi.name : fmt::format("VkFormat({})", int(format));
@@ -74,16 +54,18 @@ void PassBuilder::create(std::string_view name, const ResourceDesc& desc, Usage 
   write(name, usage);
 }
 
-void PassBuilder::read(std::string_view name, Usage usage) {
+void PassBuilder::read(std::string_view name, Usage usage, std::optional<PassKind> as) {
   auto& p = graph_.passes_[pass_];
   p.readNames.emplace_back(name);
   p.readUsages.push_back(usage);
+  p.readKinds.push_back(as.value_or(p.kind));
 }
 
-void PassBuilder::write(std::string_view name, Usage usage) {
+void PassBuilder::write(std::string_view name, Usage usage, std::optional<PassKind> as) {
   auto& p = graph_.passes_[pass_];
   p.writeNames.emplace_back(name);
   p.writeUsages.push_back(usage);
+  p.writeKinds.push_back(as.value_or(p.kind));
 }
 
 void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
@@ -156,19 +138,18 @@ size_t editDistance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-// Usages that share an image layout (see the executor's state table).
-int layoutClass(Usage u) {
-  switch (u) {
-    case Usage::StorageRead: case Usage::StorageWrite: return 1;  // GENERAL
-    case Usage::Sampled: return 2;                                // READ_ONLY_OPTIMAL
-    case Usage::DepthRead: return 3;
-    case Usage::TransferSrc: return 4;
-    case Usage::TransferDst: return 5;
-    case Usage::ColorAttachment: return 6;
-    case Usage::DepthAttachment: return 7;
-    case Usage::VertexOrIndex: return 8;
-  }
-  return 0;
+bool attachment(Usage u) {
+  return u == Usage::ColorAttachment || u == Usage::DepthAttachment || u == Usage::DepthRead;
+}
+
+// One pass using an image two ways at once needs one layout for both: the read-only layout
+// when both only read, else GENERAL (valid for every access).
+VkImageLayout mergedLayout(VkImageLayout a, VkImageLayout b) {
+  if (a == b) return a;
+  auto readOnly = [](VkImageLayout l) {
+    return l == VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL || l == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
+  };
+  return readOnly(a) && readOnly(b) ? VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_GENERAL;
 }
 
 std::string passList(const std::vector<PassDecl>& passes, const std::vector<PassId>& ids) {
@@ -179,7 +160,7 @@ std::string passList(const std::vector<PassDecl>& passes, const std::vector<Pass
 
 }  // namespace
 
-CompiledGraph RenderGraph::compile() const {
+CompiledGraph RenderGraph::compile(const EntryStates& entry) const {
   const size_t nPasses = passes_.size(), nRes = resources_.size();
 
   // 1. Names: unique resources, every access resolved, one writer per resource.
@@ -216,10 +197,10 @@ CompiledGraph RenderGraph::compile() const {
   for (PassId p = 0; p < nPasses; ++p) {
     const auto& pass = passes_[p];
     for (size_t i = 0; i < pass.readNames.size(); ++i)
-      reads[p].push_back({resolve(pass.readNames[i], pass, "reads"), pass.readUsages[i]});
+      reads[p].push_back({resolve(pass.readNames[i], pass, "reads"), pass.readUsages[i], pass.readKinds[i]});
     for (size_t i = 0; i < pass.writeNames.size(); ++i) {
       ResourceId r = resolve(pass.writeNames[i], pass, "writes");
-      writes[p].push_back({r, pass.writeUsages[i]});
+      writes[p].push_back({r, pass.writeUsages[i], pass.writeKinds[i]});
       auto& info = out.resources[r];
       if (info.writer != kNone && info.writer != p)
         throw GraphError(fmt::format("resource `{}` is written by both `{}` and `{}`", resources_[r].name,
@@ -238,6 +219,36 @@ CompiledGraph RenderGraph::compile() const {
   }
   for (auto& name : outputs_)
     if (!byName.count(name)) throw GraphError(fmt::format("frame output `{}` is not a resource of the graph", name));
+
+  // Each pass's usages of one resource merged into one access; a usage its kind of pass
+  // cannot make, or one that does not fit the resource's type, is misuse.
+  std::vector<std::vector<PassAccess>> passAccesses(nPasses);
+  for (PassId p = 0; p < nPasses; ++p) {
+    const auto& pass = passes_[p];
+    std::map<ResourceId, PassAccess> merged;
+    auto add = [&](const Access& a) {
+      const auto& r = resources_[a.resource];
+      StageAccess scope;
+      VkImageLayout layout;
+      if (!accessFor(a.usage, a.kind, scope, layout))
+        throw GraphError(fmt::format("pass `{}` ({}) cannot use `{}` as {}", pass.name, kindName(a.kind), r.name,
+                                     usageName(a.usage)));
+      const bool image = r.desc.type == ResourceType::Image;
+      if (image ? layout == VK_IMAGE_LAYOUT_UNDEFINED : attachment(a.usage))
+        throw GraphError(fmt::format("pass `{}` uses `{}` as {}, which needs {}", pass.name, r.name, usageName(a.usage),
+                                     image ? "a buffer" : "an image"));
+      auto [it, fresh] = merged.try_emplace(a.resource);
+      PassAccess& m = it->second;
+      m.resource = a.resource;
+      m.scope.stages |= scope.stages;
+      m.scope.access |= scope.access;
+      m.writes |= isWrite(a.usage);
+      m.layout = fresh ? layout : mergedLayout(m.layout, layout);
+    };
+    for (auto& a : reads[p]) add(a);
+    for (auto& a : writes[p]) add(a);
+    for (auto& [r, a] : merged) passAccesses[p].push_back(a);
+  }
 
   // 2. Dependencies. Transient, imported and caches: writer before readers. Persistent: a
   //    reader other than the writer sees last frame's contents, so it must run before the writer.
@@ -295,12 +306,15 @@ CompiledGraph RenderGraph::compile() const {
       if (PassId w = out.resources[a.resource].writer; w != kNone) keepPass(w);
   }
 
-  // 4. Order, barriers and lifetimes of the surviving passes.
-  struct Last {
-    Usage usage;
-    PassKind kind;
-  };
-  std::vector<std::optional<Last>> last(nRes);
+  // 4. Order, barriers and lifetimes of the surviving passes: each resource's state walks
+  //    through the frame from the state it entered in (barriers.h has the rules).
+  out.entry.resize(nRes);
+  for (ResourceId r = 0; r < nRes; ++r) {
+    const auto& decl = resources_[r];
+    if (!decl.persistent && !decl.imported) continue;
+    if (auto it = entry.find(decl.name); it != entry.end()) out.entry[r] = carriedOver(it->second);
+  }
+  out.exit = out.entry;
   for (PassId p : sorted) {
     if (!keep[p]) {
       out.culled.push_back(p);
@@ -311,31 +325,13 @@ CompiledGraph RenderGraph::compile() const {
     cp.pass = p;
     cp.reads = reads[p];
     cp.writes = writes[p];
-    // One state per resource per pass: a write wins over a read of the same resource
-    // (GENERAL layout and read|write access cover read-modify-write).
-    std::map<ResourceId, Usage> wanted;
-    for (auto& a : cp.reads) wanted.emplace(a.resource, a.usage);
-    for (auto& a : cp.writes) wanted[a.resource] = a.usage;
-    for (auto& [r, usage] : wanted) {
-      auto& info = out.resources[r];
+    cp.accesses = passAccesses[p];
+    for (const PassAccess& a : cp.accesses) {
+      auto& info = out.resources[a.resource];
       if (info.firstUse == kNone) info.firstUse = index;
       info.lastUse = index;
-      const auto& prev = last[r];
-      // Hazards need a barrier: anything after a write, and a write after reads. Two reads
-      // need one only for an image whose layout differs between the usages. A first use
-      // needs one for images (their layout); host-written buffers are visible at submit.
-      const bool image = resources_[r].desc.type == ResourceType::Image;
-      bool needed = prev ? isWrite(usage) || isWrite(prev->usage) || (image && layoutClass(prev->usage) != layoutClass(usage))
-                         : image || isWrite(usage);
-      if (needed) {
-        Barrier b;
-        b.resource = r;
-        if (prev) b.before = prev->usage, b.beforeKind = prev->kind;
-        b.after = usage;
-        b.afterKind = passes_[p].kind;
-        cp.barriers.push_back(b);
-      }
-      last[r] = Last{usage, passes_[p].kind};
+      const bool image = resources_[a.resource].desc.type == ResourceType::Image;
+      if (auto b = advance(out.exit[a.resource], a.resource, a, image, p)) cp.barriers.push_back(std::move(*b));
     }
     out.order.push_back(std::move(cp));
   }
@@ -381,16 +377,6 @@ AliasPlan planAliasing(const std::vector<AliasRequest>& requests) {
 
 namespace {
 
-const char* kindName(PassKind k) {
-  switch (k) {
-    case PassKind::Raster: return "raster";
-    case PassKind::Compute: return "compute";
-    case PassKind::RayTracing: return "ray tracing";
-    case PassKind::Transfer: return "transfer";
-  }
-  return "?";
-}
-
 std::string describe(const ResourceDesc& d) {
   if (d.type == ResourceType::Buffer) return fmt::format("buffer {} B", d.size);
   std::string size = d.extent.depth > 1 ? fmt::format("{}x{}x{}", d.extent.width, d.extent.height, d.extent.depth)
@@ -401,6 +387,22 @@ std::string describe(const ResourceDesc& d) {
 std::string mib(VkDeviceSize bytes) { return fmt::format("{:.2f} MiB", double(bytes) / (1024.0 * 1024.0)); }
 
 }  // namespace
+
+std::string RenderGraph::describeBarrier(const Barrier& b) const {
+  auto side = [](const StageAccess& sa) {
+    return sa.access ? fmt::format("{} [{}]", stageNames(sa.stages), accessNames(sa.access)) : stageNames(sa.stages);
+  };
+  std::string s = fmt::format("{}: {} -> {}", resources_[b.resource].name, side(b.src), side(b.dst));
+  if (resources_[b.resource].desc.type == ResourceType::Image) {
+    s += fmt::format(", {} -> {}", layoutName(b.oldLayout), layoutName(b.newLayout));
+    if (b.transition() && b.oldLayout == VK_IMAGE_LAYOUT_UNDEFINED) s += " (discard)";
+  }
+  for (size_t i = 0; i < b.waitsFor.size(); ++i) {
+    s += i == 0 ? "; after " : ", ";
+    s += b.waitsFor[i] == kNone ? fmt::format("the previous frame") : fmt::format("`{}`", passes_[b.waitsFor[i]].name);
+  }
+  return s;
+}
 
 std::string RenderGraph::dump(const CompiledGraph& c) const {
   // Transient memory with and without aliasing, from the description sizes.
@@ -418,15 +420,17 @@ std::string RenderGraph::dump(const CompiledGraph& c) const {
   for (size_t i = 0; i < c.order.size(); ++i) {
     const auto& cp = c.order[i];
     s += fmt::format("[{}] {} ({})\n", i, passes_[cp.pass].name, kindName(passes_[cp.pass].kind));
+    const PassKind kind = passes_[cp.pass].kind;
+    auto usage = [&](const Access& a) {
+      return a.kind == kind ? std::string(usageName(a.usage)) : fmt::format("{}, {}", usageName(a.usage), kindName(a.kind));
+    };
     for (auto& a : cp.reads)
       s += fmt::format("      reads  {:22} {:24} ({})\n", resources_[a.resource].name, describe(resources_[a.resource].desc),
-                       usageName(a.usage));
+                       usage(a));
     for (auto& a : cp.writes)
       s += fmt::format("      writes {:22} {:24} ({})\n", resources_[a.resource].name, describe(resources_[a.resource].desc),
-                       usageName(a.usage));
-    for (auto& b : cp.barriers)
-      s += fmt::format("      barrier {}: {} -> {}\n", resources_[b.resource].name,
-                       b.before ? usageName(*b.before) : "undefined", usageName(b.after));
+                       usage(a));
+    for (auto& b : cp.barriers) s += "      barrier " + describeBarrier(b) + "\n";
   }
   s += "resources:\n";
   for (auto& info : c.resources) {

@@ -5,10 +5,13 @@
 // without a GPU. executor.h turns a compiled graph into Vulkan work.
 #pragma once
 
+#include "graph/barriers.h"
+
 #include <vulkan/vulkan_core.h>
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -22,10 +25,6 @@ inline bool operator==(const VkExtent3D& a, const VkExtent3D& b) {
 }
 
 namespace tl::graph {
-
-using ResourceId = uint32_t;
-using PassId = uint32_t;
-inline constexpr uint32_t kNone = ~0u;
 
 enum class ResourceType : uint8_t { Image, Buffer };
 
@@ -70,40 +69,6 @@ struct ResourceDesc {
   bool operator==(const ResourceDesc&) const = default;
 };
 
-// The kind of work a pass records; with a Usage it fixes the pipeline stage of a barrier.
-enum class PassKind : uint8_t { Raster, Compute, RayTracing, Transfer };
-
-// How a pass touches a resource. Reads and writes are separate values so a pass that
-// reads and writes one resource (read-modify-write, history) declares both.
-enum class Usage : uint8_t {
-  Sampled,            // read: sampled image / uniform texel
-  StorageRead,        // read: storage image or storage buffer
-  DepthRead,          // read: depth attachment, test only
-  TransferSrc,        // read: copy source
-  VertexOrIndex,      // read: vertex / index buffer
-  StorageWrite,       // write: storage image or storage buffer
-  ColorAttachment,    // write: colour attachment
-  DepthAttachment,    // write: depth attachment
-  TransferDst,        // write: copy destination / clear
-};
-bool isWrite(Usage u);
-const char* usageName(Usage u);
-
-struct Access {
-  ResourceId resource = kNone;
-  Usage usage = Usage::Sampled;
-};
-
-// A state transition the executor must place before a pass. `before` is empty when the
-// resource's previous contents do not matter (first use in the frame of a transient).
-struct Barrier {
-  ResourceId resource = kNone;
-  std::optional<Usage> before;
-  PassKind beforeKind = PassKind::Compute;
-  Usage after = Usage::Sampled;
-  PassKind afterKind = PassKind::Compute;
-};
-
 // One transient resource's place in aliased memory. Resources whose lifetimes do not
 // overlap may share bytes; persistent and imported resources are never aliased.
 struct AliasRequest {
@@ -129,8 +94,10 @@ struct PassDecl {
   PassKind kind = PassKind::Compute;
   std::vector<std::string> readNames;  // resolved at compile
   std::vector<Usage> readUsages;
+  std::vector<PassKind> readKinds;
   std::vector<std::string> writeNames;
   std::vector<Usage> writeUsages;
+  std::vector<PassKind> writeKinds;
   bool sideEffect = false;  // never culled (e.g. writes to the swapchain or a file)
   ExecuteFn execute;
 };
@@ -151,8 +118,10 @@ class PassBuilder {
   PassBuilder(class RenderGraph& graph, PassId pass) : graph_(graph), pass_(pass) {}
   // Declares a new transient resource that this pass writes with `usage`.
   void create(std::string_view name, const ResourceDesc& desc, Usage usage);
-  void read(std::string_view name, Usage usage);
-  void write(std::string_view name, Usage usage);
+  // The pass's kind fixes the pipeline stages of each usage. `as` names another kind for work
+  // of that kind the pass records besides its own (a compute clear inside a raster pass).
+  void read(std::string_view name, Usage usage, std::optional<PassKind> as = std::nullopt);
+  void write(std::string_view name, Usage usage, std::optional<PassKind> as = std::nullopt);
   void sideEffect();
 
  private:
@@ -164,6 +133,7 @@ struct CompiledPass {
   PassId pass = kNone;              // index into RenderGraph::passes()
   std::vector<Access> reads;        // resolved
   std::vector<Access> writes;       // resolved
+  std::vector<PassAccess> accesses; // one per resource the pass touches, usages merged
   std::vector<Barrier> barriers;    // to place before the pass
 };
 
@@ -180,6 +150,8 @@ struct CompiledGraph {
   std::vector<CompiledPass> order;      // passes that survive culling, in execution order
   std::vector<PassId> culled;           // passes removed because nobody reads their outputs
   std::vector<ResourceInfo> resources;  // indexed by ResourceId
+  std::vector<ResourceState> entry;     // indexed by ResourceId: the state assumed on entry
+  std::vector<ResourceState> exit;      // indexed by ResourceId: the state the frame leaves
 };
 
 // Thrown by compile() for misuse; the message names both sides.
@@ -210,11 +182,16 @@ class RenderGraph {
   void markOutput(std::string_view name);
 
   // Resolves names, orders, culls, derives barriers and lifetimes. Throws GraphError.
-  CompiledGraph compile() const;
+  // `entry`: the states persistent and imported resources enter the frame in
+  // (Executor::entryStates()); transients always enter fresh.
+  CompiledGraph compile(const EntryStates& entry = {}) const;
 
   // A readable text dump: passes in order with reads/writes/barriers, then resources with
   // format, size, writer and lifetime, then culled passes.
   std::string dump(const CompiledGraph& compiled) const;
+  // One barrier in words: "name: src stages [accesses] -> dst stages [accesses], old -> new
+  // layout; after `pass`, ...".
+  std::string describeBarrier(const Barrier& barrier) const;
   // The same graph as Graphviz DOT (`dot -Tsvg`): passes as boxes, resources as ellipses,
   // an edge from each writer to its resource and from each resource to its readers.
   std::string dot(const CompiledGraph& compiled) const;

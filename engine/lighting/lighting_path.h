@@ -5,6 +5,7 @@
 
 #include "graph/graph.h"
 #include "lighting/common/frame_inputs.h"
+#include "shared/sh.h"
 
 #include <memory>
 #include <optional>
@@ -33,6 +34,12 @@ struct LightingOutputs {
   float giBlendDistance = 0.0f;
   // The far field: another path's diffuse GI (SH + chroma, times its AO), e.g. legacy's.
   std::string farShY, farCoCg, farAo;
+  // The directionality of a uniform sky in the SH (shared/sh.h): what "no direction" looks
+  // like in how the path gathers, for the specular (shared/sh_specular.h) and for filters
+  // across normals. The RT path's cosine samples: kShOpenSkyDirectionality; legacy's cones:
+  // tlLegacyOpenSkyDirectionality(). farOpenSkyDirectionality: the far field's.
+  float openSkyDirectionality = shared::kShOpenSkyDirectionality;
+  float farOpenSkyDirectionality = shared::kShOpenSkyDirectionality;
   // The AO also darkens the diffuse GI (legacy: coarse voxel GI needs SSAO's contact detail).
   // Off for ray-traced GI, whose rays already saw the occluders.
   bool aoOnGi = false;

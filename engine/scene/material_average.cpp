@@ -18,14 +18,14 @@ glm::vec4 textureAverage(const Texture& t) {
   return glm::vec4(sum / double(n));
 }
 
-glm::vec3 materialAverageAlbedo(const Scene& scene, const Material& m) {
+glm::vec3 materialAverageAlbedo(const Scene& scene, const Material& m, uint32_t materials) {
   glm::vec3 base = glm::vec3(m.baseColorFactor);
   if (m.baseColorTexture && *m.baseColorTexture < scene.textures.size())
     base *= glm::vec3(textureAverage(scene.textures[*m.baseColorTexture]));
   float metallic = m.metallic;
   if (m.metallicRoughnessTexture && *m.metallicRoughnessTexture < scene.textures.size())
     metallic *= textureAverage(scene.textures[*m.metallicRoughnessTexture]).b;
-  return shared::tlRtHitAlbedoFromMaterial(glm::clamp(base, 0.0f, 1.0f), glm::clamp(metallic, 0.0f, 1.0f));
+  return shared::tlMaterialHitAlbedo(glm::clamp(base, 0.0f, 1.0f), glm::clamp(metallic, 0.0f, 1.0f), materials);
 }
 
 glm::vec3 materialAverageEmission(const Scene& scene, const Material& m) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "scene/scene.h"
+#include "shared/material_mode.h"
 
 #include <glm/glm.hpp>
 
@@ -12,8 +13,11 @@ namespace tl::scene {
 glm::vec4 textureAverage(const Texture& texture);
 
 // Base colour factor times its texture's average, through Metro's albedo (1 - F0) + F0 rule
-// (shared/rt.h) so metals bounce their specular colour.
-glm::vec3 materialAverageAlbedo(const Scene& scene, const Material& material);
+// (shared/rt.h) so metals bounce their specular colour; under a material override mode
+// (shared/material_mode.h kMaterials*) what that mode reflects: the base colour (diffuse) or
+// the clay albedo.
+glm::vec3 materialAverageAlbedo(const Scene& scene, const Material& material,
+                                uint32_t materials = shared::kMaterialsAuthored);
 // Emissive factor x strength x the emissive texture's average.
 glm::vec3 materialAverageEmission(const Scene& scene, const Material& material);
 

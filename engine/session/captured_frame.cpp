@@ -131,7 +131,7 @@ void CapturedFrame::display(graph::Executor& executor, lighting::DisplayPass& pa
   r.keepCopy = false;  // A/B works on live frames
   r.showCopy = false;
   pass.add(graph, device_, width_, height_, r);
-  executor.execute(graph, graph.compile());
+  executor.execute(graph, graph.compile(executor.entryStates(graph)));
 }
 
 }  // namespace tl::session

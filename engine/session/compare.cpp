@@ -10,6 +10,7 @@
 #include "session/image_io.h"
 #include "session/provenance.h"
 #include "session/report_html.h"
+#include "shared/brdf_tables.h"
 #include "shared/color.h"
 #include "shared/tonemap.h"
 
@@ -30,14 +31,17 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-// The reference's shaders as compiled (includes and all): any change to the path tracer's
-// GPU code gives new SPIR-V and so a new cache key, with no version to remember to bump.
+// The reference's shaders as compiled (includes and all) and the BRDF tables they read: any
+// change to the path tracer's GPU code gives new SPIR-V and so a new cache key, with no
+// version to remember to bump.
 uint64_t referenceSpirvHash() {
   std::vector<uint64_t> hashes;
   for (const std::string& shader : lighting::referenceShaders()) {
     const std::vector<uint32_t> words = gpu::loadSpirv(shader);
     hashes.push_back(scene::hashBytes(words.data(), words.size() * sizeof(uint32_t)));
   }
+  // The shared BRDF's tables are data the shaders read (brdf.tables), not SPIR-V.
+  hashes.push_back(scene::hashBytes(&shared::kBrdfTables, sizeof(shared::kBrdfTables)));
   return scene::hashBytes(hashes.data(), hashes.size() * sizeof(uint64_t));
 }
 
@@ -55,6 +59,13 @@ std::string referenceKey(const Session& s, const CompareOptions& o) {
                                  key.settingsOf("reference"), s.scene().contentHash, referenceSpirvHash(), o.referenceSpp);
   if (s.animated()) text += fmt::format("|t{}", s.animationTime());  // the pose of deforming meshes
   return fmt::format("{:016x}", scene::hashBytes(text.data(), text.size()));
+}
+
+// How the reference ends its paths (shaders/reference/path.glsl), for the report.
+std::string referenceBouncePolicy(uint32_t cap) {
+  return fmt::format("Russian roulette from the 4th scattering event (survival = the path throughput's largest "
+                     "component, at most 0.95), hard cap {} scattering events",
+                     cap);
 }
 
 // The reference image and its per-stage quantities at the primary hit: AO at the AO radius
@@ -76,7 +87,12 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   s.settings().referenceBounces = o.referenceBounces;  // before the key, which holds the reference's settings
   const std::string key = referenceKey(s, o);
   const std::filesystem::path files[3] = {dir / (key + ".exr"), dir / (key + ".ao.exr"), dir / (key + ".irradiance.exr")};
-  info = {{"source", "path tracer"}, {"spp", o.referenceSpp}, {"bounces", o.referenceBounces}, {"scope", o.scope},
+  info = {{"source", "path tracer"},
+          {"spp", o.referenceSpp},
+          {"bounces", o.referenceBounces},
+          {"bouncePolicy", referenceBouncePolicy(o.referenceBounces)},
+          {"materials", lighting::materialModeName(s.settings().materials)},
+          {"scope", o.scope},
           {"cacheFile", files[0].string()}};
   const uint32_t w = s.settings().width, h = s.settings().height;
   std::optional<RgbImage> cached[3];
@@ -287,7 +303,11 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
   ReferenceImages referenceImages;
   if (external) {
     referenceImages.radiance = std::move(*external);
-    refInfo = {{"source", "file"}, {"file", std::filesystem::absolute(o.referenceFile).string()}};
+    // The paths render with the session's material mode (compare an external diffuse-only image
+    // with --materials diffuse).
+    refInfo = {{"source", "file"},
+               {"file", std::filesystem::absolute(o.referenceFile).string()},
+               {"materials", lighting::materialModeName(s.settings().materials)}};
   } else {
     referenceImages = renderReference(s, o, progress, refInfo);
   }

@@ -40,7 +40,7 @@ struct CompareOptions {
   std::vector<std::string> paths;      // empty (and no variants): every available path except the reference
   std::vector<CompareVariant> variants;  // measured after `paths` (compare --settings FILE)
   uint32_t referenceSpp = 256;         // multiple of 16
-  uint32_t referenceBounces = 8;
+  uint32_t referenceBounces = lighting::RenderSettings{}.referenceBounces;  // the hard cap (Russian roulette ends paths first)
   // "full": referenceBounces scattering events; "same": 2 (direct light + one bounce, the
   // scope of the RT path's one-hit rays and of legacy's one-bounce cones).
   std::string scope = "full";

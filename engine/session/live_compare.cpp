@@ -86,7 +86,9 @@ void LiveCompare::measure(const std::string& path, float exposure) {
   e.referenceSamples = referenceSamples_;
   auto now = std::chrono::steady_clock::now();
   auto last = lastFlip_.find(path);
-  const bool due = last == lastFlip_.end() ||
+  // The interval only spaces out refreshes: a side whose figure was dropped (the view changed) is due
+  // at once, or on a fast device it would show no FLIP for a whole interval after every camera step.
+  const bool due = !e.flip || last == lastFlip_.end() ||
                    std::chrono::duration<double>(now - last->second).count() >= view_.flipIntervalSeconds;
   if (view_.measureFlip && due && !pendingFlip_.count(path)) {
     // The worker gets its own copies: the sides' images change under it on the next frames.

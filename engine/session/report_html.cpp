@@ -119,13 +119,14 @@ td:first-child,th:first-child{text-align:left}
     reference = fmt::format("Reference: the image {} (another renderer's, same camera and size)", escape(ref["file"].get<std::string>()));
   } else {
     const bool same = ref.value("scope", "full") == "same";
-    reference = fmt::format("Reference: {} samples per pixel, {} scattering events{}{}", ref["spp"].get<int>(),
+    reference = fmt::format("Reference: {} samples per pixel, {} scattering events{}{}; bounces: {}", ref["spp"].get<int>(),
                             ref["bounces"].get<int>(), same ? " (same scope as the real-time paths: direct + one bounce)" : "",
-                            ref["cached"].get<bool>() ? " (reused from the cache)" : "");
+                            ref["cached"].get<bool>() ? " (reused from the cache)" : "", escape(ref.value("bouncePolicy", "")));
   }
-  html += fmt::format("<p>{}×{} on {} ({}), Vulkan {}. {}. Exposure {:.2f} EV.</p>", r["width"].get<int>(),
+  html += fmt::format("<p>{}×{} on {} ({}), Vulkan {}. {}. Materials: {}. Exposure {:.2f} EV.</p>", r["width"].get<int>(),
                       r["height"].get<int>(), escape(r["device"].get<std::string>()), escape(r["driver"].get<std::string>()),
-                      r["vulkan"].get<std::string>(), reference, r["exposureEV"].get<double>());
+                      r["vulkan"].get<std::string>(), reference, escape(ref.value("materials", "authored")),
+                      r["exposureEV"].get<double>());
   if (r.contains("gate")) {
     const auto& g = r["gate"];
     std::string limits;

@@ -9,6 +9,7 @@
 #include "session/captured_frame.h"
 #include "session/image_io.h"
 #include "session/view_math.h"
+#include "shared/brdf_tables.h"
 #include "shared/taa.h"
 
 #include <fmt/format.h>
@@ -42,6 +43,9 @@ Session::Session(const gpu::DeviceOptions& options)
   pathName_ = path_->name();
   constants_ = gpu::Buffer(*device_, sizeof(shared::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                            gpu::MemoryUsage::Upload, lighting::kFrameConstants);
+  brdfTables_ = gpu::Buffer(*device_, sizeof(shared::BrdfTables), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                            gpu::MemoryUsage::Upload, lighting::kBrdfTables);
+  brdfTables_.write(&shared::kBrdfTables, sizeof(shared::BrdfTables));
 }
 
 Session::~Session() {
@@ -64,9 +68,11 @@ void Session::loadScene(const std::filesystem::path& file, const scene::LoadOpti
 }
 
 void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
-  capture_.reset();  // a scene replaces a reopened capture
   for (auto& w : loaded->warnings) spdlog::warn("{}", w);
   device_->waitIdle();
+  // The executor forgets the old scene's buffers and any capture's images before they go.
+  executor_->unbindImported();
+  capture_.reset();  // a scene replaces a reopened capture
   gpuScene_ = std::make_unique<scene::GpuScene>(*device_, *loaded);
   scene_ = std::move(loaded);
   albedo_ = std::make_unique<albedo::AlbedoLibrary>(*scene_);
@@ -104,6 +110,11 @@ void Session::openAlbedoDatabase(const std::filesystem::path& file, bool create)
   if (!albedo_) throw SessionError("load a scene before opening an albedo database");
   albedo_->attach(std::make_unique<albedo::AlbedoDatabase>(file, create));
   albedoDbFile_ = file;
+}
+
+void Session::closeAlbedoDatabase() {
+  albedoDbFile_.reset();
+  if (albedo_) albedo_->attach(nullptr);
 }
 
 void Session::captureAlbedoBaseline() { passes_->albedoView.captureBaseline(); }
@@ -282,6 +293,7 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
   fc.exposure = std::exp2(-exposureEv());
   fc.frameIndex = frameNumber;
   fc.flags = glm::length(lighting_.sunIrradiance) > 0.0f ? shared::kFrameFlagSunShadows : 0u;
+  fc.flags |= uint32_t(settings_.materials) << shared::kFrameMaterialsShift;
   fc.sceneScale = float(scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0);
 }
 
@@ -314,6 +326,9 @@ void Session::renderOne(bool readback) {
   graph.declareImported(lighting::kFrameConstants,
                         graph::ResourceDesc::buffer(constants_.size(), "per-frame constants (shared/frame.h)"));
   executor_->bindImportedBuffer(lighting::kFrameConstants, constants_);
+  graph.declareImported(lighting::kBrdfTables,
+                        graph::ResourceDesc::buffer(brdfTables_.size(), "the shared BRDF's tables (shared/brdf_lut.h)"));
+  executor_->bindImportedBuffer(lighting::kBrdfTables, brdfTables_);
   gpuScene_->importBuffers(graph, *executor_);
 
   lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, constants_, *executor_, view_.position};
@@ -345,7 +360,7 @@ void Session::renderOne(bool readback) {
         graph.markOutput(r.name);
   }
 
-  graph::CompiledGraph compiled = graph.compile();
+  graph::CompiledGraph compiled = graph.compile(executor_->entryStates(graph));
   if (readback) {
     if (requestAll_) executor_->requestReadbackAll();
     for (auto& n : requested_) executor_->requestReadback(n);
@@ -435,6 +450,7 @@ const std::vector<graph::PassTiming>& Session::timings() const { return capture_
 void Session::openCapture(const std::filesystem::path& dir) {
   auto opened = std::make_unique<CapturedFrame>(*device_, dir);  // throws, keeping what was open
   device_->waitIdle();
+  executor_->unbindImported();  // a capture open before this one is freed now
   capture_ = std::move(opened);
 }
 
@@ -445,6 +461,7 @@ const scene::Scene* Session::decodingScene() const {
 
 void Session::closeCapture() {
   device_->waitIdle();
+  executor_->unbindImported();  // the capture's images are freed with it
   capture_.reset();
   // The capture's frames bound its images under the live resources' names (gbuffer.normal,
   // gbuffer.instanceId, ...): a fresh executor forgets those bindings, which would otherwise

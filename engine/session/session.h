@@ -75,6 +75,9 @@ class Session {
   // albedo::DatabaseError and keeps the database in use before.
   void openAlbedoDatabase(const std::filesystem::path& file, bool create = true);
   std::optional<std::filesystem::path> albedoDatabaseFile() const { return albedoDbFile_; }
+  // Closes it: texture averages from now on, for this scene and the next ones (edits not
+  // saved are dropped).
+  void closeAlbedoDatabase();
   // A bake of this scene into the open database (throws SessionError without one); step it
   // to completion, then albedo().reload().
   std::unique_ptr<albedo::BakeJob> startAlbedoBake(const albedo::BakeOptions& options);
@@ -197,6 +200,7 @@ class Session {
   struct Passes;
   std::unique_ptr<Passes> passes_;
   gpu::Buffer constants_;
+  gpu::Buffer brdfTables_;  // shared/brdf_lut.h BrdfTables, written once
   lighting::RenderSettings settings_;
   View view_;
   std::optional<View> previousView_;

@@ -58,6 +58,16 @@ Field field(float lighting::RenderSettings::*member, float lo, float hi) {
           getter(member)};
 }
 
+// The material override mode by name: "authored", "diffuse" or "clay".
+Field materialModeField() {
+  auto set = [](lighting::RenderSettings& s, const nlohmann::json& v) {
+    const auto mode = v.is_string() ? lighting::parseMaterialMode(v.get<std::string>()) : std::nullopt;
+    if (!mode) throw std::invalid_argument("\"authored\", \"diffuse\" or \"clay\"");
+    s.materials = *mode;
+  };
+  return {set, [](const lighting::RenderSettings& s) { return nlohmann::json(lighting::materialModeName(s.materials)); }};
+}
+
 // Every setting JSON may change, with the range its value must lie in (inclusive). Distances
 // and radii of 0 mean "scaled to the scene" (frame_inputs.h); 1e6 m is their ceiling. The
 // ceilings on counts bound the work a frame does (pre-trace steps, rays, frames, levels).
@@ -72,6 +82,7 @@ const std::map<std::string, Field>& fields() {
       {"specularGi", field(&S::specularGi)},
       {"taa", field(&S::taa)},
       {"taaBlend", field(&S::taaBlend, 0.01f, 1.0f)},
+      {"materials", materialModeField()},
       {"referenceBounces", field(&S::referenceBounces, 1, 64)},
       {"rtSimplifyRatio", field(&S::rtSimplifyRatio, 0.01f, 1.0f)},
       {"rtAoRadius", field(&S::rtAoRadius, 0.0f, kDistance)},

@@ -40,7 +40,7 @@ void main() {
   vec3 v = normalize(-position);
   vec3 baseColor = texelFetch(gBaseColor, p, 0).rgb;
   vec4 material = texelFetch(gMaterial, p, 0);
-  SurfaceParams s = tlSurface(baseColor, material.x, material.y);
+  SurfaceParams s = tlMaterialSurface(baseColor, material.x, material.y, tlFrameMaterials(frame.flags));
 
   vec3 radiance = texelFetch(gEmissive, p, 0).rgb;
   float nl = dot(n, frame.sunToLight.xyz);
@@ -48,10 +48,11 @@ void main() {
     vec3 sun = frame.sunIrradiance.rgb * (nl * sunVisibilitySoft(position, n, p));
     radiance += sun * tlBrdf(s, n, v, frame.sunToLight.xyz);
   }
-  // Indirect diffuse, Lambert: radiance = albedo / pi * E.
+  // Indirect diffuse: the diffuse layer's albedo under uniform light from the irradiance's
+  // directions (shared/shading.h; exact for a uniform sky), radiance = albedo / pi * E.
   float ao = pathAmbientOcclusion(p);
-  vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, frame.skyRadiance.rgb);
-  radiance += s.diffuse * kInvPi * irradiance;
+  vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), frame.skyRadiance.rgb);
+  radiance += tlEnvironmentDiffuse(s, dot(n, v)) * kInvPi * irradiance;
   // Indirect specular: from the path's SH where it has one, else the sky's (times AO).
   radiance += pathSpecular(p, n, v, position, ao, s, frame.skyRadiance.rgb);
   imageStore(outRadiance, p, vec4(radiance, 1.0));

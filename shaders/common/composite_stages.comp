@@ -11,7 +11,9 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; };
+layout(set = 0, binding = kCompositeBaseColor) uniform sampler2D gBaseColor;
 layout(set = 0, binding = kCompositeNormal) uniform sampler2D gNormal;
+layout(set = 0, binding = kCompositeMaterial) uniform sampler2D gMaterial;
 layout(set = 0, binding = kCompositeDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kCompositeStageAo, r16f) uniform writeonly image2D outAo;
 layout(set = 0, binding = kCompositeStageIrradiance, rgba16f) uniform writeonly image2D outIrradiance;
@@ -33,5 +35,9 @@ void main() {
   vec3 n = tlOctDecode(texelFetch(gNormal, p, 0).xy);
   float ao = pathAmbientOcclusion(p);
   imageStore(outAo, p, vec4(ao));
-  imageStore(outIrradiance, p, vec4(pathDiffuseIrradiance(p, n, position, ao, frame.skyRadiance.rgb), 1.0));
+  // The surface only for its albedo: what occlusion puts back (path_indirect.glsl).
+  vec4 material = texelFetch(gMaterial, p, 0);
+  SurfaceParams s = tlMaterialSurface(texelFetch(gBaseColor, p, 0).rgb, material.x, material.y, tlFrameMaterials(frame.flags));
+  vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), frame.skyRadiance.rgb);
+  imageStore(outIrradiance, p, vec4(irradiance, 1.0));
 }

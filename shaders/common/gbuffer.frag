@@ -6,6 +6,7 @@
 #include "shared/packing.h"
 #include "common/material.glsl"
 
+layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; };
 layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
 
 layout(location = 0) in vec3 inNormal;
@@ -26,6 +27,9 @@ void main() {
   GpuInstance inst = instances[inInstance];
   GpuMaterial m = materials[inst.material];
 
+  // The material override mode (shared/material_mode.h) decides what reaches the G-buffer; a
+  // cut-out keeps its texture's alpha in every mode.
+  uint materials = tlFrameMaterials(frame.flags);
   vec4 base = materialBaseColor(m, inUv);
   if (materialCutout(m, base.a)) discard;
 
@@ -33,7 +37,7 @@ void main() {
   // back side instead of going black.
   vec3 n = normalize(inNormal);
   if (!gl_FrontFacing) n = -n;
-  if (m.normalTexture != kNoTexture) {
+  if (m.normalTexture != kNoTexture && tlMaterialNormalMaps(materials)) {
     vec3 t = inTangent.xyz - n * dot(n, inTangent.xyz);
     float tl = length(t);
     if (tl > 1e-6) {
@@ -47,15 +51,15 @@ void main() {
   }
 
   vec2 rm = materialRoughnessMetallic(m, inUv);
-  float roughness = rm.x;
-  float metallic = rm.y;
+  float roughness = tlMaterialRoughness(rm.x, materials);
+  float metallic = tlMaterialMetallic(rm.y, materials);
   vec3 emissive = m.emissive.rgb;
   if (m.emissiveTexture != kNoTexture) emissive *= sampleTexture(m.emissiveTexture, inUv).rgb;
 
   vec2 ndc = inClip.xy / inClip.w;
   vec2 prevNdc = inPrevClip.xy / inPrevClip.w;
 
-  outBaseColor = vec4(clamp(base.rgb, 0.0, 1.0), 1.0);
+  outBaseColor = vec4(clamp(tlMaterialBaseColor(base.rgb, materials), 0.0, 1.0), 1.0);
   outNormal = tlOctEncode(n);
   outMaterial = vec4(clamp(roughness, 0.0, 1.0), clamp(metallic, 0.0, 1.0), 0.0, 1.0);
   outEmissive = vec4(emissive, 1.0);

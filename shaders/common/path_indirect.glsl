@@ -1,6 +1,7 @@
 // What the composite takes from a lighting path, as the quantities it multiplies: the
 // ambient occlusion, the diffuse irradiance (sky and bounce light; the sun is separate) and
-// the indirect specular.
+// the indirect specular. Wherever AO darkens light, the occluders' own light is put back for
+// the surface's albedo (shared/shading.h tlMultiBounceAo): occlusion hides the sky, not light.
 // The composite and the composite.stages pass both include it, so the per-stage buffers
 // hold exactly what the final image used. The includer includes shared/gbuffer.h and sh.h
 // and declares `push` (CompositePush); the path's images are bound here, at the composite's
@@ -34,15 +35,17 @@ float farAmbientOcclusion(ivec2 p) { return clamp(texelFetch(farAo, p, 0).r, 0.0
 // With it: the path's irradiance resolved against the normal (it already holds the sky's
 // occlusion, so AO is not applied twice unless the path asks), fading beyond the blend
 // distance to the far field (another path's GI) or, without one, to the sky.
-vec3 pathDiffuseIrradiance(ivec2 p, vec3 n, vec3 position, float ao, vec3 skyRadiance) {
-  vec3 skyIrradiance = kPi * skyRadiance * ao;
+vec3 pathDiffuseIrradiance(ivec2 p, vec3 n, vec3 position, float ao, vec3 albedo, vec3 skyRadiance) {
+  vec3 occlusion = tlMultiBounceAo(ao, albedo);
+  vec3 skyIrradiance = kPi * skyRadiance * occlusion;
   if ((push.flags & kCompositeHasGi) == 0u) return skyIrradiance;
   vec3 gi = tlShResolveIrradiance(pathSh(p), n);
-  if ((push.flags & kCompositeAoOnGi) != 0u) gi *= ao;
+  if ((push.flags & kCompositeAoOnGi) != 0u) gi *= occlusion;
   float fade = pathGiFade(position);
   if (fade >= 1.0) return gi;
   vec3 far = skyIrradiance;
-  if ((push.flags & kCompositeHasFarGi) != 0u) far = tlShResolveIrradiance(farSh(p), n) * farAmbientOcclusion(p);
+  if ((push.flags & kCompositeHasFarGi) != 0u)
+    far = tlShResolveIrradiance(farSh(p), n) * tlMultiBounceAo(farAmbientOcclusion(p), albedo);
   return mix(far, gi, fade);
 }
 
@@ -52,13 +55,16 @@ vec3 pathDiffuseIrradiance(ivec2 p, vec3 n, vec3 position, float ao, vec3 skyRad
 // directionality, GGX), so a metal indoors reflects the room, not the sky; it fades beyond
 // the blend distance like the diffuse.
 vec3 pathSpecular(ivec2 p, vec3 n, vec3 v, vec3 position, float ao, SurfaceParams s, vec3 skyRadiance) {
-  vec3 sky = skyRadiance * tlEnvironmentSpecular(s, max(dot(n, v), 1e-4)) * ao;
+  vec3 albedo = tlHemisphericalAlbedo(s);
+  vec3 occlusion = tlMultiBounceAo(ao, albedo);
+  vec3 sky = skyRadiance * tlEnvironmentSpecular(s, dot(n, v)) * occlusion;
   if ((push.flags & kCompositeHasGi) == 0u || (push.flags & kCompositeSpecularGi) == 0u) return sky;
-  vec3 specular = tlShSpecular(pathSh(p), s, n, v);
-  if ((push.flags & kCompositeAoOnGi) != 0u) specular *= ao;
+  vec3 specular = tlShSpecular(pathSh(p), s, n, v, push.openSkyDirectionality);
+  if ((push.flags & kCompositeAoOnGi) != 0u) specular *= occlusion;
   float fade = pathGiFade(position);
   if (fade >= 1.0) return specular;
   vec3 far = sky;
-  if ((push.flags & kCompositeHasFarGi) != 0u) far = tlShSpecular(farSh(p), s, n, v) * farAmbientOcclusion(p);
+  if ((push.flags & kCompositeHasFarGi) != 0u)
+    far = tlShSpecular(farSh(p), s, n, v, push.farOpenSkyDirectionality) * tlMultiBounceAo(farAmbientOcclusion(p), albedo);
   return mix(far, specular, fade);
 }

@@ -14,8 +14,6 @@ layout(set = 0, binding = kLegacyBindingRadianceMips) uniform sampler3D radiance
 layout(set = 0, binding = kLegacyBindingConeShY, rgba16f) uniform writeonly image2D shYOut;
 layout(set = 0, binding = kLegacyBindingConeCoCgAo, rgba16f) uniform writeonly image2D coCgAoOut;
 
-const float kTanHalfAperture = 0.57735;  // 60 degree cones
-const float kRingTilt = 0.95993;         // 55 degrees: six cones cover the hemisphere
 
 struct VoxelSample {
   vec3 radiance;  // premultiplied by coverage
@@ -82,22 +80,22 @@ void main() {
   float voxel = push.clipmap.levelMin[0].w;
   vec3 origin = P + n * (1.5 * voxel);  // leave the surface's own voxel
   mat3 basis = tlBasisFromNormal(n);
-  // Cosine weights of one axial and five tilted cones, summing to pi (Lambert's integral).
-  const float wAxis = 3.14159265 / (1.0 + 5.0 * 0.57358), wRing = wAxis * 0.57358;
+  // Cosine weights of one axial and five tilted cones, summing to pi (shared/legacy.h).
+  const float wAxis = kLegacyConeAxisWeight, wRing = wAxis * kLegacyConeRingCos;
   ShLumaCoCg sh = tlShZero();
   float ao = 0.0;
   for (int i = 0; i < 6; ++i) {
     vec3 local = vec3(0.0, 0.0, 1.0);
     if (i > 0) {
       float phi = float(i - 1) * 1.2566371;
-      local = vec3(sin(kRingTilt) * cos(phi), sin(kRingTilt) * sin(phi), cos(kRingTilt));
+      local = vec3(sin(kLegacyConeRingTilt) * cos(phi), sin(kLegacyConeRingTilt) * sin(phi), cos(kLegacyConeRingTilt));
     }
     vec3 dir = basis * local;
     vec3 gathered = vec3(0.0);
     float occlusion = 0.0, aoOcclusion = 0.0;
     float t = voxel;
     while (t < push.coneRange && occlusion < 0.95) {
-      float diameter = max(2.0 * t * kTanHalfAperture, voxel);
+      float diameter = max(2.0 * t * kLegacyConeTanHalfAperture, voxel);
       // Samples keep 1.5 times their own size off the surface: a coarse voxel holding the
       // surface would otherwise occlude the cone with the surface it starts from (the
       // surface may lie anywhere in its voxel, and trilinear taps reach one voxel further).

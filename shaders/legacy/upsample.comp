@@ -4,9 +4,14 @@
 // SSAO (which averages its 2x2 rotation pattern) and bilinear ones for the cone-traced GI.
 // Away from depth edges it reads one gather of view depths and one filtered tap per image
 // (depthAwareTaps). AO = SSAO x voxel AO. The SSAO arrives already accumulated over frames
-// (legacy.ssao.temporal, at its own resolution).
+// (legacy.ssao.temporal, at its own resolution). The cone texels' SH were gathered over the
+// hemisphere of their own pixel's normal: the filtered SH is divided by the coverage those
+// hemispheres give this pixel's normal (shared/sh.h tlShHemisphereCoverage). A pixel whose four
+// texels all stand for the sky (a silhouette at reduced resolution) takes the surface texel of
+// nearest depth in the 4x4 around them.
 #extension GL_GOOGLE_include_directive : require
 #include "legacy/legacy_common.glsl"
+#include "shared/sh.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = kLegacyBindingSsaoOut) uniform sampler2D ssaoIn;  // AO, view depth, frames
@@ -45,6 +50,7 @@ struct Taps {
   vec4 k;          // normalised weights (all 0: no texel on this surface)
   bool separable;  // k is bilinear at uv within 0.02: one filtered tap will do
   vec2 uv;
+  vec4 applied;    // the weights the texels actually get: bilinear at uv when separable, else k
 };
 Taps depthAwareTaps(vec4 viewDepths, vec4 spatial, ivec2 base, ivec2 reduced) {
   Taps t;
@@ -55,6 +61,7 @@ Taps depthAwareTaps(vec4 viewDepths, vec4 spatial, ivec2 base, ivec2 reduced) {
   vec4 err = abs(vec4((1.0 - g.x) * g.y, g.x * g.y, g.x * (1.0 - g.y), (1.0 - g.x) * (1.0 - g.y)) - t.k);
   t.separable = sum > 1e-6 && max(max(err.x, err.y), max(err.z, err.w)) < 0.02;
   t.uv = (vec2(base) + 0.5 + g) / vec2(reduced);
+  t.applied = t.separable ? vec4((1.0 - g.x) * g.y, g.x * g.y, g.x * (1.0 - g.y), (1.0 - g.x) * (1.0 - g.y)) : t.k;
   return t;
 }
 
@@ -90,7 +97,8 @@ void main() {
   ivec2 giBase = clamp(ivec2(floor(giPos)), ivec2(0), max(giSize - 2, ivec2(0)));
   vec2 f = clamp(giPos - vec2(giBase), vec2(0.0), vec2(1.0));
   vec4 bilinear = vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
-  Taps giTaps = depthAwareTaps(textureGather(coneCoCgAo, vec2(giBase + 1) / vec2(giSize), 3), bilinear, giBase, giSize);
+  vec4 giDepths = textureGather(coneCoCgAo, vec2(giBase + 1) / vec2(giSize), 3);
+  Taps giTaps = depthAwareTaps(giDepths, bilinear, giBase, giSize);
   if (giTaps.separable) {
     shY = textureLod(coneShY, giTaps.uv, 0.0);
     coCgAo = textureLod(coneCoCgAo, giTaps.uv, 0.0);
@@ -102,6 +110,32 @@ void main() {
       coCgAo += giTaps.k[i] * texelFetch(coneCoCgAo, q, 0);
     }
   }
+  // Normalise by the hemispheres the texels covered (their pixels' normals).
+  vec3 n = pixelNormal(p);
+  float coverage = 0.0;
+  if (giTaps.k == vec4(0.0)) {
+    // Every texel around stands for the sky: the nearest surface texel in depth, a ring further.
+    float best = 1e30;
+    for (int y = -1; y <= 2; ++y)
+      for (int x = -1; x <= 2; ++x) {
+        ivec2 q = clamp(giBase + ivec2(x, y), ivec2(0), giSize - 1);
+        vec4 c = texelFetch(coneCoCgAo, q, 0);
+        float rel = abs(c.w - w0) / w0;
+        if (c.w <= 0.0 || rel >= best) continue;
+        best = rel;
+        shY = texelFetch(coneShY, q, 0);
+        coCgAo = c;
+        coverage = tlShHemisphereCoverage(dot(n, pixelNormal(fullPixel(q, push.coneDivisor))), tlLegacyOpenSkyDirectionality());
+      }
+  } else {
+    // A sky texel holds no light: what weight it still gets (one filtered tap) covers nothing.
+    for (int i = 0; i < 4; ++i) {
+      if (giDepths[i] <= 0.0) continue;
+      vec3 nq = pixelNormal(fullPixel(min(giBase + kGatherOffsets[i], giSize - 1), push.coneDivisor));
+      coverage += giTaps.applied[i] * tlShHemisphereCoverage(dot(n, nq), tlLegacyOpenSkyDirectionality());
+    }
+  }
+  if (coverage > 1e-4) shY /= coverage, coCgAo.xy /= coverage;
   float ssao = clamp(ao, 0.0, 1.0);
   float vxao = coCgAo.z;
   imageStore(aoOut, p, vec4(ssao * vxao));

@@ -63,7 +63,7 @@ void main() {
   if (m.alphaCutoff > 0.0 && base.a < m.alphaCutoff) return;
   vec3 emission = m.emissive.rgb;
   if (m.emissiveTexture != kNoTexture) emission *= texture(sceneTextures[nonuniformEXT(m.emissiveTexture)], inUv).rgb;
-  vec3 albedo = tlRtHitAlbedoFromMaterial(clamp(base.rgb, 0.0, 1.0), m.metallic);
+  vec3 albedo = tlMaterialHitAlbedo(clamp(base.rgb, 0.0, 1.0), m.metallic, tlFrameMaterials(frame.flags));
   vec3 n = normalize(inNormal);
   ivec3 z = ivec3(0, 0, int(level) * R);
   // Round 0: the voxel is solid from every side (rgb 0, opacity 1). Round 1, after a barrier:

@@ -7,11 +7,13 @@ layout(location = 0) rayPayloadEXT RefHit hit;
 layout(location = 1) rayPayloadEXT float visible;
 
 // Deterministic per pixel, per sample and per dimension: the same image for the same spp.
+// The dimension has its own 16 bits (beside the pixel's x), so however long a path gets its
+// numbers never repeat another sample's.
 uvec2 gPixel;
 uint gSample;
 uint gDimension;
 vec2 next2() {
-  uvec3 h = tlPcg3d(uvec3(gPixel.x, gPixel.y, (gSample * 64u + gDimension++) ^ (push.seed * 0x9E3779B9u)));
+  uvec3 h = tlPcg3d(uvec3(gPixel.x | (gDimension++ << 16u), gPixel.y, gSample ^ (push.seed * 0x9E3779B9u)));
   return vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y));
 }
 
@@ -34,7 +36,7 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
     if (bounce >= push.maxBounces) break;  // no more scattering events allowed
 
     vec3 n = hit.normal.xyz, geometric = hit.geometric.xyz, v = -dir;
-    SurfaceParams s = tlSurface(hit.baseColor.rgb, hit.baseColor.a, hit.emission.a);
+    SurfaceParams s = tlMaterialSurface(hit.baseColor.rgb, hit.baseColor.a, hit.emission.a, tlFrameMaterials(frame.flags));
     vec3 position = tlOffsetRayOrigin(hit.positionT.xyz, geometric);
 
     if (bounce == 0u && push.aoRadius > 0.0) {
@@ -60,29 +62,22 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
       radiance += throughput * frame.sunIrradiance.rgb * (sunNl * visible) * tlBrdf(s, n, v, toSun);
     }
 
-    // Next direction: one of the two lobes, chosen by their weight; the pdf is the mixture.
-    float nv = max(dot(n, v), 1e-4);
-    float wd = tlLuminance(s.diffuse), ws = tlLuminance(tlEnvironmentSpecular(s, nv));
-    float pSpec = ws + wd > 0.0 ? clamp(ws / (ws + wd), 0.05, 0.95) : 0.5;
-    if (wd == 0.0) pSpec = 1.0;
+    // Next direction from the BRDF (shared/shading.h): the single-scattering lobe from its
+    // visible normals, the rest by cosine, each in proportion to its albedo; weight f cos / pdf.
+    float pSpec = tlBrdfSpecularProbability(s, dot(n, v));
     vec2 u = next2();
     vec2 choice = next2();
-    vec3 l;
-    if (choice.x < pSpec) {
-      vec3 h = tlLocalToWorld(tlSampleGgxHalfVector(u, s.alpha), n);
-      l = reflect(-v, h);
-    } else {
-      l = tlLocalToWorld(tlSampleCosineHemisphere(u), n);
-    }
+    vec3 l = tlSampleBrdf(s, n, v, pSpec, u, choice.x);
     float nl = dot(n, l);
     if (nl <= 0.0 || dot(geometric, l) <= 0.0) break;
-    vec3 h = normalize(v + l);
-    float pdf = pSpec * tlGgxHalfVectorPdf(max(dot(n, h), 0.0), s.alpha) / (4.0 * max(dot(v, h), 1e-6)) +
-                (1.0 - pSpec) * tlCosineHemispherePdf(nl);
+    float pdf = tlBrdfPdf(s, n, v, l, pSpec);
     if (!(pdf > 1e-8)) break;
     throughput *= tlBrdf(s, n, v, l) * (nl / pdf);
 
-    // Russian roulette after three bounces keeps long paths unbiased and cheap.
+    // Russian roulette from the fourth scattering event on keeps long paths unbiased and cheap:
+    // a path survives with the probability its throughput carries (at most 0.95, so even a
+    // white surface ends), and survivors carry that much more. The hard cap (maxBounces,
+    // default 64: RenderSettings::referenceBounces) is then almost never what ends a path.
     if (bounce >= 3u) {
       float q = min(max(throughput.r, max(throughput.g, throughput.b)), 0.95);
       if (choice.y >= q) break;

@@ -5,7 +5,9 @@
 // corners); an adaptive step through a 16-tap Poisson disk (small radius, fewer taps) rotated
 // per frame, not per pixel; a step-function weight on the distance to the centre's tangent
 // plane (absolute, so rounded objects are not skipped); pass 2 adds a linear normal weight.
-// The output keeps part of the input: lerp(denoised, input, 0.5 * accumulation speed).
+// Taps of other normals are normalised by the hemisphere each covers at this pixel's normal
+// (shared/sh.h tlShHemisphereCoverage), so the light they never sampled is not lost. The
+// output keeps part of the input: lerp(denoised, input, 0.5 * accumulation speed).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame.h"
 #include "shared/packing.h"
@@ -66,7 +68,7 @@ void main() {
   mat2 rotation = mat2(c, s, -s, c);
   vec4 shY = shY0;
   vec2 coCg = coCgAo0.xy;
-  float weight = 1.0;
+  float coverage = 1.0;
   float plane = push.planeDistance * w0;
   for (int i = 0; i < 16; i += step) {
     ivec2 q = p + ivec2(round(rotation * kDisk[i] * radius));
@@ -74,15 +76,17 @@ void main() {
     float d = texelFetch(gDepth, q, 0).r;
     if (d <= 0.0) continue;
     if (abs(dot(n0, pixelPosition(q, d) - P0)) > plane) continue;  // off the tangent plane: weight 0
-    float k = 1.0;
-    if (push.normalWeight != 0u) k = max(dot(n0, tlOctDecode(texelFetch(gNormal, q, 0).xy)), 0.0);
+    float cosNormals = dot(n0, tlOctDecode(texelFetch(gNormal, q, 0).xy));
+    float k = push.normalWeight != 0u ? max(cosNormals, 0.0) : 1.0;
     if (k <= 0.0) continue;
     shY += k * texelFetch(inShY, q, 0);
     coCg += k * texelFetch(inCoCgAo, q, 0).xy;
-    weight += k;
+    coverage += k * tlShHemisphereCoverage(cosNormals, kShOpenSkyDirectionality);
   }
-  shY /= weight;
-  coCg /= weight;
+  // Over the covered irradiance rather than the weights (the centre covers itself: 1). The
+  // chroma is a ratio to the luma's L0, so it is divided alike.
+  shY /= coverage;
+  coCg /= coverage;
   // Accumulation speed: 0 for a fresh pixel (all denoised), towards 1 once history is long.
   float accumulation = 1.0 - 1.0 / max(coCgAo0.w, 1.0);
   float keep = 0.5 * accumulation;

@@ -31,7 +31,8 @@ bool screenRadianceAt(vec3 hitPosition, uint hit, out vec3 radiance) {
   float w = texelFetch(previousViewDepth, q, 0).r;
   if (w <= 0.0 || abs(w - clip.w) > 0.03 * clip.w) return false;
   // This frame's G-buffer at last frame's pixel: the albedo it was shaded with.
-  vec3 screenAlbedo = tlRtHitAlbedoFromMaterial(texelFetch(gBaseColor, q, 0).rgb, texelFetch(gMaterial, q, 0).g);
+  vec3 screenAlbedo = tlMaterialHitAlbedo(texelFetch(gBaseColor, q, 0).rgb, texelFetch(gMaterial, q, 0).g,
+                                          tlFrameMaterials(frame.flags));
   vec3 emission = texelFetch(gEmissive, q, 0).rgb;
   radiance = tlRtRecolourScreenRadiance(texelFetch(previousRadiance, q, 0).rgb, emission, screenAlbedo, tlRtHitAlbedo(hit));
   if (!emissionFromRays()) radiance = max(radiance - emission, vec3(0.0));

@@ -65,7 +65,8 @@ void main() {
         // The G-buffer's albedo, scaled as the instance's database entry or override asks.
         uint id = texelFetch(gInstanceId, s, 0).r;
         vec3 scale = id > 0u ? rtInstances[id - 1u].albedoScale.rgb : vec3(1.0);
-        result = tlRtPackHit(distance, clamp(tlRtHitAlbedoFromMaterial(base, metallic) * scale, 0.0, 1.0));
+        vec3 albedo = tlMaterialHitAlbedo(base, metallic, tlFrameMaterials(frame.flags));
+        result = tlRtPackHit(distance, clamp(albedo * scale, 0.0, 1.0));
         surface = uvec2(tlOctEncodeSnorm16(sn), tlPackRgb9e5(texelFetch(gEmissive, s, 0).rgb));
         break;
       }

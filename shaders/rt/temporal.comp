@@ -222,8 +222,9 @@ void main() {
   } else {
     meanSquare = shY0 * shY0;
   }
-  imageStore(outShY, p, shY);
-  imageStore(outCoCgAo, p, coCgAo);
+  // Rounded here, not by the store: the history must not drift on a device that truncates.
+  imageStore(outShY, p, tlRoundToHalf(shY));
+  imageStore(outCoCgAo, p, tlRoundToHalf(coCgAo));
   imageStore(outDepth, p, vec4(w));
   imageStore(outMoment, p, vec4(meanSquare));
 }

@@ -4,6 +4,7 @@
 #ifndef TL_SHARED_FRAME_H
 #define TL_SHARED_FRAME_H
 #include "common.h"
+#include "material_mode.h"
 
 TL_BEGIN
 struct FrameConstants {
@@ -28,6 +29,9 @@ struct FrameConstants {
 };
 
 TL_CONST uint kFrameFlagSunShadows = 1u;
+// Bits 1-2: the material override mode (shared/material_mode.h kMaterials*).
+TL_CONST uint kFrameMaterialsShift = 1u;
+TL_FN uint tlFrameMaterials(uint flags) { return (flags >> kFrameMaterialsShift) & 3u; }
 
 // Set-0 binding of the frame constants in every pass that reads them.
 TL_CONST uint kBindingFrame = 0;

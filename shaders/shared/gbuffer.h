@@ -51,7 +51,9 @@ struct CompositePush {
   uint flags;               // kCompositeHas*: which path outputs are bound
   float giBlendDistance;    // beyond this view distance GI fades to the far field, else the sky (0: never)
   float giBlendWidth;       // over this many metres
-  uint pad;
+  float openSkyDirectionality;     // a uniform sky's directionality in the path's SH (shared/sh.h)
+  float farOpenSkyDirectionality;  // and in the far field's
+  uint pad0, pad1, pad2;
 };
 
 // Bindings of the tonemap pass (set 0).

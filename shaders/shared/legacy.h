@@ -22,6 +22,23 @@
 TL_BEGIN
 TL_CONST uint kLegacyMaxLevels = 4u;
 
+// The diffuse cones (legacy/cones.comp): one along the normal and five tilted by 55 degrees,
+// 60 degree apertures, weighted by their cosine so the weights sum to pi (Lambert's integral).
+// Each cone's radiance is projected into the RT path's SH layout with the RT sample weight
+// w / (1/4 + cos/2), so the SH resolves to exactly sum(w L) at the pixel's normal.
+TL_CONST float kLegacyConeTanHalfAperture = 0.57735f;  // 60 degree cones
+TL_CONST float kLegacyConeRingTilt = 0.95993f;         // 55 degrees: six cones cover the hemisphere
+TL_CONST float kLegacyConeRingCos = 0.57358f;          // cos(55 degrees)
+TL_CONST float kLegacyConeAxisWeight = 0.81222f;       // pi / (1 + 5 cos(55 deg))
+// The cones' SH of a uniform sky has directionality |L1| / (sqrt(3) L0) = (fa + 5 fr c) /
+// (fa + 5 fr) with fa = 1 / (1/4 + 1/2), fr = c / (1/4 + c/2), c = cos(55 deg): 0.6587 (the
+// RT path's cosine samples: kShOpenSkyDirectionality, 0.6094).
+TL_FN float tlLegacyOpenSkyDirectionality() {
+  float c = kLegacyConeRingCos;
+  float fa = 1.0f / 0.75f, fr = c / (0.25f + 0.5f * c);
+  return (fa + 5.0f * fr * c) / (fa + 5.0f * fr);
+}
+
 struct LegacyClipmap {
   vec4 levelMin[4];    // xyz: camera-relative minimum corner of level l, w: its voxel size (m)
   uint resolution;     // R

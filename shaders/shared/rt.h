@@ -28,6 +28,7 @@
 #ifndef TL_SHARED_RT_H
 #define TL_SHARED_RT_H
 #include "common.h"
+#include "material_mode.h"
 #include "packing.h"
 #include "sampling.h"
 #include "sh.h"
@@ -81,6 +82,12 @@ TL_FN vec3 tlRtHitAlbedoFromMaterial(vec3 baseColor, float metallic) {
   vec3 diffuse = baseColor * (1.0f - metallic);
   vec3 f0 = mix(vec3(0.04f), baseColor, metallic);
   return diffuse * (vec3(1.0f) - f0) + f0;
+}
+
+// The hit albedo under a material override mode: the Lambertian modes reflect their albedo.
+TL_FN vec3 tlMaterialHitAlbedo(vec3 baseColor, float metallic, uint materials) {
+  if (materials == kMaterialsAuthored) return tlRtHitAlbedoFromMaterial(baseColor, metallic);
+  return tlMaterialBaseColor(baseColor, materials);
 }
 
 // Last frame's shaded radiance at a hit seen on screen, re-coloured to the albedo the hit

@@ -12,7 +12,7 @@
 //   tlSampleGgxHalfVector(u, alpha)  half vector, pdf D(h) cos(theta_h) = tlGgxHalfVectorPdf
 //   tlBasisFromNormal(n)             mat3(t, b, n), right-handed orthonormal, branchless
 //                                    (Duff et al. 2017); n must be unit length
-//   tlLambertBrdf, tlSmithG2HeightCorrelated   BRDF terms not already in shared/shading.h;
+//   tlLambertBrdf, tlSmithG2HeightCorrelated   BRDF terms not already in shared/microfacet.h;
 //                                    GGX D (tlGgxD), the Smith visibility (tlSmithVisibility) and
 //                                    Schlick Fresnel (tlFresnelSchlick) live there and are reused
 //   tlPcgHash(x), tlPcg3d(v)         integer hashes (Jarzynski & Olano 2020, "Hash Functions for
@@ -23,7 +23,7 @@
 #ifndef TL_SHARED_SAMPLING_H
 #define TL_SHARED_SAMPLING_H
 #include "common.h"
-#include "shading.h"
+#include "microfacet.h"
 
 TL_BEGIN
 TL_CONST float kUniformSpherePdf = 0.07957747155f;      // 1 / (4 pi)

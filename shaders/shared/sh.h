@@ -36,6 +36,8 @@
 //   tlShDirectionality(sh)             |L1| / (sqrt(3) L0) in [0,1]: 0 uniform, 1 single direction
 //   tlShL1(sh), tlShLumaToRgb(sh, y)   helpers: the L1 vector; a luma value -> RGB at sh's chroma
 //   tlShFitHalf(sh)                    the SH scaled as a whole into the half-float range
+//   tlShHemisphereCoverage(cos, a)     what a uniform sky sampled over one normal's hemisphere
+//                                      resolves to at a normal cos away, relative (see below)
 //
 // Storage. The SH and chroma live in RGBA16F / RG16F images, whose largest value is 65504. A
 // store saturates each channel on its own: next to an emitter of 1e4 or more the luma L0
@@ -113,6 +115,23 @@ TL_FN vec3 tlShDominantDirection(ShLumaCoCg sh, vec3 fallback) {
   vec3 l1 = tlShL1(sh);
   float len = length(l1);
   return len > 1e-20f ? l1 / len : fallback;
+}
+
+// The directionality of a uniform sky of radiance L sampled by cosine over the hemisphere of n
+// with the RT path's sample weight (shared/rt.h tlRtShSampleWeight): exact, the SH's mean is
+// the projection of L cos / (1/4 + cos/2) over the hemisphere.
+TL_CONST float kShOpenSkyDirectionality = 0.609389f;  // (ln 3 / 2) / (2 - ln 3)
+
+// An SH gathered over the hemisphere of one normal, resolved at another normal cos(theta)
+// away, misses the directions below the first hemisphere that lie above the second. For a
+// uniform sky of directionality a (|L1| = sqrt(3) a L0 along the first normal; E(n) =
+// 0.886226 L0 + 1.023326 L1.n) the resolved irradiance is, relative to the first normal's,
+//   (1 + 2 a max(cos, 0)) / (1 + 2 a).
+// A filter that mixes SH of different normals divides by its weighted mean of this (the RT
+// denoiser, the legacy upsample): directions a sample never saw then count with the radiance
+// of those it did, which is exact where the light is uniform (the white furnace).
+TL_FN float tlShHemisphereCoverage(float cosTheta, float openSkyDirectionality) {
+  return (1.0f + 2.0f * openSkyDirectionality * max(cosTheta, 0.0f)) / (1.0f + 2.0f * openSkyDirectionality);
 }
 
 // For non-negative radiance |L1| <= sqrt(3) L0, with equality only for a single direction.

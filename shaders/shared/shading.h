@@ -1,71 +1,258 @@
-// Surface shading shared by the composite, the reference path tracer and the CPU tests:
-// Lambert diffuse + GGX specular (height-correlated Smith, Schlick Fresnel), metallic
-// workflow, and the split-sum environment term for a uniform sky.
+// The one surface BRDF of every lighting path, the reference path tracer and the CPU tests:
+// glTF 2.0's metal-rough model made energy-conserving (docs/accuracy.md has the derivation).
+//
+//   f = mix(f_dielectric, f_metal, metallic)
+//   f_metal      = f_ss(F0 = baseColor) + f_ms(F0 = baseColor)
+//   f_dielectric = f_ss(F0 = 0.04) + f_ms(F0 = 0.04) + f_diffuse
+//   f_ss(F0)     = D(h) V(l, v) F(v.h)             GGX, height-correlated Smith, Schlick's Fresnel
+//   f_ms(F0)     = F_ms (1 - E(mu_o)) (1 - E(mu_i)) / (pi (1 - E_avg))            (Kulla & Conty 2017)
+//                  F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)),  F_avg = F0 + (1 - F0) / 21
+//   f_diffuse    = baseColor / pi (1 - E_d(mu_o)) (1 - E_d(mu_i)) / (1 - E_d,avg)
+//
+// E(mu) is the albedo of f_ss with F = 1 and E_avg its cosine-weighted average, so f_ss + f_ms
+// reflects exactly what one microfacet bounce loses to masking: a white metal reflects all the
+// light it receives at any roughness. E_d(mu) is the dielectric's whole specular albedo (f_ss +
+// f_ms at F0 = 0.04): the diffuse layer gets exactly the energy the specular layer does not
+// reflect, so a white dielectric also reflects everything, and the form stays reciprocal.
+// It is glTF's fresnel_mix (diffuse weighted by 1 - F) with the Fresnel of one microfacet
+// replaced by the albedo of the whole specular layer, which is what makes it conserve energy.
+// E and E_avg come from tables the build computes (shared/brdf_lut.h); a shader that includes
+// this file and shades reads them from binding kBindingBrdfTables of set 0 ("brdf.tables").
+//
+// A "Lambert" surface (tlLambertSurface: the diffuse and clay override modes) has no specular
+// layer: f = albedo / pi.
+//
+// Also here: the terms for a uniform environment (tlEnvironmentSpecular / tlEnvironmentDiffuse:
+// the reflected radiance per unit of uniform incident radiance, exact for this BRDF), the
+// hemispherical albedo, and sampling (the reference path tracer).
 #ifndef TL_SHARED_SHADING_H
 #define TL_SHARED_SHADING_H
 #include "common.h"
+#include "brdf_lut.h"
+#include "material_mode.h"
+#include "microfacet.h"
+#include "sampling.h"
+#ifdef __cplusplus
+#include "shared/brdf_tables.h"
+#endif
+
+// The tables (shared/brdf_lut.h): the generated constant in C++, the brdf.tables buffer in GLSL.
+#ifdef __cplusplus
+TL_BEGIN
+TL_FN float tlBrdfSpecularNode(uint i) { return kBrdfTables.specular[i]; }
+TL_FN float tlBrdfAverageNode(uint i) { return kBrdfTables.average[i]; }
+TL_END
+#else
+layout(set = 0, binding = kBindingBrdfTables, std430) readonly buffer BrdfTablesBuffer { BrdfTables brdfTables; };
+float tlBrdfSpecularNode(uint i) { return brdfTables.specular[i]; }
+float tlBrdfAverageNode(uint i) { return brdfTables.average[i]; }
+#endif
 
 TL_BEGIN
+TL_CONST float kDielectricF0 = 0.04f;  // glTF: index of refraction 1.5
+
 struct SurfaceParams {
-  vec3 diffuse;     // Lambert albedo: baseColor * (1 - metallic)
-  vec3 f0;          // specular reflectance at normal incidence
-  float alpha;      // GGX alpha = roughness^2, clamped away from 0
+  vec3 diffuse;          // the diffuse layer's albedo: baseColor (1 - metallic)
+  vec3 f0;               // Schlick's F0 of the single-scattering lobe: mix(0.04, baseColor, metallic)
+  vec3 msFresnel;        // F_ms of the multiple-scattering lobe, mixed like the model: mix(F_ms(0.04), F_ms(baseColor), metallic)
+  float alpha;           // GGX alpha = roughness^2
+  float roughness;       // perceptual roughness, clamped to [kBrdfMinRoughness, 1]: the tables' axis
+  float specular;        // 1: the glTF model; 0: no specular layer (Lambert)
+  float singleAverage;   // E_avg: the cosine-weighted average of E(mu)
+  float layerMsFresnel;  // F_ms(0.04): the dielectric layer's multiple-scattering Fresnel
+  float layerAverage;    // E_d,avg: the cosine-weighted average of the dielectric layer's specular albedo
+  vec3 baseColor;        // what it was made from (tlSurfaceWithRoughness)
+  float metallic;
 };
+
+// The tables at (cos theta, roughness): vec2(S, B) with E_F0 = F0 S + B, bilinear.
+TL_FN vec2 tlSpecularAlbedoSplit(float cosTheta, float roughness) {
+  float x = tlBrdfLutCosineCoord(cosTheta), y = tlBrdfLutRoughnessCoord(roughness);
+  uint x0 = min(uint(x), kBrdfLutCosines - 2u), y0 = min(uint(y), kBrdfLutRoughness - 2u);
+  float fx = x - float(x0), fy = y - float(y0);
+  uint i00 = (y0 * kBrdfLutCosines + x0) * 2u, i10 = i00 + 2u * kBrdfLutCosines;
+  vec2 t00 = vec2(tlBrdfSpecularNode(i00), tlBrdfSpecularNode(i00 + 1u));
+  vec2 t01 = vec2(tlBrdfSpecularNode(i00 + 2u), tlBrdfSpecularNode(i00 + 3u));
+  vec2 t10 = vec2(tlBrdfSpecularNode(i10), tlBrdfSpecularNode(i10 + 1u));
+  vec2 t11 = vec2(tlBrdfSpecularNode(i10 + 2u), tlBrdfSpecularNode(i10 + 3u));
+  return mix(mix(t00, t01, fx), mix(t10, t11, fx), fy);
+}
+
+// The cosine-weighted averages of S and B at a roughness (exactly the average of the
+// interpolated table: brdf_lut.h).
+TL_FN vec2 tlSpecularAverageSplit(float roughness) {
+  float y = tlBrdfLutRoughnessCoord(roughness);
+  uint y0 = min(uint(y), kBrdfLutRoughness - 2u);
+  float fy = y - float(y0);
+  vec2 a0 = vec2(tlBrdfAverageNode(2u * y0), tlBrdfAverageNode(2u * y0 + 1u));
+  vec2 a1 = vec2(tlBrdfAverageNode(2u * y0 + 2u), tlBrdfAverageNode(2u * y0 + 3u));
+  return mix(a0, a1, fy);
+}
+
+// Kulla & Conty's Fresnel factor of the multiple-scattering lobe: the light that scatters more
+// than once, each bounce losing 1 - F_avg, and leaving with probability E_avg.
+TL_FN vec3 tlMultipleScatteringFresnel(vec3 f0, float singleAverage) {
+  vec3 fAvg = tlFresnelAverage(f0);
+  return fAvg * fAvg * singleAverage / (vec3(1.0f) - fAvg * (1.0f - singleAverage));
+}
 
 TL_FN SurfaceParams tlSurface(vec3 baseColor, float roughness, float metallic) {
   SurfaceParams s;
-  s.diffuse = baseColor * (1.0f - metallic);
-  s.f0 = mix(vec3(0.04f), baseColor, metallic);
-  float r = clamp(roughness, 0.045f, 1.0f);  // a perfect mirror has no finite GGX lobe
-  s.alpha = r * r;
+  float m = clamp(metallic, 0.0f, 1.0f);
+  s.baseColor = baseColor;
+  s.metallic = m;
+  s.roughness = clamp(roughness, kBrdfMinRoughness, 1.0f);
+  s.alpha = s.roughness * s.roughness;
+  s.diffuse = baseColor * (1.0f - m);
+  s.f0 = mix(vec3(kDielectricF0), baseColor, m);
+  s.specular = 1.0f;
+  vec2 average = tlSpecularAverageSplit(s.roughness);
+  s.singleAverage = average.x + average.y;
+  s.layerMsFresnel = tlMultipleScatteringFresnel(vec3(kDielectricF0), s.singleAverage).x;
+  s.msFresnel = mix(vec3(s.layerMsFresnel), tlMultipleScatteringFresnel(baseColor, s.singleAverage), m);
+  s.layerAverage = kDielectricF0 * average.x + average.y + s.layerMsFresnel * (1.0f - s.singleAverage);
   return s;
 }
 
-TL_FN float tlGgxD(float nh, float alpha) {
-  float a2 = alpha * alpha;
-  float d = nh * nh * (a2 - 1.0f) + 1.0f;
-  return a2 / (kPi * d * d);
+// No specular layer: f = albedo / pi (the diffuse and clay override modes).
+TL_FN SurfaceParams tlLambertSurface(vec3 albedo) {
+  SurfaceParams s = tlSurface(albedo, 1.0f, 0.0f);
+  s.f0 = vec3(0.0f);
+  s.msFresnel = vec3(0.0f);
+  s.specular = 0.0f;
+  s.layerMsFresnel = 0.0f;
+  s.layerAverage = 0.0f;
+  return s;
 }
 
-// Height-correlated Smith visibility V = G / (4 n.l n.v) (Heitz 2014).
-TL_FN float tlSmithVisibility(float nl, float nv, float alpha) {
-  float a2 = alpha * alpha;
-  float gv = nl * sqrt(nv * nv * (1.0f - a2) + a2);
-  float gl = nv * sqrt(nl * nl * (1.0f - a2) + a2);
-  return 0.5f / max(gv + gl, 1e-7f);
+// The same surface at another roughness (the SH specular's directional part, shared/sh_specular.h).
+TL_FN SurfaceParams tlSurfaceWithRoughness(SurfaceParams s, float roughness) {
+  if (s.specular == 0.0f) return s;  // Lambert does not depend on roughness
+  return tlSurface(s.baseColor, roughness, s.metallic);
 }
 
-TL_FN vec3 tlFresnelSchlick(vec3 f0, float vh) {
-  float f = pow(1.0f - clamp(vh, 0.0f, 1.0f), 5.0f);
-  return f0 + (vec3(1.0f) - f0) * f;
+// E(mu) with F = 1, from the split.
+TL_FN float tlSingleScatteringAlbedo(vec2 split) { return split.x + split.y; }
+
+// The dielectric layer's specular albedo E_d(mu) (0 without a specular layer).
+TL_FN float tlLayerAlbedo(SurfaceParams s, vec2 split) {
+  float e = split.x + split.y;
+  return s.specular * (kDielectricF0 * split.x + split.y + s.layerMsFresnel * (1.0f - e));
 }
 
-// BRDF times pi-free convention: returns f(l, v), so radiance = f * E * n.l for a light
-// of irradiance E arriving from l.
-TL_FN vec3 tlBrdf(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
-  float nl = max(dot(n, l), 0.0f);
-  float nv = max(dot(n, v), 1e-4f);
+// The specular lobes (f_ss + f_ms) alone.
+TL_FN vec3 tlBrdfSpecular(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
+  float nl = dot(n, l);
+  if (!(nl > 0.0f) || s.specular == 0.0f) return vec3(0.0f);
+  float nv = max(dot(n, v), kBrdfMinCosine);
   vec3 hv = v + l;
   float hl = length(hv);
   vec3 h = hl > 1e-7f ? hv / hl : n;
-  float nh = max(dot(n, h), 0.0f);
   float vh = max(dot(v, h), 0.0f);
-  vec3 spec = tlGgxD(nh, s.alpha) * tlSmithVisibility(nl, nv, s.alpha) * tlFresnelSchlick(s.f0, vh);
-  return s.diffuse * kInvPi + spec;
+  vec3 single = tlGgxDOfHalfVector(n, h, s.alpha) * tlSmithVisibility(nl, nv, s.alpha) * tlFresnelSchlick(s.f0, vh);
+  float eo = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nv, s.roughness));
+  float ei = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nl, s.roughness));
+  vec3 multiple = s.msFresnel * ((1.0f - eo) * (1.0f - ei) * kInvPi / max(1.0f - s.singleAverage, 1e-6f));
+  return single + multiple;
 }
 
-// Directional albedo of the specular lobe under uniform incident radiance: the split-sum
-// environment BRDF, analytic fit by Karis ("Physically Based Shading on Mobile", 2014).
-// Multiply by a uniform sky radiance L to get the reflected specular radiance.
+// The diffuse layer alone.
+TL_FN vec3 tlBrdfDiffuse(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
+  float nl = dot(n, l);
+  if (!(nl > 0.0f)) return vec3(0.0f);
+  float nv = max(dot(n, v), kBrdfMinCosine);
+  float edo = tlLayerAlbedo(s, tlSpecularAlbedoSplit(nv, s.roughness));
+  float edi = tlLayerAlbedo(s, tlSpecularAlbedoSplit(nl, s.roughness));
+  return s.diffuse * (kInvPi * (1.0f - edo) * (1.0f - edi) / (1.0f - s.layerAverage));
+}
+
+// f(l, v) (pi-free: radiance = f E n.l for a light of irradiance E from l); 0 below the surface.
+TL_FN vec3 tlBrdf(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
+  return tlBrdfSpecular(s, n, v, l) + tlBrdfDiffuse(s, n, v, l);
+}
+
+// The surface a material override mode shades (shared/material_mode.h): as authored, or Lambert.
+TL_FN SurfaceParams tlMaterialSurface(vec3 baseColor, float roughness, float metallic, uint materials) {
+  if (materials == kMaterialsAuthored) return tlSurface(baseColor, roughness, metallic);
+  return tlLambertSurface(tlMaterialBaseColor(baseColor, materials));
+}
+
+// Reflected radiance per unit of uniform incident radiance, seen at cos theta = nv: the
+// directional albedo of the specular lobes and of the diffuse layer. Exact for this BRDF (the
+// compensation is built from the same tables), so a white surface under a uniform sky L shows
+// exactly L.
 TL_FN vec3 tlEnvironmentSpecular(SurfaceParams s, float nv) {
-  float roughness = sqrt(s.alpha);
-  vec4 c0 = vec4(-1.0f, -0.0275f, -0.572f, 0.022f);
-  vec4 c1 = vec4(1.0f, 0.0425f, 1.04f, -0.04f);
-  vec4 r = roughness * c0 + c1;
-  float a004 = min(r.x * r.x, exp2(-9.28f * nv)) * r.x + r.y;
-  float scale = a004 * -1.04f + r.z;
-  float bias = a004 * 1.04f + r.w;
-  return s.f0 * scale + vec3(bias);
+  vec2 split = tlSpecularAlbedoSplit(max(nv, kBrdfMinCosine), s.roughness);
+  float e = tlSingleScatteringAlbedo(split);
+  return s.specular * (s.f0 * split.x + vec3(split.y) + s.msFresnel * (1.0f - e));
+}
+TL_FN vec3 tlEnvironmentDiffuse(SurfaceParams s, float nv) {
+  return s.diffuse * (1.0f - tlLayerAlbedo(s, tlSpecularAlbedoSplit(max(nv, kBrdfMinCosine), s.roughness)));
+}
+TL_FN vec3 tlEnvironmentAlbedo(SurfaceParams s, float nv) { return tlEnvironmentSpecular(s, nv) + tlEnvironmentDiffuse(s, nv); }
+
+// The hemispherical (white-sky) albedo: the fraction of uniform incident light the surface
+// reflects, averaged over the directions it leaves in; what a surface gives back as a bounce.
+TL_FN vec3 tlHemisphericalAlbedo(SurfaceParams s) {
+  vec2 average = tlSpecularAverageSplit(s.roughness);
+  vec3 specular = s.specular * (s.f0 * average.x + vec3(average.y) + s.msFresnel * (1.0f - s.singleAverage));
+  return specular + s.diffuse * (1.0f - s.layerAverage);
+}
+
+// Ambient occlusion with the occluders' light put back: the fraction 1 - ao of the sky that
+// nearby surfaces hide is replaced by their own radiance, taken to be that of a surface of this
+// one's hemispherical albedo lit like this one, rho E / pi. Solving E = ao E_open + (1 - ao) rho E
+// gives E = E_open * ao / (1 - rho (1 - ao)): the factor returned, per channel (the analytic
+// multi-bounce form; Jimenez et al. 2016 fit it to scenes instead). A white surface (rho = 1)
+// loses nothing to occlusion: in a white furnace every surface shows the sky's radiance.
+TL_FN vec3 tlMultiBounceAo(float ao, vec3 albedo) {
+  float a = clamp(ao, 0.0f, 1.0f);
+  return vec3(a) / max(vec3(1.0f) - clamp(albedo, vec3(0.0f), vec3(1.0f)) * (1.0f - a), vec3(1e-4f));
+}
+
+// Sampling (the reference path tracer): the single-scattering lobe from its visible normals,
+// the multiple-scattering lobe and the diffuse layer (both near cosine-shaped) by cosine, each
+// chosen in proportion to the albedo it carries at this view (luminance).
+TL_FN float tlBrdfSpecularProbability(SurfaceParams s, float nv) {
+  vec2 split = tlSpecularAlbedoSplit(max(nv, kBrdfMinCosine), s.roughness);
+  float single = s.specular * tlLuminance(s.f0 * split.x + vec3(split.y));
+  float rest = tlLuminance(s.specular * s.msFresnel * (1.0f - tlSingleScatteringAlbedo(split)) +
+                           s.diffuse * (1.0f - tlLayerAlbedo(s, split)));
+  return single + rest > 0.0f ? single / (single + rest) : 0.0f;
+}
+
+// The view the visible normals are drawn for: v, lifted above the surface where a shading
+// normal leaves it below (both sampling and its density use this one).
+TL_FN vec3 tlSamplingView(vec3 n, vec3 v) {
+  float nv = dot(n, v);
+  if (nv >= kBrdfMinCosine) return v;
+  return normalize(v + (kBrdfMinCosine - nv) * n);
+}
+
+// A direction drawn with the mixture tlBrdfPdf describes; `choice` picks the lobe.
+TL_FN vec3 tlSampleBrdf(SurfaceParams s, vec3 n, vec3 v, float specularProbability, vec2 u, float choice) {
+  if (choice < specularProbability) {
+    vec3 w = tlSamplingView(n, v);
+    mat3 basis = tlBasisFromNormal(n);
+    vec3 h = basis * tlSampleGgxVisibleNormal(transpose(basis) * w, s.alpha, u);
+    return reflect(-w, h);
+  }
+  return tlLocalToWorld(tlSampleCosineHemisphere(u), n);
+}
+
+// The solid-angle density of tlSampleBrdf's direction l.
+TL_FN float tlBrdfPdf(SurfaceParams s, vec3 n, vec3 v, vec3 l, float specularProbability) {
+  float nl = dot(n, l);
+  if (!(nl > 0.0f)) return 0.0f;
+  float pdf = (1.0f - specularProbability) * nl * kInvPi;
+  if (specularProbability > 0.0f) {
+    vec3 w = tlSamplingView(n, v);
+    vec3 h = normalize(w + l);
+    float nw = max(dot(n, w), kBrdfMinCosine);
+    // Visible normals: D_w(h) = G1(w) max(w.h, 0) D(h) / n.w; reflection: / (4 w.h).
+    if (dot(w, h) > 0.0f) pdf += specularProbability * tlSmithG1(nw, s.alpha) * tlGgxDOfHalfVector(n, h, s.alpha) / (4.0f * nw);
+  }
+  return pdf;
 }
 TL_END
 #endif

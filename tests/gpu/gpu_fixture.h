@@ -1,6 +1,7 @@
-// One Session (device + validation layers) shared by the GPU tests of a binary: creating
+// One Session (device + validation layers) shared by every GPU test of the binary: creating
 // a device with validation costs more than most tests. Every test checks that the layers
-// reported nothing.
+// reported nothing, starts from the same baseline and leaves the session in it, so the
+// tests pass in any order in one process (`tl_gpu_tests --gtest_shuffle`).
 #pragma once
 
 #include "session/session.h"
@@ -15,6 +16,23 @@ namespace tl::test {
 
 inline std::filesystem::path contentFile(const char* name) { return std::filesystem::path(TWINLIGHT_CONTENT_DIR) / name; }
 
+// The state every GPU test starts from and is returned to afterwards: content/cornell.gltf
+// loaded (its camera and its light, no history, no albedo edits, animation at 0), the direct
+// path, default settings (and size), no display request, compare view, reopened capture or
+// albedo database, the animation still, frame index 0. Everything a test can change through
+// the Session is on this list.
+inline void restoreBaseline(session::Session& s) {
+  s.setCompareView(std::nullopt);
+  s.setDisplay(std::nullopt);
+  if (s.hasCapture()) s.closeCapture();
+  s.closeAlbedoDatabase();
+  s.settings() = lighting::RenderSettings{};
+  s.setPath("direct");
+  s.setAnimationStep(0.0);
+  s.loadScene(contentFile("cornell.gltf"));  // also resets lighting, view, history, albedo edits, animation time
+  s.setFrameIndex(0);
+}
+
 class GpuTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -22,33 +40,33 @@ class GpuTest : public ::testing::Test {
       gpu::DeviceOptions o;
       o.validation = true;
       session_ = std::make_unique<session::Session>(o);
+      restoreBaseline(*session_);
     }
   }
-  // Destroyed before main returns: at static-destruction time the Vulkan loader and the
-  // validation layer may already be gone.
-  static void TearDownTestSuite() { session_.reset(); }
   static session::Session& session() { return *session_; }
+  void SetUp() override { errorsBefore_ = session_->validationErrors(); }
   void TearDown() override {
+    restoreBaseline(*session_);
     EXPECT_EQ(session_->validationErrors(), errorsBefore_) << "Vulkan validation reported errors during this test";
   }
-  void SetUp() override { errorsBefore_ = session_->validationErrors(); }
 
   static inline std::unique_ptr<session::Session> session_;
   uint32_t errorsBefore_ = 0;
+
+  // Destroys the session after the last test, before main returns: at static-destruction
+  // time the Vulkan loader and the validation layer may already be gone.
+  struct SessionEnvironment : ::testing::Environment {
+    void TearDown() override { session_.reset(); }
+  };
+  static inline ::testing::Environment* const environment_ = ::testing::AddGlobalTestEnvironment(new SessionEnvironment);
 };
 
-// Tests that need ray tracing: skipped where the device has none; each leaves the shared
-// session on the direct path with default settings.
+// Tests that need ray tracing: skipped where the device has none.
 class RayTracingTest : public GpuTest {
  protected:
   void SetUp() override {
     GpuTest::SetUp();
     if (!session().device().rayTracing().pipeline) GTEST_SKIP() << session().device().rayTracing().unavailableReason;
-  }
-  void TearDown() override {
-    session().setPath("direct");
-    session().settings() = lighting::RenderSettings{};
-    GpuTest::TearDown();
   }
 };
 

@@ -252,14 +252,7 @@ TEST_F(AlbedoOverrideTest, AnOverrideChangesRtColourBleedingOnTheNextFrame) {
 namespace tl::test {
 namespace {
 
-class AlbedoViewTest : public GpuTest {
- protected:
-  void TearDown() override {
-    session().setPath("direct");
-    session().settings() = lighting::RenderSettings{};
-    GpuTest::TearDown();
-  }
-};
+class AlbedoViewTest : public GpuTest {};
 
 bool ranPass(const session::Session& s, const std::string& name) {
   for (const auto& t : s.timings())

@@ -2,6 +2,7 @@
 // that read back from the files exactly as the frame held them.
 #include "gpu_fixture.h"
 
+#include "lighting/common/composite_pass.h"
 #include "session/capture.h"
 
 #include <OpenImageIO/imageio.h>
@@ -86,6 +87,7 @@ TEST_F(GpuTest, CaptureReopensWithoutTheSceneWithTheSameValues) {
   session::captureFrame(s, dir, 1);
   const graph::Readback ids = s.buffer("gbuffer.instanceId"), normal = s.buffer("gbuffer.normal"),
                         depth = s.buffer("gbuffer.depth"), material = s.buffer("gbuffer.material");
+  const graph::Readback live = s.buffer(lighting::kTonemapLdr);
 
   s.openCapture(dir);
   ASSERT_TRUE(s.hasCapture());
@@ -114,6 +116,25 @@ TEST_F(GpuTest, CaptureReopensWithoutTheSceneWithTheSameValues) {
   s.setDisplay(std::nullopt);
   s.closeCapture();
   EXPECT_FALSE(s.hasCapture());
+
+  // Closed, the scene renders again (the captured images it showed are gone: nothing may
+  // still point at them) and gives the image it gave before the capture opened.
+  s.renderFrames(1);
+  const graph::Readback& again = s.buffer(lighting::kTonemapLdr);
+  ASSERT_EQ(again.bytes.size(), live.bytes.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < again.bytes.size(); ++i) differ += std::abs(int(again.bytes[i]) - int(live.bytes[i])) > 1;
+  EXPECT_EQ(differ, 0u) << "the direct path renders the same view the same way";
+
+  // A scene loaded while a capture is open replaces it the same way.
+  s.openCapture(dir);
+  s.setDisplay(show);
+  s.renderFrames(1);
+  s.setDisplay(std::nullopt);
+  s.loadScene(contentFile("plane.gltf"));
+  EXPECT_FALSE(s.hasCapture());
+  s.renderFrames(1);
+  EXPECT_EQ(s.buffer(lighting::kTonemapLdr).extent.width, 40u);
   fs::remove_all(dir);
 }
 

@@ -13,10 +13,6 @@ namespace {
 
 class CompareViewTest : public RayTracingTest {
  protected:
-  void TearDown() override {
-    session().setCompareView(std::nullopt);
-    RayTracingTest::TearDown();
-  }
   // Renders n frames reading back the compare view and both sides' images.
   void render(uint32_t n, const session::CompareView& v) {
     auto& s = session();
@@ -144,7 +140,18 @@ TEST_F(CompareViewTest, AnUnavailableSideIsRefusedAndNothingChanges) {
   v.left = "direct";
   v.right = "no-such-path";
   EXPECT_THROW(s.setCompareView(v), session::SessionError);
-  EXPECT_EQ(s.liveCompare(), nullptr);
+  EXPECT_EQ(s.liveCompare(), nullptr) << "no compare view was open: none is";
+  // With one open, a refused change keeps it as it was.
+  session::CompareView open;
+  open.left = "direct";
+  open.right = "legacy";
+  open.wipe = 0.3f;
+  s.setCompareView(open);
+  EXPECT_THROW(s.setCompareView(v), session::SessionError);
+  ASSERT_NE(s.liveCompare(), nullptr);
+  EXPECT_EQ(s.liveCompare()->view().left, "direct");
+  EXPECT_EQ(s.liveCompare()->view().right, "legacy");
+  EXPECT_EQ(s.liveCompare()->view().wipe, 0.3f);
 }
 
 }  // namespace

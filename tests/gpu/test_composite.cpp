@@ -23,7 +23,7 @@ glm::vec3 expectedRadiance(glm::vec3 baseColor, float roughness, float metallic,
   // The G-buffer stores base colour as 8-bit sRGB: quantise the same way.
   glm::vec3 q = tlSrgbToLinear(glm::round(tlLinearToSrgb(baseColor) * 255.0f) / 255.0f);
   SurfaceParams s = tlSurface(q, roughness, metallic);
-  glm::vec3 r = skyL * (s.diffuse + tlEnvironmentSpecular(s, std::max(glm::dot(n, v), 1e-4f)));
+  glm::vec3 r = skyL * tlEnvironmentAlbedo(s, glm::dot(n, v));
   float nl = glm::dot(n, toSun);
   if (nl > 0) r += sunE * nl * visibility * tlBrdf(s, n, v, toSun);
   return r;

@@ -46,7 +46,7 @@ TEST_F(GpuTest, PersistentHistoryHoldsLastFramesContents) {
               },
               [](graph::PassContext& ctx) { copy(ctx, "history", "seen"); });
     g.markOutput("seen");
-    auto compiled = g.compile();
+    auto compiled = g.compile(ex.entryStates(g));
     ex.requestReadback("seen");
     ex.execute(g, compiled);
     float seen = ex.readback("seen").texels()[0];
@@ -77,7 +77,7 @@ TEST_F(GpuTest, HistoryIsValidOnlyWhereAPassWroteIt) {
               [](graph::PassContext& ctx) { clear(ctx, "final", 0.0f); });
     g.markOutput("final");
     if (readSum) g.markOutput("result");
-    auto compiled = g.compile();
+    auto compiled = g.compile(ex.entryStates(g));
     ex.execute(g, compiled);
   };
   frame(true);
@@ -114,7 +114,7 @@ TEST_F(GpuTest, AliasedTransientsReadBackTheirOwnValues) {
             },
             [](graph::PassContext& ctx) { copy(ctx, "b", "b.out"); });
   g.markOutput("b.out");
-  auto compiled = g.compile();
+  auto compiled = g.compile(ex.entryStates(g));
   ex.requestReadbackAll();
   ex.execute(g, compiled);
 

@@ -161,6 +161,9 @@ TEST_F(FrameKeyTest, EachPartRestartsExactlyTheHistoriesThatDependOnIt) {
       {"settings.reference", [](session::Session& s) { s.settings().referenceBounces = 2; }, restart, keep, keep, keep, keep},
       {"settings.rt", [](session::Session& s) { s.settings().rtRayLength = 4.0f; }, keep, restart, keep, keep, keep},
       {"settings.legacy", [](session::Session& s) { s.settings().legacyAoRadius = 0.5f; }, keep, keep, restart, restart, keep},
+      // The material override mode is every path's setting: what the surfaces reflect.
+      {"settings.materials", [](session::Session& s) { s.settings().materials = lighting::MaterialMode::Clay; }, restart,
+       restart, restart, restart, keep},
       {"frame.gap",  // another path renders the frame in between
        [](session::Session& s) {
          const std::string path = s.path();

@@ -19,11 +19,6 @@ using namespace lighting;
 
 class LegacyTest : public GpuTest {
  protected:
-  void TearDown() override {
-    session().setPath("direct");
-    session().settings() = RenderSettings{};
-    GpuTest::TearDown();
-  }
   void render(const char* path, uint32_t w, uint32_t h, uint32_t frames, const std::vector<std::string>& names) {
     auto& s = session();
     s.setPath(path);
@@ -62,8 +57,9 @@ TEST_F(LegacyTest, PlaneUnderUniformSkyHasNoOcclusionAndIrradiancePiL) {
   ASSERT_GT(e.surface, e.pixels / 4);
   RecordProperty("worst_ao_error", std::to_string(e.worstAo));
   RecordProperty("worst_irradiance_error", std::to_string(e.worstIrradiance));
-  EXPECT_LE(e.worstAo, 0.02) << "at pixel " << e.worstAoPixel % 64 << ", " << e.worstAoPixel / 64;
-  EXPECT_LE(e.worstIrradiance, 0.05) << "cone-traced sky irradiance relative to pi L";
+  // Measured: AO within 5e-4 of 1, irradiance within 0.015% of pi L.
+  EXPECT_LE(e.worstAo, 0.005) << "at pixel " << e.worstAoPixel % 64 << ", " << e.worstAoPixel / 64;
+  EXPECT_LE(e.worstIrradiance, 0.01) << "cone-traced sky irradiance relative to pi L";
 }
 
 // The Cornell box's back wall (by instance id): AO in its top-left corner (against the
@@ -288,7 +284,8 @@ TEST_F(LegacyTest, AoOfEachPathAgainstTheReferenceAo) {
 
 // Inside the atrium's room, looking up at the underside of its sunlit ceiling (one voxel
 // thick at the default resolution): the legacy path's radiance there against the reference
-// path tracer's. Light leaking through the ceiling would make it several times brighter.
+// path tracer's. Light leaking through the ceiling would make it several times brighter; a
+// ceiling without its bounce light would be black.
 TEST_F(LegacyTest, LightLeakingIntoTheAtriumRoomIsSmall) {
   auto& s = session();
   if (!s.device().rayTracing().pipeline) GTEST_SKIP() << s.device().rayTracing().unavailableReason;
@@ -322,6 +319,9 @@ TEST_F(LegacyTest, LightLeakingIntoTheAtriumRoomIsSmall) {
   RecordProperty("ceiling_radiance_reference", std::to_string(reference));
   ASSERT_GT(reference, 0.0) << "the camera should see the ceiling";
   EXPECT_LT(legacy, 1.5 * reference) << "legacy " << legacy << " vs reference " << reference;
+  // And not dark: the ceiling is lit by light bouncing in through the room's openings, which
+  // the legacy path under-estimates (measured 0.58 of the reference) but does not lose.
+  EXPECT_GT(legacy, 0.3 * reference) << "legacy " << legacy << " vs reference " << reference;
 }
 
 }  // namespace

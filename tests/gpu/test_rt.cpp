@@ -35,21 +35,23 @@ class RtTest : public RayTracingTest {
     s.renderFrames(frames);
   }
   // `frames` RT frames on content/plane.gltf (48 x 32) with the current settings: AO = 1 and
-  // irradiance = pi L on every surface pixel, within 0.02 and 3%.
+  // irradiance = pi L on every surface pixel, within 0.005 and 1% (measured: AO exact,
+  // irradiance within 0.24% at full rate, 0.38% at half resolution).
   PlaneErrors expectPlaneConverges(uint32_t frames) {
     session().loadScene(contentFile("plane.gltf"));
     render(48, 32, frames, {kShY, kCoCgAo, kAo, "gbuffer.depth"});
     PlaneErrors e = planeErrors(session(), kAo, kShY, kCoCgAo);
+    RecordProperty("worst_ao_error", std::to_string(e.worstAo));
+    RecordProperty("worst_irradiance_error", std::to_string(e.worstIrradiance));
     EXPECT_GT(e.surface, e.pixels / 4) << "the plane should fill much of the view";
-    EXPECT_LE(e.worstAo, 0.02);
-    EXPECT_LE(e.worstIrradiance, 0.03) << "irradiance relative to pi L";
+    EXPECT_LE(e.worstAo, 0.005);
+    EXPECT_LE(e.worstIrradiance, 0.01) << "irradiance relative to pi L";
     return e;
   }
 };
 
 TEST_F(RtTest, PlaneUnderUniformSkyHasNoOcclusionAndIrradiancePiL) {
-  PlaneErrors e = expectPlaneConverges(8);
-  RecordProperty("worst_irradiance_error", std::to_string(e.worstIrradiance));
+  expectPlaneConverges(8);
 }
 
 TEST_F(RtTest, HalfRaysPerPixelStillConvergeOnThePlane) {

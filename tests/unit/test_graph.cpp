@@ -146,13 +146,13 @@ TEST(Graph, BarriersFollowHazards) {
   };
   const Barrier* first = barrierFor(0, "color");
   ASSERT_NE(first, nullptr);
-  EXPECT_FALSE(first->before.has_value());  // transient's first use: contents undefined
-  EXPECT_EQ(first->after, Usage::ColorAttachment);
-  const Barrier* war = barrierFor(1, "color");
-  ASSERT_NE(war, nullptr);
-  EXPECT_EQ(*war->before, Usage::ColorAttachment);
-  EXPECT_EQ(war->after, Usage::Sampled);
-  EXPECT_EQ(war->beforeKind, PassKind::Raster);
+  EXPECT_EQ(first->oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);  // transient's first use: contents undefined
+  EXPECT_EQ(first->newLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  const Barrier* raw = barrierFor(1, "color");
+  ASSERT_NE(raw, nullptr);
+  EXPECT_EQ(raw->src.stages, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
+  EXPECT_EQ(raw->dst.stages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+  EXPECT_EQ(raw->newLayout, VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL);
   EXPECT_EQ(barrierFor(2, "color"), nullptr);
 }
 
@@ -166,7 +166,9 @@ TEST(Graph, WriteAfterReadGetsABarrier) {
   ASSERT_EQ(orderNames(g, c), (std::vector<std::string>{"reader", "writer"}));
   bool found = false;
   for (auto& b : c.order[1].barriers)
-    if (b.resource == *g.find("history")) found = b.before == Usage::Sampled && b.after == Usage::StorageWrite;
+    if (b.resource == *g.find("history"))
+      found = b.src.stages == VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT && b.oldLayout == VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL &&
+              b.newLayout == VK_IMAGE_LAYOUT_GENERAL;
   EXPECT_TRUE(found);
 }
 
@@ -209,7 +211,8 @@ TEST(Graph, ReadModifyWriteIsOneBarrierWithTheWriteUsage) {
   }, nullptr);
   auto c = h.compile();
   ASSERT_EQ(c.order[0].barriers.size(), 1u);
-  EXPECT_EQ(c.order[0].barriers[0].after, Usage::StorageWrite);
+  EXPECT_EQ(c.order[0].barriers[0].newLayout, VK_IMAGE_LAYOUT_GENERAL);
+  EXPECT_EQ(c.order[0].barriers[0].dst.access, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 TEST(GraphErrors, ReadOfUnwrittenResourceNamesBoth) {

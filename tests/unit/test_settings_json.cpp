@@ -61,6 +61,24 @@ TEST(SettingsJson, ValuesOutsideTheirStatedRangeAreRefused) {
   EXPECT_EQ(applySettingsJson(base, {{"rtPretraceSteps", 256}}).rtPretraceSteps, 256u);
 }
 
+// The material override mode goes by name; any other value is refused with the three names.
+TEST(SettingsJson, MaterialModeByName) {
+  lighting::RenderSettings base;
+  EXPECT_EQ(base.materials, lighting::MaterialMode::Authored);
+  EXPECT_EQ(applySettingsJson(base, {{"materials", "clay"}}).materials, lighting::MaterialMode::Clay);
+  EXPECT_EQ(applySettingsJson(base, {{"materials", "diffuse"}}).materials, lighting::MaterialMode::Diffuse);
+  EXPECT_EQ(applySettingsJson(base, {{"materials", "authored"}}).materials, lighting::MaterialMode::Authored);
+  for (const nlohmann::json& bad : {nlohmann::json("Clay"), nlohmann::json(2), nlohmann::json("")}) {
+    try {
+      applySettingsJson(base, {{"materials", bad}});
+      FAIL() << "accepted " << bad.dump();
+    } catch (const SessionError& e) {
+      EXPECT_NE(std::string(e.what()).find("`materials` must be \"authored\", \"diffuse\" or \"clay\""), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 // What a capture manifest records is every setting by name with its value: applied to default
 // settings it gives the recorded settings back.
 TEST(SettingsJson, EverySettingRoundTrips) {

@@ -4,6 +4,7 @@
 #include "graph/executor.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/shadow_pass.h"
+#include "shared/brdf_lut.h"
 
 #include <set>
 
@@ -49,7 +50,8 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
                          {shared::kCompositeDepth, sampled},
                          {shared::kCompositeShadow, sampled},
                          {shared::kCompositeOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                         {shared::kCompositeShadowDepth, sampled}};
+                         {shared::kCompositeShadowDepth, sampled},
+                         {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
     for (const auto& b : PathInputs::bindings()) d.layout.bindings.push_back(b);
     d.layout.pushConstantBytes = sizeof(shared::CompositePush);
     pipeline_ = gpu::createComputePipeline(in.device, d);
@@ -71,6 +73,8 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   if (far) push.flags |= shared::kCompositeHasFarGi;
   if (in.settings.specularGi) push.flags |= shared::kCompositeSpecularGi;
   push.giBlendDistance = path.giBlendDistance;
+  push.openSkyDirectionality = path.openSkyDirectionality;
+  push.farOpenSkyDirectionality = path.farOpenSkyDirectionality;
   push.giBlendWidth = kGiBlendWidthFraction * path.giBlendDistance;
   // Absent outputs: the binding still needs an image; the base colour stands in, unread.
   const std::string standIn = "gbuffer.baseColor";
@@ -90,6 +94,7 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
       "composite", graph::PassKind::Compute,
       [&](graph::PassBuilder& b) {
         b.read(kFrameConstants, Usage::StorageRead);
+        b.read(kBrdfTables, Usage::StorageRead);
         for (const char* n : {"gbuffer.baseColor", "gbuffer.normal", "gbuffer.material", "gbuffer.emissive"})
           b.read(n, Usage::Sampled);
         b.read(kGbufferDepth, Usage::Sampled);
@@ -112,7 +117,8 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
             .sampledImage(shared::kCompositeDepth, ctx.image(kGbufferDepth).view(), point, ro)
             .sampledImage(shared::kCompositeShadow, shadow.view(), shadowSampler_.handle(), ro)
             .storageImage(shared::kCompositeOutput, ctx.image(output).view())
-            .sampledImage(shared::kCompositeShadowDepth, shadow.view(), point, ro);
+            .sampledImage(shared::kCompositeShadowDepth, shadow.view(), point, ro)
+            .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle());
         inputs.bind(ctx, point);
         ctx.pushConstants(push);
         ctx.dispatch(in.settings.width, in.settings.height);
@@ -153,8 +159,11 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
     d.name = "composite.stages";
     d.shader = "common/composite_stages.comp";
     d.layout.bindings = {{shared::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                         {shared::kCompositeBaseColor, sampled},
                          {shared::kCompositeNormal, sampled},
+                         {shared::kCompositeMaterial, sampled},
                          {shared::kCompositeDepth, sampled},
+                         {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                          {shared::kCompositeStageAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                          {shared::kCompositeStageIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
     for (const auto& b : PathInputs::bindings()) d.layout.bindings.push_back(b);
@@ -165,9 +174,10 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
       "composite.stages", graph::PassKind::Compute,
       [&](graph::PassBuilder& b) {
         b.read(kFrameConstants, Usage::StorageRead);
-        b.read("gbuffer.normal", Usage::Sampled);
+        b.read(kBrdfTables, Usage::StorageRead);
+        for (const char* n : {"gbuffer.baseColor", "gbuffer.normal", "gbuffer.material"}) b.read(n, Usage::Sampled);
         b.read(kGbufferDepth, Usage::Sampled);
-        inputs.declareReads(b);
+        inputs.declareReads(b, "gbuffer.baseColor");
         b.create(kCompositeAo,
                  graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "the AO the composite applied (0: sky)"),
                  Usage::StorageWrite);
@@ -182,8 +192,11 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
         ctx.bind(stagesPipeline_);
         ctx.descriptors()
             .uniformBuffer(shared::kBindingFrame, in.constantsBuffer.handle())
+            .sampledImage(shared::kCompositeBaseColor, ctx.image("gbuffer.baseColor").view(), point, ro)
             .sampledImage(shared::kCompositeNormal, ctx.image("gbuffer.normal").view(), point, ro)
+            .sampledImage(shared::kCompositeMaterial, ctx.image("gbuffer.material").view(), point, ro)
             .sampledImage(shared::kCompositeDepth, ctx.image(kGbufferDepth).view(), point, ro)
+            .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle())
             .storageImage(shared::kCompositeStageAo, ctx.image(kCompositeAo).view())
             .storageImage(shared::kCompositeStageIrradiance, ctx.image(kCompositeIrradiance).view());
         inputs.bind(ctx, point);

@@ -13,10 +13,33 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace tl::lighting {
+
+// Material override modes (shared/material_mode.h): every path and the reference shade the
+// scene as authored, or all Lambertian with the authored base colour (diffuse) or 0.8 grey (clay).
+enum class MaterialMode : uint32_t {
+  Authored = shared::kMaterialsAuthored,
+  Diffuse = shared::kMaterialsDiffuse,
+  Clay = shared::kMaterialsClay,
+};
+inline constexpr MaterialMode kMaterialModes[] = {MaterialMode::Authored, MaterialMode::Diffuse, MaterialMode::Clay};
+inline const char* materialModeName(MaterialMode m) {
+  switch (m) {
+    case MaterialMode::Diffuse: return "diffuse";
+    case MaterialMode::Clay: return "clay";
+    default: return "authored";
+  }
+}
+inline std::optional<MaterialMode> parseMaterialMode(std::string_view name) {
+  for (MaterialMode m : kMaterialModes)
+    if (name == materialModeName(m)) return m;
+  return std::nullopt;
+}
 
 struct RenderSettings {
   uint32_t width = 640;
@@ -29,9 +52,12 @@ struct RenderSettings {
   bool specularGi = true;             // indirect specular from a path's SH (Metro); else the sky's, times AO
   bool taa = false;                   // temporal anti-aliasing: jittered projection, YCoCg-clipped history (not the reference)
   float taaBlend = 0.1f;              // TAA: weight of the current frame in the exponential history
+  MaterialMode materials = MaterialMode::Authored;  // material override mode, every path and the reference
   // Reference path tracer: scattering events per path (1 = direct light only: sun, sky,
   // emitters; 2 = plus one indirect bounce; ...) and samples per pixel added each frame.
-  uint32_t referenceBounces = 8;
+  // Russian roulette ends paths from the fourth event on (shaders/reference/path.glsl); this
+  // hard cap is high enough that raising it changes no image (docs/accuracy.md).
+  uint32_t referenceBounces = 64;
   uint32_t referenceSamplesPerFrame = 1;
 
   // Ray-traced path (T5). Distances <= 0 mean "scaled to the scene" (see rt_path.cpp).
@@ -102,6 +128,9 @@ inline float sceneScaledBlendDistance(float sceneScale) { return 2.0f * std::max
 // Resources the frame imports from outside the graph: the session's constants, and the
 // scene's buffers (named and imported by scene/gpu_scene.h, GpuScene::importBuffers).
 inline constexpr const char* kFrameConstants = "frame.constants";
+// The shared BRDF's tables (shared/brdf_lut.h BrdfTables), uploaded once by the session: every
+// pass that shades with shared/shading.h reads them at set 0 binding kBindingBrdfTables.
+inline constexpr const char* kBrdfTables = "brdf.tables";
 using scene::kSceneIndices;
 using scene::kSceneInstances;
 using scene::kSceneMaterials;

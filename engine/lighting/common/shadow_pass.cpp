@@ -15,7 +15,10 @@ void ShadowPass::add(graph::RenderGraph& graph, FrameInputs& in) {
     d.layout.extraSets = {in.scene.table().layout()};
     d.depthFormat = VK_FORMAT_D32_SFLOAT;
     d.vertexBindings = scene::GpuScene::vertexBindings();
-    d.vertexAttributes = scene::GpuScene::vertexAttributes();
+    // The depth-only vertex shader reads positions alone (other attributes would be fetched
+    // for nothing: a performance warning of the validation layers).
+    for (const auto& a : scene::GpuScene::vertexAttributes())
+      if (a.location == shared::kAttrPosition) d.vertexAttributes.push_back(a);
     d.cullMode = VK_CULL_MODE_NONE;  // thin and single-sided casters must cast from both sides
     d.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
     d.depthBias = true;

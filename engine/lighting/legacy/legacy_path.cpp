@@ -72,13 +72,14 @@ class LegacyPath final : public LightingPath {
   }
 
   // What the voxels and the SSAO history hold: AO reach and sampling, the clipmap's size and
-  // levels, and whether the screen feeds light back into the voxels. Cone settings are
+  // levels, whether the screen feeds light back into the voxels, and the material override
+  // mode (the albedo the voxels were lit with). Cone settings are
   // per frame (no history), the update policy (partial updates, settling) changes only work.
   uint64_t historySettings(const RenderSettings& s) const override {
     return KeyHasher()
         .all(double(s.legacyAoRadius), double(s.legacyAoThickness), double(s.legacyAoSlices), double(s.legacyAoSteps),
              double(s.legacyAoDivisor), double(s.legacyVoxelResolution), double(s.legacyLevel0Extent),
-             double(s.legacyMaxLevels), double(s.legacyScreenRadiance))
+             double(s.legacyMaxLevels), double(s.legacyScreenRadiance), double(s.materials))
         .done();
   }
 
@@ -264,6 +265,7 @@ class LegacyPath final : public LightingPath {
     out.diffuseShY = kLegacyShY;
     out.diffuseCoCg = kLegacyCoCg;
     out.aoOnGi = true;
+    out.openSkyDirectionality = shared::tlLegacyOpenSkyDirectionality();
     return out;
   }
 
@@ -287,6 +289,12 @@ class LegacyPath final : public LightingPath {
             b.read(kGbufferDepth, Usage::Sampled);  // stands in for the history, unread
           }
           b.write(kVoxelRadiance, Usage::StorageWrite);
+          // Emptied first, by a transfer clear (a rebuild) or a compute dispatch over the
+          // regions (an update): the graph's barrier before the pass covers those stages too.
+          if (work->kind == VoxelWork::Kind::Full)
+            b.write(kVoxelRadiance, Usage::TransferDst);
+          else
+            b.write(kVoxelRadiance, Usage::StorageWrite, graph::PassKind::Compute);
         },
         [this, &in, vpush, shadow, R, feedback, work](graph::PassContext& ctx) mutable {
           const gpu::Image& radiance = ctx.image(kVoxelRadiance);
@@ -503,8 +511,8 @@ class LegacyPath final : public LightingPath {
   }
 
   // Empties a partial update's regions with a compute dispatch inside the raster pass (a
-  // transfer clear empties whole images): it waits for everything before it, and the
-  // fragment writes wait for it.
+  // transfer clear empties whole images): the pass declares that compute write, so the graph's
+  // barrier orders it after everything before the pass; the fragment writes wait for it here.
   // One compute dispatch over a box of one level's voxels, all six face blocks (4^3 groups):
   // the region clear and the region's mips.
   static void dispatchOverRegion(graph::PassContext& ctx, LegacyVoxelPush push, uint32_t level, const VoxelRegion& region) {
@@ -517,8 +525,6 @@ class LegacyPath final : public LightingPath {
   }
 
   void clearRegions(graph::PassContext& ctx, const gpu::Image& radiance, LegacyVoxelPush push, const VoxelWork& work) {
-    gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     ctx.bind(clear_);
     ctx.descriptors().storageImage(shared::kLegacyBindingRadiance, radiance.view());
     ctx.flushDescriptors();
@@ -540,11 +546,10 @@ class LegacyPath final : public LightingPath {
         .sampledImage(shared::kLegacyBindingDepth, ctx.image(kGbufferDepth).view(), point_.handle(), kReadOnly)
         .sampledImage(shared::kLegacyBindingNormal, ctx.image("gbuffer.normal").view(), point_.handle(), kReadOnly);
   }
-  // The voxel images start empty every frame. The clear runs at the transfer stage inside a
-  // raster pass, so it waits for everything before it and the fragment writes wait for it.
+  // A rebuild starts from empty voxels. The clear runs at the transfer stage inside a raster
+  // pass that declares it (the graph orders it after everything before the pass); the
+  // fragment writes wait for it here.
   static void clearStorage(VkCommandBuffer cmd, std::initializer_list<const gpu::Image*> images) {
-    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     for (const gpu::Image* image : images) gpu::clearImage(cmd, *image, VK_IMAGE_LAYOUT_GENERAL);
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);

@@ -7,6 +7,7 @@
 #include "lighting/lighting_path.h"
 #include "lighting/reference/reference_path.h"
 #include "scene/scene.h"
+#include "shared/brdf_lut.h"
 #include "shared/reference.h"
 #include "shared/scene.h"
 
@@ -23,6 +24,11 @@ inline constexpr const char* kAoAccum = "reference.aoAccum";
 inline constexpr const char* kAo = "reference.ao";
 inline constexpr const char* kIrradianceAccum = "reference.irradianceAccum";
 inline constexpr const char* kIrradiance = "reference.irradiance";
+inline constexpr const char* kTlas = "reference.tlas";
+inline constexpr const char* kTlasInstances = "reference.tlas.instances";
+inline constexpr const char* kTlasScratch = "reference.tlas.scratch";
+inline constexpr const char* kBlasDeforming = "reference.blas.deforming";
+inline constexpr const char* kBlasScratch = "reference.blas.scratch";
 
 // Every part of the frame key changes the converged image except the per-instance hit
 // albedo (the RT path's, not the materials the reference shades with): the sums start over.
@@ -52,7 +58,7 @@ class ReferencePath final : public LightingPath {
 
   LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
     prepareScene(in);
-    buildTopLevel(in);
+    addStructurePasses(graph, in);
     const uint32_t w = in.settings.width, h = in.settings.height;
     const auto accumDesc =
         graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "sum of path samples (rgb) and their count (a)");
@@ -72,6 +78,8 @@ class ReferencePath final : public LightingPath {
         "reference.trace", graph::PassKind::RayTracing,
         [&](graph::PassBuilder& b) {
           readSceneInputs(b, graph::Usage::StorageRead);
+          readStructures(b);
+          b.read(kBrdfTables, graph::Usage::StorageRead);
           b.read(kAccum, graph::Usage::StorageRead);
           b.write(kAccum, graph::Usage::StorageWrite);
           b.read(kAoAccum, graph::Usage::StorageRead);
@@ -91,14 +99,15 @@ class ReferencePath final : public LightingPath {
           ctx.pushConstants(push);
           ctx.descriptors()
               .uniformBuffer(shared::kRefBindingFrame, in.constantsBuffer.handle())
-              .accelerationStructure(shared::kRefBindingTlas, tlas_.handle())
+              .accelerationStructure(shared::kRefBindingTlas, tlas_.structure().handle())
               .storageImage(shared::kRefBindingAccum, ctx.image(kAccum).view())
               .storageImage(shared::kRefBindingRadiance, ctx.image(kRadiance).view())
               .storageBuffer(shared::kRefBindingGeometry, geometry_.handle())
               .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
               .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
               .storageImage(shared::kRefBindingAoAccum, ctx.image(kAoAccum).view())
-              .storageImage(shared::kRefBindingAo, ctx.image(kAo).view());
+              .storageImage(shared::kRefBindingAo, ctx.image(kAo).view())
+              .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle());
           ctx.flushDescriptors();
           in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_.layout(), shared::kSceneSet);
           VkExtent3D e = ctx.extent(kRadiance);
@@ -113,9 +122,10 @@ class ReferencePath final : public LightingPath {
   }
 
   uint32_t samples() const { return samples_; }
-  // referenceBounces; rtAoRadius is also the reference's AO radius (reference.ao).
+  // referenceBounces; rtAoRadius is also the reference's AO radius (reference.ao); the material
+  // override mode.
   uint64_t historySettings(const RenderSettings& s) const override {
-    return KeyHasher().all(double(s.referenceBounces), double(s.rtAoRadius)).done();
+    return KeyHasher().all(double(s.referenceBounces), double(s.rtAoRadius), double(s.materials)).done();
   }
   std::vector<std::pair<std::string, double>> figures() const override {
     return {{"reference.samples", double(samples_)}, {"reference.irradianceSamples", double(irradianceSamples_)}};
@@ -134,6 +144,8 @@ class ReferencePath final : public LightingPath {
         "reference.irradiance", graph::PassKind::RayTracing,
         [&](graph::PassBuilder& b) {
           readSceneInputs(b, graph::Usage::StorageRead);
+          readStructures(b);
+          b.read(kBrdfTables, graph::Usage::StorageRead);
           b.read(kIrradianceAccum, graph::Usage::StorageRead);
           b.write(kIrradianceAccum, graph::Usage::StorageWrite);
           b.create(kIrradiance,
@@ -150,12 +162,13 @@ class ReferencePath final : public LightingPath {
           ctx.pushConstants(push);
           ctx.descriptors()
               .uniformBuffer(shared::kRefBindingFrame, in.constantsBuffer.handle())
-              .accelerationStructure(shared::kRefBindingTlas, tlas_.handle())
+              .accelerationStructure(shared::kRefBindingTlas, tlas_.structure().handle())
               .storageBuffer(shared::kRefBindingGeometry, geometry_.handle())
               .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
               .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
               .storageImage(shared::kRefBindingIrradianceAccum, ctx.image(kIrradianceAccum).view())
-              .storageImage(shared::kRefBindingIrradiance, ctx.image(kIrradiance).view());
+              .storageImage(shared::kRefBindingIrradiance, ctx.image(kIrradiance).view())
+              .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle());
           ctx.flushDescriptors();
           in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, irradiancePipeline_.layout(),
                                 shared::kSceneSet);
@@ -168,24 +181,53 @@ class ReferencePath final : public LightingPath {
   }
 
   // Bottom-level structures (one per mesh, full resolution: the reference does not
-  // simplify), the per-instance geometry table and the pipeline, once per scene.
+  // simplify), the per-instance geometry table and the pipeline, once per scene. Deforming
+  // meshes' bottom levels sit side by side in one buffer the graph knows by name, rebuilt
+  // in place by a graph pass when their vertices move.
   void prepareScene(FrameInputs& in) {
     if (sceneId_ == in.scene.id()) {
-      rebuildDeformed(in);
+      pendingRebuilds_.clear();
+      const auto& ranges = in.scene.meshRanges();
+      for (uint32_t m = 0; m < ranges.size(); ++m)
+        if (in.scene.meshVersion(m) != blasVersion_[m]) pendingRebuilds_.push_back(m);
       return;
     }
     in.device.waitIdle();
     sceneId_ = in.scene.id();
     // The top level points into the old bottom levels: rebuild it even when the new scene's
     // transforms are the same (the same file loaded again).
-    tlas_ = {};
+    tlas_ = gpu::TopLevelBuilder(in.device, kTlas);
     tlasTransforms_.clear();
     blas_.clear();
     blasVersion_.clear();
+    pendingRebuilds_.clear();
+    deformingStorage_.reset();
+    rebuildScratchOffset_.clear();
+    rebuildScratchBytes_ = 0;
     const auto& ranges = in.scene.meshRanges();
+    std::vector<VkDeviceSize> placeAt(ranges.size(), 0);
+    VkDeviceSize deformingBytes = 0;
     for (uint32_t m = 0; m < ranges.size(); ++m) {
-      blas_.push_back(gpu::buildBottomLevel(in.device, meshGeometry(in, m), fmt::format("reference.blas.{}", m)));
+      const bool deforms = m < in.sceneData.meshes.size() && in.sceneData.meshes[m].deforms();
+      rebuildScratchOffset_.push_back(rebuildScratchBytes_);
+      if (deforms) {
+        placeAt[m] = deformingBytes;
+        deformingBytes += gpu::bottomLevelBytes(in.device, meshGeometry(in, m), false);
+        rebuildScratchBytes_ += gpu::rebuildScratchBytes(in.device, meshGeometry(in, m));
+        blas_.emplace_back();
+      } else {
+        blas_.push_back(gpu::buildBottomLevel(in.device, meshGeometry(in, m), fmt::format("reference.blas.{}", m)));
+      }
       blasVersion_.push_back(in.scene.meshVersion(m));
+    }
+    if (deformingBytes > 0) {
+      deformingStorage_ = gpu::Buffer(in.device, deformingBytes,
+                                      VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                      gpu::MemoryUsage::GpuOnly, kBlasDeforming);
+      for (uint32_t m = 0; m < ranges.size(); ++m)
+        if (!blas_[m])
+          blas_[m] = gpu::buildBottomLevelAt(in.device, meshGeometry(in, m), fmt::format("reference.blas.{}", m),
+                                             deformingStorage_, placeAt[m], false);
     }
     std::vector<shared::RefInstanceGeometry> table(std::max<size_t>(1, in.scene.instanceCount()));
     for (size_t i = 0; i < in.scene.instanceCount(); ++i) {
@@ -195,7 +237,10 @@ class ReferencePath final : public LightingPath {
     geometry_ = gpu::Buffer(in.device, table.size() * sizeof(table[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                             gpu::MemoryUsage::Upload, "reference.instanceGeometry");
     geometry_.write(table.data(), table.size() * sizeof(table[0]));
-    if (!pipeline_) {
+    // The pipelines' layouts name this scene's descriptor-table layout, which goes with the
+    // scene: built again for each scene (a shader reload rebuilds them from this description,
+    // so a layout of a scene since unloaded would be used after it was destroyed).
+    {
       gpu::RayTracingPipelineDesc d;
       d.name = "reference.trace";
       d.raygen = kRaygen;
@@ -209,7 +254,8 @@ class ReferencePath final : public LightingPath {
                            {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingAoAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kRefBindingAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+                           {shared::kRefBindingAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
       d.layout.extraSets = {in.scene.table().layout()};
       d.layout.pushConstantBytes = sizeof(shared::RefPush);
       pipeline_ = gpu::createRayTracingPipeline(in.device, d);
@@ -223,7 +269,8 @@ class ReferencePath final : public LightingPath {
                            {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingIrradianceAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kRefBindingIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+                           {shared::kRefBindingIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
       irradiancePipeline_ = gpu::createRayTracingPipeline(in.device, d);
     }
   }
@@ -240,37 +287,76 @@ class ReferencePath final : public LightingPath {
     return g;
   }
 
-  // Deforming meshes moved: the ground truth rebuilds their bottom levels exactly (no
-  // throttle) and its top level, and the sum starts over (the geometry version is in the state).
-  void rebuildDeformed(FrameInputs& in) {
-    const auto& ranges = in.scene.meshRanges();
-    bool any = false;
-    for (uint32_t m = 0; m < ranges.size(); ++m) {
-      if (in.scene.meshVersion(m) == blasVersion_[m]) continue;
-      if (!any) in.device.waitIdle();
-      any = true;
-      blas_[m] = gpu::buildBottomLevel(in.device, meshGeometry(in, m), fmt::format("reference.blas.{}", m));
-      blasVersion_[m] = in.scene.meshVersion(m);
-    }
-    if (any) tlas_ = {}, tlasTransforms_.clear();
-  }
-
-  // The top level is camera-relative like everything the GPU sees, so it follows the
-  // camera; it holds a few instances here (T5 adds culling for large scenes).
-  void buildTopLevel(FrameInputs& in) {
+  // The structures' passes. Deforming meshes that moved: the ground truth rebuilds their
+  // bottom levels exactly (no throttle, no refit) and the sum starts over (the geometry version
+  // is in the state). The top level is camera-relative like everything the GPU sees, so it
+  // follows the camera: it is rebuilt when a transform or a bottom level changed.
+  void addStructurePasses(graph::RenderGraph& graph, FrameInputs& in) {
     const auto& transforms = in.scene.relativeTransforms();
-    if (tlas_ && transforms == tlasTransforms_) return;
-    std::vector<gpu::TlasInstance> instances;
-    for (size_t i = 0; i < transforms.size(); ++i)
-      instances.push_back({transforms[i], uint32_t(i), 0xFF, blas_[in.scene.instanceMesh(i)].address()});
-    tlas_ = gpu::buildTopLevel(in.device, instances, "reference.tlas");
-    tlasTransforms_ = transforms;
+    const bool rebuildTop = !tlas_ || transforms != tlasTransforms_ || !pendingRebuilds_.empty();
+    if (rebuildTop) {
+      std::vector<gpu::TlasInstance> instances;
+      for (size_t i = 0; i < transforms.size(); ++i)
+        instances.push_back({transforms[i], uint32_t(i), 0xFF, blas_[in.scene.instanceMesh(i)].address()});
+      tlas_.prepare(instances);
+      tlasTransforms_ = transforms;
+    }
+    graph.declareImported(kTlas, graph::ResourceDesc::buffer(tlas_.storage().size(), "the reference's top level"));
+    in.executor.bindImportedBuffer(kTlas, tlas_.storage());
+    graph.declareImported(kTlasInstances, graph::ResourceDesc::buffer(tlas_.instances().size(),
+                                                                      "the reference's top-level instances (host-written)"));
+    in.executor.bindImportedBuffer(kTlasInstances, tlas_.instances());
+    if (deformingStorage_) {
+      graph.declareImported(kBlasDeforming, graph::ResourceDesc::buffer(deformingStorage_.size(),
+                                                                        "bottom levels of the deforming meshes"));
+      in.executor.bindImportedBuffer(kBlasDeforming, deformingStorage_);
+    }
+    if (!pendingRebuilds_.empty()) {
+      graph.addPass(
+          "reference.blas.rebuild", graph::PassKind::AccelerationStructureBuild,
+          [&](graph::PassBuilder& b) {
+            b.read(scene::kSceneVertices, graph::Usage::BuildInput);
+            b.read(scene::kSceneIndices, graph::Usage::BuildInput);
+            b.write(kBlasDeforming, graph::Usage::AccelerationStructureWrite);
+            b.create(kBlasScratch, graph::ResourceDesc::buffer(rebuildScratchBytes_, "scratch of the rebuilds"),
+                     graph::Usage::BuildScratch);
+          },
+          [this, &in](graph::PassContext& ctx) {
+            for (uint32_t m : pendingRebuilds_) {
+              gpu::recordRebuild(ctx.cmd, ctx.device, blas_[m], meshGeometry(in, m), ctx.buffer(kBlasScratch),
+                                 rebuildScratchOffset_[m]);
+              blasVersion_[m] = in.scene.meshVersion(m);
+            }
+            pendingRebuilds_.clear();
+          });
+    }
+    if (rebuildTop) {
+      graph.addPass(
+          "reference.tlas", graph::PassKind::AccelerationStructureBuild,
+          [&](graph::PassBuilder& b) {
+            b.read(kTlasInstances, graph::Usage::BuildInput);
+            if (deformingStorage_) b.read(kBlasDeforming, graph::Usage::AccelerationStructureRead);
+            b.write(kTlas, graph::Usage::AccelerationStructureWrite);
+            b.create(kTlasScratch, graph::ResourceDesc::buffer(tlas_.scratchBytes(), "scratch of the top-level build"),
+                     graph::Usage::BuildScratch);
+          },
+          [this](graph::PassContext& ctx) { tlas_.record(ctx.cmd, ctx.buffer(kTlasScratch)); });
+    }
+  }
+  // A trace reads the top level and, through it, the bottom levels a frame may rebuild.
+  void readStructures(graph::PassBuilder& b) const {
+    b.read(kTlas, graph::Usage::AccelerationStructureRead);
+    if (deformingStorage_) b.read(kBlasDeforming, graph::Usage::AccelerationStructureRead);
   }
 
   uint64_t sceneId_ = 0;
   std::vector<gpu::AccelerationStructure> blas_;
   std::vector<uint64_t> blasVersion_;  // per mesh: the vertex version its bottom level holds
-  gpu::AccelerationStructure tlas_;
+  gpu::Buffer deformingStorage_;       // the deforming meshes' bottom levels, side by side
+  std::vector<VkDeviceSize> rebuildScratchOffset_;  // per mesh: its range of the rebuild scratch
+  VkDeviceSize rebuildScratchBytes_ = 0;
+  std::vector<uint32_t> pendingRebuilds_;  // meshes whose vertices moved since their build
+  gpu::TopLevelBuilder tlas_;
   std::vector<glm::mat4> tlasTransforms_;
   gpu::Buffer geometry_;
   gpu::Pipeline pipeline_;

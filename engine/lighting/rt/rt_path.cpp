@@ -91,36 +91,12 @@ class RtPath final : public LightingPath {
     push.emitterCount = s.rtEmitterSampling ? scene_->emitterCount() : 0u;
     push.cameraWorld = glm::vec4(glm::vec3(in.cameraWorld), 0.0f);
 
-    graph.declareImported(kRtTlas, graph::ResourceDesc::buffer(scene_->topLevel().storage().size(),
-                                                               "top-level acceleration structure (culled instances)"));
-    in.executor.bindImportedBuffer(kRtTlas, scene_->topLevel().storage());
     for (int i = 0; i < 4; ++i) graph.declarePersistent(histNames[i], histDescs[i]);
     const bool screenRadiance = s.rtScreenRadiance;
     if (screenRadiance)
       graph.declarePersistent(kHistRadiance, image(kCompositeHdrFormat, "composite radiance, last frame"));
 
-    // Deforming meshes: the throttle's refits, then the top level over the refitted levels.
-    const bool deforming = scene_->hasDeforming();
-    if (deforming) {
-      graph.declareImported(kRtBlasDeforming,
-                            graph::ResourceDesc::buffer(scene_->deformingStorage().size(),
-                                                        "bottom levels of the deforming meshes (refitted under a throttle)"));
-      in.executor.bindImportedBuffer(kRtBlasDeforming, scene_->deformingStorage());
-      graph.addPass(
-          "rt.blas.refit", graph::PassKind::Compute,
-          [&](graph::PassBuilder& b) {
-            b.read(scene::kSceneVertices, Usage::StorageRead);
-            b.write(kRtBlasDeforming, Usage::StorageWrite);
-          },
-          [this](graph::PassContext& ctx) { scene_->recordRefits(ctx.cmd); });
-    }
-    graph.addPass(
-        "rt.tlas", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          if (deforming) b.read(kRtBlasDeforming, Usage::StorageRead);
-          b.write(kRtTlas, Usage::StorageWrite);
-        },
-        [this](graph::PassContext& ctx) { scene_->topLevel().record(ctx.cmd); });
+    addStructurePasses(graph, in);
 
     // One ray per traced pixel, or two: the second's hit lighting writes the mean of both.
     push.raysPerPixel = s.rtTwoRays ? 2u : 1u;
@@ -214,7 +190,7 @@ class RtPath final : public LightingPath {
             pass, graph::PassKind::RayTracing,
             [&](graph::PassBuilder& b) {
               readCommon(b);
-              b.read(kRtTlas, Usage::StorageRead);
+              readStructures(b);
               b.read(kPretraceHits, Usage::StorageRead);
               b.create(output, image(VK_FORMAT_R32_SFLOAT, "benchmark: hit distance of the trivial trace kernel"),
                        Usage::StorageWrite);
@@ -298,12 +274,13 @@ class RtPath final : public LightingPath {
       out.farShY = far.diffuseShY;
       out.farCoCg = far.diffuseCoCg;
       out.farAo = far.ambientOcclusion;
+      out.farOpenSkyDirectionality = far.openSkyDirectionality;
     }
     return out;
   }
 
   // What the accumulated samples estimate: the rays' reach and targets, the geometry they
-  // hit, what lights a hit, the pre-trace and the firefly clamp. The ray pattern (half rays,
+  // hit, what lights a hit, the pre-trace, the firefly clamp and the material override mode. The ray pattern (half rays,
   // half resolution, two rays) and the accumulation window change only the noise and the
   // weights: the history is kept across them. Post-accumulation settings (the denoiser, the
   // blend to the far field) hold no history.
@@ -312,7 +289,7 @@ class RtPath final : public LightingPath {
         .all(double(s.rtAoRadius), double(s.rtRayLength), double(s.rtSimplifyRatio), double(s.rtSimplifyError),
              double(s.rtPretrace), double(s.rtPretraceSteps), double(s.rtPretracePixels), double(s.rtThickness),
              double(s.rtFireflyClamp), double(s.rtHitSky), double(s.rtEmitterSampling), double(s.rtScreenRadiance),
-             double(s.rtCullAngle), double(s.rtCullMargin))
+             double(s.rtCullAngle), double(s.rtCullMargin), double(s.materials))
         .done();
   }
 
@@ -374,7 +351,7 @@ class RtPath final : public LightingPath {
         r.tracePass, graph::PassKind::RayTracing,
         [&](graph::PassBuilder& b) {
           readCommon(b);
-          b.read(kRtTlas, Usage::StorageRead);
+          readStructures(b);
           b.read(r.pretraceHits, Usage::StorageRead);
           b.read(r.pretraceSurface, Usage::StorageRead);
           b.create(r.hits, image(VK_FORMAT_R32_UINT, "hit records: distance (half) + albedo (565), miss code").decodedAs("rt-hit-record"),
@@ -503,10 +480,56 @@ class RtPath final : public LightingPath {
     return (pixels + shared::kRtDisocclusionCell - 1) / shared::kRtDisocclusionCell;
   }
 
+  // Deforming meshes: the throttle's refits, then the top level over all bottom levels, each
+  // an acceleration-structure build pass whose barriers the graph derives.
+  void addStructurePasses(graph::RenderGraph& graph, FrameInputs& in) {
+    gpu::TopLevelBuilder& top = scene_->topLevel();
+    graph.declareImported(kRtTlas, graph::ResourceDesc::buffer(top.storage().size(),
+                                                               "top-level acceleration structure (culled instances)"));
+    in.executor.bindImportedBuffer(kRtTlas, top.storage());
+    graph.declareImported(kRtTlasInstances, graph::ResourceDesc::buffer(top.instances().size(),
+                                                                        "the top level's instances (host-written)"));
+    in.executor.bindImportedBuffer(kRtTlasInstances, top.instances());
+    const bool deforming = scene_->hasDeforming();
+    if (deforming) {
+      graph.declareImported(kRtBlasDeforming,
+                            graph::ResourceDesc::buffer(scene_->deformingStorage().size(),
+                                                        "bottom levels of the deforming meshes (refitted under a throttle)"));
+      in.executor.bindImportedBuffer(kRtBlasDeforming, scene_->deformingStorage());
+    }
+    if (deforming && scene_->refitsPending()) {
+      graph.addPass(
+          "rt.blas.refit", graph::PassKind::AccelerationStructureBuild,
+          [&](graph::PassBuilder& b) {
+            b.read(scene::kSceneVertices, Usage::BuildInput);
+            b.read(kRtBlasDeforming, Usage::AccelerationStructureRead);  // an update reads the structure it rewrites
+            b.write(kRtBlasDeforming, Usage::AccelerationStructureWrite);
+            b.create(kRtRefitScratch, graph::ResourceDesc::buffer(scene_->refitScratchBytes(), "scratch of the refits"),
+                     Usage::BuildScratch);
+          },
+          [this](graph::PassContext& ctx) { scene_->recordRefits(ctx.cmd, ctx.buffer(kRtRefitScratch)); });
+    }
+    graph.addPass(
+        "rt.tlas", graph::PassKind::AccelerationStructureBuild,
+        [&](graph::PassBuilder& b) {
+          b.read(kRtTlasInstances, Usage::BuildInput);
+          if (deforming) b.read(kRtBlasDeforming, Usage::AccelerationStructureRead);
+          b.write(kRtTlas, Usage::AccelerationStructureWrite);
+          b.create(kRtTlasScratch, graph::ResourceDesc::buffer(top.scratchBytes(), "scratch of the top-level build"),
+                   Usage::BuildScratch);
+        },
+        [this](graph::PassContext& ctx) { scene_->topLevel().record(ctx.cmd, ctx.buffer(kRtTlasScratch)); });
+  }
+  // A trace reads the top level and, through it, the bottom levels a frame may rewrite.
+  void readStructures(graph::PassBuilder& b) const {
+    b.read(kRtTlas, Usage::AccelerationStructureRead);
+    if (scene_->hasDeforming()) b.read(kRtBlasDeforming, Usage::AccelerationStructureRead);
+  }
+
   // What shading a hit reads (rt/hit_lighting.glsl): the top level, last frame's image and
   // depth for hits seen on screen, and the G-buffer's material there.
-  static void readHitLighting(graph::PassBuilder& b, bool screenRadiance) {
-    b.read(kRtTlas, Usage::StorageRead);
+  void readHitLighting(graph::PassBuilder& b, bool screenRadiance) const {
+    readStructures(b);
     b.read(kHistDepth, Usage::Sampled);
     if (screenRadiance) b.read(kHistRadiance, Usage::Sampled);
     for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive"}) b.read(n, Usage::Sampled);
@@ -578,9 +601,11 @@ class RtPath final : public LightingPath {
       sceneId_ = in.scene.id();
       albedoVersion_ = ~0ull;
     }
-    if (in.instanceAlbedo && albedoVersion_ != in.instanceAlbedoVersion) {
-      scene_->setInstanceAlbedo(*in.instanceAlbedo);  // an override shows in the next frame's bounce
+    const uint32_t materials = uint32_t(in.settings.materials);
+    if (albedoVersion_ != in.instanceAlbedoVersion || materials_ != materials) {
+      scene_->setInstanceAlbedo(in.instanceAlbedo, materials);  // an override shows in the next frame's bounce
       albedoVersion_ = in.instanceAlbedoVersion;
+      materials_ = materials;
     }
     if (pretrace_) return;
     point_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "rt.point");
@@ -724,6 +749,7 @@ class RtPath final : public LightingPath {
   bool farLegacy_ = false;
   uint64_t sceneId_ = 0;
   uint64_t albedoVersion_ = ~0ull;
+  uint32_t materials_ = 0;  // the material override mode the instance albedos were set for
   uint32_t sceneInstances_ = 0;
   HistoryKeeper temporalHistory_;
   bool restart_ = false;  // this frame drops the temporal history (a cut, a new scene, a setting)

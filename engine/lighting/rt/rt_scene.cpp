@@ -133,13 +133,13 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
       deformingOffset[i] = deformingBytes;
       deformingBytes += gpu::bottomLevelBytes(device, g, true);
       blas_.emplace_back();
-      refitScratch_.emplace_back(device, gpu::refitScratchBytes(device, g), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                 gpu::MemoryUsage::GpuOnly, fmt::format("rt.blas.{}.refitScratch", i));
+      refitScratchOffset_.push_back(refitScratchBytes_);
+      refitScratchBytes_ += gpu::refitScratchBytes(device, g);
       ++stats_.deformingMeshes;
     } else {
       blas_.push_back(gpu::buildBottomLevel(device, g, fmt::format("rt.blas.{}", i), true));
       stats_.blasBytes += blas_.back().bytes();
-      refitScratch_.emplace_back();
+      refitScratchOffset_.push_back(0);
     }
     rtIndices_.push_back(std::move(ib));
     glm::vec3 lo(mesh.bounds.min), hi(mesh.bounds.max);
@@ -164,9 +164,11 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
   // Once per material (texture averages touch every texel), then per instance. The albedo
   // is the texture-average fallback until setInstanceAlbedo() gives the resolved one.
   std::vector<glm::vec4> albedo, emission;
+  std::vector<glm::vec3> modeAlbedo[3];
   for (const auto& m : scene.materials) {
     albedo.push_back(glm::vec4(scene::materialAverageAlbedo(scene, m), 0.0f));
     emission.push_back(glm::vec4(scene::materialAverageEmission(scene, m), 0.0f));
+    for (uint32_t mode = 0; mode < 3; ++mode) modeAlbedo[mode].push_back(scene::materialAverageAlbedo(scene, m, mode));
   }
   std::vector<shared::RtInstance>& data = instances_;
   data.assign(std::max<size_t>(1, scene.instances.size()), shared::RtInstance{});
@@ -180,7 +182,9 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
     data[i].indexAddress = glm::uvec2(uint32_t(ia), uint32_t(ia >> 32));
     data[i].vertexAddress = glm::uvec2(uint32_t(va), uint32_t(va >> 32));
   }
-  for (size_t i = 0; i < scene.instances.size(); ++i) fallbackAlbedo_.push_back(glm::vec3(data[i].albedo));
+  for (uint32_t mode = 0; mode < 3; ++mode)
+    for (size_t i = 0; i < scene.instances.size(); ++i)
+      fallbackAlbedo_[mode].push_back(modeAlbedo[mode][scene.meshes[scene.instances[i].mesh].material]);
   instanceData_ = gpu::Buffer(device, data.size() * sizeof(data[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               gpu::MemoryUsage::Upload, "rt.instanceData");
   instanceData_.write(data.data(), data.size() * sizeof(data[0]));
@@ -195,11 +199,16 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
   emitterData_.write(emitters.data(), emitters.size() * sizeof(emitters[0]));
 }
 
-void RtScene::setInstanceAlbedo(const std::vector<glm::vec4>& albedo) {
+void RtScene::setInstanceAlbedo(const std::vector<glm::vec4>* resolved, uint32_t materials) {
   // The executor waits for each frame, so the upload-heap table is not in flight here.
-  for (size_t i = 0; i < albedo.size() && i < fallbackAlbedo_.size(); ++i) {
-    instances_[i].albedo = glm::vec4(glm::vec3(albedo[i]), 0.0f);
-    instances_[i].albedoScale = glm::vec4(glm::vec3(albedo[i]) / glm::max(fallbackAlbedo_[i], glm::vec3(1e-4f)), 0.0f);
+  const std::vector<glm::vec3>& fallback = fallbackAlbedo_[std::min(materials, 2u)];
+  for (size_t i = 0; i < fallback.size(); ++i) {
+    const bool authored = materials == shared::kMaterialsAuthored && resolved && i < resolved->size();
+    const glm::vec3 albedo = authored ? glm::vec3((*resolved)[i]) : fallback[i];
+    instances_[i].albedo = glm::vec4(albedo, 0.0f);
+    // Pre-traced hits read the G-buffer, which already shows the mode: only an override or a
+    // database entry re-colours them.
+    instances_[i].albedoScale = glm::vec4(albedo / glm::max(fallback[i], glm::vec3(1e-4f)), 0.0f);
   }
   instanceData_.write(instances_.data(), instances_.size() * sizeof(instances_[0]));
 }
@@ -241,22 +250,12 @@ void RtScene::prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& 
   stats_.refitsLastFrame = uint32_t(pendingRefits_.size());
 }
 
-void RtScene::recordRefits(VkCommandBuffer cmd) {
-  if (pendingRefits_.empty()) return;
-  // The vertices were copied in an earlier submission the host waited for; this makes those
-  // writes visible to the builds (last frame's traces are done too).
-  VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  before.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
-  before.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR |
-                         VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
-                       VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0, 1, &before, 0, nullptr, 0, nullptr);
+void RtScene::recordRefits(VkCommandBuffer cmd, const gpu::Buffer& scratch) {
+  // Each refit of the frame has its own range of the scratch buffer: they run together.
   for (const auto& [mesh, version] : pendingRefits_) {
-    gpu::recordRefit(cmd, *device_, blas_[mesh], geometry_[mesh], refitScratch_[mesh]);
+    gpu::recordRefit(cmd, *device_, blas_[mesh], geometry_[mesh], scratch, refitScratchOffset_[mesh]);
     refitVersion_[mesh] = version;
   }
-  // The top-level build that follows waits for these writes (its own barrier), and the
-  // barrier after it makes both visible to the traces.
   pendingRefits_.clear();
 }
 

@@ -51,10 +51,15 @@ class RtScene {
           float simplifyError);
 
   // Chooses this frame's instances and uploads them, and which deforming meshes to refit;
-  // recordRefits() then topLevel().record() build them.
+  // recordRefits() then topLevel().record() build them, each in a graph pass of kind
+  // AccelerationStructureBuild (the graph places the barriers).
   void prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling, const RefitPolicy& refits = {});
-  // Refits the bottom levels chosen by prepareTopLevel from the scene's current vertices.
-  void recordRefits(VkCommandBuffer cmd);
+  bool refitsPending() const { return !pendingRefits_.empty(); }
+  // Scratch for every deforming mesh refitted at once: what the refit pass creates.
+  VkDeviceSize refitScratchBytes() const { return refitScratchBytes_; }
+  // Refits the bottom levels chosen by prepareTopLevel from the scene's current vertices,
+  // into deformingStorage(), with `scratch` of refitScratchBytes().
+  void recordRefits(VkCommandBuffer cmd, const gpu::Buffer& scratch);
   bool hasDeforming() const { return stats_.deformingMeshes > 0; }
   // All deforming meshes' bottom levels, side by side: the graph's rt.blas.deforming.
   gpu::Buffer& deformingStorage() { return deformingStorage_; }
@@ -63,9 +68,12 @@ class RtScene {
   // The emissive triangles (lighting/rt/emitters.h): at least one entry, emitterCount() valid.
   gpu::Buffer& emitterData() { return emitterData_; }
   uint32_t emitterCount() const { return emitterCount_; }
-  // Per-instance hit albedo resolved outside (T7: override > baked > texture average);
-  // until called, each instance has its material's texture average.
-  void setInstanceAlbedo(const std::vector<glm::vec4>& albedo);
+  // Per-instance hit albedo under a material override mode (shared/material_mode.h): as
+  // authored, the one resolved outside (T7: override > baked > texture average; null: texture
+  // averages); in the Lambertian modes what the mode reflects (the base colour's texture
+  // average, or the clay albedo), which no override or database entry changes. Until called,
+  // each instance has its material's authored texture average.
+  void setInstanceAlbedo(const std::vector<glm::vec4>* resolved, uint32_t materials);
   const RtSceneStats& stats() const { return stats_; }
   uint32_t instancesInTopLevel() const { return topLevel_.instanceCount(); }
   float simplifyRatio() const { return ratio_; }
@@ -76,19 +84,22 @@ class RtScene {
   std::vector<glm::vec3> meshCentre_;             // object space bounding sphere per mesh
   std::vector<float> meshRadius_;
   std::vector<shared::RtInstance> instances_;     // CPU copy of instanceData_
-  std::vector<glm::vec3> fallbackAlbedo_;         // per instance: its material's texture-average albedo
+  // Per material override mode, per instance: its material's texture-average albedo.
+  std::vector<glm::vec3> fallbackAlbedo_[3];
   gpu::Buffer instanceData_;                      // RtInstance per scene instance
   gpu::Buffer emitterData_;                       // RtEmitter per emissive triangle
   uint32_t emitterCount_ = 0;
   gpu::TopLevelBuilder topLevel_;
   RtSceneStats stats_;
   float ratio_ = 1.0f;
-  // Deforming meshes: geometry as built, the mesh version each bottom level holds, a scratch
-  // buffer each (refits of one frame run together), the throttle and this frame's choice.
+  // Deforming meshes: geometry as built, the mesh version each bottom level holds, each one's
+  // range of the refit scratch (refits of one frame run together), the throttle and this
+  // frame's choice.
   std::vector<gpu::TriangleGeometry> geometry_;  // per mesh
   std::vector<int64_t> meshInstance_;             // per mesh: its one instance (deforming meshes), else -1
   std::vector<uint64_t> refitVersion_;            // per mesh
-  std::vector<gpu::Buffer> refitScratch_;         // per mesh (empty for still ones)
+  std::vector<VkDeviceSize> refitScratchOffset_;  // per mesh (0 for still ones)
+  VkDeviceSize refitScratchBytes_ = 0;
   gpu::Buffer deformingStorage_;
   RefitScheduler scheduler_;
   std::vector<std::pair<uint32_t, uint64_t>> pendingRefits_;  // mesh, the version it will hold
