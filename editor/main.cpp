@@ -366,7 +366,7 @@ int main(int argc, char** argv) {
   std::string doctorJson;
   auto* doctorCmd = app.add_subcommand(
       "doctor", "stability report: every lighting path on SCENE, NaN/Inf/negative counts per buffer, energy against the "
-                "reference, flicker over a short camera orbit, validation messages; exit status 1 when not healthy");
+                "reference, flicker over a short camera orbit, messages from the Vulkan layers; exit status 1 when not healthy");
   doctorCmd->add_option("scene", doctorRender.scene, "glTF file")->required();
   doctorCmd->add_option("--size", doctorRender.size, "image size WxH")->capture_default_str();
   doctorCmd->add_option("--frames", doctor.frames, "frames each real-time path renders before its buffers are read")

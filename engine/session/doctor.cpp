@@ -68,7 +68,7 @@ nlohmann::json DoctorReport::toJson() const {
 
 std::string DoctorReport::toText() const {
   std::string s = fmt::format("doctor: {} at {}x{}\n{:10} {:>8} {:>10} {:>9} {:>11} {:>9} {:>11}\n", scene, width, height,
-                              "path", "buffers", "non-finite", "negative", "energy/ref", "flicker", "validation");
+                              "path", "buffers", "non-finite", "negative", "energy/ref", "flicker", "layers");
   for (const auto& p : paths)
     s += fmt::format("{:10} {:>8} {:>10} {:>9} {:>11} {:>9} {:>11}\n", p.path, p.buffers.size(), p.nonFinite, p.negative,
                      p.energyRatio ? fmt::format("{:.3f}", *p.energyRatio) : "-",
@@ -81,8 +81,8 @@ std::string DoctorReport::toText() const {
                          b.negative, b.values, b.check, b.mostNegative);
         any = true;
       }
-  s += healthy() ? "healthy: every buffer finite, no negative radiance, no validation message\n"
-                 : (any ? "UNHEALTHY\n" : "UNHEALTHY (validation messages)\n");
+  s += healthy() ? "healthy: every buffer finite, no negative radiance, no message from the Vulkan layers\n"
+                 : (any ? "UNHEALTHY\n" : "UNHEALTHY (messages from the Vulkan layers)\n");
   return s;
 }
 
