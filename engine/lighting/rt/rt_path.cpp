@@ -95,7 +95,7 @@ class RtPath final : public LightingPath {
     for (int i = 0; i < 4; ++i) graph.declarePersistent(histNames[i], histDescs[i]);
     const bool screenRadiance = s.rtScreenRadiance;
     if (screenRadiance)
-      graph.declarePersistent(kHistRadiance, image(VK_FORMAT_R16G16B16A16_SFLOAT, "composite radiance, last frame"));
+      graph.declarePersistent(kHistRadiance, image(kCompositeHdrFormat, "composite radiance, last frame"));
 
     addStructurePasses(graph, in);
 
