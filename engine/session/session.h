@@ -116,7 +116,13 @@ class Session {
 
   // The editor's viewport: adds the display pass (selection outline, any resource shown).
   void setDisplay(std::optional<lighting::DisplayRequest> request) { display_ = std::move(request); }
+  // The resource the display was asked to show that the last frame begun does not make (so
+  // it showed the final image); empty when it showed what was asked.
+  const std::string& displayMissing() const { return displayMissing_; }
   const gpu::Image* displayImage() const { return executor_->image(lighting::kDisplayLdr); }
+  // The last finished frame's display.ldr read back (request it), live or of a capture; null
+  // when that frame did not read it back.
+  const graph::Readback* displayReadback() const;
   VkImageLayout displayImageLayout() const { return executor_->layout(lighting::kDisplayLdr); }
   // The Compare panel: while set, frames render its two sides and the reference in turn (one
   // per frame, each with its own history) and display.ldr shows the compare view instead of
@@ -134,7 +140,10 @@ class Session {
   // Drops every persistent (history) resource: the next frame starts accumulating afresh.
   // Changes of the camera, the light, the scene or a setting need no call: every history
   // decides from the frame key what it keeps (lighting/common/frame_key.h).
-  void resetHistory() { executor_->resetHistory(); }
+  void resetHistory() {
+    settle();
+    executor_->resetHistory();
+  }
 
   // The frame key of the current state (camera, projection, light, scene, geometry, albedo,
   // every path's history settings) for a frame numbered `frame` of its path.
@@ -144,6 +153,17 @@ class Session {
 
   // Renders n frames; the last one reads back the final images and the requested buffers.
   void renderFrames(uint32_t n);
+  // One frame in two halves (the editor, whose interface must not wait for the GPU):
+  // beginFrame() records and submits a frame with read-backs, without waiting; frameDone()
+  // says whether the GPU has finished it; finishFrame() waits if it has not, then collects
+  // it (timings, read-backs, the Compare panel's figures). Until then buffer(), timings() and
+  // the figures describe the frame before. Changes of the camera, light, settings, path,
+  // albedo or display made meanwhile apply to the next frame. Everything that replaces what
+  // a frame uses (a scene, a capture, renderFrames, resetHistory) finishes it first.
+  void beginFrame();
+  bool frameInFlight() const { return inFlight_ != nullptr; }
+  bool frameDone() const;
+  void finishFrame();
 
   const graph::Readback& buffer(const std::string& name) const;
   // Whether the last frame read back `name` (a path may not produce it).
@@ -183,6 +203,12 @@ class Session {
  private:
   void buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumber, bool jitter) const;
   void renderOne(bool readback);
+  void beginOne(bool readback);
+  void finishOne();
+  void settle();  // finishes a frame in flight
+  struct InFlight;
+  std::unique_ptr<InFlight> inFlight_;
+  uint64_t compareGeneration_ = 0;  // counts compare views, so a frame finds the one it was for
 
   std::unique_ptr<gpu::Device> device_;
   std::unique_ptr<scene::Scene> scene_;
@@ -204,6 +230,7 @@ class Session {
   std::optional<View> previousView_;
   Lighting lighting_;
   std::optional<lighting::DisplayRequest> display_;
+  std::string displayMissing_;
   std::unique_ptr<LiveCompare> compare_;
   std::map<std::string, View> comparePrevious_;  // each compared path's own previous view
   std::map<std::string, uint64_t> compareFrames_;  // and its own frame count (noise, checkerboards)
