@@ -149,6 +149,7 @@ Exit codes:
      Vulkan validation errors (when TWINLIGHT_VALIDATION=1)
   2  usage: a command line that does not parse or options that contradict each other
   3  a regression gate failed (compare --fail-above): the figures are printed and written
+  4  the GPU did not finish its work within TWINLIGHT_GPU_TIMEOUT (a hung device)
   Every error is one line on stderr that starts with the program's name and "error:".
 
 Environment:
@@ -156,6 +157,8 @@ Environment:
                                  a validation error makes the exit code 1
   TWINLIGHT_DEVICE=NAME          use the Vulkan device whose name contains NAME
   TWINLIGHT_NO_RAY_TRACING=1     behave as on a device without ray tracing
+  TWINLIGHT_GPU_TIMEOUT=S        seconds a GPU wait may take before the process stops with exit
+                                 code 4 (default 600)
   TWINLIGHT_VERBOSE=1            as --verbose
   TWINLIGHT_PROGRESS_INTERVAL=S  seconds between plain progress lines when stderr is not a
                                  terminal (default 5; 0: every step)

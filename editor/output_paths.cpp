@@ -48,14 +48,14 @@ void checkImageOutput(const std::filesystem::path& file) {
 }
 
 void checkJsonOutput(const std::string& file) {
-  if (file == "-") return;
+  if (file.empty() || file == "-") return;  // none asked for, or stdout
   if (lowerExtension(file) != ".json")
     throw SessionError(fmt::format("{}: a JSON file must end in .json (or give - for stdout)", file));
   session::checkOutputFile(file);
 }
 
 void checkGraphOutput(const std::string& file) {
-  if (file == "-") return;
+  if (file.empty() || file == "-") return;
   if (!oneOf(lowerExtension(file), {".dot", ".gv", ".txt"}))
     throw SessionError(fmt::format("{}: the graph is written as .dot or .gv (Graphviz) or .txt (text), or - for stdout", file));
   session::checkOutputFile(file);

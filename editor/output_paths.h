@@ -16,9 +16,9 @@ std::filesystem::path sequenceFrame(const std::filesystem::path& file, uint64_t 
 
 // An image to write (render --out): .exr or .png, and writable. SessionError otherwise.
 void checkImageOutput(const std::filesystem::path& file);
-// A JSON file to write (`-` is stdout): .json, and writable.
+// A JSON file to write (`-` is stdout, empty is none): .json, and writable.
 void checkJsonOutput(const std::string& file);
-// The render graph (`-` is stdout): .dot or .gv (Graphviz), .txt (text), and writable.
+// The render graph (`-` is stdout, empty is none): .dot or .gv (Graphviz), .txt (text), and writable.
 void checkGraphOutput(const std::string& file);
 
 }  // namespace tl::editor

@@ -601,7 +601,8 @@ void Executor::submit(const RenderGraph& graph, const CompiledGraph& compiled) {
     if (p.kind != Physical::Kind::Persistent || !p.historyValid || !graph.find(name)) continue;
     if (p.image && p.state.layout == VK_IMAGE_LAYOUT_UNDEFINED) continue;
     if (!readbackAll_ && !readbackNames_.count(name)) continue;
-    if (std::any_of(pending_.begin(), pending_.end(), [&](const PendingReadback& r) { return r.name == name; })) continue;
+    const std::string& resource = name;  // clang 14 cannot capture a structured binding
+    if (std::any_of(pending_.begin(), pending_.end(), [&](const PendingReadback& r) { return r.name == resource; })) continue;
     copyForReadback(cmd, name, p, nullptr);
   }
   handBackImports(cmd, graph);

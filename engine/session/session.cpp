@@ -68,13 +68,15 @@ const scene::Scene& Session::scene() const {
   return *scene_;
 }
 
-std::unique_ptr<scene::Scene> Session::parseScene(const std::filesystem::path& file) {
-  auto loaded = std::make_unique<scene::Scene>(scene::loadGltf(file));
+std::unique_ptr<scene::Scene> Session::parseScene(const std::filesystem::path& file, const scene::LoadOptions& options) {
+  auto loaded = std::make_unique<scene::Scene>(scene::loadGltf(file, options));
   if (loaded->instances.empty()) throw scene::SceneError(fmt::format("{}: the scene has no meshes to draw", file.string()));
   return loaded;
 }
 
-void Session::loadScene(const std::filesystem::path& file) { installScene(parseScene(file)); }
+void Session::loadScene(const std::filesystem::path& file, const scene::LoadOptions& options) {
+  installScene(parseScene(file, options));
+}
 
 void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   settle();
@@ -560,12 +562,12 @@ void Session::writeGraph(const std::filesystem::path& file) const {
   writeTextFile(file, ext == ".dot" || ext == ".gv" ? graphDot_ : graphDump_);
 }
 
-void Session::saveImage(const std::filesystem::path& file) const {
+ImageWriteReport Session::saveImage(const std::filesystem::path& file) const {
   std::string ext = file.extension().string();
   for (auto& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  if (ext == ".exr") writeImageAtomically(file, buffer(lighting::kCompositeHdr), ImageEncoding::LinearHalf);
-  else if (ext == ".png") writeImageAtomically(file, buffer(lighting::kTonemapLdr), ImageEncoding::Display8);
-  else throw SessionError(fmt::format("{}: unsupported image type `{}` (use .exr or .png)", file.string(), ext));
+  if (ext == ".exr") return writeImageAtomically(file, buffer(lighting::kCompositeHdr), ImageEncoding::Linear);
+  if (ext == ".png") return writeImageAtomically(file, buffer(lighting::kTonemapLdr), ImageEncoding::Display8);
+  throw SessionError(fmt::format("{}: unsupported image type `{}` (use .exr or .png)", file.string(), ext));
 }
 
 }  // namespace tl::session

@@ -11,6 +11,7 @@
 #include "lighting/common/frame_inputs.h"
 #include "lighting/lighting_path.h"
 #include "scene/scene.h"
+#include "session/image_io.h"
 #include "session/live_compare.h"
 
 #include <filesystem>
@@ -59,10 +60,10 @@ class Session {
   gpu::Device& device() { return *device_; }
 
   // Throws scene::SceneError (one line naming the file) and keeps the previous scene.
-  void loadScene(const std::filesystem::path& file);
+  void loadScene(const std::filesystem::path& file, const scene::LoadOptions& options = {});
   // The two halves of loadScene: parsing touches no device and may run on another thread
   // (the editor keeps its UI alive meanwhile); installing uploads to the GPU.
-  static std::unique_ptr<scene::Scene> parseScene(const std::filesystem::path& file);
+  static std::unique_ptr<scene::Scene> parseScene(const std::filesystem::path& file, const scene::LoadOptions& options = {});
   void installScene(std::unique_ptr<scene::Scene> scene);
   bool hasScene() const { return scene_ != nullptr; }
   const scene::Scene& scene() const;
@@ -197,9 +198,10 @@ class Session {
   // Pins the next frame's index (it seeds per-frame noise): reproducible frames for tests.
   void setFrameIndex(uint64_t index) { frameIndex_ = index; }
 
-  // .exr: scene-linear radiance before exposure (composite.hdr);
+  // .exr: scene-linear radiance before exposure (composite.hdr), in half floats when every
+  // value fits them and in 32-bit floats when some do not (the report says how many);
   // .png: the tonemapped display image (tonemap.ldr). Written atomically.
-  void saveImage(const std::filesystem::path& file) const;
+  ImageWriteReport saveImage(const std::filesystem::path& file) const;
 
   uint32_t validationErrors() const { return device_->validationErrorCount(); }
 
