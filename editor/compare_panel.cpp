@@ -101,9 +101,9 @@ void comparePanel(EditorApp& app) {
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(fmt::format("{:.2f}", e.gpuMs).c_str());
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(e.path == "reference" ? "0 (itself)" : figure(e.relMse, "{:.4f}").c_str());
+      ImGui::TextUnformatted(e.path == app.session().referencePath() ? "0 (itself)" : figure(e.relMse, "{:.4f}").c_str());
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(e.path == "reference" ? "0" : figure(e.flip, "{:.4f}").c_str());
+      ImGui::TextUnformatted(e.path == app.session().referencePath() ? "0" : figure(e.flip, "{:.4f}").c_str());
     }
     ImGui::EndTable();
   }

@@ -274,7 +274,7 @@ void Script::step(EditorApp& app) {
         live->finishFlip();  // FLIP runs beside the frames: take the one under way
         std::string all;
         for (const auto& e : live->errors()) {
-          if (e.path == "reference") continue;
+          if (e.path == app.session().referencePath()) continue;
           if (!e.relMse || !std::isfinite(*e.relMse) || !e.flip || !std::isfinite(*e.flip))
             return fail(app, fmt::format("no finite error for `{}` yet", e.path));
           all += fmt::format(" {} relMSE {:.4f} FLIP {:.4f} ({:.1f} ms);", e.path, *e.relMse, *e.flip, e.gpuMs);
