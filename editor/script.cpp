@@ -4,6 +4,7 @@
 #include "gpu/install_paths.h"
 #include "session/capture.h"
 #include "session/capture_encoding.h"
+#include "session/settings_json.h"
 #include "gpu/formats.h"
 
 #include <fmt/format.h>
@@ -308,6 +309,17 @@ void Script::step(EditorApp& app) {
           app.playing() = false;
           app.session().setAnimationTime(std::stod(arg));
         }
+      } else if (cmd == "set") {
+        app.session().settings() = session::applySettingText(app.session().settings(), arg);
+      } else if (cmd == "expect-setting") {
+        std::istringstream a(arg);
+        std::string name, want;
+        a >> name >> want;
+        const lighting::SettingInfo* s = lighting::findSetting(name);
+        if (!s) return fail(app, fmt::format("unknown setting `{}`", name));
+        const std::string have = lighting::formatSetting(*s, s->get(app.session().settings()));
+        if (have != want) return fail(app, fmt::format("setting `{}` is {}, expected {}", name, have, want));
+        fmt::print("setting {} = {}\n", name, have);
       } else if (cmd == "quit") {
         app.requestQuit();
         return;

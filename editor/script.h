@@ -45,6 +45,8 @@
 //   expect-reference-restarted PART  fail unless the Compare panel's reference started over since
 //                          the last camera-move, PART (a frame-key part, e.g. camera.position)
 //                          among its causes, and now holds fewer samples than it did then
+//   set NAME=VALUE         change a render setting (what the Lighting panel's widget for it does)
+//   expect-setting NAME V  fail unless the setting's value reads V ("512", "clay", "true")
 //   quit
 #pragma once
 
