@@ -68,7 +68,7 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(float, rtSimplifyError, 0.01f, 0.0f, 1.0f, "x size", "rt", "rt", kSettingPlain, "largest deviation the simplifier may introduce, as a fraction of the mesh's size") \
   X(float, rtAoRadius, 0.0f, 0.0f, 1000.0f, "m", "rt", "rt reference", kSettingAuto, "RTAO radius: a hit closer than this occludes (also the reference's AO)") \
   X(float, rtRayLength, 0.0f, 0.0f, 10000.0f, "m", "rt", "rt", kSettingAuto, "GI rays stop after this distance; also the top level's culling margin") \
-  X(float, rtBlendDistance, 0.0f, 0.0f, 100000.0f, "m", "rt", "", kSettingAuto, "beyond this view distance RT GI fades to the far field (Metro: 250 m)") \
+  X(float, rtBlendDistance, 0.0f, 0.0f, 100000.0f, "m", "rt", "rt", kSettingAuto, "beyond this view distance RT GI fades to the far field (Metro: 250 m); the top level culls instances beyond it") \
   X(bool, rtFarLegacy, true, 0, 1, "", "rt", "", kSettingPlain, "the far field beyond the blend distance is the legacy path's voxel GI (Metro), else the unoccluded sky") \
   X(bool, rtPretrace, true, 0, 1, "", "rt", "rt", kSettingPlain, "screen-space pre-trace: march the depth buffer first, real rays only where it finds nothing") \
   X(uint32_t, rtPretraceSteps, 16, 1, 256, "steps", "rt", "rt", kSettingPlain, "depth samples along a pre-traced ray") \

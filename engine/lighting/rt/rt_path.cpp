@@ -52,6 +52,7 @@ class RtPath final : public LightingPath {
     culling.viewProj = in.constants.viewProj;
     culling.margin = s.rtCullMargin > 0.0f ? s.rtCullMargin : params_.rayLength;
     culling.minAngle = s.rtCullAngle;
+    culling.maxDistance = params_.blendDistance + culling.margin;
     RefitPolicy refits;
     refits.top = s.rtRefitTop;
     refits.random = s.rtRefitRandom;
