@@ -12,7 +12,9 @@
 #include "gpu/install_paths.h"
 #include "gpu/renderdoc.h"
 #include "gpu/self_test.h"
+#include "scene/input_limits.h"
 #include "session/compare.h"
+#include "session/doctor.h"
 #include "session/image_io.h"
 #include "session/settings_json.h"
 #include "session/settings_reference.h"
@@ -58,6 +60,7 @@ struct RenderOptions {
   std::optional<bool> rtPretrace;
   std::optional<bool> rtDenoise;
   std::string albedoDb;
+  bool allowOutsideFiles = false;
   std::string renderDoc;  // RenderDoc capture path template for one more frame
   double time = 0.0;
   std::optional<double> animateFps;
@@ -96,6 +99,8 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--materials", o.materials, std::string(kMaterialsHelp) + " [default: authored]");
   cmd.add_option("--camera", o.view.camera, "use the scene's glTF camera N (0-based)");
   cmd.add_option("--albedo-db", o.albedoDb, "albedo database whose baked values and overrides the RT path's hits use");
+  cmd.add_flag("--allow-outside-files", o.allowOutsideFiles,
+               "let the scene read buffers and images outside its own folder (../, absolute paths, links out)");
   cmd.add_option("--look-from", o.view.lookFrom, "camera position x,y,z (metres, y up)");
   cmd.add_option("--look-at", o.view.lookAt, "point the camera looks at, x,y,z");
   cmd.add_option("--fov", o.view.fovDegrees, "vertical field of view in degrees");
@@ -148,7 +153,8 @@ void printFrameTimes(const Session& session) {
 void prepareSession(Session& session, const RenderOptions& o) {
   const std::optional<tl::lighting::MaterialMode> materials =
       o.materials ? std::optional(parseMaterials(*o.materials)) : std::nullopt;
-  session.loadScene(o.scene.empty() ? defaultScene() : std::filesystem::path(o.scene));
+  session.loadScene(o.scene.empty() ? defaultScene() : std::filesystem::path(o.scene),
+                    tl::scene::LoadOptions{o.allowOutsideFiles});
   session.setPath(o.path);
   auto [w, h] = parseSize(o.size);
   session.setSize(w, h);
@@ -169,7 +175,7 @@ void prepareSession(Session& session, const RenderOptions& o) {
     if (!assignment.empty() && assignment.front() == '{') {  // the JSON form bench --set took first
       nlohmann::json overrides;
       try {
-        overrides = nlohmann::json::parse(assignment);
+        overrides = tl::session::parseSettingsText(assignment, "--set");
       } catch (const nlohmann::json::exception& e) {
         throw tl::session::SessionError(fmt::format("--set is not JSON: {}", e.what()));
       }
@@ -215,9 +221,9 @@ int runRender(const RenderOptions& o) {
       throw tl::session::SessionError(fmt::format("--spp applies to --path {}", session.referencePath()));
     if (*o.spp == 0) throw tl::session::SessionError("--spp must be at least 1");
     // Up to 16 samples a frame: fewer submissions, and each frame stays short.
+    if (*o.spp > 16 && *o.spp % 16) throw tl::session::SessionError("--spp must be a multiple of 16, or at most 16");
     session.settings().referenceSamplesPerFrame = std::min(*o.spp, 16u);
     frames = (*o.spp + 15) / 16;
-    if (*o.spp % 16) throw tl::session::SessionError("--spp must be a multiple of 16, or at most 16");
   }
 
   auto start = std::chrono::steady_clock::now();
@@ -225,8 +231,14 @@ int runRender(const RenderOptions& o) {
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   for (const auto& out : o.outputs) {
-    session.saveImage(out);
-    fmt::print("wrote {}\n", std::filesystem::absolute(out).string());
+    const auto written = session.saveImage(out);
+    std::string note;
+    if (written.float32)
+      note = fmt::format(" (32-bit float: {} of {} pixels exceed the half-float range, 65504, and would have clipped)",
+                         written.beyondHalf, written.pixels);
+    fmt::print("wrote {}{}\n", std::filesystem::absolute(out).string(), note);
+    if (written.nonFinite > 0)
+      throw tl::session::SessionError(fmt::format("{}: {} of {} pixels are not finite", out, written.nonFinite, written.pixels));
   }
   if (!o.renderDoc.empty()) renderDocFrame(session, o.renderDoc);
   fmt::print("rendered {} frame(s) of {} with `{}` at {}x{} on {} in {:.2f} s\n", frames, session.scene().name,
@@ -411,16 +423,20 @@ int main(int argc, char** argv) {
   auto* renderCmd = app.add_subcommand("render", "render a scene headless and save the image(s)");
   renderCmd->add_option("--scene", render.scene, "glTF file (.gltf/.glb); default content/atrium.gltf");
   renderCmd->add_option("--path", render.path, "lighting path: direct, rt, reference (`twinlight info` lists them)");
-  renderCmd->add_option("--frames", render.frames, "frames to render (the last one is saved)")->capture_default_str();
+  renderCmd->add_option("--frames", render.frames, "frames to render (the last one is saved)")
+      ->check(CLI::Range(1u, kMaxFrames))
+      ->capture_default_str();
   renderCmd->add_option("--renderdoc", render.renderDoc,
                         "then capture one more frame with RenderDoc into this path template (run under RenderDoc)");
   renderCmd->add_option("--out", render.outputs,
                         "output image(s): .exr = scene-linear radiance before exposure, .png = tonemapped display")
       ->required();
   renderCmd->add_option("--dump-graph", render.dumpGraph, "write the compiled render graph as text (- for stdout), or Graphviz DOT for a .dot file");
-  renderCmd->add_option("--spp", render.spp, "reference path: samples per pixel to accumulate (sets the frames)");
+  renderCmd->add_option("--spp", render.spp, "reference path: samples per pixel to accumulate (sets the frames)")
+      ->check(CLI::Range(1u, kMaxSpp));
   renderCmd->add_option("--bounces", render.bounces,
                         "reference path: scattering events per path (1 = direct light only, 2 = one indirect bounce)")
+      ->check(CLI::Range(1u, kMaxBounces))
       ->capture_default_str();
   addViewAndLightOptions(*renderCmd, render);
 
@@ -430,8 +446,10 @@ int main(int argc, char** argv) {
   auto* benchCmd = app.add_subcommand("bench", "per-pass GPU milliseconds (median and spread) as a table and JSON");
   benchCmd->add_option("--scene", benchRender.scene, "glTF file; default content/atrium.gltf");
   benchCmd->add_option("--path", benchRender.path, "lighting path")->capture_default_str();
-  benchCmd->add_option("--frames", bench.frames, "frames measured")->capture_default_str();
-  benchCmd->add_option("--warmup", bench.warmup, "frames rendered first and left out")->capture_default_str();
+  benchCmd->add_option("--frames", bench.frames, "frames measured")->check(CLI::Range(1u, kMaxFrames))->capture_default_str();
+  benchCmd->add_option("--warmup", bench.warmup, "frames rendered first and left out")
+      ->check(CLI::Range(0u, kMaxWarmupFrames))
+      ->capture_default_str();
   benchCmd->add_flag("--rays", bench.rays,
                      "rt path: the device's raw ray rate on the scene's TLAS (trivial kernel) against rt.trace's");
   benchCmd->add_flag("--cut-every-frame", bench.cutEveryFrame,
@@ -450,9 +468,11 @@ int main(int argc, char** argv) {
                          "glTF file(s); several make a sweep with a report per scene (default content/atrium.gltf)");
   compareCmd->add_option("--paths", comparePaths, "comma-separated paths (default: every available one)");
   compareCmd->add_option("--spp", compare.referenceSpp, "reference samples per pixel (<= 16 or a multiple of 16)")
+      ->check(CLI::Range(1u, kMaxSpp))
       ->capture_default_str();
-  auto* bouncesOption =
-      compareCmd->add_option("--bounces", compare.referenceBounces, "reference scattering events per path")->capture_default_str();
+  auto* bouncesOption = compareCmd->add_option("--bounces", compare.referenceBounces, "reference scattering events per path")
+                            ->check(CLI::Range(1u, kMaxBounces))
+                            ->capture_default_str();
   compareCmd
       ->add_option("--scope", compare.scope,
                    "reference scope: `full` (--bounces events: all the GI) or `same` (direct + one bounce: what the "
@@ -461,6 +481,7 @@ int main(int argc, char** argv) {
       ->excludes(bouncesOption)
       ->capture_default_str();
   compareCmd->add_option("--frames", compare.framesPerPath, "frames each path runs before it is measured")
+      ->check(CLI::Range(1u, kMaxFrames))
       ->capture_default_str();
   compareCmd->add_option("--out", compareOut, "report directory")->capture_default_str();
   std::string compareCameras;
@@ -493,7 +514,9 @@ int main(int argc, char** argv) {
   auto* captureCmd = app.add_subcommand("capture", "write every buffer of a frame (EXR + manifest.json) into a folder");
   captureCmd->add_option("--scene", captureRender.scene, "glTF file; default content/atrium.gltf");
   captureCmd->add_option("--path", captureRender.path, "lighting path")->capture_default_str();
-  captureCmd->add_option("--frames", captureRender.frames, "frames rendered first (the last is captured)")->capture_default_str();
+  captureCmd->add_option("--frames", captureRender.frames, "frames rendered first (the last is captured)")
+      ->check(CLI::Range(1u, kMaxFrames))
+      ->capture_default_str();
   captureCmd->add_option("--out", captureOut, "folder to write into")->required();
   bool captureRenderDoc = false;
   captureCmd->add_flag("--renderdoc", captureRenderDoc,
@@ -516,6 +539,28 @@ int main(int argc, char** argv) {
   bakeCmd->add_flag("--force", bake.force, "re-bake keys the database already holds");
   bakeCmd->add_flag("--list", bake.list, "print the database's baked entries and overrides, bake nothing");
   bakeCmd->add_option("--merge", bake.merge, "merge these databases into --db (conflicts reported, overrides kept)");
+  bakeCmd->add_flag("--allow-outside-files", bake.allowOutsideFiles,
+                    "let the scene read buffers and images outside its own folder (../, absolute paths, links out)");
+
+  RenderOptions doctorRender;
+  doctorRender.size = "128x72";
+  tl::session::DoctorOptions doctor;
+  std::string doctorJson;
+  auto* doctorCmd = app.add_subcommand(
+      "doctor", "stability report: every lighting path on SCENE, NaN/Inf/negative counts per buffer, energy against the "
+                "reference, flicker over a short camera orbit, messages from the Vulkan layers; exit status 1 when not healthy");
+  doctorCmd->add_option("scene", doctorRender.scene, "glTF file")->required();
+  doctorCmd->add_option("--frames", doctor.frames, "frames each real-time path renders before its buffers are read")
+      ->check(CLI::Range(1u, kMaxFrames))
+      ->capture_default_str();
+  doctorCmd->add_option("--spp", doctor.referenceSpp, "the reference's samples per pixel")
+      ->check(CLI::Range(1u, kMaxSpp))
+      ->capture_default_str();
+  doctorCmd->add_option("--orbit-frames", doctor.orbitFrames, "frames of the camera orbit that measures flicker (0: none)")
+      ->check(CLI::Range(0u, kMaxFrames))
+      ->capture_default_str();
+  doctorCmd->add_option("--json", doctorJson, "also write the report as JSON to FILE (- for stdout)");
+  addViewAndLightOptions(*doctorCmd, doctorRender);
 
   bool settingsMarkdown = false, settingsDefaults = false;
   auto* settingsCmd = app.add_subcommand("settings", "list every render setting: owner, default, range, unit, what it restarts");
@@ -527,7 +572,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     fmt::print(stderr, "twinlight: error: {} (see --help)\n", e.what());
     return 2;
   }
@@ -644,6 +689,22 @@ int main(int argc, char** argv) {
       // Validation errors first (the figures are not trusted then), then the gate.
       if (int status = exitStatus(session); status != 0) return status;
       return gateExit(outcome.gateFailures);
+    }
+    if (*doctorCmd) {
+      // The validation layers are part of the report: they are always on here.
+      tl::gpu::DeviceOptions device;
+      device.validation = true;
+      Session session(device);
+      prepareSession(session, doctorRender);
+      const auto report = tl::session::runDoctor(session, doctor);
+      fmt::print("{}", report.toText());
+      if (doctorJson == "-") fmt::print("{}\n", report.toJson().dump(2));
+      else if (!doctorJson.empty()) std::ofstream(doctorJson) << report.toJson().dump(2) << "\n";
+      if (!report.healthy())
+        throw tl::session::SessionError(fmt::format("{} is not healthy: non-finite or negative values or validation "
+                                                    "messages (the report above names them)",
+                                                    doctorRender.scene));
+      return 0;
     }
     if (*benchCmd) {
       Session session;

@@ -1,3 +1,7 @@
+// Texture images: read under the limits of scene/input_limits.h and decoded by OpenImageIO
+// from memory, as PNG or JPEG only (the formats glTF allows), so neither the file's name nor
+// its extension can send the bytes to any other of OpenImageIO's decoders.
+#include "scene/input_limits.h"
 #include "scene/scene_internal.h"
 
 #include <tiny_gltf.h>
@@ -25,15 +29,43 @@ Texture placeholder(const std::string& name) {
   return t;
 }
 
-// Reads any OpenImageIO-readable image to RGBA8 (grey -> rgb, missing alpha -> 255).
-bool decode(std::unique_ptr<OIIO::ImageInput> in, Texture& t, std::string& error) {
-  if (!in) {
-    error = OIIO::geterror();
+// The decoder the bytes themselves call for: PNG and JPEG by their signatures, else none.
+const char* formatOf(const std::vector<uint8_t>& bytes) {
+  static const uint8_t png[] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+  if (bytes.size() >= 8 && std::equal(png, png + 8, bytes.begin())) return "png";
+  if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) return "jpeg";
+  return nullptr;
+}
+
+}  // namespace
+
+bool decodeImage(const std::vector<uint8_t>& bytes, Texture& t, std::string& error) {
+  const char* format = formatOf(bytes);
+  if (!format) {
+    error = "neither PNG nor JPEG";
+    return false;
+  }
+  OIIO::Filesystem::IOMemReader reader(const_cast<uint8_t*>(bytes.data()), bytes.size());
+  OIIO::ImageSpec opened;
+  // The proxy is set after create(): OpenImageIO 2.4 drops one given to create() or in the
+  // open() configuration for its PNG reader.
+  auto in = OIIO::ImageInput::create(format);
+  if (!in || !in->set_ioproxy(&reader) || !in->open(std::string("memory.") + format, opened)) {
+    error = in ? in->geterror() : OIIO::geterror();
+    if (error.empty()) error = fmt::format("not a readable {} image", format);
     return false;
   }
   const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.width > 16384 || spec.height > 16384 || spec.nchannels <= 0) {
-    error = "unsupported image size";
+  // Checked before anything is allocated for the pixels.
+  if (spec.width <= 0 || spec.height <= 0 || uint64_t(spec.width) > InputLimits::kMaxImageSide ||
+      uint64_t(spec.height) > InputLimits::kMaxImageSide ||
+      uint64_t(spec.width) * uint64_t(spec.height) > InputLimits::kMaxImagePixels) {
+    error = fmt::format("{}x{} pixels, more than the {} per side and {} Mpixel allowed", spec.width, spec.height,
+                        InputLimits::kMaxImageSide, InputLimits::kMaxImagePixels >> 20);
+    return false;
+  }
+  if (spec.nchannels <= 0 || spec.nchannels > InputLimits::kMaxImageChannels) {
+    error = fmt::format("{} channels, not 1 to {}", spec.nchannels, InputLimits::kMaxImageChannels);
     return false;
   }
   const int ch = spec.nchannels;
@@ -56,8 +88,6 @@ bool decode(std::unique_ptr<OIIO::ImageInput> in, Texture& t, std::string& error
   return true;
 }
 
-}  // namespace
-
 std::optional<uint32_t> TextureCache::get(int textureIndex, bool srgb) {
   if (textureIndex < 0) return std::nullopt;
   if (auto it = cache_.find({textureIndex, srgb}); it != cache_.end()) return it->second;
@@ -75,19 +105,18 @@ std::optional<uint32_t> TextureCache::get(int textureIndex, bool srgb) {
       const auto& img = model_.images[size_t(tex.source)];
       if (!img.name.empty()) name = img.name;
       if (!img.uri.empty() && img.uri.rfind("data:", 0) != 0) {
-        t.path = file_.parent_path() / img.uri;
-        if (!img.name.empty()) name = img.name;
-        else name = t.path.stem().string();
-        std::error_code ec;
-        if (!std::filesystem::exists(t.path, ec)) error = "file not found";
-        else ok = decode(OIIO::ImageInput::open(t.path.string()), t, error);
+        t.path = referencedPath(file_, img.uri);
+        if (img.name.empty()) name = t.path.stem().string();
+        try {
+          ok = decodeImage(readContained(file_, t.path, options_, InputLimits::kMaxImageFileBytes), t, error);
+        } catch (const InputFileError& e) {
+          // The message starts with the path, which the warning names already.
+          error = e.what();
+          if (error.rfind(t.path.string() + ": ", 0) == 0) error = error.substr(t.path.string().size() + 2);
+        }
       } else if (!img.image.empty()) {
         // Embedded (bufferView or data URI): decode from memory.
-        OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(img.image.data()), img.image.size());
-        std::string ext = img.mimeType == "image/jpeg" ? "jpg" : "png";
-        OIIO::ImageSpec config;
-        config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &reader);
-        ok = decode(OIIO::ImageInput::open("embedded." + ext, &config), t, error);
+        ok = decodeImage(img.image, t, error);
       } else {
         error = "the image has no data";
       }

@@ -1,11 +1,11 @@
 #include "session/settings_json.h"
 
+#include "scene/input_limits.h"
 #include "session/session.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
 #include <stdexcept>
 
 namespace tl::session {
@@ -44,6 +44,19 @@ double settingValue(const lighting::SettingInfo& s, const nlohmann::json& v) {
 
 }  // namespace
 
+nlohmann::json parseSettingsText(std::string_view text, const std::string& what) {
+  try {
+    scene::requireJsonDepth(text, what);
+  } catch (const scene::InputFileError& e) {
+    throw SessionError(e.what());
+  }
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw SessionError(fmt::format("{} is not JSON: {}", what, e.what()));
+  }
+}
+
 lighting::RenderSettings applySettingsJson(const lighting::RenderSettings& base, const nlohmann::json& overrides) {
   if (!overrides.is_object()) throw SessionError("settings must be a JSON object of setting names and values");
   lighting::RenderSettings s = base;
@@ -52,7 +65,9 @@ lighting::RenderSettings applySettingsJson(const lighting::RenderSettings& base,
     try {
       setting.set(s, settingValue(setting, value));
     } catch (const std::invalid_argument& e) {
-      throw SessionError(fmt::format("setting `{}` must be {}, not {}", key, e.what(), value.dump()));
+      std::string given = value.dump();
+      if (given.size() > 60) given = given.substr(0, 60) + "...";
+      throw SessionError(fmt::format("setting `{}` must be {}, not {}", key, e.what(), given));
     }
   }
   return s;
@@ -89,17 +104,19 @@ nlohmann::json settingsJson(const lighting::RenderSettings& settings) {
 }
 
 nlohmann::json readSettingsFile(const std::filesystem::path& file, bool allowList) {
-  std::ifstream in(file);
-  if (!in) throw SessionError(fmt::format("{}: cannot read the settings file", file.string()));
-  nlohmann::json j;
+  // A regular file within the size limit, JSON within the nesting limit (scene/input_limits.h).
+  std::vector<uint8_t> bytes;
   try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw SessionError(fmt::format("{}: not JSON: {}", file.string(), e.what()));
+    bytes = scene::readRegularFile(file, scene::InputLimits::kMaxSettingsBytes);
+  } catch (const scene::InputFileError& e) {
+    throw SessionError(e.what());
   }
+  const nlohmann::json j =
+      parseSettingsText(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), file.string());
   if (j.is_object() && j.contains("settings") && j["settings"].is_object()) return j["settings"];
   if (allowList && j.is_array()) return j;
-  if (!j.is_object()) throw SessionError(fmt::format("{}: expected a JSON object of settings{}", file.string(),
+  if (!j.is_object())
+    throw SessionError(fmt::format("{}: expected a JSON object of settings{}", file.string(),
                                    allowList ? " or an array of configurations" : ""));
   return j;
 }

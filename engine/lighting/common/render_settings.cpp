@@ -90,10 +90,11 @@ std::string settingDomain(const SettingInfo& s) {
       return names;
     }
     case SettingType::UInt:
-      return fmt::format("a whole number in [{:g}, {:g}]{}", s.min, s.max, s.flags & kSettingPow2 ? ", a power of two" : "");
+      return fmt::format("a whole number from {} to {}{}", uint64_t(s.min), uint64_t(s.max),
+                         s.flags & kSettingPow2 ? ", a power of two" : "");
     case SettingType::Float: break;
   }
-  return fmt::format("a number in [{:g}, {:g}]", s.min, s.max);
+  return fmt::format("a number from {:g} to {:g}", s.min, s.max);
 }
 
 std::optional<std::string> settingRangeError(const SettingInfo& s, double value) {
