@@ -124,10 +124,10 @@ void comparePanel(EditorApp& app) {
       ImGui::TextUnformatted(fmt::format("{:.2f}", e.gpuMs).c_str());
       if (!trusted) ImGui::PushStyleColor(ImGuiCol_Text, grey);
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(e.path == "reference" ? "0 (itself)" : figure(e.relMse, "{:.4f}").c_str());
-      if (!trusted && e.path != "reference") tooltip("reference still converging: this figure is not yet the path's own");
+      ImGui::TextUnformatted(e.path == app.session().referencePath() ? "0 (itself)" : figure(e.relMse, "{:.4f}").c_str());
+      if (!trusted && e.path != app.session().referencePath()) tooltip("reference still converging: this figure is not yet the path's own");
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(e.path == "reference" ? "0" : figure(e.flip, "{:.4f}").c_str());
+      ImGui::TextUnformatted(e.path == app.session().referencePath() ? "0" : figure(e.flip, "{:.4f}").c_str());
       if (!trusted) ImGui::PopStyleColor();
     }
     ImGui::EndTable();
@@ -138,7 +138,7 @@ void comparePanel(EditorApp& app) {
     ImGui::TextWrapped("reference still converging: its noise is not yet well below the gap between the paths");
     ImGui::PopStyleColor();
   } else if (trusted && errors.size() == 2 && errors[0].relMse && errors[1].relMse &&
-             errors[0].path != "reference" && errors[1].path != "reference") {
+             errors[0].path != app.session().referencePath() && errors[1].path != app.session().referencePath()) {
     const bool leftCloser = *errors[0].relMse <= *errors[1].relMse;
     const auto& closer = leftCloser ? errors[0] : errors[1];
     const auto& farther = leftCloser ? errors[1] : errors[0];

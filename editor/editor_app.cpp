@@ -351,11 +351,19 @@ void EditorApp::setCompare(bool on) {
     return;
   }
   session::CompareView v;
-  // The path in use against the other real-time one: what an artist usually weighs.
-  v.left = session_->path() == "legacy" ? "legacy" : "rt";
-  v.right = v.left == "legacy" ? "rt" : "legacy";
-  for (const auto& p : session_->paths())
-    if (!p.available && (p.name == v.left || p.name == v.right)) (p.name == v.left ? v.left : v.right) = "direct";
+  // The path in use against another real-time one with history (what an artist usually
+  // weighs), else the last such path; failing that, any other path that is not the reference.
+  std::vector<std::string> realTime, others;
+  for (const auto& p : session_->paths()) {
+    if (!p.available || p.capabilities.isReference) continue;
+    (p.capabilities.accumulates ? realTime : others).push_back(p.name);
+  }
+  const bool current = std::find(realTime.begin(), realTime.end(), session_->path()) != realTime.end();
+  v.left = current ? session_->path() : (realTime.empty() ? session_->path() : realTime.back());
+  for (const auto* list : {&realTime, &others})
+    for (const auto& name : *list)
+      if (v.right.empty() && name != v.left) v.right = name;
+  if (v.right.empty()) v.right = v.left;
   compareView_ = v;
   showCompare_ = true;
 }

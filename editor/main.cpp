@@ -19,6 +19,7 @@
 #include "session/doctor.h"
 #include "session/image_io.h"
 #include "session/settings_json.h"
+#include "session/settings_reference.h"
 #include "session/shard.h"
 #include "session/sweep.h"
 #include "session/session.h"
@@ -52,8 +53,8 @@ struct RenderOptions {
   LightArgs light;
   std::string dumpGraph;
   std::optional<uint32_t> spp;
-  uint32_t bounces = tl::lighting::RenderSettings{}.referenceBounces;
-  std::string materials = "authored";
+  std::optional<uint32_t> bounces;
+  std::optional<std::string> materials;
   std::optional<float> sunSizeDegrees;
   bool hardShadows = false;
   std::optional<float> rtMeshRatio;
@@ -65,6 +66,12 @@ struct RenderOptions {
   std::string renderDoc;  // RenderDoc capture path template for one more frame
   double time = 0.0;
   std::optional<double> animateFps;
+  // Settings: a file (a settings object, or any JSON Twinlight wrote that records them), then
+  // NAME=VALUE assignments; explicit options win over the file.
+  std::string settingsFile;
+  std::vector<std::string> sets;
+  CLI::Option* sizeOption = nullptr;
+  bool settingsMayListVariants = false;  // compare: a JSON array is a list of configurations
 };
 
 constexpr const char* kMaterialsHelp =
@@ -79,7 +86,19 @@ tl::lighting::MaterialMode parseMaterials(const std::string& name) {
 }
 
 void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
-  cmd.add_option("--materials", o.materials, kMaterialsHelp)->capture_default_str();
+  o.sizeOption = cmd.add_option("--size", o.size, "image size WxH (wins over --settings)")->capture_default_str();
+  cmd.add_option("--set", o.sets,
+                 "change a render setting, NAME=VALUE (repeatable; `twinlight settings` lists them), e.g. "
+                 "--set shadowMapSize=4096 --set materials=clay; a JSON object is taken too")
+      ->allow_extra_args(false);
+  cmd.add_option("--settings", o.settingsFile,
+                 o.settingsMayListVariants
+                     ? "JSON file: settings for every path (an object, or a capture manifest, bench JSON or report "
+                       "holding one), or a list of configurations [{\"name\": N, \"path\": P, \"settings\": {...}}, ...] "
+                       "measured after --paths"
+                     : "JSON file of settings to start from: an object, or a capture manifest, bench JSON or compare "
+                       "report (its \"settings\"); --size, --set and the other options win over it");
+  cmd.add_option("--materials", o.materials, std::string(kMaterialsHelp) + " [default: authored]");
   cmd.add_option("--camera", o.view.camera, "use the scene's glTF camera N (0-based)");
   cmd.add_option("--albedo-db", o.albedoDb, "albedo database whose baked values and overrides the RT path's hits use");
   cmd.add_flag("--allow-outside-files", o.allowOutsideFiles,
@@ -147,15 +166,43 @@ void printFrameTimes(const FrameTimes& times) {
   }
 }
 
-// Scene, path, size, view and light from the options every headless subcommand shares.
+// Scene, path, size, settings, view and light from the options every headless subcommand
+// shares. Settings in order: defaults, --settings FILE, then the options given explicitly, then
+// each --set.
 void prepareSession(Session& session, const RenderOptions& o) {
-  const tl::lighting::MaterialMode materials = parseMaterials(o.materials);
+  const std::optional<tl::lighting::MaterialMode> materials =
+      o.materials ? std::optional(parseMaterials(*o.materials)) : std::nullopt;
   session.loadScene(o.scene.empty() ? defaultScene() : std::filesystem::path(o.scene),
                     tl::scene::LoadOptions{o.allowOutsideFiles});
-  session.settings().materials = materials;
   session.setPath(o.path);
   auto [w, h] = parseSize(o.size);
   session.setSize(w, h);
+  if (!o.settingsFile.empty()) {
+    session.settings() = tl::session::applySettingsJson(session.settings(), tl::session::readSettingsFile(o.settingsFile));
+    if (o.sizeOption && o.sizeOption->count() > 0) session.setSize(w, h);
+  }
+  if (materials) session.settings().materials = *materials;
+  if (o.hardShadows) session.settings().softShadows = false;
+  if (o.rtMeshRatio) session.settings().rtSimplifyRatio = *o.rtMeshRatio;
+  if (o.rtRaysPerPixel) {
+    session.settings().rtHalfRays = *o.rtRaysPerPixel == 0.5f;
+    session.settings().rtHalfResolution = *o.rtRaysPerPixel == 0.25f;
+  }
+  if (o.rtPretrace) session.settings().rtPretrace = *o.rtPretrace;
+  if (o.rtDenoise) session.settings().rtDenoise = *o.rtDenoise;
+  for (const std::string& assignment : o.sets) {
+    if (!assignment.empty() && assignment.front() == '{') {  // the JSON form bench --set took first
+      nlohmann::json overrides;
+      try {
+        overrides = tl::session::parseSettingsText(assignment, "--set");
+      } catch (const nlohmann::json::exception& e) {
+        throw tl::session::SessionError(fmt::format("--set is not JSON: {}", e.what()));
+      }
+      session.settings() = tl::session::applySettingsJson(session.settings(), overrides);
+    } else {
+      session.settings() = tl::session::applySettingText(session.settings(), assignment);
+    }
+  }
   applyView(session, o.view);
   applyLight(session, o.light);
   if (!o.albedoDb.empty()) session.openAlbedoDatabase(o.albedoDb, false);
@@ -164,14 +211,6 @@ void prepareSession(Session& session, const RenderOptions& o) {
     light.sunAngularRadius = glm::radians(*o.sunSizeDegrees);
     session.setLighting(light);
   }
-  session.settings().softShadows = !o.hardShadows;
-  if (o.rtMeshRatio) session.settings().rtSimplifyRatio = *o.rtMeshRatio;
-  if (o.rtRaysPerPixel) {
-    session.settings().rtHalfRays = *o.rtRaysPerPixel == 0.5f;
-    session.settings().rtHalfResolution = *o.rtRaysPerPixel == 0.25f;
-  }
-  if (o.rtPretrace) session.settings().rtPretrace = *o.rtPretrace;
-  if (o.rtDenoise) session.settings().rtDenoise = *o.rtDenoise;
   session.setAnimationTime(o.time);
   session.setAnimationStep(o.animateFps ? 1.0 / *o.animateFps : 0.0);
 }
@@ -203,7 +242,6 @@ int runRender(const RenderOptions& o) {
   if (o.bounces == 0) throw tl::session::SessionError("--bounces must be at least 1");
   uint32_t frames = o.frames;
   if (o.spp) {
-    if (o.path != "reference") throw tl::session::SessionError("--spp applies to --path reference");
     if (*o.spp == 0) throw tl::session::SessionError("--spp must be at least 1");
     if (*o.spp > 16 && *o.spp % 16) throw tl::session::SessionError("--spp must be a multiple of 16, or at most 16");
     frames = (*o.spp + 15) / 16;
@@ -212,7 +250,9 @@ int runRender(const RenderOptions& o) {
   Session session;
   prepareSession(session, o);
   const uint32_t w = session.settings().width, h = session.settings().height;
-  session.settings().referenceBounces = o.bounces;
+  if (o.spp && o.path != session.referencePath())
+    throw tl::session::SessionError(fmt::format("--spp applies to --path {}", session.referencePath()));
+  if (o.bounces) session.settings().referenceBounces = *o.bounces;
   // Up to 16 samples a frame: fewer submissions, and each frame stays short.
   if (o.spp) session.settings().referenceSamplesPerFrame = std::min(*o.spp, 16u);
 
@@ -275,13 +315,8 @@ int runRender(const RenderOptions& o) {
   return exitStatus(session);
 }
 
-// compare --settings FILE: [{"name": N, "path": P, "settings": {...}}, ...].
-std::vector<tl::session::CompareVariant> readCompareVariants(const std::string& file) {
-  // A regular file within the size limit, JSON within the nesting limit (issue 22).
-  const auto bytes = tl::scene::readRegularFile(file, tl::scene::InputLimits::kMaxSettingsBytes);
-  const nlohmann::json list =
-      tl::session::parseSettingsText(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), file);
-  if (!list.is_array()) throw tl::session::SessionError(fmt::format("{}: expected a JSON array of configurations", file));
+// compare --settings FILE as a list: [{"name": N, "path": P, "settings": {...}}, ...].
+std::vector<tl::session::CompareVariant> compareVariants(const nlohmann::json& list, const std::string& file) {
   std::vector<tl::session::CompareVariant> variants;
   for (const auto& v : list) {
     if (!v.is_object() || !v.contains("name") || !v.contains("path") || !v["name"].is_string() || !v["path"].is_string())
@@ -304,7 +339,9 @@ nlohmann::json renderOptionsJson(const RenderOptions& o) {
           {"sun", o.light.sun},
           {"sky", o.light.sky},
           {"exposure", opt(o.light.exposureEv)},
-          {"materials", o.materials},
+          {"materials", opt(o.materials)},
+          {"set", o.sets},
+          {"settingsFile", o.settingsFile},
           {"albedoDb", o.albedoDb},
           {"sunSize", opt(o.sunSizeDegrees)},
           {"hardShadows", o.hardShadows},
@@ -412,8 +449,19 @@ int runInfo() {
   }
   fmt::print("shaders: {}\ncontent: {}\n", tl::gpu::shaderDirectory().string(), tl::gpu::contentDirectory().string());
   fmt::print("lighting paths:\n");
-  for (auto& p : session.paths())
-    fmt::print("  {:10} {}{}\n", p.name, p.description, p.available ? "" : "  [unavailable: " + p.unavailableReason + "]");
+  for (auto& p : session.paths()) {
+    std::string caps;
+    auto add = [&](bool on, const char* what) {
+      if (on) caps += fmt::format("{}{}", caps.empty() ? "" : ", ", what);
+    };
+    add(p.capabilities.isReference, "reference");
+    add(p.capabilities.needsRayTracing, "needs ray tracing");
+    add(p.capabilities.accumulates, "accumulates");
+    add(!p.capabilities.rasterizes, "traces primary rays");
+    add(p.capabilities.halfResolution, "half resolution");
+    fmt::print("  {:10} {}{}{}\n", p.name, p.description, caps.empty() ? "" : " (" + caps + ")",
+               p.available ? "" : "  [unavailable: " + p.unavailableReason + "]");
+  }
   return exitStatus(session);
 }
 
@@ -449,7 +497,6 @@ int main(int argc, char** argv) {
   auto* renderCmd = app.add_subcommand("render", "render a scene headless and save the image(s)");
   renderCmd->add_option("--scene", render.scene, "glTF file (.gltf/.glb); default content/atrium.gltf");
   renderCmd->add_option("--path", render.path, "lighting path: direct, rt, reference (`twinlight info` lists them)");
-  renderCmd->add_option("--size", render.size, "image size WxH")->capture_default_str();
   renderCmd->add_option("--frames", render.frames, "frames to render (the last one is saved)")
       ->check(CLI::Range(1u, kMaxFrames))
       ->capture_default_str();
@@ -473,7 +520,6 @@ int main(int argc, char** argv) {
   auto* benchCmd = app.add_subcommand("bench", "per-pass GPU milliseconds (median and spread) as a table and JSON");
   benchCmd->add_option("--scene", benchRender.scene, "glTF file; default content/atrium.gltf");
   benchCmd->add_option("--path", benchRender.path, "lighting path")->capture_default_str();
-  benchCmd->add_option("--size", benchRender.size, "image size WxH")->capture_default_str();
   benchCmd->add_option("--frames", bench.frames, "frames measured")->check(CLI::Range(1u, kMaxFrames))->capture_default_str();
   benchCmd->add_option("--warmup", bench.warmup, "frames rendered first and left out")
       ->check(CLI::Range(0u, kMaxWarmupFrames))
@@ -483,13 +529,11 @@ int main(int argc, char** argv) {
   benchCmd->add_flag("--cut-every-frame", bench.cutEveryFrame,
                      "forget the history before every measured frame, as on a camera cut (what rejection costs at worst)");
   benchCmd->add_option("--json", benchJson, "write the figures as JSON to FILE (- for stdout)");
-  std::string benchSettings;
-  benchCmd->add_option("--set", benchSettings,
-                       "render settings to change, as JSON: '{\"rtRefitTop\": 64}' (the names `compare --settings` takes)");
   addViewAndLightOptions(*benchCmd, benchRender);
 
   RenderOptions compareRender;
   compareRender.size = "128x128";
+  compareRender.settingsMayListVariants = true;
   tl::session::CompareOptions compare;
   std::string comparePaths, compareOut = "out/compare", compareCache;
   auto* compareCmd = app.add_subcommand("compare", "speed against error of lighting paths versus the reference path tracer");
@@ -497,10 +541,6 @@ int main(int argc, char** argv) {
   compareCmd->add_option("--scene", compareScenes,
                          "glTF file(s); several make a sweep with a report per scene (default content/atrium.gltf)");
   compareCmd->add_option("--paths", comparePaths, "comma-separated paths (default: every available one)");
-  std::string compareSettings;
-  compareCmd->add_option("--settings", compareSettings,
-                         "JSON file: [{\"name\": N, \"path\": P, \"settings\": {setting: value, ...}}, ...] measured after --paths");
-  compareCmd->add_option("--size", compareRender.size, "image size WxH")->capture_default_str();
   compareCmd->add_option("--spp", compare.referenceSpp, "reference samples per pixel (<= 16 or a multiple of 16)")
       ->check(CLI::Range(1u, kMaxSpp))
       ->capture_default_str();
@@ -548,7 +588,6 @@ int main(int argc, char** argv) {
   auto* captureCmd = app.add_subcommand("capture", "write every buffer of a frame (EXR + manifest.json) into a folder");
   captureCmd->add_option("--scene", captureRender.scene, "glTF file; default content/atrium.gltf");
   captureCmd->add_option("--path", captureRender.path, "lighting path")->capture_default_str();
-  captureCmd->add_option("--size", captureRender.size, "image size WxH")->capture_default_str();
   captureCmd->add_option("--frames", captureRender.frames, "frames rendered first (the last is captured)")
       ->check(CLI::Range(1u, kMaxFrames))
       ->capture_default_str();
@@ -585,7 +624,6 @@ int main(int argc, char** argv) {
       "doctor", "stability report: every lighting path on SCENE, NaN/Inf/negative counts per buffer, energy against the "
                 "reference, flicker over a short camera orbit, messages from the Vulkan layers; exit status 1 when not healthy");
   doctorCmd->add_option("scene", doctorRender.scene, "glTF file")->required();
-  doctorCmd->add_option("--size", doctorRender.size, "image size WxH")->capture_default_str();
   doctorCmd->add_option("--frames", doctor.frames, "frames each real-time path renders before its buffers are read")
       ->check(CLI::Range(1u, kMaxFrames))
       ->capture_default_str();
@@ -597,6 +635,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   doctorCmd->add_option("--json", doctorJson, "also write the report as JSON to FILE (- for stdout)");
   addViewAndLightOptions(*doctorCmd, doctorRender);
+
+  bool settingsMarkdown = false, settingsDefaults = false;
+  auto* settingsCmd = app.add_subcommand("settings", "list every render setting: owner, default, range, unit, what it restarts");
+  settingsCmd->add_flag("--markdown", settingsMarkdown, "as the Markdown table in docs/user-guide.md");
+  settingsCmd->add_flag("--json", settingsDefaults, "the defaults as a JSON settings file (for --settings)");
 
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
 
@@ -627,6 +670,11 @@ int main(int argc, char** argv) {
   try {
     if (*renderCmd) return runRender(render);
     if (*infoCmd) return runInfo();
+    if (*settingsCmd) {
+      if (settingsDefaults) fmt::print("{}\n", tl::session::settingsJson(tl::lighting::RenderSettings{}).dump(2));
+      else fmt::print("{}", settingsMarkdown ? tl::session::settingsReferenceMarkdown() : tl::session::settingsReferenceText());
+      return 0;
+    }
     if (*bakeCmd) return runBake(bake, defaultScene().string());
     if (*captureCmd) {
       tl::session::checkOutputFolder(captureOut);
@@ -678,7 +726,14 @@ int main(int argc, char** argv) {
       std::stringstream list(comparePaths);
       for (std::string p; std::getline(list, p, ',');)
         if (!p.empty()) compare.paths.push_back(p);
-      if (!compareSettings.empty()) compare.variants = readCompareVariants(compareSettings);
+      if (!compareRender.settingsFile.empty()) {
+        // A list of configurations, or settings every path starts from (prepareSession).
+        const nlohmann::json file = tl::session::readSettingsFile(compareRender.settingsFile, true);
+        if (file.is_array()) {
+          compare.variants = compareVariants(file, compareRender.settingsFile);
+          compareRender.settingsFile.clear();
+        }
+      }
       compare.cacheDir = compareCache;
       compare.outDir = compareOut;
       tl::session::checkOutputFolder(compareOut);
@@ -760,10 +815,6 @@ int main(int argc, char** argv) {
       if (bench.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
       Session session;
       prepareSession(session, benchRender);
-      if (!benchSettings.empty()) {
-        session.settings() =
-            tl::session::applySettingsJson(session.settings(), tl::session::parseSettingsText(benchSettings, "--set"));
-      }
       if (bench.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
       nlohmann::json report;
       {

@@ -5,6 +5,7 @@
 #include "gpu/install_paths.h"
 #include "session/capture.h"
 #include "session/capture_encoding.h"
+#include "session/settings_json.h"
 #include "gpu/formats.h"
 
 #include <GLFW/glfw3.h>
@@ -366,7 +367,7 @@ void Script::step(EditorApp& app) {
         live->finishFlip();  // FLIP runs beside the frames: take the one under way
         std::string all;
         for (const auto& e : live->errors()) {
-          if (e.path == "reference") continue;
+          if (e.path == app.session().referencePath()) continue;
           if (!e.relMse || !std::isfinite(*e.relMse) || !e.flip || !std::isfinite(*e.flip))
             return fail(app, fmt::format("no finite error for `{}` yet", e.path));
           all += fmt::format(" {} relMSE {:.4f} FLIP {:.4f} ({:.1f} ms);", e.path, *e.relMse, *e.flip, e.gpuMs);
@@ -403,6 +404,17 @@ void Script::step(EditorApp& app) {
           app.playing() = false;
           app.session().setAnimationTime(std::stod(arg));
         }
+      } else if (cmd == "set") {
+        app.session().settings() = session::applySettingText(app.session().settings(), arg);
+      } else if (cmd == "expect-setting") {
+        std::istringstream a(arg);
+        std::string name, want;
+        a >> name >> want;
+        const lighting::SettingInfo* s = lighting::findSetting(name);
+        if (!s) return fail(app, fmt::format("unknown setting `{}`", name));
+        const std::string have = lighting::formatSetting(*s, s->get(app.session().settings()));
+        if (have != want) return fail(app, fmt::format("setting `{}` is {}, expected {}", name, have, want));
+        fmt::print("setting {} = {}\n", name, have);
       } else if (cmd == "mouse-click") {
         float x, y;
         if (std::sscanf(arg.c_str(), "%f %f", &x, &y) != 2) return fail(app, "mouse-click needs X Y");

@@ -53,6 +53,8 @@
 //   expect-viewing R       fail unless the viewport shows resource R (`final` for the image)
 //   expect-notice TEXT     fail unless a status-bar message contains TEXT
 //   expect-labels-fit      fail when a panel's label was cut off by its window last frame
+//   set NAME=VALUE         change a render setting (what the Lighting panel's widget for it does)
+//   expect-setting NAME V  fail unless the setting's value reads V ("512", "clay", "true")
 //   copy-file SRC DST      copy SRC over DST as an exporter does (a temporary, then a rename)
 //   expect-reload          wait (up to 60 s) until the scene reloaded after the last
 //                          copy-file, and fail unless the camera is where it was then

@@ -8,13 +8,13 @@
 
 namespace tl::session {
 
-LiveCompare::LiveCompare(CompareView view, std::optional<std::string> referenceReason)
-    : view_(std::move(view)), referenceReason_(std::move(referenceReason)) {}
+LiveCompare::LiveCompare(CompareView view, std::string reference, std::optional<std::string> referenceReason)
+    : view_(std::move(view)), reference_(std::move(reference)), referenceReason_(std::move(referenceReason)) {}
 
 std::vector<std::string> LiveCompare::rotation() const {
   std::vector<std::string> order{view_.left};
   if (view_.right != view_.left) order.push_back(view_.right);
-  if (!referenceReason_ && view_.left != "reference" && view_.right != "reference") order.push_back("reference");
+  if (!referenceReason_ && view_.left != reference_ && view_.right != reference_) order.push_back(reference_);
   return order;
 }
 
@@ -40,7 +40,7 @@ void LiveCompare::collectFlip(bool wait) {
       continue;
     }
     const double value = pending.value.get();
-    auto side = images_.find(path), ref = images_.find("reference");
+    auto side = images_.find(path), ref = images_.find(reference_);
     if (side != images_.end() && ref != images_.end() && sameCompared(side->second.key, pending.key) &&
         sameCompared(ref->second.key, pending.key) && view_.measureFlip)
       errors_[path].flip = value;
@@ -60,7 +60,7 @@ void LiveCompare::frameDone(const std::string& path, const graph::Readback& imag
   side.gpuMs = gpuMs;
   errors_[path].path = path;
   errors_[path].gpuMs = gpuMs;
-  if (path == "reference") {
+  if (path == reference_) {
     // Only a sum this compare saw under way restarts; its first frame starts one.
     if (referenceSeen_ && referenceAccumulation && referenceAccumulation->action == lighting::HistoryAction::Restart)
       ++referenceRestarts_, lastRestart_ = referenceAccumulation->acted;
@@ -69,14 +69,14 @@ void LiveCompare::frameDone(const std::string& path, const graph::Readback& imag
     updateNoise(side, referenceSamples);
     // A converging reference improves every side's figure: re-measure both.
     for (const std::string& p : {view_.left, view_.right})
-      if (p != "reference") measure(p, exposure);
+      if (p != reference_) measure(p, exposure);
   } else {
     measure(path, exposure);
   }
 }
 
 void LiveCompare::measure(const std::string& path, float exposure) {
-  auto side = images_.find(path), ref = images_.find("reference");
+  auto side = images_.find(path), ref = images_.find(reference_);
   LiveError& e = errors_[path];
   e.path = path;
   if (side == images_.end() || ref == images_.end() ||

@@ -38,15 +38,17 @@ struct LiveError {
 
 class LiveCompare {
  public:
-  // `referenceReason`: why the reference cannot run here (no ray tracing); then the sides
-  // still alternate but no error is measured.
-  LiveCompare(CompareView view, std::optional<std::string> referenceReason);
+  // `reference`: the path the sides are measured against (PathCapabilities::isReference);
+  // `referenceReason`: why it cannot run here (no ray tracing); then the sides still alternate
+  // but no error is measured.
+  LiveCompare(CompareView view, std::string reference, std::optional<std::string> referenceReason);
   ~LiveCompare();  // waits for a FLIP measurement under way
 
   const CompareView& view() const { return view_; }
   // Changing the sides keeps what was rendered (each path's image stays until replaced).
   void setView(const CompareView& view) { view_ = view; }
   const std::optional<std::string>& referenceUnavailable() const { return referenceReason_; }
+  const std::string& referencePath() const { return reference_; }
 
   // The path the next frame renders: left, right and the reference in turn.
   std::string nextPath();
@@ -96,6 +98,7 @@ class LiveCompare {
     double gpuMs = 0.0;
   };
   CompareView view_;
+  std::string reference_;
   std::optional<std::string> referenceReason_;
   size_t turn_ = 0;
   std::map<std::string, Side> images_;

@@ -44,10 +44,7 @@ Session::Session(const gpu::DeviceOptions& options)
     : device_(std::make_unique<gpu::Device>(options)),
       executor_(std::make_unique<graph::Executor>(*device_)),
       passes_(std::make_unique<Passes>()) {
-  paths_.push_back(lighting::makeDirectPath());
-  paths_.push_back(lighting::makeLegacyPath());
-  paths_.push_back(lighting::makeRtPath());
-  paths_.push_back(lighting::makeReferencePath());
+  for (lighting::LightingPathFactory make : lighting::lightingPathRegistry()) paths_.push_back(make());
   path_ = paths_.front().get();
   pathName_ = path_->name();
   constants_ = gpu::Buffer(*device_, sizeof(shared::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -100,7 +97,8 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   executor_->resetHistory();
   previousView_.reset();
   comparePrevious_.clear();
-  if (compare_) compare_ = std::make_unique<LiveCompare>(compare_->view(), compare_->referenceUnavailable());
+  if (compare_)
+    compare_ = std::make_unique<LiveCompare>(compare_->view(), compare_->referencePath(), compare_->referenceUnavailable());
   animationTime_ = 0.0;
   // The upload holds every mesh at rest (all weights 0).
   appliedWeights_.assign(scene_->meshes.size(), {});
@@ -141,7 +139,7 @@ std::vector<PathInfo> Session::paths() const {
   std::vector<PathInfo> out;
   for (auto& p : paths_) {
     auto reason = p->unavailableReason(*device_);
-    out.push_back({p->name(), p->description(), !reason, reason.value_or("")});
+    out.push_back({p->name(), p->description(), !reason, reason.value_or(""), p->capabilities()});
   }
   return out;
 }
@@ -158,6 +156,12 @@ void Session::setPath(const std::string& name) {
   std::string known;
   for (auto& p : paths_) known += (known.empty() ? "" : ", ") + p->name();
   throw SessionError(fmt::format("unknown lighting path `{}` (available: {})", name, known));
+}
+
+std::string Session::referencePath() const {
+  for (auto& p : paths_)
+    if (p->capabilities().isReference) return p->name();
+  return {};
 }
 
 lighting::LightingPath* Session::findPath(const std::string& name) const {
@@ -185,7 +189,10 @@ void Session::setCompareView(std::optional<CompareView> view) {
     return;
   }
   ++compareGeneration_;
-  compare_ = std::make_unique<LiveCompare>(*view, findPath("reference")->unavailableReason(*device_));
+  const lighting::LightingPath* reference = findPath(referencePath());
+  compare_ = std::make_unique<LiveCompare>(*view, reference ? reference->name() : std::string(),
+                                           reference ? reference->unavailableReason(*device_)
+                                                     : std::optional<std::string>("this build has no reference path"));
 }
 
 lighting::FrameKey Session::frameKey(uint64_t frame) const {
@@ -212,7 +219,7 @@ lighting::FrameKey Session::frameKey(uint64_t frame) const {
     key.sceneScale = scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0;
   }
   key.hash(FramePart::Albedo) = albedo_ ? albedo_->version() : 0;
-  for (const auto& p : paths_) key.settings[p->name()] = p->historySettings(settings_);
+  for (const auto& p : paths_) key.settings[p->name()] = lighting::historySettingsHash(settings_, p->name());
   key.cameraPosition = view_.position;
   key.cameraForward = view_.forward;
   key.frame = frame;
@@ -330,7 +337,7 @@ void Session::beginOne(bool readback) {
   // No motion vectors across a cut; the histories see it in the frame key and restart.
   if (previousView_ && isCameraCut(*previousView_, view_, scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0))
     previousView_.reset();
-  const bool taa = lighting::temporalAntialiasing(settings_, path->rasterizes());
+  const bool taa = lighting::temporalAntialiasing(settings_, path->capabilities().rasterizes);
   // A compared path renders every second or third frame: its own count keeps its per-frame
   // patterns (the ray checkerboard, the 2x2 cycle, the blue-noise offset, TAA's jitter) moving.
   const uint32_t frameNumber = compare_ ? uint32_t(compareFrames_[compared]++) : uint32_t(frameIndex_);

@@ -50,6 +50,7 @@ struct PathInfo {
   std::string description;
   bool available = true;
   std::string unavailableReason;
+  lighting::PathCapabilities capabilities;
 };
 
 class Session {
@@ -90,6 +91,8 @@ class Session {
   std::vector<PathInfo> paths() const;
   void setPath(const std::string& name);  // throws SessionError with the reason
   const std::string& path() const { return pathName_; }
+  // The path the others are measured against (PathCapabilities::isReference); empty if none.
+  std::string referencePath() const;
 
   void setView(const View& view);
   const View& view() const { return view_; }

@@ -43,7 +43,7 @@ CompareView legacyAgainstRt() {
 // and two sides 10% and 30% too bright; checks the estimate against the true error of the
 // reference after each frame.
 TEST(LiveCompare, ReferenceNoiseEstimateFollowsItsTrueError) {
-  LiveCompare live(legacyAgainstRt(), std::nullopt);
+  LiveCompare live(legacyAgainstRt(), "reference", std::nullopt);
   std::vector<float> truth(kSize * kSize), left(truth.size()), right(truth.size()), sum(truth.size(), 0.0f);
   for (size_t i = 0; i < truth.size(); ++i) truth[i] = truthAt(i), left[i] = 1.1f * truth[i], right[i] = 1.3f * truth[i];
   const lighting::FrameKey key;
@@ -80,7 +80,7 @@ TEST(LiveCompare, ReferenceNoiseEstimateFollowsItsTrueError) {
 
 // A restarted sum (fewer samples than before) forgets the estimate until it has doubled again.
 TEST(LiveCompare, ReferenceRestartForgetsTheNoiseEstimate) {
-  LiveCompare live(legacyAgainstRt(), std::nullopt);
+  LiveCompare live(legacyAgainstRt(), "reference", std::nullopt);
   const lighting::FrameKey key;
   std::vector<float> a(kSize * kSize, 0.5f), b(kSize * kSize, 0.52f);
   live.frameDone("reference", readback(a), 1.0, key, 4, 1.0f);

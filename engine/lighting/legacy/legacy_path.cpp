@@ -67,20 +67,9 @@ constexpr HistoryPolicy kScreenHistory{"legacy.ssao", parts(FramePart::Scene, Fr
 class LegacyPath final : public LightingPath {
  public:
   std::string name() const override { return "legacy"; }
+  PathCapabilities capabilities() const override { return {.accumulates = true}; }
   std::string description() const override {
     return "RTX OFF: GTAO + voxel clipmap GI with cone tracing and voxel AO";
-  }
-
-  // What the voxels and the SSAO history hold: AO reach and sampling, the clipmap's size and
-  // levels, whether the screen feeds light back into the voxels, and the material override
-  // mode (the albedo the voxels were lit with). Cone settings are
-  // per frame (no history), the update policy (partial updates, settling) changes only work.
-  uint64_t historySettings(const RenderSettings& s) const override {
-    return KeyHasher()
-        .all(double(s.legacyAoRadius), double(s.legacyAoThickness), double(s.legacyAoSlices), double(s.legacyAoSteps),
-             double(s.legacyAoDivisor), double(s.legacyVoxelResolution), double(s.legacyLevel0Extent),
-             double(s.legacyMaxLevels), double(s.legacyScreenRadiance), double(s.materials))
-        .done();
   }
 
   std::vector<std::pair<std::string, double>> figures() const override {

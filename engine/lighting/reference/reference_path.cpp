@@ -47,13 +47,11 @@ constexpr const char* kClosestHit = "reference/trace.rchit";
 class ReferencePath final : public LightingPath {
  public:
   std::string name() const override { return "reference"; }
-  bool rasterizes() const override { return false; }
   std::string description() const override {
     return "progressive path tracer (ground truth): same materials, sun, sky and emitters";
   }
-  std::optional<std::string> unavailableReason(const gpu::Device& device) const override {
-    if (device.rayTracing().pipeline) return std::nullopt;
-    return "needs hardware or lavapipe ray tracing: " + device.rayTracing().unavailableReason;
+  PathCapabilities capabilities() const override {
+    return {.needsRayTracing = true, .isReference = true, .accumulates = true, .rasterizes = false};
   }
 
   LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
@@ -122,11 +120,6 @@ class ReferencePath final : public LightingPath {
   }
 
   uint32_t samples() const { return samples_; }
-  // referenceBounces; rtAoRadius is also the reference's AO radius (reference.ao); the material
-  // override mode.
-  uint64_t historySettings(const RenderSettings& s) const override {
-    return KeyHasher().all(double(s.referenceBounces), double(s.rtAoRadius), double(s.materials)).done();
-  }
   std::vector<std::pair<std::string, double>> figures() const override {
     return {{"reference.samples", double(samples_)}, {"reference.irradianceSamples", double(irradianceSamples_)}};
   }

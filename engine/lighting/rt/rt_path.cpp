@@ -34,9 +34,8 @@ class RtPath final : public LightingPath {
   std::string description() const override {
     return "ray-traced GI + AO (Metro Exodus): pre-trace, 1 ray/pixel, SH irradiance, temporal accumulation";
   }
-  std::optional<std::string> unavailableReason(const gpu::Device& device) const override {
-    if (device.rayTracing().pipeline) return std::nullopt;
-    return "needs hardware or lavapipe ray tracing: " + device.rayTracing().unavailableReason;
+  PathCapabilities capabilities() const override {
+    return {.needsRayTracing = true, .accumulates = true, .halfResolution = true};
   }
 
   LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
@@ -216,7 +215,7 @@ class RtPath final : public LightingPath {
     std::string giShY = accShY, giCoCg = accCoCgAo;
     if (s.rtDenoise) {
       // Metro's radii are 6 m and 3 m in its world; here a sixth of the scene, at most 6 m.
-      const float base = s.rtDenoiseRadius > 0.0f ? s.rtDenoiseRadius : std::clamp(scale / 6.0f, 0.25f, 6.0f);
+      const float base = s.rtDenoiseRadius > 0.0f ? s.rtDenoiseRadius : sceneScaledDenoiseRadius(scale);
       const uint32_t frameIndex = in.constants.frameIndex;
       auto denoise = [&](const char* name, const char* inShY, const char* inCoCg, const char* outShY, const char* outCoCg,
                          float radius, uint32_t normalWeight) {
@@ -284,21 +283,6 @@ class RtPath final : public LightingPath {
       out.farOpenSkyDirectionality = far.openSkyDirectionality;
     }
     return out;
-  }
-
-  // What the accumulated samples estimate: the rays' reach and targets, the geometry they
-  // hit, what lights a hit, the pre-trace, the firefly clamp and the material override mode.
-  // The ray pattern (half rays, half resolution, two rays) and the accumulation window change
-  // only the noise and the weights: the history is kept across them. Post-accumulation
-  // settings (the denoiser) hold no history; the blend distance does, since the top level's
-  // distance culling follows it.
-  uint64_t historySettings(const RenderSettings& s) const override {
-    return KeyHasher()
-        .all(double(s.rtAoRadius), double(s.rtRayLength), double(s.rtSimplifyRatio), double(s.rtSimplifyError),
-             double(s.rtPretrace), double(s.rtPretraceSteps), double(s.rtPretracePixels), double(s.rtThickness),
-             double(s.rtFireflyClamp), double(s.rtHitSky), double(s.rtEmitterSampling), double(s.rtScreenRadiance),
-             double(s.rtCullAngle), double(s.rtCullMargin), double(s.rtBlendDistance), double(s.materials))
-        .done();
   }
 
   std::vector<std::pair<std::string, double>> figures() const override {
