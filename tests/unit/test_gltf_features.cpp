@@ -1,0 +1,196 @@
+// glTF features an artist's export uses, one probe each: images from every source glTF
+// allows (a file, a data: URI, a .glb bufferView) at 8 and 16 bits and as floats, kept in a
+// precision that holds their values; tangents generated the way MikkTSpace and the exporters
+// write them, and supplied ones used as given.
+#include "scene/scene.h"
+#include "scene/scene_internal.h"
+#include "shared/color.h"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <fstream>
+
+namespace tl::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path content(const char* name) { return fs::path(TWINLIGHT_CONTENT_DIR) / name; }
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() / ("twinlight-gltf-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                                        "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+const Material& material(const Scene& s, const std::string& name) {
+  for (auto& m : s.materials)
+    if (m.name == name) return m;
+  throw std::runtime_error("no material " + name);
+}
+
+const Mesh& mesh(const Scene& s, const std::string& name) {
+  for (auto& m : s.meshes)
+    if (m.name == name) return m;
+  throw std::runtime_error("no mesh " + name);
+}
+
+void writeImage(const fs::path& file, int channels, const std::vector<float>& values, OIIO::TypeDesc type) {
+  auto out = OIIO::ImageOutput::create(file.string());
+  OIIO::ImageSpec spec(2, 2, channels, type);
+  ASSERT_TRUE(out && out->open(file.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, values.data()) && out->close())
+      << OIIO::geterror();
+}
+
+// One triangle with UVs whose material samples `images` (uris) as emissive, normal and
+// base colour textures, in that order, as far as given.
+void writeTexturedTriangle(const fs::path& file, const std::vector<std::string>& images) {
+  const std::array<float, 15> data = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1};
+  std::ofstream(file.parent_path() / "t.bin", std::ios::binary)
+      .write(reinterpret_cast<const char*>(data.data()), sizeof data);
+  nlohmann::json j = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", {{{"uri", "t.bin"}, {"byteLength", 60}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}}, {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 24}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}, {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
+        {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}}}},
+      {"meshes", {{{"name", "tri"}, {"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"material", 0}}}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"scene", 0}};
+  nlohmann::json material = {{"name", "m"}, {"emissiveFactor", {1, 1, 1}}};
+  const char* slots[] = {"emissiveTexture", "normalTexture", "baseColorTexture"};
+  for (size_t i = 0; i < images.size(); ++i) {
+    j["images"].push_back({{"uri", images[i]}});
+    j["textures"].push_back({{"source", i}});
+    if (i == 2) material["pbrMetallicRoughness"]["baseColorTexture"]["index"] = i;
+    else material[slots[i]]["index"] = i;
+  }
+  j["materials"] = {material};
+  std::ofstream(file) << j.dump();
+}
+
+// The content generator's .glb: both images inside the binary, no warning; the 8-bit base
+// colour stays 8-bit, the 16-bit emissive keeps its value (128/65535 decoded from sRGB, times
+// the strength 1e4: 1.51, where 8 bits give 0).
+TEST(GltfImages, GlbBufferViewsAt8And16Bits) {
+  Scene s = loadGltf(content("embedded_textures.glb"));
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  const Material& base = material(s, "base_colour_8bit");
+  ASSERT_TRUE(base.baseColorTexture);
+  const Texture& b = s.textures[*base.baseColorTexture];
+  EXPECT_EQ(b.source, ImageSource::BufferView);
+  EXPECT_EQ(b.format, TexelFormat::Rgba8);
+  EXPECT_FALSE(b.placeholder);
+  EXPECT_EQ(b.rgba8[0], 188);
+  EXPECT_EQ(b.rgba8[1], 94);
+
+  const Material& glow = material(s, "emissive_16bit");
+  ASSERT_TRUE(glow.emissiveTexture);
+  const Texture& e = s.textures[*glow.emissiveTexture];
+  EXPECT_EQ(e.source, ImageSource::BufferView);
+  EXPECT_EQ(e.fileBits, 16);
+  ASSERT_EQ(e.format, TexelFormat::Rgba16Float);
+  const float linear = shared::tlSrgbToLinear1(128.0f / 65535.0f);
+  EXPECT_NEAR(texelValue(e, 0).r / linear, 1.0f, 1e-3f);
+  const float radiance = texelValue(e, 0).r * glow.emissiveFactor.r * glow.emissiveStrength;
+  EXPECT_NEAR(radiance, 1.5118f, 0.002f);
+}
+
+TEST(GltfImages, DataUri) {
+  Scene s = loadGltf(content("normal_probe.gltf"));
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  const Material& m = material(s, "normal_mapped");
+  ASSERT_TRUE(m.normalTexture);
+  const Texture& t = s.textures[*m.normalTexture];
+  EXPECT_EQ(t.source, ImageSource::DataUri);
+  EXPECT_FALSE(t.placeholder);
+  EXPECT_FALSE(t.srgb);
+  EXPECT_EQ(t.width, 4u);
+}
+
+// Files next to the .gltf: a float EXR keeps values above 1 (an emissive map in nits), a
+// 16-bit PNG normal map stays 16-bit linear, a 16-bit colour PNG becomes linear half floats.
+TEST(GltfImages, FilesAtEveryDepth) {
+  TempDir tmp;
+  writeImage(tmp.path / "glow.exr", 3, std::vector<float>(12, 123.5f), OIIO::TypeDesc::HALF);
+  writeImage(tmp.path / "normal16.png", 3, std::vector<float>(12, 40000.0f / 65535.0f), OIIO::TypeDesc::UINT16);
+  writeImage(tmp.path / "colour16.png", 4, std::vector<float>(16, 1000.0f / 65535.0f), OIIO::TypeDesc::UINT16);
+  writeTexturedTriangle(tmp.path / "files.gltf", {"glow.exr", "normal16.png", "colour16.png"});
+  Scene s = loadGltf(tmp.path / "files.gltf");
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  const Material& m = s.materials[0];
+  const Texture& glow = s.textures[*m.emissiveTexture];
+  EXPECT_EQ(glow.source, ImageSource::File);
+  EXPECT_EQ(glow.format, TexelFormat::Rgba16Float);
+  EXPECT_EQ(texelValue(glow, 3).g, 123.5f);  // not clamped, not sRGB-decoded: EXR is linear
+  EXPECT_EQ(texelValue(glow, 3).a, 1.0f);
+  const Texture& normal = s.textures[*m.normalTexture];
+  EXPECT_EQ(normal.format, TexelFormat::Rgba16Unorm);
+  EXPECT_EQ(normal.rgba16[0], 40000);
+  const Texture& colour = s.textures[*m.baseColorTexture];
+  EXPECT_EQ(colour.format, TexelFormat::Rgba16Float);
+  EXPECT_NEAR(texelValue(colour, 0).r / shared::tlSrgbToLinear1(1000.0f / 65535.0f), 1.0f, 1e-3f);
+  EXPECT_NEAR(texelValue(colour, 0).a, 1000.0f / 65535.0f, 1e-4f);  // alpha is linear
+  // Content hashes tell the texel formats apart and follow the texels.
+  EXPECT_NE(glow.contentHash, colour.contentHash);
+}
+
+// Tangents: the exporters' convention. On a quad in XZ facing +Y with u along +X and v along
+// -Z, the normal map's green axis (the image's top: decreasing v) is +Z = w * cross(N, T)
+// with T = +X, so w = -1; mirroring u flips T and w. Generated tangents must equal what the
+// probe scene supplies.
+TEST(GltfTangents, GeneratedMatchSuppliedOnPlainAndMirroredUvs) {
+  Scene s = loadGltf(content("normal_probe.gltf"));
+  for (const char* pair : {"plain", "mirrored"}) {
+    const Mesh& generated = mesh(s, std::string(pair) + "_generated");
+    const Mesh& supplied = mesh(s, std::string(pair) + "_supplied");
+    EXPECT_TRUE(generated.generatedTangents);
+    EXPECT_FALSE(supplied.generatedTangents);
+    ASSERT_EQ(generated.vertices.size(), supplied.vertices.size());
+    for (size_t v = 0; v < generated.vertices.size(); ++v) {
+      const glm::vec4 g = generated.vertices[v].tangent, t = supplied.vertices[v].tangent;
+      EXPECT_NEAR(glm::dot(glm::vec3(g), glm::vec3(t)), 1.0f, 1e-5f) << pair << " vertex " << v;
+      EXPECT_EQ(g.w, t.w) << pair << " vertex " << v;
+      const glm::vec3 bitangent = g.w * glm::cross(generated.vertices[v].normal, glm::vec3(g));
+      EXPECT_NEAR(bitangent.z, 1.0f, 1e-5f) << pair << ": the green axis must point to the image's top (+Z)";
+    }
+  }
+}
+
+// A UV mirror seam: a vertex shared by triangles of both handednesses is split, each copy
+// with its own w, and morph targets follow the copies.
+TEST(GltfTangents, MirrorSeamSplitsTheSharedVertex) {
+  // Two triangles sharing the edge x = 0; u = |x| mirrors the right one.
+  Mesh m;
+  const glm::vec3 p[4] = {{0, 0, 0}, {0, 0, -1}, {-1, 0, 0}, {1, 0, 0}};
+  const glm::vec2 uv[4] = {{0, 0}, {0, 1}, {1, 0}, {1, 0}};
+  for (int i = 0; i < 4; ++i) {
+    Vertex v;
+    v.position = p[i];
+    v.uv = uv[i];
+    m.vertices.push_back(v);
+  }
+  m.indices = {0, 2, 1, 0, 1, 3};
+  const std::vector<uint32_t> source = finishVertices(m, false, false);
+  EXPECT_EQ(m.vertices.size(), 6u) << "both seam vertices split";
+  ASSERT_EQ(source.size(), m.vertices.size());
+  for (size_t t = 0; t < m.indices.size(); t += 3) {
+    const float w = m.vertices[m.indices[t]].tangent.w;
+    for (size_t k = 1; k < 3; ++k) EXPECT_EQ(m.vertices[m.indices[t + k]].tangent.w, w) << "triangle " << t / 3;
+  }
+  EXPECT_NE(m.vertices[m.indices[0]].tangent.w, m.vertices[m.indices[3]].tangent.w);
+  for (size_t v = 0; v < m.vertices.size(); ++v) EXPECT_EQ(m.vertices[v].position, p[source[v]]);
+}
+
+}  // namespace
+}  // namespace tl::scene
