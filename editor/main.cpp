@@ -201,6 +201,17 @@ int runRender(const RenderOptions& o) {
   return exitStatus(session);
 }
 
+// `info --scene FILE`: what the file holds and what of it Twinlight ignores, one line each
+// (scene::sceneReport), without a device. Warnings the importer gave are the ignored lines.
+int runSceneInfo(const std::string& file) {
+  const tl::scene::Scene scene = tl::scene::loadGltf(file);
+  fmt::print("scene: {}\n", file);
+  for (const auto& line : tl::scene::sceneReport(scene)) fmt::print("{}\n", line);
+  for (const auto& w : scene.warnings)
+    if (w.find("could not be loaded") != std::string::npos) fmt::print("warning: {}\n", w);
+  return 0;
+}
+
 int runInfo() {
   Session session;
   auto& d = session.device();
@@ -336,6 +347,9 @@ int main(int argc, char** argv) {
   bakeCmd->add_option("--merge", bake.merge, "merge these databases into --db (conflicts reported, overrides kept)");
 
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
+  std::string infoScene;
+  infoCmd->add_option("--scene", infoScene,
+                      "instead: list what a glTF file holds and every feature of it Twinlight ignores, one line each");
 
   try {
     app.parse(argc, argv);
@@ -347,7 +361,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*renderCmd) return runRender(render);
-    if (*infoCmd) return runInfo();
+    if (*infoCmd) return infoScene.empty() ? runInfo() : runSceneInfo(infoScene);
     if (*bakeCmd) return runBake(bake, defaultScene().string());
     if (*captureCmd) {
       Session session;
