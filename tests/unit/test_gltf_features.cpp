@@ -10,7 +10,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cstring>
 #include <fstream>
 
 namespace tl::scene {
@@ -190,6 +192,123 @@ TEST(GltfTangents, MirrorSeamSplitsTheSharedVertex) {
   }
   EXPECT_NE(m.vertices[m.indices[0]].tangent.w, m.vertices[m.indices[3]].tangent.w);
   for (size_t v = 0; v < m.vertices.size(); ++v) EXPECT_EQ(m.vertices[v].position, p[source[v]]);
+}
+
+// One binary buffer: a triangle's positions (36 bytes), UVs (24), then `extra`.
+void writeBin(const fs::path& file, const std::vector<uint8_t>& extra = {}) {
+  const std::array<float, 15> data = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1};
+  std::ofstream f(file, std::ios::binary);
+  f.write(reinterpret_cast<const char*>(data.data()), sizeof data);
+  f.write(reinterpret_cast<const char*>(extra.data()), std::streamsize(extra.size()));
+}
+
+nlohmann::json baseTriangle(size_t binBytes) {
+  return {{"asset", {{"version", "2.0"}}},
+          {"buffers", {{{"uri", "t.bin"}, {"byteLength", binBytes}}}},
+          {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}}, {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 24}}}},
+          {"accessors",
+           {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}, {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
+            {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}}}},
+          {"meshes", {{{"name", "tri"}, {"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}}}}}}},
+          {"nodes", {{{"mesh", 0}}}},
+          {"scenes", {{{"nodes", {0}}}}},
+          {"scene", 0}};
+}
+
+// Every feature the renderer does not apply is one line of Scene::ignored (with its count)
+// and one warning; a file using none of them has neither.
+TEST(GltfIgnored, EachIgnoredFeatureIsOneLineAndOneWarning) {
+  TempDir tmp;
+  writeBin(tmp.path / "t.bin");
+  auto j = baseTriangle(60);
+  j["images"] = {{{"uri", "a.png"}}};
+  writeImage(tmp.path / "a.png", 3, std::vector<float>(12, 0.5f), OIIO::TypeDesc::UINT8);
+  j["samplers"] = {{{"wrapS", 33071}, {"magFilter", 9728}}};
+  j["textures"] = {{{"source", 0}, {"sampler", 0}}};
+  j["extensionsUsed"] = {"KHR_texture_transform", "KHR_materials_clearcoat"};
+  nlohmann::json transform = {{"KHR_texture_transform", {{"scale", {2, 2}}}}};
+  j["materials"] = {{{"name", "m"},
+                     {"alphaMode", "BLEND"},
+                     {"occlusionTexture", {{"index", 0}}},
+                     {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"texCoord", 1}, {"extensions", transform}}}}}},
+                    {{"name", "n"}, {"alphaMode", "BLEND"}}};
+  j["meshes"][0]["primitives"][0]["material"] = 0;
+  j["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 1;  // any accessor: only its presence counts
+  j["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = 1;
+  j["cameras"] = {{{"type", "orthographic"}, {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 10}}}}};
+  j["nodes"].push_back({{"camera", 0}});
+  j["scenes"][0]["nodes"].push_back(1);
+  std::ofstream(tmp.path / "features.gltf") << j.dump();
+  Scene s = loadGltf(tmp.path / "features.gltf");
+  const std::vector<std::string> expected = {
+      "extension KHR_texture_transform (1x)", "extension KHR_materials_clearcoat (1x)", "alpha BLEND (2x)",
+      "TEXCOORD_1 in a baseColorTexture (1x)", "KHR_texture_transform (1x)", "sampler wrap mode clamp/mirror (2x)",
+      "sampler filter NEAREST (2x)", "occlusionTexture (1x)", "COLOR_0 (1x)", "orthographic camera (1x)"};
+  ASSERT_EQ(s.ignored.size(), expected.size());
+  for (const auto& e : expected) {
+    bool found = false;
+    for (const auto& line : s.ignored) found |= line.rfind(e, 0) == 0;
+    EXPECT_TRUE(found) << "no ignored line starting with `" << e << "`";
+  }
+  EXPECT_EQ(s.warnings.size(), expected.size());
+  const auto report = sceneReport(s);
+  EXPECT_EQ(report.back().rfind("ignored: ", 0), 0u);
+  EXPECT_EQ(std::count_if(report.begin(), report.end(), [](auto& l) { return l.rfind("ignored: ", 0) == 0; }),
+            std::ptrdiff_t(expected.size()));
+
+  Scene plain = loadGltf(content("cutout.gltf"));
+  EXPECT_TRUE(plain.ignored.empty());
+  EXPECT_EQ(sceneReport(plain).back(), "ignored: nothing");
+}
+
+// Sparse accessors: substitutions over a base bufferView, and over zeros without one.
+TEST(GltfAccessors, SparseSubstitutesTheListedElements) {
+  TempDir tmp;
+  // Sparse data after the UVs (byte 60): indices {2} as a ushort (+2 pad), values {(0, 5, 0)}.
+  std::vector<uint8_t> extra(4 + 12, 0);
+  extra[0] = 2;
+  const float five = 5.0f;
+  std::memcpy(&extra[4 + 4], &five, 4);
+  writeBin(tmp.path / "t.bin", extra);
+  auto j = baseTriangle(76);
+  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 60}, {"byteLength", 2}});
+  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 64}, {"byteLength", 12}});
+  j["accessors"][0]["sparse"] = {{"count", 1},
+                                 {"indices", {{"bufferView", 2}, {"componentType", 5123}}},
+                                 {"values", {{"bufferView", 3}}}};
+  j["accessors"][0]["max"] = {1, 5, 0};
+  std::ofstream(tmp.path / "sparse.gltf") << j.dump();
+  Scene s = loadGltf(tmp.path / "sparse.gltf");
+  ASSERT_EQ(s.meshes[0].vertices.size(), 3u);
+  EXPECT_EQ(s.meshes[0].vertices[1].position, glm::vec3(1, 0, 0));
+  EXPECT_EQ(s.meshes[0].vertices[2].position, glm::vec3(0, 5, 0));
+
+  // Without a base bufferView the other elements are zeros.
+  j["accessors"][0].erase("bufferView");
+  std::ofstream(tmp.path / "sparse_zeros.gltf") << j.dump();
+  Scene z = loadGltf(tmp.path / "sparse_zeros.gltf");
+  EXPECT_EQ(z.meshes[0].vertices[1].position, glm::vec3(0, 0, 0));
+  EXPECT_EQ(z.meshes[0].vertices[2].position, glm::vec3(0, 5, 0));
+}
+
+// KHR_mesh_quantization may be required: normalized 16-bit positions load.
+TEST(GltfAccessors, MeshQuantizationIsRead) {
+  TempDir tmp;
+  const std::array<int16_t, 12> q = {0, 0, 0, 0, 32767, 0, 0, 0, 0, 32767, 0, 0};  // 3 x VEC3 padded to 8 bytes
+  std::vector<uint8_t> extra(sizeof q);
+  std::memcpy(extra.data(), q.data(), sizeof q);
+  writeBin(tmp.path / "t.bin", extra);
+  auto j = baseTriangle(84);
+  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 60}, {"byteLength", 24}, {"byteStride", 8}});
+  j["accessors"][0] = {{"bufferView", 2}, {"componentType", 5122}, {"normalized", true}, {"count", 3}, {"type", "VEC3"},
+                       {"min", {0, 0, 0}}, {"max", {1, 1, 0}}};
+  j["extensionsUsed"] = {"KHR_mesh_quantization"};
+  j["extensionsRequired"] = {"KHR_mesh_quantization"};
+  std::ofstream(tmp.path / "quantized.gltf") << j.dump();
+  Scene s = loadGltf(tmp.path / "quantized.gltf");
+  EXPECT_TRUE(s.ignored.empty());
+  EXPECT_EQ(s.meshes[0].vertices[1].position, glm::vec3(1, 0, 0));
+  EXPECT_EQ(s.meshes[0].vertices[2].position, glm::vec3(0, 1, 0));
 }
 
 }  // namespace
