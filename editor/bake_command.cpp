@@ -81,7 +81,7 @@ int runBake(const BakeArgs& a, const std::string& defaultScene) {
   for (const std::string& file : scenes) {
     // Keys an earlier scene baked are in the database by now: this scene skips them.
     const auto loadStart = std::chrono::steady_clock::now();
-    session.loadScene(file);
+    session.loadScene(file, tl::scene::LoadOptions{a.allowOutsideFiles});
     session.openAlbedoDatabase(a.db);
     const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     const auto start = std::chrono::steady_clock::now();

@@ -12,7 +12,9 @@
 #include "gpu/install_paths.h"
 #include "gpu/renderdoc.h"
 #include "gpu/self_test.h"
+#include "scene/input_limits.h"
 #include "session/compare.h"
+#include "session/doctor.h"
 #include "session/image_io.h"
 #include "session/settings_json.h"
 #include "session/shard.h"
@@ -57,6 +59,7 @@ struct RenderOptions {
   std::optional<bool> rtPretrace;
   std::optional<bool> rtDenoise;
   std::string albedoDb;
+  bool allowOutsideFiles = false;
   std::string renderDoc;  // RenderDoc capture path template for one more frame
   double time = 0.0;
   std::optional<double> animateFps;
@@ -77,6 +80,8 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--materials", o.materials, kMaterialsHelp)->capture_default_str();
   cmd.add_option("--camera", o.view.camera, "use the scene's glTF camera N (0-based)");
   cmd.add_option("--albedo-db", o.albedoDb, "albedo database whose baked values and overrides the RT path's hits use");
+  cmd.add_flag("--allow-outside-files", o.allowOutsideFiles,
+               "let the scene read buffers and images outside its own folder (../, absolute paths, links out)");
   cmd.add_option("--look-from", o.view.lookFrom, "camera position x,y,z (metres, y up)");
   cmd.add_option("--look-at", o.view.lookAt, "point the camera looks at, x,y,z");
   cmd.add_option("--fov", o.view.fovDegrees, "vertical field of view in degrees");
@@ -126,7 +131,8 @@ void printFrameTimes(const Session& session) {
 // Scene, path, size, view and light from the options every headless subcommand shares.
 void prepareSession(Session& session, const RenderOptions& o) {
   const tl::lighting::MaterialMode materials = parseMaterials(o.materials);
-  session.loadScene(o.scene.empty() ? defaultScene() : std::filesystem::path(o.scene));
+  session.loadScene(o.scene.empty() ? defaultScene() : std::filesystem::path(o.scene),
+                    tl::scene::LoadOptions{o.allowOutsideFiles});
   session.settings().materials = materials;
   session.setPath(o.path);
   auto [w, h] = parseSize(o.size);
@@ -175,9 +181,9 @@ int runRender(const RenderOptions& o) {
     if (o.path != "reference") throw tl::session::SessionError("--spp applies to --path reference");
     if (*o.spp == 0) throw tl::session::SessionError("--spp must be at least 1");
     // Up to 16 samples a frame: fewer submissions, and each frame stays short.
+    if (*o.spp > 16 && *o.spp % 16) throw tl::session::SessionError("--spp must be a multiple of 16, or at most 16");
     session.settings().referenceSamplesPerFrame = std::min(*o.spp, 16u);
     frames = (*o.spp + 15) / 16;
-    if (*o.spp % 16) throw tl::session::SessionError("--spp must be a multiple of 16, or at most 16");
   }
 
   auto start = std::chrono::steady_clock::now();
@@ -185,8 +191,14 @@ int runRender(const RenderOptions& o) {
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   for (const auto& out : o.outputs) {
-    session.saveImage(out);
-    fmt::print("wrote {}\n", std::filesystem::absolute(out).string());
+    const auto written = session.saveImage(out);
+    std::string note;
+    if (written.float32)
+      note = fmt::format(" (32-bit float: {} of {} pixels exceed the half-float range, 65504, and would have clipped)",
+                         written.beyondHalf, written.pixels);
+    fmt::print("wrote {}{}\n", std::filesystem::absolute(out).string(), note);
+    if (written.nonFinite > 0)
+      throw tl::session::SessionError(fmt::format("{}: {} of {} pixels are not finite", out, written.nonFinite, written.pixels));
   }
   if (!o.renderDoc.empty()) renderDocFrame(session, o.renderDoc);
   fmt::print("rendered {} frame(s) of {} with `{}` at {}x{} on {} in {:.2f} s\n", frames, session.scene().name,
@@ -216,14 +228,10 @@ int runSceneInfo(const std::string& file) {
 
 // compare --settings FILE: [{"name": N, "path": P, "settings": {...}}, ...].
 std::vector<tl::session::CompareVariant> readCompareVariants(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw tl::session::SessionError(fmt::format("{}: cannot read the settings file", file));
-  nlohmann::json list;
-  try {
-    list = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw tl::session::SessionError(fmt::format("{}: not JSON: {}", file, e.what()));
-  }
+  // A regular file within the size limit, JSON within the nesting limit (issue 22).
+  const auto bytes = tl::scene::readRegularFile(file, tl::scene::InputLimits::kMaxSettingsBytes);
+  const nlohmann::json list =
+      tl::session::parseSettingsText(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), file);
   if (!list.is_array()) throw tl::session::SessionError(fmt::format("{}: expected a JSON array of configurations", file));
   std::vector<tl::session::CompareVariant> variants;
   for (const auto& v : list) {
@@ -379,16 +387,20 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--scene", render.scene, "glTF file (.gltf/.glb); default content/atrium.gltf");
   renderCmd->add_option("--path", render.path, "lighting path: direct, rt, reference (`twinlight info` lists them)");
   renderCmd->add_option("--size", render.size, "image size WxH")->capture_default_str();
-  renderCmd->add_option("--frames", render.frames, "frames to render (the last one is saved)")->capture_default_str();
+  renderCmd->add_option("--frames", render.frames, "frames to render (the last one is saved)")
+      ->check(CLI::Range(1u, kMaxFrames))
+      ->capture_default_str();
   renderCmd->add_option("--renderdoc", render.renderDoc,
                         "then capture one more frame with RenderDoc into this path template (run under RenderDoc)");
   renderCmd->add_option("--out", render.outputs,
                         "output image(s): .exr = scene-linear radiance before exposure, .png = tonemapped display")
       ->required();
   renderCmd->add_option("--dump-graph", render.dumpGraph, "write the compiled render graph as text (- for stdout), or Graphviz DOT for a .dot file");
-  renderCmd->add_option("--spp", render.spp, "reference path: samples per pixel to accumulate (sets the frames)");
+  renderCmd->add_option("--spp", render.spp, "reference path: samples per pixel to accumulate (sets the frames)")
+      ->check(CLI::Range(1u, kMaxSpp));
   renderCmd->add_option("--bounces", render.bounces,
                         "reference path: scattering events per path (1 = direct light only, 2 = one indirect bounce)")
+      ->check(CLI::Range(1u, kMaxBounces))
       ->capture_default_str();
   addViewAndLightOptions(*renderCmd, render);
 
@@ -399,8 +411,10 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--scene", benchRender.scene, "glTF file; default content/atrium.gltf");
   benchCmd->add_option("--path", benchRender.path, "lighting path")->capture_default_str();
   benchCmd->add_option("--size", benchRender.size, "image size WxH")->capture_default_str();
-  benchCmd->add_option("--frames", bench.frames, "frames measured")->capture_default_str();
-  benchCmd->add_option("--warmup", bench.warmup, "frames rendered first and left out")->capture_default_str();
+  benchCmd->add_option("--frames", bench.frames, "frames measured")->check(CLI::Range(1u, kMaxFrames))->capture_default_str();
+  benchCmd->add_option("--warmup", bench.warmup, "frames rendered first and left out")
+      ->check(CLI::Range(0u, kMaxWarmupFrames))
+      ->capture_default_str();
   benchCmd->add_flag("--rays", bench.rays,
                      "rt path: the device's raw ray rate on the scene's TLAS (trivial kernel) against rt.trace's");
   benchCmd->add_flag("--cut-every-frame", bench.cutEveryFrame,
@@ -425,9 +439,11 @@ int main(int argc, char** argv) {
                          "JSON file: [{\"name\": N, \"path\": P, \"settings\": {setting: value, ...}}, ...] measured after --paths");
   compareCmd->add_option("--size", compareRender.size, "image size WxH")->capture_default_str();
   compareCmd->add_option("--spp", compare.referenceSpp, "reference samples per pixel (<= 16 or a multiple of 16)")
+      ->check(CLI::Range(1u, kMaxSpp))
       ->capture_default_str();
-  auto* bouncesOption =
-      compareCmd->add_option("--bounces", compare.referenceBounces, "reference scattering events per path")->capture_default_str();
+  auto* bouncesOption = compareCmd->add_option("--bounces", compare.referenceBounces, "reference scattering events per path")
+                            ->check(CLI::Range(1u, kMaxBounces))
+                            ->capture_default_str();
   compareCmd
       ->add_option("--scope", compare.scope,
                    "reference scope: `full` (--bounces events: all the GI) or `same` (direct + one bounce: what the "
@@ -436,6 +452,7 @@ int main(int argc, char** argv) {
       ->excludes(bouncesOption)
       ->capture_default_str();
   compareCmd->add_option("--frames", compare.framesPerPath, "frames each path runs before it is measured")
+      ->check(CLI::Range(1u, kMaxFrames))
       ->capture_default_str();
   compareCmd->add_option("--out", compareOut, "report directory")->capture_default_str();
   std::string compareCameras;
@@ -469,7 +486,9 @@ int main(int argc, char** argv) {
   captureCmd->add_option("--scene", captureRender.scene, "glTF file; default content/atrium.gltf");
   captureCmd->add_option("--path", captureRender.path, "lighting path")->capture_default_str();
   captureCmd->add_option("--size", captureRender.size, "image size WxH")->capture_default_str();
-  captureCmd->add_option("--frames", captureRender.frames, "frames rendered first (the last is captured)")->capture_default_str();
+  captureCmd->add_option("--frames", captureRender.frames, "frames rendered first (the last is captured)")
+      ->check(CLI::Range(1u, kMaxFrames))
+      ->capture_default_str();
   captureCmd->add_option("--out", captureOut, "folder to write into")->required();
   bool captureRenderDoc = false;
   captureCmd->add_flag("--renderdoc", captureRenderDoc,
@@ -492,6 +511,29 @@ int main(int argc, char** argv) {
   bakeCmd->add_flag("--force", bake.force, "re-bake keys the database already holds");
   bakeCmd->add_flag("--list", bake.list, "print the database's baked entries and overrides, bake nothing");
   bakeCmd->add_option("--merge", bake.merge, "merge these databases into --db (conflicts reported, overrides kept)");
+  bakeCmd->add_flag("--allow-outside-files", bake.allowOutsideFiles,
+                    "let the scene read buffers and images outside its own folder (../, absolute paths, links out)");
+
+  RenderOptions doctorRender;
+  doctorRender.size = "128x72";
+  tl::session::DoctorOptions doctor;
+  std::string doctorJson;
+  auto* doctorCmd = app.add_subcommand(
+      "doctor", "stability report: every lighting path on SCENE, NaN/Inf/negative counts per buffer, energy against the "
+                "reference, flicker over a short camera orbit, messages from the Vulkan layers; exit status 1 when not healthy");
+  doctorCmd->add_option("scene", doctorRender.scene, "glTF file")->required();
+  doctorCmd->add_option("--size", doctorRender.size, "image size WxH")->capture_default_str();
+  doctorCmd->add_option("--frames", doctor.frames, "frames each real-time path renders before its buffers are read")
+      ->check(CLI::Range(1u, kMaxFrames))
+      ->capture_default_str();
+  doctorCmd->add_option("--spp", doctor.referenceSpp, "the reference's samples per pixel")
+      ->check(CLI::Range(1u, kMaxSpp))
+      ->capture_default_str();
+  doctorCmd->add_option("--orbit-frames", doctor.orbitFrames, "frames of the camera orbit that measures flicker (0: none)")
+      ->check(CLI::Range(0u, kMaxFrames))
+      ->capture_default_str();
+  doctorCmd->add_option("--json", doctorJson, "also write the report as JSON to FILE (- for stdout)");
+  addViewAndLightOptions(*doctorCmd, doctorRender);
 
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
   std::string infoScene;
@@ -501,7 +543,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     fmt::print(stderr, "twinlight: error: {} (see --help)\n", e.what());
     return 2;
   }
@@ -607,17 +649,28 @@ int main(int argc, char** argv) {
       if (int status = exitStatus(session); status != 0) return status;
       return gateExit(outcome.gateFailures);
     }
+    if (*doctorCmd) {
+      // The validation layers are part of the report: they are always on here.
+      tl::gpu::DeviceOptions device;
+      device.validation = true;
+      Session session(device);
+      prepareSession(session, doctorRender);
+      const auto report = tl::session::runDoctor(session, doctor);
+      fmt::print("{}", report.toText());
+      if (doctorJson == "-") fmt::print("{}\n", report.toJson().dump(2));
+      else if (!doctorJson.empty()) std::ofstream(doctorJson) << report.toJson().dump(2) << "\n";
+      if (!report.healthy())
+        throw tl::session::SessionError(fmt::format("{} is not healthy: non-finite or negative values or validation "
+                                                    "messages (the report above names them)",
+                                                    doctorRender.scene));
+      return 0;
+    }
     if (*benchCmd) {
       Session session;
       prepareSession(session, benchRender);
       if (!benchSettings.empty()) {
-        nlohmann::json overrides;
-        try {
-          overrides = nlohmann::json::parse(benchSettings);
-        } catch (const nlohmann::json::exception& e) {
-          throw tl::session::SessionError(fmt::format("--set is not JSON: {}", e.what()));
-        }
-        session.settings() = tl::session::applySettingsJson(session.settings(), overrides);
+        session.settings() =
+            tl::session::applySettingsJson(session.settings(), tl::session::parseSettingsText(benchSettings, "--set"));
       }
       if (bench.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
       nlohmann::json report = runBench(session, bench);

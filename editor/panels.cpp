@@ -65,9 +65,12 @@ void viewportPanel(EditorApp& app, glm::vec2& min, glm::vec2& size, bool& hovere
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(300, 20), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(display.x - 640, display.y - 44), ImGuiCond_FirstUseEver);
-  // No background: the engine's image is blitted into the window's area underneath.
+  // No background: the engine's image is blitted into the window's area underneath. It stays
+  // behind every other window when clicked, so floating panels over it keep their clicks.
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
-  ImGui::Begin("Viewport", nullptr, ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  ImGui::Begin("Viewport", nullptr,
+               ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImVec2 pos = ImGui::GetCursorScreenPos();
   ImVec2 avail = ImGui::GetContentRegionAvail();
   min = {pos.x, pos.y};
@@ -298,6 +301,9 @@ void lightingPanel(EditorApp& app) {
   ImGui::SetNextWindowPos(ImVec2(display.x - 340, 20), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(340, 380), ImGuiCond_FirstUseEver);
   ImGui::Begin("Lighting");
+  // Widgets leave room on their right for the longest label ("Sun irradiance", "Voxels per
+  // side"), so no label is cut off at the panel's default width.
+  ImGui::PushItemWidth(-(ImGui::CalcTextSize("Voxels per side").x + 2.0f * ImGui::GetStyle().ItemInnerSpacing.x));
   auto& session = app.session();
   ImGui::TextUnformatted("Lighting path");
   for (const auto& p : session.paths()) {
@@ -311,6 +317,7 @@ void lightingPanel(EditorApp& app) {
     tooltip(session.device().rayTracing().unavailableReason.c_str());
   }
   if (!session.hasScene()) {
+    ImGui::PopItemWidth();
     ImGui::End();
     return;
   }
@@ -395,6 +402,7 @@ void lightingPanel(EditorApp& app) {
   ImGui::Separator();
   ImGui::SliderFloat("Render scale", &app.settings().renderScale, 0.1f, 1.0f, "%.2f");
   tooltip("Engine resolution relative to the viewport panel; lower keeps software rendering interactive");
+  ImGui::PopItemWidth();
   ImGui::End();
 }
 
@@ -446,13 +454,21 @@ void statusBar(EditorApp& app) {
   auto& s = app.session();
   const auto& compare = app.compareView();
   const std::string path = compare ? "compare " + compare->left + " | " + compare->right : "path " + s.path();
-  ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  %.1f fps  |  %s  |  %s%s%s", s.device().name().c_str(),
-              s.settings().width, s.settings().height, app.settings().renderScale, app.fps(), path.c_str(),
+  // The interface and the engine run at their own rates: both are shown, with the age of the
+  // engine frame on screen (how far behind the input it is).
+  ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  UI %.0f fps, engine %.1f fps, frame %.0f ms old  |  %s  |  %s%s%s",
+              s.device().name().c_str(), s.settings().width, s.settings().height, app.settings().renderScale, app.fps(),
+              app.engineFps(), 1000.0 * app.shownFrameAge(), path.c_str(),
               s.hasCapture()  ? ("capture " + s.capture()->dir().string() + " (File > Close capture)").c_str()
               : s.hasScene() ? s.scene().name.c_str()
                              : "no scene",
               app.shaderStatus().empty() ? "" : "  |  shaders: ",
               app.shaderStatus().c_str());
+  // The latest confirmation or note (a capture written, a fallback made) for a few seconds.
+  if (const EditorApp::Notice* notice = app.recentNotice()) {
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(0.55f, 0.85f, 0.55f, 1.0f), "  |  %s", notice->text.c_str());
+  }
   ImGui::End();
 }
 
@@ -471,30 +487,63 @@ void shaderErrorWindow(EditorApp& app) {
   ImGui::End();
 }
 
+// Every key and mouse action the editor knows, grouped; the file browser's keys with it.
 void helpWindow(bool& open) {
   if (!open) return;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 240, display.y * 0.5f - 180), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(480, 360), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 260, display.y * 0.5f - 300), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(520, 600), ImGuiCond_FirstUseEver);
   ImGui::Begin("Help", &open);
-  const char* rows[][2] = {{"Left drag", "orbit around the pivot"},     {"Left click", "select the instance under the cursor"},
-                           {"Middle drag", "pan"},                      {"Wheel", "dolly towards the pivot"},
-                           {"Right drag", "fly: look around"},          {"Right + W A S D", "fly forwards / left / back / right"},
-                           {"Right + Q E", "fly down / up"},             {"Shift", "move 4x faster while flying"},
-                           {"F", "focus on the selection (or the scene)"}, {"1 .. 9", "recall camera bookmark"},
-                           {"Ctrl + 1 .. 9", "save camera bookmark"},   {"Ctrl + O", "open a scene"},
-                           {"F1", "this window"}};
-  if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingFixedFit)) {
-    for (auto& r : rows) {
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(r[0]);
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(r[1]);
+  struct Row {
+    const char* keys;
+    const char* what;
+  };
+  const std::pair<const char*, std::vector<Row>> groups[] = {
+      {"Camera (over the viewport)",
+       {{"Left drag", "orbit around the pivot"},
+        {"Left click", "select the instance under the cursor"},
+        {"Middle drag", "pan"},
+        {"Wheel", "dolly towards the pivot"},
+        {"Right drag", "fly: look around"},
+        {"Right + W A S D", "fly forwards / left / back / right"},
+        {"Right + Q E", "fly down / up"},
+        {"Shift", "move 4x faster while flying"},
+        {"F", "focus on the selection (or the scene)"},
+        {"1 .. 9", "recall camera bookmark"},
+        {"Ctrl + 1 .. 9", "save camera bookmark"}}},
+      {"Edits",
+       {{"Ctrl + Z", "undo the last albedo override (lighting and settings: no undo yet)"},
+        {"Ctrl + Y, Ctrl + Shift + Z", "redo the albedo override undone"},
+        {"Ctrl + S", "save the albedo overrides to the database"}}},
+      {"Windows",
+       {{"F1", "this window"},
+        {"F2", "Buffers: every resource of the frame, the viewer"},
+        {"F3", "Compare: two paths side by side, their error"},
+        {"F12", "RenderDoc capture of the next engine frame (under RenderDoc)"},
+        {"Ctrl + O", "open a scene or a capture"}}},
+      {"Buffer viewer (a resource in the viewport)",
+       {{"Ctrl + wheel", "zoom around the cursor (texel grid from 8x)"},
+        {"Hover", "probe: stored values and what they mean"},
+        {"Meaning / Raw", "what the buffer means, or its stored channels"},
+        {"Keep as B / show B", "A/B against a kept copy"}}},
+      {"Compare view",
+       {{"Drag the line", "move the wipe"}}},
+  };
+  for (const auto& [title, rows] : groups) {
+    ImGui::TextDisabled("%s", title);
+    if (ImGui::BeginTable(title, 2, ImGuiTableFlags_SizingFixedFit)) {
+      for (const Row& r : rows) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(r.keys);
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(r.what);
+      }
+      ImGui::EndTable();
     }
-    ImGui::EndTable();
   }
   ImGui::TextDisabled("Scenes can also be dropped onto the window.");
+  trackItem("help.text");
   ImGui::End();
 }
 
@@ -570,6 +619,7 @@ void errorPopup(std::string& error) {
 }  // namespace
 
 void drawPanels(EditorApp& app) {
+  beginTrackedFrame();
   mainMenu(app, app.showHelp_, app.showBrowser_);
   viewportPanel(app, app.viewportMin_, app.viewportSize_, app.viewportHovered_);
   outlinerPanel(app);

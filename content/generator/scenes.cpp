@@ -3,6 +3,7 @@
 // The scale scene is generated when measured, never committed (it is tens of megabytes):
 // tl_content_gen --sprawl <dir> [instances=100000] [keys=1000]
 #include "gltf_writer.h"
+#include "hard_scenes.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -484,6 +485,7 @@ int main(int argc, char** argv) {
     tl::content::embeddedTextures(dir);
     tl::content::normalProbe(dir);
     tl::content::cutout(dir);
+    tl::content::writeHardScenes(dir / "hard");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());
     return 1;

@@ -1,14 +1,20 @@
-// glTF 2.0 import with tinygltf. tinygltf parses the JSON and loads buffers; images are
-// decoded here with OpenImageIO (textures.cpp) so we control missing files. Every
-// accessor read is bounds-checked here: tinygltf does not fully validate them, and a
+// glTF 2.0 import with tinygltf. The file is read here, under the limits of
+// scene/input_limits.h (a regular file, its size, its JSON nesting), then tinygltf parses the
+// JSON and loads buffers through callbacks that apply the same rules; images are read and
+// decoded here with OpenImageIO (textures.cpp) so we control missing files. Every accessor
+// read is bounds-checked here with overflow-safe arithmetic, and every number is checked
+// after conversion to float (scene/import_values.h): tinygltf validates neither, and a
 // malformed file must produce one clear error, never a crash.
 #define TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_NO_EXTERNAL_IMAGE
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #define TINYGLTF_NO_INCLUDE_STB_IMAGE
 #define TINYGLTF_NO_INCLUDE_STB_IMAGE_WRITE
 #include <tiny_gltf.h>
 
+#include "scene/import_values.h"
+#include "scene/input_limits.h"
 #include "scene/morph.h"
 #include "scene/scene_internal.h"
 
@@ -31,12 +37,70 @@ std::string oneLine(std::string s) {
 }
 
 // tinygltf would otherwise decode images itself; we keep the bytes (for embedded images)
-// and decode later so a missing texture is a warning, not a failed load.
-bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
-                    int size, void*) {
+// and decode later so a missing texture is a warning, not a failed load. `user` is the model
+// being loaded: tinygltf 2.7 hands over an image's bufferView without checking that the view
+// lies inside its buffer (fuzz_gltf: a heap-buffer-overflow reading past a 209-byte buffer),
+// so the view is checked here before a byte of it is read.
+bool keepImageBytes(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                    const unsigned char* bytes, int size, void* user) {
+  const auto& model = *static_cast<const tinygltf::Model*>(user);
+  if (image->bufferView >= 0) {
+    const auto& views = model.bufferViews;
+    const bool viewExists = size_t(image->bufferView) < views.size();
+    const auto* view = viewExists ? &views[size_t(image->bufferView)] : nullptr;
+    uint64_t end = 0;
+    if (!view || view->buffer < 0 || size_t(view->buffer) >= model.buffers.size() ||
+        __builtin_add_overflow(uint64_t(view->byteOffset), uint64_t(view->byteLength), &end) ||
+        end > model.buffers[size_t(view->buffer)].data.size() || view->byteLength > uint64_t(INT32_MAX)) {
+      if (err) *err += fmt::format("image {} refers to bufferView {}, which reaches past the end of its buffer", index,
+                                   image->bufferView);
+      return false;
+    }
+  }
   if (bytes && size > 0) image->image.assign(bytes, bytes + size);
   image->as_is = true;
   return true;
+}
+
+// Buffers named by URI are read through these callbacks under the rules images follow
+// (readReferencedFile): no shell expansion, regular files, sizes, the scene's folder.
+struct BufferAccess {
+  const std::filesystem::path& gltfFile;
+  const LoadOptions& options;
+  std::string refusal;  // the first buffer refused, and why
+};
+
+bool fileExists(const std::string& path, void*) {
+  std::error_code ec;
+  return std::filesystem::exists(path, ec);
+}
+
+std::string expandNothing(const std::string& path, void*) { return path; }
+
+bool readBuffer(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  auto& access = *static_cast<BufferAccess*>(user);
+  try {
+    *out = readContained(access.gltfFile, path, access.options, InputLimits::kMaxFileBytes);
+    return true;
+  } catch (const InputFileError& e) {
+    if (access.refusal.empty()) access.refusal = e.what();
+    if (err) *err += e.what();
+    return false;
+  }
+}
+
+bool writeNothing(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "the importer writes no files";
+  return false;
+}
+
+// The JSON text of a .gltf, or the JSON chunk of a .glb (as much of it as the file holds).
+std::string_view jsonText(const std::vector<uint8_t>& bytes, bool binary) {
+  const char* text = reinterpret_cast<const char*>(bytes.data());
+  if (!binary || bytes.size() < 20) return {text, bytes.size()};
+  uint32_t chunkLength = 0;
+  std::memcpy(&chunkLength, bytes.data() + 12, 4);
+  return {text + 20, std::min<size_t>(chunkLength, bytes.size() - 20)};
 }
 
 class Reader {
@@ -82,11 +146,20 @@ class Reader {
     size_t elem = size_t(compSize) * size_t(comps);
     v.stride = bv.byteStride ? bv.byteStride : elem;
     if (v.stride < elem) fail(fmt::format("accessor {} ({}) has a byteStride smaller than its element", index, what));
-    size_t begin = bv.byteOffset + a.byteOffset;
-    size_t needed = v.count == 0 ? 0 : (v.count - 1) * v.stride + elem;
-    if (a.byteOffset + needed > bv.byteLength || begin + needed > buf.size() || bv.byteOffset + bv.byteLength > buf.size())
-      fail(fmt::format("accessor {} ({}) reaches past the end of its buffer ({} elements of {} bytes from offset {}, buffer has {} bytes)",
-                       index, what, v.count, elem, begin, buf.size()));
+    // Every sum and product checked: offsets and counts near 2^64 in a hostile file would
+    // wrap an unchecked bound and read in front of the buffer.
+    uint64_t needed = 0, accessorEnd = 0, begin = 0, viewEnd = 0;
+    bool overflow = false;
+    if (v.count > 0)
+      overflow |= __builtin_mul_overflow(uint64_t(v.count - 1), uint64_t(v.stride), &needed) ||
+                  __builtin_add_overflow(needed, uint64_t(elem), &needed);
+    overflow |= __builtin_add_overflow(uint64_t(a.byteOffset), needed, &accessorEnd);
+    overflow |= __builtin_add_overflow(uint64_t(bv.byteOffset), uint64_t(a.byteOffset), &begin);
+    overflow |= __builtin_add_overflow(uint64_t(bv.byteOffset), uint64_t(bv.byteLength), &viewEnd);
+    if (overflow || accessorEnd > bv.byteLength || viewEnd > buf.size())
+      fail(fmt::format("accessor {} ({}) reaches past the end of its buffer ({} elements of {} bytes from offset {} "
+                       "of bufferView {} at {}, buffer has {} bytes)",
+                       index, what, v.count, elem, a.byteOffset, a.bufferView, bv.byteOffset, buf.size()));
     v.data = buf.data() + begin;
     return v;
   }
@@ -206,13 +279,41 @@ glm::dmat4 nodeTransform(const tinygltf::Node& n) {
   return t * r * s;
 }
 
-bool finite(const glm::dmat4& m) {
+// Finite once stored as float, and placing things within InputLimits::kMaxCoordinate.
+bool usableTransform(const glm::dmat4& m) {
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
-      if (!std::isfinite(m[c][r])) return false;
+      if (!std::isfinite(float(m[c][r]))) return false;
+  return std::abs(m[3][0]) <= InputLimits::kMaxCoordinate && std::abs(m[3][1]) <= InputLimits::kMaxCoordinate &&
+         std::abs(m[3][2]) <= InputLimits::kMaxCoordinate;
+}
+
+// Normals are transformed by the inverse transpose: a singular transform (a zero scale) has
+// none, and the float version of it must be finite too.
+bool invertible(const glm::dmat4& m) {
+  const glm::dmat3 l(m);
+  const double det = glm::determinant(l);
+  if (!std::isfinite(det) || std::abs(det) < 1e-30) return false;
+  const glm::mat3 n(glm::transpose(glm::inverse(l)));
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r)
+      if (!std::isfinite(n[c][r])) return false;
   return true;
 }
 
+template <int N>
+bool allFinite(const glm::vec<N, double>& v) {
+  for (int i = 0; i < N; ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
+
+bool withinWorld(const Bounds& b) {
+  if (!b.valid()) return true;
+  const double most = std::max({std::abs(b.min.x), std::abs(b.min.y), std::abs(b.min.z), std::abs(b.max.x),
+                                std::abs(b.max.y), std::abs(b.max.z)});
+  return most <= InputLimits::kMaxCoordinate;
+}
 
 // Everything in the file Twinlight does not render (or renders approximately), one entry per
 // feature with how often the file uses it: Scene::ignored and one warning each.
@@ -306,25 +407,49 @@ void scanIgnored(const tinygltf::Model& model, IgnoredFeatures& ignored) {
 
 }  // namespace
 
-Scene loadGltf(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) throw SceneError(fmt::format("{}: file not found", file.string()));
-  if (std::filesystem::is_directory(file, ec)) throw SceneError(fmt::format("{}: is a directory, not a glTF file", file.string()));
-
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(keepImageBytes, nullptr);
-  tinygltf::Model model;
-  std::string err, warn;
+Scene loadGltf(const std::filesystem::path& file, const LoadOptions& options) {
   std::string ext = file.extension().string();
   for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const bool binary = ext == ".glb";
+  // Read and measured here, before tinygltf allocates anything for it: a device or a FIFO
+  // is refused, and JSON nested deeper than the limit never reaches its recursive parser.
+  std::vector<uint8_t> bytes;
+  try {
+    bytes = readRegularFile(file, binary ? InputLimits::kMaxFileBytes : InputLimits::kMaxGltfJsonBytes);
+  } catch (const InputFileError& e) {
+    throw SceneError(e.what());
+  }
+  return loadGltfBytes(std::move(bytes), binary, file, options);
+}
+
+Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesystem::path& file, const LoadOptions& options) {
+  try {
+    if (bytes.size() > (binary ? InputLimits::kMaxFileBytes : InputLimits::kMaxGltfJsonBytes))
+      throw InputFileError(fmt::format("{}: {} bytes, more than a glTF may have", file.string(), bytes.size()));
+    requireJsonDepth(jsonText(bytes, binary), file.string());
+  } catch (const InputFileError& e) {
+    throw SceneError(e.what());
+  }
+
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  loader.SetImageLoader(keepImageBytes, &model);
+  BufferAccess access{file, options, {}};
+  loader.SetFsCallbacks({fileExists, expandNothing, readBuffer, writeNothing, &access});
+  std::string err, warn;
+  const std::string baseDir = file.parent_path().string();
   bool ok = false;
   try {
-    ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
-                       : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), baseDir)
+                : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                             unsigned(bytes.size()), baseDir);
   } catch (const std::exception& e) {
     throw SceneError(fmt::format("{}: not a valid glTF file ({})", file.string(), oneLine(e.what())));
   }
+  if (!ok && !access.refusal.empty())
+    throw SceneError(fmt::format("{}: a buffer cannot be read: {}", file.string(), oneLine(access.refusal)));
   if (!ok) throw SceneError(fmt::format("{}: not a valid glTF file: {}", file.string(), oneLine(err.empty() ? warn : err)));
+  bytes = {};
 
   // Extensions the importer applies; a file that *requires* any other is refused rather than
   // shown wrongly (merely *used* extensions are ignored, as the glTF specification allows).
@@ -339,30 +464,35 @@ Scene loadGltf(const std::filesystem::path& file) {
   Scene scene;
   scene.name = file.stem().string();
   scene.path = file;
+  ImportValues values(file, scene.warnings);
   scene.extensionsUsed = model.extensionsUsed;
   IgnoredFeatures ignored;
   scanIgnored(model, ignored);
 
   // Textures: one entry per (glTF texture, colour space) actually used by a material.
-  TextureCache textures(model, file, scene);
+  TextureCache textures(model, file, options, scene);
 
   for (size_t i = 0; i < model.materials.size(); ++i) {
     const auto& gm = model.materials[i];
     const auto& pbr = gm.pbrMetallicRoughness;
     Material m;
     m.name = gm.name.empty() ? fmt::format("material{}", i) : gm.name;
+    const std::string what = fmt::format("material `{}`", m.name);
+    // The glTF ranges: factors in [0, 1] (an albedo above 1 creates energy), emission >= 0.
     if (pbr.baseColorFactor.size() == 4)
-      m.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
-    m.metallic = float(pbr.metallicFactor);
-    m.roughness = float(pbr.roughnessFactor);
-    if (gm.emissiveFactor.size() == 3) m.emissiveFactor = glm::vec3(gm.emissiveFactor[0], gm.emissiveFactor[1], gm.emissiveFactor[2]);
+      for (int c = 0; c < 4; ++c) m.baseColorFactor[c] = values.clamped(pbr.baseColorFactor[size_t(c)], 0.0f, 1.0f, what + " baseColorFactor");
+    else if (!pbr.baseColorFactor.empty()) values.fail(what + " baseColorFactor does not have 4 components");
+    m.metallic = values.clamped(pbr.metallicFactor, 0.0f, 1.0f, what + " metallicFactor");
+    m.roughness = values.clamped(pbr.roughnessFactor, 0.0f, 1.0f, what + " roughnessFactor");
+    m.emissiveFactor = values.lightColor(gm.emissiveFactor, m.emissiveFactor, what + " emissiveFactor");
     if (auto it = gm.extensions.find("KHR_materials_emissive_strength"); it != gm.extensions.end()) {
       const auto& s = it->second.Get("emissiveStrength");
-      if (s.IsNumber()) m.emissiveStrength = float(s.GetNumberAsDouble());
+      if (s.IsNumber()) m.emissiveStrength = values.light(s.GetNumberAsDouble(), what + " emissiveStrength");
     }
-    m.normalScale = float(gm.normalTexture.scale);
+    values.requireLightRange(m.emissiveFactor * m.emissiveStrength, what + " emission (emissiveFactor x emissiveStrength)");
+    m.normalScale = values.finite(gm.normalTexture.scale, what + " normalTexture.scale");
     m.alphaMode = gm.alphaMode == "MASK" ? AlphaMode::Mask : gm.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
-    m.alphaCutoff = float(gm.alphaCutoff);
+    m.alphaCutoff = values.clamped(gm.alphaCutoff, 0.0f, 1.0f, what + " alphaCutoff");
     m.doubleSided = gm.doubleSided;
     m.baseColorTexture = textures.get(pbr.baseColorTexture.index, true);
     m.metallicRoughnessTexture = textures.get(pbr.metallicRoughnessTexture.index, false);
@@ -439,8 +569,9 @@ Scene loadGltf(const std::filesystem::path& file) {
             rd.fail(fmt::format("mesh `{}` morph target {} has {} {} deltas for {} vertices", name, ti, deltas.size(),
                                 attribute, fileVertices));
           for (const auto& d : deltas)
-            if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z))
-              rd.fail(fmt::format("mesh `{}` morph target {} has a non-finite {} delta", name, ti, attribute));
+            if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z) ||
+                std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}) > InputLimits::kMaxCoordinate)
+              rd.fail(fmt::format("mesh `{}` morph target {} has a non-finite or out-of-range {} delta", name, ti, attribute));
           // Vertices split for their tangents take their original's deltas.
           std::vector<glm::vec3> perVertex(mesh.vertices.size());
           for (size_t k = 0; k < perVertex.size(); ++k) perVertex[k] = deltas[vertexSource[k]];
@@ -448,10 +579,12 @@ Scene loadGltf(const std::filesystem::path& file) {
         }
         mesh.morphTargets.push_back(std::move(target));
       }
+      if (!withinWorld(mesh.bounds))
+        rd.fail(fmt::format("mesh `{}` has positions beyond {:g} m from its origin", name, InputLimits::kMaxCoordinate));
       if (!mesh.morphTargets.empty()) {
         mesh.morphWeights.assign(mesh.morphTargets.size(), 0.0f);
         for (size_t k = 0; k < gmesh.weights.size() && k < mesh.morphWeights.size(); ++k)
-          mesh.morphWeights[k] = float(gmesh.weights[k]);
+          mesh.morphWeights[k] = values.morphWeight(gmesh.weights[k], fmt::format("mesh `{}` weight {}", name, k));
         mesh.bounds = morphBounds(mesh);
       }
       if (prim.material >= 0 && size_t(prim.material) < scene.materials.size()) {
@@ -486,9 +619,13 @@ Scene loadGltf(const std::filesystem::path& file) {
     visited[size_t(ni)] = true;
     const auto& node = model.nodes[size_t(ni)];
     glm::dmat4 world = parent * nodeTransform(node);
-    if (!finite(world)) rd.fail(fmt::format("node {} has a non-finite transform", ni));
+    if (!usableTransform(world))
+      rd.fail(fmt::format("node {} has a non-finite transform or one placing it beyond {:g} m", ni, InputLimits::kMaxCoordinate));
     std::string nodeName = node.name.empty() ? fmt::format("node{}", ni) : node.name;
-    if (node.mesh >= 0) {
+    if (node.mesh >= 0 && !invertible(world)) {
+      // Nothing to see (a zero scale hides a node), and no normal transform to give it.
+      values.warn(fmt::format("node `{}` has a singular transform (a zero scale); its mesh is not drawn", nodeName));
+    } else if (node.mesh >= 0) {
       if (size_t(node.mesh) >= model.meshes.size()) rd.fail(fmt::format("node `{}` refers to mesh {}, which does not exist", nodeName, node.mesh));
       const auto& prims = meshPrimitives[size_t(node.mesh)];
       for (size_t k = 0; k < prims.size(); ++k) {
@@ -508,12 +645,15 @@ Scene loadGltf(const std::filesystem::path& file) {
           Mesh& mesh = scene.meshes[inst.mesh];
           mesh.morphWeights = meshDefaultWeights[prims[k]];
           for (size_t w = 0; w < node.weights.size() && w < mesh.morphWeights.size(); ++w)
-            mesh.morphWeights[w] = float(node.weights[w]);
+            mesh.morphWeights[w] = values.morphWeight(node.weights[w], fmt::format("node `{}` weight {}", nodeName, w));
         }
         meshInstanced[inst.mesh] = true;
         inst.node = uint32_t(ni);
         inst.transform = world;
         inst.worldBounds = transformBounds(scene.meshes[prims[k]].bounds, world);
+        if (!withinWorld(inst.worldBounds))
+          rd.fail(fmt::format("node `{}` places mesh `{}` beyond {:g} m from the origin", nodeName,
+                              scene.meshes[inst.mesh].name, InputLimits::kMaxCoordinate));
         scene.bounds.extend(inst.worldBounds);
         scene.instances.push_back(std::move(inst));
       }
@@ -524,15 +664,24 @@ Scene loadGltf(const std::filesystem::path& file) {
                                                                       glm::normalize(glm::dvec3(world[2])))));
     if (node.camera >= 0 && size_t(node.camera) < model.cameras.size()) {
       const auto& gc = model.cameras[size_t(node.camera)];
-      if (gc.type == "perspective") {
+      const auto& p = gc.perspective;
+      const std::string cameraName = gc.name.empty() ? nodeName : gc.name;
+      // The glTF ranges: 0 < yfov (the session takes up to 178 degrees), 0 < znear < zfar.
+      const bool usable = float(p.yfov) > 0.0f && float(p.yfov) < 3.1f && float(p.znear) > 0.0f &&
+                          std::isfinite(float(p.znear)) && std::isfinite(float(p.zfar)) &&
+                          (p.zfar <= 0.0 || p.zfar > p.znear) && std::isfinite(float(p.aspectRatio)) &&
+                          p.aspectRatio >= 0.0 && allFinite(glm::dvec4(orientation.x, orientation.y, orientation.z, orientation.w));
+      if (gc.type == "perspective" && !usable) {
+        values.warn(fmt::format("camera `{}` has a field of view, clip planes or orientation out of range; it is ignored", cameraName));
+      } else if (gc.type == "perspective") {
         Camera c;
-        c.name = gc.name.empty() ? nodeName : gc.name;
+        c.name = cameraName;
         c.position = position;
         c.orientation = orientation;
-        c.yfovRadians = float(gc.perspective.yfov);
-        c.znear = float(gc.perspective.znear);
-        if (gc.perspective.zfar > 0) c.zfar = float(gc.perspective.zfar);
-        if (gc.perspective.aspectRatio > 0) c.aspectRatio = float(gc.perspective.aspectRatio);
+        c.yfovRadians = float(p.yfov);
+        c.znear = float(p.znear);
+        if (p.zfar > 0) c.zfar = float(p.zfar);
+        if (p.aspectRatio > 0) c.aspectRatio = float(p.aspectRatio);
         scene.cameras.push_back(c);
       }
     }
@@ -543,15 +692,19 @@ Scene loadGltf(const std::filesystem::path& file) {
         const auto& gl = model.lights[size_t(index)];
         Light l;
         l.name = gl.name.empty() ? nodeName : gl.name;
+        const std::string what = fmt::format("light `{}`", l.name);
         l.type = gl.type == "directional" ? LightType::Directional : gl.type == "spot" ? LightType::Spot : LightType::Point;
-        if (gl.color.size() == 3) l.color = glm::vec3(gl.color[0], gl.color[1], gl.color[2]);
-        l.intensity = float(gl.intensity);
-        if (gl.range > 0) l.range = float(gl.range);
-        l.innerConeAngle = float(gl.spot.innerConeAngle);
-        l.outerConeAngle = float(gl.spot.outerConeAngle);
+        l.color = values.lightColor(gl.color, l.color, what + " color");
+        l.intensity = values.light(gl.intensity, what + " intensity");
+        values.requireLightRange(l.color * l.intensity, what + " (color x intensity)");
+        if (gl.range > 0 && std::isfinite(float(gl.range))) l.range = float(gl.range);
+        // The glTF ranges: 0 <= inner < outer <= pi/2.
+        l.outerConeAngle = values.clamped(gl.spot.outerConeAngle, 1e-4f, 1.5707964f, what + " outerConeAngle");
+        l.innerConeAngle = values.clamped(gl.spot.innerConeAngle, 0.0f, l.outerConeAngle, what + " innerConeAngle");
         l.position = position;
         l.direction = glm::normalize(orientation * glm::dvec3(0.0, 0.0, -1.0));
-        scene.lights.push_back(l);
+        if (allFinite(l.direction)) scene.lights.push_back(l);
+        else values.warn(fmt::format("{} has no direction (its node's transform is singular); it is ignored", what));
       }
     }
     for (int child : node.children) visit(child, world, depth + 1);
@@ -581,7 +734,7 @@ Scene loadGltf(const std::filesystem::path& file) {
         rd.fail(fmt::format("animation {} has a channel with sampler {}, which does not exist", ai, ch.sampler));
       const auto& sampler = anim.samplers[size_t(ch.sampler)];
       auto times = rd.floats<1>(sampler.input, "animation input");
-      auto values = rd.floats<1>(sampler.output, "animation output");
+      auto outputs = rd.floats<1>(sampler.output, "animation output");
       for (size_t k = 0; k < times.size(); ++k)
         if (!std::isfinite(times[k].x) || (k > 0 && times[k].x < times[k - 1].x))
           rd.fail(fmt::format("animation {} has keyframe times that are not finite and increasing", ai));
@@ -590,16 +743,18 @@ Scene loadGltf(const std::filesystem::path& file) {
         if (int(inst.node) != ch.target_node || !scene.meshes[inst.mesh].deforms()) continue;
         const size_t targets = scene.meshes[inst.mesh].morphTargets.size();
         const size_t perKey = cubic ? 3 * targets : targets;
-        if (values.size() != times.size() * perKey)
+        if (outputs.size() != times.size() * perKey)
           rd.fail(fmt::format("animation {} drives {} morph targets of `{}` with {} values for {} keys", ai, targets,
-                              inst.name, values.size(), times.size()));
+                              inst.name, outputs.size(), times.size()));
         MorphAnimation a;
         a.mesh = inst.mesh;
         a.step = sampler.interpolation == "STEP";
         for (const auto& t : times) a.times.push_back(t.x);
         // A cubic spline's keys hold in-tangents, values and out-tangents: its values, linearly.
         for (size_t k = 0; k < times.size(); ++k)
-          for (size_t j = 0; j < targets; ++j) a.weights.push_back(values[k * perKey + (cubic ? targets : 0) + j].x);
+          for (size_t j = 0; j < targets; ++j) 
+            a.weights.push_back(values.morphWeight(outputs[k * perKey + (cubic ? targets : 0) + j].x,
+                                                   fmt::format("animation {} weight", ai)));
         if (!a.times.empty()) scene.animationSeconds = std::max(scene.animationSeconds, double(a.times.back()));
         scene.morphAnimations.push_back(std::move(a));
       }
@@ -623,8 +778,9 @@ Scene loadGltf(const std::filesystem::path& file) {
       for (int k = 0; k < 3; ++k) {
         const auto& v = sky.Get(k);
         if (!v.IsNumber() || v.GetNumberAsDouble() < 0.0) rd.fail("extras.twinlight.sky_radiance must be three non-negative numbers");
-        c[k] = float(v.GetNumberAsDouble());
+        c[k] = values.finite(v.GetNumberAsDouble(), "extras.twinlight.sky_radiance");
       }
+      values.requireLightRange(c, "extras.twinlight.sky_radiance");
       scene.environment.skyRadiance = c;
     }
   };

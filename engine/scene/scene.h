@@ -192,9 +192,16 @@ struct SceneError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Loads .gltf or .glb. Throws SceneError for a file that cannot be used; a missing texture
-// is a warning (Scene::warnings) and a visible placeholder.
-Scene loadGltf(const std::filesystem::path& file);
+struct LoadOptions {
+  // Buffers and images a glTF names may lie outside the glTF's folder (`../`, absolute
+  // paths, symbolic links leading out). Off: a downloaded scene reads nothing but its own files.
+  bool allowOutsideFolder = false;
+};
+
+// Loads .gltf or .glb under the limits of scene/input_limits.h. Throws SceneError for a file
+// that cannot be used; a missing texture is a warning (Scene::warnings) and a visible
+// placeholder.
+Scene loadGltf(const std::filesystem::path& file, const LoadOptions& options = {});
 
 // What a loaded scene holds and what of its file Twinlight ignores, one line each, for
 // `twinlight info --scene` and the editor: counts of meshes, materials, textures by format and

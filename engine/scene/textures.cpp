@@ -1,6 +1,10 @@
+// Texture images: read under the limits of scene/input_limits.h and decoded by OpenImageIO
+// from memory, as PNG or JPEG (the formats glTF allows) or OpenEXR / Radiance HDR (float
+// images), chosen by the bytes' signature only, so neither the file's name nor its extension
+// can send the bytes to any other of OpenImageIO's decoders. Texels keep their precision
+// (scene.h TexelFormat).
+#include "scene/input_limits.h"
 #include "scene/scene_internal.h"
-
-#include "shared/color.h"
 
 #include <tiny_gltf.h>
 
@@ -9,7 +13,10 @@
 #include <fmt/format.h>
 #include <glm/gtc/packing.hpp>
 
+#include <algorithm>
 #include <cstring>
+
+#include "shared/color.h"
 
 namespace tl::scene {
 namespace {
@@ -30,6 +37,21 @@ Texture placeholder(const std::string& name) {
   return t;
 }
 
+// The decoder the bytes themselves call for: PNG and JPEG by their signatures, else none.
+const char* formatOf(const std::vector<uint8_t>& bytes) {
+  static const uint8_t png[] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+  if (bytes.size() >= 8 && std::equal(png, png + 8, bytes.begin())) return "png";
+  if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) return "jpeg";
+  static const uint8_t exr[] = {0x76, 0x2F, 0x31, 0x01};
+  if (bytes.size() >= 4 && std::equal(exr, exr + 4, bytes.begin())) return "openexr";
+  auto startsWith = [&](const char* magic) {
+    const size_t n = std::strlen(magic);
+    return bytes.size() >= n && std::equal(magic, magic + n, bytes.begin());
+  };
+  if (startsWith("#?RADIANCE") || startsWith("#?RGBE")) return "hdr";
+  return nullptr;
+}
+
 // Channel c (0..3) of an RGBA texel from `ch` stored channels: grey -> rgb, missing alpha -> one.
 template <class T>
 T expand(const T* s, int ch, int c, T one) {
@@ -37,25 +59,42 @@ T expand(const T* s, int ch, int c, T one) {
   return ch == 2 ? s[1] : ch >= 4 ? s[3] : one;
 }
 
-// Reads any OpenImageIO-readable image into the texel format its bit depth needs:
-// 8-bit stays 8-bit; 16-bit becomes Rgba16Unorm (linear data) or, for colour (`srgb`), linear
-// half floats; float images become half floats as they are (already linear).
-bool decode(std::unique_ptr<OIIO::ImageInput> in, Texture& t, std::string& error) {
-  if (!in) {
-    error = OIIO::geterror();
-    if (error.empty()) error = "no decoder reads it";
+}  // namespace
+
+bool decodeImage(const std::vector<uint8_t>& bytes, Texture& t, std::string& error) {
+  const char* format = formatOf(bytes);
+  if (!format) {
+    error = "neither PNG, JPEG, OpenEXR nor Radiance HDR";
+    return false;
+  }
+  OIIO::Filesystem::IOMemReader reader(const_cast<uint8_t*>(bytes.data()), bytes.size());
+  OIIO::ImageSpec opened;
+  // The proxy is set after create(): OpenImageIO 2.4 drops one given to create() or in the
+  // open() configuration for its PNG reader.
+  auto in = OIIO::ImageInput::create(format);
+  if (!in || !in->set_ioproxy(&reader) || !in->open(std::string("memory.") + format, opened)) {
+    error = in ? in->geterror() : OIIO::geterror();
+    if (error.empty()) error = fmt::format("not a readable {} image", format);
     return false;
   }
   const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.width > 16384 || spec.height > 16384 || spec.nchannels <= 0) {
-    error = "unsupported image size";
+  // Checked before anything is allocated for the pixels.
+  if (spec.width <= 0 || spec.height <= 0 || uint64_t(spec.width) > InputLimits::kMaxImageSide ||
+      uint64_t(spec.height) > InputLimits::kMaxImageSide ||
+      uint64_t(spec.width) * uint64_t(spec.height) > InputLimits::kMaxImagePixels) {
+    error = fmt::format("{}x{} pixels, more than the {} per side and {} Mpixel allowed", spec.width, spec.height,
+                        InputLimits::kMaxImageSide, InputLimits::kMaxImagePixels >> 20);
+    return false;
+  }
+  if (spec.nchannels <= 0 || spec.nchannels > InputLimits::kMaxImageChannels) {
+    error = fmt::format("{} channels, not 1 to {}", spec.nchannels, InputLimits::kMaxImageChannels);
     return false;
   }
   const int ch = spec.nchannels;
   const size_t texels = size_t(spec.width) * size_t(spec.height);
   t.width = uint32_t(spec.width);
   t.height = uint32_t(spec.height);
-  t.fileFormat = in->format_name();
+  t.fileFormat = format;
   const OIIO::TypeDesc::BASETYPE base = OIIO::TypeDesc::BASETYPE(spec.format.basetype);
   const bool isFloat = base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::DOUBLE;
   const bool deep = spec.format.size() > 1 && !isFloat;
@@ -106,26 +145,7 @@ bool decode(std::unique_ptr<OIIO::ImageInput> in, Texture& t, std::string& error
   return true;
 }
 
-// The file extension OpenImageIO should pick its decoder by, from the image's first bytes
-// (a glTF mimeType may be absent or wrong; the bytes are not).
-std::string sniffExtension(const std::vector<unsigned char>& bytes, const std::string& mimeType) {
-  auto starts = [&](const char* magic, size_t n) { return bytes.size() >= n && std::memcmp(bytes.data(), magic, n) == 0; };
-  if (starts("\x89PNG", 4)) return "png";
-  if (starts("\xFF\xD8\xFF", 3)) return "jpg";
-  if (starts("\x76\x2F\x31\x01", 4)) return "exr";
-  if (starts("#?RADIANCE", 10) || starts("#?RGBE", 6)) return "hdr";
-  return mimeType == "image/jpeg" ? "jpg" : "png";
-}
-
-std::string oneLineError(std::string s) {
-  for (auto& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
-
-}  // namespace
-
+<<<<<<< HEAD
 glm::vec4 texelValue(const Texture& t, size_t i) {
   switch (t.format) {
     case TexelFormat::Rgba8:
@@ -139,12 +159,14 @@ glm::vec4 texelValue(const Texture& t, size_t i) {
   return glm::vec4(0.0f);
 }
 
+=======
+>>>>>>> main
 std::optional<uint32_t> TextureCache::get(int textureIndex, bool srgb) {
   if (textureIndex < 0) return std::nullopt;
   if (auto it = cache_.find({textureIndex, srgb}); it != cache_.end()) return it->second;
   std::string name = fmt::format("texture{}", textureIndex);
   Texture t;
-  t.srgb = srgb;
+  t.srgb = srgb;  // decodeImage turns 16-bit colour into linear half floats
   std::string error;
   bool ok = false;
   if (size_t(textureIndex) >= model_.textures.size()) {
@@ -158,18 +180,19 @@ std::optional<uint32_t> TextureCache::get(int textureIndex, bool srgb) {
       if (!img.name.empty()) name = img.name;
       if (!img.uri.empty() && img.uri.rfind("data:", 0) != 0) {
         t.source = ImageSource::File;
-        t.path = file_.parent_path() / img.uri;
+        t.path = referencedPath(file_, img.uri);
         if (img.name.empty()) name = t.path.stem().string();
-        std::error_code ec;
-        if (!std::filesystem::exists(t.path, ec)) error = "file not found";
-        else ok = decode(OIIO::ImageInput::open(t.path.string()), t, error);
+        try {
+          ok = decodeImage(readContained(file_, t.path, options_, InputLimits::kMaxImageFileBytes), t, error);
+        } catch (const InputFileError& e) {
+          // The message starts with the path, which the warning names already.
+          error = e.what();
+          if (error.rfind(t.path.string() + ": ", 0) == 0) error = error.substr(t.path.string().size() + 2);
+        }
       } else if (!img.image.empty()) {
-        // Embedded (a data: URI tinygltf has base64-decoded, or a .glb bufferView): from memory.
-        // tinygltf clears the uri of a data: URI it decoded; a bufferView image has its index.
+        // Embedded: tinygltf clears the uri of a data: URI it decoded; a bufferView image has its index.
         t.source = img.bufferView >= 0 ? ImageSource::BufferView : ImageSource::DataUri;
-        OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(img.image.data()), img.image.size());
-        const std::string ext = sniffExtension(img.image, img.mimeType);
-        ok = decode(OIIO::ImageInput::open(fmt::format("{}.{}", name, ext), nullptr, &reader), t, error);
+        ok = decodeImage(img.image, t, error);
       } else {
         error = "the image has no data";
       }
@@ -178,7 +201,7 @@ std::optional<uint32_t> TextureCache::get(int textureIndex, bool srgb) {
   if (!ok) {
     std::string where = t.path.empty() ? name : t.path.string();
     scene_.warnings.push_back(fmt::format("{}: texture {} could not be loaded ({}); using a magenta placeholder",
-                                          file_.string(), where, oneLineError(error)));
+                                          file_.string(), where, error));
     auto path = t.path;
     auto source = t.source;
     t = placeholder(name);

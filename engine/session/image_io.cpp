@@ -67,7 +67,7 @@ void writeTextFile(const std::filesystem::path& file, const std::string& text) {
   });
 }
 
-void writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding) {
+ImageWriteReport writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding) {
   const uint32_t w = image.extent.width, h = image.extent.height;
   const uint32_t srcChannels = image.channels();
   std::vector<float> texels = image.texels();
@@ -78,8 +78,25 @@ void writeImageAtomically(const std::filesystem::path& file, const graph::Readba
   std::vector<float> pixels(size_t(w) * h * outChannels);
   for (size_t i = 0; i < size_t(w) * h; ++i)
     for (int c = 0; c < outChannels; ++c) pixels[i * outChannels + c] = texels[i * srcChannels + c];
-  if (encoding == ImageEncoding::LinearHalf) writeAtomically(file, w, h, outChannels, OIIO::TypeDesc::HALF, pixels, "Linear");
-  else writeAtomically(file, w, h, outChannels, OIIO::TypeDesc::UINT8, pixels, "sRGB");
+  ImageWriteReport report;
+  report.pixels = uint64_t(w) * h;
+  for (size_t i = 0; i < size_t(w) * h; ++i) {
+    bool beyond = false, nonFinite = false;
+    for (int c = 0; c < outChannels; ++c) {
+      const float v = pixels[i * outChannels + c];
+      nonFinite |= !std::isfinite(v);
+      beyond |= std::isfinite(v) && std::abs(v) > 65504.0f;
+    }
+    report.beyondHalf += beyond;
+    report.nonFinite += nonFinite;
+  }
+  if (encoding == ImageEncoding::Linear) {
+    report.float32 = report.beyondHalf > 0;
+    writeAtomically(file, w, h, outChannels, report.float32 ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF, pixels, "Linear");
+  } else {
+    writeAtomically(file, w, h, outChannels, OIIO::TypeDesc::UINT8, pixels, "sRGB");
+  }
+  return report;
 }
 
 std::optional<RgbImage> readExrRgb(const std::filesystem::path& file) {

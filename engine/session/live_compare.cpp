@@ -4,6 +4,8 @@
 #include "metrics/metrics.h"
 #include "session/compare.h"
 
+#include <cmath>
+
 namespace tl::session {
 
 LiveCompare::LiveCompare(CompareView view, std::optional<std::string> referenceReason)
@@ -64,6 +66,7 @@ void LiveCompare::frameDone(const std::string& path, const graph::Readback& imag
       ++referenceRestarts_, lastRestart_ = referenceAccumulation->acted;
     referenceSeen_ = true;
     referenceSamples_ = referenceSamples;
+    updateNoise(side, referenceSamples);
     // A converging reference improves every side's figure: re-measure both.
     for (const std::string& p : {view_.left, view_.right})
       if (p != "reference") measure(p, exposure);
@@ -100,6 +103,43 @@ void LiveCompare::measure(const std::string& path, float exposure) {
   } else if (!view_.measureFlip) {
     e.flip.reset();
   }
+}
+
+// The reference at n samples is the mean b of n samples; a checkpoint a of the same sum at
+// n1 < n samples holds the first n1 of them. With c the mean of the other n - n1,
+// a - b = (n - n1)/n (a - c), whose variance is s2 (n - n1)/(n n1) for a per-sample variance
+// s2, while b's own variance (its error against the converged image) is s2/n. So
+// noise(b) = E|a - b|^2 n1/(n - n1): relMSE(a, b) scaled, the same relative measure as the
+// sides' figures. It is taken each time the sum has doubled (n >= 2 n1: enough new samples
+// for a steady estimate) and scales as 1/n in between.
+void LiveCompare::updateNoise(const Side& reference, uint32_t samples) {
+  const bool sameSum = checkpoint_ && sameCompared(checkpoint_->key, reference.key) && samples >= checkpoint_->samples &&
+                       checkpoint_->image.width == reference.image.width &&
+                       checkpoint_->image.height == reference.image.height;
+  if (!sameSum || checkpoint_->samples == 0) {
+    noise_.reset();  // a new sum (or the first): nothing to compare with yet
+    checkpoint_ = Checkpoint{reference.image, reference.key, samples};
+    return;
+  }
+  const uint32_t n1 = checkpoint_->samples;
+  if (samples < 2 * n1) return;
+  noise_ = metrics::relMse(checkpoint_->image, reference.image).value * double(n1) / double(samples - n1);
+  noiseSamples_ = samples;
+  checkpoint_ = Checkpoint{reference.image, reference.key, samples};
+}
+
+std::optional<double> LiveCompare::referenceNoise() const {
+  if (!noise_ || referenceSamples_ < noiseSamples_ || referenceSamples_ == 0) return std::nullopt;
+  return *noise_ * double(noiseSamples_) / double(referenceSamples_);
+}
+
+bool LiveCompare::referenceTrusted() const {
+  const auto noise = referenceNoise();
+  if (!noise) return false;
+  const auto e = errors();
+  if (e.empty() || !e.front().relMse) return false;
+  const double scale = e.size() == 2 && e.back().relMse ? std::abs(*e.front().relMse - *e.back().relMse) : *e.front().relMse;
+  return *noise * kTrustRatio <= scale;
 }
 
 std::vector<LiveError> LiveCompare::errors() const {

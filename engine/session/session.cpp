@@ -31,6 +31,15 @@ struct Session::Passes {
   lighting::CompareViewPass compareView;
 };
 
+// What finishing a submitted frame needs to know about it.
+struct Session::InFlight {
+  lighting::LightingPath* path = nullptr;
+  std::string compared;         // the compare view's side it renders ("" outside a compare)
+  uint64_t compareGeneration = 0;
+  lighting::FrameKey key;
+  float exposure = 1.0f;
+};
+
 Session::Session(const gpu::DeviceOptions& options)
     : device_(std::make_unique<gpu::Device>(options)),
       executor_(std::make_unique<graph::Executor>(*device_)),
@@ -52,20 +61,25 @@ Session::~Session() {
   if (device_) device_->waitIdle();
 }
 
+void Session::settle() { finishOne(); }
+
 const scene::Scene& Session::scene() const {
   if (!scene_) throw SessionError("no scene is loaded");
   return *scene_;
 }
 
-std::unique_ptr<scene::Scene> Session::parseScene(const std::filesystem::path& file) {
-  auto loaded = std::make_unique<scene::Scene>(scene::loadGltf(file));
+std::unique_ptr<scene::Scene> Session::parseScene(const std::filesystem::path& file, const scene::LoadOptions& options) {
+  auto loaded = std::make_unique<scene::Scene>(scene::loadGltf(file, options));
   if (loaded->instances.empty()) throw scene::SceneError(fmt::format("{}: the scene has no meshes to draw", file.string()));
   return loaded;
 }
 
-void Session::loadScene(const std::filesystem::path& file) { installScene(parseScene(file)); }
+void Session::loadScene(const std::filesystem::path& file, const scene::LoadOptions& options) {
+  installScene(parseScene(file, options));
+}
 
 void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
+  settle();
   for (auto& w : loaded->warnings) spdlog::warn("{}", w);
   device_->waitIdle();
   // The executor forgets the old scene's buffers and any capture's images before they go.
@@ -154,6 +168,7 @@ lighting::LightingPath* Session::findPath(const std::string& name) const {
 
 void Session::setCompareView(std::optional<CompareView> view) {
   if (!view) {
+    if (compare_) ++compareGeneration_;
     compare_.reset();
     comparePrevious_.clear();
     compareFrames_.clear();
@@ -169,6 +184,7 @@ void Session::setCompareView(std::optional<CompareView> view) {
     compare_->setView(*view);
     return;
   }
+  ++compareGeneration_;
   compare_ = std::make_unique<LiveCompare>(*view, findPath("reference")->unavailableReason(*device_));
 }
 
@@ -296,6 +312,11 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
 }
 
 void Session::renderOne(bool readback) {
+  beginOne(readback);
+  finishOne();
+}
+
+void Session::beginOne(bool readback) {
   // The Compare panel renders its sides and the reference in turn; each path sees its own
   // previous frame as "previous" (its history and motion vectors refer to it).
   lighting::LightingPath* path = path_;
@@ -348,7 +369,16 @@ void Session::renderOne(bool readback) {
     passes_->compareView.add(graph, in, v, compared, compare_->hasImage(v.left) || compared == v.left,
                              compare_->hasImage(v.right) || compared == v.right);
   } else if (display_) {
-    passes_->display.add(graph, in, *display_);
+    // A resource this frame does not make (another path's, after a switch) is not an error:
+    // the final image shows instead, and displayMissing() names what was asked for.
+    lighting::DisplayRequest request = *display_;
+    const auto id = request.source.empty() ? std::nullopt : graph.find(request.source);
+    displayMissing_.clear();
+    if (!request.source.empty() && (!id || graph.resources()[*id].desc.type != graph::ResourceType::Image)) {
+      displayMissing_ = request.source;
+      request = lighting::DisplayRequest{.selectedInstance = request.selectedInstance};
+    }
+    passes_->display.add(graph, in, request);
   }
   // What is read back is wanted: debug views nothing else reads (albedo.*) survive culling
   // in the frame that reads them, and a capture gets every buffer the frame can make.
@@ -366,9 +396,21 @@ void Session::renderOne(bool readback) {
     executor_->requestReadback(lighting::kTonemapLdr);
   }
   if (compare_) executor_->requestReadback(lighting::compareImageName(compared));
-  executor_->execute(graph, compiled);
+  executor_->submit(graph, compiled);
   graphDump_ = graph.dump(compiled);
   if (readback) graphDot_ = graph.dot(compiled);
+  inFlight_ = std::make_unique<InFlight>(InFlight{path, compared, compareGeneration_, in.key, fc.exposure});
+  if (compare_) comparePrevious_[compared] = view_;
+  previousView_ = view_;
+  ++frameIndex_;
+  animationTime_ += animationStep_;
+}
+
+void Session::finishOne() {
+  if (!inFlight_) return;
+  const std::unique_ptr<InFlight> done = std::move(inFlight_);
+  executor_->finish();
+  lighting::LightingPath* path = done->path;
   double total = 0.0;
   for (const auto& t : executor_->timings()) {
     total += t.gpuMs;
@@ -377,20 +419,17 @@ void Session::renderOne(bool readback) {
     it->second.push_back(t.gpuMs);
   }
   frameGpuMs_.push_back(total);
-  if (compare_) {
+  // The compare view it was rendered for may have been closed or replaced since.
+  if (compare_ && !done->compared.empty() && done->compareGeneration == compareGeneration_) {
     double samples = 0.0;
     for (auto& [name, value] : path->figures())
       if (name == "reference.samples") samples = value;
     std::optional<lighting::HistoryDecision> accumulation;
     for (const auto& d : historyLog_)
       if (d.history == "reference.accumulation") accumulation = d;
-    compare_->frameDone(compared, executor_->readback(lighting::compareImageName(compared)), total, in.key,
-                        uint32_t(samples), fc.exposure, accumulation);
-    comparePrevious_[compared] = view_;
+    compare_->frameDone(done->compared, executor_->readback(lighting::compareImageName(done->compared)), total, done->key,
+                        uint32_t(samples), done->exposure, accumulation);
   }
-  previousView_ = view_;
-  ++frameIndex_;
-  animationTime_ += animationStep_;
 }
 
 // Deforming meshes take this frame's pose: only those whose weights changed are uploaded.
@@ -414,10 +453,38 @@ void Session::applyMorphs() {
   deformedLastFrame_ = meshes.size();
 }
 
+void Session::beginFrame() {
+  settle();
+  if (capture_ || !scene_) {
+    renderFrames(1);  // a reopened capture's display is quick: done at once
+    return;
+  }
+  frameGpuMs_.clear();
+  passGpuMs_.clear();
+  beginOne(true);
+  requested_.clear();
+  requestAll_ = false;
+}
+
+bool Session::frameDone() const { return !inFlight_ || executor_->frameDone(); }
+
+void Session::finishFrame() { finishOne(); }
+
+const graph::Readback* Session::displayReadback() const {
+  auto it = executor_->readbacks().find(lighting::kDisplayLdr);
+  return it == executor_->readbacks().end() ? nullptr : &it->second;
+}
+
 void Session::renderFrames(uint32_t n) {
+  settle();
   if (capture_) {
     if (!captureDisplay_) captureDisplay_ = std::make_unique<lighting::DisplayPass>();
-    capture_->display(*executor_, *captureDisplay_, display_.value_or(lighting::DisplayRequest{}));
+    if (std::find(requested_.begin(), requested_.end(), lighting::kDisplayLdr) != requested_.end())
+      executor_->requestReadback(lighting::kDisplayLdr);
+    lighting::DisplayRequest request = display_.value_or(lighting::DisplayRequest{});
+    displayMissing_.clear();
+    if (!request.source.empty() && !hasBuffer(request.source)) displayMissing_ = request.source, request = {};
+    capture_->display(*executor_, *captureDisplay_, request);
     requested_.clear();
     requestAll_ = false;
     return;
@@ -447,6 +514,7 @@ const std::vector<graph::PassTiming>& Session::timings() const { return capture_
 
 void Session::openCapture(const std::filesystem::path& dir) {
   auto opened = std::make_unique<CapturedFrame>(*device_, dir);  // throws, keeping what was open
+  settle();
   device_->waitIdle();
   executor_->unbindImported();  // a capture open before this one is freed now
   capture_ = std::move(opened);
@@ -458,6 +526,7 @@ const scene::Scene* Session::decodingScene() const {
 }
 
 void Session::closeCapture() {
+  settle();
   device_->waitIdle();
   executor_->unbindImported();  // the capture's images are freed with it
   capture_.reset();
@@ -490,12 +559,12 @@ void Session::writeGraph(const std::filesystem::path& file) const {
   writeTextFile(file, ext == ".dot" || ext == ".gv" ? graphDot_ : graphDump_);
 }
 
-void Session::saveImage(const std::filesystem::path& file) const {
+ImageWriteReport Session::saveImage(const std::filesystem::path& file) const {
   std::string ext = file.extension().string();
   for (auto& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  if (ext == ".exr") writeImageAtomically(file, buffer(lighting::kCompositeHdr), ImageEncoding::LinearHalf);
-  else if (ext == ".png") writeImageAtomically(file, buffer(lighting::kTonemapLdr), ImageEncoding::Display8);
-  else throw SessionError(fmt::format("{}: unsupported image type `{}` (use .exr or .png)", file.string(), ext));
+  if (ext == ".exr") return writeImageAtomically(file, buffer(lighting::kCompositeHdr), ImageEncoding::Linear);
+  if (ext == ".png") return writeImageAtomically(file, buffer(lighting::kTonemapLdr), ImageEncoding::Display8);
+  throw SessionError(fmt::format("{}: unsupported image type `{}` (use .exr or .png)", file.string(), ext));
 }
 
 }  // namespace tl::session

@@ -7,7 +7,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <string>
+#include <string_view>
+
 namespace tl::session {
+
+// JSON text of settings (--set, a --settings file, a manifest), parsed under the nesting limit
+// of scene/input_limits.h; SessionError naming `what` when it is not JSON.
+nlohmann::json parseSettingsText(std::string_view text, const std::string& what);
 
 // Returns `base` with the keys of `overrides` (an object) applied.
 lighting::RenderSettings applySettingsJson(const lighting::RenderSettings& base, const nlohmann::json& overrides);

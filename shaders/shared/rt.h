@@ -290,6 +290,7 @@ TL_CONST uint kRtBindingFirstShY = 33;         // two rays per pixel: the first 
 TL_CONST uint kRtBindingFirstCoCg = 34;
 TL_CONST uint kRtBindingFirstAo = 35;
 TL_CONST uint kRtBindingEmitters = 32;         // RtEmitter[] (at least one entry; RtPush::emitterCount of them valid)
+TL_CONST uint kRtBindingDenoiseMoment = 36;    // r32f: the accumulation's mean squared sample luma (the denoiser's noise estimate)
 TL_END
 
 #ifdef __cplusplus

@@ -2,6 +2,7 @@
 #include "session/session.h"
 #include "session/settings_json.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 namespace tl::session {
@@ -33,6 +34,31 @@ TEST(SettingsJson, UnknownKeysAndWrongTypesAreRefusedByName) {
   }
   EXPECT_THROW(applySettingsJson(base, {{"legacyAoSteps", -2}}), SessionError);
   EXPECT_THROW(applySettingsJson(base, nlohmann::json::array()), SessionError);
+}
+
+// Issue 22: values are range-checked before they are converted (shadowMapSize 0 or 65536 gave
+// validation errors and exit 0; 4294967297 was truncated to 1; rtPretraceSteps 4000000000
+// never ended).
+TEST(SettingsJson, ValuesOutsideTheirStatedRangeAreRefused) {
+  lighting::RenderSettings base;
+  auto message = [&](const nlohmann::json& j) {
+    try {
+      applySettingsJson(base, j);
+    } catch (const SessionError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  for (const char* key : {"shadowMapSize"})
+    for (const nlohmann::json& v : {nlohmann::json(0), nlohmann::json(65536), nlohmann::json(4294967297ull), nlohmann::json(-1)})
+      EXPECT_EQ(message({{key, v}}), fmt::format("setting `shadowMapSize` must be a whole number from 64 to 8192, not {}", v.dump()));
+  EXPECT_EQ(message({{"rtPretraceSteps", 4000000000ull}}),
+            "setting `rtPretraceSteps` must be a whole number from 1 to 256, not 4000000000");
+  EXPECT_EQ(message({{"legacyConeStep", 0}}), "setting `legacyConeStep` must be a number from 0.2 to 2, not 0");
+  EXPECT_EQ(message({{"rtAoRadius", 1e39}}), "setting `rtAoRadius` must be a number from 0 to 1e+06, not 1e+39");
+  EXPECT_EQ(message({{"legacyAoSteps", 2.5}}), "setting `legacyAoSteps` must be a whole number from 1 to 64, not 2.5");
+  EXPECT_EQ(applySettingsJson(base, {{"shadowMapSize", 8192}}).shadowMapSize, 8192u);
+  EXPECT_EQ(applySettingsJson(base, {{"rtPretraceSteps", 256}}).rtPretraceSteps, 256u);
 }
 
 // The material override mode goes by name; any other value is refused with the three names.

@@ -141,7 +141,7 @@ class LegacyPath final : public LightingPath {
         graph::ResourceDesc::image3D(VK_FORMAT_R16G16B16A16_SFLOAT, 3 * R, R / 2, N * R / 2,
                                      "voxels per face, mips 1.. (front-to-back along each face's axis)", mips);
     const graph::ResourceDesc radianceDesc =
-        graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "composite radiance, last frame");
+        graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, "composite radiance, last frame");
     const graph::ResourceDesc depthDesc = graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, w, h, "G-buffer depth, last frame");
     // The SSAO accumulates at its own resolution, before the upsample: a quarter of the pixels.
     // It keeps the view depth it was taken at, so the next frame's history test needs no depth.

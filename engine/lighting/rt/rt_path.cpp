@@ -99,7 +99,7 @@ class RtPath final : public LightingPath {
     for (int i = 0; i < 4; ++i) graph.declarePersistent(histNames[i], histDescs[i]);
     const bool screenRadiance = s.rtScreenRadiance;
     if (screenRadiance)
-      graph.declarePersistent(kHistRadiance, image(VK_FORMAT_R16G16B16A16_SFLOAT, "composite radiance, last frame"));
+      graph.declarePersistent(kHistRadiance, image(kCompositeHdrFormat, "composite radiance, last frame"));
 
     addStructurePasses(graph, in);
 
@@ -232,6 +232,9 @@ class RtPath final : public LightingPath {
               b.read("gbuffer.normal", Usage::Sampled);
               b.read(inShY, Usage::Sampled);
               b.read(inCoCg, Usage::Sampled);
+              b.read(kLumaMoment, Usage::Sampled);
+              b.read("gbuffer.baseColor", Usage::Sampled);
+              b.read("gbuffer.material", Usage::Sampled);
               b.create(outShY,
                        image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised irradiance, SH luma")
                            .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", outCoCg)),
@@ -254,6 +257,9 @@ class RtPath final : public LightingPath {
                   .sampledImage(shared::kRtBindingNormal, ctx.image("gbuffer.normal").view(), pt, kReadOnly)
                   .sampledImage(shared::kRtBindingShY, ctx.image(inShY).view(), pt, kReadOnly)
                   .sampledImage(shared::kRtBindingCoCg, ctx.image(inCoCg).view(), pt, kReadOnly)
+                  .sampledImage(shared::kRtBindingDenoiseMoment, ctx.image(kLumaMoment).view(), pt, kReadOnly)
+                  .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), pt, kReadOnly)
+                  .sampledImage(shared::kRtBindingMaterial, ctx.image("gbuffer.material").view(), pt, kReadOnly)
                   .storageImage(shared::kRtBindingDenoiseShY, ctx.image(outShY).view())
                   .storageImage(shared::kRtBindingDenoiseCoCgAo, ctx.image(outCoCg).view());
               ctx.dispatch(in.settings.width, in.settings.height);
@@ -752,6 +758,9 @@ class RtPath final : public LightingPath {
                            {shared::kRtBindingNormal, sampled},
                            {shared::kRtBindingShY, sampled},
                            {shared::kRtBindingCoCg, sampled},
+                           {shared::kRtBindingDenoiseMoment, sampled},
+                           {shared::kRtBindingBaseColor, sampled},
+                           {shared::kRtBindingMaterial, sampled},
                            {shared::kRtBindingDenoiseShY, storage},
                            {shared::kRtBindingDenoiseCoCgAo, storage}};
       d.layout.pushConstantBytes = sizeof(shared::RtDenoisePush);
