@@ -145,7 +145,6 @@ bool decodeImage(const std::vector<uint8_t>& bytes, Texture& t, std::string& err
   return true;
 }
 
-<<<<<<< HEAD
 glm::vec4 texelValue(const Texture& t, size_t i) {
   switch (t.format) {
     case TexelFormat::Rgba8:
@@ -159,8 +158,6 @@ glm::vec4 texelValue(const Texture& t, size_t i) {
   return glm::vec4(0.0f);
 }
 
-=======
->>>>>>> main
 std::optional<uint32_t> TextureCache::get(int textureIndex, bool srgb) {
   if (textureIndex < 0) return std::nullopt;
   if (auto it = cache_.find({textureIndex, srgb}); it != cache_.end()) return it->second;
