@@ -315,6 +315,17 @@ int runRender(const RenderOptions& o) {
   return exitStatus(session);
 }
 
+// `info --scene FILE`: what the file holds and what of it Twinlight ignores, one line each
+// (scene::sceneReport), without a device. Warnings the importer gave are the ignored lines.
+int runSceneInfo(const std::string& file) {
+  const tl::scene::Scene scene = tl::scene::loadGltf(file);
+  fmt::print("scene: {}\n", file);
+  for (const auto& line : tl::scene::sceneReport(scene)) fmt::print("{}\n", line);
+  for (const auto& w : scene.warnings)
+    if (w.find("could not be loaded") != std::string::npos) fmt::print("warning: {}\n", w);
+  return 0;
+}
+
 // compare --settings FILE as a list: [{"name": N, "path": P, "settings": {...}}, ...].
 std::vector<tl::session::CompareVariant> compareVariants(const nlohmann::json& list, const std::string& file) {
   std::vector<tl::session::CompareVariant> variants;
@@ -642,6 +653,9 @@ int main(int argc, char** argv) {
   settingsCmd->add_flag("--json", settingsDefaults, "the defaults as a JSON settings file (for --settings)");
 
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
+  std::string infoScene;
+  infoCmd->add_option("--scene", infoScene,
+                      "instead: list what a glTF file holds and every feature of it Twinlight ignores, one line each");
 
   for (CLI::App* cmd : app.get_subcommands(std::function<bool(CLI::App*)>())) addVerbosityFlags(*cmd);
   // Set after the subcommands are added, which would inherit it: `twinlight --help` alone.
@@ -669,7 +683,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*renderCmd) return runRender(render);
-    if (*infoCmd) return runInfo();
+    if (*infoCmd) return infoScene.empty() ? runInfo() : runSceneInfo(infoScene);
     if (*settingsCmd) {
       if (settingsDefaults) fmt::print("{}\n", tl::session::settingsJson(tl::lighting::RenderSettings{}).dump(2));
       else fmt::print("{}", settingsMarkdown ? tl::session::settingsReferenceMarkdown() : tl::session::settingsReferenceText());

@@ -123,12 +123,18 @@ class Reader {
   View accessor(int index, const char* what) const {
     if (index < 0 || size_t(index) >= m_.accessors.size()) fail(fmt::format("{} refers to accessor {}, which does not exist", what, index));
     const auto& a = m_.accessors[size_t(index)];
-    if (a.sparse.isSparse) fail(fmt::format("accessor {} ({}) is sparse, which is not supported", index, what));
     View v;
     v.count = a.count;
     v.componentType = a.componentType;
     v.type = a.type;
     v.normalized = a.normalized;
+    // A sparse accessor may have no bufferView: its base values are zeros.
+    if (a.sparse.isSparse && a.bufferView < 0) {
+      v.stride = elementBytes(a, index, what);
+      zeros_.emplace_back(v.count * v.stride, uint8_t(0));
+      v.data = zeros_.back().data();
+      return v;
+    }
     if (a.bufferView < 0 || size_t(a.bufferView) >= m_.bufferViews.size())
       fail(fmt::format("accessor {} ({}) has no valid bufferView", index, what));
     const auto& bv = m_.bufferViews[size_t(a.bufferView)];
@@ -181,6 +187,9 @@ class Reader {
     std::vector<glm::vec<N, float>> out(v.count);
     for (size_t i = 0; i < v.count; ++i)
       for (int c = 0; c < N; ++c) out[i][c] = component(v, i, c);
+    applySparse(index, what, [&](size_t target, const View& values, size_t k) {
+      for (int c = 0; c < N; ++c) out[target][c] = component(values, k, c);
+    });
     return out;
   }
 
@@ -197,12 +206,66 @@ class Reader {
         default: fail(fmt::format("index accessor {} has a component type indices cannot have", index));
       }
     }
+    applySparse(index, "indices", [&](size_t target, const View& values, size_t k) {
+      out[target] = uint32_t(component(values, k, 0));
+    });
     return out;
   }
 
  private:
+  size_t elementBytes(const tinygltf::Accessor& a, int index, const char* what) const {
+    int compSize = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
+    int comps = tinygltf::GetNumComponentsInType(uint32_t(a.type));
+    if (compSize <= 0 || comps <= 0) fail(fmt::format("accessor {} ({}) has an invalid type", index, what));
+    return size_t(compSize) * size_t(comps);
+  }
+
+  // A checked view of `count` tightly packed elements in bufferView `view` from `offset`.
+  View packed(int view, size_t offset, size_t count, int componentType, int type, bool normalized, int index,
+              const char* what) const {
+    if (view < 0 || size_t(view) >= m_.bufferViews.size())
+      fail(fmt::format("sparse accessor {} ({}) refers to bufferView {}, which does not exist", index, what, view));
+    const auto& bv = m_.bufferViews[size_t(view)];
+    if (bv.buffer < 0 || size_t(bv.buffer) >= m_.buffers.size()) fail(fmt::format("bufferView {} refers to a missing buffer", view));
+    int compSize = tinygltf::GetComponentSizeInBytes(uint32_t(componentType));
+    int comps = tinygltf::GetNumComponentsInType(uint32_t(type));
+    if (compSize <= 0 || comps <= 0) fail(fmt::format("sparse accessor {} ({}) has an invalid type", index, what));
+    const size_t elem = size_t(compSize) * size_t(comps), bytes = count * elem;
+    const auto& buf = m_.buffers[size_t(bv.buffer)].data;
+    if (offset + bytes > bv.byteLength || bv.byteOffset + bv.byteLength > buf.size())
+      fail(fmt::format("sparse accessor {} ({}) reaches past the end of bufferView {}", index, what, view));
+    View v;
+    v.data = buf.data() + bv.byteOffset + offset;
+    v.count = count;
+    v.stride = elem;
+    v.componentType = componentType;
+    v.type = type;
+    v.normalized = normalized;
+    return v;
+  }
+
+  // Sparse accessors (glTF 3.6.2.3): `count` indices into the accessor and as many values that
+  // replace the base values there; calls set(target element, values view, k) for each.
+  template <class Set>
+  void applySparse(int index, const char* what, Set set) const {
+    const auto& a = m_.accessors[size_t(index)];
+    if (!a.sparse.isSparse) return;
+    const size_t n = size_t(std::max(a.sparse.count, 0));
+    View idx = packed(a.sparse.indices.bufferView, size_t(a.sparse.indices.byteOffset), n, a.sparse.indices.componentType,
+                      TINYGLTF_TYPE_SCALAR, false, index, what);
+    View values = packed(a.sparse.values.bufferView, size_t(a.sparse.values.byteOffset), n, a.componentType, a.type,
+                         a.normalized, index, what);
+    for (size_t k = 0; k < n; ++k) {
+      const double target = component(idx, k, 0);
+      if (!(target >= 0.0 && target < double(a.count)))
+        fail(fmt::format("sparse accessor {} ({}) replaces element {}, beyond its {} elements", index, what, target, a.count));
+      set(size_t(target), values, k);
+    }
+  }
+
   const tinygltf::Model& m_;
   const std::filesystem::path& file_;
+  mutable std::vector<std::vector<uint8_t>> zeros_;  // base values of sparse accessors without a bufferView
 };
 
 glm::dmat4 nodeTransform(const tinygltf::Node& n) {
@@ -250,6 +313,96 @@ bool withinWorld(const Bounds& b) {
   const double most = std::max({std::abs(b.min.x), std::abs(b.min.y), std::abs(b.min.z), std::abs(b.max.x),
                                 std::abs(b.max.y), std::abs(b.max.z)});
   return most <= InputLimits::kMaxCoordinate;
+}
+
+// Everything in the file Twinlight does not render (or renders approximately), one entry per
+// feature with how often the file uses it: Scene::ignored and one warning each.
+class IgnoredFeatures {
+ public:
+  void add(const std::string& feature, const std::string& instead) {
+    for (auto& e : entries_)
+      if (e.feature == feature) return void(++e.count);
+    entries_.push_back({feature, instead, 1});
+  }
+  void report(Scene& scene, const std::filesystem::path& file) const {
+    for (const auto& e : entries_) {
+      std::string line = fmt::format("{} ({}x): {}", e.feature, e.count, e.instead);
+      scene.warnings.push_back(fmt::format("{}: {}", file.string(), line));
+      scene.ignored.push_back(std::move(line));
+    }
+  }
+
+ private:
+  struct Entry {
+    std::string feature, instead;
+    size_t count;
+  };
+  std::vector<Entry> entries_;
+};
+
+// The texture slots of a material, with their glTF names.
+template <class F>
+void forEachTextureSlot(const tinygltf::Material& m, F f) {
+  f("baseColorTexture", m.pbrMetallicRoughness.baseColorTexture.index, m.pbrMetallicRoughness.baseColorTexture.texCoord,
+    m.pbrMetallicRoughness.baseColorTexture.extensions);
+  f("metallicRoughnessTexture", m.pbrMetallicRoughness.metallicRoughnessTexture.index,
+    m.pbrMetallicRoughness.metallicRoughnessTexture.texCoord, m.pbrMetallicRoughness.metallicRoughnessTexture.extensions);
+  f("normalTexture", m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions);
+  f("occlusionTexture", m.occlusionTexture.index, m.occlusionTexture.texCoord, m.occlusionTexture.extensions);
+  f("emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions);
+}
+
+void scanIgnored(const tinygltf::Model& model, IgnoredFeatures& ignored) {
+  static const std::set<std::string> applied = {"KHR_materials_emissive_strength", "KHR_lights_punctual",
+                                                "KHR_mesh_quantization"};
+  for (const auto& e : model.extensionsUsed)
+    if (!applied.count(e)) ignored.add("extension " + e, "not applied (the file renders as if it were absent)");
+  for (const auto& m : model.materials) {
+    if (m.alphaMode == "BLEND") ignored.add("alpha BLEND", "drawn opaque (translucency is not rendered)");
+    forEachTextureSlot(m, [&](const char* slot, int index, int texCoord, const tinygltf::ExtensionMap& extensions) {
+      if (index < 0) return;
+      if (std::string(slot) == "occlusionTexture")
+        ignored.add("occlusionTexture", "not applied (ambient occlusion comes from the lighting path)");
+      if (texCoord != 0) ignored.add(fmt::format("TEXCOORD_{} in a {}", texCoord, slot), "sampled with TEXCOORD_0");
+      if (extensions.count("KHR_texture_transform"))
+        ignored.add("KHR_texture_transform", "texture offset, rotation and scale not applied");
+      if (size_t(index) >= model.textures.size()) return;
+      const int si = model.textures[size_t(index)].sampler;
+      if (si < 0 || size_t(si) >= model.samplers.size()) return;
+      const auto& sm = model.samplers[size_t(si)];
+      const bool repeat = sm.wrapS == TINYGLTF_TEXTURE_WRAP_REPEAT && sm.wrapT == TINYGLTF_TEXTURE_WRAP_REPEAT;
+      if (!repeat) ignored.add("sampler wrap mode clamp/mirror", "textures repeat");
+      const bool nearest = sm.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST || sm.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ||
+                           sm.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+                           sm.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
+      if (nearest) ignored.add("sampler filter NEAREST", "textures filtered linearly (trilinear, anisotropic)");
+    });
+  }
+  for (const auto& mesh : model.meshes)
+    for (const auto& p : mesh.primitives) {
+      if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) ignored.add("points, lines and strips", "primitives skipped");
+      if (p.attributes.count("COLOR_0")) ignored.add("COLOR_0", "vertex colours not multiplied into the base colour");
+      if (p.attributes.count("JOINTS_0") || p.attributes.count("WEIGHTS_0"))
+        ignored.add("skinning (JOINTS_0/WEIGHTS_0)", "meshes drawn in their bind pose");
+      for (const auto& target : p.targets)
+        if (target.count("TANGENT")) ignored.add("morph target TANGENT deltas", "tangents keep their rest pose");
+    }
+  if (!model.skins.empty() && model.meshes.empty()) ignored.add("skins", "not applied");
+  for (const auto& a : model.animations)
+    for (const auto& ch : a.channels)
+      if (ch.target_path != "weights")
+        ignored.add(fmt::format("node {} animation", ch.target_path), "not played (only morph weights are)");
+  for (const auto& c : model.cameras)
+    if (c.type == "orthographic") ignored.add("orthographic camera", "dropped (not in --camera's list)");
+  if (model.scenes.size() > 1) ignored.add("scenes besides the default", "not loaded");
+  bool sun = false;
+  for (const auto& l : model.lights) {
+    if (l.type == "directional" && !sun) {
+      sun = true;
+      continue;
+    }
+    ignored.add(fmt::format("{} light", l.type), "not shaded (the first directional light is the sun)");
+  }
 }
 
 }  // namespace
@@ -300,7 +453,10 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
 
   // Extensions the importer applies; a file that *requires* any other is refused rather than
   // shown wrongly (merely *used* extensions are ignored, as the glTF specification allows).
-  static const std::set<std::string> supported = {"KHR_materials_emissive_strength", "KHR_lights_punctual"};
+  // KHR_mesh_quantization only widens the attribute types, which the accessor reader decodes
+  // (normalized and integer components of every size).
+  static const std::set<std::string> supported = {"KHR_materials_emissive_strength", "KHR_lights_punctual",
+                                                  "KHR_mesh_quantization"};
   for (const auto& e : model.extensionsRequired)
     if (!supported.count(e)) throw SceneError(fmt::format("{}: requires the unsupported extension {}", file.string(), e));
 
@@ -309,6 +465,9 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
   scene.name = file.stem().string();
   scene.path = file;
   ImportValues values(file, scene.warnings);
+  scene.extensionsUsed = model.extensionsUsed;
+  IgnoredFeatures ignored;
+  scanIgnored(model, ignored);
 
   // Textures: one entry per (glTF texture, colour space) actually used by a material.
   TextureCache textures(model, file, options, scene);
@@ -352,11 +511,7 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
       const auto& prim = gmesh.primitives[pi];
       std::string name = gmesh.name.empty() ? fmt::format("mesh{}", mi) : gmesh.name;
       if (pi > 0) name += fmt::format("#{}", pi);
-      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
-        scene.warnings.push_back(fmt::format("{}: mesh `{}` primitive {} is not triangles (mode {}); skipped",
-                                             file.string(), name, pi, prim.mode));
-        continue;
-      }
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) continue;  // IgnoredFeatures says so
       auto pos = prim.attributes.find("POSITION");
       if (pos == prim.attributes.end()) rd.fail(fmt::format("mesh `{}` primitive {} has no POSITION", name, pi));
       Mesh mesh;
@@ -401,7 +556,8 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
           haveTangents = true;
         }
       }
-      finishVertices(mesh, haveNormals, haveTangents);
+      const size_t fileVertices = mesh.vertices.size();
+      const std::vector<uint32_t> vertexSource = finishVertices(mesh, haveNormals, haveTangents);
       // Morph targets: displacements of positions (and normals) added with weights.
       for (size_t ti = 0; ti < prim.targets.size(); ++ti) {
         MorphTarget target;
@@ -409,14 +565,17 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
         for (const auto& [attribute, index] : prim.targets[ti]) {
           if (attribute != "POSITION" && attribute != "NORMAL") continue;  // tangent deltas are not applied
           auto deltas = rd.floats<3>(index, "morph target");
-          if (deltas.size() != mesh.vertices.size())
+          if (deltas.size() != fileVertices)
             rd.fail(fmt::format("mesh `{}` morph target {} has {} {} deltas for {} vertices", name, ti, deltas.size(),
-                                attribute, mesh.vertices.size()));
+                                attribute, fileVertices));
           for (const auto& d : deltas)
             if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z) ||
                 std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}) > InputLimits::kMaxCoordinate)
               rd.fail(fmt::format("mesh `{}` morph target {} has a non-finite or out-of-range {} delta", name, ti, attribute));
-          (attribute == "POSITION" ? target.positions : target.normals) = std::move(deltas);
+          // Vertices split for their tangents take their original's deltas.
+          std::vector<glm::vec3> perVertex(mesh.vertices.size());
+          for (size_t k = 0; k < perVertex.size(); ++k) perVertex[k] = deltas[vertexSource[k]];
+          (attribute == "POSITION" ? target.positions : target.normals) = std::move(perVertex);
         }
         mesh.morphTargets.push_back(std::move(target));
       }
@@ -566,18 +725,11 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
   for (int r : roots) visit(r, glm::dmat4(1.0), 0);
 
   // Animations: channels of morph weights drive the meshes of their node's instances. Node
-  // transforms are not animated (a warning says so once per file).
-  bool warnedTransforms = false;
+  // transforms are not animated (IgnoredFeatures says so).
   for (size_t ai = 0; ai < model.animations.size(); ++ai) {
     const auto& anim = model.animations[ai];
     for (const auto& ch : anim.channels) {
-      if (ch.target_path != "weights") {
-        if (!warnedTransforms)
-          scene.warnings.push_back(fmt::format("{}: node {} animations are not played (only morph weights are)",
-                                               file.string(), ch.target_path));
-        warnedTransforms = true;
-        continue;
-      }
+      if (ch.target_path != "weights") continue;
       if (ch.sampler < 0 || size_t(ch.sampler) >= anim.samplers.size())
         rd.fail(fmt::format("animation {} has a channel with sampler {}, which does not exist", ai, ch.sampler));
       const auto& sampler = anim.samplers[size_t(ch.sampler)];
@@ -635,6 +787,7 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
   readSky(model.extras);
   if (!model.scenes.empty()) readSky(model.scenes[sceneIndex].extras);
 
+  ignored.report(scene, file);
   scene.contentHash = hashScene(scene);
   return scene;
 }

@@ -275,7 +275,7 @@ TEST(HardImport, ImagesAreLimitedBeforeTheirPixelsAreAllocated) {
   EXPECT_CONTAINS(error, "more than the 16384 per side");
   const std::string gif = "GIF89a......";
   EXPECT_FALSE(decodeImage(std::vector<uint8_t>(gif.begin(), gif.end()), t, error));
-  EXPECT_EQ(error, "neither PNG nor JPEG");
+  EXPECT_EQ(error, "neither PNG, JPEG, OpenEXR nor Radiance HDR");
 }
 
 // ---- numbers --------------------------------------------------------------------------------

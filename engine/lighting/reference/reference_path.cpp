@@ -43,6 +43,7 @@ constexpr const char* kRaygen = "reference/trace.rgen";
 constexpr const char* kIrradianceRaygen = "reference/irradiance.rgen";
 constexpr const char* kMisses[] = {"reference/trace.rmiss", "reference/shadow.rmiss"};
 constexpr const char* kClosestHit = "reference/trace.rchit";
+constexpr const char* kAnyHit = "reference/alpha.rahit";  // alpha MASK: runs on non-opaque geometry only
 
 class ReferencePath final : public LightingPath {
  public:
@@ -238,7 +239,7 @@ class ReferencePath final : public LightingPath {
       d.name = "reference.trace";
       d.raygen = kRaygen;
       d.misses.assign(std::begin(kMisses), std::end(kMisses));
-      d.hitGroups = {{kClosestHit, ""}};
+      d.hitGroups = {{kClosestHit, kAnyHit}};
       d.layout.bindings = {{shared::kRefBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                            {shared::kRefBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
                            {shared::kRefBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
@@ -272,6 +273,8 @@ class ReferencePath final : public LightingPath {
   static gpu::TriangleGeometry meshGeometry(FrameInputs& in, uint32_t m) {
     const auto& r = in.scene.meshRanges()[m];
     gpu::TriangleGeometry g;
+    // Cut-out materials need the any-hit shader; everything else stays opaque (no any-hit calls).
+    g.opaque = !in.scene.meshAlphaTested(m);
     g.vertices = in.scene.vertexBuffer().address() + VkDeviceAddress(r.vertexOffset) * sizeof(scene::Vertex);
     g.vertexStride = sizeof(scene::Vertex);
     g.vertexCount = r.vertexCount;
@@ -367,6 +370,7 @@ std::vector<std::string> referenceShaders() {
   std::vector<std::string> all{kRaygen, kIrradianceRaygen};
   all.insert(all.end(), std::begin(kMisses), std::end(kMisses));
   all.push_back(kClosestHit);
+  all.push_back(kAnyHit);
   return all;
 }
 

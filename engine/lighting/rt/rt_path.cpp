@@ -10,6 +10,7 @@
 #include "lighting/rt/blue_noise.h"
 #include "lighting/rt/rt_path.h"
 #include "lighting/rt/rt_scene.h"
+#include "shared/scene.h"
 
 #include <fmt/format.h>
 
@@ -20,6 +21,9 @@ using graph::Usage;
 using shared::RtPush;
 
 constexpr VkImageLayout kReadOnly = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
+// Alpha MASK for every ray that meets the scene: invoked only on geometry built without
+// VK_GEOMETRY_OPAQUE_BIT (meshes whose material cuts itself out), so opaque scenes never pay.
+constexpr const char* kAnyHit = "rt/alpha.rahit";
 
 // The temporal accumulation (SH, chroma, AO, depth, luma moment) and last frame's radiance
 // that hits on screen reuse. Camera motion is reprojected, except a cut; a new scene or a
@@ -361,7 +365,7 @@ class RtPath final : public LightingPath {
               .storageImage(shared::kRtBindingHitsOut, ctx.image(r.hits).view())
               .storageImage(shared::kRtBindingSurfaceOut, ctx.image(r.hitSurface).view())
               .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle());
-          traceRays(ctx, trace_, in);
+          traceRays(ctx, trace_, in, &in.scene);
         });
 
     graph.addPass(
@@ -399,8 +403,9 @@ class RtPath final : public LightingPath {
               .storageImage(shared::kRtBindingAo, ctx.image(r.ao).view())
               .sampledImage(shared::kRtBindingFirstShY, firstRay(first ? first->shY : nullptr), pt, kReadOnly)
               .sampledImage(shared::kRtBindingFirstCoCg, firstRay(first ? first->coCg : nullptr), pt, kReadOnly)
-              .sampledImage(shared::kRtBindingFirstAo, firstRay(first ? first->ao : nullptr), pt, kReadOnly);
-          traceRays(ctx, lighting_, in);
+              .sampledImage(shared::kRtBindingFirstAo, firstRay(first ? first->ao : nullptr), pt, kReadOnly)
+              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle());
+          traceRays(ctx, lighting_, in, &in.scene);
         });
   }
 
@@ -435,7 +440,7 @@ class RtPath final : public LightingPath {
               .storageImage(shared::kRtBindingCellShY, ctx.image(kCellShY).view())
               .storageImage(shared::kRtBindingCellCoCgAo, ctx.image(kCellCoCgAo).view())
               .storageImage(shared::kRtBindingCellPosition, ctx.image(kCellOrigin).view());
-          traceRays(ctx, disocclusion_, cw, ch);
+          traceRays(ctx, disocclusion_, cw, ch, &in.scene);
         });
     const uint32_t w = in.settings.width, h = in.settings.height;
     graph.addPass(
@@ -575,13 +580,92 @@ class RtPath final : public LightingPath {
   static uint32_t tracedHeight(const FrameInputs& in) {
     return rtRayPattern(in.settings) == shared::kRtRaysHalfResolution ? (in.settings.height + 1) / 2 : in.settings.height;
   }
-  static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, FrameInputs& in) {
-    traceRays(ctx, p, tracedWidth(in), tracedHeight(in));
+  static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, FrameInputs& in,
+                        const scene::GpuScene* sceneTable = nullptr) {
+    traceRays(ctx, p, tracedWidth(in), tracedHeight(in), sceneTable);
   }
-  static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, uint32_t width, uint32_t height) {
+  // `sceneTable`: bind the scene's descriptor table for pipelines with an any-hit shader.
+  static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, uint32_t width, uint32_t height,
+                        const scene::GpuScene* sceneTable = nullptr) {
     ctx.flushDescriptors();
+    if (sceneTable) sceneTable->table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, p.layout(), shared::kSceneSet);
     ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion, width,
                                   height, 1);
+  }
+
+  // The pipelines that trace the scene: their any-hit shader (alpha MASK) reads the scene's
+  // materials and textures, so their layouts name this scene's descriptor-table layout and are
+  // built again with each scene (as the reference's are).
+  void createRayPipelines(FrameInputs& in) {
+    using B = gpu::Binding;
+    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    const std::vector<B> common = {{shared::kRtBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                   {shared::kRtBindingBlueNoise, sampled},
+                                   {shared::kRtBindingDepth, sampled},
+                                   {shared::kRtBindingNormal, sampled}};
+    auto with = [&](std::vector<B> extra) {
+      gpu::PipelineLayoutDesc l;
+      l.bindings = common;
+      l.bindings.insert(l.bindings.end(), extra.begin(), extra.end());
+      l.pushConstantBytes = sizeof(RtPush);
+      l.extraSets = {in.scene.table().layout()};
+      return l;
+    };
+    {
+      gpu::RayTracingPipelineDesc d;
+      d.name = "rt.trace";
+      d.raygen = "rt/trace.rgen";
+      d.misses = {"rt/trace.rmiss"};
+      d.hitGroups = {{"rt/trace.rchit", kAnyHit}};
+      d.layout = with({{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+                       {shared::kRtBindingHitsIn, storage},
+                       {shared::kRtBindingSurfaceIn, storage},
+                       {shared::kRtBindingHitsOut, storage},
+                       {shared::kRtBindingSurfaceOut, storage},
+                       {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
+      trace_ = gpu::createRayTracingPipeline(in.device, d);
+    }
+    const std::vector<B> hitLighting = {{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+                                        {shared::kRtBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                        {shared::kRtBindingHistRadiance, sampled},
+                                        {shared::kRtBindingHistDepth, sampled},
+                                        {shared::kRtBindingBaseColor, sampled},
+                                        {shared::kRtBindingMaterial, sampled},
+                                        {shared::kRtBindingEmissive, sampled}};
+    {
+      gpu::RayTracingPipelineDesc d;
+      d.name = "rt.lighting";
+      d.raygen = "rt/lighting.rgen";
+      d.misses = {"rt/shadow.rmiss"};
+      d.hitGroups = {{"", kAnyHit}};  // shadow rays skip closest hits; cut-outs still let them through
+      std::vector<B> extra = hitLighting;
+      extra.insert(extra.end(), {{shared::kRtBindingHitsIn, storage},
+                                 {shared::kRtBindingSurfaceIn, storage},
+                                 {shared::kRtBindingShY, storage},
+                                 {shared::kRtBindingCoCg, storage},
+                                 {shared::kRtBindingAo, storage},
+                                 {shared::kRtBindingFirstShY, sampled},
+                                 {shared::kRtBindingFirstCoCg, sampled},
+                                 {shared::kRtBindingFirstAo, sampled},
+                                 {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
+      d.layout = with(extra);
+      lighting_ = gpu::createRayTracingPipeline(in.device, d);
+    }
+    {
+      gpu::RayTracingPipelineDesc d;
+      d.name = "rt.disocclusion";
+      d.raygen = "rt/disocclusion.rgen";
+      d.misses = {"rt/shadow.rmiss", "rt/disocclusion.rmiss"};  // hit_lighting.glsl: the shadow miss is 0
+      d.hitGroups = {{"rt/disocclusion.rchit", kAnyHit}};
+      std::vector<B> extra = hitLighting;
+      extra.insert(extra.end(), {{shared::kRtBindingCoCg, sampled},
+                                 {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                 {shared::kRtBindingCellShY, storage},
+                                 {shared::kRtBindingCellCoCgAo, storage},
+                                 {shared::kRtBindingCellPosition, storage}});
+      d.layout = with(extra);
+      disocclusion_ = gpu::createRayTracingPipeline(in.device, d);
+    }
   }
 
   // Scene geometry, blue noise and pipelines: once per scene (and RT mesh ratio).
@@ -592,6 +676,7 @@ class RtPath final : public LightingPath {
                                          in.settings.rtSimplifyError);
       sceneId_ = in.scene.id();
       albedoVersion_ = ~0ull;
+      createRayPipelines(in);
     }
     const uint32_t materials = uint32_t(in.settings.materials);
     if (albedoVersion_ != in.instanceAlbedoVersion || materials_ != materials) {
@@ -668,59 +753,6 @@ class RtPath final : public LightingPath {
     aoFilter_ = compute("rt.ao.filter", "rt/ao_filter.comp",
                         {{shared::kRtBindingCoCg, sampled}, {shared::kRtBindingHistDepth, sampled},
                          {shared::kRtBindingAo, storage}});
-    {
-      gpu::RayTracingPipelineDesc d;
-      d.name = "rt.trace";
-      d.raygen = "rt/trace.rgen";
-      d.misses = {"rt/trace.rmiss"};
-      d.hitGroups = {{"rt/trace.rchit", ""}};
-      d.layout = with({{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-                       {shared::kRtBindingHitsIn, storage},
-                       {shared::kRtBindingSurfaceIn, storage},
-                       {shared::kRtBindingHitsOut, storage},
-                       {shared::kRtBindingSurfaceOut, storage},
-                       {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
-      trace_ = gpu::createRayTracingPipeline(in.device, d);
-    }
-    const std::vector<B> hitLighting = {{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-                                        {shared::kRtBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                        {shared::kRtBindingHistRadiance, sampled},
-                                        {shared::kRtBindingHistDepth, sampled},
-                                        {shared::kRtBindingBaseColor, sampled},
-                                        {shared::kRtBindingMaterial, sampled},
-                                        {shared::kRtBindingEmissive, sampled}};
-    {
-      gpu::RayTracingPipelineDesc d;
-      d.name = "rt.lighting";
-      d.raygen = "rt/lighting.rgen";
-      d.misses = {"rt/shadow.rmiss"};
-      std::vector<B> extra = hitLighting;
-      extra.insert(extra.end(), {{shared::kRtBindingHitsIn, storage},
-                                 {shared::kRtBindingSurfaceIn, storage},
-                                 {shared::kRtBindingShY, storage},
-                                 {shared::kRtBindingCoCg, storage},
-                                 {shared::kRtBindingAo, storage},
-                                 {shared::kRtBindingFirstShY, sampled},
-                                 {shared::kRtBindingFirstCoCg, sampled},
-                                 {shared::kRtBindingFirstAo, sampled}});
-      d.layout = with(extra);
-      lighting_ = gpu::createRayTracingPipeline(in.device, d);
-    }
-    {
-      gpu::RayTracingPipelineDesc d;
-      d.name = "rt.disocclusion";
-      d.raygen = "rt/disocclusion.rgen";
-      d.misses = {"rt/shadow.rmiss", "rt/disocclusion.rmiss"};  // hit_lighting.glsl: the shadow miss is 0
-      d.hitGroups = {{"rt/disocclusion.rchit", ""}};
-      std::vector<B> extra = hitLighting;
-      extra.insert(extra.end(), {{shared::kRtBindingCoCg, sampled},
-                                 {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                 {shared::kRtBindingCellShY, storage},
-                                 {shared::kRtBindingCellCoCgAo, storage},
-                                 {shared::kRtBindingCellPosition, storage}});
-      d.layout = with(extra);
-      disocclusion_ = gpu::createRayTracingPipeline(in.device, d);
-    }
     disocclusionBlend_ = compute("rt.disocclusion.blend", "rt/disocclusion_blend.comp",
                                  {{shared::kRtBindingShY, sampled}, {shared::kRtBindingCoCg, sampled},
                                   {shared::kRtBindingCellShY, sampled}, {shared::kRtBindingCellCoCgAo, sampled},
