@@ -109,23 +109,24 @@ void main() {
     // diameter grows, their path bends away from the surface: it runs `bend` per unit of t.
     const float growth = 2.0 * kLegacyConeTanHalfAperture;
     float bend = length(dir + n * (1.5 * growth));
-    // Past kLegacyConeMaxDiameter voxels the cone stops widening (shared/legacy.h).
-    float maxDiameter = voxel * kLegacyConeMaxDiameter;
     float t = voxel;
     while (t < push.coneRange && occlusion < kConeOpaque) {
-      float diameter = clamp(growth * t, voxel, maxDiameter);
+      float diameter = max(growth * t, voxel);
       VoxelSample s = sampleClipmap(origin + dir * t + n * (1.5 * diameter), dir, diameter);
       // Consecutive samples lie at most one texel of the finer mip they read apart along
-      // their path (coneStep of one), so a solid texel between them always adds its whole
-      // optical depth (shared/legacy.h); steps of a whole diameter along a bent path were up
-      // to 2.7 such texels, and walls one voxel thick let light through. Optical depth is per
-      // texel of the fetch: scaled to the path length a sample stands for.
+      // their bent path (coneStep of one): a solid texel between them always adds its
+      // optical depth (shared/legacy.h). Steps of a whole diameter along the bent path were
+      // up to 2.7 such texels and skipped walls one voxel thick. The optical depth a sample
+      // adds is per texel of its fetch, scaled to the distance the cone itself advances (its
+      // axis, not the bent path, which is an offset against self-occlusion: counting the
+      // path's length over-darkened the AO, 0.13 -> 0.20 mean error on cornell).
       float advance = push.coneStep * s.finest;
-      float a = tlLegacyOpacity(s.depth * advance / s.texel);
+      float dt = advance / (growth * t > voxel ? bend : 1.0);
+      float a = tlLegacyOpacity(s.depth * dt / s.texel);
       gathered += (1.0 - occlusion) * s.radiance * a;
       occlusion += (1.0 - occlusion) * a;
       if (t < push.aoRadius) aoOcclusion = occlusion;
-      t += advance / (growth * t > voxel && growth * t < maxDiameter ? bend : 1.0);
+      t += dt;
     }
     // A cone that stopped on what it met (occlusion past the threshold) gives the little it
     // did not resolve the light of what it met; only a cone that left the clipmap or its

@@ -28,13 +28,6 @@ TL_CONST uint kLegacyMaxLevels = 4u;
 // Each cone's radiance is projected into the RT path's SH layout with the RT sample weight
 // w / (1/4 + cos/2), so the SH resolves to exactly sum(w L) at the pixel's normal.
 TL_CONST float kLegacyConeTanHalfAperture = 0.57735f;  // 60 degree cones
-// The cones stop widening at this many finest voxels (and go on as cylinders, sampled every
-// voxel or so of the mip they read). A coarse mip texel holds what its block looks like from
-// outside: a cone inside a room, reading a texel as large as the room, sees the sunlit roof
-// or the room next door through the walls. Measured on a closed room beside a sunlit one
-// (tests/gpu/test_legacy_leaks.cpp, voxels 0.134 m, rooms 4 m): the closed room's light was 2.0 %
-// of the lit room's uncapped, 2.0 % at 16 voxels, 0.8 % at 8, 0.2 % at 4.
-TL_CONST float kLegacyConeMaxDiameter = 4.0f;
 TL_CONST float kLegacyConeRingTilt = 0.95993f;         // 55 degrees: six cones cover the hemisphere
 TL_CONST float kLegacyConeRingCos = 0.57358f;          // cos(55 degrees)
 TL_CONST float kLegacyConeAxisWeight = 0.81222f;       // pi / (1 + 5 cos(55 deg))
