@@ -114,18 +114,20 @@ void main() {
       float diameter = max(growth * t, voxel);
       VoxelSample s = sampleClipmap(origin + dir * t + n * (1.5 * diameter), dir, diameter);
       // Consecutive samples lie at most one texel of the finer mip they read apart along
-      // their bent path (coneStep of one): a solid texel between them always adds its
-      // optical depth (shared/legacy.h). Steps of a whole diameter along the bent path were
-      // up to 2.7 such texels and skipped walls one voxel thick. The optical depth a sample
-      // adds is per texel of its fetch, scaled to the distance the cone itself advances (its
-      // axis, not the bent path, which is an offset against self-occlusion: counting the
-      // path's length over-darkened the AO, 0.13 -> 0.20 mean error on cornell).
+      // their bent path (coneStep of one), and each adds the optical depth of the path
+      // length it stands for (the depth read is per texel of its fetch): a solid texel
+      // crossed by the path always adds its whole depth (shared/legacy.h), so a wall one
+      // voxel thick stops the cone. Steps of a whole diameter along the bent path were up to
+      // 2.7 such texels and skipped walls.
       float advance = push.coneStep * s.finest;
       float dt = advance / (growth * t > voxel ? bend : 1.0);
-      float a = tlLegacyOpacity(s.depth * dt / s.texel);
+      float a = tlLegacyOpacity(s.depth * advance / s.texel);
       gathered += (1.0 - occlusion) * s.radiance * a;
       occlusion += (1.0 - occlusion) * a;
-      if (t < push.aoRadius) aoOcclusion = occlusion;
+      // Voxel AO counts the depth per distance the cone itself advances (its axis; the bend
+      // is an offset against self-occlusion): the bent path's length over-darkened it (mean
+      // AO error on cornell 0.13 -> 0.20).
+      if (t < push.aoRadius) aoOcclusion += (1.0 - aoOcclusion) * tlLegacyOpacity(s.depth * dt / s.texel);
       t += dt;
     }
     // A cone that stopped on what it met (occlusion past the threshold) gives the little it
