@@ -16,14 +16,12 @@ layout(set = 0, binding = kLegacyBindingConeCoCgAo, rgba16f) uniform writeonly i
 
 
 struct VoxelSample {
-  vec3 radiance;  // averaged by optical depth (not premultiplied)
-  float depth;    // optical depth per texel of the fetch, in units of a solid voxel's (shared/legacy.h)
-  float texel;    // the fetch's texel size (m): between its two mips' above lod 1
-  float finest;   // the texel size of the finer of the mips it blends (m)
+  vec3 radiance;  // premultiplied by coverage
+  float opacity;
 };
 
 // The faces that look back along -dir (towards the cone's apex), weighted by dir's squared
-// components: radiance x optical depth (rgb) and optical depth (a). Axes with under 10% of the weight
+// components: premultiplied radiance (rgb) and opacity (a). Axes with under 10% of the weight
 // (more than 72 degrees from the cone) are left out: each face is a trilinear tap across two
 // mips, the cones' whole cost on lavapipe, and those faces barely change the image (see
 // docs/performance.md, legacy section).
@@ -52,9 +50,7 @@ VoxelSample sampleClipmap(vec3 position, vec3 dir, float diameter) {
   }
   VoxelSample s;
   s.radiance = vec3(0.0);
-  s.depth = 0.0;
-  s.texel = diameter;
-  s.finest = diameter;
+  s.opacity = 0.0;
   if (level >= c.levels) return s;  // outside the clipmap: empty (the sky)
   vec3 uvw = (position - c.levelMin[level].xyz) / (c.levelMin[level].w * R);
   float lod = clamp(lodGlobal - float(level), 0.0, float(c.mipCount));
@@ -64,16 +60,10 @@ VoxelSample sampleClipmap(vec3 position, vec3 dir, float diameter) {
   // Mip 0 lives in its own image: below lod 1 it is read alone (no blend across images).
   vec4 v = lod < 1.0 ? facesTowards(dir, uvw, 0.0, false, level, c.levels)
                      : facesTowards(dir, uvw, lod - 1.0, true, level, c.levels);
-  float voxel = c.levelMin[level].w;
-  s.texel = lod < 1.0 ? voxel : voxel * exp2(lod);
-  s.finest = lod < 1.0 ? voxel : voxel * exp2(floor(lod));
-  s.depth = v.a;
-  s.radiance = v.a > 1e-6 ? v.rgb / v.a : vec3(0.0);
+  s.radiance = v.rgb;
+  s.opacity = v.a;
   return s;
 }
-
-// Occlusion at which a cone stops: what is left behind it is not worth the steps.
-const float kConeOpaque = 0.95;
 
 void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);
@@ -103,38 +93,22 @@ void main() {
     vec3 dir = basis * local;
     vec3 gathered = vec3(0.0);
     float occlusion = 0.0, aoOcclusion = 0.0;
-    // Samples keep 1.5 times their own size off the surface: a coarse voxel holding the
-    // surface would otherwise occlude the cone with the surface it starts from (the surface
-    // may lie anywhere in its voxel, and trilinear taps reach one voxel further). So once the
-    // diameter grows, their path bends away from the surface: it runs `bend` per unit of t.
-    const float growth = 2.0 * kLegacyConeTanHalfAperture;
-    float bend = length(dir + n * (1.5 * growth));
     float t = voxel;
-    while (t < push.coneRange && occlusion < kConeOpaque) {
-      float diameter = max(growth * t, voxel);
+    while (t < push.coneRange && occlusion < 0.95) {
+      float diameter = max(2.0 * t * kLegacyConeTanHalfAperture, voxel);
+      // Samples keep 1.5 times their own size off the surface: a coarse voxel holding the
+      // surface would otherwise occlude the cone with the surface it starts from (the
+      // surface may lie anywhere in its voxel, and trilinear taps reach one voxel further).
       VoxelSample s = sampleClipmap(origin + dir * t + n * (1.5 * diameter), dir, diameter);
-      // Consecutive samples lie at most one texel of the finer mip they read apart along
-      // their bent path (coneStep of one), and each adds the optical depth of the path
-      // length it stands for (the depth read is per texel of its fetch): a solid texel
-      // crossed by the path always adds its whole depth (shared/legacy.h), so a wall one
-      // voxel thick stops the cone. Steps of a whole diameter along the bent path were up to
-      // 2.7 such texels and skipped walls.
-      float advance = push.coneStep * s.finest;
-      float dt = advance / (growth * t > voxel ? bend : 1.0);
-      float a = tlLegacyOpacity(s.depth * advance / s.texel);
-      gathered += (1.0 - occlusion) * s.radiance * a;
+      // Opacity is per voxel-sized step: correct it for the actual step length.
+      float stepLength = diameter * push.coneStep;
+      float a = 1.0 - pow(max(1.0 - s.opacity, 0.0), stepLength / diameter);
+      gathered += (1.0 - occlusion) * s.radiance * (a / max(s.opacity, 1e-4));
       occlusion += (1.0 - occlusion) * a;
-      // Voxel AO counts the depth per distance the cone itself advances (its axis; the bend
-      // is an offset against self-occlusion): the bent path's length over-darkened it (mean
-      // AO error on cornell 0.13 -> 0.20).
-      if (t < push.aoRadius) aoOcclusion += (1.0 - aoOcclusion) * tlLegacyOpacity(s.depth * dt / s.texel);
-      t += dt;
+      if (t < push.aoRadius) aoOcclusion = occlusion;
+      t += stepLength;
     }
-    // A cone that stopped on what it met (occlusion past the threshold) gives the little it
-    // did not resolve the light of what it met; only a cone that left the clipmap or its
-    // range sees the sky with what it has left. (The sky there was a leak: 5 % of the sky in
-    // every cone of a closed room.)
-    vec3 radiance = occlusion >= kConeOpaque ? gathered / occlusion : gathered + (1.0 - occlusion) * frame.skyRadiance.rgb;
+    vec3 radiance = gathered + (1.0 - occlusion) * frame.skyRadiance.rgb;
     float w = i == 0 ? wAxis : wRing;
     float cosTheta = local.z;
     sh = tlShAdd(sh, tlShScale(tlShProjectRadiance(dir, radiance), w / (0.25 + 0.5 * cosTheta)));

@@ -3,7 +3,7 @@
 // region is the whole level; a partial update's, the footprint of what it re-voxelized). For
 // the face block pointing along +a (or -a), the two children along a are composited front to
 // back as seen from that side (premultiplied radiance rgb, opacity a), then the four such
-// pairs are averaged and stored as optical depth (shared/legacy.h): a thin wall perpendicular to a stays opaque at every level, and a cone
+// pairs are averaged: a thin wall perpendicular to a stays opaque at every level, and a cone
 // sees what lies nearest to it first (VXGI's anisotropic voxels). Levels and face blocks are
 // powers of two in size, so children never straddle two blocks, and the children of texel d
 // sit at 2d + o in the source whatever the face or level.
@@ -31,8 +31,8 @@ void main() {
     ivec3 nearChild = 2 * d + o, farChild = 2 * d + o;
     nearChild[axis] += front;
     farChild[axis] += 1 - front;
-    sum += tlLegacyVoxelOver(imageLoad(src, nearChild), imageLoad(src, farChild));
+    vec4 a = imageLoad(src, nearChild), b = imageLoad(src, farChild);
+    sum += a + (1.0 - a.a) * b;
   }
-  // Across the axis the pairs cover the footprint side by side: their opacities average.
-  imageStore(dst, d, tlLegacyVoxelFromPremultiplied(sum * 0.25));
+  imageStore(dst, d, sum * 0.25);
 }

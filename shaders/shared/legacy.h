@@ -8,8 +8,7 @@
 // stacked along z in one 3D image: level l occupies z in [l R, (l+1) R).
 //   voxels: 6R x R x (N R), rgba16f, anisotropic: face block f (x in [f R, (f+1) R)) holds,
 //           for direction +x, -x, +y, -y, +z, -z, the diffuse radiance the voxel sends that
-//           way times its optical depth (rgb) and its optical depth seen from that side (a),
-//           in units of a solid voxel's (see kLegacyOpaqueDepth). A thin wall's lit and unlit sides land
+//           way (rgb, premultiplied by opacity) and its opacity seen from that side (a). A thin wall's lit and unlit sides land
 //             in opposite faces of the same voxel, so a cone from inside sees the unlit one:
 //             that is what keeps light from leaking through walls one voxel thick. Mips
 //             composite the two children along each face's axis front to back (opacity and
@@ -38,39 +37,6 @@ TL_FN float tlLegacyOpenSkyDirectionality() {
   float c = kLegacyConeRingCos;
   float fa = 1.0f / 0.75f, fr = c / (0.25f + 0.5f * c);
   return (fa + 5.0f * fr * c) / (fa + 5.0f * fr);
-}
-
-// What a voxel face holds: optical depth instead of opacity, in units of a solid voxel's
-// (d = tau / kLegacyOpaqueDepth, opacity = 1 - e^-tau), and its radiance times d (so a
-// filtered fetch divided by its filtered d is the radiance averaged by optical depth; a solid
-// voxel holds (radiance, 1), as fp16 as the radiance itself). Why: the cones step about one
-// texel along their axis and fetch trilinearly, so a solid wall one texel thick is met by two
-// fetches that each see part of it (weights f and 1 - f). Composited as opacities the two
-// transmit f (1 - f), up to a quarter of the light behind the wall: light leaks into closed
-// rooms. Interpolated as optical depth, the two fetches' depths add up to the wall's whole
-// depth whatever f is (linear weights at unit spacing sum to one): the wall transmits e^-tau.
-TL_CONST float kLegacyOpaqueDepth = 8.0f;  // tau of a solid voxel: transmittance e^-8 = 3.4e-4
-TL_FN float tlLegacyOpacity(float depth) { return 1.0f - exp(-kLegacyOpaqueDepth * depth); }
-TL_FN float tlLegacyDepth(float opacity) {
-  return min(-log(max(1.0f - opacity, exp(-kLegacyOpaqueDepth))) / kLegacyOpaqueDepth, 1.0f);
-}
-// A voxel face as stored (radiance x d, d) from premultiplied radiance (rgb) and opacity (a).
-TL_FN vec4 tlLegacyVoxelFromPremultiplied(vec4 premultiplied) {
-  float depth = tlLegacyDepth(premultiplied.w);
-  vec3 radiance = premultiplied.w > 0.0f ? vec3(premultiplied) / premultiplied.w : vec3(0.0f);
-  return vec4(radiance * depth, depth);
-}
-// And back: premultiplied radiance (rgb) and opacity (a).
-TL_FN vec4 tlLegacyVoxelToPremultiplied(vec4 voxel) {
-  float opacity = tlLegacyOpacity(voxel.w);
-  vec3 radiance = voxel.w > 0.0f ? vec3(voxel) / voxel.w : vec3(0.0f);
-  return vec4(radiance * opacity, opacity);
-}
-// Two voxels along a face's axis seen from that face's side, nearest first: front-to-back
-// compositing, premultiplied radiance (rgb) and opacity (a).
-TL_FN vec4 tlLegacyVoxelOver(vec4 nearVoxel, vec4 farVoxel) {
-  vec4 a = tlLegacyVoxelToPremultiplied(nearVoxel), b = tlLegacyVoxelToPremultiplied(farVoxel);
-  return a + (1.0f - a.w) * b;
 }
 
 struct LegacyClipmap {

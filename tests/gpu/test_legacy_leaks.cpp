@@ -73,11 +73,11 @@ class LegacyLeakTest : public GpuTest {
 };
 
 // The lit room first, so the voxels hold its light (and, through the screen, its bounces),
-// then the closed room from inside. Measured: closed room 4.5 % of the lit room (10.4 % before
-// this branch). The goal, under 1 %, is not reached: what is left comes through coarse mips,
-// whose texels blend both sides of a wall, and the bent sample path (docs/accuracy.md); the
-// bound guards what was fixed.
-TEST_F(LegacyLeakTest, LittleLightReachesAClosedRoomBesideASunlitOne) {
+// then the closed room from inside; the truth there is black. Measured on lavapipe: closed
+// room 10.4 % of the lit room's mean. The goal (under 1 %) is NOT met: docs/accuracy.md,
+// "Light leaking into closed rooms", lists what was tried and what each did. The bound keeps
+// it from getting worse.
+TEST_F(LegacyLeakTest, ClosedRoomBesideASunlitOneLeakIsBounded) {
   auto& s = session();
   auto scene = makeTwoRooms();
   const LegacyClipmapFit fit = fitLegacyClipmap(scene->bounds, glm::dvec3(0.0), s.settings().legacyVoxelResolution,
@@ -98,14 +98,13 @@ TEST_F(LegacyLeakTest, LittleLightReachesAClosedRoomBesideASunlitOne) {
   RecordProperty("closed_room_mean", std::to_string(closed));
   std::printf("two rooms: lit room %.5f, closed room %.5f, ratio %.5f\n", lit, closed, closed / lit);
   ASSERT_GT(lit, 0.1);
-  EXPECT_LT(closed, 0.06 * lit) << "closed " << closed << " lit " << lit;
+  EXPECT_LT(closed, 0.12 * lit) << "closed " << closed << " lit " << lit;
 }
 
 // The same on the project's content/twin_rooms.gltf (walls 1.8 finest voxels thick, the lit
 // room lit through a doorway, so far dimmer than the room above): camera 0 in the lit room,
-// camera 1 in the closed one. Measured: 17.6 % (48 % before this branch); the goal of 1 % is
-// not reached (see above).
-TEST_F(LegacyLeakTest, TwinRoomsClosedRoomIsDarkerThanBefore) {
+// camera 1 in the closed one. Measured: 48.0 %; the goal (1 %) is not met (see above).
+TEST_F(LegacyLeakTest, TwinRoomsClosedRoomLeakIsBounded) {
   auto& s = session();
   s.loadScene(contentFile("twin_rooms.gltf"));
   s.setPath("legacy");
@@ -121,7 +120,7 @@ TEST_F(LegacyLeakTest, TwinRoomsClosedRoomIsDarkerThanBefore) {
   RecordProperty("closed_room_mean", std::to_string(closed));
   std::printf("twin_rooms: lit room %.5f, closed room %.5f, ratio %.5f\n", lit, closed, closed / lit);
   ASSERT_GT(lit, 0.01);
-  EXPECT_LT(closed, 0.25 * lit) << "closed " << closed << " lit " << lit;
+  EXPECT_LT(closed, 0.55 * lit) << "closed " << closed << " lit " << lit;
 }
 
 // Voxel-sized steps. The criterion: along every row and column of a flat wall's pixels, the
@@ -183,7 +182,7 @@ TEST(LegacyStepContrast, MeasuresAStepAndIgnoresARamp) {
 
 // The lit room's far wall (x = -4, facing +x) is flat and gets no sun, only sky and bounce
 // light, so the truth on it is smooth; a voxel is ~3.4 pixels here. Measured: worst step
-// 1.26 %, 99th percentile 0.68 % (before this branch's cone changes 0.91 % and 0.39 %).
+// 0.91 %, 99th percentile 0.39 %.
 TEST_F(LegacyLeakTest, NoVoxelSizedStepsOnAFlatWall) {
   auto& s = session();
   s.installScene(makeTwoRooms());
