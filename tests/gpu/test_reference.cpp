@@ -426,6 +426,14 @@ TEST_F(ReferenceTest, DepthSplitSumsToTheRadianceAndRunsOnDemand) {
     s.requestBuffer("reference.radiance");
     s.renderFrames(1);
   }
+  double traceMs = 0.0, splitMs = 0.0;
+  for (const auto& t : s.timings()) {
+    if (t.pass == "reference.trace") traceMs = t.gpuMs;
+    if (t.pass == "reference.bounces") splitMs = t.gpuMs;
+  }
+  std::printf("last frame: reference.trace %.2f ms, reference.bounces %.2f ms (%.2fx)\n", traceMs, splitMs,
+              splitMs / std::max(traceMs, 1e-9));
+  EXPECT_GT(splitMs, 0.0) << "the split ran in a frame that read it";
   const auto radiance = s.buffer("reference.radiance").texels();
   std::vector<std::vector<float>> parts;
   for (const auto& g : groups) parts.push_back(s.buffer(g).texels());
