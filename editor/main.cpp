@@ -379,10 +379,10 @@ void printCompareReport(const nlohmann::json& report, const std::vector<tl::sess
                figure(p["FLIP"]), figure(p["HDR-FLIP"]));
   fmt::print("exposure-normalised (both images x{:.4g}: the reference's mean Y {:.4g} -> 0.18)\n",
              report["reference"]["normalisation"].get<double>(), report["reference"]["meanLuminance"].get<double>());
-  fmt::print("{:10} {:>11} {:>11} {:>11}\n", "path", "relMSE_norm", "RMSE_norm", "FLIP_norm");
+  fmt::print("{:10} {:>11} {:>11} {:>11} {:>10}\n", "path", "relMSE_norm", "RMSE_norm", "FLIP_norm", "mean ratio");
   for (auto& p : report["paths"])
-    fmt::print("{:10} {:11.4f} {:11.4f} {:11.4f}\n", p["path"].get<std::string>(), figure(p["relMSE_norm"]),
-               figure(p["RMSE_norm"]), figure(p["FLIP_norm"]));
+    fmt::print("{:10} {:11.4f} {:11.4f} {:11.4f} {:10.3f}\n", p["path"].get<std::string>(), figure(p["relMSE_norm"]),
+               figure(p["RMSE_norm"]), figure(p["FLIP_norm"]), figure(p.value("meanRatio", nlohmann::json())));
   fmt::print("per stage (surface pixels)  {:>13} {:>18}\n", "AO abs error", "irradiance relMSE");
   for (auto& p : report["paths"])
     if (p["stages"].contains("ao"))
@@ -397,6 +397,34 @@ void printCompareReport(const nlohmann::json& report, const std::vector<tl::sess
     fmt::print("reference bounces: {}\n", ref["bouncePolicy"].get<std::string>());
   }
   fmt::print("materials: {}\n", ref["materials"].get<std::string>());
+  // Per bounce: which share of each depth group of the reference each path holds.
+  bool anyBounces = false;
+  for (auto& p : report["paths"]) anyBounces |= p.contains("bounces") && p["bounces"].contains("groups");
+  anyBounces = anyBounces && report["reference"].contains("byDepth");
+  if (anyBounces) {
+    const auto share = [](const nlohmann::json& v) { return v.is_number() ? fmt::format("{:.1f}%", 100.0 * v.get<double>()) : std::string("-"); };
+    std::string header = fmt::format("{:10}", "captured");
+    for (auto& g : report["reference"]["byDepth"]["groups"])
+      header += fmt::format(" {:>17}", fmt::format("{} ({})", g["group"].get<std::string>(), share(g["shareOfReference"])));
+    fmt::print("per bounce (share of each depth group's light a path holds; the group's share of the reference)\n{} {:>8}\n",
+               header, "excess");
+    for (auto& p : report["paths"]) {
+      if (!p.contains("bounces") || !p["bounces"].contains("groups")) continue;
+      std::string row = fmt::format("{:10}", p["path"].get<std::string>());
+      for (auto& g : p["bounces"]["groups"]) row += fmt::format(" {:>17}", share(g["captured"]));
+      fmt::print("{} {:>8}\n", row, share(p["bounces"]["excess"]));
+    }
+    fmt::print("missing light per bounce (a fraction of the reference's light)\n");
+    for (auto& p : report["paths"]) {
+      if (!p.contains("bounces") || !p["bounces"].contains("groups")) continue;
+      std::string row = fmt::format("{:10}", p["path"].get<std::string>());
+      for (auto& g : p["bounces"]["groups"]) row += fmt::format(" {:>17}", share(g["missing"]));
+      fmt::print("{}\n", row);
+    }
+    for (auto& p : report["paths"])
+      if (p.contains("bounces") && p["bounces"].contains("summary"))
+        fmt::print("{}: {}\n", p["path"].get<std::string>(), p["bounces"]["summary"].get<std::string>());
+  }
   if (report.contains("gate")) {
     const auto& gate = report["gate"];
     for (auto& f : gate["failures"])

@@ -79,11 +79,15 @@ double flicker(const Image& previous, const Image& current, const Image& motion)
   return n > 0 && level > 0.0 ? change / level : 0.0;
 }
 
-double exposureNormalisation(const Image& reference) {
-  const std::vector<double> y = luminance(reference);
+double meanLuminance(const Image& image) {
+  const std::vector<double> y = luminance(image);
   double sum = 0.0;
   for (double v : y) sum += v;  // luminance() zeroes non-finite pixels
-  const double mean = y.empty() ? 0.0 : sum / double(y.size());
+  return y.empty() ? 0.0 : sum / double(y.size());
+}
+
+double exposureNormalisation(const Image& reference) {
+  const double mean = meanLuminance(reference);
   return mean > 0.0 ? kNormalisedMeanLuminance / mean : 1.0;
 }
 

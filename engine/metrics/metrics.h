@@ -32,6 +32,9 @@ double flicker(const Image& previous, const Image& current, const Image& motion)
 // 1 for a reference with no light (nothing to normalise).
 inline constexpr double kNormalisedMeanLuminance = 0.18;
 double exposureNormalisation(const Image& reference);
+// Mean luminance (Rec. 709 weights of the first three channels, or the one channel;
+// non-finite pixels count as 0).
+double meanLuminance(const Image& image);
 Image scaled(const Image& image, double factor);
 // relMSE of the two images after exposure normalisation: unchanged when both are scaled alike.
 MetricResult relMseNormalised(const Image& test, const Image& reference, double epsilon = kRelMseEpsilon);

@@ -5,6 +5,7 @@
 #include "gpu/pipeline.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/reference/reference_path.h"
+#include "metrics/depth_attribution.h"
 #include "metrics/flip.h"
 #include "metrics/metrics.h"
 #include "session/image_io.h"
@@ -69,10 +70,19 @@ std::string referenceBouncePolicy(uint32_t cap) {
 }
 
 // The reference image and its per-stage quantities at the primary hit: AO at the AO radius
-// (one channel) and the diffuse irradiance (sky + bounce light, no sun; 0 on the sky).
+// (one channel) and the diffuse irradiance (sky + bounce light, no sun; 0 on the sky); and its
+// radiance split by path depth (lighting::referenceBounceBuffers(): empty for another
+// renderer's image).
 struct ReferenceImages {
   metrics::Image radiance, ao, irradiance;
+  std::vector<metrics::Image> byDepth;
 };
+
+// What each depth group is called in reports, in referenceBounceBuffers()'s order.
+const std::vector<std::string>& depthGroupNames() {
+  static const std::vector<std::string> names = {"direct", "bounce1", "bounce2", "bounce3plus"};
+  return names;
+}
 
 metrics::Image channelOf(const graph::Readback& rb, uint32_t channel) {
   auto t = rb.texels();
@@ -86,7 +96,10 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   const std::filesystem::path dir = o.cacheDir.empty() ? defaultReferenceCache() : o.cacheDir;
   s.settings().referenceBounces = o.referenceBounces;  // before the key, which holds the reference's settings
   const std::string key = referenceKey(s, o);
-  const std::filesystem::path files[3] = {dir / (key + ".exr"), dir / (key + ".ao.exr"), dir / (key + ".irradiance.exr")};
+  const auto& depthBuffers = lighting::referenceBounceBuffers();
+  // The radiance first: its presence is what a run looks for first (it is written last).
+  std::vector<std::filesystem::path> files = {dir / (key + ".exr"), dir / (key + ".ao.exr"), dir / (key + ".irradiance.exr")};
+  for (size_t g = 0; g < depthBuffers.size(); ++g) files.push_back(dir / fmt::format("{}.bounces{}.exr", key, g));
   info = {{"source", "path tracer"},
           {"spp", o.referenceSpp},
           {"bounces", o.referenceBounces},
@@ -95,9 +108,9 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
           {"scope", o.scope},
           {"cacheFile", files[0].string()}};
   const uint32_t w = s.settings().width, h = s.settings().height;
-  std::optional<RgbImage> cached[3];
+  std::vector<std::optional<RgbImage>> cached(files.size());
   bool hit = true;
-  for (int i = 0; i < 3; ++i) {
+  for (size_t i = 0; i < files.size(); ++i) {
     cached[i] = readExrRgb(files[i]);
     hit = hit && cached[i] && cached[i]->width == w && cached[i]->height == h;
   }
@@ -106,6 +119,8 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
     ReferenceImages r{metrics::Image::fromTexels(w, h, 3, std::move(cached[0]->rgb)), metrics::Image::filled(w, h, 1, 0.0f),
                       metrics::Image::fromTexels(w, h, 3, std::move(cached[2]->rgb))};
     for (size_t i = 0; i < r.ao.data.size(); ++i) r.ao.data[i] = cached[1]->rgb[3 * i];
+    for (size_t g = 0; g < depthBuffers.size(); ++g)
+      r.byDepth.push_back(metrics::Image::fromTexels(w, h, 3, std::move(cached[3 + g]->rgb)));
     return r;
   }
   info["cached"] = false;
@@ -117,17 +132,21 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   s.resetHistory();
   s.setFrameIndex(0);  // the noise does not depend on what the process rendered before (see runCompare)
   for (uint32_t f = 0; f < frames; ++f) {
-    // The irradiance pass runs only in frames that read its result: every frame here.
+    // The irradiance and depth-split passes run only in frames that read their results: every
+    // frame here, so the split holds the very samples of the radiance.
     s.requestBuffer("reference.irradiance");
+    for (const auto& b : depthBuffers) s.requestBuffer(b);
     if (f + 1 == frames) s.requestBuffer("reference.radiance"), s.requestBuffer("reference.ao");
     s.renderFrames(1);
     if (progress) progress(fmt::format("reference {} spp", (f + 1) * s.settings().referenceSamplesPerFrame), double(f + 1) / frames);
   }
   ReferenceImages r{rgbImage(s.buffer("reference.radiance")), channelOf(s.buffer("reference.ao"), 0),
                     rgbImage(s.buffer("reference.irradiance"))};
+  for (const auto& b : depthBuffers) r.byDepth.push_back(rgbImage(s.buffer(b)));
   std::vector<float> aoRgb(r.ao.data.size() * 3);
   for (size_t i = 0; i < aoRgb.size(); ++i) aoRgb[i] = r.ao.data[i / 3];
   // The radiance file last: its presence is what a later run looks for first.
+  for (size_t g = 0; g < depthBuffers.size(); ++g) writeExrRgb(files[3 + g], w, h, r.byDepth[g].data);
   writeExrRgb(files[2], w, h, r.irradiance.data);
   writeExrRgb(files[1], w, h, aoRgb);
   writeExrRgb(files[0], w, h, r.radiance.data);
@@ -163,6 +182,46 @@ nlohmann::json stageErrors(const metrics::Image& ao, const metrics::Image& irrad
                   {"RMSE", finite(metrics::rmse(aoTest, aoRef).value)}, {"referenceMean", aoRefSum / n}}},
           {"irradiance", {{"buffer", lighting::kCompositeIrradiance}, {"reference", "reference.irradiance"},
                           {"relMSE", finite(rel.value)}, {"RMSE", finite(metrics::rmse(eTest, eRef).value)}}}};
+}
+
+// Which share of each depth group of the reference a path's image holds, and what each group's
+// missing light costs (metrics/depth_attribution.h); and the path's error against the
+// reference truncated after 1, 2 and 3 groups (what --bounces 1, 2, 3 renders), exposure-
+// normalised with the whole reference's factor: the truncation it resembles most says how
+// many bounces it models.
+nlohmann::json depthReport(const metrics::Image& test, const std::vector<metrics::Image>& byDepth, double normalisation) {
+  auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  const metrics::DepthAttribution a = metrics::attributeDepths(test, byDepth);
+  nlohmann::json groups = nlohmann::json::array();
+  for (size_t g = 0; g < byDepth.size(); ++g)
+    groups.push_back({{"group", depthGroupNames()[g]},
+                      {"buffer", lighting::referenceBounceBuffers()[g]},
+                      {"captured", finite(a.captured[g])},
+                      {"missing", finite(a.missing[g])},
+                      {"shareOfReference", finite(a.groupShare[g])}});
+  nlohmann::json truncated = nlohmann::json::array();
+  const metrics::Image testNormalised = metrics::scaled(test, normalisation);
+  metrics::Image partial = metrics::Image::filled(test.width, test.height, 3, 0.0f);
+  for (size_t k = 1; k < byDepth.size(); ++k) {
+    for (size_t i = 0; i < partial.data.size(); ++i) partial.data[i] += byDepth[k - 1].data[i];
+    truncated.push_back({{"bounces", k}, {"relMSE_norm", finite(metrics::relMse(testNormalised, metrics::scaled(partial, normalisation)).value)}});
+  }
+  // "captures 99% of emission and direct light, 97% of the first bounce and 12% of the rest",
+  // naming only the groups the reference has light in.
+  std::vector<std::string> parts;
+  const std::pair<const char*, double> said[] = {
+      {"emission and direct light", a.captured[0]}, {"the first bounce", a.captured[1]}, {"the rest", a.capturedFrom(2)}};
+  for (const auto& [what, share] : said)
+    if (std::isfinite(share)) parts.push_back(fmt::format("{:.0f}% of {}", 100.0 * share, what));
+  std::string summary = parts.empty() ? "the reference has no light to attribute" : "captures ";
+  for (size_t i = 0; i < parts.size(); ++i)
+    summary += (i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ") + parts[i];
+  return {{"groups", groups},
+          {"capturedBeyondFirstBounce", finite(a.capturedFrom(2))},
+          {"excess", finite(a.excess)},
+          {"truncated", truncated},
+          {"tile", metrics::kAttributionTile},
+          {"summary", summary}};
 }
 
 // Another renderer's image as the reference: it must be readable, of the size compare
@@ -321,11 +380,25 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
   const float exposure = std::exp2(-s.exposureEv());
   metrics::Image referenceDisplay = displayEncode(reference, exposure);
   // Exposure-normalised figures: both images scaled so the reference's mean luminance is 0.18.
-  const double normalisation = metrics::exposureNormalisation(reference);
-  refInfo["meanLuminance"] = metrics::kNormalisedMeanLuminance / normalisation;
+  const double normalisation = metrics::exposureNormalisation(reference), referenceMean = metrics::meanLuminance(reference);
+  refInfo["meanLuminance"] = referenceMean;
   refInfo["normalisation"] = normalisation;
   const metrics::Image referenceNormalised = metrics::scaled(reference, normalisation);
   const metrics::Image referenceNormalisedDisplay = displayEncode(reference, float(normalisation));
+  if (!referenceImages.byDepth.empty()) {
+    // The split's groups as shares of the reference, and how well they add up to it.
+    metrics::Image sum = metrics::Image::filled(reference.width, reference.height, 3, 0.0f);
+    for (const auto& g : referenceImages.byDepth)
+      for (size_t i = 0; i < sum.data.size(); ++i) sum.data[i] += g.data[i];
+    const metrics::DepthAttribution whole = metrics::attributeDepths(reference, referenceImages.byDepth);
+    nlohmann::json groups = nlohmann::json::array();
+    for (size_t g = 0; g < whole.groupShare.size(); ++g)
+      groups.push_back({{"group", depthGroupNames()[g]}, {"buffer", lighting::referenceBounceBuffers()[g]},
+                        {"shareOfReference", whole.groupShare[g]}});
+    double difference = 0.0, total = 0.0;
+    for (size_t i = 0; i < sum.data.size(); ++i) difference += std::abs(double(sum.data[i]) - reference.data[i]), total += reference.data[i];
+    refInfo["byDepth"] = {{"groups", groups}, {"sumRelativeError", total > 0.0 ? difference / total : 0.0}};
+  }
   writeExrRgb(o.outDir / "reference.exr", reference.width, reference.height, reference.data);
   writePngRgb(o.outDir / "reference.png", referenceDisplay.width, referenceDisplay.height, referenceDisplay.data);
 
@@ -357,6 +430,8 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     auto hdrFlip = metrics::flipHdr(test, reference);
     const metrics::Image testNormalised = metrics::scaled(test, normalisation);
     const double relNorm = metrics::relMse(testNormalised, referenceNormalised).value;
+    // The ratio of the mean luminances: how much of the reference's light the path shows.
+    const double meanRatio = referenceMean > 0.0 ? metrics::meanLuminance(test) / referenceMean : std::nan("");
     const double rmsNorm = metrics::rmse(testNormalised, referenceNormalised).value;
     const double flipNorm = metrics::flipLdr(displayEncode(test, float(normalisation)), referenceNormalisedDisplay).value;
 
@@ -375,6 +450,10 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
       stages["irradianceMap"] = stem + "_irradiance.png";
     }
 
+    const nlohmann::json bounces = referenceImages.byDepth.empty()
+                                       ? nlohmann::json::object()
+                                       : depthReport(test, referenceImages.byDepth, normalisation);
+
     nlohmann::json passes = nlohmann::json::object();
     for (const auto& [pass, ms] : s.passGpuMs()) passes[pass] = median(ms);
     auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
@@ -391,13 +470,15 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                        {"SSIM", finite(ssim.value)},
                        {"FLIP", finite(flip.value)},
                        {"HDR-FLIP", finite(hdrFlip.value)},
+                       {"meanRatio", finite(meanRatio)},
                        {"relMSE_norm", finite(relNorm)},
                        {"RMSE_norm", finite(rmsNorm)},
                        {"FLIP_norm", finite(flipNorm)},
                        {"image", name + ".png"},
                        {"flipMap", stem + "_flip.png"},
                        {"relMSEMap", stem + "_relmse.exr"},
-                       {"stages", stages}});
+                       {"stages", stages},
+                       {"bounces", bounces}});
   }
   s.setPath(previousPath);
   s.setAnimationTime(animationTime);
@@ -427,6 +508,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                    {"SSIM", "as rendered: display-encoded luminance at the report's exposure, 11x11 Gaussian window"},
                    {"FLIP", "as rendered: LDR-FLIP of the display images at the report's exposure, 67 pixels per degree"},
                    {"HDR-FLIP", "as rendered: HDR-FLIP of the linear images (its exposures come from the reference)"},
+                   {"meanRatio", "the path's mean luminance over the reference's (1: as much light; null for a black reference)"},
                    {"relMSE_norm", "exposure-normalised: relMSE of both images scaled so the reference's mean luminance is "
                                    "0.18 (reference.normalisation), so a dark scene's figure means what a bright one's does"},
                    {"RMSE_norm", "exposure-normalised: RMSE of both images scaled as for relMSE_norm"},
@@ -435,7 +517,13 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                    {"stages.ao", "the AO the composite applied (composite.ao) against reference.ao, over surface pixels"},
                    {"stages.irradiance",
                     "the diffuse irradiance the composite used (composite.irradiance: sky + bounce light, no sun) against "
-                    "reference.irradiance, relMSE (same epsilon) over surface pixels"}}},
+                    "reference.irradiance, relMSE (same epsilon) over surface pixels"},
+                   {"bounces",
+                    "per-bounce attribution against the reference split by path depth (direct: emission and direct "
+                    "light; bounce1, bounce2, bounce3plus): in each 8x8 tile the path's mean luminance is credited to "
+                    "the groups in depth order; captured = the share of a group's light it holds, missing = the "
+                    "group's light it lacks as a fraction of the reference's, excess = light beyond the reference's; "
+                    "truncated = relMSE_norm against the reference rendered with --bounces k (docs/accuracy.md)"}}},
       {"paths", results}};
   // Which form each figure of a path is in, for readers that do not parse the descriptions.
   report["forms"] = {{"asRendered", {"relMSE", "RMSE", "PSNR", "SSIM", "FLIP", "HDR-FLIP"}},

@@ -172,7 +172,25 @@ void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r,
                         number(st["ao"]["meanAbsError"]), number(st["ao"]["RMSE"]), number(st["irradiance"]["relMSE"]),
                         number(st["irradiance"]["RMSE"]));
   }
-  html += "</table><h2>Speed against error</h2>" + speedErrorPlot(r["paths"]);
+  html += "</table>";
+  if (r["reference"].contains("byDepth")) {
+    // Per bounce: each path's captured share of each depth group (docs/accuracy.md).
+    html += "<h2>Per bounce</h2><p>The share of each depth group of the reference's light a path holds (in each 8×8 "
+            "tile its light is credited to the groups in depth order), and the light beyond the reference's.</p>"
+            "<table><tr><th>path</th>";
+    for (auto& g : r["reference"]["byDepth"]["groups"])
+      html += fmt::format("<th>{} ({} of the reference)</th>", escape(g["group"].get<std::string>()), number(g["shareOfReference"]));
+    html += "<th>excess</th><th>in words</th></tr>";
+    for (auto& p : r["paths"]) {
+      if (!p.contains("bounces") || !p["bounces"].contains("groups")) continue;
+      html += fmt::format("<tr><td>{}</td>", escape(p["path"].get<std::string>()));
+      for (auto& g : p["bounces"]["groups"]) html += fmt::format("<td>{}</td>", number(g["captured"]));
+      html += fmt::format("<td>{}</td><td>{}</td></tr>", number(p["bounces"]["excess"]),
+                          escape(p["bounces"]["summary"].get<std::string>()));
+    }
+    html += "</table>";
+  }
+  html += "<h2>Speed against error</h2>" + speedErrorPlot(r["paths"]);
   html += "<h2>Where the time goes</h2>" + timingBars(r["paths"]);
   html += "<h2>Images and FLIP error maps</h2><div class='imgs'>";
   html += fmt::format("<figure><img src='{}'><figcaption>reference</figcaption></figure>", pngDataUri(dir / "reference.png"));

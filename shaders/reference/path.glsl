@@ -21,6 +21,22 @@ vec2 next2() {
 // ground truth the real-time paths' AO is measured against, at the same radius.
 float gAo;
 
+// Light a path gathers, by its depth: the scattering events between the light and the camera
+// (the sky or an emitter seen directly: 0; the sun or the sky on a surface the camera sees: 1;
+// light off one other surface first: 2; ...), what --bounces caps. An includer that defines
+// TL_REFERENCE_DEPTH_SPLIT (bounces.rgen) also gets it summed into gByDepth: [0] depths 0 and 1
+// (emission and direct light), [1] depth 2 (the first bounce), [2] depth 3 (the second), [3]
+// depth 4 and more; the others compile without it.
+#ifdef TL_REFERENCE_DEPTH_SPLIT
+vec3 gByDepth[4];
+#endif
+void gather(inout vec3 radiance, uint depth, vec3 light) {
+  radiance += light;
+#ifdef TL_REFERENCE_DEPTH_SPLIT
+  gByDepth[clamp(depth, 1u, 4u) - 1u] += light;
+#endif
+}
+
 // Radiance arriving at `origin` from direction `dir`, where `firstBounce` scattering events
 // have already happened (0: a camera ray; it also sets gAo).
 vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
@@ -29,10 +45,10 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
   for (uint bounce = firstBounce;; ++bounce) {
     traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
     if (hit.positionT.w < 0.0) {
-      radiance += throughput * frame.skyRadiance.rgb;
+      gather(radiance, bounce, throughput * frame.skyRadiance.rgb);
       break;
     }
-    radiance += throughput * hit.emission.rgb;
+    gather(radiance, bounce, throughput * hit.emission.rgb);
     if (bounce >= push.maxBounces) break;  // no more scattering events allowed
 
     vec3 n = hit.normal.xyz, geometric = hit.geometric.xyz, v = -dir;
@@ -59,7 +75,7 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
       visible = 0.0;
       traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
                   0xFF, 0, 0, 1, position, 0.0, toSun, 1e30, 1);
-      radiance += throughput * frame.sunIrradiance.rgb * (sunNl * visible) * tlBrdf(s, n, v, toSun);
+      gather(radiance, bounce + 1u, throughput * frame.sunIrradiance.rgb * (sunNl * visible) * tlBrdf(s, n, v, toSun));
     }
 
     // Next direction from the BRDF (shared/shading.h): the single-scattering lobe from its

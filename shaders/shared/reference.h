@@ -16,6 +16,12 @@ TL_CONST uint kRefBindingAoAccum = 7;    // r32f: sum of AO samples at the prima
 TL_CONST uint kRefBindingAo = 8;         // r32f: ambient occlusion at the AO radius, sum / count
 TL_CONST uint kRefBindingIrradianceAccum = 9;  // rgba32f: sum of irradiance samples (rgb) and their count (a)
 TL_CONST uint kRefBindingIrradiance = 10;      // rgba32f: diffuse irradiance at the primary hit, sum / count
+TL_CONST uint kRefBindingDepthAccum = 11;  // rgba32f: sums of the radiance by depth group (rgb) and their count (a)
+TL_CONST uint kRefBindingDepth0 = 12;      // rgba32f: the radiance of depth group 0, sum / count; groups 1..3 at 13..15
+
+// The radiance by path depth (scattering events between light and camera), in four groups:
+// 0-1 (emission and direct light), 2 (the first bounce), 3 (the second), 4 and more.
+TL_CONST uint kRefDepthGroups = 4;
 
 TL_CONST uint kVertexFloats = 12;        // tl::scene::Vertex: position 3, normal 3, tangent 4, uv 2
 
@@ -33,7 +39,8 @@ struct RefPush {
   uint maxBounces;       // scattering events per path (1 = direct light only, 2 = plus one bounce)
   uint seed;
   float aoRadius;        // reference AO: one cosine ray per sample from the primary hit, this long (m)
-  uint pad0, pad1, pad2;
+  uint sampleBase;       // the depth split's first sample index: the trace pass's samplesSoFar (same paths)
+  uint pad1, pad2;
 };
 
 // What a closest-hit shader reports (hitT < 0: the ray missed).

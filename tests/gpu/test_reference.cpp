@@ -7,6 +7,7 @@
 #include "gpu_fixture.h"
 
 #include "lighting/common/composite_pass.h"
+#include "lighting/reference/reference_path.h"
 #include "shared/shading.h"
 
 #include <nlohmann/json.hpp>
@@ -406,6 +407,90 @@ TEST_F(ReferenceTest, RebuiltBottomLevelsFollowTheDeformedMeshes) {
   EXPECT_LT(moved, 1e-4);
   EXPECT_GT(left, 100.0 * std::max(moved, 1e-6));
   s.setAnimationTime(0.0);
+}
+
+
+// The radiance split by path depth (lighting::referenceBounceBuffers): traced as the very paths
+// of reference.radiance, its four groups sum to it pixel by pixel (float rounding only), and
+// the pass that makes them runs only in frames that read one (it costs nothing otherwise).
+TEST_F(ReferenceTest, DepthSplitSumsToTheRadianceAndRunsOnDemand) {
+  auto& s = session();
+  s.loadScene(contentFile("doorway_room.gltf"));
+  s.setPath("reference");
+  s.setSize(24, 16);
+  s.settings().referenceSamplesPerFrame = 8;
+  s.resetHistory();
+  const auto& groups = lighting::referenceBounceBuffers();
+  for (int f = 0; f < 3; ++f) {
+    for (const auto& g : groups) s.requestBuffer(g);
+    s.requestBuffer("reference.radiance");
+    s.renderFrames(1);
+  }
+  double traceMs = 0.0, splitMs = 0.0;
+  for (const auto& t : s.timings()) {
+    if (t.pass == "reference.trace") traceMs = t.gpuMs;
+    if (t.pass == "reference.bounces") splitMs = t.gpuMs;
+  }
+  std::printf("last frame: reference.trace %.2f ms, reference.bounces %.2f ms (%.2fx)\n", traceMs, splitMs,
+              splitMs / std::max(traceMs, 1e-9));
+  EXPECT_GT(splitMs, 0.0) << "the split ran in a frame that read it";
+  const auto radiance = s.buffer("reference.radiance").texels();
+  std::vector<std::vector<float>> parts;
+  for (const auto& g : groups) parts.push_back(s.buffer(g).texels());
+  double worst = 0.0, total = 0.0, deepest = 0.0;
+  for (size_t i = 0; i < radiance.size(); i += 4)
+    for (size_t c = 0; c < 3; ++c) {
+      double sum = 0.0;
+      for (const auto& p : parts) sum += p[i + c];
+      worst = std::max(worst, std::abs(sum - radiance[i + c]) / (std::abs(radiance[i + c]) + 1e-6));
+      total += radiance[i + c];
+      deepest += parts.back()[i + c];
+    }
+  std::printf("doorway_room depth split: worst relative difference of the sum %.3g; third bounce and more %.1f%%\n",
+              worst, 100.0 * deepest / total);
+  EXPECT_LT(worst, 1e-4);
+  EXPECT_GT(total, 0.0);
+  EXPECT_GT(deepest, 0.0) << "the room's light reaches the camera after many bounces";
+
+  // Not requested: the pass is culled.
+  s.requestBuffer("reference.radiance");
+  s.renderFrames(1);
+  for (const auto& t : s.timings()) EXPECT_NE(t.pass, "reference.bounces");
+}
+
+// The closed box of Lambertian walls (albedo rho = 0.8, every wall emitting Le = 0.2): a camera
+// path collects Le at each hit, attenuated by rho per scattering event, so depth k carries
+// Le rho^k and L = Le / (1 - rho) = 1. The groups: depths 0 and 1, Le (1 + rho) = 0.36; depth 2,
+// Le rho^2 = 0.128; depth 3, Le rho^3 = 0.1024; depth 4 and more, Le rho^4 / (1 - rho) = 0.4096.
+TEST_F(ReferenceTest, DepthSplitFollowsTheGeometricSeriesInAClosedBox) {
+  auto& s = session();
+  s.loadScene(contentFile("closed_box.gltf"));
+  const auto& m = s.scene().materials[0];
+  const double Le = m.emissiveFactor.x * m.emissiveStrength, rho = m.baseColorFactor.x;
+  s.settings().materials = lighting::MaterialMode::Diffuse;
+  s.setPath("reference");
+  s.setSize(24, 24);
+  s.settings().referenceSamplesPerFrame = 64;
+  s.resetHistory();
+  const auto& groups = lighting::referenceBounceBuffers();
+  for (int f = 0; f < 4; ++f) {  // 256 samples per pixel
+    for (const auto& g : groups) s.requestBuffer(g);
+    s.renderFrames(1);
+  }
+  const double expected[] = {Le * (1.0 + rho), Le * rho * rho, Le * rho * rho * rho,
+                             Le * std::pow(rho, 4.0) / (1.0 - rho)};
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const auto t = s.buffer(groups[g]).texels();
+    double mean = 0.0;
+    for (size_t i = 0; i < t.size(); i += 4) mean += shared::tlLuminance(glm::vec3(t[i], t[i + 1], t[i + 2]));
+    mean /= double(t.size() / 4);
+    std::printf("closed box, %s: mean %.4f, Le rho^k summed %.4f\n", groups[g].c_str(), mean, expected[g]);
+    // Depths up to 3 carry no noise (every path weighs exactly rho per event before the roulette
+    // starts); the last group has the roulette's.
+    const double tolerance = g + 1 < groups.size() ? 0.005 : 0.02;
+    EXPECT_NEAR(mean, expected[g], tolerance * expected[g]) << groups[g];
+  }
+  s.settings().materials = lighting::MaterialMode::Authored;
 }
 
 }  // namespace

@@ -103,6 +103,23 @@ DecodedLines albedoSource(const DecodeInput& in) {
   return {{"albedo", vec(glm::vec3(v[0], v[1], v[2]), 3)}, {"source", source}};
 }
 
+// A group of path depths' radiance and its share of the pixel's whole radiance (luminance).
+DecodedLines depthShare(const DecodeInput& in, const DecoderSpec& spec) {
+  auto v = floatsAt(in.resource, in.x, in.y, in.z);
+  if (v.size() < 3) return {};
+  const glm::vec3 part(v[0], v[1], v[2]);
+  DecodedLines out = {{"radiance", vec(part)}};
+  auto w = spec.companions.count("whole") ? companionAt(in, spec.companions.at("whole")) : std::vector<float>{};
+  if (w.size() < 3) {
+    out.push_back({"share of the pixel", "whole radiance not read back"});
+    return out;
+  }
+  const float whole = shared::tlLuminance(glm::vec3(w[0], w[1], w[2]));
+  out.push_back({"share of the pixel", whole > 0.0f ? fmt::format("{:.1f}%", 100.0f * shared::tlLuminance(part) / whole)
+                                                    : std::string("none (the pixel is black)")});
+  return out;
+}
+
 }  // namespace
 
 DecoderSpec parseDecoderSpec(const std::string& text) {
@@ -156,6 +173,7 @@ DecodedLines decodeTexel(const std::string& text, const DecodeInput& in) {
       {"instance-id", [](const DecodeInput& i, const DecoderSpec&) { return instanceId(i); }},
       {"sh-irradiance", [](const DecodeInput& i, const DecoderSpec& s) { return shIrradiance(i, s); }},
       {"albedo-source", [](const DecodeInput& i, const DecoderSpec&) { return albedoSource(i); }},
+      {kDepthShareDecoder, [](const DecodeInput& i, const DecoderSpec& s) { return depthShare(i, s); }},
   };
   const DecoderSpec spec = parseDecoderSpec(text);
   auto it = kDecoders.find(spec.name);

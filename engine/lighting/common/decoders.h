@@ -10,6 +10,8 @@
 //                          (oct normal): irradiance in the pixel's normal direction, and the SH's
 //                          dominant direction and directionality
 //   albedo-source          rgba16f per-instance albedo, source code in alpha (shared/albedo.h)
+//   depth-share            rgba32f radiance of one group of path depths (reference.bounce*);
+//                          whole=RESOURCE (the pixel's whole radiance): the group's share of it
 #pragma once
 
 #include "graph/executor.h"
@@ -22,6 +24,8 @@
 #include <vector>
 
 namespace tl::lighting {
+
+inline constexpr const char* kDepthShareDecoder = "depth-share";
 
 struct DecoderSpec {
   std::string name;

@@ -4,6 +4,7 @@
 // something does.
 #include "gpu/acceleration_structure.h"
 #include "graph/executor.h"
+#include "lighting/common/decoders.h"
 #include "lighting/lighting_path.h"
 #include "lighting/reference/reference_path.h"
 #include "scene/scene.h"
@@ -24,6 +25,7 @@ inline constexpr const char* kAoAccum = "reference.aoAccum";
 inline constexpr const char* kAo = "reference.ao";
 inline constexpr const char* kIrradianceAccum = "reference.irradianceAccum";
 inline constexpr const char* kIrradiance = "reference.irradiance";
+inline constexpr const char* kDepthAccum = "reference.bouncesAccum";
 inline constexpr const char* kTlas = "reference.tlas";
 inline constexpr const char* kTlasInstances = "reference.tlas.instances";
 inline constexpr const char* kTlasScratch = "reference.tlas.scratch";
@@ -41,6 +43,7 @@ constexpr HistoryPolicy kAccumulation{
 // The ray-tracing shaders of both pipelines, in their stages' order.
 constexpr const char* kRaygen = "reference/trace.rgen";
 constexpr const char* kIrradianceRaygen = "reference/irradiance.rgen";
+constexpr const char* kDepthRaygen = "reference/bounces.rgen";
 constexpr const char* kMisses[] = {"reference/trace.rmiss", "reference/shadow.rmiss"};
 constexpr const char* kClosestHit = "reference/trace.rchit";
 constexpr const char* kAnyHit = "reference/alpha.rahit";  // alpha MASK: runs on non-opaque geometry only
@@ -115,6 +118,7 @@ class ReferencePath final : public LightingPath {
           samples_ += push.samplesPerFrame;
         });
     addIrradiancePass(graph, in, push);
+    addDepthSplitPass(graph, in, push);
     LightingOutputs out;
     out.radiance = kRadiance;
     return out;
@@ -122,7 +126,9 @@ class ReferencePath final : public LightingPath {
 
   uint32_t samples() const { return samples_; }
   std::vector<std::pair<std::string, double>> figures() const override {
-    return {{"reference.samples", double(samples_)}, {"reference.irradianceSamples", double(irradianceSamples_)}};
+    return {{"reference.samples", double(samples_)},
+            {"reference.irradianceSamples", double(irradianceSamples_)},
+            {"reference.bounceSamples", double(depthSamples_)}};
   }
 
  private:
@@ -171,6 +177,65 @@ class ReferencePath final : public LightingPath {
           ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion,
                                         e.width, e.height, 1);
           irradianceSamples_ += push.samplesPerFrame;
+        });
+  }
+
+  // The radiance split by path depth (referenceBounceBuffers()), each group its own progressive
+  // sum. It traces the trace pass's paths a second time, so it runs only in frames that read
+  // one of its buffers (compare's per-bounce attribution, the inspector); requested in every
+  // frame since the reference's sum started, its four images sum to reference.radiance. Its
+  // sum restarts with the reference's (a frame whose trace starts over).
+  void addDepthSplitPass(graph::RenderGraph& graph, FrameInputs& in, shared::RefPush push) {
+    const uint32_t w = in.settings.width, h = in.settings.height;
+    graph.declareOnDemandHistory(
+        kDepthAccum, graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h * shared::kRefDepthGroups,
+                                                  "sums of the radiance by path depth (rgb) and their count (a), the "
+                                                  "four groups stacked vertically"));
+    const auto names = referenceBounceBuffers();
+    static const char* kWhat[] = {"emission and direct light (paths of 0 or 1 scattering events)",
+                                  "the first bounce (2 scattering events)", "the second bounce (3 scattering events)",
+                                  "the third bounce and more (4 or more scattering events)"};
+    const uint32_t base = samples_;  // the trace pass's samples before this frame: the same paths
+    graph.addPass(
+        "reference.bounces", graph::PassKind::RayTracing,
+        [&](graph::PassBuilder& b) {
+          readSceneInputs(b, graph::Usage::StorageRead);
+          readStructures(b);
+          b.read(kBrdfTables, graph::Usage::StorageRead);
+          b.read(kDepthAccum, graph::Usage::StorageRead);
+          b.write(kDepthAccum, graph::Usage::StorageWrite);
+          for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
+            b.create(names[g],
+                     graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                                  fmt::format("path-traced radiance of {}", kWhat[g]))
+                         .decodedAs(fmt::format("{} whole={}", kDepthShareDecoder, kRadiance)),
+                     graph::Usage::StorageWrite);
+        },
+        [this, &in, push, base, names](graph::PassContext& ctx) mutable {
+          push.sampleBase = ctx.historyValid(kAccum) ? base : 0;  // as the trace pass decides
+          if (!ctx.historyValid(kDepthAccum) || push.sampleBase == 0) depthSamples_ = 0;
+          push.samplesSoFar = depthSamples_;
+          push.seed = 0;  // the trace pass's seed
+          ctx.bind(depthPipeline_);
+          ctx.pushConstants(push);
+          auto& d = ctx.descriptors()
+                        .uniformBuffer(shared::kRefBindingFrame, in.constantsBuffer.handle())
+                        .accelerationStructure(shared::kRefBindingTlas, tlas_.structure().handle())
+                        .storageBuffer(shared::kRefBindingGeometry, geometry_.handle())
+                        .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
+                        .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
+                        .storageImage(shared::kRefBindingDepthAccum, ctx.image(kDepthAccum).view())
+                        .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle());
+          for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
+            d.storageImage(shared::kRefBindingDepth0 + g, ctx.image(names[g]).view());
+          ctx.flushDescriptors();
+          in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, depthPipeline_.layout(),
+                                shared::kSceneSet);
+          VkExtent3D e = ctx.extent(names[0]);
+          const auto& p = depthPipeline_;
+          ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion,
+                                        e.width, e.height, 1);
+          depthSamples_ += push.samplesPerFrame;
         });
   }
 
@@ -266,6 +331,20 @@ class ReferencePath final : public LightingPath {
                            {shared::kRefBindingIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                            {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
       irradiancePipeline_ = gpu::createRayTracingPipeline(in.device, d);
+
+      // The depth split: the trace pass's paths again, their light summed by depth.
+      d.name = "reference.bounces";
+      d.raygen = kDepthRaygen;
+      d.layout.bindings = {{shared::kRefBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                           {shared::kRefBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+                           {shared::kRefBindingGeometry, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kRefBindingDepthAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+      for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
+        d.layout.bindings.push_back({shared::kRefBindingDepth0 + g, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+      depthPipeline_ = gpu::createRayTracingPipeline(in.device, d);
     }
   }
 
@@ -357,17 +436,25 @@ class ReferencePath final : public LightingPath {
   gpu::Buffer geometry_;
   gpu::Pipeline pipeline_;
   gpu::Pipeline irradiancePipeline_;
+  gpu::Pipeline depthPipeline_;
   HistoryKeeper accumulation_;
   uint32_t samples_ = 0;
   uint32_t irradianceSamples_ = 0;
+  uint32_t depthSamples_ = 0;
 };
 
 }  // namespace
 
+const std::vector<std::string>& referenceBounceBuffers() {
+  static const std::vector<std::string> names = {"reference.bounce0", "reference.bounce1", "reference.bounce2",
+                                                 "reference.bounce3plus"};
+  return names;
+}
+
 std::unique_ptr<LightingPath> makeReferencePath() { return std::make_unique<ReferencePath>(); }
 
 std::vector<std::string> referenceShaders() {
-  std::vector<std::string> all{kRaygen, kIrradianceRaygen};
+  std::vector<std::string> all{kRaygen, kIrradianceRaygen, kDepthRaygen};
   all.insert(all.end(), std::begin(kMisses), std::end(kMisses));
   all.push_back(kClosestHit);
   all.push_back(kAnyHit);

@@ -11,4 +11,11 @@ namespace tl::lighting {
 // pipeline the reference path builds.
 std::vector<std::string> referenceShaders();
 
+// The reference's radiance split by path depth, the scattering events between the light and
+// the camera (what --bounces caps), as on-demand graph resources (rgba32f, the image's size):
+// [0] depths 0 and 1 (emission and direct light), [1] depth 2 (the first bounce), [2] depth 3
+// (the second bounce), [3] depth 4 and more. Over the same frames they sum to
+// reference.radiance; the sum of the first k is the reference rendered with --bounces k.
+const std::vector<std::string>& referenceBounceBuffers();
+
 }  // namespace tl::lighting
