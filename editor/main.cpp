@@ -379,10 +379,10 @@ void printCompareReport(const nlohmann::json& report, const std::vector<tl::sess
                figure(p["FLIP"]), figure(p["HDR-FLIP"]));
   fmt::print("exposure-normalised (both images x{:.4g}: the reference's mean Y {:.4g} -> 0.18)\n",
              report["reference"]["normalisation"].get<double>(), report["reference"]["meanLuminance"].get<double>());
-  fmt::print("{:10} {:>11} {:>11} {:>11}\n", "path", "relMSE_norm", "RMSE_norm", "FLIP_norm");
+  fmt::print("{:10} {:>11} {:>11} {:>11} {:>9}\n", "path", "relMSE_norm", "RMSE_norm", "FLIP_norm", "mean/ref");
   for (auto& p : report["paths"])
-    fmt::print("{:10} {:11.4f} {:11.4f} {:11.4f}\n", p["path"].get<std::string>(), figure(p["relMSE_norm"]),
-               figure(p["RMSE_norm"]), figure(p["FLIP_norm"]));
+    fmt::print("{:10} {:11.4f} {:11.4f} {:11.4f} {:9.4f}\n", p["path"].get<std::string>(), figure(p["relMSE_norm"]),
+               figure(p["RMSE_norm"]), figure(p["FLIP_norm"]), p.contains("meanRatio") ? figure(p["meanRatio"]) : std::nan(""));
   fmt::print("per stage (surface pixels)  {:>13} {:>18}\n", "AO abs error", "irradiance relMSE");
   for (auto& p : report["paths"])
     if (p["stages"].contains("ao"))

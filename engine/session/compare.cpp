@@ -359,6 +359,8 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     const double relNorm = metrics::relMse(testNormalised, referenceNormalised).value;
     const double rmsNorm = metrics::rmse(testNormalised, referenceNormalised).value;
     const double flipNorm = metrics::flipLdr(displayEncode(test, float(normalisation)), referenceNormalisedDisplay).value;
+    // How much of the reference's light the path shows (its mean luminance over the reference's).
+    const double meanRatio = normalisation / metrics::exposureNormalisation(test);
 
     std::string stem = "error_" + name;
     writeExrRgb(o.outDir / (name + ".exr"), test.width, test.height, test.data);
@@ -394,6 +396,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                        {"relMSE_norm", finite(relNorm)},
                        {"RMSE_norm", finite(rmsNorm)},
                        {"FLIP_norm", finite(flipNorm)},
+                       {"meanRatio", finite(meanRatio)},
                        {"image", name + ".png"},
                        {"flipMap", stem + "_flip.png"},
                        {"relMSEMap", stem + "_relmse.exr"},
