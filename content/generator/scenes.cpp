@@ -149,6 +149,95 @@ void corridor(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// A wall piece given by two opposite corners (metres): the interiors below are laid out by
+// their inside faces, and pieces overlap at the corners so no seam line is open to a ray.
+void slab(SceneWriter& w, const std::string& name, int material, glm::vec3 lo, glm::vec3 hi) {
+  wall(w, name, material, 0.5f * (lo + hi), hi - lo);
+}
+
+// A white room (base colour 0.8), 6 x 3 x 8 m inside 0.25 m walls, lit only by the sun (E = 20)
+// through a 1 x 2.2 m doorway in its south wall; the sky is black. The sun lands on a floor
+// patch by the door; camera 0 stands beside the door looking into the far corner, where no
+// surface it sees is sunlit: everything on screen is bounced light, most of it after two or
+// more bounces off surfaces behind the camera (T12, issue 21). Camera 1 looks back at the door.
+void doorwayRoom(const std::filesystem::path& dir) {
+  SceneWriter w("doorway_room");
+  const int white = w.material({"plaster_white", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  const float t = 0.25f, h = 3.0f, x = 3.0f, z = -8.0f, door = 0.5f, doorTop = 2.2f;
+  slab(w, "floor", white, {-x - t, -t, z - t}, {x + t, 0.0f, t});
+  slab(w, "ceiling", white, {-x - t, h, z - t}, {x + t, h + t, t});
+  slab(w, "wall_west", white, {-x - t, -t, z - t}, {-x, h + t, t});
+  slab(w, "wall_east", white, {x, -t, z - t}, {x + t, h + t, t});
+  slab(w, "wall_north", white, {-x, -t, z - t}, {x, h + t, z});
+  slab(w, "wall_south_west", white, {-x, -t, 0.0f}, {-door, h + t, t});
+  slab(w, "wall_south_east", white, {door, -t, 0.0f}, {x, h + t, t});
+  slab(w, "door_lintel", white, {-door, doorTop, 0.0f}, {door, h + t, t});
+  w.camera("far_corner", {2.2f, 1.6f, -1.2f}, {-2.5f, 2.3f, -7.8f}, 60.0f);
+  w.camera("towards_door", {-2.2f, 1.6f, -7.2f}, {0.4f, 0.8f, 0.0f}, 60.0f);
+  w.sun({0.15f, -0.75f, -1.0f}, 20.0f);
+  w.sky({0.0f, 0.0f, 0.0f});
+  w.write(dir);
+}
+
+// A long white corridor (base colour 0.8), 2 x 2.5 x 16 m inside 0.2 m walls, closed at both
+// ends, lit through four 0.4 m slits across its roof by the sun (E = 20, 58 degrees high: the
+// shafts land as strips on the floor and the foot of the east wall) and the sky. The strips
+// are small; most of what the cameras see is light bounced along the corridor.
+void slitCorridor(const std::filesystem::path& dir) {
+  SceneWriter w("slit_corridor");
+  const int white = w.material({"plaster_white", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  const float t = 0.2f, h = 2.5f, x = 1.0f, z = -16.0f, slit = 0.4f;
+  slab(w, "floor", white, {-x - t, -t, z - t}, {x + t, 0.0f, t});
+  slab(w, "wall_west", white, {-x - t, -t, z - t}, {-x, h + t, t});
+  slab(w, "wall_east", white, {x, -t, z - t}, {x + t, h + t, t});
+  slab(w, "wall_north", white, {-x, -t, z - t}, {x, h + t, z});
+  slab(w, "wall_south", white, {-x, -t, 0.0f}, {x, h + t, t});
+  // The roof in five pieces around four slits centred at z = -2, -6, -10, -14.
+  float from = t;
+  for (int i = 0; i < 4; ++i) {
+    const float centre = -2.0f - 4.0f * float(i);
+    slab(w, "roof_" + std::to_string(i), white, {-x - t, h, centre + slit / 2}, {x + t, h + t, from});
+    from = centre - slit / 2;
+  }
+  slab(w, "roof_4", white, {-x - t, h, z - t}, {x + t, h + t, from});
+  w.camera("down_the_corridor", {0.0f, 1.6f, -0.5f}, {0.0f, 1.2f, z}, 60.0f);
+  w.camera("back_from_the_end", {-0.5f, 1.6f, z + 0.5f}, {0.3f, 1.0f, -4.0f}, 60.0f);
+  w.sun({0.25f, -0.85f, -0.45f}, 20.0f);
+  w.sky({0.6f, 0.75f, 1.0f});
+  w.write(dir);
+}
+
+// Two white rooms (base colour 0.8), each 4 x 3 x 4 m inside, side by side along x and sharing
+// a 0.25 m wall; every wall, floor and roof is 0.25 m thick. The west room is lit by the sun
+// (E = 20) and the sky through a 1.2 x 2.2 m doorway in its south wall, the sun landing on its
+// floor towards the shared wall; the east room is closed, so its true image is black while the
+// sun lights its roof and outer walls. The scene is 8.75 m wide: the legacy path's finest
+// voxel at its default resolution (64) is 8.75 * 1.02 / 64 = 0.139 m, so every wall is 1.8
+// voxels thick. Camera 0 is in the lit room, camera 1 in the closed room facing the shared wall.
+void twinRooms(const std::filesystem::path& dir) {
+  SceneWriter w("twin_rooms");
+  const int white = w.material({"plaster_white", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  const float t = 0.25f, h = 3.0f, room = 4.0f, z = -4.0f, half = t / 2;
+  const float west = -half - room, east = half + room;  // the rooms' outer inside faces
+  slab(w, "floor", white, {west - t, -t, z - t}, {east + t, 0.0f, t});
+  slab(w, "roof", white, {west - t, h, z - t}, {east + t, h + t, t});
+  slab(w, "wall_north", white, {west - t, -t, z - t}, {east + t, h + t, z});
+  slab(w, "wall_west", white, {west - t, -t, z}, {west, h + t, t});
+  slab(w, "wall_east", white, {east, -t, z}, {east + t, h + t, t});
+  slab(w, "wall_shared", white, {-half, -t, z}, {half, h + t, 0.0f});
+  // South: the closed room's wall is whole, the lit room's has a doorway 1.4 to 2.6 m west.
+  slab(w, "wall_south_closed", white, {-half, -t, 0.0f}, {east + t, h + t, t});
+  const float doorEast = -1.4f, doorWest = -2.6f, doorTop = 2.2f;
+  slab(w, "wall_south_lit_east", white, {doorEast, -t, 0.0f}, {-half, h + t, t});
+  slab(w, "wall_south_lit_west", white, {west - t, -t, 0.0f}, {doorWest, h + t, t});
+  slab(w, "door_lintel", white, {doorWest, doorTop, 0.0f}, {doorEast, h + t, t});
+  w.camera("lit_room", {west + 0.5f, 1.6f, -0.6f}, {-half, 1.2f, z + 0.5f}, 60.0f);
+  w.camera("closed_room", {east - 0.5f, 1.6f, -0.6f}, {half, 1.3f, z + 1.0f}, 60.0f);
+  w.sun({0.45f, -0.6f, -0.65f}, 20.0f);
+  w.sky({0.6f, 0.75f, 1.0f});
+  w.write(dir);
+}
+
 // A closed 2 m box whose six walls (base colour 0.8) all emit radiance 0.2, seen from inside:
 // with Lambertian walls (the diffuse and clay override modes) the radiance is the same
 // everywhere, L = Le / (1 - rho) = 1.
@@ -482,6 +571,9 @@ int main(int argc, char** argv) {
     tl::content::whiteFurnace(dir);
     tl::content::corridor(dir);
     tl::content::closedBox(dir);
+    tl::content::doorwayRoom(dir);
+    tl::content::slitCorridor(dir);
+    tl::content::twinRooms(dir);
     tl::content::embeddedTextures(dir);
     tl::content::normalProbe(dir);
     tl::content::cutout(dir);
