@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -360,7 +361,17 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     const double rmsNorm = metrics::rmse(testNormalised, referenceNormalised).value;
     const double flipNorm = metrics::flipLdr(displayEncode(test, float(normalisation)), referenceNormalisedDisplay).value;
     // How much of the reference's light the path shows (its mean luminance over the reference's).
-    const double meanRatio = normalisation / metrics::exposureNormalisation(test);
+    auto meanLuminance = [](const metrics::Image& image) {
+      double sum = 0.0;
+      for (size_t i = 0; image.channels >= 3 && i < image.pixels(); ++i) {
+        const float* p = image.data.data() + i * image.channels;
+        const double y = shared::tlLuminance(glm::vec3(p[0], p[1], p[2]));
+        if (std::isfinite(y)) sum += y;
+      }
+      return image.pixels() ? sum / double(image.pixels()) : 0.0;
+    };
+    const double referenceMean = meanLuminance(reference);
+    const double meanRatio = referenceMean > 0.0 ? meanLuminance(test) / referenceMean : std::nan("");
 
     std::string stem = "error_" + name;
     writeExrRgb(o.outDir / (name + ".exr"), test.width, test.height, test.data);

@@ -32,6 +32,10 @@ TL_CONST uint kRtCacheProbes = 8u;        // slots tried from a cell's hash befo
 TL_CONST uint kRtCacheMaxLevel = 20u;     // cells grow up to kRtCacheCellSize * 2^20
 TL_CONST uint kRtCacheMaxBounces = 8u;    // longest update path (rays)
 TL_CONST uint kRtCacheMaxAge = 120u;      // frames a cell with no new sample is kept
+// A cell's history also fades with time: its weight falls by 1/kRtCacheHistoryFrames a frame,
+// so a cell sampled rarely forgets the samples taken while the cache was still filling (whose
+// last vertices found nothing to read: a cold start is biased dark) within a few such spans.
+TL_CONST float kRtCacheHistoryFrames = 8.0f;
 // Fixed point: a sample at the bound (RtCachePush::bound) is 2^22; at most kRtCacheSampleCap
 // samples a frame per cell are summed, so a sum never overflows 32 bits.
 TL_CONST float kRtCacheFixedOne = 4194304.0f;
@@ -74,7 +78,7 @@ struct RtCachePush {
   float bound;        // radiance of one sample is clamped to this (fixed point's range)
   float maxSamples;   // history: a cell's radiance averages at most this many samples
   uint maxAge;        // frames without a sample after which a cell is dropped
-  uint pad0;
+  float historyDecay; // a cell's history weight is multiplied by this every frame (1 - 1/kRtCacheHistoryFrames)
 };
 
 // The level of a cell at `distance` from the camera: the smallest L with
@@ -110,11 +114,13 @@ TL_FN uint tlRtCacheToFixed(float value, float bound, float u) {
 }
 TL_FN float tlRtCacheFromFixed(uint sum, float bound) { return float(sum) * (max(bound, 1e-30f) / kRtCacheFixedOne); }
 
-// A cell's history after `n` new samples of mean `mean`: a running mean over at most
-// `maxSamples` samples (exponential beyond), w counting them.
-TL_FN vec4 tlRtCacheBlend(vec4 history, vec3 mean, float n, float maxSamples) {
-  if (n <= 0.0f) return history;
-  float w = min(history.w + n, max(maxSamples, n));
+// A cell's history after a frame with `n` new samples of mean `mean`: its weight (w, in
+// samples) first fades by `decay`, then a running mean over at most `maxSamples` samples
+// (exponential beyond). Without samples the value stays, only its weight fades.
+TL_FN vec4 tlRtCacheBlend(vec4 history, vec3 mean, float n, float maxSamples, float decay) {
+  float faded = history.w * decay;
+  if (n <= 0.0f) return vec4(history.x, history.y, history.z, faded);
+  float w = min(faded + n, max(maxSamples, n));
   vec3 old = vec3(history.x, history.y, history.z);
   vec3 blended = old + (mean - old) * (n / w);
   return vec4(blended.x, blended.y, blended.z, w);

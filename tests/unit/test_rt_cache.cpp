@@ -71,15 +71,24 @@ TEST(RtCache, FixedPointIsUnbiased) {
 
 TEST(RtCache, BlendIsARunningMeanThenBounded) {
   vec4 h(0.0f);
-  for (int i = 1; i <= 4; ++i) h = tlRtCacheBlend(h, vec3(float(i)), 1.0f, 64.0f);
-  EXPECT_NEAR(h.x, 2.5f, 1e-6f);  // mean of 1..4
+  for (int i = 1; i <= 4; ++i) h = tlRtCacheBlend(h, vec3(float(i)), 1.0f, 64.0f, 1.0f);
+  EXPECT_NEAR(h.x, 2.5f, 1e-6f);  // without fading: the mean of 1..4
   EXPECT_EQ(h.w, 4.0f);
   // Light switched off: with a history of at most 16 samples, 16 new samples a frame, the old
   // light halves every frame: below 1% in 7 frames.
   h = vec4(1.0f, 1.0f, 1.0f, 16.0f);
-  for (int f = 0; f < 7; ++f) h = tlRtCacheBlend(h, vec3(0.0f), 16.0f, 16.0f);
+  for (int f = 0; f < 7; ++f) h = tlRtCacheBlend(h, vec3(0.0f), 16.0f, 16.0f, 1.0f);
   EXPECT_LT(h.x, 0.01f);
-  EXPECT_EQ(tlRtCacheBlend(h, vec3(5.0f), 0.0f, 16.0f), h);  // no samples: unchanged
+  // No samples: the value stays, its weight fades.
+  const vec4 kept = tlRtCacheBlend(h, vec3(5.0f), 0.0f, 16.0f, 0.875f);
+  EXPECT_EQ(kept.x, h.x);
+  EXPECT_FLOAT_EQ(kept.w, h.w * 0.875f);
+  // One sample a frame with fading 1 - 1/8: the weight settles at 8 samples (a window of 8
+  // frames), so a cold start's dark samples weigh (7/8)^k after k frames.
+  h = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  for (int f = 0; f < 40; ++f) h = tlRtCacheBlend(h, vec3(1.0f), 1.0f, 64.0f, 0.875f);
+  EXPECT_NEAR(h.w, 8.0f, 0.05f);
+  EXPECT_NEAR(h.x, 1.0f, 0.01f);
 }
 
 TEST(RtCache, OutcomesAndSwitch) {

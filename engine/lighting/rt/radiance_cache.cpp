@@ -97,9 +97,12 @@ void RtRadianceCache::plan(FrameInputs& in, shared::RtPush& push, float sceneSca
   // and the sky's light off a white surface, an emitter seen directly.
   const float light = std::max(largest(in.constants.sunIrradiance) / shared::kPi + largest(in.constants.skyRadiance),
                                maxEmitterRadiance);
-  push_.bound = 64.0f * std::max(light, 1e-6f);
+  // Generous: a sample above it is clipped (lost light), and the sum's resolution is the bound
+  // over 2^22 with stochastic rounding (no bias, only a little noise).
+  push_.bound = 1024.0f * std::max(light, 1e-6f);
   push_.maxSamples = float(s.rtCacheMaxSamples);
   push_.maxAge = shared::kRtCacheMaxAge;
+  push_.historyDecay = 1.0f - 1.0f / shared::kRtCacheHistoryFrames;
   in.executor.requestReadback(kRtCacheOutcomes);
 }
 
