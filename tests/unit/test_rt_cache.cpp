@@ -102,7 +102,7 @@ TEST(RtCache, OutcomesAndSwitch) {
   EXPECT_DOUBLE_EQ(o.offScreenShare(), 0.5);
 
   RtCacheSwitch sw;
-  EXPECT_TRUE(sw.on());  // nothing measured yet
+  EXPECT_FALSE(sw.on());  // nothing measured yet: the probe paths measure first
   RtCacheOutcomes outdoors{100, 97, 2, 1};
   EXPECT_FALSE(sw.update(outdoors, 0.05f));
   RtCacheOutcomes edge{100, 90, 6, 4};  // 4%: between half the threshold and it: stays off

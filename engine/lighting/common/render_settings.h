@@ -85,7 +85,7 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(float, rtDenoiseRadius, 0.0f, 0.0f, 1e6f, "m", "rt", "", kSettingAuto, "denoiser pass 1 base radius; pass 2 uses half (Metro: 6 m and 3 m)") \
   X(bool, rtScreenRadiance, true, 0, 1, "", "rt", "rt", kSettingPlain, "hits seen on screen last frame reuse its shaded radiance, so light bounces more than once") \
   X(bool, rtHitSky, true, 0, 1, "", "rt", "rt", kSettingPlain, "hits lit afresh (off screen) also see the sky, through one more ray") \
-  X(float, rtCacheMinShare, 0.05f, 0.0f, 2.0f, "share", "rt", "", kSettingPlain, "radiance cache: runs while at least this share of its update paths' first rays ends on surfaces off screen, measured every frame (0: always; above 1: never)") \
+  X(float, rtCacheMinShare, 0.25f, 0.0f, 2.0f, "share", "rt", "", kSettingPlain, "radiance cache: runs while at least this share of its update paths' first rays ends on surfaces off screen, measured every frame (0: always; above 1: never)") \
   X(uint32_t, rtCachePaths, 4096, 16, 1u << 20, "paths", "rt", "", kSettingPlain, "radiance cache: update paths a frame, at least (one pixel of each square tile that gives this many starts one)") \
   X(uint32_t, rtCacheBounces, 3, 1, 8, "rays", "rt", "", kSettingPlain, "radiance cache: rays of an update path; its last hit reads the cache, so light bounces on from frame to frame") \
   X(uint32_t, rtCacheMaxSamples, 64, 1, 65536, "samples", "rt", "", kSettingPlain, "radiance cache: a cell averages at most this many samples (fewer: follows changes sooner, noisier)") \

@@ -35,15 +35,15 @@ struct RtCacheOutcomes {
 // Counts the outcomes of rt.cache.outcomes' bytes (one uint each).
 RtCacheOutcomes countCacheOutcomes(std::span<const uint8_t> bytes);
 
-// Runs while the measured share is at least `minShare`, stops below half of it (no flicker
-// on the edge); the first frame runs (nothing is measured yet).
+// Starts while the measured share is at least `minShare`, stops below half of it (no flicker
+// on the edge). It starts off: the first frame's probe paths measure, the next decides.
 class RtCacheSwitch {
  public:
   bool update(const RtCacheOutcomes& measured, float minShare);
   bool on() const { return on_; }
 
  private:
-  bool on_ = true;
+  bool on_ = false;
 };
 
 // Which frame-key parts drop the cache: what its light depends on. The camera does not (it
