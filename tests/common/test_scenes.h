@@ -4,6 +4,8 @@
 #include "scene/scene.h"
 
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace tl::test {
 
@@ -40,6 +42,49 @@ inline std::unique_ptr<scene::Scene> makeCubeScene(const scene::Material& materi
   inst.worldBounds = mesh.bounds;
   s->instances.push_back(inst);
   s->bounds = mesh.bounds;
+  return s;
+}
+
+// Axis-aligned solid boxes (each one mesh and one instance, faces pointing out), all with
+// `material`: walls with a thickness, for rooms whose walls are thicker than a voxel.
+struct SolidBox {
+  glm::vec3 min, max;
+};
+inline std::unique_ptr<scene::Scene> makeBoxesScene(const scene::Material& material, const std::vector<SolidBox>& boxes) {
+  auto s = std::make_unique<scene::Scene>();
+  s->name = "boxes";
+  s->materials.push_back(material);
+  for (size_t b = 0; b < boxes.size(); ++b) {
+    const glm::vec3 centre = 0.5f * (boxes[b].min + boxes[b].max), half = 0.5f * (boxes[b].max - boxes[b].min);
+    scene::Mesh mesh;
+    mesh.name = "box" + std::to_string(b);
+    for (int axis = 0; axis < 3; ++axis)
+      for (int sign = -1; sign <= 1; sign += 2) {
+        glm::vec3 n(0.0f), u(0.0f), v(0.0f);
+        n[axis] = float(sign);
+        // u x v = n, so the triangles wind counter-clockwise seen from outside.
+        u[(axis + 1) % 3] = half[(axis + 1) % 3] * float(sign);
+        v[(axis + 2) % 3] = half[(axis + 2) % 3];
+        const uint32_t base = uint32_t(mesh.vertices.size());
+        for (glm::vec2 c : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
+          scene::Vertex vtx;
+          vtx.position = centre + n * half + u * c.x + v * c.y;
+          vtx.normal = n;
+          vtx.uv = c * 0.5f + 0.5f;
+          mesh.vertices.push_back(vtx);
+        }
+        mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+      }
+    for (auto& vtx : mesh.vertices) mesh.bounds.extend(glm::dvec3(vtx.position));
+    scene::Instance inst;
+    inst.name = mesh.name;
+    inst.mesh = uint32_t(b);
+    inst.worldBounds = mesh.bounds;
+    s->bounds.extend(mesh.bounds.min);
+    s->bounds.extend(mesh.bounds.max);
+    s->meshes.push_back(std::move(mesh));
+    s->instances.push_back(inst);
+  }
   return s;
 }
 
