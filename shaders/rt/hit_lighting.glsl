@@ -5,7 +5,10 @@
 // through one cosine-distributed ray (RtPush::hitSky), and the emitters through one sample
 // (RtPush::emitterCount) or, without emitter sampling, the hit's own emission. Also the
 // pixel's own emitter sample. Include after rt/rt_common.glsl. The shadow miss shader is miss index 0 of
-// every pipeline that includes this.
+// every pipeline that includes this. With the radiance cache on (RtPush::cacheLookup) a hit
+// lit afresh takes the light arriving from everything but the sun and the emitters from its
+// cell (shared/rt_cache.h) instead of the sky ray: every bounce, at the price of a lookup.
+#include "shared/rt_cache.h"
 layout(set = 0, binding = kRtBindingTlas) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = kRtBindingHistRadiance) uniform sampler2D previousRadiance;
 layout(set = 0, binding = kRtBindingHistDepth) uniform sampler2D previousViewDepth;
@@ -14,6 +17,7 @@ layout(set = 0, binding = kRtBindingMaterial) uniform sampler2D gMaterial;
 layout(set = 0, binding = kRtBindingEmissive) uniform sampler2D gEmissive;
 
 layout(set = 0, binding = kRtBindingEmitters, std430) readonly buffer Emitters { RtEmitter emitters[]; };
+layout(set = 0, binding = kRtBindingCacheEntries, std430) readonly buffer CacheEntries { RtCacheEntry cacheEntries[]; };
 
 layout(location = 1) rayPayloadEXT float visible;
 
@@ -79,31 +83,66 @@ vec3 emitterLight(vec3 start, vec3 normal, uvec3 seed, out vec3 direction) {
   return e.radiance.rgb * tlRtEmitterInversePdf(e, distance2, cosLight) * unoccluded(start, direction, reach);
 }
 
-// The hit lit afresh: the sun through a shadow ray, the emitters through one sample (when on;
-// else its own emission as found), and with hitSky the sky through one ray drawn around the
-// hit's normal by cosine: for a uniform sky L the reflected radiance is albedo / pi * (pi L *
-// the escaping share), so one ray's estimate is albedo * L when it escapes. `normal` faces
-// the ray; `seed` draws the sky ray and the emitter sample.
-vec3 freshHitRadiance(vec3 hitPosition, float distance, uint hit, vec3 normal, vec3 emission, uvec3 seed) {
+// The radiance cache's C at a camera-relative position with `normal`: false where its cell
+// holds no sample (or the cache is off).
+bool cachedIncoming(vec3 position, vec3 normal, out vec3 incoming) {
+  incoming = vec3(0.0);
+  if (push.cacheLookup == 0u) return false;
+  uvec2 cell = tlRtCacheCell(position + push.cameraWorld.xyz, normal, length(position), push.cacheCellSize,
+                             push.cacheCellAngle);
+  for (uint k = 0u; k < kRtCacheProbes; ++k) {
+    RtCacheEntry e = cacheEntries[(cell.x + k) & push.cacheEntryMask];
+    if (e.key != cell.y) continue;  // holes left by dropped cells: probe on
+    if (e.radiance.w <= 0.0) return false;
+    incoming = e.radiance.rgb;
+    return true;
+  }
+  return false;
+}
+
+// Where rays leave a hit rebuilt from its stored distance: the stored distance is a half, so
+// the rebuilt point may sit up to 2^-11 of the distance off the surface; rays leave by more.
+vec3 hitRayStart(vec3 hitPosition, float distance, vec3 normal) {
+  return tlOffsetRayOrigin(hitPosition + normal * (distance * (1.0 / 1024.0)), normal);
+}
+
+// The light a hit sends back of what is sampled explicitly there: its emission (when the rays
+// count it), the sun through a shadow ray, the emitters through one sample (when on).
+// `normal` faces the ray; `seed` draws the emitter sample.
+vec3 directHitRadiance(vec3 start, vec3 albedo, vec3 normal, vec3 emission, uvec3 seed) {
   vec3 radiance = emissionFromRays() ? emission : vec3(0.0);
-  vec3 albedo = tlRtHitAlbedo(hit);
-  // The stored distance is a half: the rebuilt point may sit up to 2^-11 of the distance off
-  // the surface, so rays from it leave by more than that.
-  vec3 start = tlOffsetRayOrigin(hitPosition + normal * (distance * (1.0 / 1024.0)), normal);
   vec3 toSun = frame.sunToLight.xyz;
   float nl = dot(normal, toSun);
   if ((frame.flags & kFrameFlagSunShadows) != 0u && nl > 0.0)
     radiance += albedo * kInvPi * frame.sunIrradiance.rgb * (nl * unoccluded(start, toSun, 1e30));
-  if (push.hitSky != 0u && any(greaterThan(frame.skyRadiance.rgb, vec3(0.0)))) {
-    vec3 d = tlLocalToWorld(tlSampleCosineHemisphere(tlRandom2(seed)), normal);
-    radiance += albedo * frame.skyRadiance.rgb * unoccluded(start, d, 1e30);
-  }
   if (push.emitterCount > 0u) {
     vec3 d;
     vec3 light = emitterLight(start, normal, seed + uvec3(0u, 0u, 0x9E3779B9u), d);
     radiance += albedo * kInvPi * light * max(dot(normal, d), 0.0);
   }
   return radiance;
+}
+
+// The rest of the light arriving at a hit, as the mean over its cosine lobe (reflected as
+// albedo times it): the cache's cell where it has one, else with hitSky the sky through one
+// ray drawn around the normal by cosine (for a uniform sky L the reflected radiance is
+// albedo / pi * (pi L * the escaping share), so one ray's estimate is albedo * L when it
+// escapes), else nothing.
+vec3 hitIncoming(vec3 hitPosition, vec3 start, vec3 normal, uvec3 seed) {
+  vec3 incoming;
+  if (cachedIncoming(hitPosition, normal, incoming)) return incoming;
+  if (push.hitSky != 0u && any(greaterThan(frame.skyRadiance.rgb, vec3(0.0)))) {
+    vec3 d = tlLocalToWorld(tlSampleCosineHemisphere(tlRandom2(seed)), normal);
+    return frame.skyRadiance.rgb * unoccluded(start, d, 1e30);
+  }
+  return vec3(0.0);
+}
+
+// The hit lit afresh: its direct light plus albedo times what arrives otherwise.
+vec3 freshHitRadiance(vec3 hitPosition, float distance, uint hit, vec3 normal, vec3 emission, uvec3 seed) {
+  vec3 albedo = tlRtHitAlbedo(hit);
+  vec3 start = hitRayStart(hitPosition, distance, normal);
+  return directHitRadiance(start, albedo, normal, emission, seed) + albedo * hitIncoming(hitPosition, start, normal, seed);
 }
 
 // The pixel's own emitter sample as an SH sample that resolves to its irradiance.

@@ -243,6 +243,15 @@ struct RtPush {
   uint raysPerPixel;     // rays each traced pixel takes per frame: 1, or 2 (the trace and hit lighting run twice)
   uint sampleIndex;      // which of them this pass traces (0 or 1)
   vec4 cameraWorld;      // xyz: the camera's world position (emitters are stored in world space)
+  // The radiance cache (shared/rt_cache.h):
+  uint cacheLookup;      // 1: hits lit afresh take their incoming light from rt.cache.entries where a cell has it
+  uint cacheEntryMask;   // its entries - 1
+  float cacheCellSize;   // smallest cell (m)
+  float cacheCellAngle;  // a cell is at least this many times its distance from the camera
+  uint cacheBounces;     // rays of an update path
+  uint cacheTile;        // one update path per cacheTile x cacheTile pixels
+  uint pad0;
+  uint pad1;
 };
 
 // The two-pass spatial denoiser on the SH (Metro's "little monster"): its own push constants.
@@ -291,11 +300,15 @@ TL_CONST uint kRtBindingFirstCoCg = 34;
 TL_CONST uint kRtBindingFirstAo = 35;
 TL_CONST uint kRtBindingEmitters = 32;         // RtEmitter[] (at least one entry; RtPush::emitterCount of them valid)
 TL_CONST uint kRtBindingDenoiseMoment = 36;    // r32f: the accumulation's mean squared sample luma (the denoiser's noise estimate)
+TL_CONST uint kRtBindingCacheEntries = 37;     // RtCacheEntry[]: the radiance cache as hits read it (shared/rt_cache.h)
+TL_CONST uint kRtBindingCacheAccum = 38;       // RtCacheAccum[]: its keys and this frame's sums
+TL_CONST uint kRtBindingCacheSamples = 39;     // RtCacheSample[]: the update paths' samples
+TL_CONST uint kRtBindingCacheOutcomes = 40;    // uint[]: what each update path's first ray found (kRtCacheOutcome*)
 TL_END
 
 #ifdef __cplusplus
 static_assert(sizeof(tl::shared::RtInstance) == 80);
-static_assert(sizeof(tl::shared::RtPush) == 96);
+static_assert(sizeof(tl::shared::RtPush) == 128);  // the least maxPushConstantsSize a device may have
 static_assert(sizeof(tl::shared::RtEmitter) == 64);
 static_assert(sizeof(tl::shared::RtDenoisePush) == 16);
 #endif

@@ -153,6 +153,7 @@ std::optional<float> autoSettingValue(std::string_view name, const RenderSetting
   if (name == "rtRayLength" || name == "legacyConeRange") return sceneScaledRayLength(sceneScale);
   if (name == "rtBlendDistance") return sceneScaledBlendDistance(sceneScale);
   if (name == "rtDenoiseRadius") return sceneScaledDenoiseRadius(sceneScale);
+  if (name == "rtCacheCellSize") return sceneScaledCacheCellSize(sceneScale);
   if (name == "rtPretracePixels") return pretraceAutoPixels(s.height);
   if (name == "legacyLevel0Extent") return autoLevel0Extent(sceneScale, s.legacyVoxelResolution);
   return std::nullopt;

@@ -85,6 +85,13 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(float, rtDenoiseRadius, 0.0f, 0.0f, 1e6f, "m", "rt", "", kSettingAuto, "denoiser pass 1 base radius; pass 2 uses half (Metro: 6 m and 3 m)") \
   X(bool, rtScreenRadiance, true, 0, 1, "", "rt", "rt", kSettingPlain, "hits seen on screen last frame reuse its shaded radiance, so light bounces more than once") \
   X(bool, rtHitSky, true, 0, 1, "", "rt", "rt", kSettingPlain, "hits lit afresh (off screen) also see the sky, through one more ray") \
+  X(float, rtCacheMinShare, 0.25f, 0.0f, 2.0f, "share", "rt", "", kSettingPlain, "radiance cache: runs while at least this share of its update paths' first rays ends on surfaces off screen, measured every frame (0: always; above 1: never)") \
+  X(uint32_t, rtCachePaths, 4096, 16, 1u << 20, "paths", "rt", "", kSettingPlain, "radiance cache: update paths a frame, at least (one pixel of each square tile that gives this many starts one)") \
+  X(uint32_t, rtCacheBounces, 3, 1, 8, "rays", "rt", "", kSettingPlain, "radiance cache: rays of an update path; its last hit reads the cache, so light bounces on from frame to frame") \
+  X(uint32_t, rtCacheMaxSamples, 64, 1, 65536, "samples", "rt", "", kSettingPlain, "radiance cache: a cell averages at most this many samples (fewer: follows changes sooner, noisier)") \
+  X(float, rtCacheCellAngle, 0.03f, 0.001f, 1.0f, "rad", "rt", "", kSettingPlain, "radiance cache: a cell is at least this angle times its distance from the camera across") \
+  X(float, rtCacheCellSize, 0.0f, 0.0f, 1e6f, "m", "rt", "", kSettingAuto, "radiance cache: the smallest cell (auto: the scene's size / 1000)") \
+  X(uint32_t, rtCacheEntries, 1u << 16, 1u << 10, 1u << 24, "cells", "rt", "", kSettingPow2, "radiance cache: hash table slots (32 + 48 bytes each)") \
   X(bool, rtEmitterSampling, true, 0, 1, "", "rt", "rt", kSettingPlain, "emissive triangles are sampled at pixels and hits through shadow rays, not found only by chance") \
   X(float, rtCullAngle, 0.002f, 0.0f, 3.14159f, "rad", "rt", "rt", kSettingPlain, "contribution culling: instances subtending less are left out of the top level") \
   X(float, rtCullMargin, 0.0f, 0.0f, 1e6f, "m", "rt", "rt", kSettingPlain, "expanded frustum: margin around the view frustum (besides the ray length)") \
@@ -166,6 +173,7 @@ inline float sceneScaledRayLength(float sceneScale) { return std::clamp(sceneSca
 inline float pretraceAutoPixels(uint32_t height) { return std::max(16.0f, float(height) * (128.0f / 360.0f)); }
 inline float sceneScaledBlendDistance(float sceneScale) { return 2.0f * std::max(sceneScale, 1e-3f); }
 // The RT denoiser's pass-1 radius: a sixth of the scene, within Metro's 6 m.
+inline float sceneScaledCacheCellSize(float sceneScale) { return std::max(sceneScale, 1e-3f) / 1000.0f; }
 inline float sceneScaledDenoiseRadius(float sceneScale) { return std::clamp(sceneScale / 6.0f, 0.25f, 6.0f); }
 // The legacy clipmap's finest level: the scene, at most R/4 m.
 inline float autoLevel0Extent(float sceneScale, uint32_t voxelResolution) {

@@ -8,6 +8,7 @@
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/lighting_path.h"
 #include "lighting/rt/blue_noise.h"
+#include "lighting/rt/radiance_cache.h"
 #include "lighting/rt/rt_path.h"
 #include "lighting/rt/rt_scene.h"
 #include "shared/scene.h"
@@ -94,6 +95,7 @@ class RtPath final : public LightingPath {
     push.hitSky = s.rtHitSky ? 1u : 0u;
     push.emitterCount = s.rtEmitterSampling ? scene_->emitterCount() : 0u;
     push.cameraWorld = glm::vec4(glm::vec3(in.cameraWorld), 0.0f);
+    cache_.plan(in, push, scale, scene_->maxEmitterRadiance());
 
     for (int i = 0; i < 4; ++i) graph.declarePersistent(histNames[i], histDescs[i]);
     const bool screenRadiance = s.rtScreenRadiance;
@@ -111,6 +113,9 @@ class RtPath final : public LightingPath {
       second.sampleIndex = 1;
       addRays(graph, in, second, kSecondRay, &kFirstRay, screenRadiance);
     }
+
+    addCacheUpdate(graph, in, push, screenRadiance);
+    cache_.addPasses(graph, in);
 
     graph.addPass(
         "rt.temporal", graph::PassKind::Compute,
@@ -292,7 +297,7 @@ class RtPath final : public LightingPath {
   std::vector<std::pair<std::string, double>> figures() const override {
     if (!scene_) return {};
     const RtSceneStats& st = scene_->stats();
-    return {{"tlasInstances", double(scene_->instancesInTopLevel())},
+    std::vector<std::pair<std::string, double>> out{{"tlasInstances", double(scene_->instancesInTopLevel())},
             {"sceneInstances", double(sceneInstances_)},
             {"sourceTriangles", double(st.sourceTriangles)},
             {"rtTriangles", double(st.rtTriangles)},
@@ -307,6 +312,8 @@ class RtPath final : public LightingPath {
             {"blasRefitVertices", double(st.refitVerticesLastFrame)},
             {"aoRadiusM", double(params_.aoRadius)},
             {"rayLengthM", double(params_.rayLength)}};
+    for (auto& f : cache_.figures()) out.push_back(std::move(f));
+    return out;
   }
 
  private:
@@ -407,6 +414,31 @@ class RtPath final : public LightingPath {
               .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle());
           traceRays(ctx, lighting_, in, &in.scene);
         });
+  }
+
+  // The radiance cache's update paths (rt/cache_update.rgen): every frame, also while the
+  // cache is off (then a few one-ray probes), since their outcomes decide whether it runs.
+  void addCacheUpdate(graph::RenderGraph& graph, FrameInputs& in, const RtPush& push, bool screenRadiance) {
+    graph.addPass(
+        "rt.cache.update", graph::PassKind::RayTracing,
+        [&](graph::PassBuilder& b) {
+          readCommon(b);
+          readHitLighting(b, screenRadiance);
+          b.create(kRtCacheSamples, cache_.samplesDesc(in), Usage::StorageWrite);
+          b.create(kRtCacheOutcomes, cache_.outcomesDesc(in), Usage::StorageWrite);
+        },
+        [this, &in, push, screenRadiance](graph::PassContext& ctx) {
+          RtPush p = push;
+          p.screenRadiance = useScreenRadiance(ctx, push, screenRadiance && !restart_);
+          ctx.bind(cacheUpdate_);
+          ctx.pushConstants(p);
+          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance)
+              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
+              .storageBuffer(shared::kRtBindingCacheSamples, ctx.buffer(kRtCacheSamples).handle())
+              .storageBuffer(shared::kRtBindingCacheOutcomes, ctx.buffer(kRtCacheOutcomes).handle());
+          traceRays(ctx, cacheUpdate_, cache_.tilesX(in), cache_.tilesY(in), &in.scene);
+        });
+    graph.markOutput(kRtCacheOutcomes);
   }
 
   static constexpr uint32_t kMaxDisocclusionRays = 64;  // RE ENGINE traces 16-64 per low-resolution pixel
@@ -529,6 +561,7 @@ class RtPath final : public LightingPath {
     readStructures(b);
     b.read(kHistDepth, Usage::Sampled);
     if (screenRadiance) b.read(kHistRadiance, Usage::Sampled);
+    if (cache_.active()) b.read(kRtCacheEntries, Usage::StorageRead);
     for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive"}) b.read(n, Usage::Sampled);
   }
   gpu::DescriptorWriter& writeHitLighting(gpu::DescriptorWriter& w, graph::PassContext& ctx, bool screenRadiance) {
@@ -537,6 +570,9 @@ class RtPath final : public LightingPath {
     VkSampler pt = point_.handle();
     return w.accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
         .storageBuffer(shared::kRtBindingEmitters, scene_->emitterData().handle())
+        // Without the cache its binding still needs a buffer: the emitters stand in, unread.
+        .storageBuffer(shared::kRtBindingCacheEntries,
+                       cache_.active() ? ctx.buffer(kRtCacheEntries).handle() : scene_->emitterData().handle())
         .sampledImage(shared::kRtBindingHistRadiance, radiance.view(), pt, kReadOnly)
         .sampledImage(shared::kRtBindingHistDepth, ctx.image(kHistDepth).view(), pt, kReadOnly)
         .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), pt, kReadOnly)
@@ -631,7 +667,8 @@ class RtPath final : public LightingPath {
                                         {shared::kRtBindingHistDepth, sampled},
                                         {shared::kRtBindingBaseColor, sampled},
                                         {shared::kRtBindingMaterial, sampled},
-                                        {shared::kRtBindingEmissive, sampled}};
+                                        {shared::kRtBindingEmissive, sampled},
+                                        {shared::kRtBindingCacheEntries, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
     {
       gpu::RayTracingPipelineDesc d;
       d.name = "rt.lighting";
@@ -665,6 +702,19 @@ class RtPath final : public LightingPath {
                                  {shared::kRtBindingCellPosition, storage}});
       d.layout = with(extra);
       disocclusion_ = gpu::createRayTracingPipeline(in.device, d);
+    }
+    {
+      gpu::RayTracingPipelineDesc d;
+      d.name = "rt.cache.update";
+      d.raygen = "rt/cache_update.rgen";
+      d.misses = {"rt/shadow.rmiss", "rt/disocclusion.rmiss"};  // hit_lighting.glsl: the shadow miss is 0
+      d.hitGroups = {{"rt/disocclusion.rchit", kAnyHit}};         // the whole hit in the payload
+      std::vector<B> extra = hitLighting;
+      extra.insert(extra.end(), {{shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                 {shared::kRtBindingCacheSamples, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                 {shared::kRtBindingCacheOutcomes, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
+      d.layout = with(extra);
+      cacheUpdate_ = gpu::createRayTracingPipeline(in.device, d);
     }
   }
 
@@ -784,6 +834,8 @@ class RtPath final : public LightingPath {
   gpu::Image blueNoise_;
   gpu::Sampler point_;
   gpu::Pipeline pretrace_, trace_, lighting_, temporal_, aoFilter_, rawRays_, denoise_, disocclusion_, disocclusionBlend_;
+  gpu::Pipeline cacheUpdate_;
+  RtRadianceCache cache_;
 };
 
 }  // namespace

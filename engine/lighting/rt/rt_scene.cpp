@@ -198,6 +198,8 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
   for (size_t i = 0; i < scene.instances.size(); ++i) instanceEmission.push_back(glm::vec3(data[i].emission));
   std::vector<shared::RtEmitter> emitters = buildEmitterTable(scene, instanceEmission);
   emitterCount_ = uint32_t(emitters.size());
+  for (const shared::RtEmitter& e : emitters)
+    maxEmitterRadiance_ = std::max({maxEmitterRadiance_, e.radiance.x, e.radiance.y, e.radiance.z});
   if (emitters.empty()) emitters.push_back(shared::RtEmitter{});  // a binding needs a buffer
   emitterData_ = gpu::Buffer(device, emitters.size() * sizeof(emitters[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                              gpu::MemoryUsage::Upload, "rt.emitters");

@@ -73,6 +73,7 @@ class RtScene {
   // The emissive triangles (lighting/rt/emitters.h): at least one entry, emitterCount() valid.
   gpu::Buffer& emitterData() { return emitterData_; }
   uint32_t emitterCount() const { return emitterCount_; }
+  float maxEmitterRadiance() const { return maxEmitterRadiance_; }  // the brightest channel of any emitter
   // Per-instance hit albedo under a material override mode (shared/material_mode.h): as
   // authored, the one resolved outside (T7: override > baked > texture average; null: texture
   // averages); in the Lambertian modes what the mode reflects (the base colour's texture
@@ -94,6 +95,7 @@ class RtScene {
   gpu::Buffer instanceData_;                      // RtInstance per scene instance
   gpu::Buffer emitterData_;                       // RtEmitter per emissive triangle
   uint32_t emitterCount_ = 0;
+  float maxEmitterRadiance_ = 0.0f;
   gpu::TopLevelBuilder topLevel_;
   RtSceneStats stats_;
   float ratio_ = 1.0f;

@@ -1,0 +1,171 @@
+// The RT path's radiance cache: plan, accumulate, resolve (radiance_cache.h, shared/rt_cache.h).
+#include "lighting/rt/radiance_cache.h"
+
+#include "graph/executor.h"
+#include "lighting/common/render_settings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace tl::lighting {
+
+using graph::Usage;
+
+RtCacheOutcomes countCacheOutcomes(std::span<const uint8_t> bytes) {
+  RtCacheOutcomes o;
+  for (size_t i = 0; i + sizeof(uint32_t) <= bytes.size(); i += sizeof(uint32_t)) {
+    uint32_t v;
+    std::memcpy(&v, bytes.data() + i, sizeof v);
+    if (v == shared::kRtCacheOutcomeNone) continue;
+    ++o.paths;
+    if (v == shared::kRtCacheOutcomeSky) ++o.sky;
+    if (v == shared::kRtCacheOutcomeOnScreen) ++o.onScreen;
+    if (v == shared::kRtCacheOutcomeOffScreen) ++o.offScreen;
+  }
+  return o;
+}
+
+bool RtCacheSwitch::update(const RtCacheOutcomes& measured, float minShare) {
+  const double share = measured.offScreenShare();
+  if (measured.paths == 0) return on_;  // nothing seen (all sky): keep the decision
+  if (!on_ && share >= minShare) on_ = true;
+  if (on_ && share < 0.5 * minShare) on_ = false;
+  return on_;
+}
+
+namespace {
+float largest(const glm::vec4& v) { return std::max({v.x, v.y, v.z}); }
+graph::ResourceDesc entriesDesc(uint32_t entries) {
+  return graph::ResourceDesc::buffer(VkDeviceSize(entries) * sizeof(shared::RtCacheEntry),
+                                     "radiance cache: per cell C (rgb), samples (w), key");
+}
+graph::ResourceDesc accumDesc(uint32_t entries) {
+  return graph::ResourceDesc::buffer(VkDeviceSize(entries) * sizeof(shared::RtCacheAccum),
+                                     "radiance cache: per cell key, last frame sampled, fixed-point sums by frame parity");
+}
+}  // namespace
+
+graph::ResourceDesc RtRadianceCache::samplesDesc(const FrameInputs& in) const {
+  return graph::ResourceDesc::buffer(VkDeviceSize(paths(in)) * bounces_ * sizeof(shared::RtCacheSample),
+                                     "radiance cache: each update path vertex's sample (cell, incoming radiance)");
+}
+graph::ResourceDesc RtRadianceCache::outcomesDesc(const FrameInputs& in) const {
+  return graph::ResourceDesc::buffer(VkDeviceSize(paths(in)) * sizeof(uint32_t),
+                                     "radiance cache: what each update path's first ray found (0 none, 1 sky, 2 on screen, 3 off screen)");
+}
+
+void RtRadianceCache::plan(FrameInputs& in, shared::RtPush& push, float sceneScale, float maxEmitterRadiance) {
+  const RenderSettings& s = in.settings;
+  if (auto it = in.executor.readbacks().find(kRtCacheOutcomes); it != in.executor.readbacks().end()) {
+    measured_ = countCacheOutcomes(it->second.bytes);
+    switch_.update(measured_, s.rtCacheMinShare);
+  }
+  active_ = s.rtCacheMinShare <= 1.0f && (s.rtCacheMinShare <= 0.0f || switch_.on());
+  const uint32_t entries = s.rtCacheEntries;
+  restart_ = false;
+  if (active_) {
+    const bool stored = wasActive_ && in.executor.historyValid(kRtCacheEntries, entriesDesc(entries)) &&
+                        in.executor.historyValid(kRtCacheAccum, accumDesc(entries));
+    const HistoryPolicy policy{"rt.cache", kRtCacheRestarts, 0u};
+    restart_ = history_.advance(policy, in.key, "rt", in.historyLog, {stored}).action != HistoryAction::Keep;
+  } else {
+    history_.forget();
+  }
+  wasActive_ = active_;
+
+  // One path per tile of tile_ x tile_ pixels: the largest tile that gives rtCachePaths, so
+  // the cache's samples (and cost) do not fall with the image size. Off, the probe paths go on
+  // measuring: a sixteenth as many, one ray each.
+  const double pixels = double(s.width) * double(s.height);
+  tile_ = uint32_t(std::max(1.0, std::floor(std::sqrt(pixels / double(std::max(s.rtCachePaths, 1u))))));
+  if (!active_) tile_ *= 4u;
+  bounces_ = active_ ? std::clamp(s.rtCacheBounces, 1u, shared::kRtCacheMaxBounces) : 1u;
+  push.cacheLookup = active_ && !restart_ ? 1u : 0u;
+  push.cacheEntryMask = entries - 1u;
+  push.cacheCellSize = s.rtCacheCellSize > 0.0f ? s.rtCacheCellSize : sceneScaledCacheCellSize(sceneScale);
+  push.cacheCellAngle = s.rtCacheCellAngle;
+  push.cacheBounces = bounces_;
+  push.cacheTile = tile_;
+
+  push_ = {};
+  push_.entryMask = entries - 1u;
+  push_.frame = active_ ? ++frame_ : frame_;
+  push_.sampleCount = paths(in) * bounces_;
+  push_.restart = restart_ ? 1u : 0u;
+  // The brightest light one sample can carry, with room for the emitters' 1/pdf: the sun's
+  // and the sky's light off a white surface, an emitter seen directly.
+  const float light = std::max(largest(in.constants.sunIrradiance) / shared::kPi + largest(in.constants.skyRadiance),
+                               maxEmitterRadiance);
+  // Generous: a sample above it is clipped (lost light), and the sum's resolution is the bound
+  // over 2^22 with stochastic rounding (no bias, only a little noise).
+  push_.bound = 1024.0f * std::max(light, 1e-6f);
+  push_.maxSamples = float(s.rtCacheMaxSamples);
+  push_.maxAge = shared::kRtCacheMaxAge;
+  push_.historyDecay = 1.0f - 1.0f / shared::kRtCacheHistoryFrames;
+  in.executor.requestReadback(kRtCacheOutcomes);
+}
+
+void RtRadianceCache::createPipelines(gpu::Device& device) {
+  using B = gpu::Binding;
+  const auto storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  auto compute = [&](const char* name, const char* shader, std::vector<B> bindings) {
+    gpu::ComputePipelineDesc d;
+    d.name = name;
+    d.shader = shader;
+    d.layout.bindings = std::move(bindings);
+    d.layout.pushConstantBytes = sizeof(shared::RtCachePush);
+    return gpu::createComputePipeline(device, d);
+  };
+  accumulate_ = compute("rt.cache.accumulate", "rt/cache_accumulate.comp",
+                        {{shared::kRtBindingCacheSamples, storage}, {shared::kRtBindingCacheAccum, storage}});
+  resolve_ = compute("rt.cache.resolve", "rt/cache_resolve.comp",
+                     {{shared::kRtBindingCacheAccum, storage}, {shared::kRtBindingCacheEntries, storage}});
+}
+
+void RtRadianceCache::addPasses(graph::RenderGraph& graph, FrameInputs& in) {
+  if (!active_) return;
+  if (!accumulate_) createPipelines(in.device);
+  const uint32_t entries = push_.entryMask + 1u;
+  graph.declarePersistent(kRtCacheEntries, entriesDesc(entries));
+  graph.declareCache(kRtCacheAccum, accumDesc(entries));
+  const shared::RtCachePush push = push_;
+  graph.addPass(
+      "rt.cache.accumulate", graph::PassKind::Compute,
+      [&](graph::PassBuilder& b) {
+        b.read(kRtCacheSamples, Usage::StorageRead);
+        b.read(kRtCacheAccum, Usage::StorageRead);
+        b.write(kRtCacheAccum, Usage::StorageWrite);
+      },
+      [this, push, entries](graph::PassContext& ctx) {
+        ctx.bind(accumulate_);
+        ctx.pushConstants(push);
+        ctx.descriptors()
+            .storageBuffer(shared::kRtBindingCacheSamples, ctx.buffer(kRtCacheSamples).handle())
+            .storageBuffer(shared::kRtBindingCacheAccum, ctx.buffer(kRtCacheAccum).handle());
+        ctx.dispatch(std::max(entries, push.sampleCount), 1, 1, 64, 1, 1);
+      });
+  graph.addPass(
+      "rt.cache.resolve", graph::PassKind::Compute,
+      [&](graph::PassBuilder& b) {
+        b.read(kRtCacheAccum, Usage::StorageRead);
+        b.read(kRtCacheEntries, Usage::StorageRead);
+        b.write(kRtCacheEntries, Usage::StorageWrite);
+      },
+      [this, push, entries](graph::PassContext& ctx) {
+        ctx.bind(resolve_);
+        ctx.pushConstants(push);
+        ctx.descriptors()
+            .storageBuffer(shared::kRtBindingCacheAccum, ctx.buffer(kRtCacheAccum).handle())
+            .storageBuffer(shared::kRtBindingCacheEntries, ctx.buffer(kRtCacheEntries).handle());
+        ctx.dispatch(entries, 1, 1, 64, 1, 1);
+      });
+}
+
+std::vector<std::pair<std::string, double>> RtRadianceCache::figures() const {
+  return {{"cacheActive", active_ ? 1.0 : 0.0},
+          {"cacheOffScreenShare", measured_.offScreenShare()},
+          {"cachePaths", double(measured_.paths)}};
+}
+
+}  // namespace tl::lighting

@@ -1,0 +1,86 @@
+// The RT path's world-space radiance cache (shared/rt_cache.h): the graph resources, the
+// decision whether it runs this frame (measured, not a flag), its history policy and the
+// accumulate and resolve passes. The update paths are a ray-tracing pass of the RT path
+// (rt_path.cpp), since they shade hits as its hit lighting does.
+#pragma once
+
+#include "graph/graph.h"
+#include "gpu/pipeline.h"
+#include "lighting/common/frame_inputs.h"
+#include "lighting/common/frame_key.h"
+#include "shared/rt.h"
+#include "shared/rt_cache.h"
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace tl::lighting {
+
+inline constexpr const char* kRtCacheEntries = "rt.cache.entries";    // persistent: what hits read
+inline constexpr const char* kRtCacheAccum = "rt.cache.accum";        // persistent: keys and sums
+inline constexpr const char* kRtCacheSamples = "rt.cache.samples";    // the update paths' samples
+inline constexpr const char* kRtCacheOutcomes = "rt.cache.outcomes";  // each path's first ray: kRtCacheOutcome*
+
+// What the update paths' first rays found in one frame.
+struct RtCacheOutcomes {
+  uint32_t paths = 0;      // paths that started (their pixel is not sky)
+  uint32_t sky = 0;
+  uint32_t onScreen = 0;
+  uint32_t offScreen = 0;
+  // The share of rays that end on surfaces off screen: the light only the cache brings.
+  double offScreenShare() const { return paths ? double(offScreen) / double(paths) : 0.0; }
+};
+// Counts the outcomes of rt.cache.outcomes' bytes (one uint each).
+RtCacheOutcomes countCacheOutcomes(std::span<const uint8_t> bytes);
+
+// Starts while the measured share is at least `minShare`, stops below half of it (no flicker
+// on the edge). It starts off: the first frame's probe paths measure, the next decides.
+class RtCacheSwitch {
+ public:
+  bool update(const RtCacheOutcomes& measured, float minShare);
+  bool on() const { return on_; }
+
+ private:
+  bool on_ = false;
+};
+
+// Which frame-key parts drop the cache: what its light depends on. The camera does not (it
+// is in world space); moving geometry does not (cells follow through their bounded history).
+inline constexpr FrameParts kRtCacheRestarts =
+    parts(FramePart::Scene, FramePart::Settings, FramePart::Sun, FramePart::Sky, FramePart::Albedo);
+
+class RtRadianceCache {
+ public:
+  // This frame's plan: whether the cache runs (from the last frame's outcomes) or only its
+  // probe paths measure, whether it restarts; fills the cache's fields of `push` and
+  // requests this frame's outcomes. Call before any pass that reads the cache.
+  void plan(FrameInputs& in, shared::RtPush& push, float sceneScale, float maxEmitterRadiance);
+  bool active() const { return active_; }  // the cache is read and written this frame
+  bool restart() const { return restart_; }
+  uint32_t paths(const FrameInputs& in) const { return tilesX(in) * tilesY(in); }
+  uint32_t tilesX(const FrameInputs& in) const { return (in.settings.width + tile_ - 1) / tile_; }
+  uint32_t tilesY(const FrameInputs& in) const { return (in.settings.height + tile_ - 1) / tile_; }
+  graph::ResourceDesc samplesDesc(const FrameInputs& in) const;
+  graph::ResourceDesc outcomesDesc(const FrameInputs& in) const;
+
+  // rt.cache.accumulate and rt.cache.resolve (only when active).
+  void addPasses(graph::RenderGraph& graph, FrameInputs& in);
+
+  std::vector<std::pair<std::string, double>> figures() const;
+
+ private:
+  void createPipelines(gpu::Device& device);
+
+  RtCacheSwitch switch_;
+  HistoryKeeper history_;
+  bool active_ = false, wasActive_ = false, restart_ = false;
+  uint32_t tile_ = 8, bounces_ = 3;
+  uint32_t frame_ = 0;  // the cache's own frame count: the parity of its sums
+  shared::RtCachePush push_{};
+  RtCacheOutcomes measured_;
+  gpu::Pipeline accumulate_, resolve_;
+};
+
+}  // namespace tl::lighting
