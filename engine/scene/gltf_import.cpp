@@ -150,6 +150,35 @@ bool finite(const glm::dmat4& m) {
   return true;
 }
 
+// One KHR_lights_punctual light at its node's place, checked against the extension's
+// constraints (a light the file describes wrongly is an error, not a guess).
+Light readLight(const tinygltf::Light& gl, const std::string& nodeName, const glm::dvec3& position,
+                const glm::dquat& orientation, const Reader& rd) {
+  Light l;
+  l.name = gl.name.empty() ? nodeName : gl.name;
+  if (gl.type == "directional") l.type = LightType::Directional;
+  else if (gl.type == "point") l.type = LightType::Point;
+  else if (gl.type == "spot") l.type = LightType::Spot;
+  else rd.fail(fmt::format("light `{}` has type `{}` (KHR_lights_punctual: directional, point or spot)", l.name, gl.type));
+  if (gl.color.size() == 3) l.color = glm::vec3(gl.color[0], gl.color[1], gl.color[2]);
+  else if (!gl.color.empty()) rd.fail(fmt::format("light `{}` has a colour of {} numbers (3 expected)", l.name, gl.color.size()));
+  l.intensity = float(gl.intensity);
+  if (!(l.intensity >= 0.0f) || !std::isfinite(l.intensity) || !(glm::all(glm::greaterThanEqual(l.color, glm::vec3(0.0f)))) ||
+      !std::isfinite(l.color.r + l.color.g + l.color.b))
+    rd.fail(fmt::format("light `{}` has a negative or non-finite colour or intensity", l.name));
+  if (gl.range > 0) l.range = float(gl.range);
+  if (l.type == LightType::Spot) {
+    l.innerConeAngle = float(gl.spot.innerConeAngle);
+    l.outerConeAngle = float(gl.spot.outerConeAngle);
+    if (!(l.innerConeAngle >= 0.0f && l.innerConeAngle < l.outerConeAngle && l.outerConeAngle <= 0.5f * glm::pi<float>() + 1e-6f))
+      rd.fail(fmt::format("light `{}` has cone angles inner {} and outer {} (0 <= inner < outer <= pi/2)", l.name,
+                          l.innerConeAngle, l.outerConeAngle));
+  }
+  l.position = position;
+  l.direction = glm::normalize(orientation * glm::dvec3(0.0, 0.0, -1.0));
+  return l;
+}
+
 }  // namespace
 
 Scene loadGltf(const std::filesystem::path& file) {
@@ -379,20 +408,9 @@ Scene loadGltf(const std::filesystem::path& file) {
     if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end()) {
       const auto& li = it->second.Get("light");
       int index = li.IsInt() ? li.GetNumberAsInt() : -1;
-      if (index >= 0 && size_t(index) < model.lights.size()) {
-        const auto& gl = model.lights[size_t(index)];
-        Light l;
-        l.name = gl.name.empty() ? nodeName : gl.name;
-        l.type = gl.type == "directional" ? LightType::Directional : gl.type == "spot" ? LightType::Spot : LightType::Point;
-        if (gl.color.size() == 3) l.color = glm::vec3(gl.color[0], gl.color[1], gl.color[2]);
-        l.intensity = float(gl.intensity);
-        if (gl.range > 0) l.range = float(gl.range);
-        l.innerConeAngle = float(gl.spot.innerConeAngle);
-        l.outerConeAngle = float(gl.spot.outerConeAngle);
-        l.position = position;
-        l.direction = glm::normalize(orientation * glm::dvec3(0.0, 0.0, -1.0));
-        scene.lights.push_back(l);
-      }
+      if (index < 0 || size_t(index) >= model.lights.size())
+        rd.fail(fmt::format("node `{}` refers to light {}, which does not exist", nodeName, index));
+      scene.lights.push_back(readLight(model.lights[size_t(index)], nodeName, position, orientation, rd));
     }
     for (int child : node.children) visit(child, world, depth + 1);
   };
@@ -453,12 +471,14 @@ Scene loadGltf(const std::filesystem::path& file) {
     }
   }
 
-  // Environment: the first directional light is the sun; the sky comes from extras.
-  for (const auto& l : scene.lights) {
+  // Environment: the first directional light is the sun; the others are shaded from the light table.
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
     if (l.type != LightType::Directional) continue;
     scene.environment.sunDirection = l.direction;
-    scene.environment.sunIrradiance = l.color * l.intensity;
+    scene.environment.sunIrradiance = l.radiometric();
     scene.environment.sunFromFile = true;
+    scene.environment.sunLight = i;
     break;
   }
   auto readSky = [&](const tinygltf::Value& extras) {

@@ -26,6 +26,8 @@ struct FrameConstants {
   float sceneScale;      // characteristic scene size in metres (bounds diagonal)
   vec4 jitter;           // xy: this frame's TAA offset of the projection, in NDC (0 without TAA); viewProj
                          // includes it, prevViewProj does not: motion vectors subtract it
+  uint lightCount;       // entries of the light table (shared/lights.h): point, spot, further directional lights
+  uint lightPad0, lightPad1, lightPad2;
 };
 
 TL_CONST uint kFrameFlagSunShadows = 1u;
