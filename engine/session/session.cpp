@@ -2,6 +2,8 @@
 
 #include "lighting/common/albedo_view_pass.h"
 #include "lighting/common/composite_pass.h"
+#include "lighting/common/light_table.h"
+#include "lighting/common/lights_pass.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/shadow_pass.h"
 #include "lighting/common/taa_pass.h"
@@ -23,6 +25,7 @@ namespace tl::session {
 struct Session::Passes {
   lighting::GbufferPass gbuffer;
   lighting::ShadowPass shadow;
+  lighting::LightsPass lights;
   lighting::CompositePass composite;
   lighting::TaaPass taa;
   lighting::TonemapPass tonemap;
@@ -96,6 +99,9 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   lighting_.sunDirection = env.sunDirection;
   lighting_.sunIrradiance = env.sunFromFile ? env.sunIrradiance : glm::vec3(0.0f);
   lighting_.skyRadiance = env.skyRadiance;
+  lighting_.lights.clear();
+  for (size_t i = 0; i < scene_->lights.size(); ++i)
+    if (i != env.sunLight) lighting_.lights.push_back(scene_->lights[i]);
   lighting_.exposureEv.reset();
   brightestEmission_ = 0.0f;
   for (const auto& m : scene_->materials)
@@ -172,6 +178,16 @@ void Session::setCompareView(std::optional<CompareView> view) {
   compare_ = std::make_unique<LiveCompare>(*view, findPath("reference")->unavailableReason(*device_));
 }
 
+namespace {
+// Every light but the sun joins the frame key's light part.
+lighting::KeyHasher& addLights(lighting::KeyHasher& h, const std::vector<scene::Light>& lights) {
+  for (const auto& l : lights)
+    h.all(double(l.type), l.color, double(l.intensity), double(l.range.value_or(0.0f)), double(l.innerConeAngle),
+          double(l.outerConeAngle), l.position, l.direction);
+  return h;
+}
+}  // namespace
+
 lighting::FrameKey Session::frameKey(uint64_t frame) const {
   using lighting::FramePart;
   using lighting::KeyHasher;
@@ -180,10 +196,9 @@ lighting::FrameKey Session::frameKey(uint64_t frame) const {
   key.hash(FramePart::CameraOrientation) = KeyHasher().all(view_.forward, view_.up).done();
   key.hash(FramePart::Projection) =
       KeyHasher().all(double(view_.yfovRadians), double(view_.znear), double(settings_.width), double(settings_.height)).done();
-  key.hash(FramePart::Sun) = KeyHasher()
-                                 .all(glm::normalize(lighting_.sunDirection), lighting_.sunIrradiance,
-                                      double(lighting_.sunAngularRadius))
-                                 .done();
+  KeyHasher light;
+  light.all(glm::normalize(lighting_.sunDirection), lighting_.sunIrradiance, double(lighting_.sunAngularRadius));
+  key.hash(FramePart::Sun) = addLights(light, lighting_.lights).done();
   key.hash(FramePart::Sky) = KeyHasher().add(lighting_.skyRadiance).done();
   key.hash(FramePart::Scene) = gpuScene_ ? gpuScene_->id() : 0;
   if (scene_) {
@@ -247,8 +262,13 @@ void Session::setSize(uint32_t width, uint32_t height) {
 
 float autoExposureEv(const Lighting& l, float brightestEmission) {
   // A white Lambertian surface facing the sun under the sky has radiance E/pi + L.
+  double brightestLight = 0.0;
+  for (const auto& light : l.lights) {
+    const double e = shared::tlLuminance(light.radiometric());
+    brightestLight = std::max(brightestLight, light.type == scene::LightType::Directional ? e : e / 4.0);
+  }
   double white = shared::tlLuminance(l.sunIrradiance) / glm::pi<double>() + shared::tlLuminance(l.skyRadiance) +
-                 0.1 * brightestEmission;
+                 0.1 * brightestEmission + brightestLight / glm::pi<double>();
   return float(std::log2(std::max(white, 1e-3)));
 }
 
@@ -293,6 +313,7 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
   fc.flags = glm::length(lighting_.sunIrradiance) > 0.0f ? shared::kFrameFlagSunShadows : 0u;
   fc.flags |= uint32_t(settings_.materials) << shared::kFrameMaterialsShift;
   fc.sceneScale = float(scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0);
+  fc.lightCount = 0;  // renderOne writes the light table and its count
 }
 
 void Session::renderOne(bool readback) {
@@ -328,6 +349,20 @@ void Session::renderOne(bool readback) {
                         graph::ResourceDesc::buffer(brdfTables_.size(), "the shared BRDF's tables (shared/brdf_lut.h)"));
   executor_->bindImportedBuffer(lighting::kBrdfTables, brdfTables_);
   gpuScene_->importBuffers(graph, *executor_);
+  // The light table exists only in frames that have lights to shade: without, no pass reads it.
+  const auto lights = lighting::buildLightTable(lighting_.lights, view_.position, fc.sceneScale);
+  if (!lights.empty()) {
+    const VkDeviceSize bytes = lights.size() * sizeof(shared::GpuLight);
+    if (lightTable_.size() < bytes)
+      lightTable_ = gpu::Buffer(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
+                                lighting::kLightTable);
+    lightTable_.write(lights.data(), bytes);
+    fc.lightCount = uint32_t(lights.size());
+    constants_.write(&fc, sizeof(fc));
+    graph.declareImported(lighting::kLightTable,
+                          graph::ResourceDesc::buffer(lightTable_.size(), "lights other than the sun (shared/lights.h GpuLight[])"));
+    executor_->bindImportedBuffer(lighting::kLightTable, lightTable_);
+  }
 
   lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, constants_, *executor_, view_.position};
   in.instanceAlbedo = &albedo_->instanceAlbedo();
@@ -339,6 +374,9 @@ void Session::renderOne(bool readback) {
   passes_->gbuffer.add(graph, in);
   passes_->shadow.add(graph, in);
   lighting::LightingOutputs outputs = path->addPasses(graph, in);
+  // A path that computes the whole image (the reference) shades the lights itself.
+  if (outputs.radiance.empty())
+    outputs.lightsRadiance = passes_->lights.add(graph, in, outputs.shadowStructures, outputs.shadowTlasHandle);
   passes_->composite.add(graph, in, outputs);
   if (in.temporalAntialiasing) passes_->taa.add(graph, in);
   passes_->albedoView.add(graph, in);

@@ -41,6 +41,9 @@ struct Lighting {
   glm::vec3 skyRadiance{1.0f};    // uniform radiance L over the whole sphere
   std::optional<float> exposureEv;  // empty: derived from the light (see autoExposureEv)
   float sunAngularRadius = 0.00465f;  // radians (the real sun)
+  // Every light but the sun: point, spot and further directional lights in glTF's units (lux,
+  // candela; shaders/shared/lights.h has the scale they are shaded on). Loaded from the scene.
+  std::vector<scene::Light> lights;
 };
 
 struct PathInfo {
@@ -199,6 +202,7 @@ class Session {
   std::unique_ptr<Passes> passes_;
   gpu::Buffer constants_;
   gpu::Buffer brdfTables_;  // shared/brdf_lut.h BrdfTables, written once
+  gpu::Buffer lightTable_;  // shared/lights.h GpuLight[], rewritten each frame; grows, exists once a scene has lights
   lighting::RenderSettings settings_;
   View view_;
   std::optional<View> previousView_;
@@ -224,7 +228,8 @@ class Session {
 
 // Exposure that maps a white surface lit by this sun and sky to about 1.0 before tonemapping.
 // In scenes lit by emitters, a white surface near the brightest one (taken as a tenth of its
-// radiance: a rule of thumb for a light of modest solid angle) counts too.
+// radiance: a rule of thumb for a light of modest solid angle) counts too, and so does a white
+// surface facing the brightest other light (a point or spot light from 2 m).
 float autoExposureEv(const Lighting& lighting, float brightestEmission = 0.0f);
 
 }  // namespace tl::session

@@ -1,6 +1,6 @@
 #version 460
-// Composite shared by every lighting path: sun through the shadow map, the sky (times AO
-// when a path provides it), emission. Output is scene-linear radiance.
+// Composite shared by every lighting path: sun through the shadow map, the light table's
+// radiance (lights.direct), the sky (times AO when a path provides it), emission. Output is scene-linear radiance.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame.h"
 #include "shared/gbuffer.h"
@@ -17,6 +17,7 @@ layout(set = 0, binding = kCompositeEmissive) uniform sampler2D gEmissive;
 layout(set = 0, binding = kCompositeDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kCompositeShadow) uniform sampler2DShadow sunShadow;
 layout(set = 0, binding = kCompositeOutput, rgba16f) uniform writeonly image2D outRadiance;
+layout(set = 0, binding = kCompositeLights) uniform sampler2D lightsRadiance;
 layout(push_constant) uniform Push { CompositePush push; };
 
 #include "common/camera.glsl"
@@ -48,6 +49,8 @@ void main() {
     vec3 sun = frame.sunIrradiance.rgb * (nl * sunVisibilitySoft(position, n, p));
     radiance += sun * tlBrdf(s, n, v, frame.sunToLight.xyz);
   }
+  // Point, spot and further directional lights (lights.direct), when the scene has any.
+  if ((push.flags & kCompositeHasLights) != 0u) radiance += texelFetch(lightsRadiance, p, 0).rgb;
   // Indirect diffuse: the diffuse layer's albedo under uniform light from the irradiance's
   // directions (shared/shading.h; exact for a uniform sky), radiance = albedo / pi * E.
   float ao = pathAmbientOcclusion(p);

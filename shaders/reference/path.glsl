@@ -1,7 +1,7 @@
 // The reference path tracer's paths, shared by its ray-generation shaders (trace.rgen:
 // radiance and AO seen by the camera; irradiance.rgen: the diffuse irradiance at the camera's
 // primary hit). The includer declares `frame`, `tlas` and `push` (RefPush) and includes
-// shared/frame.h, reference.h, ray_origin.h, sampling.h and shading.h.
+// shared/frame.h, lights.h, reference.h, ray_origin.h, sampling.h and shading.h.
 
 layout(location = 0) rayPayloadEXT RefHit hit;
 layout(location = 1) rayPayloadEXT float visible;
@@ -16,6 +16,24 @@ vec2 next2() {
   uvec3 h = tlPcg3d(uvec3(gPixel.x | (gDimension++ << 16u), gPixel.y, gSample ^ (push.seed * 0x9E3779B9u)));
   return vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y));
 }
+
+// The light table (shared/lights.h) by next-event estimation from each scattering point: a
+// shadow ray per light (per resampled pick beyond kLightsLoopMax lights). Delta lights cannot
+// be hit by a BRDF-sampled ray, so no multiple importance sampling is needed.
+vec3 gLightOrigin, gLightNormal, gLightGeometric, gLightView;
+SurfaceParams gLightSurface;
+float lightVisibility(vec3 toLight, float distance) {
+  if (dot(gLightGeometric, toLight) <= 0.0) return 0.0;
+  visible = 0.0;
+  traceRayEXT(tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
+              0xFF, 0, 0, 1, gLightOrigin, 0.0, toLight, distance * (1.0 - 1e-4), 1);
+  return visible;
+}
+vec3 lightResponse(vec3 toLight) {
+  float nl = dot(gLightNormal, toLight);
+  return nl > 0.0 ? tlBrdf(gLightSurface, gLightNormal, gLightView, toLight) * nl : vec3(0.0);
+}
+#include "common/lights.glsl"
 
 // Ambient occlusion of this sample's primary hit (1 when the camera ray sees the sky): the
 // ground truth the real-time paths' AO is measured against, at the same radius.
@@ -60,6 +78,16 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
       traceRayEXT(tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
                   0xFF, 0, 0, 1, position, 0.0, toSun, 1e30, 1);
       radiance += throughput * frame.sunIrradiance.rgb * (sunNl * visible) * tlBrdf(s, n, v, toSun);
+    }
+
+    if (frame.lightCount > 0u) {
+      gLightOrigin = position;
+      gLightNormal = n;
+      gLightGeometric = geometric;
+      gLightView = v;
+      gLightSurface = s;
+      vec2 u = next2();
+      radiance += throughput * shadeLights(position, n, uvec3(floatBitsToUint(u.x), floatBitsToUint(u.y), gSample));
     }
 
     // Next direction from the BRDF (shared/shading.h): the single-scattering lobe from its
