@@ -325,6 +325,27 @@ void lamps(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// Many lights: 256 point lights (a 16 x 16 grid, 0.5 m apart, 0.8 to 2.3 m up, 8 to 68 cd,
+// four colours) over a 20 m grey ground under a black sky, seen from above at an angle. For the
+// light table's many-light sampling: its noise, its convergence and its cost against the count.
+void lampGrid(const std::filesystem::path& dir) {
+  SceneWriter w("lamp_grid");
+  int grey = w.material({"ground_grey", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  wall(w, "ground", grey, {0.0f, -0.1f, 0.0f}, {20.0f, 0.2f, 20.0f});
+  const glm::vec3 colours[4] = {{1.0f, 0.8f, 0.6f}, {0.6f, 0.8f, 1.0f}, {1.0f, 1.0f, 1.0f}, {0.8f, 1.0f, 0.7f}};
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 16; ++j) {
+      char name[32];
+      std::snprintf(name, sizeof name, "lamp_%02d_%02d", i, j);
+      const float x = -3.75f + 0.5f * float(i), z = -3.75f + 0.5f * float(j);
+      w.pointLight(name, {x, 0.8f + 0.1f * float((i * 7 + j * 3) % 16), z}, 8.0f + 4.0f * float((i * 5 + j * 11) % 16),
+                   colours[(i + 2 * j) % 4]);
+    }
+  w.camera("above", {0.0f, 6.0f, 6.0f}, {0.0f, 0.0f, 0.0f}, 60.0f);
+  w.sky({0.0f, 0.0f, 0.0f});
+  w.write(dir);
+}
+
 }  // namespace
 }  // namespace tl::content
 
@@ -346,6 +367,7 @@ int main(int argc, char** argv) {
     tl::content::corridor(dir);
     tl::content::closedBox(dir);
     tl::content::lamps(dir);
+    tl::content::lampGrid(dir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());
     return 1;

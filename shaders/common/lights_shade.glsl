@@ -8,6 +8,8 @@ layout(set = 0, binding = kLightsPassNormal) uniform sampler2D gNormal;
 layout(set = 0, binding = kLightsPassMaterial) uniform sampler2D gMaterial;
 layout(set = 0, binding = kLightsPassDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kLightsPassOutput, rgba16f) uniform writeonly image2D outRadiance;
+layout(set = 0, binding = kLightsPassAccum, rgba32f) uniform image2D accum;
+layout(push_constant) uniform Push { LightsPush push; };
 
 #include "common/camera.glsl"
 
@@ -27,6 +29,7 @@ void main() {
   float depth = texelFetch(gDepth, p, 0).r;
   if (depth <= 0.0) {
     imageStore(outRadiance, p, vec4(0.0));
+    if (push.accumulate != 0u) imageStore(accum, p, vec4(0.0));
     return;
   }
   vec3 position = cameraRelativePosition((vec2(p) + 0.5) * frame.viewport.zw, depth);
@@ -36,5 +39,11 @@ void main() {
   gSurface = tlMaterialSurface(texelFetch(gBaseColor, p, 0).rgb, material.x, material.y, tlFrameMaterials(frame.flags));
   gShadowOrigin = tlOffsetRayOrigin(position, gNormalHere);
   vec3 radiance = shadeLights(position, gNormalHere, uvec3(uvec2(p), frame.frameIndex));
+  if (push.accumulate != 0u) {
+    vec4 sum = vec4(radiance, 1.0);
+    if (push.restart == 0u) sum += imageLoad(accum, p);
+    imageStore(accum, p, sum);
+    radiance = sum.rgb / sum.a;
+  }
   imageStore(outRadiance, p, vec4(radiance, 1.0));
 }

@@ -33,6 +33,15 @@ TL_CONST uint kLightsPassMaterial = 3u;
 TL_CONST uint kLightsPassDepth = 4u;
 TL_CONST uint kLightsPassOutput = 5u;
 TL_CONST uint kLightsPassTlas = 6u;
+TL_CONST uint kLightsPassAccum = 7u;  // rgba32f, persistent: sum of estimates (rgb) and their count (a)
+
+// With more than kLightsLoopMax lights the pass's estimate is noisy: it accumulates while
+// nothing it depends on changes (the frame key), like the reference, and writes the mean.
+struct LightsPush {
+  uint accumulate;  // 1: add this frame's estimate to the sum (more than kLightsLoopMax lights)
+  uint restart;     // 1: the sum starts over this frame
+  uint pad0, pad1;
+};
 
 // Up to this many lights every shading point evaluates all of them (exact: no noise). With more,
 // it takes kLightPicks lights, each chosen by resampled importance sampling among

@@ -10,6 +10,15 @@ namespace tl::lighting {
 
 using graph::Usage;
 
+namespace {
+constexpr const char* kStandIn = "lights.accum.none";
+constexpr HistoryPolicy kLightsAccumulation{
+    "lights.accumulation",
+    parts(FramePart::CameraPosition, FramePart::CameraOrientation, FramePart::Projection, FramePart::Sun,
+          FramePart::Scene, FramePart::Geometry, FramePart::Settings),
+    0};
+}  // namespace
+
 VkBuffer lightTableOrStandIn(graph::PassContext& ctx, const FrameInputs& in, VkBuffer standIn) {
   return in.constants.lightCount > 0 ? ctx.buffer(kLightTable).handle() : standIn;
 }
@@ -32,11 +41,29 @@ std::string LightsPass::add(graph::RenderGraph& graph, FrameInputs& in, const st
                          {shared::kLightsPassOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                          {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                          {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+    d.layout.bindings.push_back({shared::kLightsPassAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
     if (traced) d.layout.bindings.push_back({shared::kLightsPassTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR});
+    d.layout.pushConstantBytes = sizeof(shared::LightsPush);
     pipeline = gpu::createComputePipeline(in.device, d);
   }
   if (point_.handle() == VK_NULL_HANDLE) point_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "lights.point");
   const uint32_t w = in.settings.width, h = in.settings.height;
+  // Many lights: a noisy estimate, accumulated while nothing it depends on changes.
+  shared::LightsPush push{};
+  const std::string accum = "lights.accum." + in.pathName;
+  const auto accumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                                      "sum of light-table estimates (rgb) and their count (a)");
+  if (in.constants.lightCount > shared::kLightsLoopMax) {
+    push.accumulate = 1;
+    const bool stored = in.executor.historyValid(accum, accumDesc);
+    push.restart = accumulation_[in.pathName].advance(kLightsAccumulation, in.key, in.pathName, in.historyLog, {stored})
+                               .action == HistoryAction::Restart
+                       ? 1u
+                       : 0u;
+    graph.declarePersistent(accum, accumDesc);
+  } else {
+    accumulation_.erase(in.pathName);
+  }
   graph.addPass(
       "lights.direct", graph::PassKind::Compute,
       [&](graph::PassBuilder& b) {
@@ -47,13 +74,18 @@ std::string LightsPass::add(graph::RenderGraph& graph, FrameInputs& in, const st
         b.read(kGbufferDepth, Usage::Sampled);
         if (traced)
           for (const auto& s : structures) b.read(s, Usage::AccelerationStructureRead);
+        if (push.accumulate)
+          b.write(accum, Usage::StorageWrite);
+        else  // the binding still needs an rgba32f storage image: one texel, never written
+          b.create(kStandIn, graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, 1, 1, "unused accumulation binding"),
+                   Usage::StorageWrite);
         b.create(kLightsRadiance,
                  graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
                                               traced ? "radiance from the light table, ray-traced shadows"
                                                      : "radiance from the light table, unshadowed"),
                  Usage::StorageWrite);
       },
-      [this, &in, &pipeline, traced, tlasHandle](graph::PassContext& ctx) {
+      [this, &in, &pipeline, traced, tlasHandle, push, accum](graph::PassContext& ctx) {
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
         VkSampler pt = point_.handle();
         ctx.bind(pipeline);
@@ -67,6 +99,8 @@ std::string LightsPass::add(graph::RenderGraph& graph, FrameInputs& in, const st
                       .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle())
                       .storageBuffer(shared::kBindingLights, ctx.buffer(kLightTable).handle());
         if (traced) d.accelerationStructure(shared::kLightsPassTlas, tlasHandle);
+        d.storageImage(shared::kLightsPassAccum, ctx.image(push.accumulate ? accum : std::string(kStandIn)).view());
+        ctx.pushConstants(push);
         ctx.dispatch(in.settings.width, in.settings.height);
       });
   return kLightsRadiance;

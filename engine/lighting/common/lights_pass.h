@@ -9,12 +9,16 @@
 #include "graph/graph.h"
 #include "lighting/common/frame_inputs.h"
 
+#include <map>
 #include <string>
 #include <vector>
 
 namespace tl::lighting {
 
 inline constexpr const char* kLightsRadiance = "lights.radiance";  // RGBA16F, 0 on the sky
+// With more lights than every point evaluates (shared/lights.h kLightsLoopMax), each path
+// accumulates the noisy estimate in its own persistent "lights.accum.<path>" while the frame
+// key's camera, projection, light, scene, geometry and the path's settings stay.
 
 // What a pass that shades the light table binds at kBindingLights: the table, or in frames
 // without lights `standIn` (any buffer the pass binds anyway), which the shaders never read
@@ -32,6 +36,7 @@ class LightsPass {
  private:
   gpu::Pipeline unshadowed_, traced_;
   gpu::Sampler point_;
+  std::map<std::string, HistoryKeeper, std::less<>> accumulation_;  // per lighting path
 };
 
 }  // namespace tl::lighting
