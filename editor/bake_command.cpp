@@ -3,6 +3,7 @@
 #include "cli_args.h"
 
 #include "session/session.h"
+#include "session/shard.h"
 
 #include <fmt/format.h>
 
@@ -15,14 +16,6 @@ namespace {
 
 using tl::session::SessionError;
 namespace albedo = tl::albedo;
-
-std::pair<uint32_t, uint32_t> parseShard(const std::string& text) {
-  unsigned i = 0, n = 0;
-  char slash = 0;
-  if (std::sscanf(text.c_str(), "%u%c%u", &i, &slash, &n) != 3 || slash != '/' || n == 0 || i >= n)
-    throw SessionError(fmt::format("--shard `{}` is not i/N with 0 <= i < N", text));
-  return {i, n};
-}
 
 int listDatabase(const std::string& file) {
   albedo::AlbedoDatabase db(file, false);
@@ -64,7 +57,14 @@ int runBake(const BakeArgs& a, const std::string& defaultScene) {
   albedo::BakeOptions options;
   options.settings.tileSize = a.tileSize;
   if (a.tileSize < 8 || a.tileSize > 256) throw SessionError("--tile must be between 8 and 256 pixels");
-  if (!a.shard.empty()) std::tie(options.shardIndex, options.shardCount) = parseShard(a.shard);
+  std::optional<tl::session::Shard> shard;
+  if (!a.shard.empty() || a.shardCount) {
+    if (a.shard.empty()) throw tl::session::ShardError("--shard-count goes with --shard auto");
+    shard = tl::session::resolveShard(a.shard, a.shardCount);
+    options.shardIndex = shard->index;
+    options.shardCount = shard->count;
+    fmt::print("shard {}/{}: {}\n", shard->index, shard->count, shard->source);
+  }
   options.batchSize = a.batch;
   options.force = a.force;
   // Crash tests: die by SIGKILL inside batch N's transaction, after its rows are written.
@@ -75,32 +75,41 @@ int runBake(const BakeArgs& a, const std::string& defaultScene) {
     };
   }
 
+  const std::vector<std::string> scenes = a.scenes.empty() ? std::vector<std::string>{defaultScene} : a.scenes;
   tl::session::Session session;
-  session.loadScene(a.scene.empty() ? defaultScene : a.scene);
-  session.openAlbedoDatabase(a.db);
-  const auto start = std::chrono::steady_clock::now();
-  auto job = session.startAlbedoBake(options);
-  auto bar = [&] {
+  uint32_t failed = 0;
+  for (const std::string& file : scenes) {
+    // Keys an earlier scene baked are in the database by now: this scene skips them.
+    const auto loadStart = std::chrono::steady_clock::now();
+    session.loadScene(file);
+    session.openAlbedoDatabase(a.db);
+    const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
+    const auto start = std::chrono::steady_clock::now();
+    auto job = session.startAlbedoBake(options);
+    auto bar = [&] {
+      const auto& p = job->progress();
+      const double f = p.total ? double(p.done) / p.total : 1.0;
+      const int filled = int(f * 30.0 + 0.5);
+      fmt::print(stderr, "\r[{:30}] {:4}/{:<4} baked {} skipped {} failed {}", std::string(size_t(filled), '#'), p.done,
+                 p.total, p.baked, p.skipped, p.failed);
+    };
+    bar();
+    while (job->step()) bar();
+    bar();
+    fmt::print(stderr, "\n");
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto& p = job->progress();
-    const double f = p.total ? double(p.done) / p.total : 1.0;
-    const int filled = int(f * 30.0 + 0.5);
-    fmt::print(stderr, "\r[{:30}] {:4}/{:<4} baked {} skipped {} failed {}", std::string(size_t(filled), '#'), p.done, p.total,
-               p.baked, p.skipped, p.failed);
-  };
-  bar();
-  while (job->step()) bar();
-  bar();
-  fmt::print(stderr, "\n");
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const auto& p = job->progress();
-  for (const std::string& f : p.failures) fmt::print("failed: {}\n", f);
-  fmt::print("{}: {} keys{}: baked {}, skipped {} (up to date), failed {} in {:.2f} s ({:.1f} keys/s baking)\n",
-             session.scene().name, p.total, a.shard.empty() ? "" : fmt::format(" in shard {}", a.shard), p.baked, p.skipped,
-             p.failed, seconds, p.gpuSeconds > 0.0 ? p.baked / p.gpuSeconds : 0.0);
+    for (const std::string& f : p.failures) fmt::print("failed: {}\n", f);
+    fmt::print("{}: {} keys{}: baked {}, skipped {} (up to date), failed {} in {:.2f} s ({:.1f} keys/s baking); "
+               "scene loaded in {:.2f} s\n",
+               session.scene().name, p.total, shard ? fmt::format(" in shard {}/{}", shard->index, shard->count) : "",
+               p.baked, p.skipped, p.failed, seconds, p.gpuSeconds > 0.0 ? p.baked / p.gpuSeconds : 0.0, loadSeconds);
+    failed += p.failed;
+  }
   fmt::print("database {}: {} baked, {} overrides, {} bytes\n", a.db, session.albedo().database()->baked().size(),
              session.albedo().database()->overrides().size(), std::filesystem::file_size(a.db));
-  if (p.failed) {
-    fmt::print(stderr, "twinlight: error: {} of {} keys failed to bake (listed above)\n", p.failed, p.total);
+  if (failed) {
+    fmt::print(stderr, "twinlight: error: {} key(s) failed to bake (listed above)\n", failed);
     return 1;
   }
   return exitStatus(session);

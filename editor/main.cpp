@@ -15,6 +15,8 @@
 #include "session/compare.h"
 #include "session/image_io.h"
 #include "session/settings_json.h"
+#include "session/shard.h"
+#include "session/sweep.h"
 #include "session/session.h"
 #include "version/version.h"
 
@@ -201,6 +203,133 @@ int runRender(const RenderOptions& o) {
   return exitStatus(session);
 }
 
+// compare --settings FILE: [{"name": N, "path": P, "settings": {...}}, ...].
+std::vector<tl::session::CompareVariant> readCompareVariants(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw tl::session::SessionError(fmt::format("{}: cannot read the settings file", file));
+  nlohmann::json list;
+  try {
+    list = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw tl::session::SessionError(fmt::format("{}: not JSON: {}", file, e.what()));
+  }
+  if (!list.is_array()) throw tl::session::SessionError(fmt::format("{}: expected a JSON array of configurations", file));
+  std::vector<tl::session::CompareVariant> variants;
+  for (const auto& v : list) {
+    if (!v.is_object() || !v.contains("name") || !v.contains("path") || !v["name"].is_string() || !v["path"].is_string())
+      throw tl::session::SessionError(fmt::format("{}: each configuration needs \"name\" and \"path\" strings", file));
+    variants.push_back({v["name"], v["path"], v.value("settings", nlohmann::json::object())});
+  }
+  return variants;
+}
+
+// The options besides the scene that decide what a compare measures, as given: shards of one
+// sweep must have been started with the same ones.
+nlohmann::json renderOptionsJson(const RenderOptions& o) {
+  auto opt = [](const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  return {{"size", o.size},
+          {"camera", opt(o.view.camera)},
+          {"lookFrom", o.view.lookFrom},
+          {"lookAt", o.view.lookAt},
+          {"fov", opt(o.view.fovDegrees)},
+          {"sunDir", o.light.sunDir},
+          {"sun", o.light.sun},
+          {"sky", o.light.sky},
+          {"exposure", opt(o.light.exposureEv)},
+          {"materials", o.materials},
+          {"albedoDb", o.albedoDb},
+          {"sunSize", opt(o.sunSizeDegrees)},
+          {"hardShadows", o.hardShadows},
+          {"rtMeshRatio", opt(o.rtMeshRatio)},
+          {"raysPerPixel", opt(o.rtRaysPerPixel)},
+          {"pretrace", opt(o.rtPretrace)},
+          {"denoise", opt(o.rtDenoise)},
+          {"time", o.time},
+          {"animate", opt(o.animateFps)}};
+}
+
+double figure(const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); }
+
+// One view's figures as tables, and its gate. `failAbove` gives the thresholds' order as the
+// user wrote them (a merged report has them only as a JSON object).
+void printCompareReport(const nlohmann::json& report, const std::vector<tl::session::GateThreshold>& failAbove) {
+  fmt::print("as rendered (linear radiance; SSIM and FLIP of the display images at {:.2f} EV)\n",
+             report["exposureEV"].get<double>());
+  fmt::print("{:10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>9}\n", "path", "GPU ms", "relMSE", "RMSE", "PSNR", "SSIM", "FLIP",
+             "HDR-FLIP");
+  for (auto& p : report["paths"])
+    fmt::print("{:10} {:9.2f} {:9.4f} {:9.4f} {:8.2f} {:7.4f} {:7.4f} {:9.4f}\n", p["path"].get<std::string>(),
+               p["frameMs"].get<double>(), figure(p["relMSE"]), figure(p["RMSE"]), figure(p["PSNR"]), figure(p["SSIM"]),
+               figure(p["FLIP"]), figure(p["HDR-FLIP"]));
+  fmt::print("exposure-normalised (both images x{:.4g}: the reference's mean Y {:.4g} -> 0.18)\n",
+             report["reference"]["normalisation"].get<double>(), report["reference"]["meanLuminance"].get<double>());
+  fmt::print("{:10} {:>11} {:>11} {:>11}\n", "path", "relMSE_norm", "RMSE_norm", "FLIP_norm");
+  for (auto& p : report["paths"])
+    fmt::print("{:10} {:11.4f} {:11.4f} {:11.4f}\n", p["path"].get<std::string>(), figure(p["relMSE_norm"]),
+               figure(p["RMSE_norm"]), figure(p["FLIP_norm"]));
+  fmt::print("per stage (surface pixels)  {:>13} {:>18}\n", "AO abs error", "irradiance relMSE");
+  for (auto& p : report["paths"])
+    if (p["stages"].contains("ao"))
+      fmt::print("{:27} {:13.4f} {:18.4f}\n", p["path"].get<std::string>(), figure(p["stages"]["ao"]["meanAbsError"]),
+                 figure(p["stages"]["irradiance"]["relMSE"]));
+  const auto& ref = report["reference"];
+  if (ref["source"] == "file") {
+    fmt::print("reference: {} (external)\n", ref["file"].get<std::string>());
+  } else {
+    fmt::print("reference: {} spp{}{}\n", ref["spp"].get<int>(), ref["scope"] == "same" ? ", same scope (direct + one bounce)" : "",
+               ref["cached"].get<bool>() ? " (reused from the cache)" : "");
+    fmt::print("reference bounces: {}\n", ref["bouncePolicy"].get<std::string>());
+  }
+  fmt::print("materials: {}\n", ref["materials"].get<std::string>());
+  if (report.contains("gate")) {
+    const auto& gate = report["gate"];
+    for (auto& f : gate["failures"])
+      fmt::print("gate: FAIL {} {} {} > {}\n", f["path"].get<std::string>(), f["metric"].get<std::string>(),
+                 f["value"].is_number() ? fmt::format("{:.4f}", f["value"].get<double>()) : std::string("non-finite"),
+                 f["threshold"].get<double>());
+    std::string limits;
+    if (!failAbove.empty())
+      for (const auto& t : failAbove) limits += fmt::format("{}{} <= {}", limits.empty() ? "" : ", ", t.metric, t.value);
+    else
+      for (auto& [metric, value] : gate["failAbove"].items())
+        limits += fmt::format("{}{} <= {}", limits.empty() ? "" : ", ", metric, value.get<double>());
+    fmt::print("gate: {} ({})\n", gate["passed"].get<bool>() ? "passed" : "FAILED", limits);
+  }
+}
+
+// A sweep's configurations: their means over the views.
+void printSweepReport(const nlohmann::json& report) {
+  fmt::print("== sweep: {} view(s); each configuration's mean over them\n", report["views"].size());
+  fmt::print("{:20} {:>9} {:>9} {:>7} {:>11} {:>11}\n", "configuration", "GPU ms", "relMSE", "FLIP", "relMSE_norm", "FLIP_norm");
+  for (auto& c : report["configurations"])
+    fmt::print("{:20} {:9.2f} {:9.4f} {:7.4f} {:11.4f} {:11.4f}\n", c["path"].get<std::string>(), figure(c["frameMs"]),
+               figure(c["relMSE"]), figure(c["FLIP"]), figure(c["relMSE_norm"]), figure(c["FLIP_norm"]));
+  if (report.contains("gate"))
+    for (auto& f : report["gate"]["failures"])
+      fmt::print("gate: FAIL {} {} {} {} {} > {}\n", f["scene"].get<std::string>(), f["camera"].get<std::string>(),
+                 f["path"].get<std::string>(), f["metric"].get<std::string>(),
+                 f["value"].is_number() ? fmt::format("{:.4f}", f["value"].get<double>()) : std::string("non-finite"),
+                 f["threshold"].get<double>());
+}
+
+// A failed gate is its own exit code, after every report is written.
+int gateExit(size_t failures) {
+  if (failures == 0) return 0;
+  std::fflush(stdout);  // the figures first, then the error line
+  fmt::print(stderr, "twinlight: error: regression gate failed: {} figure(s) above their thresholds\n", failures);
+  return 3;
+}
+
+int compareMergeCommand(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& out) {
+  const nlohmann::json report = tl::session::mergeSweep(dirs, out);
+  if (report.value("kind", "") == "sweep") printSweepReport(report);
+  else printCompareReport(report, {});
+  const size_t views = report.value("kind", "") == "sweep" ? report["views"].size() : 1;
+  fmt::print("merged {} shard(s): {} view(s) into {}\n", dirs.size(), views,
+             (std::filesystem::absolute(out) / "report.html").string());
+  return gateExit(tl::session::gateFailureCount(report));
+}
+
 int runInfo() {
   Session session;
   auto& d = session.device();
@@ -276,7 +405,9 @@ int main(int argc, char** argv) {
   tl::session::CompareOptions compare;
   std::string comparePaths, compareOut = "out/compare", compareCache;
   auto* compareCmd = app.add_subcommand("compare", "speed against error of lighting paths versus the reference path tracer");
-  compareCmd->add_option("--scene", compareRender.scene, "glTF file; default content/atrium.gltf");
+  std::vector<std::string> compareScenes;
+  compareCmd->add_option("--scene", compareScenes,
+                         "glTF file(s); several make a sweep with a report per scene (default content/atrium.gltf)");
   compareCmd->add_option("--paths", comparePaths, "comma-separated paths (default: every available one)");
   std::string compareSettings;
   compareCmd->add_option("--settings", compareSettings,
@@ -308,6 +439,16 @@ int main(int argc, char** argv) {
   compareCmd->add_option("--fail-above", compareFailAbove,
                          "regression gate: exit 3 when any path's figure exceeds its threshold, METRIC=VALUE[,...] "
                          "(relMSE, relMSE_norm, RMSE, RMSE_norm, FLIP, FLIP_norm, HDR-FLIP; e.g. relMSE_norm=0.05,flip=0.1)");
+  std::string compareShard;
+  std::optional<std::string> compareShardCount;
+  std::vector<std::string> compareMerge;
+  compareCmd->add_option("--shard", compareShard,
+                         "measure only shard i of N of the views (scene x camera), i/N 0-based, or `auto` from a Slurm "
+                         "array or Kubernetes Indexed Job; writes shard.json for --merge");
+  compareCmd->add_option("--shard-count", compareShardCount,
+                         "with --shard auto under a Kubernetes Indexed Job: the shard count (else TWINLIGHT_SHARD_COUNT)");
+  compareCmd->add_option("--merge", compareMerge,
+                         "assemble the finished shards' report folders into one report in --out (no GPU)");
   addViewAndLightOptions(*compareCmd, compareRender);
 
   RenderOptions captureRender;
@@ -326,9 +467,15 @@ int main(int argc, char** argv) {
 
   BakeArgs bake;
   auto* bakeCmd = app.add_subcommand("bake", "bake the per-instance albedo database (or merge or list databases)");
-  bakeCmd->add_option("--scene", bake.scene, "glTF file; default content/atrium.gltf");
+  bakeCmd->add_option("--scene", bake.scenes,
+                      "glTF file(s), baked in order into one database (a key they share is baked once); default "
+                      "content/atrium.gltf");
   bakeCmd->add_option("--db", bake.db, "the albedo database (SQLite), created when missing")->required();
-  bakeCmd->add_option("--shard", bake.shard, "bake only shard i of N (i/N, 0-based): a deterministic subset of the keys");
+  bakeCmd->add_option("--shard", bake.shard,
+                      "bake only shard i of N (i/N, 0-based): a fixed subset of the keys; or `auto` from a Slurm array "
+                      "(SLURM_ARRAY_TASK_ID) or Kubernetes Indexed Job (JOB_COMPLETION_INDEX)");
+  bakeCmd->add_option("--shard-count", bake.shardCount,
+                      "with --shard auto under a Kubernetes Indexed Job: the shard count (else TWINLIGHT_SHARD_COUNT)");
   bakeCmd->add_option("--batch", bake.batch, "combinations per GPU submission (default: as many as fit, 42)");
   bakeCmd->add_option("--tile", bake.tileSize, "pixels per side of each of the 6 views (part of every key)")->capture_default_str();
   bakeCmd->add_flag("--force", bake.force, "re-bake keys the database already holds");
@@ -370,114 +517,81 @@ int main(int argc, char** argv) {
           throw UsageError(e.what());
         }
       }
-      if (!compareReference.empty() && !compareCameras.empty())
-        throw UsageError("--reference is one camera's image: it cannot be compared with --cameras");
+      if (!compareMerge.empty()) {
+        if (!compareShard.empty() || compareShardCount)
+          throw UsageError("--merge assembles finished shards: it takes no --shard");
+        std::vector<std::filesystem::path> dirs(compareMerge.begin(), compareMerge.end());
+        return compareMergeCommand(dirs, compareOut);
+      }
+      std::optional<tl::session::Shard> shard;
+      if (!compareShard.empty() || compareShardCount) {
+        if (compareShard.empty()) throw UsageError("--shard-count goes with --shard auto");
+        shard = tl::session::resolveShard(compareShard, compareShardCount);
+      }
+      const std::vector<std::string> scenes = compareScenes.empty() ? std::vector<std::string>{defaultScene().string()}
+                                                                    : compareScenes;
+      if (!compareReference.empty() && (!compareCameras.empty() || scenes.size() > 1))
+        throw UsageError("--reference is one camera's image: it cannot be compared with --cameras or several scenes");
       compare.referenceFile = compareReference;
-      Session session;
-      prepareSession(session, compareRender);
       std::stringstream list(comparePaths);
       for (std::string p; std::getline(list, p, ',');)
         if (!p.empty()) compare.paths.push_back(p);
-      if (!compareSettings.empty()) {
-        std::ifstream in(compareSettings);
-        if (!in) throw tl::session::SessionError(fmt::format("{}: cannot read the settings file", compareSettings));
-        nlohmann::json list;
-        try {
-          list = nlohmann::json::parse(in);
-        } catch (const nlohmann::json::exception& e) {
-          throw tl::session::SessionError(fmt::format("{}: not JSON: {}", compareSettings, e.what()));
-        }
-        if (!list.is_array()) throw tl::session::SessionError(fmt::format("{}: expected a JSON array of configurations", compareSettings));
-        for (const auto& v : list) {
-          if (!v.is_object() || !v.contains("name") || !v.contains("path") || !v["name"].is_string() || !v["path"].is_string())
-            throw tl::session::SessionError(fmt::format("{}: each configuration needs \"name\" and \"path\" strings", compareSettings));
-          compare.variants.push_back({v["name"], v["path"], v.value("settings", nlohmann::json::object())});
-        }
-      }
+      if (!compareSettings.empty()) compare.variants = readCompareVariants(compareSettings);
       compare.cacheDir = compareCache;
-      size_t gateFailures = 0;
-      // A failed gate is its own exit code, after every report is written.
+      compare.outDir = compareOut;
+
+      tl::session::SweepPlan plan = tl::session::planSweep(
+          scenes, compareCameras.empty() ? std::function<std::vector<std::string>(const std::string&)>()
+                                         : [&](const std::string& file) {
+                                             return tl::editor::compareCameraNames(file, compareCameras);
+                                           });
+      plan.settings = renderOptionsJson(compareRender);
+      if (shard)
+        fmt::print("shard {}/{} ({}) of a sweep of {} view(s)\n", shard->index, shard->count, shard->source,
+                   plan.views.size());
+      const bool headers = plan.views.size() > 1 || !plan.views[0].dir.empty();
+      tl::session::SweepCallbacks callbacks;
+      callbacks.loadScene = [&](Session& s, const std::string& file) {
+        RenderOptions o = compareRender;
+        o.scene = file;
+        prepareSession(s, o);
+      };
+      callbacks.setView = [&](Session& s, const tl::session::SweepView& view) {
+        // Every view starts from the scene's own camera and the command line's view options:
+        // the same whichever views this process measured before.
+        if (!s.scene().cameras.empty()) s.useSceneCamera(0);
+        else s.fitViewToScene();
+        applyView(s, compareRender.view);
+        if (!view.camera.empty()) tl::editor::useCompareCamera(s, view.camera);
+        if (headers) fmt::print("== {}\n", view.dir);
+      };
+      callbacks.viewDone = [&](const tl::session::SweepView& view, const nlohmann::json& report) {
+        printCompareReport(report, compare.failAbove);
+        fmt::print("wrote {}\n", (std::filesystem::absolute(compareOut) / view.dir / "report.html").lexically_normal().string());
+      };
+      callbacks.progress = [](const std::string& what, double f) {
+        int filled = int(f * 30.0 + 0.5);
+        fmt::print(stderr, "\r[{:30}] {:3.0f}% {:32}", std::string(size_t(filled), '#'), f * 100.0, what);
+        if (f >= 1.0) fmt::print(stderr, "\n");
+      };
+      Session session;
+      const tl::session::SweepOutcome outcome = tl::session::runSweep(session, plan, compare, shard, callbacks);
+      if (shard) {
+        fmt::print("shard {}/{}: measured {} of {} view(s) into {}; `twinlight compare --merge` the shards' folders\n",
+                   shard->index, shard->count, outcome.views, plan.views.size(),
+                   std::filesystem::absolute(compareOut).string());
+        // The merge's exit code carries the gate: a failing shard would keep a scheduler's
+        // dependent merge job from running.
+        if (outcome.gateFailures) fmt::print("gate: {} figure(s) above their thresholds (the merge fails)\n", outcome.gateFailures);
+        return exitStatus(session);
+      }
+      if (outcome.sweepReport) {
+        printSweepReport(*outcome.sweepReport);
+        fmt::print("wrote {} reports and {}\n", outcome.views, (std::filesystem::absolute(compareOut) / "report.html").string());
+      }
       // Validation errors first (the figures are not trusted then), then the gate.
-      auto gateExit = [&]() {
-        if (int status = exitStatus(session); status != 0) return status;
-        if (gateFailures == 0) return 0;
-        std::fflush(stdout);  // the figures first, then the error line
-        fmt::print(stderr, "twinlight: error: regression gate failed: {} figure(s) above their thresholds\n", gateFailures);
-        return 3;
-      };
-      auto runOne = [&](const std::filesystem::path& outDir) {
-        compare.outDir = outDir;
-        auto report = tl::session::runCompare(session, compare, [](const std::string& what, double f) {
-          int filled = int(f * 30.0 + 0.5);
-          fmt::print(stderr, "\r[{:30}] {:3.0f}% {:32}", std::string(size_t(filled), '#'), f * 100.0, what);
-          if (f >= 1.0) fmt::print(stderr, "\n");
-        });
-        auto num = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); };
-        fmt::print("as rendered (linear radiance; SSIM and FLIP of the display images at {:.2f} EV)\n",
-                   report["exposureEV"].get<double>());
-        fmt::print("{:10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>9}\n", "path", "GPU ms", "relMSE", "RMSE", "PSNR", "SSIM",
-                   "FLIP", "HDR-FLIP");
-        for (auto& p : report["paths"])
-          fmt::print("{:10} {:9.2f} {:9.4f} {:9.4f} {:8.2f} {:7.4f} {:7.4f} {:9.4f}\n", p["path"].get<std::string>(),
-                     p["frameMs"].get<double>(), num(p["relMSE"]), num(p["RMSE"]), num(p["PSNR"]), num(p["SSIM"]),
-                     num(p["FLIP"]), num(p["HDR-FLIP"]));
-        fmt::print("exposure-normalised (both images x{:.4g}: the reference's mean Y {:.4g} -> 0.18)\n",
-                   report["reference"]["normalisation"].get<double>(), report["reference"]["meanLuminance"].get<double>());
-        fmt::print("{:10} {:>11} {:>11} {:>11}\n", "path", "relMSE_norm", "RMSE_norm", "FLIP_norm");
-        for (auto& p : report["paths"])
-          fmt::print("{:10} {:11.4f} {:11.4f} {:11.4f}\n", p["path"].get<std::string>(), num(p["relMSE_norm"]),
-                     num(p["RMSE_norm"]), num(p["FLIP_norm"]));
-        fmt::print("per stage (surface pixels)  {:>13} {:>18}\n", "AO abs error", "irradiance relMSE");
-        for (auto& p : report["paths"])
-          if (p["stages"].contains("ao"))
-            fmt::print("{:27} {:13.4f} {:18.4f}\n", p["path"].get<std::string>(), num(p["stages"]["ao"]["meanAbsError"]),
-                       num(p["stages"]["irradiance"]["relMSE"]));
-        const auto& ref = report["reference"];
-        if (ref["source"] == "file") {
-          fmt::print("reference: {} (external)\n", ref["file"].get<std::string>());
-        } else {
-          fmt::print("reference: {} spp{}{}\n", ref["spp"].get<int>(),
-                     ref["scope"] == "same" ? ", same scope (direct + one bounce)" : "",
-                     ref["cached"].get<bool>() ? " (reused from the cache)" : "");
-          fmt::print("reference bounces: {}\n", ref["bouncePolicy"].get<std::string>());
-        }
-        fmt::print("materials: {}\n", ref["materials"].get<std::string>());
-        fmt::print("wrote {}\n", (std::filesystem::absolute(outDir) / "report.html").string());
-        if (report.contains("gate")) {
-          const auto& gate = report["gate"];
-          for (auto& f : gate["failures"])
-            fmt::print("gate: FAIL {} {} {} > {}\n", f["path"].get<std::string>(), f["metric"].get<std::string>(),
-                       f["value"].is_number() ? fmt::format("{:.4f}", f["value"].get<double>()) : std::string("non-finite"),
-                       f["threshold"].get<double>());
-          std::string limits;  // in the order given
-          for (const auto& t : compare.failAbove) limits += fmt::format("{}{} <= {}", limits.empty() ? "" : ", ", t.metric, t.value);
-          fmt::print("gate: {} ({})\n", gate["passed"].get<bool>() ? "passed" : "FAILED", limits);
-          gateFailures += gate["failures"].size();
-        }
-        return report;
-      };
-      if (compareCameras.empty()) {
-        runOne(compareOut);
-        return gateExit();
-      }
-      // One report per camera, and an index of them.
-      const auto views = tl::editor::resolveCompareCameras(session, compareCameras);
-      nlohmann::json index = nlohmann::json::array();
-      std::string links;
-      for (const auto& v : views) {
-        fmt::print("== {}\n", v.name);
-        session.setView(v.view);
-        session.resetHistory();
-        nlohmann::json report = runOne(std::filesystem::path(compareOut) / v.name);
-        index.push_back({{"camera", v.name}, {"report", v.name + "/report.json"}, {"paths", report["paths"]}});
-        links += fmt::format("<li><a href=\"{0}/report.html\">{0}</a></li>\n", v.name);
-      }
-      std::ofstream(std::filesystem::path(compareOut) / "cameras.json") << index.dump(2) << "\n";
-      std::ofstream(std::filesystem::path(compareOut) / "index.html")
-          << "<!doctype html><meta charset=utf-8><title>Twinlight compare: cameras</title><h1>"
-          << session.scene().name << ": one report per camera</h1><ul>\n" << links << "</ul>\n";
-      fmt::print("wrote {} reports and {}\n", views.size(), (std::filesystem::absolute(compareOut) / "index.html").string());
-      return gateExit();
+      if (int status = exitStatus(session); status != 0) return status;
+      return gateExit(outcome.gateFailures);
     }
     if (*benchCmd) {
       Session session;
@@ -523,6 +637,9 @@ int main(int argc, char** argv) {
     fmt::print("no display found (DISPLAY/WAYLAND_DISPLAY unset); rendering {} headless\n", stem.string());
     return runRender(o);
   } catch (const UsageError& e) {
+    fmt::print(stderr, "twinlight: error: {}\n", e.what());
+    return 2;
+  } catch (const tl::session::ShardError& e) {
     fmt::print(stderr, "twinlight: error: {}\n", e.what());
     return 2;
   } catch (const std::exception& e) {

@@ -26,6 +26,10 @@ packages=(
   librenderdoc-dev renderdoccmd libgtest-dev libgmock-dev
   xvfb xauth
   mesa-vulkan-drivers
+  # The job-array tests (tests/cli/cluster_slurm.sh, kubernetes_jobs.py): a private single-node
+  # Slurm with its own munge (the system services these packages install are not used), table
+  # checks, the deploy scripts' lint, the manifests' parser.
+  slurmctld slurmd slurm-client munge sqlite3 shellcheck python3 python3-yaml
 )
 # Lavapipe gained VK_KHR_acceleration_structure / ray_tracing_pipeline / ray_query in Mesa 24.1.
 min_mesa="24.1"

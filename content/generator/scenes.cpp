@@ -1,5 +1,7 @@
 // The project's own scenes (units: metres, +Y up). Each one exists to make a lighting
 // question measurable; content/README.md says which. Usage: tl_content_gen <content-dir>
+// The scale scene is generated when measured, never committed (it is tens of megabytes):
+// tl_content_gen --sprawl <dir> [instances=100000] [keys=1000]
 #include "gltf_writer.h"
 
 #include <OpenImageIO/imageio.h>
@@ -346,12 +348,81 @@ void lampGrid(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// Scale: `instances` boxes on a 2 km square of ground, each one of `keys` distinct mesh and
+// material combinations (albedo keys): 40 box shapes x as many materials as the keys need.
+// The positions are a jittered grid, the shapes and materials and yaw a fixed hash of the
+// index (the file is the same on every run). The camera `street` stands at eye height in the
+// middle looking along the ground; `overview` looks down on all of it.
+void sprawl(const std::filesystem::path& dir, uint32_t instances, uint32_t keys) {
+  SceneWriter w("sprawl");
+  const float side = 2000.0f;
+  w.node("ground", w.mesh("ground", quad(side, side, 200.0f), w.material({"asphalt", {0.18f, 0.18f, 0.19f}, 0.0f, 0.9f})),
+         {0.0f, 0.0f, 0.0f});
+  const uint32_t shapes = std::min(keys, 40u), materials = (keys + shapes - 1) / shapes;
+  auto hash = [](uint32_t x) {  // a 32-bit integer mix (fixed: the file must not change between runs)
+    x ^= x >> 16, x *= 0x7feb352du, x ^= x >> 15, x *= 0x846ca68bu, x ^= x >> 16;
+    return x;
+  };
+  std::vector<int> material(materials);
+  for (uint32_t m = 0; m < materials; ++m) {
+    const uint32_t h = hash(m + 7u);
+    const glm::vec3 colour(0.15f + 0.7f * float(h & 255u) / 255.0f, 0.15f + 0.7f * float((h >> 8) & 255u) / 255.0f,
+                           0.15f + 0.7f * float((h >> 16) & 255u) / 255.0f);
+    char name[32];
+    std::snprintf(name, sizeof name, "paint_%u", m);
+    material[m] = w.material({name, colour, (h >> 24) % 4 == 0 ? 1.0f : 0.0f, 0.6f});
+  }
+  std::vector<int> mesh(keys);
+  std::vector<float> height(keys);
+  for (uint32_t k = 0; k < keys; ++k) {
+    const uint32_t shape = k % shapes;
+    const glm::vec3 size(1.0f + 0.1f * float(shape % 8), 0.8f + 0.35f * float(shape / 8), 1.0f + 0.15f * float(shape % 5));
+    height[k] = size.y;
+    char name[32];
+    std::snprintf(name, sizeof name, "block_%u", k);
+    mesh[k] = w.mesh(name, box(size), material[k / shapes]);
+  }
+  // One more column than a square of `instances` needs: the cells skipped for the street fit.
+  const uint32_t columns = uint32_t(std::ceil(std::sqrt(double(instances)))) + 1;
+  const float pitch = side / float(columns);
+  for (uint32_t cell = 0, placed = 0; placed < instances; ++cell) {
+    const float z = -0.5f * side + (float(cell / columns) + 0.5f) * pitch;
+    if (std::abs(z) < 0.5f * pitch) continue;  // the street: a clear lane along x where the camera stands
+    const uint32_t h = hash(cell), k = hash(cell ^ 0x9e3779b9u) % keys;
+    const float jx = (float(h & 1023u) / 1023.0f - 0.5f) * 0.4f * pitch;
+    const float jz = (float((h >> 10) & 1023u) / 1023.0f - 0.5f) * 0.4f * pitch;
+    const glm::vec3 at(-0.5f * side + (float(cell % columns) + 0.5f) * pitch + jx, 0.5f * height[k], z + jz);
+    char name[32];
+    std::snprintf(name, sizeof name, "b%u", placed++);
+    w.node(name, mesh[k], at, {0.0f, float((h >> 20) % 360u), 0.0f});
+  }
+  w.camera("street", {-600.0f, 1.7f, 0.0f}, {0.0f, 1.7f, 0.0f}, 60.0f);
+  w.camera("overview", {-1300.0f, 900.0f, -1300.0f}, {0.0f, 0.0f, 0.0f}, 60.0f);
+  w.sun({0.3f, -0.7f, 0.4f}, 20.0f);
+  w.sky({0.6f, 0.75f, 1.0f});
+  w.write(dir);
+}
+
 }  // namespace
 }  // namespace tl::content
 
 int main(int argc, char** argv) {
+  if (argc >= 3 && std::string(argv[1]) == "--sprawl") {
+    try {
+      const uint32_t instances = argc > 3 ? uint32_t(std::stoul(argv[3])) : 100000u;
+      const uint32_t keys = argc > 4 ? uint32_t(std::stoul(argv[4])) : 1000u;
+      if (instances == 0 || keys == 0 || instances > 10000000u) throw std::invalid_argument("counts");
+      std::filesystem::create_directories(argv[2]);
+      tl::content::sprawl(argv[2], instances, keys);
+      std::printf("wrote %s/sprawl.gltf\n", argv[2]);
+      return 0;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "tl_content_gen: --sprawl DIR [instances >= 1] [keys >= 1]: %s\n", e.what());
+      return 2;
+    }
+  }
   if (argc != 2) {
-    std::fprintf(stderr, "usage: tl_content_gen <content-dir>\n");
+    std::fprintf(stderr, "usage: tl_content_gen <content-dir> | tl_content_gen --sprawl <dir> [instances] [keys]\n");
     return 2;
   }
   try {

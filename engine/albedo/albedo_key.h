@@ -47,8 +47,13 @@ struct SceneKeys {
 
 SceneKeys sceneKeys(const scene::Scene& scene, const BakeSettings& settings);
 
-// Shard i of n (0-based) owns the keys with key % n == i: stable whatever else the content
-// set holds, so shards baked on different machines never overlap and cover everything.
-inline bool inShard(AlbedoKey key, uint32_t index, uint32_t count) { return count <= 1 || key % count == index; }
+// Shard i of n (0-based) owns the keys whose high 32 bits % n == i: stable whatever else the
+// content set holds, so shards baked on different machines never overlap and cover everything.
+// Not key % n: a key's atlas slot is key % 42 (AlbedoBaker::bakeSlot), and a shard count that
+// shares a factor with 42 would then fill only some slots of every batch (4 shards: half of
+// them, 42 shards: one key a batch). The hash's high half is independent of key % 42.
+inline bool inShard(AlbedoKey key, uint32_t index, uint32_t count) {
+  return count <= 1 || uint32_t(key >> 32) % count == index;
+}
 
 }  // namespace tl::albedo

@@ -113,6 +113,7 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   s.settings().referenceSamplesPerFrame = std::min(o.referenceSpp, 16u);
   const uint32_t frames = std::max(1u, o.referenceSpp / s.settings().referenceSamplesPerFrame);
   s.resetHistory();
+  s.setFrameIndex(0);  // the noise does not depend on what the process rendered before (see runCompare)
   for (uint32_t f = 0; f < frames; ++f) {
     // The irradiance pass runs only in frames that read its result: every frame here.
     s.requestBuffer("reference.irradiance");
@@ -329,6 +330,10 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     s.setPath(runs[i].path);
     s.settings() = applySettingsJson(baseSettings, runs[i].settings);
     s.resetHistory();
+    // Every run starts at frame 0 (the frame index seeds per-frame noise and patterns): a
+    // figure is the same whatever the process rendered before it, so a sweep split into
+    // shards measures what one process does.
+    s.setFrameIndex(0);
     for (const char* n : {lighting::kCompositeAo, lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
     s.renderFrames(std::max(1u, o.framesPerPath));
     s.settings() = baseSettings;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 namespace tl::session {
@@ -100,10 +101,7 @@ std::string timingBars(const nlohmann::json& paths) {
   return html;
 }
 
-}  // namespace
-
-void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r, const std::filesystem::path& dir) {
-  std::string html = R"(<!doctype html><html><head><meta charset='utf-8'><title>Twinlight compare</title><style>
+const char* const kStyle = R"(<style>
 body{font-family:sans-serif;margin:24px;color:#222;max-width:1200px}
 table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:4px 10px;text-align:right}th{background:#f2f2f2}
 td:first-child,th:first-child{text-align:left}
@@ -111,7 +109,13 @@ td:first-child,th:first-child{text-align:left}
 .bar span{position:absolute;left:0;top:0;bottom:0;background:#9cd;z-index:-1}
 .imgs{display:flex;gap:12px;flex-wrap:wrap}.imgs figure{margin:0}.imgs img{image-rendering:pixelated;width:256px}
 .legend{height:12px;width:256px;background:linear-gradient(to right,#05051a,#590d73,#cc1a33,#fa800d,#fce533,#fff)}
-</style></head><body>)";
+</style>)";
+
+}  // namespace
+
+void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r, const std::filesystem::path& dir) {
+  std::string html = std::string("<!doctype html><html><head><meta charset='utf-8'><title>Twinlight compare</title>") + kStyle +
+                     "</head><body>";
   html += fmt::format("<h1>Speed against error: {}</h1>", escape(r["scene"].get<std::string>()));
   const auto& ref = r["reference"];
   std::string reference;
@@ -188,6 +192,62 @@ td:first-child,th:first-child{text-align:left}
   html += "<h2>Metrics</h2><ul>";
   for (auto& [k, v] : r["metrics"].items()) html += fmt::format("<li><b>{}</b>: {}</li>", escape(k), escape(v.get<std::string>()));
   html += "</ul><p>Every figure is also in report.json beside this page.</p></body></html>\n";
+  writeTextFile(file, html);
+}
+
+void writeSweepReportHtml(const std::filesystem::path& file, const nlohmann::json& r) {
+  std::string html = std::string("<!doctype html><html><head><meta charset='utf-8'><title>Twinlight compare sweep</title>") +
+                     kStyle + "</head><body>";
+  const auto& views = r["views"];
+  std::set<std::string> scenes;
+  for (const auto& v : views) scenes.insert(v["scene"].get<std::string>());
+  html += fmt::format("<h1>Speed against error: {} view(s) of {} scene(s)</h1>", views.size(), scenes.size());
+  html += fmt::format("<p>Each configuration's figures are means over the views; every view has its own reference and "
+                      "its own page. The reference: {} samples per pixel, scope {}.</p>",
+                      r["grid"]["referenceSpp"].get<int>(), escape(r["grid"]["scope"].get<std::string>()));
+  if (r.contains("gate")) {
+    const auto& g = r["gate"];
+    html += fmt::format("<p><b>Regression gate {}</b>: {} figure(s) above their thresholds.</p>",
+                        g["passed"].get<bool>() ? "passed" : "FAILED", g["failures"].size());
+    if (!g["failures"].empty()) {
+      html += "<table><tr><th>scene</th><th>camera</th><th>path</th><th>metric</th><th>value</th><th>threshold</th></tr>";
+      for (auto& f : g["failures"])
+        html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                            escape(f["scene"].get<std::string>()), escape(f["camera"].get<std::string>()),
+                            escape(f["path"].get<std::string>()), escape(f["metric"].get<std::string>()), number(f["value"]),
+                            f["threshold"].get<double>());
+      html += "</table>";
+    }
+  }
+  html += "<h2>Configurations (means over the views)</h2><table><tr><th>configuration</th><th>views</th><th>GPU ms</th>"
+          "<th>relMSE</th><th>FLIP</th><th>HDR-FLIP</th><th>relMSE_norm</th><th>FLIP_norm</th></tr>";
+  for (auto& c : r["configurations"])
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                        escape(c["path"].get<std::string>()), c["views"].get<int>(), number(c["frameMs"], "{:.2f}"),
+                        number(c["relMSE"]), number(c["FLIP"]), number(c["HDR-FLIP"]), number(c["relMSE_norm"]),
+                        number(c["FLIP_norm"]));
+  html += "</table><h2>Speed against error</h2>";
+  nlohmann::json plotted = nlohmann::json::array();  // the plot needs a frame time for every point
+  for (auto& c : r["configurations"])
+    if (c["frameMs"].is_number()) plotted.push_back(c);
+  html += speedErrorPlot(plotted);
+  html += "<h2>Views</h2><table><tr><th>scene</th><th>camera</th><th>device</th>";
+  for (auto& c : r["configurations"]) html += fmt::format("<th>{} FLIP</th>", escape(c["path"].get<std::string>()));
+  html += "</tr>";
+  for (const auto& v : views) {
+    const std::string camera = v["camera"].get<std::string>();
+    html += fmt::format("<tr><td><a href='{}'>{}</a></td><td>{}</td><td>{}</td>", escape(v["html"].get<std::string>()),
+                        escape(v["scene"].get<std::string>()), escape(camera.empty() ? "(as given)" : camera),
+                        escape(v["device"].get<std::string>()));
+    for (auto& c : r["configurations"]) {
+      std::string flip = "n/a";
+      for (auto& p : v["paths"])
+        if (p["path"] == c["path"]) flip = number(p["FLIP"]);
+      html += "<td>" + flip + "</td>";
+    }
+    html += "</tr>";
+  }
+  html += "</table><p>Every figure is also in report.json beside this page.</p></body></html>\n";
   writeTextFile(file, html);
 }
 

@@ -11,4 +11,8 @@ namespace tl::session {
 
 void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& report, const std::filesystem::path& imageDir);
 
+// A sweep's report.html (session/sweep.h): each configuration's mean figures over the views,
+// their speed-against-error plot with its Pareto front, and a row per view linking its page.
+void writeSweepReportHtml(const std::filesystem::path& file, const nlohmann::json& sweepReport);
+
 }  // namespace tl::session

@@ -343,6 +343,42 @@ TEST_F(RtTest, RefittedBottomLevelsFollowTheDeformedMeshes) {
   EXPECT_LT(stale, refitted - 0.1);
 }
 
+// Distance culling follows the GI blend distance: beyond it the path's GI is not used (the
+// far field's is), so the top level keeps what rays from nearer surfaces can reach (the blend
+// distance plus the ray length) and the image is the one without culling.
+TEST_F(RtTest, TopLevelDistanceCullingFollowsTheBlendDistance) {
+  auto& s = session();
+  s.loadScene(contentFile("grove.gltf"));
+  s.useSceneCamera(1);  // the overview: the grid from 40 m up, 60 to 280 m away
+  auto figure = [&](const char* name) {
+    for (const auto& [n, v] : s.pathFigures())
+      if (n == name) return v;
+    return -1.0;
+  };
+  auto frame = [&](float blend, float margin, float angle) {
+    s.settings().rtBlendDistance = blend;
+    s.settings().rtCullMargin = margin;
+    s.settings().rtCullAngle = angle;
+    s.resetHistory();
+    s.setFrameIndex(3);
+    render(64, 36, 1, {"composite.hdr"});
+    return std::make_pair(figure("tlasInstances"), s.buffer("composite.hdr").texels());
+  };
+  const auto [withBlend, culled] = frame(100.0f, 0.0f, 0.0f);
+  const auto [withoutBlend, unused] = frame(0.0f, 0.0f, 0.0f);  // the default: beyond the whole grove
+  const auto [all, full] = frame(100.0f, 1e6f, 0.0f);           // a margin that keeps everything
+  RecordProperty("tlas_instances_blend_100m", std::to_string(withBlend));
+  RecordProperty("tlas_instances_default_blend", std::to_string(withoutBlend));
+  EXPECT_GE(all, 10000.0);
+  EXPECT_LT(withBlend, 0.8 * withoutBlend) << "the blend distance culls nothing";
+  ASSERT_EQ(culled.size(), full.size());
+  double diff = 0.0, sum = 0.0;
+  for (size_t i = 0; i < full.size(); i += 4)
+    for (int c = 0; c < 3; ++c) diff += std::abs(culled[i + c] - full[i + c]), sum += std::abs(full[i + c]);
+  RecordProperty("relative_image_difference", std::to_string(diff / sum));
+  EXPECT_LE(diff / sum, 1e-3) << "distance culling must not change what the frame shows";
+}
+
 // Metro's distance blend: beyond the blend distance the legacy path's GI, not the sky. Its
 // passes join the frame only when part of the scene lies that far.
 TEST_F(RtTest, BeyondTheBlendDistanceTheLegacyGiTakesOver) {

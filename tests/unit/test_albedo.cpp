@@ -143,6 +143,30 @@ TEST(AlbedoKey, ShardsPartitionTheKeys) {
   }
 }
 
+// A shard's keys spread over every atlas slot, whatever the shard count: its batches fill up
+// like a whole bake's (with key % N, 4 shards used half the slots and 42 shards one).
+TEST(AlbedoKey, EveryShardUsesEveryAtlasSlot) {
+  uint64_t state = 1;
+  auto nextKey = [&] {  // splitmix64: keys are uniform 64-bit hashes
+    uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  };
+  std::vector<AlbedoKey> keys(200000);
+  for (auto& k : keys) k = nextKey();
+  const uint32_t slots = AlbedoBaker::maxBatch();
+  for (uint32_t count : {2u, 3u, 4u, 6u, 7u, 14u, 16u, 42u}) {
+    std::vector<uint32_t> perSlot(slots, 0);
+    size_t owned = 0;
+    for (AlbedoKey k : keys)
+      if (inShard(k, count - 1, count)) ++perSlot[AlbedoBaker::bakeSlot(k)], ++owned;
+    const uint32_t fewest = *std::min_element(perSlot.begin(), perSlot.end());
+    EXPECT_GT(fewest, 0u) << count << " shards: a slot no key of the shard uses";
+    EXPECT_GT(double(fewest), 0.4 * double(owned) / slots) << count << " shards: slots used unevenly";
+  }
+}
+
 TEST(AlbedoBake, EntryFromViewSumsWeighsByCoverage) {
   // Two views: 100 pixels of 0.2 and 300 pixels of 0.6 (grey): mean 0.5 over 400 pixels.
   std::array<glm::vec4, kViews> sums{};

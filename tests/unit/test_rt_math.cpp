@@ -194,6 +194,15 @@ TEST(RtCulling, KeepsTheExpandedFrustumAndDropsTinyFarInstances) {
   auto kept = lighting::cullInstances(centres, radii, c);
   std::sort(kept.begin(), kept.end());
   EXPECT_EQ(kept, (std::vector<uint32_t>{0, 2, 4}));
+  // Distance culling (the blend distance plus the margin): the nearest point decides.
+  c.maxDistance = 40.0f;
+  kept = lighting::cullInstances(centres, radii, c);
+  std::sort(kept.begin(), kept.end());
+  EXPECT_EQ(kept, (std::vector<uint32_t>{0, 2}));
+  c.maxDistance = 49.0f;  // instance 4's sphere reaches 49 m
+  kept = lighting::cullInstances(centres, radii, c);
+  std::sort(kept.begin(), kept.end());
+  EXPECT_EQ(kept, (std::vector<uint32_t>{0, 2, 4}));
 }
 
 }  // namespace

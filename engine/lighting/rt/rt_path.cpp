@@ -55,6 +55,7 @@ class RtPath final : public LightingPath {
     culling.viewProj = in.constants.viewProj;
     culling.margin = s.rtCullMargin > 0.0f ? s.rtCullMargin : params_.rayLength;
     culling.minAngle = s.rtCullAngle;
+    culling.maxDistance = params_.blendDistance + culling.margin;
     RefitPolicy refits;
     refits.top = s.rtRefitTop;
     refits.random = s.rtRefitRandom;
@@ -286,16 +287,17 @@ class RtPath final : public LightingPath {
   }
 
   // What the accumulated samples estimate: the rays' reach and targets, the geometry they
-  // hit, what lights a hit, the pre-trace, the firefly clamp and the material override mode. The ray pattern (half rays,
-  // half resolution, two rays) and the accumulation window change only the noise and the
-  // weights: the history is kept across them. Post-accumulation settings (the denoiser, the
-  // blend to the far field) hold no history.
+  // hit, what lights a hit, the pre-trace, the firefly clamp and the material override mode.
+  // The ray pattern (half rays, half resolution, two rays) and the accumulation window change
+  // only the noise and the weights: the history is kept across them. Post-accumulation
+  // settings (the denoiser) hold no history; the blend distance does, since the top level's
+  // distance culling follows it.
   uint64_t historySettings(const RenderSettings& s) const override {
     return KeyHasher()
         .all(double(s.rtAoRadius), double(s.rtRayLength), double(s.rtSimplifyRatio), double(s.rtSimplifyError),
              double(s.rtPretrace), double(s.rtPretraceSteps), double(s.rtPretracePixels), double(s.rtThickness),
              double(s.rtFireflyClamp), double(s.rtHitSky), double(s.rtEmitterSampling), double(s.rtScreenRadiance),
-             double(s.rtCullAngle), double(s.rtCullMargin), double(s.materials))
+             double(s.rtCullAngle), double(s.rtCullMargin), double(s.rtBlendDistance), double(s.materials))
         .done();
   }
 

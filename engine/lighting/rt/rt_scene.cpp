@@ -67,7 +67,7 @@ std::vector<uint32_t> cullInstances(const std::vector<glm::vec3>& centres, const
     // The camera sits at the origin of camera-relative space.
     float distance = std::max(glm::length(centres[i]) - radii[i], 0.0f);
     bool contributes = distance <= 0.0f || radii[i] >= c.minAngle * distance;
-    if (!inside || !contributes) continue;
+    if (!inside || !contributes || distance > c.maxDistance) continue;
     kept.push_back(i);
     lo = glm::min(lo, centres[i]);
     hi = glm::max(hi, centres[i]);

@@ -8,6 +8,7 @@
 #include "lighting/rt/blas_refit.h"
 #include "shared/rt.h"
 
+#include <limits>
 #include <vector>
 
 namespace tl::lighting {
@@ -31,6 +32,10 @@ struct RtCulling {
   glm::mat4 viewProj{1.0f};  // camera-relative
   float margin = 0.0f;       // expanded frustum, metres added to every plane
   float minAngle = 0.0f;     // contribution culling: bounding-sphere radius / distance below this is dropped
+  // Distance culling: farther than this (nearest point from the camera) is dropped. Beyond
+  // the GI blend distance the path's GI is not used (the far field's or the sky's is), so the
+  // rays that matter start nearer than it and reach at most the margin beyond.
+  float maxDistance = std::numeric_limits<float>::infinity();
 };
 
 // Pure: the culled, spatially ordered instance list (indices into the scene's instances).

@@ -1,0 +1,59 @@
+#!/bin/bash
+# Submits a Twinlight bake or compare sweep to Slurm: a job array of TASKS tasks, each running
+# `twinlight ... --shard auto`, and a merge job that starts once every task has succeeded
+# (sbatch --dependency=afterok). Prints both job ids.
+#
+#   submit.sh [--first ID] [--wait] bake    TASKS OUT_DIR SCENE...
+#   submit.sh [--first ID] [--wait] compare TASKS OUT_DIR [COMPARE OPTIONS...]
+#
+# bake:    OUT_DIR/shards/bake-<id>.db per task, merged into OUT_DIR/albedo.db
+# compare: OUT_DIR/shards/compare-<id>/ per task (one folder per view of the sweep it measured),
+#          merged into OUT_DIR/report/ (report.json, report.html, each view's report)
+# Logs go to OUT_DIR/logs/. --first sets the array's first task id (default 0; ids need not
+# start at 0, twinlight reads SLURM_ARRAY_TASK_MIN). --wait blocks until the merge job ends
+# and exits with its status (a failed task cancels the merge: DependencyParameters
+# kill_invalid_depend, or it stays pending with reason DependencyNeverSatisfied).
+# Environment: TWINLIGHT, the twinlight binary (default: twinlight on PATH);
+# TWINLIGHT_SBATCH_ARGS, extra sbatch options for every job (e.g. "--partition=render
+# --gres=gpu:1" on GPU nodes, "--cpus-per-task=8" for lavapipe on CPU nodes).
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+usage() {
+  echo "usage: submit.sh [--first ID] [--wait] bake TASKS OUT_DIR SCENE..." >&2
+  echo "       submit.sh [--first ID] [--wait] compare TASKS OUT_DIR [COMPARE OPTIONS...]" >&2
+  exit 2
+}
+
+first=0
+wait_flag=()
+while [ $# -gt 0 ]; do
+  case $1 in
+    --first) first=${2:?--first needs an id}; shift 2 ;;
+    --wait) wait_flag=(--wait); shift ;;
+    *) break ;;
+  esac
+done
+[ $# -ge 3 ] || usage
+mode=$1 tasks=$2 out=$3
+shift 3
+case $mode in bake | compare) ;; *) echo "submit.sh: unknown mode \`$mode' (bake or compare)" >&2; exit 2 ;; esac
+if ! [[ $tasks =~ ^[0-9]+$ ]] || [ "$tasks" -lt 1 ]; then
+  echo "submit.sh: TASKS \`$tasks' is not a count >= 1" >&2
+  exit 2
+fi
+[[ $first =~ ^[0-9]+$ ]] || { echo "submit.sh: --first \`$first' is not an array task id" >&2; exit 2; }
+[ "$mode" = compare ] || [ $# -ge 1 ] || { echo "submit.sh: bake needs at least one scene" >&2; exit 2; }
+
+mkdir -p "$out/logs" "$out/shards"
+out=$(cd "$out" && pwd)  # the jobs may start in another directory
+read -r -a extra <<<"${TWINLIGHT_SBATCH_ARGS:-}"
+last=$((first + tasks - 1))
+array=$(sbatch --parsable "${extra[@]}" --job-name="twinlight-$mode" --array="$first-$last" \
+  --output="$out/logs/$mode-%A_%a.log" "$here/task.sbatch" "$mode" "$out" "$@")
+array=${array%%;*}  # --parsable prints "id[;cluster]"
+echo "submitted $mode array job $array (tasks $first-$last)"
+merge=$(sbatch --parsable "${extra[@]}" "${wait_flag[@]}" --job-name="twinlight-$mode-merge" \
+  --dependency="afterok:$array" --output="$out/logs/$mode-merge-%j.log" \
+  "$here/merge.sbatch" "$mode" "$out" "$first" "$tasks")
+merge=${merge%%;*}
+echo "submitted $mode merge job $merge (after every task of $array succeeded)"
