@@ -130,7 +130,7 @@ void albedoPanel(EditorApp& app) {
   static std::string fieldScene;  // a new scene proposes its own database
   if (fieldScene != session.scene().name) field.clear(), fieldScene = session.scene().name;
   if (field.empty())
-    field = session.albedoDatabaseFile().value_or(std::filesystem::path("out") / (session.scene().name + ".albedo.db")).string();
+    field = session.albedoDatabaseFile().value_or(app.defaultAlbedoDatabase()).string();
   char buf[512];
   std::snprintf(buf, sizeof buf, "%s", field.c_str());
   ImGui::SetNextItemWidth(-120);

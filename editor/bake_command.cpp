@@ -1,6 +1,7 @@
 #include "bake_command.h"
 
 #include "cli_args.h"
+#include "cli_output.h"
 
 #include "session/session.h"
 #include "session/shard.h"
@@ -81,22 +82,22 @@ int runBake(const BakeArgs& a, const std::string& defaultScene) {
   for (const std::string& file : scenes) {
     // Keys an earlier scene baked are in the database by now: this scene skips them.
     const auto loadStart = std::chrono::steady_clock::now();
-    session.loadScene(file);
+    session.loadScene(file, tl::scene::LoadOptions{a.allowOutsideFiles});
     session.openAlbedoDatabase(a.db);
     const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     const auto start = std::chrono::steady_clock::now();
     auto job = session.startAlbedoBake(options);
-    auto bar = [&] {
-      const auto& p = job->progress();
-      const double f = p.total ? double(p.done) / p.total : 1.0;
-      const int filled = int(f * 30.0 + 0.5);
-      fmt::print(stderr, "\r[{:30}] {:4}/{:<4} baked {} skipped {} failed {}", std::string(size_t(filled), '#'), p.done,
-                 p.total, p.baked, p.skipped, p.failed);
-    };
-    bar();
-    while (job->step()) bar();
-    bar();
-    fmt::print(stderr, "\n");
+    {
+      tl::editor::Progress progress("bake " + session.scene().name);
+      auto report = [&] {
+        const auto& p = job->progress();
+        progress.update(p.total ? double(p.done) / p.total : 1.0,
+                        fmt::format("{}/{} keys: baked {}, skipped {}, failed {}", p.done, p.total, p.baked, p.skipped, p.failed));
+      };
+      report();
+      while (job->step()) report();
+      report();
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto& p = job->progress();
     for (const std::string& f : p.failures) fmt::print("failed: {}\n", f);

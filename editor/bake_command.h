@@ -18,6 +18,7 @@ struct BakeArgs {
   bool force = false;
   bool list = false;
   std::vector<std::string> merge;   // databases to merge into --db
+  bool allowOutsideFiles = false;   // the scene may read files outside its folder
 };
 
 int runBake(const BakeArgs& args, const std::string& defaultScene);

@@ -1,12 +1,10 @@
 #include "bench.h"
 
-#include "lighting/rt/rt_path.h"
 #include "session/provenance.h"
-#include "shared/rt.h"
+#include "session/ray_figures.h"
+#include "session/settings_json.h"
 
 #include <fmt/format.h>
-
-#include <cstring>
 
 #include <algorithm>
 
@@ -27,71 +25,27 @@ nlohmann::json stats(const std::vector<double>& ms) {
 }
 
 
-using PassTimes = std::vector<std::pair<std::string, std::vector<double>>>;
-
-double medianOf(const PassTimes& passes, const std::string& pass) {
-  for (const auto& [name, ms] : passes)
-    if (name == pass) return quantile(ms, 0.5);
-  return 0.0;
-}
-
-// Rays the RT path traced (pixels the pre-trace left pending) against the same rays through
-// a trivial kernel, measured in the same frames.
-nlohmann::json rayFigures(tl::session::Session& session, const PassTimes& passes) {
-  const auto& pre = session.buffer(tl::lighting::kPretraceHits);
-  const auto depth = session.buffer("gbuffer.depth").texels();
-  std::vector<uint32_t> hits(pre.bytes.size() / 4);
-  std::memcpy(hits.data(), pre.bytes.data(), hits.size() * 4);
-  size_t surface = 0, pending = 0;
-  const uint32_t w = session.settings().width;
-  const uint32_t frame = uint32_t(session.frameIndex() - 1);  // the last frame rendered
-  const uint32_t pattern = tl::lighting::rtRayPattern(session.settings());
-  for (size_t i = 0; i < hits.size() && i < depth.size(); ++i) {
-    if (depth[i] <= 0.0f) continue;
-    if (!tl::shared::tlRtTracesThisFrame(glm::ivec2(int(i % w), int(i / w)), frame, pattern)) continue;
-    ++surface;
-    pending += tl::shared::tlRtIsPending(hits[i]);
-  }
-  const double rawMs = medianOf(passes, "rt.rawRays"), traceMs = medianOf(passes, "rt.trace");
-  const double rawPendingMs = medianOf(passes, "rt.rawRays.pending");
-  const double rawRate = rawMs > 0.0 ? double(surface) / (rawMs * 1e-3) : 0.0;
-  const double rawPendingRate = rawPendingMs > 0.0 ? double(pending) / (rawPendingMs * 1e-3) : 0.0;
-  const double rtRate = traceMs > 0.0 ? double(pending) / (traceMs * 1e-3) : 0.0;
-  const double pixels = double(session.settings().width) * session.settings().height;
-  return {{"surfacePixels", surface},  // traced this frame (all, this frame's checkerboard or 2x2 pixel)
-          {"realRays", pending},
-          {"pretraceShare", surface ? 1.0 - double(pending) / double(surface) : 0.0},
-          {"realRaysPerPixel", pending / pixels},
-          {"rawKernelMs", rawMs},
-          {"rawRaysPerSecond", rawRate},
-          {"traceMs", traceMs},
-          {"rtRaysPerSecond", rtRate},
-          {"rtOverRaw", rawRate > 0.0 ? rtRate / rawRate : 0.0},
-          // The same trivial kernel on only the rays rt.trace traced: those left after the
-          // pre-trace are the long, incoherent ones, slower per ray for any kernel.
-          {"rawPendingKernelMs", rawPendingMs},
-          {"rawPendingRaysPerSecond", rawPendingRate},
-          {"rtOverRawSameRays", rawPendingRate > 0.0 ? rtRate / rawPendingRate : 0.0}};
-}
-
 }  // namespace
 
-nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
-  if (o.rays) {
-    if (session.path() != "rt") throw tl::session::SessionError("--rays measures the rt path: add --path rt");
-    session.settings().rtRawRayProbe = true;
-  }
-  session.renderFrames(std::max(1u, o.warmup));
+nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o,
+                        const std::function<void(const std::string& what, double fraction)>& progress) {
+  const uint32_t warmup = std::max(1u, o.warmup), measured = std::max(1u, o.frames);
+  auto report = [&](uint32_t done) {
+    if (progress)
+      progress(done <= warmup ? fmt::format("warm-up {}/{}", done, warmup)
+                              : fmt::format("frame {}/{}", done - warmup, measured),
+               double(done) / double(warmup + measured));
+  };
+  if (o.rays) tl::session::enableRayProbe(session);
+  session.renderFrames(warmup, report);
   std::vector<double> firstFrame = session.frameGpuMs();
   // The ray figures read the last frame's pre-trace records and depth: requested before each
   // call (a read-back lasts one renderFrames).
   auto requestRayBuffers = [&] {
-    if (!o.rays) return;
-    session.requestBuffer(tl::lighting::kPretraceHits);
-    session.requestBuffer("gbuffer.depth");
+    if (o.rays) tl::session::requestRayFigureBuffers(session);
   };
   std::vector<double> frameMs;
-  PassTimes passMs;
+  tl::session::PassTimes passMs;
   auto collect = [&] {
     frameMs.insert(frameMs.end(), session.frameGpuMs().begin(), session.frameGpuMs().end());
     for (const auto& [pass, ms] : session.passGpuMs()) {
@@ -103,15 +57,16 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
   if (o.cutEveryFrame) {
     // The history is forgotten before each frame, as on a camera cut: what history rejection
     // costs at worst (the disocclusion rays trace every cell).
-    for (uint32_t i = 0; i < std::max(1u, o.frames); ++i) {
+    for (uint32_t i = 0; i < measured; ++i) {
       session.resetHistory();
       requestRayBuffers();
       session.renderFrames(1);
       collect();
+      report(warmup + i + 1);
     }
   } else {
     requestRayBuffers();
-    session.renderFrames(std::max(1u, o.frames));
+    session.renderFrames(measured, [&](uint32_t done) { report(warmup + done); });
     collect();
   }
   const auto& d = session.device();
@@ -138,7 +93,8 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o) {
                                  VK_API_VERSION_PATCH(d.apiVersion()))},
           {"frame", stats(frameMs)},
           {"passes", passes},
-          {"rays", o.rays ? rayFigures(session, passMs) : nlohmann::json()},
+          {"rays", o.rays ? tl::session::rayFigures(session, passMs) : nlohmann::json()},
+          {"settings", tl::session::settingsJson(session.settings())},
           {"figures", figures}};
 }
 

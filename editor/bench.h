@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <string>
 
 struct BenchOptions {
@@ -16,5 +17,7 @@ struct BenchOptions {
   bool cutEveryFrame = false;  // every measured frame starts without history: a camera cut's cost
 };
 
-nlohmann::json runBench(tl::session::Session& session, const BenchOptions& options);
+// `progress` (optional): what is being done and the fraction of the frames rendered.
+nlohmann::json runBench(tl::session::Session& session, const BenchOptions& options,
+                        const std::function<void(const std::string& what, double fraction)>& progress = {});
 std::string benchTable(const nlohmann::json& report);

@@ -5,6 +5,7 @@
 #include "buffer_panel.h"
 
 #include "editor_app.h"
+#include "ui_helpers.h"
 #include "gpu/formats.h"
 #include "shared/display.h"
 
@@ -64,6 +65,7 @@ void resourceTable(EditorApp& app) {
       ImGui::Indent(10.0f);
       if (ImGui::Selectable(fmt::format("{}##res", r.name).c_str(), selected, ImGuiSelectableFlags_SpanAllColumns) && image)
         app.pinPreview(selected ? "" : r.name);
+      trackItem("buffers." + r.name);
       ImGui::Unindent(10.0f);
       if (ImGui::IsItemHovered()) {
         std::string life = r.firstUse == graph::kNone ? "not used"

@@ -77,9 +77,9 @@ std::vector<float> channelValues(const graph::Readback& r, uint32_t channel, uin
   return out;
 }
 
-std::pair<float, float> fitRange(std::vector<float> values) {
+std::optional<std::pair<float, float>> fitRange(std::vector<float> values) {
   values.erase(std::remove_if(values.begin(), values.end(), [](float v) { return !std::isfinite(v); }), values.end());
-  if (values.empty()) return {0.0f, 1.0f};
+  if (std::all_of(values.begin(), values.end(), [](float v) { return v == 0.0f; })) return std::nullopt;
   auto at = [&](double q) {
     size_t k = std::min(values.size() - 1, size_t(q * double(values.size() - 1)));
     std::nth_element(values.begin(), values.begin() + k, values.end());
@@ -91,7 +91,7 @@ std::pair<float, float> fitRange(std::vector<float> values) {
     const float pad = std::max(std::abs(lo) * 0.5f, 1e-6f);
     lo -= pad, hi += pad;
   }
-  return {lo, hi};
+  return std::pair{lo, hi};
 }
 
 std::vector<float> histogram(const std::vector<float>& values, float lo, float hi, int bins) {

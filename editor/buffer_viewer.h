@@ -57,8 +57,9 @@ glm::vec4 viewerWindow(const ViewerState& v);
 // computes them.
 std::vector<float> channelValues(const graph::Readback& r, uint32_t channel, uint32_t slice);
 // The range a viewer fits to values: 0.1 and 99.9 percentiles of the finite ones (so a few
-// fireflies do not squash everything), widened when flat.
-std::pair<float, float> fitRange(std::vector<float> values);
+// fireflies do not squash everything), widened when flat. None when there is nothing to fit
+// (no finite value, or every one zero: a frame with nothing in it yet).
+std::optional<std::pair<float, float>> fitRange(std::vector<float> values);
 // `bins` counts of values in [lo, hi] (outside ones clamp into the end bins; non-finite skipped).
 std::vector<float> histogram(const std::vector<float>& values, float lo, float hi, int bins);
 

@@ -1,7 +1,10 @@
 #include "cli_args.h"
 
+#include "scene/input_limits.h"
+
 #include <fmt/format.h>
 
+#include <charconv>
 #include <cmath>
 #include <sstream>
 #include <vector>
@@ -30,16 +33,29 @@ std::vector<double> parseNumbers(const std::string& text, const char* what) {
 }  // namespace
 
 std::pair<uint32_t, uint32_t> parseSize(const std::string& text) {
-  unsigned w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w == 0 || h == 0)
-    throw SessionError(fmt::format("--size `{}` is not WIDTHxHEIGHT (e.g. 640x360)", text));
-  return {w, h};
+  // Digits only, read into 64 bits: sscanf's %u would take "-5" and wrap 4294967344 to 48.
+  const auto bad = [&] { return SessionError(fmt::format("--size `{}` is not WIDTHxHEIGHT (e.g. 640x360)", text)); };
+  const size_t x = text.find_first_of("xX");
+  if (x == std::string::npos || x == 0 || x + 1 == text.size()) throw bad();
+  uint64_t side[2] = {0, 0};
+  const std::string parts[2] = {text.substr(0, x), text.substr(x + 1)};
+  for (int i = 0; i < 2; ++i) {
+    const std::string& p = parts[i];
+    if (p.find_first_not_of("0123456789") != std::string::npos || p.size() > 12) throw bad();
+    std::from_chars(p.data(), p.data() + p.size(), side[i]);
+  }
+  if (side[0] == 0 || side[1] == 0 || side[0] > kMaxImageSide || side[1] > kMaxImageSide)
+    throw SessionError(fmt::format("--size `{}` is out of range: each side 1 to {} pixels", text, kMaxImageSide));
+  return {uint32_t(side[0]), uint32_t(side[1])};
 }
 
 glm::dvec3 parseVec3(const std::string& text, const char* what) {
   auto v = parseNumbers(text, what);
   if (v.size() != 3) throw SessionError(fmt::format("{} `{}` needs three numbers x,y,z", what, text));
+  for (double c : v)
+    if (std::abs(c) > tl::scene::InputLimits::kMaxCoordinate)
+      throw SessionError(fmt::format("{} `{}` is out of range: at most {:g} in magnitude", what, text,
+                                     tl::scene::InputLimits::kMaxCoordinate));
   return {v[0], v[1], v[2]};
 }
 
@@ -47,8 +63,11 @@ glm::vec3 parseColor(const std::string& text, const char* what) {
   auto v = parseNumbers(text, what);
   if (v.size() == 1) v = {v[0], v[0], v[0]};
   if (v.size() != 3) throw SessionError(fmt::format("{} `{}` needs one value or r,g,b", what, text));
-  for (double c : v)
+  for (double c : v) {
     if (c < 0.0) throw SessionError(fmt::format("{} `{}` must not be negative", what, text));
+    if (c > tl::scene::InputLimits::kMaxLight)
+      throw SessionError(fmt::format("{} `{}` is out of range: at most {:g}", what, text, tl::scene::InputLimits::kMaxLight));
+  }
   return {float(v[0]), float(v[1]), float(v[2])};
 }
 
@@ -65,7 +84,11 @@ void applyView(tl::session::Session& session, const ViewArgs& a) {
     v.forward = target - v.position;
     v.up = {0.0, 1.0, 0.0};
   }
-  if (a.fovDegrees) v.yfovRadians = float(*a.fovDegrees * M_PI / 180.0);
+  if (a.fovDegrees) {
+    if (!(*a.fovDegrees > 0.0f && *a.fovDegrees < 178.0f))
+      throw SessionError(fmt::format("--fov {} is out of range: more than 0 and less than 178 degrees", *a.fovDegrees));
+    v.yfovRadians = float(*a.fovDegrees * M_PI / 180.0);
+  }
   session.setView(v);
 }
 
@@ -78,7 +101,12 @@ void applyLight(tl::session::Session& session, const LightArgs& a) {
   }
   if (!a.sun.empty()) l.sunIrradiance = parseColor(a.sun, "--sun");
   if (!a.sky.empty()) l.skyRadiance = parseColor(a.sky, "--sky");
-  if (a.exposureEv) l.exposureEv = *a.exposureEv;
+  if (a.exposureEv) {
+    const float most = tl::scene::InputLimits::kMaxExposureEv;
+    if (!(std::abs(*a.exposureEv) <= most))
+      throw SessionError(fmt::format("--exposure {} is out of range: a finite EV from {:g} to {:g}", *a.exposureEv, -most, most));
+    l.exposureEv = *a.exposureEv;
+  }
   session.setLighting(l);
 }
 

@@ -9,6 +9,15 @@
 #include <string>
 #include <utility>
 
+// Ceilings on what one command may ask for, so every loop a user value controls ends
+// (docs/user-guide.md, "Limits"). Frames: render, capture, bench and compare; spp: the
+// reference's samples per pixel (16 a frame); a side of the image: the Vulkan minimum every
+// device supports for 2D images is 4096, lavapipe's and most GPUs' is 16384.
+inline constexpr uint32_t kMaxFrames = 100000;
+inline constexpr uint32_t kMaxWarmupFrames = 1000;
+inline constexpr uint32_t kMaxSpp = 65536;
+inline constexpr uint32_t kMaxBounces = 64;
+inline constexpr uint64_t kMaxImageSide = 16384;
 // Bad usage found after parsing (options that contradict each other, a malformed value that
 // CLI11 cannot check): one `twinlight: error:` line and exit code 2, like a parse error.
 struct UsageError : std::runtime_error {

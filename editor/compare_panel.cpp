@@ -37,7 +37,7 @@ std::string figure(const std::optional<double>& v, const char* format) {
 void comparePanel(EditorApp& app) {
   if (!app.compareOpen()) return;
   ImGui::SetNextWindowPos(ImVec2(320, 420), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(360, 300), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(380, 360), ImGuiCond_FirstUseEver);
   if (!ImGui::Begin("Compare", &app.compareOpen())) {
     ImGui::End();
     return;
@@ -59,8 +59,10 @@ void comparePanel(EditorApp& app) {
   pathCombo("right", view->right, paths);
   int mode = view->difference ? 1 : 0;
   ImGui::RadioButton("wipe", &mode, 0);
+  trackItem("compare.wipe");
   ImGui::SameLine();
   ImGui::RadioButton("difference", &mode, 1);
+  trackItem("compare.difference");
   view->difference = mode == 1;
   if (view->difference) {
     ImGui::SliderFloat("scale", &view->differenceScale, 1.0f, 64.0f, "%.0fx", ImGuiSliderFlags_Logarithmic);
@@ -91,21 +93,58 @@ void comparePanel(EditorApp& app) {
                           cause ? lighting::describeParts(cause).c_str() : "a reset or a resize");
     }
   }
+  // The reference's own noise: until it is well below the gap between the sides, their
+  // figures measure the reference as much as the paths (the ranking can still flip).
+  const std::optional<double> noise = live->referenceUnavailable() ? std::nullopt : live->referenceNoise();
+  const bool trusted = live->referenceTrusted();
+  if (!live->referenceUnavailable()) {
+    ImGui::Text("reference noise: relMSE %s", noise ? fmt::format("~{:.4f}", *noise).c_str() : "not known yet");
+    tooltip("the reference's own error at its samples, estimated from two states of its accumulation; each side's "
+            "relMSE holds about this much of it");
+  }
+  const ImVec4 grey = ImGui::GetStyle().Colors[ImGuiCol_TextDisabled];
   if (ImGui::BeginTable("compare.errors", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
     for (const char* h : {"path", "GPU ms", "relMSE", "FLIP"}) ImGui::TableSetupColumn(h);
-    ImGui::TableHeadersRow();
+    ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+    const char* meanings[] = {"the lighting path", "the GPU time of its last frame",
+                              "relative mean squared error of the radiance against the reference: lower is better; "
+                              "0 = identical",
+                              "perceived difference of the displayed images (NVIDIA FLIP, 0..1): lower is better; "
+                              "0 = identical"};
+    for (int c = 0; c < 4; ++c) {
+      ImGui::TableSetColumnIndex(c);
+      ImGui::TableHeader(ImGui::TableGetColumnName(c));
+      tooltip(meanings[c]);
+    }
     for (const auto& e : live->errors()) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(e.path.c_str());
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(fmt::format("{:.2f}", e.gpuMs).c_str());
+      if (!trusted) ImGui::PushStyleColor(ImGuiCol_Text, grey);
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(e.path == "reference" ? "0 (itself)" : figure(e.relMse, "{:.4f}").c_str());
+      ImGui::TextUnformatted(e.path == app.session().referencePath() ? "0 (itself)" : figure(e.relMse, "{:.4f}").c_str());
+      if (!trusted && e.path != app.session().referencePath()) tooltip("reference still converging: this figure is not yet the path's own");
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(e.path == "reference" ? "0" : figure(e.flip, "{:.4f}").c_str());
+      ImGui::TextUnformatted(e.path == app.session().referencePath() ? "0" : figure(e.flip, "{:.4f}").c_str());
+      if (!trusted) ImGui::PopStyleColor();
     }
     ImGui::EndTable();
+  }
+  const auto errors = live->errors();
+  if (!live->referenceUnavailable() && !trusted) {
+    ImGui::PushStyleColor(ImGuiCol_Text, grey);
+    ImGui::TextWrapped("reference still converging: its noise is not yet well below the gap between the paths");
+    ImGui::PopStyleColor();
+  } else if (trusted && errors.size() == 2 && errors[0].relMse && errors[1].relMse &&
+             errors[0].path != app.session().referencePath() && errors[1].path != app.session().referencePath()) {
+    const bool leftCloser = *errors[0].relMse <= *errors[1].relMse;
+    const auto& closer = leftCloser ? errors[0] : errors[1];
+    const auto& farther = leftCloser ? errors[1] : errors[0];
+    const double lower = *farther.relMse > 0.0 ? 100.0 * (1.0 - *closer.relMse / *farther.relMse) : 0.0;
+    ImGui::TextWrapped("%s is closer to the reference: relMSE %.0f%% lower than %s", closer.path.c_str(), lower,
+                       farther.path.c_str());
   }
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
   const size_t turns = live->rotationLength();

@@ -3,11 +3,13 @@
 #include "gpu/install_paths.h"
 #include "gpu/renderdoc.h"
 #include "session/capture.h"
+#include "session/image_io.h"
 
 #include "script.h"
 
 #include <GLFW/glfw3.h>
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/thread.h>
 #include <cmath>
 #include <fmt/format.h>
 #include <imgui.h>
@@ -16,6 +18,11 @@
 #include <spdlog/spdlog.h>
 
 #include <cstring>
+#include <thread>
+
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 namespace tl::editor {
 
@@ -39,6 +46,7 @@ void checkVk(VkResult r) {
 EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<std::filesystem::path> script,
                      lighting::MaterialMode materials) {
   settings_ = loadSettings();
+  savedSettings_ = toJson(settings_);
   browserDir_ = std::filesystem::current_path();
   createWindow();
   initImgui();
@@ -59,6 +67,7 @@ EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<s
   try {
     session_->loadScene(first);
     camera_.reset(session_->view(), glm::length(session_->scene().bounds.size()));
+    watchScene();
     settings_.addRecent(std::filesystem::absolute(first).string());
   } catch (const std::exception& e) {
     showError(e.what());
@@ -71,18 +80,53 @@ EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<s
 }
 
 EditorApp::~EditorApp() {
-  if (session_) session_->device().waitIdle();
+  if (session_) {
+    try {
+      session_->finishFrame();
+    } catch (const std::exception&) {
+    }
+    session_->device().waitIdle();
+  }
+  if (uiDevice_) uiDevice_->waitIdle();
   if (load_.valid()) load_.wait();
   ImGui_ImplVulkan_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
+  viewportImage_.reset();
   swapchain_.reset();
   imguiPool_.reset();
-  if (surface_) vkDestroySurfaceKHR(session_->device().instance(), surface_, nullptr);
+  if (surface_) vkDestroySurfaceKHR(uiDevice_->instance(), surface_, nullptr);
   session_.reset();
+  uiDevice_.reset();
   if (window_) glfwDestroyWindow(window_);
   glfwTerminate();
 }
+
+namespace {
+
+// The engine's device is created on a thread of lower CPU priority: lavapipe's queue and
+// rasterizer threads, which start with the device, inherit it (Linux threads inherit their
+// creator's nice value), so when the CPU is short the interface's own drawing goes first and
+// the engine takes the rest. A failure to lower it changes nothing else.
+std::unique_ptr<session::Session> makeEngineSession() {
+  constexpr int kEngineNice = 5;
+  std::unique_ptr<session::Session> made;
+  std::exception_ptr failure;
+  std::thread([&] {
+    setpriority(PRIO_PROCESS, pid_t(syscall(SYS_gettid)), getpriority(PRIO_PROCESS, 0) + kEngineNice);
+    // OpenImageIO's worker pool (the Compare panel's FLIP, image writes) starts here too.
+    OIIO::default_thread_pool();
+    try {
+      made = std::make_unique<session::Session>();
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  }).join();
+  if (failure) std::rethrow_exception(failure);
+  return made;
+}
+
+}  // namespace
 
 void EditorApp::createWindow() {
   if (!glfwInit()) throw std::runtime_error("cannot open a window (GLFW could not initialise the display)");
@@ -90,23 +134,21 @@ void EditorApp::createWindow() {
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   window_ = glfwCreateWindow(settings_.windowWidth, settings_.windowHeight, "Twinlight", nullptr, nullptr);
   if (!window_) throw std::runtime_error("cannot create the editor window");
-  glfwSetWindowUserPointer(window_, this);
+  input_.attach(window_);
   glfwSetDropCallback(window_, onDrop);
-  glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) {
-    static_cast<EditorApp*>(glfwGetWindowUserPointer(w))->resized_ = true;
-  });
 
   gpu::DeviceOptions options;
   uint32_t n = 0;
   const char** exts = glfwGetRequiredInstanceExtensions(&n);
   for (uint32_t i = 0; i < n; ++i) options.instanceExtensions.emplace_back(exts[i]);
   options.swapchain = true;
-  session_ = std::make_unique<session::Session>(options);
-  checkVk(glfwCreateWindowSurface(session_->device().instance(), window_, nullptr, &surface_));
+  uiDevice_ = std::make_unique<gpu::Device>(options);
+  session_ = makeEngineSession();
+  checkVk(glfwCreateWindowSurface(uiDevice_->instance(), window_, nullptr, &surface_));
   int w, h;
   glfwGetFramebufferSize(window_, &w, &h);
-  swapchain_ = std::make_unique<gpu::Swapchain>(session_->device(), surface_, VkExtent2D{uint32_t(w), uint32_t(h)},
-                                                settings_.vsync);
+  swapchain_ = std::make_unique<gpu::Swapchain>(*uiDevice_, surface_, VkExtent2D{uint32_t(w), uint32_t(h)}, settings_.vsync);
+  viewportImage_ = std::make_unique<ViewportImage>(*uiDevice_);
 }
 
 void EditorApp::initImgui() {
@@ -118,10 +160,13 @@ void EditorApp::initImgui() {
   imguiIniPath = (configDirectory() / "imgui.ini").string();
   io.IniFilename = imguiIniPath.c_str();
   ImGui::StyleColorsDark();
+  // Opaque panels: text of a panel behind a floating one does not show through and mix with it.
+  ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 1.0f;
   ImGui::GetStyle().WindowRounding = 2.0f;
-  ImGui_ImplGlfw_InitForVulkan(window_, true);
+  // No backend callbacks: input reaches Dear ImGui through the queue (input_queue.h).
+  ImGui_ImplGlfw_InitForVulkan(window_, false);
 
-  auto& d = session_->device();
+  auto& d = *uiDevice_;
   imguiPool_ = std::make_unique<gpu::DescriptorPool>(d, 64, "ui.descriptors");
   ImGui_ImplVulkan_InitInfo info{};
   info.Instance = d.instance();
@@ -142,16 +187,18 @@ void EditorApp::initImgui() {
 int EditorApp::run() {
   lastTime_ = glfwGetTime();
   while (!glfwWindowShouldClose(window_) && !quit_) frame();
-  int w, h;
-  glfwGetWindowSize(window_, &w, &h);
-  if (w > 0 && h > 0) settings_.windowWidth = w, settings_.windowHeight = h;
-  saveSettings(settings_);
+  saveSettingsIfChanged();
   if (script_ && script_->failed()) {
     fmt::print(stderr, "twinlight: error: script: {}\n", script_->failure());
     return 1;
   }
-  if (session_->validationErrors() > 0) {
-    fmt::print(stderr, "twinlight: error: {} Vulkan validation error(s)\n", session_->validationErrors());
+  try {
+    session_->finishFrame();  // its validation messages count too
+  } catch (const std::exception&) {
+  }
+  const uint32_t validation = session_->validationErrors() + uiDevice_->validationErrorCount();
+  if (validation > 0) {
+    fmt::print(stderr, "twinlight: error: {} Vulkan validation error(s)\n", validation);
     return 1;
   }
   return 0;
@@ -165,7 +212,20 @@ double EditorApp::fps() const {
   return sum > 0.0 ? 1000.0 * double(n) / sum : 0.0;
 }
 
+double EditorApp::engineFps() const {
+  if (engineFrameEnds_.size() < 2) return 0.0;
+  const double span = engineFrameEnds_.back() - engineFrameEnds_.front();
+  return span > 0.0 ? double(engineFrameEnds_.size() - 1) / span : 0.0;
+}
+
+double EditorApp::shownFrameAge() const { return shownBegunAt_ < 0.0 ? 0.0 : glfwGetTime() - shownBegunAt_; }
+
+bool EditorApp::engineActive() const {
+  return (session_->hasScene() || session_->hasCapture()) && viewportSize_.x >= 1.0f && viewportSize_.y >= 1.0f;
+}
+
 void EditorApp::frame() {
+  const double frameStart = glfwGetTime();
   glfwPollEvents();
   int w, h;
   glfwGetFramebufferSize(window_, &w, &h);
@@ -184,24 +244,34 @@ void EditorApp::frame() {
   for (auto& f : droppedFiles) openScene(f);
   droppedFiles.clear();
   if (load_.valid() && load_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) finishLoad();
+  collectEngineFrame();
+  if (!load_.valid() && sceneWatcher_.changed(now)) reloadScene();
   if (script_) script_->step(*this);
-  stepAlbedoBake();
-  if (framesDrawn_ % 15 == 0) pollShaders();
+  // A bake uses the engine's device between its frames (its batches wait for their own work).
+  if (!session_->frameInFlight()) stepAlbedoBake();
+  if (framesDrawn_ % 15 == 0) pollShaders(), saveSettingsIfChanged();
 
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  input_.feed(ImGui::GetIO());
   ImGui::NewFrame();
   drawPanels(*this);
   handleCameraInput(seconds);
   if (playing_ && session_->animated() && !load_.valid())
     session_->setAnimationTime(std::fmod(session_->animationTime() + seconds, std::max(session_->scene().animationSeconds, 1e-3)));
-  renderEngine();
+  startEngineFrame();
   ImGui::Render();
   recordAndPresent();
 
   ++framesDrawn_;
   frameHistory_.push_back(seconds * 1000.0);
   if (frameHistory_.size() > 240) frameHistory_.pop_front();
+  // At most 60 UI frames a second, 40 while the engine renders (above the 30 an artist
+  // needs): what the interface does not need, the engine gets (on a software device both
+  // share the CPU).
+  const double frameBudget = session_->frameInFlight() ? 1.0 / 40.0 : 1.0 / 60.0;
+  const double spare = frameBudget - (glfwGetTime() - frameStart);
+  if (spare > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(spare));
 }
 
 void EditorApp::handleCameraInput(float seconds) {
@@ -212,7 +282,7 @@ void EditorApp::handleCameraInput(float seconds) {
   lastMouse_ = mouse;
   CameraInput in;
   in.seconds = seconds;
-  in.fast = glfwGetKey(window_, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+  in.fast = ImGui::IsKeyDown(GLFW_KEY_LEFT_SHIFT) || ImGui::IsKeyDown(GLFW_KEY_RIGHT_SHIFT);
 
   // The compare view's wipe line: a press on it drags the line instead of the camera.
   if (compareView_ && !compareView_->difference && viewportHovered_ && ImGui::IsMouseClicked(0) &&
@@ -246,7 +316,7 @@ void EditorApp::handleCameraInput(float seconds) {
   const bool flying = ImGui::IsMouseDown(1) && viewportHovered_;
   if (flying) {
     in.lookDelta = delta;
-    auto key = [&](int k) { return glfwGetKey(window_, k) == GLFW_PRESS ? 1.0f : 0.0f; };
+    auto key = [&](int k) { return ImGui::IsKeyDown(k) ? 1.0f : 0.0f; };
     in.move = {key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q), key(GLFW_KEY_W) - key(GLFW_KEY_S)};
   }
   camera_.update(in);
@@ -281,11 +351,19 @@ void EditorApp::setCompare(bool on) {
     return;
   }
   session::CompareView v;
-  // The path in use against the other real-time one: what an artist usually weighs.
-  v.left = session_->path() == "legacy" ? "legacy" : "rt";
-  v.right = v.left == "legacy" ? "rt" : "legacy";
-  for (const auto& p : session_->paths())
-    if (!p.available && (p.name == v.left || p.name == v.right)) (p.name == v.left ? v.left : v.right) = "direct";
+  // The path in use against another real-time one with history (what an artist usually
+  // weighs), else the last such path; failing that, any other path that is not the reference.
+  std::vector<std::string> realTime, others;
+  for (const auto& p : session_->paths()) {
+    if (!p.available || p.capabilities.isReference) continue;
+    (p.capabilities.accumulates ? realTime : others).push_back(p.name);
+  }
+  const bool current = std::find(realTime.begin(), realTime.end(), session_->path()) != realTime.end();
+  v.left = current ? session_->path() : (realTime.empty() ? session_->path() : realTime.back());
+  for (const auto* list : {&realTime, &others})
+    for (const auto& name : *list)
+      if (v.right.empty() && name != v.left) v.right = name;
+  if (v.right.empty()) v.right = v.left;
   compareView_ = v;
   showCompare_ = true;
 }
@@ -300,12 +378,30 @@ std::string EditorApp::sceneKey() const {
   return session_->hasScene() ? std::filesystem::absolute(session_->scene().path).string() : "";
 }
 
+// Settings are written when they change (checked every few frames), not only on a clean
+// exit: a crash or a killed editor keeps the path, render scale, recent scenes, bookmarks.
+void EditorApp::saveSettingsIfChanged() {
+  int w, h;
+  glfwGetWindowSize(window_, &w, &h);
+  if (w > 0 && h > 0) settings_.windowWidth = w, settings_.windowHeight = h;
+  nlohmann::json now = toJson(settings_);
+  if (now == savedSettings_) return;
+  try {
+    saveSettings(settings_);
+  } catch (const std::exception& e) {
+    // Said once per change (not retried every few frames); the editor works on without it.
+    spdlog::warn("editor settings not saved: {}", e.what());
+    showError(fmt::format("settings not saved: {}", e.what()));
+  }
+  savedSettings_ = std::move(now);
+}
+
 void EditorApp::applyBookmark(int slot, bool save) {
   auto& marks = settings_.bookmarks[sceneKey()];
   std::string key = std::to_string(slot);
   if (save) {
     marks[key] = camera_.save();
-    saveSettings(settings_);
+    saveSettingsIfChanged();
   } else if (marks.contains(key)) {
     try {
       camera_.load(marks[key]);
@@ -340,6 +436,7 @@ void EditorApp::openScene(const std::filesystem::path& file) {
 void EditorApp::cancelLoad() {
   // Parsing cannot be interrupted safely; its result is dropped when it arrives.
   if (!load_.valid()) return;
+  keptAcrossReload_.reset();
   std::thread([f = std::move(load_)]() mutable {
     try {
       f.get();
@@ -352,12 +449,20 @@ void EditorApp::cancelLoad() {
 void EditorApp::finishLoad() {
   try {
     session_->installScene(load_.get());
-    camera_.reset(session_->view(), glm::length(session_->scene().bounds.size()));
-    selected_.reset();
-    preview_.clear();
+    if (!keptAcrossReload_) {
+      camera_.reset(session_->view(), glm::length(session_->scene().bounds.size()));
+      selected_.reset();
+      preview_.clear();
+    }
+    watchScene();
     settings_.addRecent(std::filesystem::absolute(loadingPath_).string());
-    saveSettings(settings_);
+    saveSettingsIfChanged();
+    reopenAlbedoDatabase();
+    // After the database: attaching one drops unsaved edits, which a reload puts back.
+    if (keptAcrossReload_) restoreAfterReload();
   } catch (const std::exception& e) {
+    keptAcrossReload_.reset();
+    watchScene();  // a broken export is not retried until the file changes again
     showError(e.what());
   }
   load_ = {};
@@ -366,151 +471,6 @@ void EditorApp::finishLoad() {
 std::filesystem::path EditorApp::defaultCaptureFolder() const {
   const std::string scene = session_->hasScene() ? session_->scene().name : "none";
   return std::filesystem::path("captures") / fmt::format("{}-{}-frame{}", scene, session_->path(), session_->frameIndex());
-}
-
-void EditorApp::renderEngine() {
-  const bool capture = session_->hasCapture();
-  if ((!session_->hasScene() && !capture) || viewportSize_.x < 1.0f || viewportSize_.y < 1.0f) return;
-  uint32_t w = std::max(1u, uint32_t(viewportSize_.x * settings_.renderScale));
-  uint32_t h = std::max(1u, uint32_t(viewportSize_.y * settings_.renderScale));
-  try {
-    if (capture) pendingClick_.reset(), frameCapturePath_.reset();  // a reopened capture has no live frame
-    if (!capture && (w != session_->settings().width || h != session_->settings().height)) session_->setSize(w, h);
-    if (!capture) session_->setView(camera_.view());
-    VkFormat hoverFormat = VK_FORMAT_UNDEFINED;
-    std::string decoder;
-    uint64_t texels = 0;
-    for (const auto& r : session_->resources()) {
-      if (r.name == preview_) hoverFormat = r.desc.format;
-      if (r.name == viewer_.resource)
-        decoder = r.desc.decoder, texels = uint64_t(r.desc.extent.width) * r.desc.extent.height * r.desc.extent.depth;
-    }
-    // Live read-back of big volumes (the voxel clipmap) would cost more than the frame.
-    const bool liveReadback = showBuffers_ && viewer_.live && texels <= (uint64_t(1) << 22);
-    lighting::DisplayRequest display = displayRequest(viewer_, preview_, hoverFormat, std::exp2(-session_->exposureEv()));
-    display.selectedInstance = selected_ ? *selected_ + 1 : 0;
-    session_->setDisplay(display);
-    // The viewer's read-back (histogram, probe, range fit): the shown resource and what its
-    // decoder needs beside it.
-    std::vector<std::string> viewerReads;
-    if (preview_.empty() && !viewer_.resource.empty() &&
-        (viewer_.autoFitPending || viewer_.refresh || viewer_.keepCopy || liveReadback)) {
-      viewerReads.push_back(viewer_.resource);
-      for (const std::string& c : lighting::decoderCompanions(decoder)) viewerReads.push_back(c);
-    }
-    if (!capture) {
-      try {
-        session_->setCompareView(compareView_);
-      } catch (const session::SessionError& e) {
-        compareView_.reset();
-        session_->setCompareView(std::nullopt);
-        showError(e.what());
-      }
-    }
-    for (const std::string& n : viewerReads) session_->requestBuffer(n);
-    if (pendingClick_) session_->requestBuffer("gbuffer.instanceId");
-    if (captureRequested_) session_->requestBuffer(lighting::kDisplayLdr);
-    if (frameCapturePath_) session_->requestAllBuffers();
-    session_->renderFrames(1);
-    if (frameCapturePath_) {
-      const std::filesystem::path dir = *frameCapturePath_;
-      frameCapturePath_.reset();
-      auto manifest = session::writeCapture(*session_, dir);
-      size_t files = 0;
-      for (const auto& r : manifest["resources"]) files += !r["file"].is_null();
-      fmt::print("captured {} of {} resources into {}\n", files, manifest["resources"].size(), dir.string());
-    }
-    if (captureRequested_) {
-      capture_ = session_->buffer(lighting::kDisplayLdr).texels();
-      captureRequested_ = false;
-    }
-    if (!viewerReads.empty()) {
-      viewer_.readbacks.clear();
-      for (const std::string& n : viewerReads) viewer_.readbacks[n] = session_->buffer(n);
-      const graph::Readback& shown = viewer_.readbacks[viewer_.resource];
-      if (viewer_.autoFitPending && shown.extent.width > 0) {
-        std::tie(viewer_.rangeMin, viewer_.rangeMax) = fitRange(channelValues(shown, viewer_.channel, viewer_.slice));
-        viewer_.autoFitPending = false;
-      }
-      if (viewer_.keepCopy) viewer_.copyOf = viewer_.resource, viewer_.copyReadback = shown;
-      viewer_.refresh = viewer_.keepCopy = false;
-    }
-    if (pendingClick_) {
-      glm::vec2 uv = (*pendingClick_ - viewportMin_) / viewportSize_;
-      selected_ = session_->instanceAt(uint32_t(uv.x * w), uint32_t(uv.y * h));
-      pendingClick_.reset();
-    }
-  } catch (const std::exception& e) {
-    showError(e.what());
-    preview_.clear();
-    viewer_.resource.clear();
-    viewer_.keepCopy = viewer_.showCopy = false;
-    pendingClick_.reset();
-  }
-}
-
-void EditorApp::recordAndPresent() {
-  auto& d = session_->device();
-  if (!swapchain_->acquire()) {
-    resized_ = true;
-    return;
-  }
-  VkCommandBuffer cmd = d.beginCommands();
-  VkImage target = swapchain_->image();
-  VkExtent2D ext = swapchain_->extent();
-  gpu::transitionImage(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-  VkClearColorValue clear{{0.09f, 0.09f, 0.10f, 1.0f}};
-  VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  vkCmdClearColorImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &clear, 1, &range);
-
-  // The engine's image, scaled into the viewport panel (linear filter: render scale).
-  const gpu::Image* display = session_->hasScene() || session_->hasCapture() ? session_->displayImage() : nullptr;
-  if (display && viewportSize_.x >= 1.0f && viewportSize_.y >= 1.0f && !load_.valid()) {
-    VkImageLayout layout = session_->displayImageLayout();
-    gpu::transitionImage(cmd, display->handle(), VK_IMAGE_ASPECT_COLOR_BIT, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    // The blit writes over the clear: it waits for it.
-    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
-                       VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    VkImageBlit blit{};
-    blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.srcOffsets[1] = {int32_t(display->extent().width), int32_t(display->extent().height), 1};
-    int32_t x0 = std::clamp(int32_t(viewportMin_.x), 0, int32_t(ext.width));
-    int32_t y0 = std::clamp(int32_t(viewportMin_.y), 0, int32_t(ext.height));
-    int32_t x1 = std::clamp(int32_t(viewportMin_.x + viewportSize_.x), 0, int32_t(ext.width));
-    int32_t y1 = std::clamp(int32_t(viewportMin_.y + viewportSize_.y), 0, int32_t(ext.height));
-    if (x1 > x0 && y1 > y0) {
-      blit.dstOffsets[0] = {x0, y0, 0};
-      blit.dstOffsets[1] = {x1, y1, 1};
-      vkCmdBlitImage(cmd, display->handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
-                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
-    }
-    gpu::transitionImage(cmd, display->handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout);
-  }
-
-  VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  rp.renderPass = swapchain_->renderPass();
-  rp.framebuffer = swapchain_->framebuffer();
-  rp.renderArea = {{0, 0}, ext};
-  vkCmdBeginRenderPass(cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
-  ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
-  vkCmdEndRenderPass(cmd);
-
-  std::optional<gpu::Buffer> shot;
-  if (screenshotPath_) {
-    shot.emplace(d, VkDeviceSize(ext.width) * ext.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUsage::Readback,
-                 "ui.screenshot");
-    gpu::transitionImage(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {ext.width, ext.height, 1};
-    vkCmdCopyImageToBuffer(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, shot->handle(), 1, &region);
-    gpu::transitionImage(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
-  }
-  if (!swapchain_->submitAndPresent(cmd)) resized_ = true;
-  if (shot) {
-    d.wait(swapchain_->lastSubmission());
-    writeScreenshot(*shot, ext);
-  }
 }
 
 void EditorApp::writeScreenshot(const gpu::Buffer& pixels, VkExtent2D ext) {
@@ -524,12 +484,14 @@ void EditorApp::writeScreenshot(const gpu::Buffer& pixels, VkExtent2D ext) {
     rgb[i * 3 + 1] = src[i * 4 + 1];
     rgb[i * 3 + 2] = src[i * 4 + (bgra ? 0 : 2)];
   }
-  std::error_code ec;
-  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), ec);
-  auto out = OIIO::ImageOutput::create(file.string());
-  OIIO::ImageSpec spec(int(ext.width), int(ext.height), 3, OIIO::TypeDesc::UINT8);
-  if (!out || !out->open(file.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close()) {
-    showError(fmt::format("{}: cannot write the screenshot", file.string()));
+  try {
+    session::writeFileAtomically(file, [&](const std::string& tmp) {
+      auto out = OIIO::ImageOutput::create(file.string());
+      OIIO::ImageSpec spec(int(ext.width), int(ext.height), 3, OIIO::TypeDesc::UINT8);
+      return out && out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) && out->close();
+    });
+  } catch (const std::exception& e) {
+    showError(fmt::format("cannot write the screenshot: {}", e.what()));
     return;
   }
   fmt::print("wrote {}\n", std::filesystem::absolute(file).string());
@@ -540,6 +502,34 @@ void EditorApp::openAlbedoDatabase(const std::filesystem::path& file) {
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
   session_->openAlbedoDatabase(file);
   albedoDbField_ = file.string();
+  // Remembered for the scene: reopened when the scene is loaded again.
+  if (session_->hasScene()) settings_.albedoDatabases[sceneKey()] = std::filesystem::absolute(file).string();
+}
+
+// The scene's database from the last session, if it still exists (the RT path's hits use it).
+void EditorApp::reopenAlbedoDatabase() {
+  const std::string key = sceneKey();
+  if (!settings_.albedoDatabases.contains(key) || !settings_.albedoDatabases[key].is_string()) return;
+  const std::filesystem::path file = settings_.albedoDatabases[key].get<std::string>();
+  if (!std::filesystem::exists(file)) {
+    notify(fmt::format("the albedo database {} of this scene is gone: rays read texture averages", file.string()));
+    return;
+  }
+  try {
+    openAlbedoDatabase(file);
+    notify(fmt::format("reopened the albedo database {}", file.string()));
+  } catch (const std::exception& e) {
+    showError(fmt::format("cannot reopen the albedo database {}: {}", file.string(), e.what()));
+  }
+}
+
+std::filesystem::path EditorApp::defaultAlbedoDatabase() const {
+  const std::string key = sceneKey();
+  if (settings_.albedoDatabases.contains(key) && settings_.albedoDatabases[key].is_string())
+    return settings_.albedoDatabases[key].get<std::string>();
+  const uint64_t hash = scene::hashBytes(key.data(), key.size());
+  return std::filesystem::path("out") /
+         fmt::format("{}-{:08x}.albedo.db", session_->scene().path.stem().string(), uint32_t(hash));
 }
 
 void EditorApp::startAlbedoBake(bool force) {
@@ -574,7 +564,17 @@ void EditorApp::requestRenderDocCapture() {
   if (!rd.attached()) throw session::SessionError("RenderDoc capture unavailable: " + rd.unavailableReason());
   const std::string scene = session_->hasScene() ? session_->scene().name : "none";
   rd.setCaptureTemplate((std::filesystem::absolute("captures") / "renderdoc" / scene).string());
-  rd.triggerCapture();  // the next presented frame, engine work included
+  renderDocPending_ = true;  // the next engine frame
+}
+
+void EditorApp::notify(const std::string& text) {
+  notices_.push_back({text, glfwGetTime()});
+  if (notices_.size() > 50) notices_.pop_front();
+}
+
+const EditorApp::Notice* EditorApp::recentNotice() const {
+  constexpr double kShownSeconds = 8.0;
+  return !notices_.empty() && glfwGetTime() - notices_.back().time < kShownSeconds ? &notices_.back() : nullptr;
 }
 
 void EditorApp::pollShaders() {
@@ -589,6 +589,7 @@ void EditorApp::pollShaders() {
 void EditorApp::openCapture(const std::filesystem::path& dir) {
   try {
     session_->openCapture(dir);
+    sceneWatcher_.watch({}, 0.0);  // the capture replaced the scene
     showBuffers_ = true;
     pinPreview("");
     selected_.reset();

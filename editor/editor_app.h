@@ -1,11 +1,16 @@
-// The editor: a GLFW window with Dear ImGui over the engine's session. The engine renders
-// into its own image at `renderScale` of the viewport panel; the image is blitted into the
-// swapchain under a transparent viewport panel and the UI is drawn over it.
+// The editor: a GLFW window with Dear ImGui over the engine's session. The interface never
+// waits for the engine: the session renders on a device of its own, one frame at a time,
+// submitted by the UI thread and collected when the GPU is done, while the UI goes on at its
+// own rate; the latest finished frame (its display image, read back) is blitted into the
+// swapchain under a transparent viewport panel, with its age, and the UI drawn over it.
 #pragma once
 
 #include "buffer_viewer.h"
 #include "camera_controller.h"
+#include "input_queue.h"
+#include "scene_watcher.h"
 #include "settings.h"
+#include "viewport_image.h"
 
 #include "gpu/descriptor_pool.h"
 #include "gpu/shader_reload.h"
@@ -40,6 +45,16 @@ class EditorApp {
   // A capture folder (manifest.json + EXRs) in the viewer, without its scene.
   void openCapture(const std::filesystem::path& dir);
   bool loading() const { return load_.valid(); }
+  // Loads the scene's file again, keeping the camera, the selection (by instance name), the
+  // albedo overrides of unchanged mesh + material combinations, edited lighting and the
+  // animation time. Called when the file changes on disk (scene_reload.cpp).
+  void reloadScene();
+  uint64_t sceneReloads() const { return sceneReloads_; }
+  session::View cameraView() const { return camera_.view(); }
+  // File > Save image: the last frame as .png (display) or .exr (linear radiance). Throws
+  // SessionError naming the file when it cannot be written.
+  void saveImage(const std::filesystem::path& file);
+  std::filesystem::path defaultImagePath(const char* extension) const;
   void cancelLoad();
   void setPath(const std::string& name);
   void select(std::optional<uint32_t> instance) { selected_ = instance; }
@@ -52,13 +67,33 @@ class EditorApp {
   // Throws SessionError with the reason when RenderDoc is not attached.
   void requestRenderDocCapture();
   std::filesystem::path defaultCaptureFolder() const;
-  // Reads back the viewport image (display.ldr) on the next frame, for scripted checks.
+  bool frameCapturePending() const { return frameCapturePath_ || captureInFlight_; }
+  // Reads back the viewport image (display.ldr) of the next engine frame, for scripted checks.
   void requestViewportCapture() { captureRequested_ = true, capture_.clear(); }
   const std::vector<float>& viewportCapture() const { return capture_; }
+  // Engine frames finished so far, and whether the engine has anything to render now.
+  uint64_t engineFramesDone() const { return engineFramesDone_; }
+  uint64_t engineFramesBegun() const { return engineFramesBegun_; }
+  bool engineActive() const;
+  // Frames per second of the interface and of the engine, over the last second or so, and
+  // how old (seconds since its input was taken) the frame on screen is.
+  double engineFps() const;
+  double shownFrameAge() const;
+  InputQueue& input() { return input_; }
   void focusSelection();
   // Moves the editor camera by metres along its right, up and forward axes.
   void moveCamera(const glm::dvec3& rightUpForward) { camera_.translate(rightUpForward); }
   void showError(const std::string& message) { error_ = message; }
+  // A confirmation or note for the status bar (and the Messages list): what was written
+  // where, what was done for you (a default light, a fallback to the final image).
+  void notify(const std::string& text);
+  struct Notice {
+    std::string text;
+    double time = 0.0;  // glfwGetTime()
+  };
+  const std::deque<Notice>& notices() const { return notices_; }
+  // The latest notice if it is recent enough to show (a few seconds), else null.
+  const Notice* recentNotice() const;
   void previewResource(const std::string& name) { preview_ = name; }  // while hovering a pass
   // Shows a resource in the viewport until changed ("" = the final image); its range is fitted.
   void pinPreview(const std::string& name) {
@@ -85,6 +120,9 @@ class EditorApp {
   void cancelAlbedoBake() { if (bake_) bake_->cancel(); }
   const albedo::BakeJob* albedoBake() const { return bake_.get(); }
   std::string& albedoDbField() { return albedoDbField_; }
+  // The database proposed for the scene: the one last opened for it, else
+  // out/<file stem>-<hash of its absolute path>.albedo.db (two scene.gltf files differ).
+  std::filesystem::path defaultAlbedoDatabase() const;
   const std::string& lastBakeSummary() const { return lastBakeSummary_; }
   const std::string& pinnedPreview() const { return viewer_.resource; }
   void showBrowser(bool on) { showBrowser_ = on; }
@@ -101,18 +139,25 @@ class EditorApp {
   void frame();
   void drawUi();
   void handleCameraInput(float seconds);
-  void renderEngine();
+  void startEngineFrame();
+  void collectEngineFrame();
   void recordAndPresent();
   void finishLoad();
   void applyBookmark(int slot, bool save);
+  void saveSettingsIfChanged();
+  void reopenAlbedoDatabase();
   std::string sceneKey() const;
   void writeScreenshot(const gpu::Buffer& pixels, VkExtent2D extent);
 
   Settings settings_;
+  nlohmann::json savedSettings_;  // what settings.json holds now
   GLFWwindow* window_ = nullptr;
   VkSurfaceKHR surface_ = VK_NULL_HANDLE;
+  std::unique_ptr<gpu::Device> uiDevice_;  // the window's: swapchain, Dear ImGui, the viewport image
   std::unique_ptr<session::Session> session_;
   std::unique_ptr<gpu::Swapchain> swapchain_;
+  std::unique_ptr<ViewportImage> viewportImage_;
+  InputQueue input_;
   std::unique_ptr<gpu::DescriptorPool> imguiPool_;
   std::unique_ptr<Script> script_;
   CameraController camera_;
@@ -136,7 +181,25 @@ class EditorApp {
   bool quit_ = false;
   bool captureRequested_ = false;
   std::vector<float> capture_;
+  // What the engine frame in flight was asked for beyond the image, collected when it is done.
+  struct FrameAsks {
+    double begunAt = 0.0;          // glfwGetTime() when its input was taken
+    bool viewerReads = false;      // the viewer's resource and companions
+    bool keepCopy = false;         // the viewer's A/B copy
+    bool snapshot = false;         // the viewport for a script
+    std::optional<std::filesystem::path> capture;  // every buffer, into this folder
+    std::string viewed;            // the viewer's resource when it began
+  };
+  std::optional<FrameAsks> inFlight_;
+  bool renderDocPending_ = false;
+  std::deque<Notice> notices_;
   bool resized_ = false;
+  bool captureInFlight_ = false;
+  uint64_t engineFramesDone_ = 0, engineFramesBegun_ = 0;
+  std::deque<double> engineFrameEnds_;  // glfwGetTime() of recent finished frames
+  double shownBegunAt_ = -1.0;          // input time of the frame on screen
+  std::vector<uint8_t> pickIds_;        // gbuffer.instanceId of the frame on screen
+  VkExtent3D pickExtent_{};
   uint64_t framesDrawn_ = 0;
   std::deque<double> frameHistory_;
   double lastTime_ = 0.0;
@@ -152,6 +215,18 @@ class EditorApp {
   std::string shaderStatus_;
   void pollShaders();
   std::string albedoDbField_;     // the Albedo panel's database path
+  // Reloading the scene when its file changes (scene_reload.cpp).
+  struct KeptAcrossReload {
+    std::string selected;  // instance name
+    std::vector<std::pair<albedo::AlbedoKey, glm::vec3>> overrides;
+    std::optional<session::Lighting> lighting;  // when edited away from the scene's own
+    double animationTime = 0.0;
+  };
+  SceneWatcher sceneWatcher_;
+  std::optional<KeptAcrossReload> keptAcrossReload_;  // while a reload is loading
+  uint64_t sceneReloads_ = 0;
+  void watchScene();
+  void restoreAfterReload();
   std::string lastBakeSummary_;
   void stepAlbedoBake();
 };

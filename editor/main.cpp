@@ -8,13 +8,18 @@
 #include "compare_cameras.h"
 #include "session/capture.h"
 #include "cli_args.h"
+#include "cli_output.h"
 #include "editor_app.h"
 #include "gpu/install_paths.h"
 #include "gpu/renderdoc.h"
 #include "gpu/self_test.h"
+#include "output_paths.h"
+#include "scene/input_limits.h"
 #include "session/compare.h"
+#include "session/doctor.h"
 #include "session/image_io.h"
 #include "session/settings_json.h"
+#include "session/settings_reference.h"
 #include "session/shard.h"
 #include "session/sweep.h"
 #include "session/session.h"
@@ -48,8 +53,8 @@ struct RenderOptions {
   LightArgs light;
   std::string dumpGraph;
   std::optional<uint32_t> spp;
-  uint32_t bounces = tl::lighting::RenderSettings{}.referenceBounces;
-  std::string materials = "authored";
+  std::optional<uint32_t> bounces;
+  std::optional<std::string> materials;
   std::optional<float> sunSizeDegrees;
   bool hardShadows = false;
   std::optional<float> rtMeshRatio;
@@ -57,9 +62,16 @@ struct RenderOptions {
   std::optional<bool> rtPretrace;
   std::optional<bool> rtDenoise;
   std::string albedoDb;
+  bool allowOutsideFiles = false;
   std::string renderDoc;  // RenderDoc capture path template for one more frame
   double time = 0.0;
   std::optional<double> animateFps;
+  // Settings: a file (a settings object, or any JSON Twinlight wrote that records them), then
+  // NAME=VALUE assignments; explicit options win over the file.
+  std::string settingsFile;
+  std::vector<std::string> sets;
+  CLI::Option* sizeOption = nullptr;
+  bool settingsMayListVariants = false;  // compare: a JSON array is a list of configurations
 };
 
 constexpr const char* kMaterialsHelp =
@@ -74,9 +86,23 @@ tl::lighting::MaterialMode parseMaterials(const std::string& name) {
 }
 
 void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
-  cmd.add_option("--materials", o.materials, kMaterialsHelp)->capture_default_str();
+  o.sizeOption = cmd.add_option("--size", o.size, "image size WxH (wins over --settings)")->capture_default_str();
+  cmd.add_option("--set", o.sets,
+                 "change a render setting, NAME=VALUE (repeatable; `twinlight settings` lists them), e.g. "
+                 "--set shadowMapSize=4096 --set materials=clay; a JSON object is taken too")
+      ->allow_extra_args(false);
+  cmd.add_option("--settings", o.settingsFile,
+                 o.settingsMayListVariants
+                     ? "JSON file: settings for every path (an object, or a capture manifest, bench JSON or report "
+                       "holding one), or a list of configurations [{\"name\": N, \"path\": P, \"settings\": {...}}, ...] "
+                       "measured after --paths"
+                     : "JSON file of settings to start from: an object, or a capture manifest, bench JSON or compare "
+                       "report (its \"settings\"); --size, --set and the other options win over it");
+  cmd.add_option("--materials", o.materials, std::string(kMaterialsHelp) + " [default: authored]");
   cmd.add_option("--camera", o.view.camera, "use the scene's glTF camera N (0-based)");
   cmd.add_option("--albedo-db", o.albedoDb, "albedo database whose baked values and overrides the RT path's hits use");
+  cmd.add_flag("--allow-outside-files", o.allowOutsideFiles,
+               "let the scene read buffers and images outside its own folder (../, absolute paths, links out)");
   cmd.add_option("--look-from", o.view.lookFrom, "camera position x,y,z (metres, y up)");
   cmd.add_option("--look-at", o.view.lookAt, "point the camera looks at, x,y,z");
   cmd.add_option("--fov", o.view.fovDegrees, "vertical field of view in degrees");
@@ -105,9 +131,26 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
+using tl::editor::Progress;
+
+// GPU milliseconds of every frame and pass, gathered over several renderFrames calls.
+struct FrameTimes {
+  std::vector<double> frames;
+  std::vector<std::pair<std::string, std::vector<double>>> passes;
+
+  void add(const Session& session) {
+    frames.insert(frames.end(), session.frameGpuMs().begin(), session.frameGpuMs().end());
+    for (const auto& [pass, ms] : session.passGpuMs()) {
+      auto it = std::find_if(passes.begin(), passes.end(), [&](const auto& p) { return p.first == pass; });
+      if (it == passes.end()) it = passes.insert(passes.end(), {pass, {}});
+      it->second.insert(it->second.end(), ms.begin(), ms.end());
+    }
+  }
+};
+
 // The first frame compiles pipelines on first use: it is reported apart from the median.
-void printFrameTimes(const Session& session) {
-  const auto& frames = session.frameGpuMs();
+void printFrameTimes(const FrameTimes& times) {
+  const auto& frames = times.frames;
   if (frames.empty()) return;
   if (frames.size() == 1) {
     fmt::print("GPU frame time: {:.2f} ms (one frame, includes first-use pipeline compilation)\n", frames[0]);
@@ -117,20 +160,49 @@ void printFrameTimes(const Session& session) {
   fmt::print("GPU frame time: median {:.2f} ms over {} frames (min {:.2f}, max {:.2f}); first frame {:.2f} ms\n",
              median(steady), steady.size(), *std::min_element(steady.begin(), steady.end()),
              *std::max_element(steady.begin(), steady.end()), frames[0]);
-  for (const auto& [pass, ms] : session.passGpuMs()) {
+  for (const auto& [pass, ms] : times.passes) {
     std::vector<double> s(ms.begin() + (ms.size() > 1 ? 1 : 0), ms.end());
     fmt::print("  {:24} {:8.2f} ms\n", pass, median(s));
   }
 }
 
-// Scene, path, size, view and light from the options every headless subcommand shares.
+// Scene, path, size, settings, view and light from the options every headless subcommand
+// shares. Settings in order: defaults, --settings FILE, then the options given explicitly, then
+// each --set.
 void prepareSession(Session& session, const RenderOptions& o) {
-  const tl::lighting::MaterialMode materials = parseMaterials(o.materials);
-  session.loadScene(o.scene.empty() ? defaultScene() : std::filesystem::path(o.scene));
-  session.settings().materials = materials;
+  const std::optional<tl::lighting::MaterialMode> materials =
+      o.materials ? std::optional(parseMaterials(*o.materials)) : std::nullopt;
+  session.loadScene(o.scene.empty() ? defaultScene() : std::filesystem::path(o.scene),
+                    tl::scene::LoadOptions{o.allowOutsideFiles});
   session.setPath(o.path);
   auto [w, h] = parseSize(o.size);
   session.setSize(w, h);
+  if (!o.settingsFile.empty()) {
+    session.settings() = tl::session::applySettingsJson(session.settings(), tl::session::readSettingsFile(o.settingsFile));
+    if (o.sizeOption && o.sizeOption->count() > 0) session.setSize(w, h);
+  }
+  if (materials) session.settings().materials = *materials;
+  if (o.hardShadows) session.settings().softShadows = false;
+  if (o.rtMeshRatio) session.settings().rtSimplifyRatio = *o.rtMeshRatio;
+  if (o.rtRaysPerPixel) {
+    session.settings().rtHalfRays = *o.rtRaysPerPixel == 0.5f;
+    session.settings().rtHalfResolution = *o.rtRaysPerPixel == 0.25f;
+  }
+  if (o.rtPretrace) session.settings().rtPretrace = *o.rtPretrace;
+  if (o.rtDenoise) session.settings().rtDenoise = *o.rtDenoise;
+  for (const std::string& assignment : o.sets) {
+    if (!assignment.empty() && assignment.front() == '{') {  // the JSON form bench --set took first
+      nlohmann::json overrides;
+      try {
+        overrides = tl::session::parseSettingsText(assignment, "--set");
+      } catch (const nlohmann::json::exception& e) {
+        throw tl::session::SessionError(fmt::format("--set is not JSON: {}", e.what()));
+      }
+      session.settings() = tl::session::applySettingsJson(session.settings(), overrides);
+    } else {
+      session.settings() = tl::session::applySettingText(session.settings(), assignment);
+    }
+  }
   applyView(session, o.view);
   applyLight(session, o.light);
   if (!o.albedoDb.empty()) session.openAlbedoDatabase(o.albedoDb, false);
@@ -139,14 +211,6 @@ void prepareSession(Session& session, const RenderOptions& o) {
     light.sunAngularRadius = glm::radians(*o.sunSizeDegrees);
     session.setLighting(light);
   }
-  session.settings().softShadows = !o.hardShadows;
-  if (o.rtMeshRatio) session.settings().rtSimplifyRatio = *o.rtMeshRatio;
-  if (o.rtRaysPerPixel) {
-    session.settings().rtHalfRays = *o.rtRaysPerPixel == 0.5f;
-    session.settings().rtHalfResolution = *o.rtRaysPerPixel == 0.25f;
-  }
-  if (o.rtPretrace) session.settings().rtPretrace = *o.rtPretrace;
-  if (o.rtDenoise) session.settings().rtDenoise = *o.rtDenoise;
   session.setAnimationTime(o.time);
   session.setAnimationStep(o.animateFps ? 1.0 / *o.animateFps : 0.0);
 }
@@ -164,34 +228,82 @@ void renderDocFrame(Session& session, const std::filesystem::path& pathTemplate)
 }
 
 int runRender(const RenderOptions& o) {
-  Session session;
-  prepareSession(session, o);
-  const uint32_t w = session.settings().width, h = session.settings().height;
+  // Usage and outputs first, before a device or a scene is touched: a typo costs no render.
+  bool sequence = false;
+  for (const auto& out : o.outputs) {
+    tl::editor::checkImageOutput(out);
+    sequence = sequence || tl::editor::isFrameSequence(out);
+  }
+  if (!o.dumpGraph.empty()) tl::editor::checkGraphOutput(o.dumpGraph);
+  if (sequence && !o.animateFps)
+    throw UsageError("--out with # writes one image per frame of an animation: add --animate FPS (and --frames N)");
+  if (sequence && o.spp) throw UsageError("--spp accumulates one image: it cannot write a --out sequence");
   if (o.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
   if (o.bounces == 0) throw tl::session::SessionError("--bounces must be at least 1");
   uint32_t frames = o.frames;
-  session.settings().referenceBounces = o.bounces;
   if (o.spp) {
-    if (o.path != "reference") throw tl::session::SessionError("--spp applies to --path reference");
     if (*o.spp == 0) throw tl::session::SessionError("--spp must be at least 1");
-    // Up to 16 samples a frame: fewer submissions, and each frame stays short.
-    session.settings().referenceSamplesPerFrame = std::min(*o.spp, 16u);
+    if (*o.spp > 16 && *o.spp % 16) throw tl::session::SessionError("--spp must be a multiple of 16, or at most 16");
     frames = (*o.spp + 15) / 16;
-    if (*o.spp % 16) throw tl::session::SessionError("--spp must be a multiple of 16, or at most 16");
   }
 
+  Session session;
+  prepareSession(session, o);
+  const uint32_t w = session.settings().width, h = session.settings().height;
+  if (o.spp && o.path != session.referencePath())
+    throw tl::session::SessionError(fmt::format("--spp applies to --path {}", session.referencePath()));
+  if (o.bounces) session.settings().referenceBounces = *o.bounces;
+  // Up to 16 samples a frame: fewer submissions, and each frame stays short.
+  if (o.spp) session.settings().referenceSamplesPerFrame = std::min(*o.spp, 16u);
+
+  FrameTimes times;
+  // What each image write said, printed after the progress: the file and, for an EXR beyond
+  // the half-float range, that it was written as 32-bit float.
+  std::vector<std::string> written;
+  auto save = [&](const std::filesystem::path& file) {
+    const auto result = session.saveImage(file);
+    std::string note;
+    if (result.float32)
+      note = fmt::format(" (32-bit float: {} of {} pixels exceed the half-float range, 65504, and would have clipped)",
+                         result.beyondHalf, result.pixels);
+    written.push_back(fmt::format("wrote {}{}", std::filesystem::absolute(file).string(), note));
+    if (result.nonFinite > 0)
+      throw tl::session::SessionError(
+          fmt::format("{}: {} of {} pixels are not finite", file.string(), result.nonFinite, result.pixels));
+  };
   auto start = std::chrono::steady_clock::now();
-  session.renderFrames(frames);
+  {
+    Progress progress("render");
+    auto report = [&](uint32_t done) {
+      progress.update(double(done) / frames,
+                      o.spp ? fmt::format("{}/{} spp", done * session.settings().referenceSamplesPerFrame, *o.spp)
+                            : fmt::format("frame {}/{}", done, frames));
+    };
+    if (!sequence) {
+      session.renderFrames(frames, report);
+      times.add(session);
+    } else {
+      // One frame at a time, each read back and written as it is done: frame_0001 is the first.
+      for (uint32_t f = 1; f <= frames; ++f) {
+        session.renderFrames(1);
+        times.add(session);
+        for (const auto& out : o.outputs)
+          if (tl::editor::isFrameSequence(out)) save(tl::editor::sequenceFrame(out, f));
+        report(f);
+      }
+    }
+  }
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   for (const auto& out : o.outputs) {
-    session.saveImage(out);
-    fmt::print("wrote {}\n", std::filesystem::absolute(out).string());
+    if (tl::editor::isFrameSequence(out)) continue;
+    save(out);
   }
+  for (const auto& line : written) fmt::print("{}\n", line);
   if (!o.renderDoc.empty()) renderDocFrame(session, o.renderDoc);
   fmt::print("rendered {} frame(s) of {} with `{}` at {}x{} on {} in {:.2f} s\n", frames, session.scene().name,
              session.path(), w, h, session.device().name(), seconds);
-  printFrameTimes(session);
+  printFrameTimes(times);
   if (!o.dumpGraph.empty()) {
     if (o.dumpGraph == "-") {
       fmt::print("{}", session.graphDump());
@@ -203,17 +315,19 @@ int runRender(const RenderOptions& o) {
   return exitStatus(session);
 }
 
-// compare --settings FILE: [{"name": N, "path": P, "settings": {...}}, ...].
-std::vector<tl::session::CompareVariant> readCompareVariants(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw tl::session::SessionError(fmt::format("{}: cannot read the settings file", file));
-  nlohmann::json list;
-  try {
-    list = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw tl::session::SessionError(fmt::format("{}: not JSON: {}", file, e.what()));
-  }
-  if (!list.is_array()) throw tl::session::SessionError(fmt::format("{}: expected a JSON array of configurations", file));
+// `info --scene FILE`: what the file holds and what of it Twinlight ignores, one line each
+// (scene::sceneReport), without a device. Warnings the importer gave are the ignored lines.
+int runSceneInfo(const std::string& file) {
+  const tl::scene::Scene scene = tl::scene::loadGltf(file);
+  fmt::print("scene: {}\n", file);
+  for (const auto& line : tl::scene::sceneReport(scene)) fmt::print("{}\n", line);
+  for (const auto& w : scene.warnings)
+    if (w.find("could not be loaded") != std::string::npos) fmt::print("warning: {}\n", w);
+  return 0;
+}
+
+// compare --settings FILE as a list: [{"name": N, "path": P, "settings": {...}}, ...].
+std::vector<tl::session::CompareVariant> compareVariants(const nlohmann::json& list, const std::string& file) {
   std::vector<tl::session::CompareVariant> variants;
   for (const auto& v : list) {
     if (!v.is_object() || !v.contains("name") || !v.contains("path") || !v["name"].is_string() || !v["path"].is_string())
@@ -236,7 +350,9 @@ nlohmann::json renderOptionsJson(const RenderOptions& o) {
           {"sun", o.light.sun},
           {"sky", o.light.sky},
           {"exposure", opt(o.light.exposureEv)},
-          {"materials", o.materials},
+          {"materials", opt(o.materials)},
+          {"set", o.sets},
+          {"settingsFile", o.settingsFile},
           {"albedoDb", o.albedoDb},
           {"sunSize", opt(o.sunSizeDegrees)},
           {"hardShadows", o.hardShadows},
@@ -344,18 +460,43 @@ int runInfo() {
   }
   fmt::print("shaders: {}\ncontent: {}\n", tl::gpu::shaderDirectory().string(), tl::gpu::contentDirectory().string());
   fmt::print("lighting paths:\n");
-  for (auto& p : session.paths())
-    fmt::print("  {:10} {}{}\n", p.name, p.description, p.available ? "" : "  [unavailable: " + p.unavailableReason + "]");
+  for (auto& p : session.paths()) {
+    std::string caps;
+    auto add = [&](bool on, const char* what) {
+      if (on) caps += fmt::format("{}{}", caps.empty() ? "" : ", ", what);
+    };
+    add(p.capabilities.isReference, "reference");
+    add(p.capabilities.needsRayTracing, "needs ray tracing");
+    add(p.capabilities.accumulates, "accumulates");
+    add(!p.capabilities.rasterizes, "traces primary rays");
+    add(p.capabilities.halfResolution, "half resolution");
+    fmt::print("  {:10} {}{}{}\n", p.name, p.description, caps.empty() ? "" : " (" + caps + ")",
+               p.available ? "" : "  [unavailable: " + p.unavailableReason + "]");
+  }
   return exitStatus(session);
+}
+
+bool hasDisplay() {
+  const char* x11 = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  return (x11 && *x11) || (wayland && *wayland);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  spdlog::set_level(std::getenv("TWINLIGHT_VERBOSE") ? spdlog::level::debug : spdlog::level::warn);
+  tl::editor::configureLogging(tl::editor::Verbosity::Normal, true);
   CLI::App app{"Twinlight: a lighting lab comparing ray-traced and legacy real-time lighting against a path tracer"};
   app.require_subcommand(0, 1);
   app.set_version_flag("--version", "twinlight " + tl::versionString());
+  // -q / -v before or after the subcommand: each takes them (not a fallthrough, which would
+  // also hand a subcommand's stray positional argument to the editor's scene).
+  bool quiet = false, verbose = false;
+  auto addVerbosityFlags = [&](CLI::App& cmd) {
+    auto* quietFlag = cmd.add_flag("-q,--quiet", quiet, "errors only: no warnings, no progress (results still on stdout)");
+    cmd.add_flag("-v,--verbose", verbose, "info and debug messages on stderr too")->excludes(quietFlag);
+  };
+  addVerbosityFlags(app);
   std::string sceneArg, scriptArg, materialsArg = "authored";
   bool headless = false;
   app.add_option("scene", sceneArg, "glTF scene to open (default: content/atrium.gltf)");
@@ -367,17 +508,20 @@ int main(int argc, char** argv) {
   auto* renderCmd = app.add_subcommand("render", "render a scene headless and save the image(s)");
   renderCmd->add_option("--scene", render.scene, "glTF file (.gltf/.glb); default content/atrium.gltf");
   renderCmd->add_option("--path", render.path, "lighting path: direct, rt, reference (`twinlight info` lists them)");
-  renderCmd->add_option("--size", render.size, "image size WxH")->capture_default_str();
-  renderCmd->add_option("--frames", render.frames, "frames to render (the last one is saved)")->capture_default_str();
+  renderCmd->add_option("--frames", render.frames, "frames to render (the last one is saved)")
+      ->check(CLI::Range(1u, kMaxFrames))
+      ->capture_default_str();
   renderCmd->add_option("--renderdoc", render.renderDoc,
                         "then capture one more frame with RenderDoc into this path template (run under RenderDoc)");
   renderCmd->add_option("--out", render.outputs,
                         "output image(s): .exr = scene-linear radiance before exposure, .png = tonemapped display")
       ->required();
   renderCmd->add_option("--dump-graph", render.dumpGraph, "write the compiled render graph as text (- for stdout), or Graphviz DOT for a .dot file");
-  renderCmd->add_option("--spp", render.spp, "reference path: samples per pixel to accumulate (sets the frames)");
+  renderCmd->add_option("--spp", render.spp, "reference path: samples per pixel to accumulate (sets the frames)")
+      ->check(CLI::Range(1u, kMaxSpp));
   renderCmd->add_option("--bounces", render.bounces,
                         "reference path: scattering events per path (1 = direct light only, 2 = one indirect bounce)")
+      ->check(CLI::Range(1u, kMaxBounces))
       ->capture_default_str();
   addViewAndLightOptions(*renderCmd, render);
 
@@ -387,21 +531,20 @@ int main(int argc, char** argv) {
   auto* benchCmd = app.add_subcommand("bench", "per-pass GPU milliseconds (median and spread) as a table and JSON");
   benchCmd->add_option("--scene", benchRender.scene, "glTF file; default content/atrium.gltf");
   benchCmd->add_option("--path", benchRender.path, "lighting path")->capture_default_str();
-  benchCmd->add_option("--size", benchRender.size, "image size WxH")->capture_default_str();
-  benchCmd->add_option("--frames", bench.frames, "frames measured")->capture_default_str();
-  benchCmd->add_option("--warmup", bench.warmup, "frames rendered first and left out")->capture_default_str();
+  benchCmd->add_option("--frames", bench.frames, "frames measured")->check(CLI::Range(1u, kMaxFrames))->capture_default_str();
+  benchCmd->add_option("--warmup", bench.warmup, "frames rendered first and left out")
+      ->check(CLI::Range(0u, kMaxWarmupFrames))
+      ->capture_default_str();
   benchCmd->add_flag("--rays", bench.rays,
                      "rt path: the device's raw ray rate on the scene's TLAS (trivial kernel) against rt.trace's");
   benchCmd->add_flag("--cut-every-frame", bench.cutEveryFrame,
                      "forget the history before every measured frame, as on a camera cut (what rejection costs at worst)");
   benchCmd->add_option("--json", benchJson, "write the figures as JSON to FILE (- for stdout)");
-  std::string benchSettings;
-  benchCmd->add_option("--set", benchSettings,
-                       "render settings to change, as JSON: '{\"rtRefitTop\": 64}' (the names `compare --settings` takes)");
   addViewAndLightOptions(*benchCmd, benchRender);
 
   RenderOptions compareRender;
   compareRender.size = "128x128";
+  compareRender.settingsMayListVariants = true;
   tl::session::CompareOptions compare;
   std::string comparePaths, compareOut = "out/compare", compareCache;
   auto* compareCmd = app.add_subcommand("compare", "speed against error of lighting paths versus the reference path tracer");
@@ -409,14 +552,12 @@ int main(int argc, char** argv) {
   compareCmd->add_option("--scene", compareScenes,
                          "glTF file(s); several make a sweep with a report per scene (default content/atrium.gltf)");
   compareCmd->add_option("--paths", comparePaths, "comma-separated paths (default: every available one)");
-  std::string compareSettings;
-  compareCmd->add_option("--settings", compareSettings,
-                         "JSON file: [{\"name\": N, \"path\": P, \"settings\": {setting: value, ...}}, ...] measured after --paths");
-  compareCmd->add_option("--size", compareRender.size, "image size WxH")->capture_default_str();
   compareCmd->add_option("--spp", compare.referenceSpp, "reference samples per pixel (<= 16 or a multiple of 16)")
+      ->check(CLI::Range(1u, kMaxSpp))
       ->capture_default_str();
-  auto* bouncesOption =
-      compareCmd->add_option("--bounces", compare.referenceBounces, "reference scattering events per path")->capture_default_str();
+  auto* bouncesOption = compareCmd->add_option("--bounces", compare.referenceBounces, "reference scattering events per path")
+                            ->check(CLI::Range(1u, kMaxBounces))
+                            ->capture_default_str();
   compareCmd
       ->add_option("--scope", compare.scope,
                    "reference scope: `full` (--bounces events: all the GI) or `same` (direct + one bounce: what the "
@@ -425,6 +566,7 @@ int main(int argc, char** argv) {
       ->excludes(bouncesOption)
       ->capture_default_str();
   compareCmd->add_option("--frames", compare.framesPerPath, "frames each path runs before it is measured")
+      ->check(CLI::Range(1u, kMaxFrames))
       ->capture_default_str();
   compareCmd->add_option("--out", compareOut, "report directory")->capture_default_str();
   std::string compareCameras;
@@ -457,8 +599,9 @@ int main(int argc, char** argv) {
   auto* captureCmd = app.add_subcommand("capture", "write every buffer of a frame (EXR + manifest.json) into a folder");
   captureCmd->add_option("--scene", captureRender.scene, "glTF file; default content/atrium.gltf");
   captureCmd->add_option("--path", captureRender.path, "lighting path")->capture_default_str();
-  captureCmd->add_option("--size", captureRender.size, "image size WxH")->capture_default_str();
-  captureCmd->add_option("--frames", captureRender.frames, "frames rendered first (the last is captured)")->capture_default_str();
+  captureCmd->add_option("--frames", captureRender.frames, "frames rendered first (the last is captured)")
+      ->check(CLI::Range(1u, kMaxFrames))
+      ->capture_default_str();
   captureCmd->add_option("--out", captureOut, "folder to write into")->required();
   bool captureRenderDoc = false;
   captureCmd->add_flag("--renderdoc", captureRenderDoc,
@@ -481,25 +624,85 @@ int main(int argc, char** argv) {
   bakeCmd->add_flag("--force", bake.force, "re-bake keys the database already holds");
   bakeCmd->add_flag("--list", bake.list, "print the database's baked entries and overrides, bake nothing");
   bakeCmd->add_option("--merge", bake.merge, "merge these databases into --db (conflicts reported, overrides kept)");
+  bakeCmd->add_flag("--allow-outside-files", bake.allowOutsideFiles,
+                    "let the scene read buffers and images outside its own folder (../, absolute paths, links out)");
+
+  RenderOptions doctorRender;
+  doctorRender.size = "128x72";
+  tl::session::DoctorOptions doctor;
+  std::string doctorJson;
+  auto* doctorCmd = app.add_subcommand(
+      "doctor", "stability report: every lighting path on SCENE, NaN/Inf/negative counts per buffer, energy against the "
+                "reference, flicker over a short camera orbit, messages from the Vulkan layers; exit status 1 when not healthy");
+  doctorCmd->add_option("scene", doctorRender.scene, "glTF file")->required();
+  doctorCmd->add_option("--frames", doctor.frames, "frames each real-time path renders before its buffers are read")
+      ->check(CLI::Range(1u, kMaxFrames))
+      ->capture_default_str();
+  doctorCmd->add_option("--spp", doctor.referenceSpp, "the reference's samples per pixel")
+      ->check(CLI::Range(1u, kMaxSpp))
+      ->capture_default_str();
+  doctorCmd->add_option("--orbit-frames", doctor.orbitFrames, "frames of the camera orbit that measures flicker (0: none)")
+      ->check(CLI::Range(0u, kMaxFrames))
+      ->capture_default_str();
+  doctorCmd->add_option("--json", doctorJson, "also write the report as JSON to FILE (- for stdout)");
+  addViewAndLightOptions(*doctorCmd, doctorRender);
+
+  bool settingsMarkdown = false, settingsDefaults = false;
+  auto* settingsCmd = app.add_subcommand("settings", "list every render setting: owner, default, range, unit, what it restarts");
+  settingsCmd->add_flag("--markdown", settingsMarkdown, "as the Markdown table in docs/user-guide.md");
+  settingsCmd->add_flag("--json", settingsDefaults, "the defaults as a JSON settings file (for --settings)");
 
   auto* infoCmd = app.add_subcommand("info", "print the Vulkan device, its ray-tracing support and the lighting paths");
+  std::string infoScene;
+  infoCmd->add_option("--scene", infoScene,
+                      "instead: list what a glTF file holds and every feature of it Twinlight ignores, one line each");
 
+  for (CLI::App* cmd : app.get_subcommands(std::function<bool(CLI::App*)>())) addVerbosityFlags(*cmd);
+  // Set after the subcommands are added, which would inherit it: `twinlight --help` alone.
+  app.footer(tl::editor::helpFooter());
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     fmt::print(stderr, "twinlight: error: {} (see --help)\n", e.what());
+    return 2;
+  }
+  // Timestamps only in the interactive editor's log; a subcommand or a headless render is a
+  // command in a pipeline.
+  const bool subcommand = *renderCmd || *benchCmd || *compareCmd || *captureCmd || *bakeCmd || *infoCmd || *doctorCmd;
+  const bool editorWindow = !subcommand && !headless && (hasDisplay() || !scriptArg.empty());
+  const bool cli = !editorWindow;
+  tl::editor::configureLogging(quiet     ? tl::editor::Verbosity::Quiet
+                               : verbose ? tl::editor::Verbosity::Verbose
+                                         : tl::editor::Verbosity::Normal,
+                               cli);
+  if (quiet && verbose) {
+    fmt::print(stderr, "twinlight: error: -q and -v contradict each other (see --help)\n");
     return 2;
   }
 
   try {
     if (*renderCmd) return runRender(render);
-    if (*infoCmd) return runInfo();
+    if (*infoCmd) return infoScene.empty() ? runInfo() : runSceneInfo(infoScene);
+    if (*settingsCmd) {
+      if (settingsDefaults) fmt::print("{}\n", tl::session::settingsJson(tl::lighting::RenderSettings{}).dump(2));
+      else fmt::print("{}", settingsMarkdown ? tl::session::settingsReferenceMarkdown() : tl::session::settingsReferenceText());
+      return 0;
+    }
     if (*bakeCmd) return runBake(bake, defaultScene().string());
     if (*captureCmd) {
+      tl::session::checkOutputFolder(captureOut);
+      if (captureRender.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
       Session session;
       prepareSession(session, captureRender);
-      auto manifest = tl::session::captureFrame(session, captureOut, captureRender.frames);
+      session.requestAllBuffers();
+      {
+        Progress progress("capture");
+        session.renderFrames(captureRender.frames, [&](uint32_t done) {
+          progress.update(double(done) / captureRender.frames, fmt::format("frame {}/{}", done, captureRender.frames));
+        });
+      }
+      auto manifest = tl::session::writeCapture(session, captureOut);
       size_t files = 0;
       for (const auto& r : manifest["resources"]) files += !r["file"].is_null();
       fmt::print("captured {} of {} resources of {} / {} (frame {}) into {}\n", files, manifest["resources"].size(),
@@ -520,6 +723,7 @@ int main(int argc, char** argv) {
       if (!compareMerge.empty()) {
         if (!compareShard.empty() || compareShardCount)
           throw UsageError("--merge assembles finished shards: it takes no --shard");
+        tl::session::checkOutputFolder(compareOut);
         std::vector<std::filesystem::path> dirs(compareMerge.begin(), compareMerge.end());
         return compareMergeCommand(dirs, compareOut);
       }
@@ -536,9 +740,17 @@ int main(int argc, char** argv) {
       std::stringstream list(comparePaths);
       for (std::string p; std::getline(list, p, ',');)
         if (!p.empty()) compare.paths.push_back(p);
-      if (!compareSettings.empty()) compare.variants = readCompareVariants(compareSettings);
+      if (!compareRender.settingsFile.empty()) {
+        // A list of configurations, or settings every path starts from (prepareSession).
+        const nlohmann::json file = tl::session::readSettingsFile(compareRender.settingsFile, true);
+        if (file.is_array()) {
+          compare.variants = compareVariants(file, compareRender.settingsFile);
+          compareRender.settingsFile.clear();
+        }
+      }
       compare.cacheDir = compareCache;
       compare.outDir = compareOut;
+      tl::session::checkOutputFolder(compareOut);
 
       tl::session::SweepPlan plan = tl::session::planSweep(
           scenes, compareCameras.empty() ? std::function<std::vector<std::string>(const std::string&)>()
@@ -569,11 +781,8 @@ int main(int argc, char** argv) {
         printCompareReport(report, compare.failAbove);
         fmt::print("wrote {}\n", (std::filesystem::absolute(compareOut) / view.dir / "report.html").lexically_normal().string());
       };
-      callbacks.progress = [](const std::string& what, double f) {
-        int filled = int(f * 30.0 + 0.5);
-        fmt::print(stderr, "\r[{:30}] {:3.0f}% {:32}", std::string(size_t(filled), '#'), f * 100.0, what);
-        if (f >= 1.0) fmt::print(stderr, "\n");
-      };
+      Progress progress("compare");
+      callbacks.progress = [&](const std::string& what, double f) { progress.update(f, what); };
       Session session;
       const tl::session::SweepOutcome outcome = tl::session::runSweep(session, plan, compare, shard, callbacks);
       if (shard) {
@@ -593,23 +802,47 @@ int main(int argc, char** argv) {
       if (int status = exitStatus(session); status != 0) return status;
       return gateExit(outcome.gateFailures);
     }
+    if (*doctorCmd) {
+      tl::editor::checkJsonOutput(doctorJson);
+      // The validation layers are part of the report: they are always on here.
+      tl::gpu::DeviceOptions device;
+      device.validation = true;
+      Session session(device);
+      prepareSession(session, doctorRender);
+      const auto report = tl::session::runDoctor(session, doctor);
+      // With the JSON on stdout, stdout is that one document: the text report goes to stderr.
+      fmt::print(doctorJson == "-" ? stderr : stdout, "{}", report.toText());
+      if (doctorJson == "-") {
+        fmt::print("{}\n", report.toJson().dump(2));
+      } else if (!doctorJson.empty()) {
+        tl::session::writeTextFile(doctorJson, report.toJson().dump(2) + "\n");
+        fmt::print("wrote {}\n", doctorJson);
+      }
+      if (!report.healthy())
+        throw tl::session::SessionError(fmt::format("{} is not healthy: non-finite or negative values or validation "
+                                                    "messages (the report above names them)",
+                                                    doctorRender.scene));
+      return 0;
+    }
     if (*benchCmd) {
+      tl::editor::checkJsonOutput(benchJson);
+      if (bench.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
       Session session;
       prepareSession(session, benchRender);
-      if (!benchSettings.empty()) {
-        nlohmann::json overrides;
-        try {
-          overrides = nlohmann::json::parse(benchSettings);
-        } catch (const nlohmann::json::exception& e) {
-          throw tl::session::SessionError(fmt::format("--set is not JSON: {}", e.what()));
-        }
-        session.settings() = tl::session::applySettingsJson(session.settings(), overrides);
-      }
       if (bench.frames == 0) throw tl::session::SessionError("--frames must be at least 1");
-      nlohmann::json report = runBench(session, bench);
-      fmt::print("{}", benchTable(report));
-      if (benchJson == "-") fmt::print("{}\n", report.dump(2));
-      else if (!benchJson.empty()) {
+      nlohmann::json report;
+      {
+        Progress progress("bench");
+        report = runBench(session, bench, [&](const std::string& what, double f) { progress.update(f, what); });
+      }
+      // With the JSON on stdout, stdout is that one document: the table goes to stderr.
+      if (benchJson == "-") {
+        if (tl::editor::verbosity() != tl::editor::Verbosity::Quiet) fmt::print(stderr, "{}", benchTable(report));
+        fmt::print("{}\n", report.dump(2));
+      } else {
+        fmt::print("{}", benchTable(report));
+      }
+      if (!benchJson.empty() && benchJson != "-") {
         tl::session::writeTextFile(benchJson, report.dump(2) + "\n");
         fmt::print("wrote {}\n", benchJson);
       }
@@ -617,11 +850,8 @@ int main(int argc, char** argv) {
     }
     // No subcommand: the main job on the default (or given) scene. The interactive editor
     // needs a display; without one the scene is rendered headless.
-    const char* x11 = std::getenv("DISPLAY");
-    const char* wayland = std::getenv("WAYLAND_DISPLAY");
-    bool haveDisplay = (x11 && *x11) || (wayland && *wayland);
     const tl::lighting::MaterialMode materials = parseMaterials(materialsArg);
-    if (!headless && (haveDisplay || !scriptArg.empty())) {
+    if (editorWindow) {
       std::optional<std::filesystem::path> scene, script;
       if (!sceneArg.empty()) scene = sceneArg;
       if (!scriptArg.empty()) script = scriptArg;

@@ -2,7 +2,9 @@
 #include "albedo_panels.h"
 #include "buffer_panel.h"
 #include "compare_panel.h"
+#include "settings_panel.h"
 #include "editor_app.h"
+#include "key_help.h"
 #include "ui_helpers.h"
 #include "session/captured_frame.h"
 #include "gpu/install_paths.h"
@@ -15,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace tl::editor {
 namespace {
@@ -37,7 +40,22 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
         if (ImGui::MenuItem(r.c_str())) app.openScene(r);
       ImGui::EndMenu();
     }
+    if (ImGui::MenuItem("Reload scene", nullptr, false, app.session().hasScene() && !app.loading())) app.reloadScene();
+    tooltip("Loads the scene's file again, keeping the camera, the selection and the albedo overrides.\n"
+            "Happens by itself when the file changes on disk (a re-export).");
     ImGui::Separator();
+    for (const char* ext : {".png", ".exr"}) {
+      if (ImGui::MenuItem(ext[1] == 'p' ? "Save image (PNG)" : "Save image (EXR)", nullptr, false,
+                          app.session().hasScene())) {
+        try {
+          app.saveImage(app.defaultImagePath(ext));
+        } catch (const std::exception& e) {
+          app.showError(e.what());
+        }
+      }
+      tooltip(ext[1] == 'p' ? "The viewport's engine image as shown (tonemapped, sRGB) into renders/"
+                            : "The viewport's engine image as scene-linear radiance before exposure (half float) into renders/");
+    }
     if (ImGui::MenuItem("Capture frame", nullptr, false, app.session().hasScene()))
       app.requestFrameCapture(app.defaultCaptureFolder());
     tooltip("Writes every buffer of the next frame as EXR, with manifest.json, into captures/");
@@ -65,9 +83,12 @@ void viewportPanel(EditorApp& app, glm::vec2& min, glm::vec2& size, bool& hovere
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(300, 20), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(display.x - 640, display.y - 44), ImGuiCond_FirstUseEver);
-  // No background: the engine's image is blitted into the window's area underneath.
+  // No background: the engine's image is blitted into the window's area underneath. It stays
+  // behind every other window when clicked, so floating panels over it keep their clicks.
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
-  ImGui::Begin("Viewport", nullptr, ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  ImGui::Begin("Viewport", nullptr,
+               ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImVec2 pos = ImGui::GetCursorScreenPos();
   ImVec2 avail = ImGui::GetContentRegionAvail();
   min = {pos.x, pos.y};
@@ -154,150 +175,14 @@ void inspectorPanel(EditorApp& app) {
   ImGui::End();
 }
 
-// A distance in metres where 0 means "scaled to the scene": shown as "auto" with the value.
-bool distanceParameter(const char* label, float& value, float autoValue, const char* help) {
-  bool changed = ImGui::DragFloat(label, &value, 0.01f, 0.0f, 10000.0f, value > 0.0f ? "%.2f m" : "auto");
-  value = std::max(value, 0.0f);
-  tooltip(fmt::format("{}\n0 = scaled to the scene: {:.2f} m now", help, autoValue).c_str());
-  return changed;
-}
-
-bool divisorParameter(const char* label, uint32_t& divisor, std::initializer_list<uint32_t> choices, const char* help) {
-  bool changed = false;
-  ImGui::TextUnformatted(label);
-  for (uint32_t d : choices) {
-    ImGui::SameLine();
-    const std::string name = d == 1 ? "full" : (d == 2 ? "half" : "quarter");
-    if (ImGui::RadioButton((name + "##" + label).c_str(), divisor == d)) divisor = d, changed = true;
-  }
-  tooltip(help);
-  return changed;
-}
-
-// The active path's parameters, with units. A setting its history depends on restarts that
-// history by itself (the frame key's settings part, LightingPath::historySettings).
-void pathParameters(EditorApp& app) {
-  auto& session = app.session();
-  auto& s = session.settings();
-  const auto& b = session.scene().bounds;
-  const float scale = b.valid() ? float(glm::length(b.size())) : 1.0f;
-  if (session.path() == "legacy") {
-    ImGui::Separator();
-    ImGui::TextUnformatted("Legacy: GTAO + voxel GI");
-    distanceParameter("AO radius", s.legacyAoRadius, lighting::sceneScaledAoRadius(scale),
-                                 "Reach of SSAO and voxel AO");
-    ImGui::SliderFloat("AO thickness", &s.legacyAoThickness, 0.0f, 1.0f, "%.2f");
-    tooltip("How fast a horizon falls back behind thin occluders: 0 = infinitely thick, 1 = paper thin");
-    int slices = int(s.legacyAoSlices), steps = int(s.legacyAoSteps);
-    if (ImGui::SliderInt("AO directions", &slices, 1, 4)) s.legacyAoSlices = uint32_t(slices);
-    tooltip("Slice directions per pixel (the 2x2 upsample averages four rotations of them)");
-    if (ImGui::SliderInt("AO steps", &steps, 2, 12)) s.legacyAoSteps = uint32_t(steps);
-    tooltip("Depth samples per direction and side");
-    divisorParameter("SSAO", s.legacyAoDivisor, {1, 2}, "SSAO resolution");
-    divisorParameter("Cones", s.legacyConeDivisor, {1, 2, 4}, "Cone tracing resolution");
-    int resolution = int(s.legacyVoxelResolution);
-    if (ImGui::SliderInt("Voxels per side", &resolution, 32, 128)) {
-      uint32_t r = 32;
-      while (r < uint32_t(resolution) && r < 128) r *= 2;
-      s.legacyVoxelResolution = r;
-    }
-    tooltip("Clipmap resolution R (a power of two): each level holds R^3 voxels");
-    distanceParameter("Finest level", s.legacyLevel0Extent, std::min(scale, 0.25f * float(s.legacyVoxelResolution)),
-                                 "Side of the finest clipmap level; coarser levels double it until the scene is covered");
-    distanceParameter("Cone range", s.legacyConeRange, lighting::sceneScaledRayLength(scale),
-                                 "Cones stop after this distance");
-    ImGui::SliderFloat("Cone step", &s.legacyConeStep, 0.25f, 1.5f, "%.2f x diameter");
-    tooltip("Cone step as a fraction of its diameter: smaller is slower and more exact");
-    ImGui::Checkbox("Multi-bounce from the screen", &s.legacyScreenRadiance);
-    tooltip("Voxels seen last frame take its shaded radiance, so light bounces more than once");
-    ImGui::Checkbox("Partial voxel updates", &s.legacyPartialVoxels);
-    tooltip("When only some instances deform or move, clear and re-voxelize only the voxels they and their sun "
-            "shadows reach (per clipmap level), and re-filter only those mips; off: rebuild the whole clipmap");
-  } else if (session.path() == "rt") {
-    ImGui::Separator();
-    ImGui::TextUnformatted("RT: RTGI + RTAO");
-    distanceParameter("AO radius##rt", s.rtAoRadius, lighting::sceneScaledAoRadius(scale),
-                                 "A hit closer than this occludes (RTAO)");
-    distanceParameter("Ray length", s.rtRayLength, lighting::sceneScaledRayLength(scale),
-                                 "GI rays stop after this distance; also the TLAS culling margin");
-    distanceParameter("RT blend distance", s.rtBlendDistance, lighting::sceneScaledBlendDistance(scale),
-                                 "Beyond this view distance RT GI fades to the far field (Metro: 250 m)");
-    ImGui::Checkbox("Legacy GI beyond it", &s.rtFarLegacy);
-    tooltip("The far field: the legacy path's voxel GI (Metro), or else the unoccluded sky. Runs only when part of "
-            "the scene lies beyond the blend distance");
-    ImGui::Checkbox("Denoiser", &s.rtDenoise);
-    tooltip("Two-pass spatial denoiser on the SH after accumulation (Metro's): cleaner, slower");
-    distanceParameter("Denoiser radius", s.rtDenoiseRadius, std::clamp(scale / 6.0f, 0.25f, 6.0f),
-                                 "Pass 1 base radius; pass 2 uses half (Metro: 6 m and 3 m)");
-    ImGui::Checkbox("Half resolution", &s.rtHalfResolution);
-    tooltip("Trace one pixel of each 2x2 block (0.25 rays per pixel), cycling through the four; the others take a "
-            "nearby traced sample chosen at random by depth similarity (INSIDE's noisy upsampling)");
-    ImGui::BeginDisabled(s.rtHalfResolution);
-    ImGui::Checkbox("0.5 rays per pixel", &s.rtHalfRays);
-    ImGui::EndDisabled();
-    tooltip("Trace a checkerboard that alternates each frame; the other half borrows a neighbour's ray");
-    ImGui::Checkbox("2 rays per traced pixel", &s.rtTwoRays);
-    tooltip("Pre-trace, trace and hit lighting run twice with successive rays of the sequence; the raw sample is "
-            "their mean (twice the ray cost, half the variance)");
-    ImGui::Checkbox("Screen-space pre-trace", &s.rtPretrace);
-    tooltip("March the depth buffer first; real rays only where it finds nothing");
-    {
-      bool autoLength = s.rtPretracePixels <= 0.0f;
-      if (ImGui::Checkbox("Auto##pretrace", &autoLength))
-        s.rtPretracePixels = autoLength ? 0.0f : lighting::pretraceAutoPixels(s.height);
-      tooltip("Auto: 128 px per 360 lines of the image, the same share of the view at any size");
-      ImGui::SameLine();
-      float length = autoLength ? lighting::pretraceAutoPixels(s.height) : s.rtPretracePixels;
-      ImGui::BeginDisabled(autoLength);
-      if (ImGui::SliderFloat("Pre-trace length", &length, 8.0f, 1024.0f, "%.0f px")) s.rtPretracePixels = length;
-      ImGui::EndDisabled();
-    }
-    int steps = int(s.rtPretraceSteps);
-    if (ImGui::SliderInt("Pre-trace steps", &steps, 4, 32)) s.rtPretraceSteps = uint32_t(steps);
-    ImGui::SliderFloat("Depth thickness", &s.rtThickness, 0.001f, 0.2f, "%.3f x distance");
-    tooltip("Assumed thickness of what the depth buffer shows, as a fraction of its distance");
-    int frames = int(s.rtMaxAccumFrames);
-    if (ImGui::SliderInt("Accumulation", &frames, 1, 128, "%d frames")) s.rtMaxAccumFrames = uint32_t(frames);
-    tooltip("Temporal accumulation window while the camera holds still");
-    ImGui::SliderFloat("Firefly clamp", &s.rtFireflyClamp, 0.0f, 64.0f, s.rtFireflyClamp > 0.0f ? "%.1f x RMS" : "off");
-    tooltip("A new sample brighter than this multiple of its history's or neighbours' RMS luma is scaled down to it, "
-            "in linear space. Off by default: where light comes through a few bright rays (an emitter the rays must "
-            "find) it removes real light, 40-90% on cornell");
-    // The light changing must not reset this checkbox's own effect: not in rt's history settings.
-    ImGui::Checkbox("Luminance rejection", &s.rtLumaRejection);
-    tooltip("When the light changes (sun, sky, albedo), clip each pixel's history to this frame's samples around it, "
-            "so a light switched off does not ghost (RE ENGINE)");
-    int disocclusion = int(s.rtDisocclusionRays);
-    if (ImGui::SliderInt("Disocclusion rays", &disocclusion, 0, 64, disocclusion > 0 ? "%d per 8x8 cell" : "off"))
-      s.rtDisocclusionRays = uint32_t(disocclusion);  // only new disocclusions see it: not a history setting
-    tooltip("Where the history was rejected (disocclusion, camera cut), each 8x8 cell holding such a pixel traces "
-            "this many extra rays, and the fresh pixels on the same plane start from their mean (RE ENGINE)");
-    ImGui::SliderFloat("RT mesh triangles", &s.rtSimplifyRatio, 0.05f, 1.0f, "%.2f x");
-    tooltip("Simplified BLAS meshes (Metro: about 4x fewer triangles); 1 = the full mesh");
-    ImGui::Checkbox("Multi-bounce from the screen##rt", &s.rtScreenRadiance);
-    tooltip("Hits seen last frame take its shaded radiance, so light bounces more than once");
-    ImGui::Checkbox("Emitter sampling##rt", &s.rtEmitterSampling);
-    tooltip("Emissive triangles are sampled at each pixel and hit through a shadow ray, instead of being found only by "
-            "the rays that happen to hit them (a small bright lamp: far less noise)");
-    ImGui::Checkbox("Sky at hits##rt", &s.rtHitSky);
-    tooltip("Hits lit afresh (not on screen last frame) see the sky through one more ray, as they see the sun "
-            "through a shadow ray; without it the light they bounce is sun and emission only");
-    if (session.animated()) {
-      // Refits change only how fast the rays catch up with moving meshes: not history settings.
-      int top = int(s.rtRefitTop), random = int(s.rtRefitRandom);
-      if (ImGui::SliderInt("Refits: top", &top, 0, 64)) s.rtRefitTop = uint32_t(top);
-      tooltip("Deforming meshes whose BLAS is refitted each frame: the highest priorities (visible, large, waiting)");
-      if (ImGui::SliderInt("Refits: random", &random, 0, 16)) s.rtRefitRandom = uint32_t(random);
-      tooltip("Plus this many others drawn at random, so none waits forever (Metro: 16 + 4)");
-    }
-  }
-}
-
 void lightingPanel(EditorApp& app) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(display.x - 340, 20), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(340, 380), ImGuiCond_FirstUseEver);
   ImGui::Begin("Lighting");
+  // Widgets leave room on their right for the longest label ("Sun irradiance", "Voxels per
+  // side"), so no label is cut off at the panel's default width.
+  ImGui::PushItemWidth(-(ImGui::CalcTextSize("Voxels per side").x + 2.0f * ImGui::GetStyle().ItemInnerSpacing.x));
   auto& session = app.session();
   ImGui::TextUnformatted("Lighting path");
   for (const auto& p : session.paths()) {
@@ -311,6 +196,7 @@ void lightingPanel(EditorApp& app) {
     tooltip(session.device().rayTracing().unavailableReason.c_str());
   }
   if (!session.hasScene()) {
+    ImGui::PopItemWidth();
     ImGui::End();
     return;
   }
@@ -349,32 +235,6 @@ void lightingPanel(EditorApp& app) {
   if (ImGui::SliderFloat("Exposure", &ev, -10.0f, 16.0f, "%.2f EV")) l.exposureEv = ev, changed = true;
   ImGui::EndDisabled();
   tooltip("Radiance is multiplied by 2^-EV before the ACES tonemap");
-  // Every path's history and the reference's sum see the mode in the frame's flags, so they
-  // restart by themselves.
-  auto& materials = session.settings().materials;
-  if (ImGui::BeginCombo("Materials", lighting::materialModeName(materials))) {
-    for (lighting::MaterialMode m : lighting::kMaterialModes)
-      if (ImGui::Selectable(lighting::materialModeName(m), m == materials)) materials = m;
-    ImGui::EndCombo();
-  }
-  tooltip("Material override, every path and the reference. authored: as the scene says; diffuse: Lambert with the "
-          "authored base colour and textures (no specular, no normal maps); clay: Lambert 0.8 grey, no textures. "
-          "Emission stays. Diffuse and clay compare exactly with any other renderer's Lambertian images");
-  // A composite setting: no history holds it, so nothing restarts.
-  ImGui::Checkbox("Specular GI", &session.settings().specularGi);
-  tooltip("Metals and glossy surfaces reflect the lighting path's SH (dominant direction, roughness widened where the "
-          "light is not directional, GGX), so a metal indoors reflects the room; off: the sky's specular times AO");
-  // TAA keeps its own history: toggling it restarts nothing else.
-  ImGui::Checkbox("TAA", &session.settings().taa);
-  tooltip("Temporal anti-aliasing of the final image: the projection jitters by a sub-pixel Halton offset each "
-          "frame and an exponential history, clipped to the current 3x3 neighbourhood in YCoCg, resolves the "
-          "jittered frames (not for the reference, which jitters its own rays)");
-  if (session.settings().taa) {
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(120);
-    ImGui::SliderFloat("Blend##taa", &session.settings().taaBlend, 0.02f, 1.0f, "%.2f new");
-    tooltip("Weight of the new frame in the history: lower is smoother and slower to follow");
-  }
   if (changed) {
     double el = glm::radians(double(elevation)), az = glm::radians(double(azimuth));
     toSun = {std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};
@@ -391,10 +251,11 @@ void lightingPanel(EditorApp& app) {
     if (ImGui::SliderFloat("Time", &t, 0.0f, float(session.scene().animationSeconds), "%.2f s"))
       session.setAnimationTime(t);
   }
-  pathParameters(app);
+  settingsSection(app);
   ImGui::Separator();
   ImGui::SliderFloat("Render scale", &app.settings().renderScale, 0.1f, 1.0f, "%.2f");
   tooltip("Engine resolution relative to the viewport panel; lower keeps software rendering interactive");
+  ImGui::PopItemWidth();
   ImGui::End();
 }
 
@@ -446,13 +307,21 @@ void statusBar(EditorApp& app) {
   auto& s = app.session();
   const auto& compare = app.compareView();
   const std::string path = compare ? "compare " + compare->left + " | " + compare->right : "path " + s.path();
-  ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  %.1f fps  |  %s  |  %s%s%s", s.device().name().c_str(),
-              s.settings().width, s.settings().height, app.settings().renderScale, app.fps(), path.c_str(),
+  // The interface and the engine run at their own rates: both are shown, with the age of the
+  // engine frame on screen (how far behind the input it is).
+  ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  UI %.0f fps, engine %.1f fps, frame %.0f ms old  |  %s  |  %s%s%s",
+              s.device().name().c_str(), s.settings().width, s.settings().height, app.settings().renderScale, app.fps(),
+              app.engineFps(), 1000.0 * app.shownFrameAge(), path.c_str(),
               s.hasCapture()  ? ("capture " + s.capture()->dir().string() + " (File > Close capture)").c_str()
               : s.hasScene() ? s.scene().name.c_str()
                              : "no scene",
               app.shaderStatus().empty() ? "" : "  |  shaders: ",
               app.shaderStatus().c_str());
+  // The latest confirmation or note (a capture written, a fallback made) for a few seconds.
+  if (const EditorApp::Notice* notice = app.recentNotice()) {
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(0.55f, 0.85f, 0.55f, 1.0f), "  |  %s", notice->text.c_str());
+  }
   ImGui::End();
 }
 
@@ -471,30 +340,33 @@ void shaderErrorWindow(EditorApp& app) {
   ImGui::End();
 }
 
+// Every key and mouse action the editor knows, grouped; the file browser's keys with it.
 void helpWindow(bool& open) {
   if (!open) return;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 240, display.y * 0.5f - 180), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(480, 360), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 330, display.y * 0.5f - 320), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(660, 640), ImGuiCond_FirstUseEver);
   ImGui::Begin("Help", &open);
-  const char* rows[][2] = {{"Left drag", "orbit around the pivot"},     {"Left click", "select the instance under the cursor"},
-                           {"Middle drag", "pan"},                      {"Wheel", "dolly towards the pivot"},
-                           {"Right drag", "fly: look around"},          {"Right + W A S D", "fly forwards / left / back / right"},
-                           {"Right + Q E", "fly down / up"},             {"Shift", "move 4x faster while flying"},
-                           {"F", "focus on the selection (or the scene)"}, {"1 .. 9", "recall camera bookmark"},
-                           {"Ctrl + 1 .. 9", "save camera bookmark"},   {"Ctrl + O", "open a scene"},
-                           {"F1", "this window"}};
-  if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingFixedFit)) {
-    for (auto& r : rows) {
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(r[0]);
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(r[1]);
+  // One table per section of editor/key_help.cpp (a test checks it names every key handled).
+  const auto rows = keyHelp();
+  for (size_t first = 0; first < rows.size();) {
+    size_t end = first;
+    while (end < rows.size() && std::strcmp(rows[end].section, rows[first].section) == 0) ++end;
+    ImGui::TextDisabled("%s", rows[first].section);
+    if (ImGui::BeginTable(rows[first].section, 2, ImGuiTableFlags_SizingFixedFit)) {
+      for (size_t i = first; i < end; ++i) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(rows[i].keys);
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(rows[i].action);
+      }
+      ImGui::EndTable();
     }
-    ImGui::EndTable();
+    first = end;
   }
-  ImGui::TextDisabled("Scenes can also be dropped onto the window.");
+  ImGui::TextDisabled("Scenes can also be dropped onto the window; a scene reloads when its file changes on disk.");
+  trackItem("help.text");
   ImGui::End();
 }
 
@@ -570,6 +442,7 @@ void errorPopup(std::string& error) {
 }  // namespace
 
 void drawPanels(EditorApp& app) {
+  beginTrackedFrame();
   mainMenu(app, app.showHelp_, app.showBrowser_);
   viewportPanel(app, app.viewportMin_, app.viewportSize_, app.viewportHovered_);
   outlinerPanel(app);

@@ -1,19 +1,36 @@
 #include "script.h"
 
 #include "editor_app.h"
+#include "ui_helpers.h"
 #include "gpu/install_paths.h"
 #include "session/capture.h"
 #include "session/capture_encoding.h"
+#include "session/settings_json.h"
 #include "gpu/formats.h"
 
+#include <GLFW/glfw3.h>
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cstring>
+#include <map>
+#include <ctime>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
 namespace tl::editor {
+namespace {
+
+double cpuSeconds(clockid_t clock) {
+  timespec t{};
+  clock_gettime(clock, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+double threadCpuSeconds() { return cpuSeconds(CLOCK_THREAD_CPUTIME_ID); }
+double processCpuSeconds() { return cpuSeconds(CLOCK_PROCESS_CPUTIME_ID); }
+
+}  // namespace
 
 Script::Script(const std::filesystem::path& file) : file_(file) {
   std::ifstream in(file);
@@ -27,22 +44,53 @@ void Script::fail(EditorApp& app, const std::string& why) {
   app.requestQuit();
 }
 
+namespace {
+
+// A key by name: F1..F12, A..Z, 0..9, Enter, Escape, Tab, Backspace, Delete, Up, Down.
+std::optional<int> keyCode(const std::string& name) {
+  if (name.size() == 1 && std::isalpha(static_cast<unsigned char>(name[0]))) return GLFW_KEY_A + (std::toupper(name[0]) - 'A');
+  if (name.size() == 1 && std::isdigit(static_cast<unsigned char>(name[0]))) return GLFW_KEY_0 + (name[0] - '0');
+  if (name.size() >= 2 && name[0] == 'F' && std::isdigit(static_cast<unsigned char>(name[1]))) {
+    const int n = std::atoi(name.c_str() + 1);
+    if (n >= 1 && n <= 12) return GLFW_KEY_F1 + n - 1;
+  }
+  static const std::map<std::string, int> named = {{"Enter", GLFW_KEY_ENTER},   {"Escape", GLFW_KEY_ESCAPE},
+                                                   {"Tab", GLFW_KEY_TAB},       {"Backspace", GLFW_KEY_BACKSPACE},
+                                                   {"Delete", GLFW_KEY_DELETE}, {"Up", GLFW_KEY_UP},
+                                                   {"Down", GLFW_KEY_DOWN}};
+  auto it = named.find(name);
+  return it == named.end() ? std::nullopt : std::optional<int>(it->second);
+}
+
+}  // namespace
+
 void Script::step(EditorApp& app) {
   if (failed()) return;
+  if (app.input().pending()) return;  // injected input reaches the interface first
   if (measureFrames_ > 0) {
     if (--measureFrames_ == 0) {
       double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count() -
                        measureSeconds_;
-      uint64_t frames = app.framesDrawn() - measureStart_;
-      fmt::print("editor: {:.1f} fps over {} frames, render {}x{}, path {}, {}\n", double(frames) / seconds, frames,
-                 app.session().settings().width, app.session().settings().height, app.session().path(),
-                 app.session().device().name());
+      uint64_t frames = app.framesDrawn() - measureStart_, engine = app.engineFramesDone() - measureEngineStart_;
+      const double cpu = threadCpuSeconds() - measureCpu_, processCpu = processCpuSeconds() - measureProcessCpu_;
+      const auto& compare = app.compareView();
+      const std::string path = compare ? fmt::format("compare {} | {}", compare->left, compare->right) : app.session().path();
+      fmt::print("editor: UI {:.1f} fps over {} frames, engine {:.2f} fps ({} frames), frame on screen {:.0f} ms old, "
+                 "UI thread {:.1f} ms CPU a frame, process {:.0f}% of a core, render {}x{}, path {}, {}\n",
+                 double(frames) / seconds, frames, double(engine) / seconds, engine, 1000.0 * app.shownFrameAge(),
+                 1000.0 * cpu / double(std::max<uint64_t>(frames, 1)), 100.0 * processCpu / seconds,
+                 app.session().settings().width, app.session().settings().height, path, app.session().device().name());
     }
     return;
   }
+  // `wait N`: N engine frames finish (N UI frames when the engine has nothing to render).
   if (waitFrames_ > 0) {
-    --waitFrames_;
-    return;
+    if (app.engineActive() ? app.engineFramesDone() < waitUntil_ : --waitFrames_ > 0) return;
+    waitFrames_ = 0;
+  }
+  if (waitCapture_) {
+    if (app.frameCapturePending()) return;
+    waitCapture_ = false;
   }
   if (waitLoaded_) {
     if (app.loading()) return;
@@ -58,13 +106,30 @@ void Script::step(EditorApp& app) {
     fmt::print("script: shader error reported: {}\n", *hit);
     waitShaderError_.clear();
   }
+  if (reloadWaiting_) {
+    if (app.sceneReloads() == reloadsAtCopy_ || app.loading()) {
+      const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - reloadWaitStart_).count();
+      if (waited > 60.0) return fail(app, "the scene was not reloaded within 60 s of its file changing");
+      return;
+    }
+    reloadWaiting_ = false;
+    const glm::dvec3 now = app.cameraView().position;
+    if (glm::length(now - cameraAtCopy_) > 1e-6)
+      return fail(app, fmt::format("the reload moved the camera from {:.3f},{:.3f},{:.3f} to {:.3f},{:.3f},{:.3f}",
+                                   cameraAtCopy_.x, cameraAtCopy_.y, cameraAtCopy_.z, now.x, now.y, now.z));
+    fmt::print("script: the scene reloaded; the camera stayed at {:.3f},{:.3f},{:.3f}\n", now.x, now.y, now.z);
+  }
   if (waitBake_) {
     if (app.albedoBake()) return;
     waitBake_ = false;
     fmt::print("script: albedo bake {}\n", app.lastBakeSummary());
   }
   if (capture_ != Capture::None) {
-    if (app.viewportCapture().empty()) return fail(app, "the viewport could not be read back");
+    if (app.viewportCapture().empty()) {
+      // The engine's next frame brings it (a slow path takes a while).
+      if (++captureWaitFrames_ > 6000) return fail(app, "the viewport could not be read back");
+      return;
+    }
     if (capture_ == Capture::Snapshot) {
       snapshot_ = app.viewportCapture();
     } else {
@@ -123,10 +188,15 @@ void Script::step(EditorApp& app) {
         app.showBrowser(arg == "on");
       } else if (cmd == "wait") {
         waitFrames_ = std::max(0, std::stoi(arg));
+        // Frames begun from now on: one in flight was begun with what came before this line.
+        waitUntil_ = app.engineFramesBegun() + uint64_t(waitFrames_);
         return;
       } else if (cmd == "measure") {
         measureFrames_ = std::max(1, std::stoi(arg));
         measureStart_ = app.framesDrawn();
+        measureEngineStart_ = app.engineFramesDone();
+        measureCpu_ = threadCpuSeconds();
+        measureProcessCpu_ = processCpuSeconds();
         measureSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
         return;
       } else if (cmd == "screenshot") {
@@ -135,10 +205,12 @@ void Script::step(EditorApp& app) {
       } else if (cmd == "snapshot" || cmd == "expect-viewport-changed") {
         if (cmd == "expect-viewport-changed" && snapshot_.empty()) return fail(app, "no snapshot to compare with");
         capture_ = cmd == "snapshot" ? Capture::Snapshot : Capture::Compare;
+        captureWaitFrames_ = 0;
         app.requestViewportCapture();
         return;
       } else if (cmd == "capture") {
         app.requestFrameCapture(arg.empty() ? app.defaultCaptureFolder() : std::filesystem::path(arg));
+        waitCapture_ = true;
         return;  // written after the next engine frame
       } else if (cmd == "albedo-db") {
         app.openAlbedoDatabase(arg);
@@ -169,10 +241,31 @@ void Script::step(EditorApp& app) {
           if (got != arg) return fail(app, fmt::format("expected albedo source `{}`, but it is `{}`", arg, got));
           fmt::print("script: albedo source is `{}`\n", got);
         }
+      } else if (cmd == "copy-file") {
+        std::istringstream files(arg);
+        std::string src, dst;
+        if (!(files >> src >> dst)) return fail(app, "copy-file needs SRC DST");
+        // As an exporter writes: the whole file under another name, then renamed over the old.
+        const std::filesystem::path tmp = dst + ".part";
+        std::error_code ec;
+        std::filesystem::copy_file(src, tmp, std::filesystem::copy_options::overwrite_existing, ec);
+        if (!ec) std::filesystem::rename(tmp, dst, ec);
+        if (ec) return fail(app, fmt::format("cannot copy {} to {}: {}", src, dst, ec.message()));
+        reloadsAtCopy_ = app.sceneReloads();
+        cameraAtCopy_ = app.cameraView().position;
+      } else if (cmd == "expect-reload") {
+        reloadWaiting_ = true;
+        reloadWaitStart_ = std::chrono::steady_clock::now();
+        return;
+      } else if (cmd == "save-image") {
+        app.saveImage(arg);
       } else if (cmd == "append-line") {
         const auto space = arg.find(' ');
         if (space == std::string::npos) return fail(app, "append-line needs FILE TEXT");
-        std::ofstream(arg.substr(0, space), std::ios::app) << "\n" << arg.substr(space + 1) << "\n";
+        std::ofstream out(arg.substr(0, space), std::ios::app);
+        out << "\n" << arg.substr(space + 1) << "\n";
+        out.close();
+        if (out.fail()) return fail(app, fmt::format("cannot append to {}", arg.substr(0, space)));
       } else if (cmd == "expect-shader-error") {
         if (!app.shaderReloader()) return fail(app, "no hot shader reload (shader sources not found)");
         waitShaderError_ = arg;
@@ -274,12 +367,15 @@ void Script::step(EditorApp& app) {
         live->finishFlip();  // FLIP runs beside the frames: take the one under way
         std::string all;
         for (const auto& e : live->errors()) {
-          if (e.path == "reference") continue;
+          if (e.path == app.session().referencePath()) continue;
           if (!e.relMse || !std::isfinite(*e.relMse) || !e.flip || !std::isfinite(*e.flip))
             return fail(app, fmt::format("no finite error for `{}` yet", e.path));
           all += fmt::format(" {} relMSE {:.4f} FLIP {:.4f} ({:.1f} ms);", e.path, *e.relMse, *e.flip, e.gpuMs);
         }
-        fmt::print("script: compare against the reference ({} spp):{}\n", live->referenceSamples(), all);
+        const auto noise = live->referenceNoise();
+        fmt::print("script: compare against the reference ({} spp, its noise relMSE {}, {}):{}\n", live->referenceSamples(),
+                   noise ? fmt::format("{:.4f}", *noise) : std::string("not known yet"),
+                   live->referenceTrusted() ? "ranks the paths" : "still converging", all);
       } else if (cmd == "camera-move") {
         double x, y, z;
         if (std::sscanf(arg.c_str(), "%lf %lf %lf", &x, &y, &z) != 3) return fail(app, "camera-move needs X Y Z (metres)");
@@ -308,6 +404,63 @@ void Script::step(EditorApp& app) {
           app.playing() = false;
           app.session().setAnimationTime(std::stod(arg));
         }
+      } else if (cmd == "set") {
+        app.session().settings() = session::applySettingText(app.session().settings(), arg);
+      } else if (cmd == "expect-setting") {
+        std::istringstream a(arg);
+        std::string name, want;
+        a >> name >> want;
+        const lighting::SettingInfo* s = lighting::findSetting(name);
+        if (!s) return fail(app, fmt::format("unknown setting `{}`", name));
+        const std::string have = lighting::formatSetting(*s, s->get(app.session().settings()));
+        if (have != want) return fail(app, fmt::format("setting `{}` is {}, expected {}", name, have, want));
+        fmt::print("setting {} = {}\n", name, have);
+      } else if (cmd == "mouse-click") {
+        float x, y;
+        if (std::sscanf(arg.c_str(), "%f %f", &x, &y) != 2) return fail(app, "mouse-click needs X Y");
+        app.input().click({x, y});
+        return;
+      } else if (cmd == "click-ui" || cmd == "double-click-ui") {
+        const auto item = trackedItem(arg);
+        if (!item) return fail(app, fmt::format("no control `{}` on screen", arg));
+        const glm::vec2 centre = 0.5f * (item->min + item->max);
+        app.input().click(centre);
+        if (cmd == "double-click-ui") app.input().click(centre);
+        return;
+      } else if (cmd == "key") {
+        // [ctrl+][shift+]NAME: pressed and released within one frame, as a quick tap.
+        std::string name = arg;
+        std::vector<int> modifiers;
+        for (auto [prefix, code] : {std::pair{"ctrl+", GLFW_KEY_LEFT_CONTROL}, std::pair{"shift+", GLFW_KEY_LEFT_SHIFT}})
+          if (name.rfind(prefix, 0) == 0) modifiers.push_back(code), name = name.substr(std::strlen(prefix));
+        const auto code = keyCode(name);
+        if (!code) return fail(app, fmt::format("unknown key `{}`", name));
+        for (int m : modifiers) app.input().push({InputEvent::Kind::Key, {}, m, true});
+        app.input().push({InputEvent::Kind::Key, {}, *code, true});
+        app.input().push({InputEvent::Kind::Key, {}, *code, false});
+        for (int m : modifiers) app.input().push({InputEvent::Kind::Key, {}, m, false});
+        return;
+      } else if (cmd == "type") {
+        for (unsigned char c : arg) app.input().push({InputEvent::Kind::Char, {}, int(c)});
+        return;
+      } else if (cmd == "expect-compare-mode") {
+        if (!app.compareView()) return fail(app, "the viewport is not split");
+        const std::string mode = app.compareView()->difference ? "difference" : "wipe";
+        if (mode != arg) return fail(app, fmt::format("the compare view shows `{}`, not `{}`", mode, arg));
+        fmt::print("script: the compare view shows `{}`\n", mode);
+      } else if (cmd == "expect-viewing") {
+        const std::string shown = app.pinnedPreview().empty() ? "final" : app.pinnedPreview();
+        if (shown != arg) return fail(app, fmt::format("the viewport shows `{}`, not `{}`", shown, arg));
+        fmt::print("script: the viewport shows `{}`\n", shown);
+      } else if (cmd == "expect-notice") {
+        const auto& notices = app.notices();
+        auto it = std::find_if(notices.rbegin(), notices.rend(), [&](auto& n) { return n.text.find(arg) != std::string::npos; });
+        if (it == notices.rend()) return fail(app, fmt::format("no message containing `{}`", arg));
+        fmt::print("script: message: {}\n", it->text);
+      } else if (cmd == "expect-labels-fit") {
+        const auto& clipped = clippedLabels();
+        if (!clipped.empty()) return fail(app, fmt::format("{} label(s) cut off, first: {}", clipped.size(), clipped.front()));
+        fmt::print("script: every label fits\n");
       } else if (cmd == "quit") {
         app.requestQuit();
         return;

@@ -12,8 +12,8 @@
 //   preview RESOURCE       show a resource of the frame in the viewport (`final` for the image)
 //   render-scale S         engine resolution relative to the viewport
 //   help on|off, browser on|off
-//   wait N                 let N frames pass
-//   measure N              render N frames and print the frame rate
+//   wait N                 let N engine frames finish (UI frames when nothing renders)
+//   measure N              draw N UI frames and print the UI's and the engine's frame rates
 //   screenshot FILE        save the whole window as PNG
 //   capture [DIR]          write every buffer of the next frame (EXR + manifest.json) into DIR
 //   snapshot               remember the viewport image of the next frame
@@ -45,9 +45,26 @@
 //   expect-reference-restarted PART  fail unless the Compare panel's reference started over since
 //                          the last camera-move, PART (a frame-key part, e.g. camera.position)
 //                          among its causes, and now holds fewer samples than it did then
+//   mouse-click X Y        a person's left click at window pixel (X, Y), through the window's input
+//   click-ui NAME, double-click-ui NAME   the same on a named control (ui_helpers.h trackItem)
+//   key [ctrl+][shift+]K   a quick tap of key K (F1, Z, Enter, ...), pressed and released in one frame
+//   type TEXT              characters typed into the focused text field
+//   expect-compare-mode M  fail unless the compare view shows M (wipe or difference)
+//   expect-viewing R       fail unless the viewport shows resource R (`final` for the image)
+//   expect-notice TEXT     fail unless a status-bar message contains TEXT
+//   expect-labels-fit      fail when a panel's label was cut off by its window last frame
+//   set NAME=VALUE         change a render setting (what the Lighting panel's widget for it does)
+//   expect-setting NAME V  fail unless the setting's value reads V ("512", "clay", "true")
+//   copy-file SRC DST      copy SRC over DST as an exporter does (a temporary, then a rename)
+//   expect-reload          wait (up to 60 s) until the scene reloaded after the last
+//                          copy-file, and fail unless the camera is where it was then
+//   save-image FILE        File > Save image: the last frame as .png or .exr
 //   quit
 #pragma once
 
+#include <glm/glm.hpp>
+
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -69,6 +86,11 @@ class Script {
   std::vector<std::string> lines_;
   size_t next_ = 0;
   int waitFrames_ = 0;
+  uint64_t waitUntil_ = 0;           // engine frames done when a `wait` ends
+  bool waitCapture_ = false;
+  int captureWaitFrames_ = 0;
+  uint64_t measureEngineStart_ = 0;
+  double measureCpu_ = 0.0, measureProcessCpu_ = 0.0;
   bool waitLoaded_ = false;
   bool waitBake_ = false;
   std::string waitShaderError_;
@@ -80,6 +102,11 @@ class Script {
   enum class Capture { None, Snapshot, Compare } capture_ = Capture::None;
   std::vector<float> snapshot_;
   uint32_t samplesAtMove_ = 0, restartsAtMove_ = 0;  // the live reference when the camera last moved
+  // The last copy-file: the reload count and the camera then, for expect-reload.
+  uint64_t reloadsAtCopy_ = 0;
+  glm::dvec3 cameraAtCopy_{0.0};
+  bool reloadWaiting_ = false;  // expect-reload, since reloadWaitStart_
+  std::chrono::steady_clock::time_point reloadWaitStart_;
 };
 
 }  // namespace tl::editor

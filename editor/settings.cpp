@@ -1,5 +1,7 @@
 #include "settings.h"
 
+#include "session/image_io.h"
+
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -34,26 +36,21 @@ Settings loadSettings() {
     s.windowWidth = std::clamp(j.value("windowWidth", s.windowWidth), 320, 16384);
     s.windowHeight = std::clamp(j.value("windowHeight", s.windowHeight), 240, 16384);
     if (j.contains("bookmarks") && j["bookmarks"].is_object()) s.bookmarks = j["bookmarks"];
+    if (j.contains("albedoDatabases") && j["albedoDatabases"].is_object()) s.albedoDatabases = j["albedoDatabases"];
   } catch (const std::exception& e) {
     spdlog::warn("{}: ignored ({}); using defaults", file.string(), e.what());
   }
   return s;
 }
 
+nlohmann::json toJson(const Settings& s) {
+  return {{"recentScenes", s.recentScenes}, {"renderScale", s.renderScale}, {"vsync", s.vsync},
+          {"lightingPath", s.lightingPath}, {"windowWidth", s.windowWidth}, {"windowHeight", s.windowHeight},
+          {"bookmarks", s.bookmarks}, {"albedoDatabases", s.albedoDatabases}};
+}
+
 void saveSettings(const Settings& s) {
-  auto dir = configDirectory();
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  nlohmann::json j{{"recentScenes", s.recentScenes}, {"renderScale", s.renderScale}, {"vsync", s.vsync},
-                   {"lightingPath", s.lightingPath}, {"windowWidth", s.windowWidth}, {"windowHeight", s.windowHeight},
-                   {"bookmarks", s.bookmarks}};
-  auto tmp = dir / "settings.json.tmp";
-  {
-    std::ofstream out(tmp);
-    out << j.dump(2);
-    if (!out) return;
-  }
-  std::filesystem::rename(tmp, dir / "settings.json", ec);
+  session::writeTextFile(configDirectory() / "settings.json", toJson(s).dump(2) + "\n");
 }
 
 }  // namespace tl::editor

@@ -1,6 +1,6 @@
 // What the editor remembers between runs, in $XDG_CONFIG_HOME/twinlight (or
 // ~/.config/twinlight): recent scenes, render scale, vsync, lighting path, camera bookmarks
-// per scene, and Dear ImGui's window layout (imgui.ini beside settings.json).
+// and the albedo database per scene, and Dear ImGui's window layout (imgui.ini beside settings.json).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -18,6 +18,7 @@ struct Settings {
   std::string lightingPath = "direct";
   int windowWidth = 1600, windowHeight = 900;
   nlohmann::json bookmarks = nlohmann::json::object();  // scene path -> {"1": camera, ...}
+  nlohmann::json albedoDatabases = nlohmann::json::object();  // scene path -> its albedo database
 
   void addRecent(const std::string& scene);
 };
@@ -25,6 +26,8 @@ struct Settings {
 std::filesystem::path configDirectory();
 // A missing or unreadable file gives the defaults (and a warning), never an error.
 Settings loadSettings();
-void saveSettings(const Settings& settings);  // written atomically
+nlohmann::json toJson(const Settings& settings);
+// Written atomically; throws SessionError naming the file when it cannot be written.
+void saveSettings(const Settings& settings);
 
 }  // namespace tl::editor

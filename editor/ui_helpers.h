@@ -3,11 +3,30 @@
 
 #include <imgui.h>
 
+#include <glm/glm.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
 namespace tl::editor {
 
 // A tooltip for the last item, shown also when the item is disabled (to say why).
-inline void tooltip(const char* text) {
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
-}
+void tooltip(const char* text);
+
+// Remembers where the last item was drawn this frame under `name` ("compare.difference"),
+// so a script can click it as a person would (through the window's input, where Dear ImGui
+// decides which window is under the cursor).
+void trackItem(const std::string& name);
+struct ItemRect {
+  glm::vec2 min, max;
+};
+std::optional<ItemRect> trackedItem(const std::string& name);
+// Called once a frame before the panels draw: items not drawn again are forgotten.
+void beginTrackedFrame();
+
+// Labels that do not fit their window: a label is measured where tooltip() or trackItem()
+// follows it; expect-labels-fit in scripts reads the list of the last frame.
+const std::vector<std::string>& clippedLabels();
 
 }  // namespace tl::editor

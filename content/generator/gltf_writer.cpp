@@ -4,6 +4,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -17,6 +20,7 @@ void Shape::append(const Shape& o) {
   positions.insert(positions.end(), o.positions.begin(), o.positions.end());
   normals.insert(normals.end(), o.normals.begin(), o.normals.end());
   uvs.insert(uvs.end(), o.uvs.begin(), o.uvs.end());
+  tangents.insert(tangents.end(), o.tangents.begin(), o.tangents.end());
   for (uint32_t i : o.indices) indices.push_back(base + i);
 }
 
@@ -147,6 +151,20 @@ Shape transformed(const Shape& s, const glm::mat4& m) {
   return out;
 }
 
+std::vector<unsigned char> encodeImage(const std::string& extension, int width, int height, int channels,
+                                       const std::vector<float>& values, int bits) {
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput proxy(bytes);
+  const std::string name = "memory." + extension;
+  auto out = OIIO::ImageOutput::create(name, &proxy);
+  const OIIO::TypeDesc type = bits == 8 ? OIIO::TypeDesc::UINT8 : bits == 16 ? OIIO::TypeDesc::UINT16
+                              : bits == -16 ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
+  OIIO::ImageSpec spec(width, height, channels, type);
+  if (!out || !out->open(name, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, values.data()) || !out->close())
+    throw std::runtime_error("cannot encode a " + extension + " image: " + OIIO::geterror());
+  return bytes;
+}
+
 SceneWriter::SceneWriter(std::string name) : name_(std::move(name)) {
   model_.asset.version = "2.0";
   model_.asset.generator = "Twinlight content generator";
@@ -191,6 +209,14 @@ int SceneWriter::material(const MaterialSpec& spec) {
         model_.extensionsUsed.push_back("KHR_materials_emissive_strength");
     }
   }
+  if (spec.baseColorTextureIndex >= 0) m.pbrMetallicRoughness.baseColorTexture.index = spec.baseColorTextureIndex;
+  if (spec.emissiveTextureIndex >= 0) m.emissiveTexture.index = spec.emissiveTextureIndex;
+  if (spec.normalTextureIndex >= 0) m.normalTexture.index = spec.normalTextureIndex;
+  if (!spec.alphaMode.empty()) {
+    m.alphaMode = spec.alphaMode;
+    if (spec.alphaMode == "MASK") m.alphaCutoff = spec.alphaCutoff;
+  }
+  m.doubleSided = spec.doubleSided;
   if (!spec.baseColorTexture.empty()) {
     tinygltf::Image img;
     img.uri = spec.baseColorTexture;
@@ -212,6 +238,44 @@ int SceneWriter::material(const MaterialSpec& spec) {
   return int(model_.materials.size() - 1);
 }
 
+int SceneWriter::embeddedTexture(const std::string& name, const std::vector<unsigned char>& bytes,
+                                 const std::string& mimeType) {
+  while (bin_.size() % 4) bin_.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = bin_.size();
+  view.byteLength = bytes.size();
+  bin_.insert(bin_.end(), bytes.begin(), bytes.end());
+  model_.bufferViews.push_back(view);
+  tinygltf::Image img;
+  img.name = name;
+  img.mimeType = mimeType;
+  img.bufferView = int(model_.bufferViews.size() - 1);
+  return texture(img);
+}
+
+int SceneWriter::dataUriTexture(const std::string& name, const std::string& uri) {
+  tinygltf::Image img;
+  img.name = name;
+  img.uri = uri;
+  return texture(img);
+}
+
+int SceneWriter::texture(const tinygltf::Image& img) {
+  model_.images.push_back(img);
+  if (model_.samplers.empty()) {
+    tinygltf::Sampler s;
+    s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    s.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+    model_.samplers.push_back(s);
+  }
+  tinygltf::Texture t;
+  t.source = int(model_.images.size() - 1);
+  t.sampler = 0;
+  model_.textures.push_back(t);
+  return int(model_.textures.size() - 1);
+}
+
 int SceneWriter::mesh(const std::string& name, const Shape& shape, int material) {
   glm::vec3 lo(1e30f), hi(-1e30f);
   for (auto& p : shape.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
@@ -225,6 +289,9 @@ int SceneWriter::mesh(const std::string& name, const Shape& shape, int material)
                                        TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER);
   prim.attributes["TEXCOORD_0"] = accessor(shape.uvs.data(), shape.uvs.size() * 8, shape.uvs.size(),
                                            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, TINYGLTF_TARGET_ARRAY_BUFFER);
+  if (!shape.tangents.empty())
+    prim.attributes["TANGENT"] = accessor(shape.tangents.data(), shape.tangents.size() * 16, shape.tangents.size(),
+                                          TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, TINYGLTF_TARGET_ARRAY_BUFFER);
   prim.indices = accessor(shape.indices.data(), shape.indices.size() * 4, shape.indices.size(),
                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   tinygltf::Mesh m;
@@ -370,7 +437,7 @@ void SceneWriter::sky(glm::vec3 radiance) {
 
 void SceneWriter::write(const std::filesystem::path& dir) {
   tinygltf::Buffer buffer;
-  buffer.uri = name_ + ".bin";
+  if (!binary_) buffer.uri = name_ + ".bin";
   buffer.data = bin_;
   model_.buffers = {buffer};
   tinygltf::Scene scene;
@@ -387,8 +454,8 @@ void SceneWriter::write(const std::filesystem::path& dir) {
         return true;
       },
       nullptr);
-  auto path = dir / (name_ + ".gltf");
-  if (!writer.WriteGltfSceneToFile(&model_, path.string(), false, false, true, false))
+  auto path = dir / (name_ + (binary_ ? ".glb" : ".gltf"));
+  if (!writer.WriteGltfSceneToFile(&model_, path.string(), false, binary_, !binary_, binary_))
     throw std::runtime_error("cannot write " + path.string());
 }
 

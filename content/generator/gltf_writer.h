@@ -21,6 +21,7 @@ namespace tl::content {
 struct Shape {
   std::vector<glm::vec3> positions, normals;
   std::vector<glm::vec2> uvs;
+  std::vector<glm::vec4> tangents;  // optional: written as TANGENT (xyz, w = handedness) when present
   std::vector<uint32_t> indices;
   void append(const Shape& other);
 };
@@ -41,12 +42,31 @@ struct MaterialSpec {
   glm::vec3 emissive{0.0f};
   float emissiveStrength = 1.0f;
   std::string baseColorTexture;  // uri relative to the .gltf
+  // Textures made with SceneWriter::embeddedTexture (-1: none).
+  int baseColorTextureIndex = -1;
+  int emissiveTextureIndex = -1;
+  int normalTextureIndex = -1;
+  std::string alphaMode;         // "" (OPAQUE), "MASK" or "BLEND"
+  float alphaCutoff = 0.5f;
+  bool doubleSided = false;
 };
+
+// An image file's bytes encoded in memory by OpenImageIO (`extension`: "png", "exr", ...):
+// `channels` interleaved values per texel, written as `type` (UINT8, UINT16, HALF, FLOAT).
+std::vector<unsigned char> encodeImage(const std::string& extension, int width, int height, int channels,
+                                       const std::vector<float>& values, int bits);
 
 class SceneWriter {
  public:
   explicit SceneWriter(std::string name);
   int material(const MaterialSpec& spec);
+  // An image stored in the binary buffer (a bufferView, as exporters write .glb textures)
+  // and a texture sampling it; returns the texture's index for MaterialSpec.
+  int embeddedTexture(const std::string& name, const std::vector<unsigned char>& bytes, const std::string& mimeType);
+  // An image given as a data: URI (base64 in the JSON) and a texture sampling it.
+  int dataUriTexture(const std::string& name, const std::string& uri);
+  // Writes a single .glb (JSON, buffer and embedded images in one file) instead of .gltf + .bin.
+  void binary() { binary_ = true; }
   int mesh(const std::string& name, const Shape& shape, int material);
   // Morph targets of a mesh written by mesh(): per target, position and normal deltas (one
   // per vertex), and the mesh's default weights.
@@ -77,11 +97,13 @@ class SceneWriter {
   void light(tinygltf::Light l, glm::vec3 position, glm::vec3 direction);
   int accessor(const void* data, size_t bytes, size_t count, int componentType, int type, int target,
                const std::vector<double>& min = {}, const std::vector<double>& max = {});
+  int texture(const tinygltf::Image& image);
   std::string name_;
   tinygltf::Model model_;
   std::vector<unsigned char> bin_;
   std::vector<int> roots_;
   tinygltf::Value::Object extras_;
+  bool binary_ = false;
 };
 
 }  // namespace tl::content

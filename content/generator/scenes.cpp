@@ -3,6 +3,7 @@
 // The scale scene is generated when measured, never committed (it is tens of megabytes):
 // tl_content_gen --sprawl <dir> [instances=100000] [keys=1000]
 #include "gltf_writer.h"
+#include "hard_scenes.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -348,6 +349,105 @@ void lampGrid(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// Textures as .glb exports carry them: images inside the binary (bufferViews), one 8-bit PNG
+// base colour and one 16-bit PNG emissive whose texel, 128/65535, is 1.5e-4 after sRGB
+// decoding: times the emissive strength 1e4 the right quad glows with radiance 1.51, which an
+// importer that cuts 16 bits to 8 shows as 0. Two 1 m quads facing the camera, no light.
+void embeddedTextures(const std::filesystem::path& dir) {
+  SceneWriter w("embedded_textures");
+  w.binary();
+  const std::vector<float> base = {188 / 255.0f, 94 / 255.0f, 47 / 255.0f};
+  std::vector<float> baseTexels;
+  for (int i = 0; i < 4; ++i) baseTexels.insert(baseTexels.end(), base.begin(), base.end());
+  const int baseTexture = w.embeddedTexture("base_8bit", encodeImage("png", 2, 2, 3, baseTexels, 8), "image/png");
+  const std::vector<float> emissiveTexels(2 * 2 * 3, 128.0f / 65535.0f);
+  const int emissiveTexture =
+      w.embeddedTexture("emissive_16bit", encodeImage("png", 2, 2, 3, emissiveTexels, 16), "image/png");
+  MaterialSpec baseSpec{"base_colour_8bit", {1.0f, 1.0f, 1.0f}, 0.0f, 1.0f};
+  baseSpec.baseColorTextureIndex = baseTexture;
+  MaterialSpec emissiveSpec{"emissive_16bit", {0.0f, 0.0f, 0.0f}, 0.0f, 1.0f, {1.0f, 1.0f, 1.0f}, 1.0e4f};
+  emissiveSpec.emissiveTextureIndex = emissiveTexture;
+  const Shape panel = quad(1.0f, 1.0f);
+  w.node("base_colour_quad", w.mesh("base_colour_quad", panel, w.material(baseSpec)), {-0.55f, 0.0f, 0.0f},
+         {90.0f, 0.0f, 0.0f});
+  w.node("emissive_quad", w.mesh("emissive_quad", panel, w.material(emissiveSpec)), {0.55f, 0.0f, 0.0f},
+         {90.0f, 0.0f, 0.0f});
+  w.camera("front", {0.0f, 0.0f, 3.0f}, {0.0f, 0.0f, 0.0f}, 40.0f);
+  w.sky({0.0f, 0.0f, 0.0f});
+  w.write(dir);
+}
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    const uint32_t b0 = bytes[i], b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0u, b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0u;
+    const uint32_t v = (b0 << 16) | (b1 << 8) | b2;
+    out += digits[(v >> 18) & 63];
+    out += digits[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? digits[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? digits[v & 63] : '=';
+  }
+  return out;
+}
+
+// Tangent space as glTF specifies it: four 1 m quads on the ground (normal +Y) share one
+// normal map (a data: URI) whose every texel is the tangent-space normal (0.3, 0.5, 0.81).
+// The map's green axis points to the image's top, which is decreasing v, so on each quad the
+// bump leans towards -dP/dv = +Z and its red axis along the tangent dP/du: +X on the plain
+// quads, -X where u is mirrored. Two quads carry TANGENT as an exporter writes it (w = -1 on
+// the plain quad: the bitangent w * cross(N, T) = +Z), two leave it to the importer; all four
+// must lean the same way (tests/gpu/test_gltf_probes.cpp).
+void normalProbe(const std::filesystem::path& dir) {
+  SceneWriter w("normal_probe");
+  const glm::vec3 tn = glm::normalize(glm::vec3(0.3f, 0.5f, 0.81f));
+  std::vector<float> texels;
+  for (int i = 0; i < 4 * 4; ++i)
+    for (int c = 0; c < 3; ++c) texels.push_back(std::round((tn[c] * 0.5f + 0.5f) * 255.0f) / 255.0f);
+  const int normalTexture =
+      w.dataUriTexture("tilted_normal", "data:image/png;base64," + base64(encodeImage("png", 4, 4, 3, texels, 8)));
+  MaterialSpec spec{"normal_mapped", {0.8f, 0.8f, 0.8f}, 0.0f, 0.6f};
+  spec.normalTextureIndex = normalTexture;
+  const int material = w.material(spec);
+  Shape plain = quad(1.0f, 1.0f);
+  Shape mirrored = plain;
+  for (auto& uv : mirrored.uvs) uv.x = 1.0f - uv.x;
+  Shape plainTangents = plain, mirroredTangents = mirrored;
+  plainTangents.tangents.assign(plain.positions.size(), glm::vec4(1.0f, 0.0f, 0.0f, -1.0f));
+  mirroredTangents.tangents.assign(mirrored.positions.size(), glm::vec4(-1.0f, 0.0f, 0.0f, 1.0f));
+  w.node("plain_generated", w.mesh("plain_generated", plain, material), {-1.65f, 0.0f, 0.0f});
+  w.node("plain_supplied", w.mesh("plain_supplied", plainTangents, material), {-0.55f, 0.0f, 0.0f});
+  w.node("mirrored_generated", w.mesh("mirrored_generated", mirrored, material), {0.55f, 0.0f, 0.0f});
+  w.node("mirrored_supplied", w.mesh("mirrored_supplied", mirroredTangents, material), {1.65f, 0.0f, 0.0f});
+  w.camera("above", {0.0f, 4.0f, 1.0f}, {0.0f, 0.0f, 0.0f}, 60.0f);
+  w.sun({0.0f, -1.0f, 0.0f}, 10.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
+// Alpha MASK everywhere: a 2 m red quad 1 m above a 0.8 grey floor whose base-colour texture's
+// alpha is 0 on every texel (cutoff 0.5), under a sun straight overhead (E = 10) and a uniform
+// sky (L = 1). Cut out in every stage, it leaves the floor below as lit as the open floor:
+// radiance 0.8 / pi (E + pi L) = 3.346 in every path; a stage that sees it draws a shadow
+// (0.8 L where only the sky reaches) or red light.
+void cutout(const std::filesystem::path& dir) {
+  SceneWriter w("cutout");
+  std::vector<float> texels;
+  for (int i = 0; i < 4 * 4; ++i) texels.insert(texels.end(), {1.0f, 0.0f, 0.0f, 0.0f});
+  MaterialSpec card{"cut_out_card", {1.0f, 1.0f, 1.0f}, 0.0f, 1.0f};
+  card.baseColorTextureIndex = w.embeddedTexture("transparent_red", encodeImage("png", 4, 4, 4, texels, 8), "image/png");
+  card.alphaMode = "MASK";
+  card.alphaCutoff = 0.5f;
+  card.doubleSided = true;
+  int grey = w.material({"floor_grey", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  w.node("floor", w.mesh("floor", quad(20.0f, 20.0f), grey), {0.0f, 0.0f, 0.0f});
+  w.node("card", w.mesh("card", quad(2.0f, 2.0f), w.material(card)), {0.0f, 1.0f, 0.0f});
+  w.camera("above", {0.0f, 5.0f, 3.0f}, {0.0f, 0.0f, 0.0f}, 50.0f);
+  w.sun({0.0f, -1.0f, 0.0f}, 10.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
 // Scale: `instances` boxes on a 2 km square of ground, each one of `keys` distinct mesh and
 // material combinations (albedo keys): 40 box shapes x as many materials as the keys need.
 // The positions are a jittered grid, the shapes and materials and yaw a fixed hash of the
@@ -439,6 +539,10 @@ int main(int argc, char** argv) {
     tl::content::closedBox(dir);
     tl::content::lamps(dir);
     tl::content::lampGrid(dir);
+    tl::content::embeddedTextures(dir);
+    tl::content::normalProbe(dir);
+    tl::content::cutout(dir);
+    tl::content::writeHardScenes(dir / "hard");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());
     return 1;

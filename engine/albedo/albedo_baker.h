@@ -46,7 +46,7 @@ class AlbedoBaker {
   void keepAtlas(bool keep) { keepAtlas_ = keep; }
 
  private:
-  gpu::Device& device_;
+  [[maybe_unused]] gpu::Device& device_;  // unread today; clang warns of it
   const scene::Scene& scene_;
   scene::GpuScene& gpuScene_;
   BakeSettings settings_;

@@ -1,5 +1,7 @@
 #include "albedo/albedo_database.h"
 
+#include "scene/input_limits.h"
+
 #include <fmt/format.h>
 #include <sqlite3.h>
 
@@ -168,6 +170,13 @@ std::string utcNow() {
 }
 
 AlbedoDatabase::AlbedoDatabase(const std::filesystem::path& file, bool create) : file_(file) {
+  // Before anything opens it: a FIFO would block both the header check and SQLite forever,
+  // a device would be read (or written) as if it were a database.
+  try {
+    scene::requireRegularFile(file, true);
+  } catch (const scene::InputFileError& e) {
+    throw DatabaseError(fmt::format("{}; left untouched", e.what()));
+  }
   const bool exists = std::filesystem::exists(file);
   if (!exists && !create) throw DatabaseError(fmt::format("{}: no such albedo database", file.string()));
   if (exists) checkHeader(file);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <set>
@@ -16,6 +17,18 @@ namespace {
 bool envFlag(const char* name) {
   const char* v = std::getenv(name);
   return v && *v && std::string_view(v) != "0";
+}
+
+// The watchdog's limit: seconds the device may take to finish work it was given.
+double watchdogSeconds(const DeviceOptions& options) {
+  if (const char* v = std::getenv("TWINLIGHT_GPU_TIMEOUT"); v && *v) {
+    char* end = nullptr;
+    const double s = std::strtod(v, &end);
+    if (end && *end == '\0' && s > 0.0 && s <= 1e6) return s;
+    spdlog::warn("TWINLIGHT_GPU_TIMEOUT=`{}` is not a number of seconds from 0 to 1e6; using {} s", v,
+                 options.gpuTimeoutSeconds);
+  }
+  return options.gpuTimeoutSeconds;
 }
 
 std::string lower(std::string s) {
@@ -53,6 +66,7 @@ std::string rayTracingMissing(VkPhysicalDevice pd) {
 }  // namespace
 
 Device::Device(const DeviceOptions& options) {
+  timeoutSeconds_ = watchdogSeconds(options);
   createInstance(options);
   choosePhysicalDevice(options);
   createLogicalDevice(options);
@@ -60,6 +74,7 @@ Device::Device(const DeviceOptions& options) {
 
 Device::~Device() {
   if (device_) {
+    waitTimeline(submitted_);  // a device that hangs stops the process here, not in vkDeviceWaitIdle
     vkDeviceWaitIdle(device_);
     for (auto& g : garbage_) g.destroy();
     garbage_.clear();
@@ -194,7 +209,8 @@ void Device::choosePhysicalDevice(const DeviceOptions& options) {
   }
   physical_ = devices[best];
 
-  VkPhysicalDeviceDriverProperties driverProps{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceMaintenance3Properties maintenance3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+  VkPhysicalDeviceDriverProperties driverProps{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, &maintenance3};
   VkPhysicalDeviceRayTracingPipelinePropertiesKHR rtProps{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR, &driverProps};
   VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &rtProps};
   vkGetPhysicalDeviceProperties2(physical_, &props);
@@ -202,6 +218,7 @@ void Device::choosePhysicalDevice(const DeviceOptions& options) {
   driver_ = fmt::format("{} {}", driverProps.driverName, driverProps.driverInfo);
   apiVersion_ = props.properties.apiVersion;
   limits_ = props.properties.limits;
+  maxAllocationSize_ = maintenance3.maxMemoryAllocationSize;
   vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
 
   rayTracing_.unavailableReason = rayTracingMissing(physical_);
@@ -378,6 +395,26 @@ uint32_t Device::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags require
   throw Error(fmt::format("no memory type with flags {:#x} among bits {:#x}", required, typeBits));
 }
 
+void Device::reserveMemory(uint32_t memoryType, VkDeviceSize bytes, std::string_view name) {
+  const auto gib = [](VkDeviceSize b) { return double(b) / double(1ull << 30); };
+  if (maxAllocationSize_ && bytes > maxAllocationSize_)
+    throw Error(fmt::format("`{}` needs {:.2f} GiB in one allocation, more than the {:.2f} GiB {} allows "
+                            "(maxMemoryAllocationSize); a smaller image size fits",
+                            name, gib(bytes), gib(maxAllocationSize_), name_));
+  const uint32_t heap = memory_.memoryTypes[memoryType].heapIndex;
+  const VkDeviceSize heapSize = memory_.memoryHeaps[heap].size;
+  const VkDeviceSize inUse = allocated_[heap].load();
+  if (inUse + bytes > heapSize)
+    throw Error(fmt::format("`{}` needs {:.2f} GiB more, with {:.2f} GiB of the {:.2f} GiB memory heap of {} in use; "
+                            "a smaller image size fits",
+                            name, gib(bytes), gib(inUse), gib(heapSize), name_));
+  allocated_[heap] += bytes;
+}
+
+void Device::releaseMemory(uint32_t memoryType, VkDeviceSize bytes) {
+  allocated_[memory_.memoryTypes[memoryType].heapIndex] -= bytes;
+}
+
 VkCommandBuffer Device::beginCommands() {
   collectGarbage();
   uint64_t done = completedValue();
@@ -447,18 +484,33 @@ uint64_t Device::completedValue() const {
   return v;
 }
 
-void Device::wait(uint64_t value) {
+void Device::waitTimeline(uint64_t value) {
   VkSemaphoreWaitInfo wi{VK_STRUCTURE_TYPE_SEMAPHORE_WAIT_INFO};
   wi.semaphoreCount = 1;
   wi.pSemaphores = &timeline_;
   wi.pValues = &value;
-  VkResult r = vkWaitSemaphores(device_, &wi, UINT64_MAX);
+  VkResult r = vkWaitSemaphores(device_, &wi, uint64_t(timeoutSeconds_ * 1e9));
+  if (r == VK_TIMEOUT) {
+    // Unrecoverable: the device still runs the work, so nothing it uses may be freed and no
+    // later wait would end. One line, and the process stops (STYLE.md: two error policies).
+    fmt::print(stderr,
+               "twinlight: error: {} did not finish the GPU work it was given within {:g} s (the watchdog, "
+               "TWINLIGHT_GPU_TIMEOUT); stopping\n",
+               name_, timeoutSeconds_);
+    std::fflush(stderr);
+    std::_Exit(kExitDeviceHung);
+  }
   if (r == VK_ERROR_DEVICE_LOST) throw Error(fmt::format("device lost on {} — the GPU stopped responding", name_));
   TL_VK(r);
+}
+
+void Device::wait(uint64_t value) {
+  waitTimeline(value);
   collectGarbage();
 }
 
 void Device::waitIdle() {
+  waitTimeline(submitted_);  // bounded by the watchdog; then the idle wait returns at once
   TL_VK(vkDeviceWaitIdle(device_));
   collectGarbage();
 }

@@ -7,6 +7,7 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <deque>
@@ -23,7 +24,13 @@ struct DeviceOptions {
   std::string preferredName;  // substring of the device name; TWINLIGHT_DEVICE overrides
   std::vector<std::string> instanceExtensions;  // e.g. what GLFW needs for a surface
   bool swapchain = false;                       // enable VK_KHR_swapchain on the device
+  // The watchdog: work the device has not finished after this long stops the process with
+  // one error line (exit status kExitDeviceHung); TWINLIGHT_GPU_TIMEOUT overrides it.
+  double gpuTimeoutSeconds = 600.0;
 };
+
+// Exit status of a process the watchdog stopped.
+inline constexpr int kExitDeviceHung = 4;
 
 // Extension entry points, loaded once.
 struct Extensions {
@@ -76,6 +83,13 @@ class Device {
 
   uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
                           VkMemoryPropertyFlags preferred = 0) const;
+  // Every allocation is counted against the device's stated limits before it is made: one
+  // allocation at most maxMemoryAllocationSize, a heap's allocations at most its size. Over
+  // either, Error with the figures (Vulkan leaves larger allocations undefined: lavapipe
+  // crashed in a worker thread at 12000x12000). releaseMemory gives the bytes back.
+  void reserveMemory(uint32_t memoryType, VkDeviceSize bytes, std::string_view name);
+  void releaseMemory(uint32_t memoryType, VkDeviceSize bytes);
+  VkDeviceSize maxAllocationSize() const { return maxAllocationSize_; }
 
   // Submission timeline. Every submit signals the next value of one timeline semaphore.
   VkCommandBuffer beginCommands();
@@ -134,6 +148,10 @@ class Device {
   RayTracingSupport rayTracing_;
   VkPhysicalDeviceLimits limits_{};
   VkPhysicalDeviceMemoryProperties memory_{};
+  VkDeviceSize maxAllocationSize_ = 0;
+  std::array<std::atomic<VkDeviceSize>, VK_MAX_MEMORY_HEAPS> allocated_{};
+  void waitTimeline(uint64_t value);  // bounded by the watchdog
+  double timeoutSeconds_ = 600.0;
   std::deque<CommandSlot> commandSlots_;
   std::deque<Garbage> garbage_;
   std::atomic<uint32_t> validationErrors_{0};

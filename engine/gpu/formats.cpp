@@ -22,6 +22,7 @@ FormatInfo formatInfo(VkFormat f) {
     case VK_FORMAT_R16G16_SFLOAT: return {4, 2, TexelKind::Float, "RG16F"};
     case VK_FORMAT_R16G16B16A16_SFLOAT: return {8, 4, TexelKind::Float, "RGBA16F"};
     case VK_FORMAT_R16G16_SNORM: return {4, 2, TexelKind::Unorm, "RG16_SNORM"};
+    case VK_FORMAT_R16G16B16A16_UNORM: return {8, 4, TexelKind::Unorm, "RGBA16"};
     case VK_FORMAT_R32_SFLOAT: return {4, 1, TexelKind::Float, "R32F"};
     case VK_FORMAT_R32G32_SFLOAT: return {8, 2, TexelKind::Float, "RG32F"};
     case VK_FORMAT_R32G32B32A32_SFLOAT: return {16, 4, TexelKind::Float, "RGBA32F"};
@@ -66,6 +67,13 @@ std::vector<float> decodeTexels(VkFormat format, std::span<const uint8_t> bytes)
       case VK_FORMAT_R16_UINT: { uint16_t u; std::memcpy(&u, p, 2); o[0] = float(u); break; }
       case VK_FORMAT_R8_UINT: o[0] = float(p[0]); break;
       case VK_FORMAT_D16_UNORM: { uint16_t u; std::memcpy(&u, p, 2); o[0] = u / 65535.0f; break; }
+      case VK_FORMAT_R16G16B16A16_UNORM:
+        for (uint32_t c = 0; c < 4; ++c) {
+          uint16_t u;
+          std::memcpy(&u, p + 2 * c, 2);
+          o[c] = u / 65535.0f;
+        }
+        break;
       case VK_FORMAT_R16G16_SNORM:
         for (uint32_t c = 0; c < 2; ++c) {
           int16_t s;

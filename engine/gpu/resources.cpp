@@ -20,10 +20,13 @@ Memory::Memory(Device& device, const VkMemoryRequirements& req, MemoryUsage usag
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, &flags};
   ai.allocationSize = req.size;
   ai.memoryTypeIndex = device.findMemoryType(req.memoryTypeBits, required, preferred);
+  device.reserveMemory(ai.memoryTypeIndex, req.size, name);
   VkResult r = vkAllocateMemory(device.handle(), &ai, nullptr, &memory_);
+  if (r != VK_SUCCESS) device.releaseMemory(ai.memoryTypeIndex, req.size);
   if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
     throw Error(fmt::format("out of GPU memory allocating {} bytes for `{}`", req.size, name));
   TL_VK(r);
+  memoryType_ = ai.memoryTypeIndex;
   device.setName(VK_OBJECT_TYPE_DEVICE_MEMORY, uint64_t(memory_), name);
   if (usage != MemoryUsage::GpuOnly) TL_VK(vkMapMemory(device.handle(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
 }
@@ -34,6 +37,7 @@ Memory& Memory::operator=(Memory&& o) noexcept {
     device_ = std::exchange(o.device_, nullptr);
     memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
     size_ = std::exchange(o.size_, 0);
+    memoryType_ = o.memoryType_;
     mapped_ = std::exchange(o.mapped_, nullptr);
   }
   return *this;
@@ -41,9 +45,14 @@ Memory& Memory::operator=(Memory&& o) noexcept {
 
 void Memory::reset() {
   if (memory_) {
-    VkDevice d = device_->handle();
+    Device* device = device_;
     VkDeviceMemory m = memory_;
-    device_->destroyLater([d, m] { vkFreeMemory(d, m, nullptr); });
+    const uint32_t type = memoryType_;
+    const VkDeviceSize size = size_;
+    device_->destroyLater([device, m, type, size] {
+      vkFreeMemory(device->handle(), m, nullptr);
+      device->releaseMemory(type, size);
+    });
   }
   memory_ = VK_NULL_HANDLE;
   mapped_ = nullptr;

@@ -32,6 +32,7 @@ class Memory {
   Device* device_ = nullptr;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   VkDeviceSize size_ = 0;
+  uint32_t memoryType_ = 0;
   void* mapped_ = nullptr;
 };
 

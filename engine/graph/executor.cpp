@@ -207,7 +207,13 @@ std::vector<float> Readback::texels() const { return gpu::decodeTexels(format, b
 
 Executor::Executor(gpu::Device& device) : device_(device), timestamps_(device, 256) {}
 
-Executor::~Executor() { device_.waitIdle(); }
+Executor::~Executor() {
+  try {
+    finish();
+  } catch (const std::exception&) {
+  }
+  device_.waitIdle();
+}
 
 Executor::Physical& Executor::find(std::string_view name) {
   auto it = physical_.find(name);
@@ -279,6 +285,7 @@ void Executor::unbindImported() {
 }
 
 void Executor::resetHistory() {
+  finish();  // a frame in flight would mark what it wrote valid afterwards
   // The contents go (the next first use discards them); the accesses stay, to be waited for.
   for (auto& [name, p] : physical_)
     if (p.kind == Physical::Kind::Persistent) p.historyValid = false, p.state.layout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -553,12 +560,17 @@ void Executor::handBackImports(VkCommandBuffer cmd, const RenderGraph& graph) {
 }
 
 void Executor::execute(const RenderGraph& graph, const CompiledGraph& compiled) {
+  submit(graph, compiled);
+  finish();
+}
+
+void Executor::submit(const RenderGraph& graph, const CompiledGraph& compiled) {
+  TL_CHECK(!inFlight_, "a frame is already in flight: finish() it before submitting another");
   realise(graph, compiled);
   checkEntry(graph, compiled);
   VkCommandBuffer cmd = device_.beginCommands();
   timestamps_.reset(cmd);
   pending_.clear();
-  readbacks_.clear();
 
   const auto& decls = graph.resources();
   for (const CompiledPass& cp : compiled.order) {
@@ -589,27 +601,41 @@ void Executor::execute(const RenderGraph& graph, const CompiledGraph& compiled) 
     if (p.kind != Physical::Kind::Persistent || !p.historyValid || !graph.find(name)) continue;
     if (p.image && p.state.layout == VK_IMAGE_LAYOUT_UNDEFINED) continue;
     if (!readbackAll_ && !readbackNames_.count(name)) continue;
-    if (std::any_of(pending_.begin(), pending_.end(), [&](const PendingReadback& r) { return r.name == name; })) continue;
+    const std::string& resource = name;  // clang 14 cannot capture a structured binding
+    if (std::any_of(pending_.begin(), pending_.end(), [&](const PendingReadback& r) { return r.name == resource; })) continue;
     copyForReadback(cmd, name, p, nullptr);
   }
   handBackImports(cmd, graph);
-  device_.wait(device_.submit(cmd));
 
   // A persistent resource holds something for the next frame only if a pass of this frame
   // wrote it; one nobody wrote keeps what it had (nothing, after a reset or a resize).
+  writtenPersistent_.clear();
   for (const auto& cp : compiled.order)
     for (const auto& a : cp.writes)
-      if (decls[a.resource].persistent) find(decls[a.resource].name).historyValid = true;
+      if (decls[a.resource].persistent) writtenPersistent_.push_back(decls[a.resource].name);
+  readbackNames_.clear();  // requests made from now on are the next frame's
+  readbackAll_ = false;
+  inFlight_ = device_.submit(cmd);
+}
+
+bool Executor::frameDone() const { return !inFlight_ || device_.completedValue() >= inFlight_; }
+
+void Executor::finish() {
+  if (!inFlight_) return;
+  device_.wait(inFlight_);
+  inFlight_ = 0;
+  for (const std::string& name : writtenPersistent_)
+    if (auto it = physical_.find(name); it != physical_.end()) it->second.historyValid = true;
+  writtenPersistent_.clear();
   timings_.clear();
   for (auto& s : timestamps_.read()) timings_.push_back({s.name, s.milliseconds});
+  readbacks_.clear();
   for (auto& r : pending_) {
     Readback out{r.name, r.format, r.extent, std::vector<uint8_t>(r.staging.size())};
     std::memcpy(out.bytes.data(), r.staging.mapped(), out.bytes.size());
     readbacks_[r.name] = std::move(out);
   }
   pending_.clear();
-  readbackNames_.clear();
-  readbackAll_ = false;
   ++frame_;
 }
 

@@ -129,6 +129,14 @@ class Executor {
   // Records and submits the frame, waits for it, then collects timings and read-backs.
   // `compiled` must come from entryStates() of this executor (checked).
   void execute(const RenderGraph& graph, const CompiledGraph& compiled);
+  // The same in two halves, so a caller (the editor) can go on while the GPU works:
+  // submit() records and submits without waiting; finish() waits for that frame (if the GPU
+  // is not done yet) and collects its timings and read-backs. Until finish(), timings() and
+  // readbacks() describe the frame before, resources() already this one. One frame at a time.
+  void submit(const RenderGraph& graph, const CompiledGraph& compiled);
+  bool inFlight() const { return inFlight_ != 0; }
+  bool frameDone() const;  // true when finish() would not wait
+  void finish();
 
   const std::vector<PassTiming>& timings() const { return timings_; }
   const std::vector<PhysicalInfo>& resources() const { return physicalInfo_; }
@@ -203,6 +211,8 @@ class Executor {
   };
   std::vector<PendingReadback> pending_;
   std::map<std::string, Readback> readbacks_;
+  uint64_t inFlight_ = 0;                     // timeline value of the frame submitted, 0 when none
+  std::vector<std::string> writtenPersistent_;  // persistent resources it writes
   uint64_t frame_ = 0;
 };
 

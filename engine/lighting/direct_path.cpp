@@ -9,6 +9,7 @@ class DirectPath final : public LightingPath {
  public:
   std::string name() const override { return "direct"; }
   std::string description() const override { return "sun with shadows + unoccluded sky, no indirect light"; }
+  PathCapabilities capabilities() const override { return {}; }
   LightingOutputs addPasses(graph::RenderGraph&, FrameInputs&) override { return {}; }
 };
 

@@ -51,25 +51,38 @@ struct LightingOutputs {
   std::string lightsRadiance;
 };
 
+// What a path is, for everything that must treat paths differently without knowing their
+// names: the session, compare, bench and the editor ask these.
+struct PathCapabilities {
+  bool needsRayTracing = false;  // runs only on a device with ray-tracing pipelines (unavailableReason says why not)
+  bool isReference = false;      // the ground truth: compare and the Compare panel measure the other paths against it
+  bool accumulates = false;      // holds history: its image converges over still frames
+  bool rasterizes = true;        // shades the G-buffer the rasterizer drew, so TAA's jitter applies; the reference
+                                 // path tracer computes every pixel itself, jittering its own rays
+  bool halfResolution = false;   // can trace at reduced resolution (its settings say how)
+};
+
 class LightingPath {
  public:
   virtual ~LightingPath() = default;
   virtual std::string name() const = 0;         // "direct", "legacy", "rt", "reference"
   virtual std::string description() const = 0;  // one line for --help and tooltips
-  // Why this device cannot run the path (shown verbatim), or nothing when it can.
-  virtual std::optional<std::string> unavailableReason(const gpu::Device&) const { return std::nullopt; }
+  // Why this device cannot run the path (shown verbatim), or nothing when it can: by default,
+  // what the capabilities need (ray tracing).
+  virtual std::optional<std::string> unavailableReason(const gpu::Device& device) const;
   virtual LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) = 0;
   // Figures about the last frame beyond pass timings (acceleration-structure sizes, culled
   // instances, ...), name -> value, for the benchmark and the tests.
   virtual std::vector<std::pair<std::string, double>> figures() const { return {}; }
-  // Whether the path shades the G-buffer the rasterizer drew (so TAA's jitter applies); the
-  // reference path tracer computes every pixel itself, jittering its own rays.
-  virtual bool rasterizes() const { return true; }
-  // A hash of the settings this path's history depends on (what its accumulated samples
-  // estimate): the frame key's `settings` part for the path, so changing one of them restarts
-  // its history and changing any other setting does not. 0: no setting matters.
-  virtual uint64_t historySettings(const RenderSettings&) const { return 0; }
+  virtual PathCapabilities capabilities() const = 0;
 };
+
+// The lighting paths this build knows, in the order they are listed (the editor, `twinlight
+// info`, compare): the built-in ones, then any registered with registerLightingPath. The
+// session makes one of each; nothing else names them.
+using LightingPathFactory = std::unique_ptr<LightingPath> (*)();
+const std::vector<LightingPathFactory>& lightingPathRegistry();
+void registerLightingPath(LightingPathFactory factory);
 
 // Sun + sky without indirect light: the baseline every other path adds to.
 std::unique_ptr<LightingPath> makeDirectPath();

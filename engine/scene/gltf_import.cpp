@@ -1,14 +1,20 @@
-// glTF 2.0 import with tinygltf. tinygltf parses the JSON and loads buffers; images are
-// decoded here with OpenImageIO (textures.cpp) so we control missing files. Every
-// accessor read is bounds-checked here: tinygltf does not fully validate them, and a
+// glTF 2.0 import with tinygltf. The file is read here, under the limits of
+// scene/input_limits.h (a regular file, its size, its JSON nesting), then tinygltf parses the
+// JSON and loads buffers through callbacks that apply the same rules; images are read and
+// decoded here with OpenImageIO (textures.cpp) so we control missing files. Every accessor
+// read is bounds-checked here with overflow-safe arithmetic, and every number is checked
+// after conversion to float (scene/import_values.h): tinygltf validates neither, and a
 // malformed file must produce one clear error, never a crash.
 #define TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_NO_EXTERNAL_IMAGE
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #define TINYGLTF_NO_INCLUDE_STB_IMAGE
 #define TINYGLTF_NO_INCLUDE_STB_IMAGE_WRITE
 #include <tiny_gltf.h>
 
+#include "scene/import_values.h"
+#include "scene/input_limits.h"
 #include "scene/morph.h"
 #include "scene/scene_internal.h"
 
@@ -17,6 +23,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <set>
 
 namespace tl::scene {
@@ -31,12 +38,70 @@ std::string oneLine(std::string s) {
 }
 
 // tinygltf would otherwise decode images itself; we keep the bytes (for embedded images)
-// and decode later so a missing texture is a warning, not a failed load.
-bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
-                    int size, void*) {
+// and decode later so a missing texture is a warning, not a failed load. `user` is the model
+// being loaded: tinygltf 2.7 hands over an image's bufferView without checking that the view
+// lies inside its buffer (fuzz_gltf: a heap-buffer-overflow reading past a 209-byte buffer),
+// so the view is checked here before a byte of it is read.
+bool keepImageBytes(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                    const unsigned char* bytes, int size, void* user) {
+  const auto& model = *static_cast<const tinygltf::Model*>(user);
+  if (image->bufferView >= 0) {
+    const auto& views = model.bufferViews;
+    const bool viewExists = size_t(image->bufferView) < views.size();
+    const auto* view = viewExists ? &views[size_t(image->bufferView)] : nullptr;
+    uint64_t end = 0;
+    if (!view || view->buffer < 0 || size_t(view->buffer) >= model.buffers.size() ||
+        __builtin_add_overflow(uint64_t(view->byteOffset), uint64_t(view->byteLength), &end) ||
+        end > model.buffers[size_t(view->buffer)].data.size() || view->byteLength > uint64_t(INT32_MAX)) {
+      if (err) *err += fmt::format("image {} refers to bufferView {}, which reaches past the end of its buffer", index,
+                                   image->bufferView);
+      return false;
+    }
+  }
   if (bytes && size > 0) image->image.assign(bytes, bytes + size);
   image->as_is = true;
   return true;
+}
+
+// Buffers named by URI are read through these callbacks under the rules images follow
+// (readReferencedFile): no shell expansion, regular files, sizes, the scene's folder.
+struct BufferAccess {
+  const std::filesystem::path& gltfFile;
+  const LoadOptions& options;
+  std::string refusal;  // the first buffer refused, and why
+};
+
+bool fileExists(const std::string& path, void*) {
+  std::error_code ec;
+  return std::filesystem::exists(path, ec);
+}
+
+std::string expandNothing(const std::string& path, void*) { return path; }
+
+bool readBuffer(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  auto& access = *static_cast<BufferAccess*>(user);
+  try {
+    *out = readContained(access.gltfFile, path, access.options, InputLimits::kMaxFileBytes);
+    return true;
+  } catch (const InputFileError& e) {
+    if (access.refusal.empty()) access.refusal = e.what();
+    if (err) *err += e.what();
+    return false;
+  }
+}
+
+bool writeNothing(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "the importer writes no files";
+  return false;
+}
+
+// The JSON text of a .gltf, or the JSON chunk of a .glb (as much of it as the file holds).
+std::string_view jsonText(const std::vector<uint8_t>& bytes, bool binary) {
+  const char* text = reinterpret_cast<const char*>(bytes.data());
+  if (!binary || bytes.size() < 20) return {text, bytes.size()};
+  uint32_t chunkLength = 0;
+  std::memcpy(&chunkLength, bytes.data() + 12, 4);
+  return {text + 20, std::min<size_t>(chunkLength, bytes.size() - 20)};
 }
 
 class Reader {
@@ -59,12 +124,18 @@ class Reader {
   View accessor(int index, const char* what) const {
     if (index < 0 || size_t(index) >= m_.accessors.size()) fail(fmt::format("{} refers to accessor {}, which does not exist", what, index));
     const auto& a = m_.accessors[size_t(index)];
-    if (a.sparse.isSparse) fail(fmt::format("accessor {} ({}) is sparse, which is not supported", index, what));
     View v;
     v.count = a.count;
     v.componentType = a.componentType;
     v.type = a.type;
     v.normalized = a.normalized;
+    // A sparse accessor may have no bufferView: its base values are zeros.
+    if (a.sparse.isSparse && a.bufferView < 0) {
+      v.stride = elementBytes(a, index, what);
+      zeros_.emplace_back(v.count * v.stride, uint8_t(0));
+      v.data = zeros_.back().data();
+      return v;
+    }
     if (a.bufferView < 0 || size_t(a.bufferView) >= m_.bufferViews.size())
       fail(fmt::format("accessor {} ({}) has no valid bufferView", index, what));
     const auto& bv = m_.bufferViews[size_t(a.bufferView)];
@@ -76,11 +147,20 @@ class Reader {
     size_t elem = size_t(compSize) * size_t(comps);
     v.stride = bv.byteStride ? bv.byteStride : elem;
     if (v.stride < elem) fail(fmt::format("accessor {} ({}) has a byteStride smaller than its element", index, what));
-    size_t begin = bv.byteOffset + a.byteOffset;
-    size_t needed = v.count == 0 ? 0 : (v.count - 1) * v.stride + elem;
-    if (a.byteOffset + needed > bv.byteLength || begin + needed > buf.size() || bv.byteOffset + bv.byteLength > buf.size())
-      fail(fmt::format("accessor {} ({}) reaches past the end of its buffer ({} elements of {} bytes from offset {}, buffer has {} bytes)",
-                       index, what, v.count, elem, begin, buf.size()));
+    // Every sum and product checked: offsets and counts near 2^64 in a hostile file would
+    // wrap an unchecked bound and read in front of the buffer.
+    uint64_t needed = 0, accessorEnd = 0, begin = 0, viewEnd = 0;
+    bool overflow = false;
+    if (v.count > 0)
+      overflow |= __builtin_mul_overflow(uint64_t(v.count - 1), uint64_t(v.stride), &needed) ||
+                  __builtin_add_overflow(needed, uint64_t(elem), &needed);
+    overflow |= __builtin_add_overflow(uint64_t(a.byteOffset), needed, &accessorEnd);
+    overflow |= __builtin_add_overflow(uint64_t(bv.byteOffset), uint64_t(a.byteOffset), &begin);
+    overflow |= __builtin_add_overflow(uint64_t(bv.byteOffset), uint64_t(bv.byteLength), &viewEnd);
+    if (overflow || accessorEnd > bv.byteLength || viewEnd > buf.size())
+      fail(fmt::format("accessor {} ({}) reaches past the end of its buffer ({} elements of {} bytes from offset {} "
+                       "of bufferView {} at {}, buffer has {} bytes)",
+                       index, what, v.count, elem, a.byteOffset, a.bufferView, bv.byteOffset, buf.size()));
     v.data = buf.data() + begin;
     return v;
   }
@@ -108,6 +188,9 @@ class Reader {
     std::vector<glm::vec<N, float>> out(v.count);
     for (size_t i = 0; i < v.count; ++i)
       for (int c = 0; c < N; ++c) out[i][c] = component(v, i, c);
+    applySparse(index, what, [&](size_t target, const View& values, size_t k) {
+      for (int c = 0; c < N; ++c) out[target][c] = component(values, k, c);
+    });
     return out;
   }
 
@@ -124,12 +207,66 @@ class Reader {
         default: fail(fmt::format("index accessor {} has a component type indices cannot have", index));
       }
     }
+    applySparse(index, "indices", [&](size_t target, const View& values, size_t k) {
+      out[target] = uint32_t(component(values, k, 0));
+    });
     return out;
   }
 
  private:
+  size_t elementBytes(const tinygltf::Accessor& a, int index, const char* what) const {
+    int compSize = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
+    int comps = tinygltf::GetNumComponentsInType(uint32_t(a.type));
+    if (compSize <= 0 || comps <= 0) fail(fmt::format("accessor {} ({}) has an invalid type", index, what));
+    return size_t(compSize) * size_t(comps);
+  }
+
+  // A checked view of `count` tightly packed elements in bufferView `view` from `offset`.
+  View packed(int view, size_t offset, size_t count, int componentType, int type, bool normalized, int index,
+              const char* what) const {
+    if (view < 0 || size_t(view) >= m_.bufferViews.size())
+      fail(fmt::format("sparse accessor {} ({}) refers to bufferView {}, which does not exist", index, what, view));
+    const auto& bv = m_.bufferViews[size_t(view)];
+    if (bv.buffer < 0 || size_t(bv.buffer) >= m_.buffers.size()) fail(fmt::format("bufferView {} refers to a missing buffer", view));
+    int compSize = tinygltf::GetComponentSizeInBytes(uint32_t(componentType));
+    int comps = tinygltf::GetNumComponentsInType(uint32_t(type));
+    if (compSize <= 0 || comps <= 0) fail(fmt::format("sparse accessor {} ({}) has an invalid type", index, what));
+    const size_t elem = size_t(compSize) * size_t(comps), bytes = count * elem;
+    const auto& buf = m_.buffers[size_t(bv.buffer)].data;
+    if (offset + bytes > bv.byteLength || bv.byteOffset + bv.byteLength > buf.size())
+      fail(fmt::format("sparse accessor {} ({}) reaches past the end of bufferView {}", index, what, view));
+    View v;
+    v.data = buf.data() + bv.byteOffset + offset;
+    v.count = count;
+    v.stride = elem;
+    v.componentType = componentType;
+    v.type = type;
+    v.normalized = normalized;
+    return v;
+  }
+
+  // Sparse accessors (glTF 3.6.2.3): `count` indices into the accessor and as many values that
+  // replace the base values there; calls set(target element, values view, k) for each.
+  template <class Set>
+  void applySparse(int index, const char* what, Set set) const {
+    const auto& a = m_.accessors[size_t(index)];
+    if (!a.sparse.isSparse) return;
+    const size_t n = size_t(std::max(a.sparse.count, 0));
+    View idx = packed(a.sparse.indices.bufferView, size_t(a.sparse.indices.byteOffset), n, a.sparse.indices.componentType,
+                      TINYGLTF_TYPE_SCALAR, false, index, what);
+    View values = packed(a.sparse.values.bufferView, size_t(a.sparse.values.byteOffset), n, a.componentType, a.type,
+                         a.normalized, index, what);
+    for (size_t k = 0; k < n; ++k) {
+      const double target = component(idx, k, 0);
+      if (!(target >= 0.0 && target < double(a.count)))
+        fail(fmt::format("sparse accessor {} ({}) replaces element {}, beyond its {} elements", index, what, target, a.count));
+      set(size_t(target), values, k);
+    }
+  }
+
   const tinygltf::Model& m_;
   const std::filesystem::path& file_;
+  mutable std::vector<std::vector<uint8_t>> zeros_;  // base values of sparse accessors without a bufferView
 };
 
 glm::dmat4 nodeTransform(const tinygltf::Node& n) {
@@ -143,67 +280,209 @@ glm::dmat4 nodeTransform(const tinygltf::Node& n) {
   return t * r * s;
 }
 
-bool finite(const glm::dmat4& m) {
+// Finite once stored as float, and placing things within InputLimits::kMaxCoordinate.
+bool usableTransform(const glm::dmat4& m) {
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
-      if (!std::isfinite(m[c][r])) return false;
+      if (!std::isfinite(float(m[c][r]))) return false;
+  return std::abs(m[3][0]) <= InputLimits::kMaxCoordinate && std::abs(m[3][1]) <= InputLimits::kMaxCoordinate &&
+         std::abs(m[3][2]) <= InputLimits::kMaxCoordinate;
+}
+
+// Normals are transformed by the inverse transpose: a singular transform (a zero scale) has
+// none, and the float version of it must be finite too.
+bool invertible(const glm::dmat4& m) {
+  const glm::dmat3 l(m);
+  const double det = glm::determinant(l);
+  if (!std::isfinite(det) || std::abs(det) < 1e-30) return false;
+  const glm::mat3 n(glm::transpose(glm::inverse(l)));
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r)
+      if (!std::isfinite(n[c][r])) return false;
   return true;
 }
 
-// One KHR_lights_punctual light at its node's place, checked against the extension's
-// constraints (a light the file describes wrongly is an error, not a guess).
-Light readLight(const tinygltf::Light& gl, const std::string& nodeName, const glm::dvec3& position,
-                const glm::dquat& orientation, const Reader& rd) {
+template <int N>
+bool allFinite(const glm::vec<N, double>& v) {
+  for (int i = 0; i < N; ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
+
+bool withinWorld(const Bounds& b) {
+  if (!b.valid()) return true;
+  const double most = std::max({std::abs(b.min.x), std::abs(b.min.y), std::abs(b.min.z), std::abs(b.max.x),
+                                std::abs(b.max.y), std::abs(b.max.z)});
+  return most <= InputLimits::kMaxCoordinate;
+}
+
+// One KHR_lights_punctual light at its node's place. One rule with the rest of the import
+// (ImportValues): a plain value out of range is clamped with one warning naming the light
+// (negative light does not exist: 0), a value that is not a finite float or beyond the light
+// limit is one error, and data the specification forbids (an unknown type, a colour of other
+// than 3 numbers, cones with inner >= outer or outside [0, pi/2]) is one error, not a guess.
+// Returns nothing, with a warning, when the node's transform leaves no direction.
+std::optional<Light> readLight(const tinygltf::Light& gl, const std::string& nodeName, const glm::dvec3& position,
+                               const glm::dquat& orientation, ImportValues& values) {
   Light l;
   l.name = gl.name.empty() ? nodeName : gl.name;
+  const std::string what = fmt::format("light `{}`", l.name);
   if (gl.type == "directional") l.type = LightType::Directional;
   else if (gl.type == "point") l.type = LightType::Point;
   else if (gl.type == "spot") l.type = LightType::Spot;
-  else rd.fail(fmt::format("light `{}` has type `{}` (KHR_lights_punctual: directional, point or spot)", l.name, gl.type));
-  if (gl.color.size() == 3) l.color = glm::vec3(gl.color[0], gl.color[1], gl.color[2]);
-  else if (!gl.color.empty()) rd.fail(fmt::format("light `{}` has a colour of {} numbers (3 expected)", l.name, gl.color.size()));
-  l.intensity = float(gl.intensity);
-  if (!(l.intensity >= 0.0f) || !std::isfinite(l.intensity) || !(glm::all(glm::greaterThanEqual(l.color, glm::vec3(0.0f)))) ||
-      !std::isfinite(l.color.r + l.color.g + l.color.b))
-    rd.fail(fmt::format("light `{}` has a negative or non-finite colour or intensity", l.name));
-  if (gl.range > 0) l.range = float(gl.range);
+  else values.fail(fmt::format("{} has type `{}` (KHR_lights_punctual: directional, point or spot)", what, gl.type));
+  l.color = values.lightColor(gl.color, l.color, what + " color");
+  l.intensity = values.light(gl.intensity, what + " intensity");
+  values.requireLightRange(l.color * l.intensity, what + " (color x intensity)");
+  if (gl.range > 0 && std::isfinite(float(gl.range))) l.range = float(gl.range);
   if (l.type == LightType::Spot) {
-    l.innerConeAngle = float(gl.spot.innerConeAngle);
-    l.outerConeAngle = float(gl.spot.outerConeAngle);
+    l.innerConeAngle = values.finite(gl.spot.innerConeAngle, what + " innerConeAngle");
+    l.outerConeAngle = values.finite(gl.spot.outerConeAngle, what + " outerConeAngle");
     if (!(l.innerConeAngle >= 0.0f && l.innerConeAngle < l.outerConeAngle && l.outerConeAngle <= 0.5f * glm::pi<float>() + 1e-6f))
-      rd.fail(fmt::format("light `{}` has cone angles inner {} and outer {} (0 <= inner < outer <= pi/2)", l.name,
-                          l.innerConeAngle, l.outerConeAngle));
+      values.fail(fmt::format("{} has cone angles inner {} and outer {} (0 <= inner < outer <= pi/2)", what,
+                              l.innerConeAngle, l.outerConeAngle));
   }
   l.position = position;
   l.direction = glm::normalize(orientation * glm::dvec3(0.0, 0.0, -1.0));
-  return l;
+  if (allFinite(l.direction)) return l;
+  values.warn(fmt::format("{} has no direction (its node's transform is singular); it is ignored", what));
+  return std::nullopt;
+}
+
+// Everything in the file Twinlight does not render (or renders approximately), one entry per
+// feature with how often the file uses it: Scene::ignored and one warning each.
+class IgnoredFeatures {
+ public:
+  void add(const std::string& feature, const std::string& instead) {
+    for (auto& e : entries_)
+      if (e.feature == feature) return void(++e.count);
+    entries_.push_back({feature, instead, 1});
+  }
+  void report(Scene& scene, const std::filesystem::path& file) const {
+    for (const auto& e : entries_) {
+      std::string line = fmt::format("{} ({}x): {}", e.feature, e.count, e.instead);
+      scene.warnings.push_back(fmt::format("{}: {}", file.string(), line));
+      scene.ignored.push_back(std::move(line));
+    }
+  }
+
+ private:
+  struct Entry {
+    std::string feature, instead;
+    size_t count;
+  };
+  std::vector<Entry> entries_;
+};
+
+// The texture slots of a material, with their glTF names.
+template <class F>
+void forEachTextureSlot(const tinygltf::Material& m, F f) {
+  f("baseColorTexture", m.pbrMetallicRoughness.baseColorTexture.index, m.pbrMetallicRoughness.baseColorTexture.texCoord,
+    m.pbrMetallicRoughness.baseColorTexture.extensions);
+  f("metallicRoughnessTexture", m.pbrMetallicRoughness.metallicRoughnessTexture.index,
+    m.pbrMetallicRoughness.metallicRoughnessTexture.texCoord, m.pbrMetallicRoughness.metallicRoughnessTexture.extensions);
+  f("normalTexture", m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions);
+  f("occlusionTexture", m.occlusionTexture.index, m.occlusionTexture.texCoord, m.occlusionTexture.extensions);
+  f("emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions);
+}
+
+void scanIgnored(const tinygltf::Model& model, IgnoredFeatures& ignored) {
+  static const std::set<std::string> applied = {"KHR_materials_emissive_strength", "KHR_lights_punctual",
+                                                "KHR_mesh_quantization"};
+  for (const auto& e : model.extensionsUsed)
+    if (!applied.count(e)) ignored.add("extension " + e, "not applied (the file renders as if it were absent)");
+  for (const auto& m : model.materials) {
+    if (m.alphaMode == "BLEND") ignored.add("alpha BLEND", "drawn opaque (translucency is not rendered)");
+    forEachTextureSlot(m, [&](const char* slot, int index, int texCoord, const tinygltf::ExtensionMap& extensions) {
+      if (index < 0) return;
+      if (std::string(slot) == "occlusionTexture")
+        ignored.add("occlusionTexture", "not applied (ambient occlusion comes from the lighting path)");
+      if (texCoord != 0) ignored.add(fmt::format("TEXCOORD_{} in a {}", texCoord, slot), "sampled with TEXCOORD_0");
+      if (extensions.count("KHR_texture_transform"))
+        ignored.add("KHR_texture_transform", "texture offset, rotation and scale not applied");
+      if (size_t(index) >= model.textures.size()) return;
+      const int si = model.textures[size_t(index)].sampler;
+      if (si < 0 || size_t(si) >= model.samplers.size()) return;
+      const auto& sm = model.samplers[size_t(si)];
+      const bool repeat = sm.wrapS == TINYGLTF_TEXTURE_WRAP_REPEAT && sm.wrapT == TINYGLTF_TEXTURE_WRAP_REPEAT;
+      if (!repeat) ignored.add("sampler wrap mode clamp/mirror", "textures repeat");
+      const bool nearest = sm.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST || sm.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ||
+                           sm.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+                           sm.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
+      if (nearest) ignored.add("sampler filter NEAREST", "textures filtered linearly (trilinear, anisotropic)");
+    });
+  }
+  for (const auto& mesh : model.meshes)
+    for (const auto& p : mesh.primitives) {
+      if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) ignored.add("points, lines and strips", "primitives skipped");
+      if (p.attributes.count("COLOR_0")) ignored.add("COLOR_0", "vertex colours not multiplied into the base colour");
+      if (p.attributes.count("JOINTS_0") || p.attributes.count("WEIGHTS_0"))
+        ignored.add("skinning (JOINTS_0/WEIGHTS_0)", "meshes drawn in their bind pose");
+      for (const auto& target : p.targets)
+        if (target.count("TANGENT")) ignored.add("morph target TANGENT deltas", "tangents keep their rest pose");
+    }
+  if (!model.skins.empty() && model.meshes.empty()) ignored.add("skins", "not applied");
+  for (const auto& a : model.animations)
+    for (const auto& ch : a.channels)
+      if (ch.target_path != "weights")
+        ignored.add(fmt::format("node {} animation", ch.target_path), "not played (only morph weights are)");
+  for (const auto& c : model.cameras)
+    if (c.type == "orthographic") ignored.add("orthographic camera", "dropped (not in --camera's list)");
+  if (model.scenes.size() > 1) ignored.add("scenes besides the default", "not loaded");
 }
 
 }  // namespace
 
-Scene loadGltf(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) throw SceneError(fmt::format("{}: file not found", file.string()));
-  if (std::filesystem::is_directory(file, ec)) throw SceneError(fmt::format("{}: is a directory, not a glTF file", file.string()));
-
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(keepImageBytes, nullptr);
-  tinygltf::Model model;
-  std::string err, warn;
+Scene loadGltf(const std::filesystem::path& file, const LoadOptions& options) {
   std::string ext = file.extension().string();
   for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const bool binary = ext == ".glb";
+  // Read and measured here, before tinygltf allocates anything for it: a device or a FIFO
+  // is refused, and JSON nested deeper than the limit never reaches its recursive parser.
+  std::vector<uint8_t> bytes;
+  try {
+    bytes = readRegularFile(file, binary ? InputLimits::kMaxFileBytes : InputLimits::kMaxGltfJsonBytes);
+  } catch (const InputFileError& e) {
+    throw SceneError(e.what());
+  }
+  return loadGltfBytes(std::move(bytes), binary, file, options);
+}
+
+Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesystem::path& file, const LoadOptions& options) {
+  try {
+    if (bytes.size() > (binary ? InputLimits::kMaxFileBytes : InputLimits::kMaxGltfJsonBytes))
+      throw InputFileError(fmt::format("{}: {} bytes, more than a glTF may have", file.string(), bytes.size()));
+    requireJsonDepth(jsonText(bytes, binary), file.string());
+  } catch (const InputFileError& e) {
+    throw SceneError(e.what());
+  }
+
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  loader.SetImageLoader(keepImageBytes, &model);
+  BufferAccess access{file, options, {}};
+  loader.SetFsCallbacks({fileExists, expandNothing, readBuffer, writeNothing, &access});
+  std::string err, warn;
+  const std::string baseDir = file.parent_path().string();
   bool ok = false;
   try {
-    ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
-                       : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), baseDir)
+                : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                             unsigned(bytes.size()), baseDir);
   } catch (const std::exception& e) {
     throw SceneError(fmt::format("{}: not a valid glTF file ({})", file.string(), oneLine(e.what())));
   }
+  if (!ok && !access.refusal.empty())
+    throw SceneError(fmt::format("{}: a buffer cannot be read: {}", file.string(), oneLine(access.refusal)));
   if (!ok) throw SceneError(fmt::format("{}: not a valid glTF file: {}", file.string(), oneLine(err.empty() ? warn : err)));
+  bytes = {};
 
   // Extensions the importer applies; a file that *requires* any other is refused rather than
   // shown wrongly (merely *used* extensions are ignored, as the glTF specification allows).
-  static const std::set<std::string> supported = {"KHR_materials_emissive_strength", "KHR_lights_punctual"};
+  // KHR_mesh_quantization only widens the attribute types, which the accessor reader decodes
+  // (normalized and integer components of every size).
+  static const std::set<std::string> supported = {"KHR_materials_emissive_strength", "KHR_lights_punctual",
+                                                  "KHR_mesh_quantization"};
   for (const auto& e : model.extensionsRequired)
     if (!supported.count(e)) throw SceneError(fmt::format("{}: requires the unsupported extension {}", file.string(), e));
 
@@ -211,27 +490,35 @@ Scene loadGltf(const std::filesystem::path& file) {
   Scene scene;
   scene.name = file.stem().string();
   scene.path = file;
+  ImportValues values(file, scene.warnings);
+  scene.extensionsUsed = model.extensionsUsed;
+  IgnoredFeatures ignored;
+  scanIgnored(model, ignored);
 
   // Textures: one entry per (glTF texture, colour space) actually used by a material.
-  TextureCache textures(model, file, scene);
+  TextureCache textures(model, file, options, scene);
 
   for (size_t i = 0; i < model.materials.size(); ++i) {
     const auto& gm = model.materials[i];
     const auto& pbr = gm.pbrMetallicRoughness;
     Material m;
     m.name = gm.name.empty() ? fmt::format("material{}", i) : gm.name;
+    const std::string what = fmt::format("material `{}`", m.name);
+    // The glTF ranges: factors in [0, 1] (an albedo above 1 creates energy), emission >= 0.
     if (pbr.baseColorFactor.size() == 4)
-      m.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
-    m.metallic = float(pbr.metallicFactor);
-    m.roughness = float(pbr.roughnessFactor);
-    if (gm.emissiveFactor.size() == 3) m.emissiveFactor = glm::vec3(gm.emissiveFactor[0], gm.emissiveFactor[1], gm.emissiveFactor[2]);
+      for (int c = 0; c < 4; ++c) m.baseColorFactor[c] = values.clamped(pbr.baseColorFactor[size_t(c)], 0.0f, 1.0f, what + " baseColorFactor");
+    else if (!pbr.baseColorFactor.empty()) values.fail(what + " baseColorFactor does not have 4 components");
+    m.metallic = values.clamped(pbr.metallicFactor, 0.0f, 1.0f, what + " metallicFactor");
+    m.roughness = values.clamped(pbr.roughnessFactor, 0.0f, 1.0f, what + " roughnessFactor");
+    m.emissiveFactor = values.lightColor(gm.emissiveFactor, m.emissiveFactor, what + " emissiveFactor");
     if (auto it = gm.extensions.find("KHR_materials_emissive_strength"); it != gm.extensions.end()) {
       const auto& s = it->second.Get("emissiveStrength");
-      if (s.IsNumber()) m.emissiveStrength = float(s.GetNumberAsDouble());
+      if (s.IsNumber()) m.emissiveStrength = values.light(s.GetNumberAsDouble(), what + " emissiveStrength");
     }
-    m.normalScale = float(gm.normalTexture.scale);
+    values.requireLightRange(m.emissiveFactor * m.emissiveStrength, what + " emission (emissiveFactor x emissiveStrength)");
+    m.normalScale = values.finite(gm.normalTexture.scale, what + " normalTexture.scale");
     m.alphaMode = gm.alphaMode == "MASK" ? AlphaMode::Mask : gm.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
-    m.alphaCutoff = float(gm.alphaCutoff);
+    m.alphaCutoff = values.clamped(gm.alphaCutoff, 0.0f, 1.0f, what + " alphaCutoff");
     m.doubleSided = gm.doubleSided;
     m.baseColorTexture = textures.get(pbr.baseColorTexture.index, true);
     m.metallicRoughnessTexture = textures.get(pbr.metallicRoughnessTexture.index, false);
@@ -250,11 +537,7 @@ Scene loadGltf(const std::filesystem::path& file) {
       const auto& prim = gmesh.primitives[pi];
       std::string name = gmesh.name.empty() ? fmt::format("mesh{}", mi) : gmesh.name;
       if (pi > 0) name += fmt::format("#{}", pi);
-      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
-        scene.warnings.push_back(fmt::format("{}: mesh `{}` primitive {} is not triangles (mode {}); skipped",
-                                             file.string(), name, pi, prim.mode));
-        continue;
-      }
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) continue;  // IgnoredFeatures says so
       auto pos = prim.attributes.find("POSITION");
       if (pos == prim.attributes.end()) rd.fail(fmt::format("mesh `{}` primitive {} has no POSITION", name, pi));
       Mesh mesh;
@@ -299,7 +582,8 @@ Scene loadGltf(const std::filesystem::path& file) {
           haveTangents = true;
         }
       }
-      finishVertices(mesh, haveNormals, haveTangents);
+      const size_t fileVertices = mesh.vertices.size();
+      const std::vector<uint32_t> vertexSource = finishVertices(mesh, haveNormals, haveTangents);
       // Morph targets: displacements of positions (and normals) added with weights.
       for (size_t ti = 0; ti < prim.targets.size(); ++ti) {
         MorphTarget target;
@@ -307,20 +591,26 @@ Scene loadGltf(const std::filesystem::path& file) {
         for (const auto& [attribute, index] : prim.targets[ti]) {
           if (attribute != "POSITION" && attribute != "NORMAL") continue;  // tangent deltas are not applied
           auto deltas = rd.floats<3>(index, "morph target");
-          if (deltas.size() != mesh.vertices.size())
+          if (deltas.size() != fileVertices)
             rd.fail(fmt::format("mesh `{}` morph target {} has {} {} deltas for {} vertices", name, ti, deltas.size(),
-                                attribute, mesh.vertices.size()));
+                                attribute, fileVertices));
           for (const auto& d : deltas)
-            if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z))
-              rd.fail(fmt::format("mesh `{}` morph target {} has a non-finite {} delta", name, ti, attribute));
-          (attribute == "POSITION" ? target.positions : target.normals) = std::move(deltas);
+            if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z) ||
+                std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}) > InputLimits::kMaxCoordinate)
+              rd.fail(fmt::format("mesh `{}` morph target {} has a non-finite or out-of-range {} delta", name, ti, attribute));
+          // Vertices split for their tangents take their original's deltas.
+          std::vector<glm::vec3> perVertex(mesh.vertices.size());
+          for (size_t k = 0; k < perVertex.size(); ++k) perVertex[k] = deltas[vertexSource[k]];
+          (attribute == "POSITION" ? target.positions : target.normals) = std::move(perVertex);
         }
         mesh.morphTargets.push_back(std::move(target));
       }
+      if (!withinWorld(mesh.bounds))
+        rd.fail(fmt::format("mesh `{}` has positions beyond {:g} m from its origin", name, InputLimits::kMaxCoordinate));
       if (!mesh.morphTargets.empty()) {
         mesh.morphWeights.assign(mesh.morphTargets.size(), 0.0f);
         for (size_t k = 0; k < gmesh.weights.size() && k < mesh.morphWeights.size(); ++k)
-          mesh.morphWeights[k] = float(gmesh.weights[k]);
+          mesh.morphWeights[k] = values.morphWeight(gmesh.weights[k], fmt::format("mesh `{}` weight {}", name, k));
         mesh.bounds = morphBounds(mesh);
       }
       if (prim.material >= 0 && size_t(prim.material) < scene.materials.size()) {
@@ -355,9 +645,13 @@ Scene loadGltf(const std::filesystem::path& file) {
     visited[size_t(ni)] = true;
     const auto& node = model.nodes[size_t(ni)];
     glm::dmat4 world = parent * nodeTransform(node);
-    if (!finite(world)) rd.fail(fmt::format("node {} has a non-finite transform", ni));
+    if (!usableTransform(world))
+      rd.fail(fmt::format("node {} has a non-finite transform or one placing it beyond {:g} m", ni, InputLimits::kMaxCoordinate));
     std::string nodeName = node.name.empty() ? fmt::format("node{}", ni) : node.name;
-    if (node.mesh >= 0) {
+    if (node.mesh >= 0 && !invertible(world)) {
+      // Nothing to see (a zero scale hides a node), and no normal transform to give it.
+      values.warn(fmt::format("node `{}` has a singular transform (a zero scale); its mesh is not drawn", nodeName));
+    } else if (node.mesh >= 0) {
       if (size_t(node.mesh) >= model.meshes.size()) rd.fail(fmt::format("node `{}` refers to mesh {}, which does not exist", nodeName, node.mesh));
       const auto& prims = meshPrimitives[size_t(node.mesh)];
       for (size_t k = 0; k < prims.size(); ++k) {
@@ -377,12 +671,15 @@ Scene loadGltf(const std::filesystem::path& file) {
           Mesh& mesh = scene.meshes[inst.mesh];
           mesh.morphWeights = meshDefaultWeights[prims[k]];
           for (size_t w = 0; w < node.weights.size() && w < mesh.morphWeights.size(); ++w)
-            mesh.morphWeights[w] = float(node.weights[w]);
+            mesh.morphWeights[w] = values.morphWeight(node.weights[w], fmt::format("node `{}` weight {}", nodeName, w));
         }
         meshInstanced[inst.mesh] = true;
         inst.node = uint32_t(ni);
         inst.transform = world;
         inst.worldBounds = transformBounds(scene.meshes[prims[k]].bounds, world);
+        if (!withinWorld(inst.worldBounds))
+          rd.fail(fmt::format("node `{}` places mesh `{}` beyond {:g} m from the origin", nodeName,
+                              scene.meshes[inst.mesh].name, InputLimits::kMaxCoordinate));
         scene.bounds.extend(inst.worldBounds);
         scene.instances.push_back(std::move(inst));
       }
@@ -393,15 +690,24 @@ Scene loadGltf(const std::filesystem::path& file) {
                                                                       glm::normalize(glm::dvec3(world[2])))));
     if (node.camera >= 0 && size_t(node.camera) < model.cameras.size()) {
       const auto& gc = model.cameras[size_t(node.camera)];
-      if (gc.type == "perspective") {
+      const auto& p = gc.perspective;
+      const std::string cameraName = gc.name.empty() ? nodeName : gc.name;
+      // The glTF ranges: 0 < yfov (the session takes up to 178 degrees), 0 < znear < zfar.
+      const bool usable = float(p.yfov) > 0.0f && float(p.yfov) < 3.1f && float(p.znear) > 0.0f &&
+                          std::isfinite(float(p.znear)) && std::isfinite(float(p.zfar)) &&
+                          (p.zfar <= 0.0 || p.zfar > p.znear) && std::isfinite(float(p.aspectRatio)) &&
+                          p.aspectRatio >= 0.0 && allFinite(glm::dvec4(orientation.x, orientation.y, orientation.z, orientation.w));
+      if (gc.type == "perspective" && !usable) {
+        values.warn(fmt::format("camera `{}` has a field of view, clip planes or orientation out of range; it is ignored", cameraName));
+      } else if (gc.type == "perspective") {
         Camera c;
-        c.name = gc.name.empty() ? nodeName : gc.name;
+        c.name = cameraName;
         c.position = position;
         c.orientation = orientation;
-        c.yfovRadians = float(gc.perspective.yfov);
-        c.znear = float(gc.perspective.znear);
-        if (gc.perspective.zfar > 0) c.zfar = float(gc.perspective.zfar);
-        if (gc.perspective.aspectRatio > 0) c.aspectRatio = float(gc.perspective.aspectRatio);
+        c.yfovRadians = float(p.yfov);
+        c.znear = float(p.znear);
+        if (p.zfar > 0) c.zfar = float(p.zfar);
+        if (p.aspectRatio > 0) c.aspectRatio = float(p.aspectRatio);
         scene.cameras.push_back(c);
       }
     }
@@ -409,8 +715,8 @@ Scene loadGltf(const std::filesystem::path& file) {
       const auto& li = it->second.Get("light");
       int index = li.IsInt() ? li.GetNumberAsInt() : -1;
       if (index < 0 || size_t(index) >= model.lights.size())
-        rd.fail(fmt::format("node `{}` refers to light {}, which does not exist", nodeName, index));
-      scene.lights.push_back(readLight(model.lights[size_t(index)], nodeName, position, orientation, rd));
+        values.fail(fmt::format("node `{}` refers to light {}, which does not exist", nodeName, index));
+      if (auto l = readLight(model.lights[size_t(index)], nodeName, position, orientation, values)) scene.lights.push_back(*l);
     }
     for (int child : node.children) visit(child, world, depth + 1);
   };
@@ -430,23 +736,16 @@ Scene loadGltf(const std::filesystem::path& file) {
   for (int r : roots) visit(r, glm::dmat4(1.0), 0);
 
   // Animations: channels of morph weights drive the meshes of their node's instances. Node
-  // transforms are not animated (a warning says so once per file).
-  bool warnedTransforms = false;
+  // transforms are not animated (IgnoredFeatures says so).
   for (size_t ai = 0; ai < model.animations.size(); ++ai) {
     const auto& anim = model.animations[ai];
     for (const auto& ch : anim.channels) {
-      if (ch.target_path != "weights") {
-        if (!warnedTransforms)
-          scene.warnings.push_back(fmt::format("{}: node {} animations are not played (only morph weights are)",
-                                               file.string(), ch.target_path));
-        warnedTransforms = true;
-        continue;
-      }
+      if (ch.target_path != "weights") continue;
       if (ch.sampler < 0 || size_t(ch.sampler) >= anim.samplers.size())
         rd.fail(fmt::format("animation {} has a channel with sampler {}, which does not exist", ai, ch.sampler));
       const auto& sampler = anim.samplers[size_t(ch.sampler)];
       auto times = rd.floats<1>(sampler.input, "animation input");
-      auto values = rd.floats<1>(sampler.output, "animation output");
+      auto outputs = rd.floats<1>(sampler.output, "animation output");
       for (size_t k = 0; k < times.size(); ++k)
         if (!std::isfinite(times[k].x) || (k > 0 && times[k].x < times[k - 1].x))
           rd.fail(fmt::format("animation {} has keyframe times that are not finite and increasing", ai));
@@ -455,16 +754,18 @@ Scene loadGltf(const std::filesystem::path& file) {
         if (int(inst.node) != ch.target_node || !scene.meshes[inst.mesh].deforms()) continue;
         const size_t targets = scene.meshes[inst.mesh].morphTargets.size();
         const size_t perKey = cubic ? 3 * targets : targets;
-        if (values.size() != times.size() * perKey)
+        if (outputs.size() != times.size() * perKey)
           rd.fail(fmt::format("animation {} drives {} morph targets of `{}` with {} values for {} keys", ai, targets,
-                              inst.name, values.size(), times.size()));
+                              inst.name, outputs.size(), times.size()));
         MorphAnimation a;
         a.mesh = inst.mesh;
         a.step = sampler.interpolation == "STEP";
         for (const auto& t : times) a.times.push_back(t.x);
         // A cubic spline's keys hold in-tangents, values and out-tangents: its values, linearly.
         for (size_t k = 0; k < times.size(); ++k)
-          for (size_t j = 0; j < targets; ++j) a.weights.push_back(values[k * perKey + (cubic ? targets : 0) + j].x);
+          for (size_t j = 0; j < targets; ++j) 
+            a.weights.push_back(values.morphWeight(outputs[k * perKey + (cubic ? targets : 0) + j].x,
+                                                   fmt::format("animation {} weight", ai)));
         if (!a.times.empty()) scene.animationSeconds = std::max(scene.animationSeconds, double(a.times.back()));
         scene.morphAnimations.push_back(std::move(a));
       }
@@ -490,14 +791,16 @@ Scene loadGltf(const std::filesystem::path& file) {
       for (int k = 0; k < 3; ++k) {
         const auto& v = sky.Get(k);
         if (!v.IsNumber() || v.GetNumberAsDouble() < 0.0) rd.fail("extras.twinlight.sky_radiance must be three non-negative numbers");
-        c[k] = float(v.GetNumberAsDouble());
+        c[k] = values.finite(v.GetNumberAsDouble(), "extras.twinlight.sky_radiance");
       }
+      values.requireLightRange(c, "extras.twinlight.sky_radiance");
       scene.environment.skyRadiance = c;
     }
   };
   readSky(model.extras);
   if (!model.scenes.empty()) readSky(model.scenes[sceneIndex].extras);
 
+  ignored.report(scene, file);
   scene.contentHash = hashScene(scene);
   return scene;
 }

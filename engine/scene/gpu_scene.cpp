@@ -1,6 +1,7 @@
 #include "scene/gpu_scene.h"
 
 #include "gpu/check.h"
+#include "gpu/formats.h"
 #include "shared/scene.h"
 
 #include <fmt/format.h>
@@ -11,6 +12,15 @@ namespace tl::scene {
 
 using shared::GpuInstance;
 using shared::GpuMaterial;
+
+VkFormat textureFormat(const Texture& t) {
+  switch (t.format) {
+    case TexelFormat::Rgba16Unorm: return VK_FORMAT_R16G16B16A16_UNORM;
+    case TexelFormat::Rgba16Float: return VK_FORMAT_R16G16B16A16_SFLOAT;
+    case TexelFormat::Rgba8: break;
+  }
+  return t.srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+}
 
 std::vector<VkVertexInputBindingDescription> GpuScene::vertexBindings() {
   return {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
@@ -46,13 +56,16 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
   gpu::uploadBuffer(device, vertices_, vertices.data(), vertices.size() * sizeof(Vertex));
   gpu::uploadBuffer(device, indices_, indices.data(), indices.size() * sizeof(uint32_t));
 
-  // Textures with full mip chains; sRGB-ness comes from how the material uses them.
+  // Textures with full mip chains in the precision they were stored in (scene.h TexelFormat);
+  // 8-bit sRGB-ness comes from how the material uses them.
   for (const Texture& t : scene.textures) {
-    gpu::ImageInfo info{t.srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM,
-                        {t.width, t.height, 1}, gpu::mipCount(t.width, t.height),
+    gpu::ImageInfo info{textureFormat(t), {t.width, t.height, 1}, gpu::mipCount(t.width, t.height),
                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT};
     gpu::Image img(device, info, fmt::format("scene.texture.{}", t.name));
-    gpu::uploadImage2DWithMips(device, img, t.rgba8.data(), t.rgba8.size());
+    if (t.format == TexelFormat::Rgba8)
+      gpu::uploadImage2DWithMips(device, img, t.rgba8.data(), t.rgba8.size());
+    else
+      gpu::uploadImage2DWithMips(device, img, t.rgba16.data(), t.rgba16.size() * sizeof(uint16_t));
     textures_.push_back(std::move(img));
   }
   TL_CHECK(textures_.size() <= shared::kSceneMaxTextures, "scene {} has {} textures; at most {} are supported",
@@ -80,6 +93,11 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
   gpu::uploadBuffer(device, materials_, materials.data(), materials.size() * sizeof(GpuMaterial));
 
   for (const Instance& inst : scene.instances) drawMesh_.push_back(inst.mesh);
+  meshAlphaTested_.assign(scene.meshes.size(), 0);
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    meshAlphaTested_[m] = scene.materials[scene.meshes[m].material].alphaMode == AlphaMode::Mask;
+  for (uint32_t i = 0; i < drawMesh_.size(); ++i)
+    (meshAlphaTested_[drawMesh_[i]] ? alphaTested_ : opaque_).push_back(i);
   instances_ = gpu::Buffer(device, std::max<size_t>(1, drawMesh_.size()) * sizeof(GpuInstance),
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "scene.instances");
 
@@ -199,7 +217,8 @@ void GpuScene::updateMeshVertices(const std::vector<uint32_t>& meshes, const std
 
 VkDeviceSize GpuScene::bytes() const {
   VkDeviceSize total = vertices_.size() + indices_.size() + materials_.size() + instances_.size();
-  for (auto& t : textures_) total += VkDeviceSize(t.extent().width) * t.extent().height * 4 * 4 / 3;
+  for (auto& t : textures_)
+    total += VkDeviceSize(t.extent().width) * t.extent().height * gpu::formatInfo(t.info().format).bytes * 4 / 3;
   return total;
 }
 

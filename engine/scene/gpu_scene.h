@@ -19,6 +19,10 @@ inline constexpr const char* kSceneIndices = "scene.indices";
 inline constexpr const char* kSceneInstances = "scene.instances";
 inline constexpr const char* kSceneMaterials = "scene.materials";
 
+// The Vulkan format a texture is uploaded in: its TexelFormat, sRGB-decoded by the sampler
+// where an 8-bit texture holds colour.
+VkFormat textureFormat(const Texture& texture);
+
 class GpuScene {
  public:
   GpuScene(gpu::Device& device, const Scene& scene);
@@ -54,6 +58,13 @@ class GpuScene {
   void bindGeometry(VkCommandBuffer cmd) const;
   void drawMesh(VkCommandBuffer cmd, uint32_t mesh) const;
 
+  // Instances whose material cuts itself out (alpha MASK) and all the others: passes that only
+  // need depth (the shadow map) draw the opaque ones without a fragment stage.
+  const std::vector<uint32_t>& alphaTestedInstances() const { return alphaTested_; }
+  const std::vector<uint32_t>& opaqueInstances() const { return opaque_; }
+  // Per mesh: its material cuts itself out (ray tracing keeps such meshes non-opaque).
+  bool meshAlphaTested(uint32_t mesh) const { return meshAlphaTested_.at(mesh) != 0; }
+
   const gpu::DescriptorTable& table() const { return table_; }
   gpu::Buffer& vertexBuffer() { return vertices_; }
   gpu::Buffer& indexBuffer() { return indices_; }
@@ -86,6 +97,8 @@ class GpuScene {
   gpu::DescriptorTable table_;
   std::vector<MeshRange> meshes_;
   std::vector<uint32_t> drawMesh_;             // per instance: its mesh
+  std::vector<uint32_t> alphaTested_, opaque_;  // instance lists
+  std::vector<uint8_t> meshAlphaTested_;
   std::vector<glm::dmat4> previousTransforms_;  // per instance, world
   std::vector<glm::mat4> relative_;             // per instance, camera-relative
   bool havePrevious_ = false;

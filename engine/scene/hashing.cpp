@@ -22,11 +22,17 @@ struct Hasher {
 
 uint64_t hashBytes(const void* data, size_t size, uint64_t seed) { return XXH64(data, size, seed); }
 
-uint64_t hashTexels(uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba8) {
+uint64_t hashTexels(const Texture& t) {
   Hasher h;
-  h.add(width);
-  h.add(height);
-  h.bytes(rgba8.data(), rgba8.size());
+  h.add(t.width);
+  h.add(t.height);
+  // 8-bit textures hash as they always did (width, height, texels), so albedo keys stay.
+  if (t.format == TexelFormat::Rgba8) {
+    h.bytes(t.rgba8.data(), t.rgba8.size());
+  } else {
+    h.add(t.format);
+    h.bytes(t.rgba16.data(), t.rgba16.size() * sizeof(uint16_t));
+  }
   return h.done();
 }
 

@@ -6,13 +6,13 @@
 namespace tl::scene {
 
 glm::vec4 textureAverage(const Texture& t) {
-  if (t.rgba8.empty()) return glm::vec4(1.0f);
+  const size_t n = size_t(t.width) * t.height;
+  if (n == 0) return glm::vec4(1.0f);
   glm::dvec4 sum(0.0);
-  const size_t n = t.rgba8.size() / 4;
   for (size_t i = 0; i < n; ++i) {
-    glm::vec4 c(t.rgba8[4 * i], t.rgba8[4 * i + 1], t.rgba8[4 * i + 2], t.rgba8[4 * i + 3]);
-    c /= 255.0f;
-    if (t.srgb) c = glm::vec4(shared::tlSrgbToLinear(glm::vec3(c)), c.a);
+    glm::vec4 c = texelValue(t, i);
+    // Half-float texels are linear already (float images, 16-bit colour decoded on load).
+    if (t.srgb && t.format != TexelFormat::Rgba16Float) c = glm::vec4(shared::tlSrgbToLinear(glm::vec3(c)), c.a);
     sum += glm::dvec4(c);
   }
   return glm::vec4(sum / double(n));

@@ -39,18 +39,37 @@ struct Bounds {
   }
 };
 
-// Texels are RGBA8 as stored in the file; `srgb` says how the sampler must decode them
-// (base colour and emissive are sRGB, normal and metallic-roughness are linear).
+// How a texture's texels are stored, on the CPU and on the GPU alike:
+// - Rgba8: 8 bits per channel as in the file (`rgba8`); the sampler decodes sRGB where `srgb`.
+// - Rgba16Unorm: 16 bits per channel (`rgba16`), linear data from a 16-bit file (normal,
+//   metallic-roughness, occlusion maps): R16G16B16A16_UNORM.
+// - Rgba16Float: half floats (`rgba16`, IEEE binary16 bits), already linear: float images
+//   (EXR, HDR) and 16-bit sRGB colour, decoded on the CPU because Vulkan has no 16-bit sRGB
+//   format (a 16-bit emissive of 128/65535 is 1.5e-4 linear, which 8 bits would cut to 0).
+enum class TexelFormat : uint8_t { Rgba8, Rgba16Unorm, Rgba16Float };
+
+// Where a texture's image came from (what `twinlight info --scene` reports).
+enum class ImageSource : uint8_t { File, DataUri, BufferView, Generated };
+
 struct Texture {
   std::string name;
   std::filesystem::path path;    // empty for embedded images
   uint32_t width = 0;
   uint32_t height = 0;
-  std::vector<uint8_t> rgba8;    // width * height * 4
-  bool srgb = true;
+  TexelFormat format = TexelFormat::Rgba8;
+  std::vector<uint8_t> rgba8;    // width * height * 4 (Rgba8)
+  std::vector<uint16_t> rgba16;  // width * height * 4 (Rgba16Unorm, Rgba16Float)
+  bool srgb = true;              // the material reads it as colour (decoded as sRGB unless Rgba16Float)
   bool placeholder = false;      // the file was missing or unreadable: a magenta checker
+  ImageSource source = ImageSource::Generated;
+  std::string fileFormat;        // the decoder's name for the image's format ("png", "openexr", ...)
+  int fileBits = 8;              // bits per channel in the file (8, 16, 32 for float)
   uint64_t contentHash = 0;      // xxHash64 of the decoded texels + size (not of the file name)
 };
+
+// Texel i (0 .. width*height-1) as the shader sees it before sRGB decoding: 0..1 for
+// normalized formats, the stored value for floats.
+glm::vec4 texelValue(const Texture& t, size_t i);
 
 enum class AlphaMode : uint8_t { Opaque, Mask, Blend };
 
@@ -167,7 +186,11 @@ struct Scene {
   std::vector<MorphAnimation> morphAnimations;
   double animationSeconds = 0.0;    // the longest channel: animations loop over it
   Bounds bounds;                    // world bounds of all instances
-  std::vector<std::string> warnings;  // e.g. missing texture (placeholder used)
+  std::vector<std::string> warnings;  // e.g. missing texture (placeholder used), an ignored feature
+  // Every feature of the file Twinlight ignores or approximates, one line each ("feature: what
+  // happens instead"); each also gave one warning. Empty when everything the file uses renders.
+  std::vector<std::string> ignored;
+  std::vector<std::string> extensionsUsed;  // as the file lists them
   uint64_t contentHash = 0;         // hash of all meshes, materials, instances, environment
 };
 
@@ -176,9 +199,22 @@ struct SceneError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Loads .gltf or .glb. Throws SceneError for a file that cannot be used; a missing texture
-// is a warning (Scene::warnings) and a visible placeholder.
-Scene loadGltf(const std::filesystem::path& file);
+struct LoadOptions {
+  // Buffers and images a glTF names may lie outside the glTF's folder (`../`, absolute
+  // paths, symbolic links leading out). Off: a downloaded scene reads nothing but its own files.
+  bool allowOutsideFolder = false;
+};
+
+// Loads .gltf or .glb under the limits of scene/input_limits.h. Throws SceneError for a file
+// that cannot be used; a missing texture is a warning (Scene::warnings) and a visible
+// placeholder.
+Scene loadGltf(const std::filesystem::path& file, const LoadOptions& options = {});
+
+// What a loaded scene holds and what of its file Twinlight ignores, one line each, for
+// `twinlight info --scene` and the editor: counts of meshes, materials, textures by format and
+// source, lights by type, cameras, animations, extensions, then one "ignored: ..." line per
+// ignored or approximated feature.
+std::vector<std::string> sceneReport(const Scene& scene);
 
 // xxHash64 helpers (seed 0) shared by the importer and, later, the albedo keys.
 uint64_t hashBytes(const void* data, size_t size, uint64_t seed = 0);

@@ -13,29 +13,57 @@ class Model;
 
 namespace tl::scene {
 
-// Decodes glTF images with OpenImageIO on first use, once per (texture, colour space).
+// Decodes glTF images with OpenImageIO on first use, once per (texture, colour space), from
+// any source glTF allows: a file next to the .gltf, a data: URI or a .glb bufferView (the
+// last two from memory). One decoder for every source and bit depth: tinygltf's stb_image
+// would cover 8/16-bit PNG and JPEG but not EXR/HDR, which OpenImageIO reads as well.
 // A missing or unreadable image becomes a warning and a magenta checker placeholder.
 class TextureCache {
  public:
-  TextureCache(const tinygltf::Model& model, const std::filesystem::path& gltfFile, Scene& scene)
-      : model_(model), file_(gltfFile), scene_(scene) {}
+  TextureCache(const tinygltf::Model& model, const std::filesystem::path& gltfFile, const LoadOptions& options, Scene& scene)
+      : model_(model), file_(gltfFile), options_(options), scene_(scene) {}
   std::optional<uint32_t> get(int textureIndex, bool srgb);
 
  private:
   const tinygltf::Model& model_;
   const std::filesystem::path& file_;
+  const LoadOptions& options_;
   Scene& scene_;
   std::map<std::pair<int, bool>, uint32_t> cache_;
 };
 
-// Normals (area-weighted if absent, any degenerate one replaced), tangents (from UVs if
-// absent, Gram-Schmidt, handedness in w), all finite and unit length.
-void finishVertices(Mesh& mesh, bool haveNormals, bool haveTangents);
+// loadGltf after reading the file: `bytes` are its contents (a .glb when `binary`); files it
+// names resolve next to `file`. The fuzz target (fuzz/fuzz_gltf.cpp) enters here.
+Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesystem::path& file, const LoadOptions& options);
+
+// A file the glTF `gltfFile` names by `uri` (percent-encoded, relative to the glTF's folder),
+// read under `maxBytes`; throws InputFileError naming the reason (missing, not a regular file,
+// too large, outside the folder unless options allow it).
+std::vector<uint8_t> readReferencedFile(const std::filesystem::path& gltfFile, const std::string& uri,
+                                        const LoadOptions& options, uint64_t maxBytes);
+// Where that file is (no check).
+std::filesystem::path referencedPath(const std::filesystem::path& gltfFile, const std::string& uri);
+// `path` (already resolved) read under the same rules.
+std::vector<uint8_t> readContained(const std::filesystem::path& gltfFile, const std::filesystem::path& path,
+                                   const LoadOptions& options, uint64_t maxBytes);
+
+// Decodes PNG, JPEG, OpenEXR or Radiance HDR bytes (the decoder chosen by their signature,
+// never by a name) into `t` at the precision its bit depth needs (scene.h TexelFormat; `t.srgb`
+// must be set: 16-bit colour is decoded from sRGB here), grey -> rgb, missing alpha -> one,
+// under the image limits of scene/input_limits.h; false with `error` for anything else.
+bool decodeImage(const std::vector<uint8_t>& bytes, Texture& t, std::string& error);
+
+// Normals (area-weighted if absent, any degenerate one replaced) and tangents (supplied ones
+// as given, else generated the MikkTSpace way: mesh_processing.cpp), all finite and unit
+// length, handedness in w. Generating may split vertices where a UV mirror seam gives one
+// vertex both handednesses: returns, per vertex, the index it was copied from (identity for
+// the ones that were there), which per-vertex data read later (morph targets) follows.
+std::vector<uint32_t> finishVertices(Mesh& mesh, bool haveNormals, bool haveTangents);
 Bounds transformBounds(const Bounds& local, const glm::dmat4& transform);
 
 uint64_t hashMesh(const Mesh& mesh);
 uint64_t hashMaterial(const Material& material, const std::vector<Texture>& textures);
 uint64_t hashScene(const Scene& scene);
-uint64_t hashTexels(uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba8);
+uint64_t hashTexels(const Texture& texture);
 
 }  // namespace tl::scene

@@ -109,7 +109,9 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
     return r;
   }
   info["cached"] = false;
-  s.setPath("reference");
+  const std::string referencePath = s.referencePath();
+  if (referencePath.empty()) throw SessionError("this build has no reference path to compare against");
+  s.setPath(referencePath);
   s.settings().referenceSamplesPerFrame = std::min(o.referenceSpp, 16u);
   const uint32_t frames = std::max(1u, o.referenceSpp / s.settings().referenceSamplesPerFrame);
   s.resetHistory();
@@ -278,7 +280,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
   for (const auto& p : o.paths) runs.push_back({p, p, nlohmann::json::object()});
   if (o.paths.empty() && o.variants.empty())
     for (auto& p : s.paths())
-      if (p.available && p.name != "reference") runs.push_back({p.name, p.name, nlohmann::json::object()});
+      if (p.available && !p.capabilities.isReference) runs.push_back({p.name, p.name, nlohmann::json::object()});
   for (const auto& v : o.variants) {
     if (std::any_of(runs.begin(), runs.end(), [&](auto& r) { return r.name == v.name; }))
       throw SessionError(fmt::format("two compared configurations are called `{}`", v.name));
@@ -292,6 +294,9 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
       throw SessionError(fmt::format("cannot compare `{}`: {}", run.name, it == all.end() ? "no such path `" + run.path + "`"
                                                                                          : it->unavailableReason));
     applySettingsJson(baseSettings, run.settings);  // every variant is checked before anything renders
+    for (const char* size : {"width", "height"})
+      if (run.settings.is_object() && run.settings.contains(size))
+        throw SessionError(fmt::format("`{}` cannot change `{}`: every compared image has the reference's size", run.name, size));
   }
   std::error_code ec;
   std::filesystem::create_directories(o.outDir, ec);
@@ -336,6 +341,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     s.setFrameIndex(0);
     for (const char* n : {lighting::kCompositeAo, lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
     s.renderFrames(std::max(1u, o.framesPerPath));
+    const nlohmann::json runSettings = settingsJson(s.settings());
     s.settings() = baseSettings;
     if (progress) progress("path " + name, double(i + 1) / runs.size());
     metrics::Image test = rgbImage(s.buffer(lighting::kCompositeHdr));
@@ -374,7 +380,8 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
     results.push_back({{"path", name},
                        {"lightingPath", runs[i].path},
-                       {"settings", runs[i].settings},
+                       {"overrides", runs[i].settings},
+                       {"settings", runSettings},  // every setting it ran with: `render --settings` replays it
                        {"frames", o.framesPerPath},
                        {"frameMs", median(s.frameGpuMs())},
                        {"passMs", passes},
@@ -404,6 +411,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
       {"sceneHash", fmt::format("{:016x}", s.scene().contentHash)},
       {"width", s.settings().width},
       {"height", s.settings().height},
+      {"settings", settingsJson(baseSettings)},  // before the variants' overrides
       {"camera", {{"position", {v.position.x, v.position.y, v.position.z}}, {"forward", {v.forward.x, v.forward.y, v.forward.z}},
                   {"yfovDegrees", glm::degrees(v.yfovRadians)}}},
       {"exposureEV", s.exposureEv()},

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <system_error>
+#include <stdlib.h>
 #include <unistd.h>
 
 namespace tl::session {
@@ -67,7 +68,51 @@ void writeTextFile(const std::filesystem::path& file, const std::string& text) {
   });
 }
 
-void writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding) {
+namespace {
+
+// Whether `dir` (an existing folder) takes a new file: one is created and removed again. As
+// root, access(W_OK) says yes to /proc and to read-only mounts; only trying tells.
+std::optional<std::string> cannotCreateIn(const std::filesystem::path& dir) {
+  std::string probe = (dir / ".twinlight-probe-XXXXXX").string();
+  const int fd = ::mkstemp(probe.data());
+  if (fd < 0) return std::string(std::strerror(errno));
+  ::close(fd);
+  ::unlink(probe.c_str());
+  return std::nullopt;
+}
+
+// `failure`: "cannot write FILE" or "cannot write into FOLDER", the start of every message.
+void checkOutputPath(const std::string& failure, const std::filesystem::path& folder) {
+  std::error_code ec;
+  // The nearest folder that exists: the rest would be created when writing.
+  std::filesystem::path existing = std::filesystem::absolute(folder, ec).lexically_normal();
+  while (!existing.empty() && !std::filesystem::exists(existing, ec)) {
+    if (existing == existing.parent_path()) break;
+    existing = existing.parent_path();
+  }
+  if (!std::filesystem::is_directory(existing, ec))
+    throw SessionError(fmt::format("{}: {} is not a folder", failure, existing.string()));
+  if (auto reason = cannotCreateIn(existing))
+    throw SessionError(fmt::format("{}: cannot create a file in {}: {}", failure, existing.string(), *reason));
+}
+
+}  // namespace
+
+void checkOutputFile(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw SessionError(fmt::format("cannot write {}: it is a folder", file.string()));
+  checkOutputPath("cannot write " + file.string(), file.has_parent_path() ? file.parent_path() : std::filesystem::path("."));
+}
+
+void checkOutputFolder(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+    throw SessionError(fmt::format("cannot write into {}: it is a file, not a folder", dir.string()));
+  checkOutputPath("cannot write into " + dir.string(), dir);
+}
+
+ImageWriteReport writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding) {
   const uint32_t w = image.extent.width, h = image.extent.height;
   const uint32_t srcChannels = image.channels();
   std::vector<float> texels = image.texels();
@@ -78,8 +123,25 @@ void writeImageAtomically(const std::filesystem::path& file, const graph::Readba
   std::vector<float> pixels(size_t(w) * h * outChannels);
   for (size_t i = 0; i < size_t(w) * h; ++i)
     for (int c = 0; c < outChannels; ++c) pixels[i * outChannels + c] = texels[i * srcChannels + c];
-  if (encoding == ImageEncoding::LinearHalf) writeAtomically(file, w, h, outChannels, OIIO::TypeDesc::HALF, pixels, "Linear");
-  else writeAtomically(file, w, h, outChannels, OIIO::TypeDesc::UINT8, pixels, "sRGB");
+  ImageWriteReport report;
+  report.pixels = uint64_t(w) * h;
+  for (size_t i = 0; i < size_t(w) * h; ++i) {
+    bool beyond = false, nonFinite = false;
+    for (int c = 0; c < outChannels; ++c) {
+      const float v = pixels[i * outChannels + c];
+      nonFinite |= !std::isfinite(v);
+      beyond |= std::isfinite(v) && std::abs(v) > 65504.0f;
+    }
+    report.beyondHalf += beyond;
+    report.nonFinite += nonFinite;
+  }
+  if (encoding == ImageEncoding::Linear) {
+    report.float32 = report.beyondHalf > 0;
+    writeAtomically(file, w, h, outChannels, report.float32 ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF, pixels, "Linear");
+  } else {
+    writeAtomically(file, w, h, outChannels, OIIO::TypeDesc::UINT8, pixels, "sRGB");
+  }
+  return report;
 }
 
 std::optional<RgbImage> readExrRgb(const std::filesystem::path& file) {

@@ -13,7 +13,18 @@
 
 namespace tl::session {
 
-enum class ImageEncoding { LinearHalf, Display8 };
+// Linear: an EXR in half floats when every value fits their range (65504), else in 32-bit
+// floats, so nothing is clipped; Display8: an 8-bit display image (PNG).
+enum class ImageEncoding { Linear, Display8 };
+
+// What a write did: the pixels, those with a channel beyond the half-float range (written as
+// float32 for that reason; a half file would have clipped them) and those not finite.
+struct ImageWriteReport {
+  uint64_t pixels = 0;
+  uint64_t beyondHalf = 0;
+  uint64_t nonFinite = 0;
+  bool float32 = false;
+};
 
 // Writes `file` through a temporary file in the same folder and a rename, so a reader never
 // sees half a file. `write` writes the temporary and returns false (or throws) on failure:
@@ -24,8 +35,15 @@ void writeFileAtomically(const std::filesystem::path& file, const std::function<
 // file and the system's reason when it cannot.
 void writeTextFile(const std::filesystem::path& file, const std::string& text);
 
+// Checks before any work that `file` could be written later, creating nothing: it is not a
+// folder, and its folder exists and takes a new file or could be created (the nearest
+// existing ancestor takes a new entry). Throws SessionError "cannot write FILE: reason".
+void checkOutputFile(const std::filesystem::path& file);
+// The same for a folder that files will be written into.
+void checkOutputFolder(const std::filesystem::path& dir);
+
 // A read-back buffer as an image (alpha dropped).
-void writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding);
+ImageWriteReport writeImageAtomically(const std::filesystem::path& file, const graph::Readback& image, ImageEncoding encoding);
 
 struct RgbImage {
   uint32_t width = 0, height = 0;

@@ -4,15 +4,17 @@
 #include "metrics/metrics.h"
 #include "session/compare.h"
 
+#include <cmath>
+
 namespace tl::session {
 
-LiveCompare::LiveCompare(CompareView view, std::optional<std::string> referenceReason)
-    : view_(std::move(view)), referenceReason_(std::move(referenceReason)) {}
+LiveCompare::LiveCompare(CompareView view, std::string reference, std::optional<std::string> referenceReason)
+    : view_(std::move(view)), reference_(std::move(reference)), referenceReason_(std::move(referenceReason)) {}
 
 std::vector<std::string> LiveCompare::rotation() const {
   std::vector<std::string> order{view_.left};
   if (view_.right != view_.left) order.push_back(view_.right);
-  if (!referenceReason_ && view_.left != "reference" && view_.right != "reference") order.push_back("reference");
+  if (!referenceReason_ && view_.left != reference_ && view_.right != reference_) order.push_back(reference_);
   return order;
 }
 
@@ -38,7 +40,7 @@ void LiveCompare::collectFlip(bool wait) {
       continue;
     }
     const double value = pending.value.get();
-    auto side = images_.find(path), ref = images_.find("reference");
+    auto side = images_.find(path), ref = images_.find(reference_);
     if (side != images_.end() && ref != images_.end() && sameCompared(side->second.key, pending.key) &&
         sameCompared(ref->second.key, pending.key) && view_.measureFlip)
       errors_[path].flip = value;
@@ -58,22 +60,23 @@ void LiveCompare::frameDone(const std::string& path, const graph::Readback& imag
   side.gpuMs = gpuMs;
   errors_[path].path = path;
   errors_[path].gpuMs = gpuMs;
-  if (path == "reference") {
+  if (path == reference_) {
     // Only a sum this compare saw under way restarts; its first frame starts one.
     if (referenceSeen_ && referenceAccumulation && referenceAccumulation->action == lighting::HistoryAction::Restart)
       ++referenceRestarts_, lastRestart_ = referenceAccumulation->acted;
     referenceSeen_ = true;
     referenceSamples_ = referenceSamples;
+    updateNoise(side, referenceSamples);
     // A converging reference improves every side's figure: re-measure both.
     for (const std::string& p : {view_.left, view_.right})
-      if (p != "reference") measure(p, exposure);
+      if (p != reference_) measure(p, exposure);
   } else {
     measure(path, exposure);
   }
 }
 
 void LiveCompare::measure(const std::string& path, float exposure) {
-  auto side = images_.find(path), ref = images_.find("reference");
+  auto side = images_.find(path), ref = images_.find(reference_);
   LiveError& e = errors_[path];
   e.path = path;
   if (side == images_.end() || ref == images_.end() ||
@@ -100,6 +103,43 @@ void LiveCompare::measure(const std::string& path, float exposure) {
   } else if (!view_.measureFlip) {
     e.flip.reset();
   }
+}
+
+// The reference at n samples is the mean b of n samples; a checkpoint a of the same sum at
+// n1 < n samples holds the first n1 of them. With c the mean of the other n - n1,
+// a - b = (n - n1)/n (a - c), whose variance is s2 (n - n1)/(n n1) for a per-sample variance
+// s2, while b's own variance (its error against the converged image) is s2/n. So
+// noise(b) = E|a - b|^2 n1/(n - n1): relMSE(a, b) scaled, the same relative measure as the
+// sides' figures. It is taken each time the sum has doubled (n >= 2 n1: enough new samples
+// for a steady estimate) and scales as 1/n in between.
+void LiveCompare::updateNoise(const Side& reference, uint32_t samples) {
+  const bool sameSum = checkpoint_ && sameCompared(checkpoint_->key, reference.key) && samples >= checkpoint_->samples &&
+                       checkpoint_->image.width == reference.image.width &&
+                       checkpoint_->image.height == reference.image.height;
+  if (!sameSum || checkpoint_->samples == 0) {
+    noise_.reset();  // a new sum (or the first): nothing to compare with yet
+    checkpoint_ = Checkpoint{reference.image, reference.key, samples};
+    return;
+  }
+  const uint32_t n1 = checkpoint_->samples;
+  if (samples < 2 * n1) return;
+  noise_ = metrics::relMse(checkpoint_->image, reference.image).value * double(n1) / double(samples - n1);
+  noiseSamples_ = samples;
+  checkpoint_ = Checkpoint{reference.image, reference.key, samples};
+}
+
+std::optional<double> LiveCompare::referenceNoise() const {
+  if (!noise_ || referenceSamples_ < noiseSamples_ || referenceSamples_ == 0) return std::nullopt;
+  return *noise_ * double(noiseSamples_) / double(referenceSamples_);
+}
+
+bool LiveCompare::referenceTrusted() const {
+  const auto noise = referenceNoise();
+  if (!noise) return false;
+  const auto e = errors();
+  if (e.empty() || !e.front().relMse) return false;
+  const double scale = e.size() == 2 && e.back().relMse ? std::abs(*e.front().relMse - *e.back().relMse) : *e.front().relMse;
+  return *noise * kTrustRatio <= scale;
 }
 
 std::vector<LiveError> LiveCompare::errors() const {

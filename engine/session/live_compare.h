@@ -38,15 +38,17 @@ struct LiveError {
 
 class LiveCompare {
  public:
-  // `referenceReason`: why the reference cannot run here (no ray tracing); then the sides
-  // still alternate but no error is measured.
-  LiveCompare(CompareView view, std::optional<std::string> referenceReason);
+  // `reference`: the path the sides are measured against (PathCapabilities::isReference);
+  // `referenceReason`: why it cannot run here (no ray tracing); then the sides still alternate
+  // but no error is measured.
+  LiveCompare(CompareView view, std::string reference, std::optional<std::string> referenceReason);
   ~LiveCompare();  // waits for a FLIP measurement under way
 
   const CompareView& view() const { return view_; }
   // Changing the sides keeps what was rendered (each path's image stays until replaced).
   void setView(const CompareView& view) { view_ = view; }
   const std::optional<std::string>& referenceUnavailable() const { return referenceReason_; }
+  const std::string& referencePath() const { return reference_; }
 
   // The path the next frame renders: left, right and the reference in turn.
   std::string nextPath();
@@ -71,6 +73,16 @@ class LiveCompare {
   uint32_t referenceRestarts() const { return referenceRestarts_; }
   lighting::FrameParts lastReferenceRestart() const { return lastRestart_; }
 
+  // The reference's own error: its relMSE against the converged image at the samples it holds
+  // now, estimated from two of its states in one accumulation (see updateNoise); none until
+  // it has doubled its samples once. A side's relMSE against a noisy reference carries about
+  // this much of the reference's noise besides its own error.
+  std::optional<double> referenceNoise() const;
+  // Whether the reference is converged enough to rank the sides: its noise at most
+  // 1/kTrustRatio of the gap between their relMSE (of its relMSE, when one side is compared).
+  static constexpr double kTrustRatio = 4.0;
+  bool referenceTrusted() const;
+
   // The parts of the frame key a side's image and the reference's must share to be compared.
   static constexpr lighting::FrameParts kComparedParts =
       lighting::kCameraParts | lighting::parts(lighting::FramePart::Sun, lighting::FramePart::Sky,
@@ -86,6 +98,7 @@ class LiveCompare {
     double gpuMs = 0.0;
   };
   CompareView view_;
+  std::string reference_;
   std::optional<std::string> referenceReason_;
   size_t turn_ = 0;
   std::map<std::string, Side> images_;
@@ -99,6 +112,16 @@ class LiveCompare {
   };
   std::map<std::string, PendingFlip> pendingFlip_;
   void collectFlip(bool wait);
+  void updateNoise(const Side& reference, uint32_t samples);
+  // The reference at an earlier sample count of the same accumulation, and the last estimate.
+  struct Checkpoint {
+    metrics::Image image;
+    lighting::FrameKey key;
+    uint32_t samples = 0;
+  };
+  std::optional<Checkpoint> checkpoint_;
+  std::optional<double> noise_;  // at noiseSamples_
+  uint32_t noiseSamples_ = 0;
   uint32_t referenceSamples_ = 0;
   bool referenceSeen_ = false;
   uint32_t referenceRestarts_ = 0;

@@ -34,14 +34,20 @@ struct Session::Passes {
   lighting::CompareViewPass compareView;
 };
 
+// What finishing a submitted frame needs to know about it.
+struct Session::InFlight {
+  lighting::LightingPath* path = nullptr;
+  std::string compared;         // the compare view's side it renders ("" outside a compare)
+  uint64_t compareGeneration = 0;
+  lighting::FrameKey key;
+  float exposure = 1.0f;
+};
+
 Session::Session(const gpu::DeviceOptions& options)
     : device_(std::make_unique<gpu::Device>(options)),
       executor_(std::make_unique<graph::Executor>(*device_)),
       passes_(std::make_unique<Passes>()) {
-  paths_.push_back(lighting::makeDirectPath());
-  paths_.push_back(lighting::makeLegacyPath());
-  paths_.push_back(lighting::makeRtPath());
-  paths_.push_back(lighting::makeReferencePath());
+  for (lighting::LightingPathFactory make : lighting::lightingPathRegistry()) paths_.push_back(make());
   path_ = paths_.front().get();
   pathName_ = path_->name();
   constants_ = gpu::Buffer(*device_, sizeof(shared::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -55,20 +61,25 @@ Session::~Session() {
   if (device_) device_->waitIdle();
 }
 
+void Session::settle() { finishOne(); }
+
 const scene::Scene& Session::scene() const {
   if (!scene_) throw SessionError("no scene is loaded");
   return *scene_;
 }
 
-std::unique_ptr<scene::Scene> Session::parseScene(const std::filesystem::path& file) {
-  auto loaded = std::make_unique<scene::Scene>(scene::loadGltf(file));
+std::unique_ptr<scene::Scene> Session::parseScene(const std::filesystem::path& file, const scene::LoadOptions& options) {
+  auto loaded = std::make_unique<scene::Scene>(scene::loadGltf(file, options));
   if (loaded->instances.empty()) throw scene::SceneError(fmt::format("{}: the scene has no meshes to draw", file.string()));
   return loaded;
 }
 
-void Session::loadScene(const std::filesystem::path& file) { installScene(parseScene(file)); }
+void Session::loadScene(const std::filesystem::path& file, const scene::LoadOptions& options) {
+  installScene(parseScene(file, options));
+}
 
 void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
+  settle();
   for (auto& w : loaded->warnings) spdlog::warn("{}", w);
   device_->waitIdle();
   // The executor forgets the old scene's buffers and any capture's images before they go.
@@ -89,7 +100,8 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   executor_->resetHistory();
   previousView_.reset();
   comparePrevious_.clear();
-  if (compare_) compare_ = std::make_unique<LiveCompare>(compare_->view(), compare_->referenceUnavailable());
+  if (compare_)
+    compare_ = std::make_unique<LiveCompare>(compare_->view(), compare_->referencePath(), compare_->referenceUnavailable());
   animationTime_ = 0.0;
   // The upload holds every mesh at rest (all weights 0).
   appliedWeights_.assign(scene_->meshes.size(), {});
@@ -133,7 +145,7 @@ std::vector<PathInfo> Session::paths() const {
   std::vector<PathInfo> out;
   for (auto& p : paths_) {
     auto reason = p->unavailableReason(*device_);
-    out.push_back({p->name(), p->description(), !reason, reason.value_or("")});
+    out.push_back({p->name(), p->description(), !reason, reason.value_or(""), p->capabilities()});
   }
   return out;
 }
@@ -152,6 +164,12 @@ void Session::setPath(const std::string& name) {
   throw SessionError(fmt::format("unknown lighting path `{}` (available: {})", name, known));
 }
 
+std::string Session::referencePath() const {
+  for (auto& p : paths_)
+    if (p->capabilities().isReference) return p->name();
+  return {};
+}
+
 lighting::LightingPath* Session::findPath(const std::string& name) const {
   for (auto& p : paths_)
     if (p->name() == name) return p.get();
@@ -160,6 +178,7 @@ lighting::LightingPath* Session::findPath(const std::string& name) const {
 
 void Session::setCompareView(std::optional<CompareView> view) {
   if (!view) {
+    if (compare_) ++compareGeneration_;
     compare_.reset();
     comparePrevious_.clear();
     compareFrames_.clear();
@@ -175,7 +194,11 @@ void Session::setCompareView(std::optional<CompareView> view) {
     compare_->setView(*view);
     return;
   }
-  compare_ = std::make_unique<LiveCompare>(*view, findPath("reference")->unavailableReason(*device_));
+  ++compareGeneration_;
+  const lighting::LightingPath* reference = findPath(referencePath());
+  compare_ = std::make_unique<LiveCompare>(*view, reference ? reference->name() : std::string(),
+                                           reference ? reference->unavailableReason(*device_)
+                                                     : std::optional<std::string>("this build has no reference path"));
 }
 
 namespace {
@@ -211,7 +234,7 @@ lighting::FrameKey Session::frameKey(uint64_t frame) const {
     key.sceneScale = scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0;
   }
   key.hash(FramePart::Albedo) = albedo_ ? albedo_->version() : 0;
-  for (const auto& p : paths_) key.settings[p->name()] = p->historySettings(settings_);
+  for (const auto& p : paths_) key.settings[p->name()] = lighting::historySettingsHash(settings_, p->name());
   key.cameraPosition = view_.position;
   key.cameraForward = view_.forward;
   key.frame = frame;
@@ -317,6 +340,11 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
 }
 
 void Session::renderOne(bool readback) {
+  beginOne(readback);
+  finishOne();
+}
+
+void Session::beginOne(bool readback) {
   // The Compare panel renders its sides and the reference in turn; each path sees its own
   // previous frame as "previous" (its history and motion vectors refer to it).
   lighting::LightingPath* path = path_;
@@ -330,7 +358,7 @@ void Session::renderOne(bool readback) {
   // No motion vectors across a cut; the histories see it in the frame key and restart.
   if (previousView_ && isCameraCut(*previousView_, view_, scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0))
     previousView_.reset();
-  const bool taa = lighting::temporalAntialiasing(settings_, path->rasterizes());
+  const bool taa = lighting::temporalAntialiasing(settings_, path->capabilities().rasterizes);
   // A compared path renders every second or third frame: its own count keeps its per-frame
   // patterns (the ray checkerboard, the 2x2 cycle, the blue-noise offset, TAA's jitter) moving.
   const uint32_t frameNumber = compare_ ? uint32_t(compareFrames_[compared]++) : uint32_t(frameIndex_);
@@ -386,7 +414,16 @@ void Session::renderOne(bool readback) {
     passes_->compareView.add(graph, in, v, compared, compare_->hasImage(v.left) || compared == v.left,
                              compare_->hasImage(v.right) || compared == v.right);
   } else if (display_) {
-    passes_->display.add(graph, in, *display_);
+    // A resource this frame does not make (another path's, after a switch) is not an error:
+    // the final image shows instead, and displayMissing() names what was asked for.
+    lighting::DisplayRequest request = *display_;
+    const auto id = request.source.empty() ? std::nullopt : graph.find(request.source);
+    displayMissing_.clear();
+    if (!request.source.empty() && (!id || graph.resources()[*id].desc.type != graph::ResourceType::Image)) {
+      displayMissing_ = request.source;
+      request = lighting::DisplayRequest{.selectedInstance = request.selectedInstance};
+    }
+    passes_->display.add(graph, in, request);
   }
   // What is read back is wanted: debug views nothing else reads (albedo.*) survive culling
   // in the frame that reads them, and a capture gets every buffer the frame can make.
@@ -404,9 +441,21 @@ void Session::renderOne(bool readback) {
     executor_->requestReadback(lighting::kTonemapLdr);
   }
   if (compare_) executor_->requestReadback(lighting::compareImageName(compared));
-  executor_->execute(graph, compiled);
+  executor_->submit(graph, compiled);
   graphDump_ = graph.dump(compiled);
   if (readback) graphDot_ = graph.dot(compiled);
+  inFlight_ = std::make_unique<InFlight>(InFlight{path, compared, compareGeneration_, in.key, fc.exposure});
+  if (compare_) comparePrevious_[compared] = view_;
+  previousView_ = view_;
+  ++frameIndex_;
+  animationTime_ += animationStep_;
+}
+
+void Session::finishOne() {
+  if (!inFlight_) return;
+  const std::unique_ptr<InFlight> done = std::move(inFlight_);
+  executor_->finish();
+  lighting::LightingPath* path = done->path;
   double total = 0.0;
   for (const auto& t : executor_->timings()) {
     total += t.gpuMs;
@@ -415,20 +464,17 @@ void Session::renderOne(bool readback) {
     it->second.push_back(t.gpuMs);
   }
   frameGpuMs_.push_back(total);
-  if (compare_) {
+  // The compare view it was rendered for may have been closed or replaced since.
+  if (compare_ && !done->compared.empty() && done->compareGeneration == compareGeneration_) {
     double samples = 0.0;
     for (auto& [name, value] : path->figures())
       if (name == "reference.samples") samples = value;
     std::optional<lighting::HistoryDecision> accumulation;
     for (const auto& d : historyLog_)
       if (d.history == "reference.accumulation") accumulation = d;
-    compare_->frameDone(compared, executor_->readback(lighting::compareImageName(compared)), total, in.key,
-                        uint32_t(samples), fc.exposure, accumulation);
-    comparePrevious_[compared] = view_;
+    compare_->frameDone(done->compared, executor_->readback(lighting::compareImageName(done->compared)), total, done->key,
+                        uint32_t(samples), done->exposure, accumulation);
   }
-  previousView_ = view_;
-  ++frameIndex_;
-  animationTime_ += animationStep_;
 }
 
 // Deforming meshes take this frame's pose: only those whose weights changed are uploaded.
@@ -452,10 +498,38 @@ void Session::applyMorphs() {
   deformedLastFrame_ = meshes.size();
 }
 
-void Session::renderFrames(uint32_t n) {
+void Session::beginFrame() {
+  settle();
+  if (capture_ || !scene_) {
+    renderFrames(1);  // a reopened capture's display is quick: done at once
+    return;
+  }
+  frameGpuMs_.clear();
+  passGpuMs_.clear();
+  beginOne(true);
+  requested_.clear();
+  requestAll_ = false;
+}
+
+bool Session::frameDone() const { return !inFlight_ || executor_->frameDone(); }
+
+void Session::finishFrame() { finishOne(); }
+
+const graph::Readback* Session::displayReadback() const {
+  auto it = executor_->readbacks().find(lighting::kDisplayLdr);
+  return it == executor_->readbacks().end() ? nullptr : &it->second;
+}
+
+void Session::renderFrames(uint32_t n, const std::function<void(uint32_t done)>& afterEach) {
+  settle();
   if (capture_) {
     if (!captureDisplay_) captureDisplay_ = std::make_unique<lighting::DisplayPass>();
-    capture_->display(*executor_, *captureDisplay_, display_.value_or(lighting::DisplayRequest{}));
+    if (std::find(requested_.begin(), requested_.end(), lighting::kDisplayLdr) != requested_.end())
+      executor_->requestReadback(lighting::kDisplayLdr);
+    lighting::DisplayRequest request = display_.value_or(lighting::DisplayRequest{});
+    displayMissing_.clear();
+    if (!request.source.empty() && !hasBuffer(request.source)) displayMissing_ = request.source, request = {};
+    capture_->display(*executor_, *captureDisplay_, request);
     requested_.clear();
     requestAll_ = false;
     return;
@@ -463,7 +537,10 @@ void Session::renderFrames(uint32_t n) {
   if (!scene_) throw SessionError("no scene is loaded");
   frameGpuMs_.clear();
   passGpuMs_.clear();
-  for (uint32_t i = 0; i < n; ++i) renderOne(i + 1 == n);
+  for (uint32_t i = 0; i < n; ++i) {
+    renderOne(i + 1 == n);
+    if (afterEach) afterEach(i + 1);
+  }
   requested_.clear();
   requestAll_ = false;
 }
@@ -485,6 +562,7 @@ const std::vector<graph::PassTiming>& Session::timings() const { return capture_
 
 void Session::openCapture(const std::filesystem::path& dir) {
   auto opened = std::make_unique<CapturedFrame>(*device_, dir);  // throws, keeping what was open
+  settle();
   device_->waitIdle();
   executor_->unbindImported();  // a capture open before this one is freed now
   capture_ = std::move(opened);
@@ -496,6 +574,7 @@ const scene::Scene* Session::decodingScene() const {
 }
 
 void Session::closeCapture() {
+  settle();
   device_->waitIdle();
   executor_->unbindImported();  // the capture's images are freed with it
   capture_.reset();
@@ -528,12 +607,12 @@ void Session::writeGraph(const std::filesystem::path& file) const {
   writeTextFile(file, ext == ".dot" || ext == ".gv" ? graphDot_ : graphDump_);
 }
 
-void Session::saveImage(const std::filesystem::path& file) const {
+ImageWriteReport Session::saveImage(const std::filesystem::path& file) const {
   std::string ext = file.extension().string();
   for (auto& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  if (ext == ".exr") writeImageAtomically(file, buffer(lighting::kCompositeHdr), ImageEncoding::LinearHalf);
-  else if (ext == ".png") writeImageAtomically(file, buffer(lighting::kTonemapLdr), ImageEncoding::Display8);
-  else throw SessionError(fmt::format("{}: unsupported image type `{}` (use .exr or .png)", file.string(), ext));
+  if (ext == ".exr") return writeImageAtomically(file, buffer(lighting::kCompositeHdr), ImageEncoding::Linear);
+  if (ext == ".png") return writeImageAtomically(file, buffer(lighting::kTonemapLdr), ImageEncoding::Display8);
+  throw SessionError(fmt::format("{}: unsupported image type `{}` (use .exr or .png)", file.string(), ext));
 }
 
 }  // namespace tl::session

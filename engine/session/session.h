@@ -11,9 +11,11 @@
 #include "lighting/common/frame_inputs.h"
 #include "lighting/lighting_path.h"
 #include "scene/scene.h"
+#include "session/image_io.h"
 #include "session/live_compare.h"
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -51,6 +53,7 @@ struct PathInfo {
   std::string description;
   bool available = true;
   std::string unavailableReason;
+  lighting::PathCapabilities capabilities;
 };
 
 class Session {
@@ -61,10 +64,10 @@ class Session {
   gpu::Device& device() { return *device_; }
 
   // Throws scene::SceneError (one line naming the file) and keeps the previous scene.
-  void loadScene(const std::filesystem::path& file);
+  void loadScene(const std::filesystem::path& file, const scene::LoadOptions& options = {});
   // The two halves of loadScene: parsing touches no device and may run on another thread
   // (the editor keeps its UI alive meanwhile); installing uploads to the GPU.
-  static std::unique_ptr<scene::Scene> parseScene(const std::filesystem::path& file);
+  static std::unique_ptr<scene::Scene> parseScene(const std::filesystem::path& file, const scene::LoadOptions& options = {});
   void installScene(std::unique_ptr<scene::Scene> scene);
   bool hasScene() const { return scene_ != nullptr; }
   const scene::Scene& scene() const;
@@ -91,6 +94,8 @@ class Session {
   std::vector<PathInfo> paths() const;
   void setPath(const std::string& name);  // throws SessionError with the reason
   const std::string& path() const { return pathName_; }
+  // The path the others are measured against (PathCapabilities::isReference); empty if none.
+  std::string referencePath() const;
 
   void setView(const View& view);
   const View& view() const { return view_; }
@@ -119,7 +124,13 @@ class Session {
 
   // The editor's viewport: adds the display pass (selection outline, any resource shown).
   void setDisplay(std::optional<lighting::DisplayRequest> request) { display_ = std::move(request); }
+  // The resource the display was asked to show that the last frame begun does not make (so
+  // it showed the final image); empty when it showed what was asked.
+  const std::string& displayMissing() const { return displayMissing_; }
   const gpu::Image* displayImage() const { return executor_->image(lighting::kDisplayLdr); }
+  // The last finished frame's display.ldr read back (request it), live or of a capture; null
+  // when that frame did not read it back.
+  const graph::Readback* displayReadback() const;
   VkImageLayout displayImageLayout() const { return executor_->layout(lighting::kDisplayLdr); }
   // The Compare panel: while set, frames render its two sides and the reference in turn (one
   // per frame, each with its own history) and display.ldr shows the compare view instead of
@@ -137,7 +148,10 @@ class Session {
   // Drops every persistent (history) resource: the next frame starts accumulating afresh.
   // Changes of the camera, the light, the scene or a setting need no call: every history
   // decides from the frame key what it keeps (lighting/common/frame_key.h).
-  void resetHistory() { executor_->resetHistory(); }
+  void resetHistory() {
+    settle();
+    executor_->resetHistory();
+  }
 
   // The frame key of the current state (camera, projection, light, scene, geometry, albedo,
   // every path's history settings) for a frame numbered `frame` of its path.
@@ -146,7 +160,20 @@ class Session {
   const std::vector<lighting::HistoryDecision>& historyDecisions() const { return historyLog_; }
 
   // Renders n frames; the last one reads back the final images and the requested buffers.
-  void renderFrames(uint32_t n);
+  // `afterEach` (optional) is called with the count of frames done after each one: progress
+  // for long renders (a reference image is many frames).
+  void renderFrames(uint32_t n, const std::function<void(uint32_t done)>& afterEach = {});
+  // One frame in two halves (the editor, whose interface must not wait for the GPU):
+  // beginFrame() records and submits a frame with read-backs, without waiting; frameDone()
+  // says whether the GPU has finished it; finishFrame() waits if it has not, then collects
+  // it (timings, read-backs, the Compare panel's figures). Until then buffer(), timings() and
+  // the figures describe the frame before. Changes of the camera, light, settings, path,
+  // albedo or display made meanwhile apply to the next frame. Everything that replaces what
+  // a frame uses (a scene, a capture, renderFrames, resetHistory) finishes it first.
+  void beginFrame();
+  bool frameInFlight() const { return inFlight_ != nullptr; }
+  bool frameDone() const;
+  void finishFrame();
 
   const graph::Readback& buffer(const std::string& name) const;
   // Whether the last frame read back `name` (a path may not produce it).
@@ -177,15 +204,22 @@ class Session {
   // Pins the next frame's index (it seeds per-frame noise): reproducible frames for tests.
   void setFrameIndex(uint64_t index) { frameIndex_ = index; }
 
-  // .exr: scene-linear radiance before exposure (composite.hdr);
+  // .exr: scene-linear radiance before exposure (composite.hdr), in half floats when every
+  // value fits them and in 32-bit floats when some do not (the report says how many);
   // .png: the tonemapped display image (tonemap.ldr). Written atomically.
-  void saveImage(const std::filesystem::path& file) const;
+  ImageWriteReport saveImage(const std::filesystem::path& file) const;
 
   uint32_t validationErrors() const { return device_->validationErrorCount(); }
 
  private:
   void buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumber, bool jitter) const;
   void renderOne(bool readback);
+  void beginOne(bool readback);
+  void finishOne();
+  void settle();  // finishes a frame in flight
+  struct InFlight;
+  std::unique_ptr<InFlight> inFlight_;
+  uint64_t compareGeneration_ = 0;  // counts compare views, so a frame finds the one it was for
 
   std::unique_ptr<gpu::Device> device_;
   std::unique_ptr<scene::Scene> scene_;
@@ -208,6 +242,7 @@ class Session {
   std::optional<View> previousView_;
   Lighting lighting_;
   std::optional<lighting::DisplayRequest> display_;
+  std::string displayMissing_;
   std::unique_ptr<LiveCompare> compare_;
   std::map<std::string, View> comparePrevious_;  // each compared path's own previous view
   std::map<std::string, uint64_t> compareFrames_;  // and its own frame count (noise, checkerboards)

@@ -16,7 +16,7 @@ layout(set = 0, binding = kCompositeMaterial) uniform sampler2D gMaterial;
 layout(set = 0, binding = kCompositeEmissive) uniform sampler2D gEmissive;
 layout(set = 0, binding = kCompositeDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kCompositeShadow) uniform sampler2DShadow sunShadow;
-layout(set = 0, binding = kCompositeOutput, rgba16f) uniform writeonly image2D outRadiance;
+layout(set = 0, binding = kCompositeOutput, rgba32f) uniform writeonly image2D outRadiance;  // kCompositeHdrFormat
 layout(set = 0, binding = kCompositeLights) uniform sampler2D lightsRadiance;
 layout(push_constant) uniform Push { CompositePush push; };
 

@@ -24,7 +24,7 @@ vec4 materialBaseColor(GpuMaterial m, vec2 uv) {
 }
 
 // Alpha testing: true where the surface is cut away.
-bool materialCutout(GpuMaterial m, float alpha) { return m.alphaCutoff > 0.0 && alpha < m.alphaCutoff; }
+bool materialCutout(GpuMaterial m, float alpha) { return tlMaterialCutout(m.alphaCutoff, alpha); }
 
 // x: roughness, y: metallic.
 vec2 materialRoughnessMetallic(GpuMaterial m, vec2 uv) {

@@ -16,7 +16,7 @@ layout(set = 0, binding = kTaaBindingFrame) uniform Frame { FrameConstants frame
 layout(set = 0, binding = kTaaBindingCurrent) uniform sampler2D current;
 layout(set = 0, binding = kTaaBindingHistory) uniform sampler2D history;
 layout(set = 0, binding = kTaaBindingMotion) uniform sampler2D motion;
-layout(set = 0, binding = kTaaBindingOutput, rgba16f) uniform writeonly image2D outResolved;
+layout(set = 0, binding = kTaaBindingOutput, rgba32f) uniform writeonly image2D outResolved;  // kCompositeHdrFormat
 layout(push_constant) uniform Push { TaaPush push; };
 
 bool finite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }

@@ -114,6 +114,7 @@ void main() {
     sh = tlShAdd(sh, tlShScale(tlShProjectRadiance(dir, radiance), w / (0.25 + 0.5 * cosTheta)));
     ao += w * (1.0 - aoOcclusion);
   }
+  sh = tlShFitHalf(sh);  // into the RGBA16F range as a whole (shared/sh.h)
   imageStore(shYOut, q, sh.shY);
   imageStore(coCgAoOut, q, vec4(sh.coCg, ao / 3.14159265, depthToViewW(depth)));  // w: view depth for the upsample
 }

@@ -68,7 +68,7 @@ void main() {
   GpuMaterial m = materials[instances[inInstance].material];
   vec4 base = m.baseColorFactor;
   if (m.baseColorTexture != kNoTexture) base *= texture(sceneTextures[nonuniformEXT(m.baseColorTexture)], inUv);
-  if (m.alphaCutoff > 0.0 && base.a < m.alphaCutoff) return;
+  if (tlMaterialCutout(m.alphaCutoff, base.a)) return;
   vec3 emission = m.emissive.rgb;
   if (m.emissiveTexture != kNoTexture) emission *= texture(sceneTextures[nonuniformEXT(m.emissiveTexture)], inUv).rgb;
   vec3 albedo = tlMaterialHitAlbedo(clamp(base.rgb, 0.0, 1.0), m.metallic, tlFrameMaterials(frame.flags));

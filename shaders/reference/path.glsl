@@ -45,7 +45,7 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
   gAo = 1.0;
   vec3 throughput = vec3(1.0), radiance = vec3(0.0);
   for (uint bounce = firstBounce;; ++bounce) {
-    traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+    traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
     if (hit.positionT.w < 0.0) {
       radiance += throughput * frame.skyRadiance.rgb;
       break;
@@ -62,7 +62,7 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
       vec3 a = tlLocalToWorld(tlSampleCosineHemisphere(next2()), n);
       if (dot(geometric, a) > 0.0) {
         visible = 0.0;
-        traceRayEXT(tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
+        traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
                     0xFF, 0, 0, 1, position, 0.0, a, push.aoRadius, 1);
         gAo = visible;
       } else {
@@ -75,7 +75,7 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
     float sunNl = dot(n, toSun);
     if ((frame.flags & kFrameFlagSunShadows) != 0u && sunNl > 0.0 && dot(geometric, toSun) > 0.0) {
       visible = 0.0;
-      traceRayEXT(tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
+      traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
                   0xFF, 0, 0, 1, position, 0.0, toSun, 1e30, 1);
       radiance += throughput * frame.sunIrradiance.rgb * (sunNl * visible) * tlBrdf(s, n, v, toSun);
     }

@@ -53,7 +53,7 @@ bool screenRadianceAt(vec3 hitPosition, uint hit, out vec3 radiance) {
 // Whether a ray from `start` escapes the scene within `tMax` (miss shader 0 sets `visible`).
 float unoccluded(vec3 start, vec3 direction, float tMax) {
   visible = 0.0;
-  traceRayEXT(tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
+  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
               0xFF, 0, 0, 0, start, push.tMin, direction, tMax, 1);
   return visible;
 }

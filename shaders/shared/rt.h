@@ -215,6 +215,10 @@ struct RtInstance {
                        // override applies): re-colours pre-traced hits, which read the G-buffer
   uvec2 indexAddress;  // device address of the instance's RT (simplified) triangle list
   uvec2 vertexAddress; // device address of its first vertex (tl::scene::Vertex, 48 bytes)
+  uint material;       // index into the scene's material table (alpha MASK: rt/alpha.rahit)
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 struct RtPush {
@@ -286,10 +290,11 @@ TL_CONST uint kRtBindingFirstShY = 33;         // two rays per pixel: the first 
 TL_CONST uint kRtBindingFirstCoCg = 34;
 TL_CONST uint kRtBindingFirstAo = 35;
 TL_CONST uint kRtBindingEmitters = 32;         // RtEmitter[] (at least one entry; RtPush::emitterCount of them valid)
+TL_CONST uint kRtBindingDenoiseMoment = 36;    // r32f: the accumulation's mean squared sample luma (the denoiser's noise estimate)
 TL_END
 
 #ifdef __cplusplus
-static_assert(sizeof(tl::shared::RtInstance) == 64);
+static_assert(sizeof(tl::shared::RtInstance) == 80);
 static_assert(sizeof(tl::shared::RtPush) == 96);
 static_assert(sizeof(tl::shared::RtEmitter) == 64);
 static_assert(sizeof(tl::shared::RtDenoisePush) == 16);

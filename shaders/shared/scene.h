@@ -28,7 +28,7 @@ struct GpuMaterial {
   float metallic;
   float roughness;
   float normalScale;
-  float alphaCutoff;        // 0 = opaque
+  float alphaCutoff;        // 0 = opaque (tlMaterialCutout)
   uint baseColorTexture;
   uint normalTexture;
   uint metallicRoughnessTexture;
@@ -47,6 +47,10 @@ struct GpuInstance {
   uint vertexOffset;        // where its mesh's vertices start in the vertex buffer (for shaders that fetch them)
   uint pad1;
 };
+
+// Alpha MASK: true where a surface of this cutoff is cut away at this alpha. One predicate for
+// every stage that sees a surface (G-buffer, shadow map, voxelizer, any-hit shaders).
+TL_FN bool tlMaterialCutout(float alphaCutoff, float alpha) { return alphaCutoff > 0.0f && alpha < alphaCutoff; }
 TL_END
 
 #ifdef __cplusplus

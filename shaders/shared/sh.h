@@ -35,8 +35,17 @@
 //   tlShDominantDirection(sh, fallback)  normalize(L1), or fallback when L1 is ~0
 //   tlShDirectionality(sh)             |L1| / (sqrt(3) L0) in [0,1]: 0 uniform, 1 single direction
 //   tlShL1(sh), tlShLumaToRgb(sh, y)   helpers: the L1 vector; a luma value -> RGB at sh's chroma
+//   tlShFitHalf(sh)                    the SH scaled as a whole into the half-float range
 //   tlShHemisphereCoverage(cos, a)     what a uniform sky sampled over one normal's hemisphere
 //                                      resolves to at a normal cos away, relative (see below)
+//
+// Storage. The SH and chroma live in RGBA16F / RG16F images, whose largest value is 65504. A
+// store saturates each channel on its own: next to an emitter of 1e4 or more the luma L0
+// saturated while the smaller chroma did not, the stored colour (L0, Co, Cg) then has a
+// negative RGB channel, and every resolve of it gave negative radiance (down to -49,408 in
+// the rt path). Whoever stores a freshly computed SH stores tlShFitHalf(sh): one factor for all
+// six values keeps the colour and the direction, and only darkens what the format cannot hold.
+// Sums with non-negative weights of fitted values (accumulation, denoising) stay in range.
 #ifndef TL_SHARED_SH_H
 #define TL_SHARED_SH_H
 #include "color.h"
@@ -48,6 +57,7 @@ TL_CONST float kShY1 = 0.488603f;              // sqrt(3) / (2 sqrt(pi))
 TL_CONST float kShIrradianceL0 = 0.886226f;    // pi * kShY00
 TL_CONST float kShIrradianceL1 = 1.023326f;    // (2 pi / 3) * kShY1
 TL_CONST float kShDirectionalityNorm = 0.577350f;  // kShY00 / kShY1 = 1 / sqrt(3)
+TL_CONST float kShHalfMax = 65504.0f;          // the largest half float
 
 struct ShLumaCoCg {
   vec4 shY;   // luma SH: (L0, L1x, L1y, L1z)
@@ -75,10 +85,19 @@ TL_FN ShLumaCoCg tlShProjectRadiance(vec3 direction, vec3 rgbRadiance) {
   return tlShMake(shY, vec2(ycocg.y, ycocg.z) * kShY00);
 }
 
-// Luma -> RGB keeping the mean radiance's chroma-to-luma ratio (see the header comment).
+// Luma -> RGB keeping the mean radiance's chroma-to-luma ratio (see the header comment). The
+// max() removes what half-float rounding of a saturated colour leaves below zero (a pure
+// green's red channel, Y + Co - Cg, rounds to about -1e-3 of Y); a colour stored out of range
+// is prevented by tlShFitHalf, not hidden here.
 TL_FN vec3 tlShLumaToRgb(ShLumaCoCg sh, float y) {
   float k = sh.shY.x > 1e-20f ? y / sh.shY.x : 0.0f;
-  return tlYCoCgToRgb(vec3(y, sh.coCg.x * k, sh.coCg.y * k));
+  return max(tlYCoCgToRgb(vec3(y, sh.coCg.x * k, sh.coCg.y * k)), vec3(0.0f));
+}
+
+TL_FN ShLumaCoCg tlShFitHalf(ShLumaCoCg sh) {
+  vec4 a = abs(sh.shY);
+  float largest = max(max(max(a.x, a.y), max(a.z, a.w)), max(abs(sh.coCg.x), abs(sh.coCg.y)));
+  return largest > kShHalfMax ? tlShScale(sh, kShHalfMax / largest) : sh;
 }
 
 TL_FN vec3 tlShEvaluate(ShLumaCoCg sh, vec3 direction) {

@@ -46,7 +46,7 @@ TL_CONST uint kTaaBindingFrame = 0;     // FrameConstants
 TL_CONST uint kTaaBindingCurrent = 1;   // composite.unresolved
 TL_CONST uint kTaaBindingHistory = 2;   // taa.history (bilinear)
 TL_CONST uint kTaaBindingMotion = 3;    // gbuffer.motion
-TL_CONST uint kTaaBindingOutput = 4;    // composite.hdr (rgba16f)
+TL_CONST uint kTaaBindingOutput = 4;    // composite.hdr (rgba32f)
 TL_END
 
 #ifdef __cplusplus

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <fstream>
 
 namespace tl::test {
@@ -265,6 +266,58 @@ TEST_F(ReferenceTest, ClosedLambertianBoxIsLeOverOneMinusRho) {
   EXPECT_GT(rhoMin, rho) << "the authored walls' specular layer reflects a little more than 0.8";
   EXPECT_GT(authoredMean, 0.995 * Le / (1.0 - rhoMin));
   EXPECT_LT(authoredMean, 1.005 * Le / (1.0 - rhoMax));
+}
+
+// The closed box with white walls (Lambert, albedo 1, the diffuse mode) under a cap of N
+// scattering events: every event keeps all the light, so a camera path collects Le at each of
+// its N + 1 hits (the camera's hit is event 0) and the irradiance pass, which starts at the
+// camera's hit, Le from each of N: L = Le (N + 1), E = pi Le N exactly. Every path's weight is
+// exactly 1 (cosine sampling of Lambert), so without Russian roulette every pixel would show
+// that value with no noise at all; with it (from the fourth event on, survival 0.95 here) paths
+// end at random and survivors carry 1/q: the mean stays exact only if the roulette is unbiased,
+// and the pixels spread. The same closed form checks how the cap counts events in both passes.
+TEST_F(ReferenceTest, RussianRouletteIsUnbiasedInAClosedWhiteBox) {
+  auto& s = session();
+  fs::path dir = fs::temp_directory_path() / "twinlight-white-box";
+  fs::create_directories(dir);
+  auto j = nlohmann::json::parse(std::ifstream(contentFile("closed_box.gltf")));
+  j["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {1.0, 1.0, 1.0, 1.0};
+  std::ofstream(dir / "closed_box.gltf") << j.dump();
+  fs::copy_file(contentFile("closed_box.bin"), dir / "closed_box.bin", fs::copy_options::overwrite_existing);
+  s.loadScene(dir / "closed_box.gltf");
+  const auto& m = s.scene().materials[0];
+  const double Le = m.emissiveFactor.x * m.emissiveStrength;
+  const uint32_t cap = 12, size = 24;
+  s.settings().materials = lighting::MaterialMode::Diffuse;
+  s.setPath("reference");
+  s.setSize(size, size);
+  s.settings().referenceBounces = cap;
+  s.settings().referenceSamplesPerFrame = 64;
+  s.resetHistory();
+  for (int f = 0; f < 16; ++f) {  // 1024 samples; the irradiance accumulates only in frames that read it
+    s.requestBuffer("reference.radiance");
+    s.requestBuffer("reference.irradiance");
+    s.renderFrames(1);
+  }
+  auto stats = [](const std::vector<float>& t) {
+    double sum = 0.0, lo = 1e30, hi = 0.0;
+    for (size_t i = 0; i < t.size(); i += 4) {
+      const double l = shared::tlLuminance(glm::vec3(t[i], t[i + 1], t[i + 2]));
+      sum += l, lo = std::min(lo, l), hi = std::max(hi, l);
+    }
+    return std::array<double, 3>{sum / double(t.size() / 4), lo, hi};
+  };
+  const auto radiance = stats(s.buffer("reference.radiance").texels());
+  const auto irradiance = stats(s.buffer("reference.irradiance").texels());
+  const double expectedL = Le * (cap + 1), expectedE = M_PI * Le * cap;
+  std::printf("closed white box, cap %u: radiance mean %.4f (pixels %.3f .. %.3f), Le (N + 1) = %.4f; irradiance "
+              "mean %.4f, pi Le N = %.4f\n",
+              cap, radiance[0], radiance[1], radiance[2], expectedL, irradiance[0], expectedE);
+  EXPECT_NEAR(radiance[0], expectedL, 0.01 * expectedL);
+  EXPECT_NEAR(irradiance[0], expectedE, 0.01 * expectedE);
+  EXPECT_GT(radiance[2] - radiance[1], 0.01 * expectedL) << "paths end at random: the roulette is on";
+  s.settings().materials = lighting::MaterialMode::Authored;
+  fs::remove_all(dir);
 }
 
 // content/corridor.gltf: a closed white corridor lit through a door. Russian roulette ends

@@ -606,7 +606,7 @@ TEST_F(RtTest, FirefliesOf1e4StayFiniteAndConverge) {
 // The yardstick: with a still camera, the RT path's diffuse irradiance after 64
 // frames (denoised) against the reference's irradiance, over surface pixels away from
 // silhouettes (the reference jitters inside a pixel), 512 spp (cornell) and 256 (atrium), in
-// two scopes: the reference's full 8 scattering events against the paths' defaults (their
+// two scopes: the reference's full bounce policy against the paths' defaults (their
 // screen feedback approximates the bounces beyond the first), and the reference's one bounce
 // against both paths without their feedback (what their rays compute by design). RT must stay
 // within a stated relMSE and below the legacy path's in both.
@@ -691,12 +691,15 @@ TEST_F(RtTest, After64FramesIrradianceBeatsLegacyAgainstTheReference) {
   RecordProperty("atrium_legacy_relmse", std::to_string(atrium.legacy));
   EXPECT_LT(cornell.rt, cornell.legacy);
   EXPECT_LT(atrium.rt, atrium.legacy);
-  EXPECT_LT(cornell.rt, 0.35) << "measured 0.235 (legacy 0.52)";
-  EXPECT_LT(atrium.rt, 0.08) << "measured 0.034 (legacy 0.24)";
+  EXPECT_LT(cornell.rt, 0.35) << "measured 0.214 (legacy 0.53)";
+  EXPECT_LT(atrium.rt, 0.08) << "measured 0.027 (legacy 0.20)";
   EXPECT_LT(cornell1.rt, cornell1.legacy);
   EXPECT_LT(atrium1.rt, atrium1.legacy);
-  EXPECT_LT(cornell1.rt, 0.5) << "measured 0.426 (legacy 0.516)";
-  EXPECT_LT(atrium1.rt, 0.2) << "measured 0.186 (legacy 0.204)";
+  // Atrium, one bounce: most of the figure is two floor pixels just inside the dark room's
+  // doorway (reference ~0.08, where relMSE weighs an error ~1/(r^2 + eps) = 70x): the raw
+  // accumulation is right there, the denoiser must not carry the light from outside in.
+  EXPECT_LT(cornell1.rt, 0.5) << "measured 0.377 (legacy 0.547)";
+  EXPECT_LT(atrium1.rt, 0.2) << "measured 0.141 (legacy 0.180)";
 }
 
 // Flicker over a scripted camera path (metrics::flicker: frame-to-frame luminance change

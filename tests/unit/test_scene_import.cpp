@@ -331,14 +331,33 @@ TEST(SceneLights, LightsAgainstTheSpecificationAreOneClearError) {
   cones["extensions"]["KHR_lights_punctual"]["lights"][3]["spot"]["innerConeAngle"] = 0.7;
   writeText(tmp.path / "cones.gltf", cones.dump());
   expectOneLineErrorNaming(tmp.path / "cones.gltf", "cone angles");
-  auto negative = triangleWithLights();
-  negative["extensions"]["KHR_lights_punctual"]["lights"][2]["intensity"] = -1.0;
-  writeText(tmp.path / "negative.gltf", negative.dump());
-  expectOneLineErrorNaming(tmp.path / "negative.gltf", "negative or non-finite");
+  auto outside = triangleWithLights();
+  outside["extensions"]["KHR_lights_punctual"]["lights"][3]["spot"]["outerConeAngle"] = 2.0;
+  writeText(tmp.path / "outside.gltf", outside.dump());
+  expectOneLineErrorNaming(tmp.path / "outside.gltf", "cone angles");
+  auto type = triangleWithLights();
+  type["extensions"]["KHR_lights_punctual"]["lights"][2]["type"] = "area";
+  writeText(tmp.path / "type.gltf", type.dump());
+  expectOneLineErrorNaming(tmp.path / "type.gltf", "has type `area`");
   auto missing = triangleWithLights();
   missing["nodes"][3]["extensions"]["KHR_lights_punctual"]["light"] = 9;
   writeText(tmp.path / "missing.gltf", missing.dump());
   expectOneLineErrorNaming(tmp.path / "missing.gltf", "refers to light 9");
+}
+
+TEST(SceneLights, NegativeLightIsNoLightWithOneWarning) {
+  // The import's rule for plain out-of-range values (scene/import_values.h): clamped, warned.
+  TempDir tmp;
+  writeTriangleBin(tmp.path / "t.bin");
+  auto negative = triangleWithLights();
+  negative["extensions"]["KHR_lights_punctual"]["lights"][2]["intensity"] = -1.0;
+  writeText(tmp.path / "negative.gltf", negative.dump());
+  const Scene s = loadGltf(tmp.path / "negative.gltf");
+  ASSERT_EQ(s.lights.size(), 4u);
+  EXPECT_EQ(s.lights[2].intensity, 0.0f);
+  size_t naming = 0;
+  for (const auto& w : s.warnings) naming += w.find("light `bulb` intensity is negative") != std::string::npos;
+  EXPECT_EQ(naming, 1u);
 }
 
 }  // namespace tl::scene

@@ -1,8 +1,15 @@
 // Render settings from JSON: known keys apply, unknown keys and wrong types are one clear error.
 #include "session/session.h"
 #include "session/settings_json.h"
+#include "session/settings_reference.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 
 namespace tl::session {
 namespace {
@@ -33,6 +40,31 @@ TEST(SettingsJson, UnknownKeysAndWrongTypesAreRefusedByName) {
   }
   EXPECT_THROW(applySettingsJson(base, {{"legacyAoSteps", -2}}), SessionError);
   EXPECT_THROW(applySettingsJson(base, nlohmann::json::array()), SessionError);
+}
+
+// Issue 22: values are range-checked before they are converted (shadowMapSize 0 or 65536 gave
+// validation errors and exit 0; 4294967297 was truncated to 1; rtPretraceSteps 4000000000
+// never ended).
+TEST(SettingsJson, ValuesOutsideTheirStatedRangeAreRefused) {
+  lighting::RenderSettings base;
+  auto message = [&](const nlohmann::json& j) {
+    try {
+      applySettingsJson(base, j);
+    } catch (const SessionError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  for (const char* key : {"shadowMapSize"})
+    for (const nlohmann::json& v : {nlohmann::json(0), nlohmann::json(65536), nlohmann::json(4294967297ull), nlohmann::json(-1)})
+      EXPECT_EQ(message({{key, v}}), fmt::format("setting `shadowMapSize` must be a whole number from 64 to 8192, not {}", v.dump()));
+  EXPECT_EQ(message({{"rtPretraceSteps", 4000000000ull}}),
+            "setting `rtPretraceSteps` must be a whole number from 1 to 256, not 4000000000");
+  EXPECT_EQ(message({{"legacyConeStep", 0}}), "setting `legacyConeStep` must be a number from 0.2 to 2, not 0");
+  EXPECT_EQ(message({{"rtAoRadius", 1e39}}), "setting `rtAoRadius` must be a number from 0 to 1e+06, not 1e+39");
+  EXPECT_EQ(message({{"legacyAoSteps", 2.5}}), "setting `legacyAoSteps` must be a whole number from 1 to 64, not 2.5");
+  EXPECT_EQ(applySettingsJson(base, {{"shadowMapSize", 8192}}).shadowMapSize, 8192u);
+  EXPECT_EQ(applySettingsJson(base, {{"rtPretraceSteps", 256}}).rtPretraceSteps, 256u);
 }
 
 // The material override mode goes by name; any other value is refused with the three names.
@@ -71,6 +103,112 @@ TEST(SettingsJson, EverySettingRoundTrips) {
   nlohmann::json again = settingsJson(back);
   again.erase("width"), again.erase("height");
   EXPECT_EQ(again, all);
+}
+
+}  // namespace
+}  // namespace tl::session
+
+namespace tl::session {
+namespace {
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const SessionError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+// Ranges are checked after conversion to the stored type: one clear error naming the setting,
+// what it takes and the value refused, and nothing applied.
+TEST(SettingsSchema, ValuesOutsideTheRangeAreRefusedByName) {
+  const lighting::RenderSettings base;
+  EXPECT_EQ(errorOf([&] { applySettingsJson(base, {{"shadowMapSize", 100000}}); }),
+            "setting `shadowMapSize` must be a whole number from 64 to 8192, not 100000");
+  EXPECT_EQ(errorOf([&] { applySettingsJson(base, {{"legacyVoxelResolution", 100}}); }),
+            "setting `legacyVoxelResolution` must be a whole number from 8 to 256, a power of two, not 100");
+  EXPECT_NE(errorOf([&] { applySettingsJson(base, {{"legacyAoSteps", 2.5}}); }).find("a whole number"), std::string::npos);
+  EXPECT_NE(errorOf([&] { applySettingsJson(base, {{"rtThickness", -0.001}}); }).find("from 0 to 1"), std::string::npos);
+  EXPECT_NE(errorOf([&] { applySettingsJson(base, {{"taaBlend", 0}}); }).find("`taaBlend`"), std::string::npos);
+  // 1 + 1e-9 is 1 once stored as a float: within [0.01, 1].
+  EXPECT_FLOAT_EQ(applySettingsJson(base, {{"taaBlend", 1.000000001}}).taaBlend, 1.0f);
+  // A refused key leaves the others unapplied (the caller keeps `base`).
+  EXPECT_THROW(applySettingsJson(base, {{"rtDenoise", false}, {"shadowMapSize", 1}}), SessionError);
+  EXPECT_EQ(applySettingsJson(base, {{"shadowMapSize", 4096}}).shadowMapSize, 4096u);
+}
+
+TEST(SettingsSchema, TextAssignmentsParseIntoTheStoredType) {
+  const lighting::RenderSettings base;
+  EXPECT_EQ(applySettingText(base, "shadowMapSize=4096").shadowMapSize, 4096u);
+  EXPECT_EQ(applySettingText(base, "materials=clay").materials, lighting::MaterialMode::Clay);
+  EXPECT_FALSE(applySettingText(base, "rtDenoise=false").rtDenoise);
+  EXPECT_FLOAT_EQ(applySettingText(base, "rtAoRadius=0.5").rtAoRadius, 0.5f);
+  EXPECT_EQ(errorOf([&] { applySettingText(base, "shadowMapSize=100000"); }),
+            "setting `shadowMapSize` must be a whole number from 64 to 8192, not `100000`");
+  EXPECT_NE(errorOf([&] { applySettingText(base, "rtDenoise=yes"); }).find("true or false"), std::string::npos);
+  EXPECT_NE(errorOf([&] { applySettingText(base, "rtAoRadius=0.5m"); }).find("a number from"), std::string::npos);
+  EXPECT_NE(errorOf([&] { applySettingText(base, "rtBogus=1"); }).find("unknown setting `rtBogus`"), std::string::npos);
+  EXPECT_NE(errorOf([&] { applySettingText(base, "rtDenoise"); }).find("NAME=VALUE"), std::string::npos);
+}
+
+// Every default lies in its own range, so every settings file Twinlight writes reads back.
+TEST(SettingsSchema, DefaultsAreValidAndFormatBackToThemselves) {
+  const lighting::RenderSettings defaults;
+  EXPECT_GE(lighting::settingsSchema().size(), 57u);  // every RenderSettings field
+  for (const auto& s : lighting::settingsSchema()) {
+    EXPECT_EQ(s.get(defaults), s.defaultValue) << s.name;
+    EXPECT_FALSE(lighting::settingRangeError(s, s.defaultValue)) << s.name << " default " << s.defaultValue;
+    EXPECT_EQ(lighting::parseSetting(s, lighting::formatSetting(s, s.defaultValue)), s.defaultValue) << s.name;
+    EXPECT_FALSE(s.help.empty()) << s.name;
+  }
+}
+
+// The history flags name lighting paths that exist, and a path's history settings hash is
+// exactly what its flags say: the frame key's `settings` part (docs/architecture.md).
+TEST(SettingsSchema, HistoryFlagsDecideEachPathsHistorySettings) {
+  std::vector<std::string> paths;
+  for (auto make : lighting::lightingPathRegistry()) paths.push_back(make()->name());
+  for (const auto& s : lighting::settingsSchema()) {
+    size_t named = 0;
+    for (const auto& p : paths) named += s.resetsHistoryOf(p);
+    EXPECT_EQ(named, size_t(std::count(s.history.begin(), s.history.end(), ' ') + !s.history.empty()))
+        << s.name << " names a path that does not exist: " << s.history;
+  }
+  const lighting::RenderSettings base;
+  for (const auto& path : paths) {
+    for (const auto& s : lighting::settingsSchema()) {
+      lighting::RenderSettings changed = base;
+      const double other = s.get(base) == s.max ? s.min : (s.type == lighting::SettingType::Float ? s.max : s.get(base) + 1);
+      const double v = (s.flags & lighting::kSettingPow2) ? (s.get(base) == s.max ? s.get(base) / 2 : s.get(base) * 2) : other;
+      s.set(changed, v);
+      EXPECT_EQ(lighting::historySettingsHash(changed, path) != lighting::historySettingsHash(base, path),
+                s.resetsHistoryOf(path))
+          << s.name << " for " << path;
+    }
+  }
+  // What the docs' frame-key table states.
+  auto resets = [](const char* name, const char* path) { return lighting::findSetting(name)->resetsHistoryOf(path); };
+  EXPECT_TRUE(resets("materials", "reference") && resets("materials", "rt") && resets("materials", "legacy"));
+  EXPECT_TRUE(resets("rtAoRadius", "reference"));
+  EXPECT_FALSE(resets("rtMaxAccumFrames", "rt") || resets("rtDenoise", "rt") || resets("rtLumaRejection", "rt") ||
+               resets("rtDisocclusionRays", "rt") || resets("rtHalfRays", "rt"));
+  EXPECT_FALSE(resets("legacyConeStep", "legacy") || resets("legacyPartialVoxels", "legacy"));
+  EXPECT_EQ(lighting::historySettingsHash(base, "direct"), 0u);
+}
+
+// docs/user-guide.md holds the settings reference `twinlight settings --markdown` prints.
+TEST(SettingsSchema, UserGuideReferenceMatchesTheSchema) {
+  const std::filesystem::path guide = std::filesystem::path(TWINLIGHT_CONTENT_DIR) / ".." / "docs" / "user-guide.md";
+  std::ifstream in(guide);
+  ASSERT_TRUE(in) << guide;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t begin = text.find(kSettingsDocBegin), end = text.find(kSettingsDocEnd);
+  ASSERT_NE(begin, std::string::npos) << "no settings reference in " << guide;
+  ASSERT_NE(end, std::string::npos);
+  const size_t from = text.find('\n', begin) + 1;
+  EXPECT_EQ(text.substr(from, end - from), settingsReferenceMarkdown())
+      << "regenerate it: twinlight settings --markdown (between the markers in docs/user-guide.md)";
 }
 
 }  // namespace

@@ -350,6 +350,33 @@ TEST(Sh, IsLinearAndDegeneratesSafely) {
   EXPECT_EQ(tlShDirectionality(zero), 0.0f);
 }
 
+// Issue 22: a sample from a strong emitter stored in half floats. Saturating each channel on
+// its own (what an RGBA16F store does) leaves a colour with a negative channel; fitting the
+// whole SH keeps the colour (non-negative, same chroma ratio) and the direction.
+TEST(Sh, FittingIntoHalfRangeKeepsTheColourWhereSaturatingDoesNot) {
+  const vec3 dir = glm::normalize(vec3(0.3f, 0.8f, -0.5f));
+  // 4 pi / 64: a uniform-sphere sample's Monte Carlo weight for 64 rays, of a green 1e7 emitter.
+  const ShLumaCoCg sample = tlShScale(tlShProjectRadiance(dir, vec3(2e6f, 1e7f, 1.5e6f)), 4.0f * float(kPiD) / 64.0f);
+  auto meanColour = [](const ShLumaCoCg& s) { return tlYCoCgToRgb(vec3(s.shY.x, s.coCg.x, s.coCg.y)); };
+  auto saturate = [](ShLumaCoCg s) {
+    for (int i = 0; i < 4; ++i) s.shY[i] = std::clamp(s.shY[i], -kShHalfMax, kShHalfMax);
+    s.coCg = glm::clamp(s.coCg, vec2(-kShHalfMax), vec2(kShHalfMax));
+    return s;
+  };
+  ASSERT_GT(sample.shY.x, kShHalfMax);  // the case: beyond the half range
+  EXPECT_LT(std::min({meanColour(saturate(sample)).x, meanColour(saturate(sample)).z}), -1000.0f);  // the bug
+  const ShLumaCoCg fitted = tlShFitHalf(sample);
+  for (int i = 0; i < 4; ++i) EXPECT_LE(std::abs(fitted.shY[i]), kShHalfMax);
+  const vec3 colour = meanColour(fitted);
+  EXPECT_GE(std::min({colour.x, colour.y, colour.z}), 0.0f);
+  EXPECT_NEAR(colour.x / colour.y, 0.2f, 1e-4f);  // the emitter's chroma
+  EXPECT_LT(angleDeg(tlShDominantDirection(fitted, vec3(0, 1, 0)), dir), 1e-3);
+  // In range: unchanged.
+  const ShLumaCoCg small = tlShProjectRadiance(dir, vec3(1, 2, 3));
+  EXPECT_EQ(tlShFitHalf(small).shY, small.shY);
+  EXPECT_EQ(tlShFitHalf(small).coCg, small.coCg);
+}
+
 // -------------------------------------------------------------------------------- sampling
 
 // A stratified grid of uniforms: deterministic and low-variance.

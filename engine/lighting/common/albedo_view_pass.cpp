@@ -78,7 +78,7 @@ void AlbedoViewPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   // The baseline is a cache: written from the final image in the frame that captures it,
   // kept unchanged after.
   graph.declareCache(kAlbedoImpactBaseline,
-                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "final image before the albedo edits"));
+                     graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, "final image before the albedo edits"));
   if (captureBaseline_) {
     addCopyPass(graph, "albedo.impactBaseline", {{kCompositeHdr, kAlbedoImpactBaseline}});
     captureBaseline_ = false;

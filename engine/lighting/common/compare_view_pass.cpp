@@ -27,7 +27,7 @@ void CompareViewPass::add(graph::RenderGraph& graph, FrameInputs& in, const Comp
     pipeline_ = gpu::createComputePipeline(in.device, d);
     sampler_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "compare.point");
   }
-  const auto desc = graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
+  const auto desc = graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h,
                                                  "a compared path's last image (scene-linear radiance)");
   const std::string left = compareImageName(request.left), right = compareImageName(request.right),
                     mine = compareImageName(rendered);

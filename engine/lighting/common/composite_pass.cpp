@@ -15,7 +15,7 @@ using graph::Usage;
 void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path) {
   const uint32_t w = in.settings.width, h = in.settings.height;
   const auto hdrDesc =
-      graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "scene-linear radiance before exposure");
+      graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, "scene-linear radiance before exposure");
   if (!path.radiance.empty()) {
     // The path computed the whole image: pass it through (32-bit float -> half).
     const std::string source = path.radiance;
@@ -92,7 +92,7 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   // With TAA the composite is this frame's jittered image; the TAA pass resolves it into
   // composite.hdr (lighting/common/taa_pass.h).
   const char* output = in.temporalAntialiasing ? kCompositeUnresolved : kCompositeHdr;
-  const auto unresolvedDesc = graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
+  const auto unresolvedDesc = graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h,
                                                            "scene-linear radiance before exposure, jittered (TAA input)");
   graph.addPass(
       "composite", graph::PassKind::Compute,

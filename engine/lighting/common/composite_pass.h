@@ -11,7 +11,12 @@
 
 namespace tl::lighting {
 
-inline constexpr const char* kCompositeHdr = "composite.hdr";  // RGBA16F scene-linear radiance
+inline constexpr const char* kCompositeHdr = "composite.hdr";  // scene-linear radiance, kCompositeHdrFormat
+// The final radiance and every copy of it (TAA's input and history, the paths' radiance
+// histories, compare's kept images, the albedo baseline) are 32-bit floats: half floats
+// saturated at 65504, so a sun of 1e6 (radiance 3e5) was clipped silently in 63-67% of the
+// pixels of an EXR. The GLSL writers say rgba32f (composite.comp, taa.comp).
+inline constexpr VkFormat kCompositeHdrFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 inline constexpr const char* kTonemapLdr = "tonemap.ldr";      // RGBA8, sRGB-encoded display image
 // What the composite multiplied, as images (composite.stages; run only when read): per-stage
 // error against reference.ao and reference.irradiance. 0 on sky pixels.

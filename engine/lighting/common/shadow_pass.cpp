@@ -24,6 +24,15 @@ void ShadowPass::add(graph::RenderGraph& graph, FrameInputs& in) {
     d.depthBias = true;
     d.depthClamp = true;  // casters between the sun and the near plane clamp to it instead of vanishing
     pipeline_ = gpu::createGraphicsPipeline(in.device, d);
+    // Cut-out materials (alpha MASK) need their texture's alpha: a fragment stage that
+    // discards, only for the instances that have one, so opaque casters keep the depth-only path.
+    d.name = "shadow.sun.masked";
+    d.vertexShader = "common/shadow_masked.vert";
+    d.fragmentShader = "common/shadow_masked.frag";
+    d.vertexAttributes.clear();
+    for (const auto& a : scene::GpuScene::vertexAttributes())
+      if (a.location == shared::kAttrPosition || a.location == shared::kAttrUv) d.vertexAttributes.push_back(a);
+    maskedPipeline_ = gpu::createGraphicsPipeline(in.device, d);
   }
 
   graph.addPass(
@@ -42,7 +51,15 @@ void ShadowPass::add(graph::RenderGraph& graph, FrameInputs& in) {
         in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout(), shared::kSceneSet);
         // Slope-scaled bias against acne on surfaces at grazing angles to the sun.
         vkCmdSetDepthBias(ctx.cmd, 0.0f, 0.0f, 1.5f);
-        in.scene.drawAll(ctx.cmd);
+        in.scene.drawInstances(ctx.cmd, in.scene.opaqueInstances());
+        if (!in.scene.alphaTestedInstances().empty()) {
+          ctx.bind(maskedPipeline_);
+          ctx.descriptors().uniformBuffer(shared::kBindingFrame, in.constantsBuffer.handle());
+          ctx.flushDescriptors();
+          in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, maskedPipeline_.layout(), shared::kSceneSet);
+          vkCmdSetDepthBias(ctx.cmd, 0.0f, 0.0f, 1.5f);
+          in.scene.drawInstances(ctx.cmd, in.scene.alphaTestedInstances());
+        }
         ctx.endRendering();
       });
 }

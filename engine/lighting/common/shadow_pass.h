@@ -16,6 +16,7 @@ class ShadowPass {
 
  private:
   gpu::Pipeline pipeline_;
+  gpu::Pipeline maskedPipeline_;  // alpha MASK casters: discards where the texture cuts them out
 };
 
 }  // namespace tl::lighting

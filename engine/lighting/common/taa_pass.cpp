@@ -33,7 +33,7 @@ void TaaPass::add(graph::RenderGraph& graph, FrameInputs& in) {
     pointSampler_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "taa.point");
     linearSampler_ = gpu::Sampler(in.device, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "taa.linear");
   }
-  const auto hdr = [&](const char* what) { return graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, what); };
+  const auto hdr = [&](const char* what) { return graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, what); };
   const std::string history = taaHistoryName(in.pathName);
   const graph::ResourceDesc historyDesc = hdr("TAA: this path's last resolved image");
   const bool stored = in.executor.historyValid(history, historyDesc);

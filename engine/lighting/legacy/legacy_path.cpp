@@ -69,20 +69,9 @@ constexpr HistoryPolicy kScreenHistory{"legacy.ssao", parts(FramePart::Scene, Fr
 class LegacyPath final : public LightingPath {
  public:
   std::string name() const override { return "legacy"; }
+  PathCapabilities capabilities() const override { return {.accumulates = true}; }
   std::string description() const override {
     return "RTX OFF: GTAO + voxel clipmap GI with cone tracing and voxel AO";
-  }
-
-  // What the voxels and the SSAO history hold: AO reach and sampling, the clipmap's size and
-  // levels, whether the screen feeds light back into the voxels, and the material override
-  // mode (the albedo the voxels were lit with). Cone settings are
-  // per frame (no history), the update policy (partial updates, settling) changes only work.
-  uint64_t historySettings(const RenderSettings& s) const override {
-    return KeyHasher()
-        .all(double(s.legacyAoRadius), double(s.legacyAoThickness), double(s.legacyAoSlices), double(s.legacyAoSteps),
-             double(s.legacyAoDivisor), double(s.legacyVoxelResolution), double(s.legacyLevel0Extent),
-             double(s.legacyMaxLevels), double(s.legacyScreenRadiance), double(s.materials))
-        .done();
   }
 
   std::vector<std::pair<std::string, double>> figures() const override {
@@ -143,7 +132,7 @@ class LegacyPath final : public LightingPath {
         graph::ResourceDesc::image3D(VK_FORMAT_R16G16B16A16_SFLOAT, 3 * R, R / 2, N * R / 2,
                                      "voxels per face, mips 1.. (front-to-back along each face's axis)", mips);
     const graph::ResourceDesc radianceDesc =
-        graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "composite radiance, last frame");
+        graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, "composite radiance, last frame");
     const graph::ResourceDesc depthDesc = graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, w, h, "G-buffer depth, last frame");
     // The SSAO accumulates at its own resolution, before the upsample: a quarter of the pixels.
     // It keeps the view depth it was taken at, so the next frame's history test needs no depth.

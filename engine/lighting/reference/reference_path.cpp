@@ -46,17 +46,16 @@ constexpr const char* kRaygen = "reference/trace.rgen";
 constexpr const char* kIrradianceRaygen = "reference/irradiance.rgen";
 constexpr const char* kMisses[] = {"reference/trace.rmiss", "reference/shadow.rmiss"};
 constexpr const char* kClosestHit = "reference/trace.rchit";
+constexpr const char* kAnyHit = "reference/alpha.rahit";  // alpha MASK: runs on non-opaque geometry only
 
 class ReferencePath final : public LightingPath {
  public:
   std::string name() const override { return "reference"; }
-  bool rasterizes() const override { return false; }
   std::string description() const override {
     return "progressive path tracer (ground truth): same materials, sun, sky and emitters";
   }
-  std::optional<std::string> unavailableReason(const gpu::Device& device) const override {
-    if (device.rayTracing().pipeline) return std::nullopt;
-    return "needs hardware or lavapipe ray tracing: " + device.rayTracing().unavailableReason;
+  PathCapabilities capabilities() const override {
+    return {.needsRayTracing = true, .isReference = true, .accumulates = true, .rasterizes = false};
   }
 
   LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
@@ -127,11 +126,6 @@ class ReferencePath final : public LightingPath {
   }
 
   uint32_t samples() const { return samples_; }
-  // referenceBounces; rtAoRadius is also the reference's AO radius (reference.ao); the material
-  // override mode.
-  uint64_t historySettings(const RenderSettings& s) const override {
-    return KeyHasher().all(double(s.referenceBounces), double(s.rtAoRadius), double(s.materials)).done();
-  }
   std::vector<std::pair<std::string, double>> figures() const override {
     return {{"reference.samples", double(samples_)}, {"reference.irradianceSamples", double(irradianceSamples_)}};
   }
@@ -252,7 +246,7 @@ class ReferencePath final : public LightingPath {
       d.name = "reference.trace";
       d.raygen = kRaygen;
       d.misses.assign(std::begin(kMisses), std::end(kMisses));
-      d.hitGroups = {{kClosestHit, ""}};
+      d.hitGroups = {{kClosestHit, kAnyHit}};
       d.layout.bindings = {{shared::kRefBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                            {shared::kRefBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
                            {shared::kRefBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
@@ -288,6 +282,8 @@ class ReferencePath final : public LightingPath {
   static gpu::TriangleGeometry meshGeometry(FrameInputs& in, uint32_t m) {
     const auto& r = in.scene.meshRanges()[m];
     gpu::TriangleGeometry g;
+    // Cut-out materials need the any-hit shader; everything else stays opaque (no any-hit calls).
+    g.opaque = !in.scene.meshAlphaTested(m);
     g.vertices = in.scene.vertexBuffer().address() + VkDeviceAddress(r.vertexOffset) * sizeof(scene::Vertex);
     g.vertexStride = sizeof(scene::Vertex);
     g.vertexCount = r.vertexCount;
@@ -383,6 +379,7 @@ std::vector<std::string> referenceShaders() {
   std::vector<std::string> all{kRaygen, kIrradianceRaygen};
   all.insert(all.end(), std::begin(kMisses), std::end(kMisses));
   all.push_back(kClosestHit);
+  all.push_back(kAnyHit);
   return all;
 }
 

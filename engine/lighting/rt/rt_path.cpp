@@ -12,6 +12,7 @@
 #include "lighting/rt/blue_noise.h"
 #include "lighting/rt/rt_path.h"
 #include "lighting/rt/rt_scene.h"
+#include "shared/scene.h"
 
 #include <fmt/format.h>
 
@@ -22,6 +23,9 @@ using graph::Usage;
 using shared::RtPush;
 
 constexpr VkImageLayout kReadOnly = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
+// Alpha MASK for every ray that meets the scene: invoked only on geometry built without
+// VK_GEOMETRY_OPAQUE_BIT (meshes whose material cuts itself out), so opaque scenes never pay.
+constexpr const char* kAnyHit = "rt/alpha.rahit";
 
 // The temporal accumulation (SH, chroma, AO, depth, luma moment) and last frame's radiance
 // that hits on screen reuse. Camera motion is reprojected, except a cut; a new scene or a
@@ -36,9 +40,8 @@ class RtPath final : public LightingPath {
   std::string description() const override {
     return "ray-traced GI + AO (Metro Exodus): pre-trace, 1 ray/pixel, SH irradiance, temporal accumulation";
   }
-  std::optional<std::string> unavailableReason(const gpu::Device& device) const override {
-    if (device.rayTracing().pipeline) return std::nullopt;
-    return "needs hardware or lavapipe ray tracing: " + device.rayTracing().unavailableReason;
+  PathCapabilities capabilities() const override {
+    return {.needsRayTracing = true, .accumulates = true, .halfResolution = true};
   }
 
   LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
@@ -97,7 +100,7 @@ class RtPath final : public LightingPath {
     for (int i = 0; i < 4; ++i) graph.declarePersistent(histNames[i], histDescs[i]);
     const bool screenRadiance = s.rtScreenRadiance;
     if (screenRadiance)
-      graph.declarePersistent(kHistRadiance, image(VK_FORMAT_R16G16B16A16_SFLOAT, "composite radiance, last frame"));
+      graph.declarePersistent(kHistRadiance, image(kCompositeHdrFormat, "composite radiance, last frame"));
 
     addStructurePasses(graph, in);
 
@@ -218,7 +221,7 @@ class RtPath final : public LightingPath {
     std::string giShY = accShY, giCoCg = accCoCgAo;
     if (s.rtDenoise) {
       // Metro's radii are 6 m and 3 m in its world; here a sixth of the scene, at most 6 m.
-      const float base = s.rtDenoiseRadius > 0.0f ? s.rtDenoiseRadius : std::clamp(scale / 6.0f, 0.25f, 6.0f);
+      const float base = s.rtDenoiseRadius > 0.0f ? s.rtDenoiseRadius : sceneScaledDenoiseRadius(scale);
       const uint32_t frameIndex = in.constants.frameIndex;
       auto denoise = [&](const char* name, const char* inShY, const char* inCoCg, const char* outShY, const char* outCoCg,
                          float radius, uint32_t normalWeight) {
@@ -230,6 +233,9 @@ class RtPath final : public LightingPath {
               b.read("gbuffer.normal", Usage::Sampled);
               b.read(inShY, Usage::Sampled);
               b.read(inCoCg, Usage::Sampled);
+              b.read(kLumaMoment, Usage::Sampled);
+              b.read("gbuffer.baseColor", Usage::Sampled);
+              b.read("gbuffer.material", Usage::Sampled);
               b.create(outShY,
                        image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised irradiance, SH luma")
                            .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", outCoCg)),
@@ -252,6 +258,9 @@ class RtPath final : public LightingPath {
                   .sampledImage(shared::kRtBindingNormal, ctx.image("gbuffer.normal").view(), pt, kReadOnly)
                   .sampledImage(shared::kRtBindingShY, ctx.image(inShY).view(), pt, kReadOnly)
                   .sampledImage(shared::kRtBindingCoCg, ctx.image(inCoCg).view(), pt, kReadOnly)
+                  .sampledImage(shared::kRtBindingDenoiseMoment, ctx.image(kLumaMoment).view(), pt, kReadOnly)
+                  .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), pt, kReadOnly)
+                  .sampledImage(shared::kRtBindingMaterial, ctx.image("gbuffer.material").view(), pt, kReadOnly)
                   .storageImage(shared::kRtBindingDenoiseShY, ctx.image(outShY).view())
                   .storageImage(shared::kRtBindingDenoiseCoCgAo, ctx.image(outCoCg).view());
               ctx.dispatch(in.settings.width, in.settings.height);
@@ -284,21 +293,6 @@ class RtPath final : public LightingPath {
       out.farOpenSkyDirectionality = far.openSkyDirectionality;
     }
     return out;
-  }
-
-  // What the accumulated samples estimate: the rays' reach and targets, the geometry they
-  // hit, what lights a hit, the pre-trace, the firefly clamp and the material override mode.
-  // The ray pattern (half rays, half resolution, two rays) and the accumulation window change
-  // only the noise and the weights: the history is kept across them. Post-accumulation
-  // settings (the denoiser) hold no history; the blend distance does, since the top level's
-  // distance culling follows it.
-  uint64_t historySettings(const RenderSettings& s) const override {
-    return KeyHasher()
-        .all(double(s.rtAoRadius), double(s.rtRayLength), double(s.rtSimplifyRatio), double(s.rtSimplifyError),
-             double(s.rtPretrace), double(s.rtPretraceSteps), double(s.rtPretracePixels), double(s.rtThickness),
-             double(s.rtFireflyClamp), double(s.rtHitSky), double(s.rtEmitterSampling), double(s.rtScreenRadiance),
-             double(s.rtCullAngle), double(s.rtCullMargin), double(s.rtBlendDistance), double(s.materials))
-        .done();
   }
 
   std::vector<std::pair<std::string, double>> figures() const override {
@@ -377,7 +371,7 @@ class RtPath final : public LightingPath {
               .storageImage(shared::kRtBindingHitsOut, ctx.image(r.hits).view())
               .storageImage(shared::kRtBindingSurfaceOut, ctx.image(r.hitSurface).view())
               .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle());
-          traceRays(ctx, trace_, in);
+          traceRays(ctx, trace_, in, &in.scene);
         });
 
     graph.addPass(
@@ -415,8 +409,9 @@ class RtPath final : public LightingPath {
               .storageImage(shared::kRtBindingAo, ctx.image(r.ao).view())
               .sampledImage(shared::kRtBindingFirstShY, firstRay(first ? first->shY : nullptr), pt, kReadOnly)
               .sampledImage(shared::kRtBindingFirstCoCg, firstRay(first ? first->coCg : nullptr), pt, kReadOnly)
-              .sampledImage(shared::kRtBindingFirstAo, firstRay(first ? first->ao : nullptr), pt, kReadOnly);
-          traceRays(ctx, lighting_, in);
+              .sampledImage(shared::kRtBindingFirstAo, firstRay(first ? first->ao : nullptr), pt, kReadOnly)
+              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle());
+          traceRays(ctx, lighting_, in, &in.scene);
         });
   }
 
@@ -451,7 +446,7 @@ class RtPath final : public LightingPath {
               .storageImage(shared::kRtBindingCellShY, ctx.image(kCellShY).view())
               .storageImage(shared::kRtBindingCellCoCgAo, ctx.image(kCellCoCgAo).view())
               .storageImage(shared::kRtBindingCellPosition, ctx.image(kCellOrigin).view());
-          traceRays(ctx, disocclusion_, cw, ch);
+          traceRays(ctx, disocclusion_, cw, ch, &in.scene);
         });
     const uint32_t w = in.settings.width, h = in.settings.height;
     graph.addPass(
@@ -594,13 +589,93 @@ class RtPath final : public LightingPath {
   static uint32_t tracedHeight(const FrameInputs& in) {
     return rtRayPattern(in.settings) == shared::kRtRaysHalfResolution ? (in.settings.height + 1) / 2 : in.settings.height;
   }
-  static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, FrameInputs& in) {
-    traceRays(ctx, p, tracedWidth(in), tracedHeight(in));
+  static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, FrameInputs& in,
+                        const scene::GpuScene* sceneTable = nullptr) {
+    traceRays(ctx, p, tracedWidth(in), tracedHeight(in), sceneTable);
   }
-  static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, uint32_t width, uint32_t height) {
+  // `sceneTable`: bind the scene's descriptor table for pipelines with an any-hit shader.
+  static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, uint32_t width, uint32_t height,
+                        const scene::GpuScene* sceneTable = nullptr) {
     ctx.flushDescriptors();
+    if (sceneTable) sceneTable->table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, p.layout(), shared::kSceneSet);
     ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion, width,
                                   height, 1);
+  }
+
+  // The pipelines that trace the scene: their any-hit shader (alpha MASK) reads the scene's
+  // materials and textures, so their layouts name this scene's descriptor-table layout and are
+  // built again with each scene (as the reference's are).
+  void createRayPipelines(FrameInputs& in) {
+    using B = gpu::Binding;
+    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    const std::vector<B> common = {{shared::kRtBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                   {shared::kRtBindingBlueNoise, sampled},
+                                   {shared::kRtBindingDepth, sampled},
+                                   {shared::kRtBindingNormal, sampled}};
+    auto with = [&](std::vector<B> extra) {
+      gpu::PipelineLayoutDesc l;
+      l.bindings = common;
+      l.bindings.insert(l.bindings.end(), extra.begin(), extra.end());
+      l.pushConstantBytes = sizeof(RtPush);
+      l.extraSets = {in.scene.table().layout()};
+      return l;
+    };
+    {
+      gpu::RayTracingPipelineDesc d;
+      d.name = "rt.trace";
+      d.raygen = "rt/trace.rgen";
+      d.misses = {"rt/trace.rmiss"};
+      d.hitGroups = {{"rt/trace.rchit", kAnyHit}};
+      d.layout = with({{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+                       {shared::kRtBindingHitsIn, storage},
+                       {shared::kRtBindingSurfaceIn, storage},
+                       {shared::kRtBindingHitsOut, storage},
+                       {shared::kRtBindingSurfaceOut, storage},
+                       {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
+      trace_ = gpu::createRayTracingPipeline(in.device, d);
+    }
+    const std::vector<B> hitLighting = {{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+                                        {shared::kRtBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                        {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                        {shared::kRtBindingHistRadiance, sampled},
+                                        {shared::kRtBindingHistDepth, sampled},
+                                        {shared::kRtBindingBaseColor, sampled},
+                                        {shared::kRtBindingMaterial, sampled},
+                                        {shared::kRtBindingEmissive, sampled}};
+    {
+      gpu::RayTracingPipelineDesc d;
+      d.name = "rt.lighting";
+      d.raygen = "rt/lighting.rgen";
+      d.misses = {"rt/shadow.rmiss"};
+      d.hitGroups = {{"", kAnyHit}};  // shadow rays skip closest hits; cut-outs still let them through
+      std::vector<B> extra = hitLighting;
+      extra.insert(extra.end(), {{shared::kRtBindingHitsIn, storage},
+                                 {shared::kRtBindingSurfaceIn, storage},
+                                 {shared::kRtBindingShY, storage},
+                                 {shared::kRtBindingCoCg, storage},
+                                 {shared::kRtBindingAo, storage},
+                                 {shared::kRtBindingFirstShY, sampled},
+                                 {shared::kRtBindingFirstCoCg, sampled},
+                                 {shared::kRtBindingFirstAo, sampled},
+                                 {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
+      d.layout = with(extra);
+      lighting_ = gpu::createRayTracingPipeline(in.device, d);
+    }
+    {
+      gpu::RayTracingPipelineDesc d;
+      d.name = "rt.disocclusion";
+      d.raygen = "rt/disocclusion.rgen";
+      d.misses = {"rt/shadow.rmiss", "rt/disocclusion.rmiss"};  // hit_lighting.glsl: the shadow miss is 0
+      d.hitGroups = {{"rt/disocclusion.rchit", kAnyHit}};
+      std::vector<B> extra = hitLighting;
+      extra.insert(extra.end(), {{shared::kRtBindingCoCg, sampled},
+                                 {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                 {shared::kRtBindingCellShY, storage},
+                                 {shared::kRtBindingCellCoCgAo, storage},
+                                 {shared::kRtBindingCellPosition, storage}});
+      d.layout = with(extra);
+      disocclusion_ = gpu::createRayTracingPipeline(in.device, d);
+    }
   }
 
   // Scene geometry, blue noise and pipelines: once per scene (and RT mesh ratio).
@@ -611,6 +686,7 @@ class RtPath final : public LightingPath {
                                          in.settings.rtSimplifyError);
       sceneId_ = in.scene.id();
       albedoVersion_ = ~0ull;
+      createRayPipelines(in);
     }
     const uint32_t materials = uint32_t(in.settings.materials);
     if (albedoVersion_ != in.instanceAlbedoVersion || materials_ != materials) {
@@ -676,6 +752,9 @@ class RtPath final : public LightingPath {
                            {shared::kRtBindingNormal, sampled},
                            {shared::kRtBindingShY, sampled},
                            {shared::kRtBindingCoCg, sampled},
+                           {shared::kRtBindingDenoiseMoment, sampled},
+                           {shared::kRtBindingBaseColor, sampled},
+                           {shared::kRtBindingMaterial, sampled},
                            {shared::kRtBindingDenoiseShY, storage},
                            {shared::kRtBindingDenoiseCoCgAo, storage}};
       d.layout.pushConstantBytes = sizeof(shared::RtDenoisePush);
@@ -684,60 +763,6 @@ class RtPath final : public LightingPath {
     aoFilter_ = compute("rt.ao.filter", "rt/ao_filter.comp",
                         {{shared::kRtBindingCoCg, sampled}, {shared::kRtBindingHistDepth, sampled},
                          {shared::kRtBindingAo, storage}});
-    {
-      gpu::RayTracingPipelineDesc d;
-      d.name = "rt.trace";
-      d.raygen = "rt/trace.rgen";
-      d.misses = {"rt/trace.rmiss"};
-      d.hitGroups = {{"rt/trace.rchit", ""}};
-      d.layout = with({{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-                       {shared::kRtBindingHitsIn, storage},
-                       {shared::kRtBindingSurfaceIn, storage},
-                       {shared::kRtBindingHitsOut, storage},
-                       {shared::kRtBindingSurfaceOut, storage},
-                       {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
-      trace_ = gpu::createRayTracingPipeline(in.device, d);
-    }
-    const std::vector<B> hitLighting = {{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-                                        {shared::kRtBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                        {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                        {shared::kRtBindingHistRadiance, sampled},
-                                        {shared::kRtBindingHistDepth, sampled},
-                                        {shared::kRtBindingBaseColor, sampled},
-                                        {shared::kRtBindingMaterial, sampled},
-                                        {shared::kRtBindingEmissive, sampled}};
-    {
-      gpu::RayTracingPipelineDesc d;
-      d.name = "rt.lighting";
-      d.raygen = "rt/lighting.rgen";
-      d.misses = {"rt/shadow.rmiss"};
-      std::vector<B> extra = hitLighting;
-      extra.insert(extra.end(), {{shared::kRtBindingHitsIn, storage},
-                                 {shared::kRtBindingSurfaceIn, storage},
-                                 {shared::kRtBindingShY, storage},
-                                 {shared::kRtBindingCoCg, storage},
-                                 {shared::kRtBindingAo, storage},
-                                 {shared::kRtBindingFirstShY, sampled},
-                                 {shared::kRtBindingFirstCoCg, sampled},
-                                 {shared::kRtBindingFirstAo, sampled}});
-      d.layout = with(extra);
-      lighting_ = gpu::createRayTracingPipeline(in.device, d);
-    }
-    {
-      gpu::RayTracingPipelineDesc d;
-      d.name = "rt.disocclusion";
-      d.raygen = "rt/disocclusion.rgen";
-      d.misses = {"rt/shadow.rmiss", "rt/disocclusion.rmiss"};  // hit_lighting.glsl: the shadow miss is 0
-      d.hitGroups = {{"rt/disocclusion.rchit", ""}};
-      std::vector<B> extra = hitLighting;
-      extra.insert(extra.end(), {{shared::kRtBindingCoCg, sampled},
-                                 {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                 {shared::kRtBindingCellShY, storage},
-                                 {shared::kRtBindingCellCoCgAo, storage},
-                                 {shared::kRtBindingCellPosition, storage}});
-      d.layout = with(extra);
-      disocclusion_ = gpu::createRayTracingPipeline(in.device, d);
-    }
     disocclusionBlend_ = compute("rt.disocclusion.blend", "rt/disocclusion_blend.comp",
                                  {{shared::kRtBindingShY, sampled}, {shared::kRtBindingCoCg, sampled},
                                   {shared::kRtBindingCellShY, sampled}, {shared::kRtBindingCellCoCgAo, sampled},

@@ -111,8 +111,11 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
     // A deforming mesh keeps all its triangles: simplification judged on the rest pose (flat,
     // for cloth) would not hold once it moves.
     const bool deforms = mesh.deforms();
-    std::vector<uint32_t> indices =
-        simplifyForRayTracing(mesh.vertices, mesh.indices, deforms ? 1.0f : ratio_, simplifyError, &deviation);
+    // A cut-out keeps its triangles too: its outline is in the texture, which simplification
+    // (judged on positions) would stretch over the holes.
+    const bool alphaTested = gpuScene.meshAlphaTested(uint32_t(i));
+    std::vector<uint32_t> indices = simplifyForRayTracing(mesh.vertices, mesh.indices,
+                                                          deforms || alphaTested ? 1.0f : ratio_, simplifyError, &deviation);
     stats_.sourceTriangles += mesh.indices.size() / 3;
     stats_.rtTriangles += indices.size() / 3;
     stats_.maxDeviation = std::max(stats_.maxDeviation, deviation * meshScale[i]);
@@ -127,6 +130,7 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
     g.vertexCount = ranges[i].vertexCount;
     g.indices = ib.address();
     g.triangleCount = uint32_t(indices.size() / 3);
+    g.opaque = !alphaTested;  // only cut-outs run the any-hit shader
     geometry_.push_back(g);
     if (deforms) {
       // Built below, into the shared storage, once its size is known.
@@ -177,6 +181,7 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
     data[i].albedo = albedo[scene.meshes[mesh].material];
     data[i].albedoScale = glm::vec4(1.0f);
     data[i].emission = emission[scene.meshes[mesh].material];
+    data[i].material = scene.meshes[mesh].material;
     const VkDeviceAddress ia = rtIndices_[mesh].address();
     const VkDeviceAddress va = vertices + VkDeviceAddress(ranges[mesh].vertexOffset) * sizeof(scene::Vertex);
     data[i].indexAddress = glm::uvec2(uint32_t(ia), uint32_t(ia >> 32));

@@ -1,0 +1,90 @@
+// Reloading the scene when its file changes on disk: an artist re-exports from their tool and
+// sees the result in place, from the same camera, with the same instance selected and the
+// albedo overrides they were trying still applied.
+#include "editor_app.h"
+
+#include "session/image_io.h"
+
+#include <GLFW/glfw3.h>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+namespace tl::editor {
+namespace {
+
+// The light installScene gives a scene: an edit away from it is the artist's, and kept.
+bool sceneLighting(const session::Lighting& l, const scene::Environment& env) {
+  return l.sunDirection == env.sunDirection && l.sunIrradiance == (env.sunFromFile ? env.sunIrradiance : glm::vec3(0.0f)) &&
+         l.skyRadiance == env.skyRadiance && !l.exposureEv;
+}
+
+}  // namespace
+
+void EditorApp::watchScene() {
+  std::vector<std::filesystem::path> files;
+  if (session_->hasScene()) {
+    const scene::Scene& s = session_->scene();
+    files.push_back(s.path);
+    // A .gltf's buffer is usually the .bin of the same name; textures are listed.
+    std::filesystem::path bin = s.path;
+    bin.replace_extension(".bin");
+    std::error_code ec;
+    if (s.path.extension() != ".bin" && std::filesystem::exists(bin, ec)) files.push_back(bin);
+    for (const auto& t : s.textures)
+      if (!t.path.empty()) files.push_back(t.path);
+  }
+  sceneWatcher_.watch(std::move(files), glfwGetTime());
+}
+
+void EditorApp::reloadScene() {
+  if (load_.valid() || !session_->hasScene()) return;
+  const scene::Scene& s = session_->scene();
+  KeptAcrossReload kept;
+  if (selected_ && *selected_ < s.instances.size()) kept.selected = s.instances[*selected_].name;
+  for (const auto& e : session_->albedo().entries())
+    if (e.override) kept.overrides.emplace_back(e.combination.key, *e.override);
+  if (!sceneLighting(session_->lighting(), s.environment)) kept.lighting = session_->lighting();
+  kept.animationTime = session_->animationTime();
+  keptAcrossReload_ = std::move(kept);
+  spdlog::info("{} changed on disk: reloading", s.path.string());
+  openScene(s.path);
+}
+
+void EditorApp::restoreAfterReload() {
+  KeptAcrossReload kept = std::move(*keptAcrossReload_);
+  keptAcrossReload_.reset();
+  const scene::Scene& s = session_->scene();
+  selected_.reset();
+  for (uint32_t i = 0; i < s.instances.size(); ++i)
+    if (!kept.selected.empty() && s.instances[i].name == kept.selected) selected_ = i;
+  // Overrides follow their mesh + material key: a combination the export changed is new.
+  auto& albedo = session_->albedo();
+  for (const auto& [key, rgb] : kept.overrides)
+    for (uint32_t c = 0; c < albedo.entries().size(); ++c)
+      if (albedo.entries()[c].combination.key == key && albedo.entries()[c].override != rgb) albedo.setOverride(c, rgb);
+  if (kept.lighting) session_->setLighting(*kept.lighting);
+  session_->setAnimationTime(kept.animationTime);
+  ++sceneReloads_;
+  const std::string text = fmt::format("reloaded {} (changed on disk): camera, selection and overrides kept", s.path.string());
+  fmt::print("{}\n", text);
+  notify(text);
+}
+
+std::filesystem::path EditorApp::defaultImagePath(const char* extension) const {
+  const std::string scene = session_->hasScene() ? session_->scene().name : "capture";
+  return std::filesystem::path("renders") /
+         fmt::format("{}-{}-frame{}{}", scene, session_->path(), session_->frameIndex(), extension);
+}
+
+void EditorApp::saveImage(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".png" && ext != ".exr")
+    throw session::SessionError(fmt::format("{}: unsupported image type `{}` (use .exr or .png)", file.string(), ext));
+  session_->saveImage(file);  // the last frame's final images are always read back
+  const std::string text = fmt::format("wrote {}", std::filesystem::absolute(file).string());
+  fmt::print("{}\n", text);
+  notify(text);
+}
+
+}  // namespace tl::editor

@@ -1,0 +1,55 @@
+#include "ui_helpers.h"
+
+#include <imgui_internal.h>
+
+#include <map>
+#include <vector>
+
+namespace tl::editor {
+namespace {
+
+std::map<std::string, ItemRect> items, previousItems;
+std::vector<std::string> clipped, previousClipped;
+
+// Whether the last item (widget and label) ends inside its window's visible area; an item
+// scrolled out of view or in a collapsed window does not count.
+void checkLastItemFits() {
+  ImGuiWindow* window = ImGui::GetCurrentWindow();
+  if (!window || window->SkipItems) return;
+  const ImVec2 max = ImGui::GetItemRectMax(), min = ImGui::GetItemRectMin();
+  const ImRect visible = window->InnerClipRect;
+  if (min.y < visible.Min.y || max.y > visible.Max.y) return;  // not on screen: nothing to read
+  if (max.x > visible.Max.x + 0.5f)
+    clipped.push_back(std::string(window->Name) + ": the item at y " + std::to_string(int(min.y)) + " ends at x " +
+                      std::to_string(int(max.x)) + ", the window at " + std::to_string(int(visible.Max.x)));
+}
+
+}  // namespace
+
+void tooltip(const char* text) {
+  checkLastItemFits();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
+}
+
+void trackItem(const std::string& name) {
+  checkLastItemFits();
+  const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+  items[name] = {glm::vec2(a.x, a.y), glm::vec2(b.x, b.y)};
+}
+
+std::optional<ItemRect> trackedItem(const std::string& name) {
+  auto it = previousItems.find(name);
+  if (it == previousItems.end()) return std::nullopt;
+  return it->second;
+}
+
+void beginTrackedFrame() {
+  previousItems.swap(items);
+  items.clear();
+  previousClipped.swap(clipped);
+  clipped.clear();
+}
+
+const std::vector<std::string>& clippedLabels() { return previousClipped; }
+
+}  // namespace tl::editor

@@ -1,0 +1,161 @@
+#include "lighting/common/render_settings.h"
+
+#include "lighting/common/frame_key.h"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+
+namespace tl::lighting {
+namespace {
+
+template <class T>
+constexpr SettingType settingType() {
+  if constexpr (std::is_same_v<T, bool>) return SettingType::Bool;
+  else if constexpr (std::is_same_v<T, uint32_t>) return SettingType::UInt;
+  else if constexpr (std::is_same_v<T, float>) return SettingType::Float;
+  else return SettingType::Enum;
+}
+
+template <class T>
+std::vector<std::string_view> settingChoices() {
+  if constexpr (std::is_same_v<T, MaterialMode>) {
+    std::vector<std::string_view> names;
+    for (MaterialMode m : kMaterialModes) names.push_back(materialModeName(m));
+    return names;
+  } else {
+    return {};
+  }
+}
+
+// An enum's stored value is its index among its choices; every other type is stored as is.
+template <class T>
+double toDouble(T v) {
+  if constexpr (std::is_same_v<T, MaterialMode>) return double(uint32_t(v));
+  else return double(v);
+}
+template <class T>
+T fromDouble(double v) {
+  if constexpr (std::is_same_v<T, bool>) return v != 0.0;
+  else if constexpr (std::is_same_v<T, MaterialMode>) return MaterialMode(uint32_t(v));
+  else return T(v);
+}
+
+bool isPowerOfTwo(double v) { return v >= 1.0 && std::exp2(std::round(std::log2(v))) == v; }
+
+std::vector<SettingInfo> buildSchema() {
+  std::vector<SettingInfo> schema;
+#define TL_SETTING_INFO(type, name, def, lo, hi, unit, owner, history, flags, help)                              \
+  schema.push_back({#name, settingType<type>(), toDouble<type>(def), double(lo), double(hi), unit, owner, history, \
+                    flags, help, settingChoices<type>(),                                                           \
+                    [](const RenderSettings& s) { return toDouble<type>(s.name); },                                \
+                    [](RenderSettings& s, double v) { s.name = fromDouble<type>(v); }});
+  TL_RENDER_SETTINGS(TL_SETTING_INFO)
+#undef TL_SETTING_INFO
+  return schema;
+}
+
+}  // namespace
+
+bool SettingInfo::resetsHistoryOf(std::string_view path) const {
+  std::string_view rest = history;
+  while (!rest.empty()) {
+    const size_t space = rest.find(' ');
+    if (rest.substr(0, space) == path) return true;
+    rest = space == std::string_view::npos ? std::string_view() : rest.substr(space + 1);
+  }
+  return false;
+}
+
+const std::vector<SettingInfo>& settingsSchema() {
+  static const std::vector<SettingInfo> schema = buildSchema();
+  return schema;
+}
+
+const SettingInfo* findSetting(std::string_view name) {
+  for (const SettingInfo& s : settingsSchema())
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+std::string settingDomain(const SettingInfo& s) {
+  switch (s.type) {
+    case SettingType::Bool: return "true or false";
+    case SettingType::Enum: {
+      std::string names;
+      for (size_t i = 0; i < s.choices.size(); ++i)
+        names += fmt::format("{}\"{}\"", i == 0 ? "" : (i + 1 == s.choices.size() ? " or " : ", "), s.choices[i]);
+      return names;
+    }
+    case SettingType::UInt:
+      return fmt::format("a whole number from {} to {}{}", uint64_t(s.min), uint64_t(s.max),
+                         s.flags & kSettingPow2 ? ", a power of two" : "");
+    case SettingType::Float: break;
+  }
+  return fmt::format("a number from {:g} to {:g}", s.min, s.max);
+}
+
+std::optional<std::string> settingRangeError(const SettingInfo& s, double value) {
+  const bool whole = s.type != SettingType::Float;
+  if (!std::isfinite(value) || value < s.min || value > s.max || (whole && value != std::floor(value)) ||
+      ((s.flags & kSettingPow2) && !isPowerOfTwo(value)))
+    return settingDomain(s);
+  return std::nullopt;
+}
+
+std::string formatSetting(const SettingInfo& s, double value) {
+  switch (s.type) {
+    case SettingType::Bool: return value != 0.0 ? "true" : "false";
+    case SettingType::Enum: return std::string(size_t(value) < s.choices.size() ? s.choices[size_t(value)] : "?");
+    case SettingType::UInt: return fmt::format("{}", uint64_t(value));
+    case SettingType::Float: break;
+  }
+  return fmt::format("{:g}", float(value));
+}
+
+double parseSetting(const SettingInfo& s, std::string_view text) {
+  double value = 0.0;
+  switch (s.type) {
+    case SettingType::Bool:
+      if (text == "true" || text == "1") return 1.0;
+      if (text == "false" || text == "0") return 0.0;
+      throw std::invalid_argument(settingDomain(s));
+    case SettingType::Enum:
+      for (size_t i = 0; i < s.choices.size(); ++i)
+        if (text == s.choices[i]) return double(i);
+      throw std::invalid_argument(settingDomain(s));
+    case SettingType::UInt:
+    case SettingType::Float: {
+      // The number as written, converted to the stored type before the range check: a float
+      // setting keeps what a float can hold, an integer one must be whole.
+      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+      if (ec != std::errc() || end != text.data() + text.size()) throw std::invalid_argument(settingDomain(s));
+      if (s.type == SettingType::Float) value = double(float(value));
+      break;
+    }
+  }
+  if (auto error = settingRangeError(s, value)) throw std::invalid_argument(*error);
+  return value;
+}
+
+uint64_t historySettingsHash(const RenderSettings& settings, std::string_view path) {
+  KeyHasher hasher;
+  bool any = false;
+  for (const SettingInfo& s : settingsSchema())
+    if (s.resetsHistoryOf(path)) hasher.add(s.get(settings)), any = true;
+  return any ? hasher.done() : 0;
+}
+
+std::optional<float> autoSettingValue(std::string_view name, const RenderSettings& s, float sceneScale) {
+  if (name == "rtAoRadius" || name == "legacyAoRadius") return sceneScaledAoRadius(sceneScale);
+  if (name == "rtRayLength" || name == "legacyConeRange") return sceneScaledRayLength(sceneScale);
+  if (name == "rtBlendDistance") return sceneScaledBlendDistance(sceneScale);
+  if (name == "rtDenoiseRadius") return sceneScaledDenoiseRadius(sceneScale);
+  if (name == "rtPretracePixels") return pretraceAutoPixels(s.height);
+  if (name == "legacyLevel0Extent") return autoLevel0Extent(sceneScale, s.legacyVoxelResolution);
+  return std::nullopt;
+}
+
+}  // namespace tl::lighting

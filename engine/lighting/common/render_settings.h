@@ -1,0 +1,177 @@
+// The render settings, declared once. Each line of TL_RENDER_SETTINGS is one setting: its C++
+// type, name, default, valid range, unit, owner (a lighting path, or `common`), the lighting
+// paths whose history it resets, flags and a one-line help. From this list come the
+// RenderSettings struct, the schema below (JSON and `--set` with range checks, the editor's
+// panels, `twinlight settings`, the docs' reference table) and each path's history settings
+// (the frame key's `settings` part): a new setting is one line here.
+#pragma once
+
+#include "shared/material_mode.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tl::lighting {
+
+// Material override modes (shared/material_mode.h): every path and the reference shade the
+// scene as authored, or all Lambertian with the authored base colour (diffuse) or 0.8 grey (clay).
+enum class MaterialMode : uint32_t {
+  Authored = shared::kMaterialsAuthored,
+  Diffuse = shared::kMaterialsDiffuse,
+  Clay = shared::kMaterialsClay,
+};
+inline constexpr MaterialMode kMaterialModes[] = {MaterialMode::Authored, MaterialMode::Diffuse, MaterialMode::Clay};
+inline const char* materialModeName(MaterialMode m) {
+  switch (m) {
+    case MaterialMode::Diffuse: return "diffuse";
+    case MaterialMode::Clay: return "clay";
+    default: return "authored";
+  }
+}
+inline std::optional<MaterialMode> parseMaterialMode(std::string_view name) {
+  for (MaterialMode m : kMaterialModes)
+    if (name == materialModeName(m)) return m;
+  return std::nullopt;
+}
+
+// Setting flags (the `flags` column).
+inline constexpr uint32_t kSettingPlain = 0;
+inline constexpr uint32_t kSettingPow2 = 1u << 0;     // a power of two within the range
+inline constexpr uint32_t kSettingAuto = 1u << 1;     // 0 means "derived from the scene or the image" (autoSettingValue)
+inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image size: --size, the render scale; probes)
+
+// X(type, name, default, min, max, unit, owner, resets history of, flags, help)
+// Distances flagged kSettingAuto are "scaled to the scene" at 0 (see autoSettingValue).
+// History: what a path's accumulated samples estimate restarts it; the ray pattern, the
+// accumulation window, denoisers and update policies change only noise, weights or work
+// (docs/architecture.md, "The frame key").
+// clang-format off
+#define TL_RENDER_SETTINGS(X) \
+  X(uint32_t, width, 640, 1, 16384, "px", "common", "", kSettingNoPanel, "image width (--size)") \
+  X(uint32_t, height, 360, 1, 16384, "px", "common", "", kSettingNoPanel, "image height (--size)") \
+  X(MaterialMode, materials, MaterialMode::Authored, 0, 2, "", "common", "reference rt legacy", kSettingPlain, "material override, every path and the reference: authored, diffuse (Lambert, authored base colour) or clay (Lambert 0.8 grey); emission stays") \
+  X(uint32_t, shadowMapSize, 2048, 64, 8192, "texels", "common", "", kSettingPlain, "side of the sun's shadow map") \
+  X(float, shadowDepthBiasTexels, 1.5f, 0.0f, 16.0f, "texels", "common", "", kSettingPlain, "sun shadow constant depth bias, in shadow-map texels of depth") \
+  X(float, shadowNormalOffsetTexels, 1.0f, 0.0f, 16.0f, "texels", "common", "", kSettingPlain, "sun shadow lookup offset along the normal, in shadow-map texels") \
+  X(bool, softShadows, true, 0, 1, "", "common", "", kSettingPlain, "PCSS: penumbrae from the sun's angular size (off: 3x3 PCF, --hard-shadows)") \
+  X(float, pcssMaxRadiusTexels, 16.0f, 0.0f, 64.0f, "texels", "common", "", kSettingPlain, "widest PCSS filter") \
+  X(bool, specularGi, true, 0, 1, "", "common", "", kSettingPlain, "indirect specular from the path's SH (dominant direction, GGX; Metro); off: the sky's specular times AO") \
+  X(bool, taa, false, 0, 1, "", "common", "", kSettingPlain, "temporal anti-aliasing: jittered projection, YCoCg-clipped history (not the reference, which jitters its own rays)") \
+  X(float, taaBlend, 0.1f, 0.01f, 1.0f, "", "common", "", kSettingPlain, "TAA: weight of the new frame in the history; lower is smoother and slower to follow") \
+  X(uint32_t, referenceBounces, 64, 1, 64, "events", "reference", "reference", kSettingPlain, "scattering events per path (1 = direct light only, 2 = one indirect bounce); Russian roulette ends paths first") \
+  X(uint32_t, referenceSamplesPerFrame, 1, 1, 1024, "spp", "reference", "", kSettingPlain, "samples per pixel added each frame (render --spp sets it)") \
+  X(float, rtSimplifyRatio, 0.25f, 0.01f, 1.0f, "x", "rt", "rt", kSettingPlain, "RT (BLAS) mesh triangles / source triangles (Metro: about 4x fewer); 1 = the full mesh") \
+  X(float, rtSimplifyError, 0.01f, 0.0f, 1.0f, "x size", "rt", "rt", kSettingPlain, "largest deviation the simplifier may introduce, as a fraction of the mesh's size") \
+  X(float, rtAoRadius, 0.0f, 0.0f, 1e6f, "m", "rt", "rt reference", kSettingAuto, "RTAO radius: a hit closer than this occludes (also the reference's AO)") \
+  X(float, rtRayLength, 0.0f, 0.0f, 1e6f, "m", "rt", "rt", kSettingAuto, "GI rays stop after this distance; also the top level's culling margin") \
+  X(float, rtBlendDistance, 0.0f, 0.0f, 1e6f, "m", "rt", "rt", kSettingAuto, "beyond this view distance RT GI fades to the far field (Metro: 250 m); the top level culls instances beyond it") \
+  X(bool, rtFarLegacy, true, 0, 1, "", "rt", "", kSettingPlain, "the far field beyond the blend distance is the legacy path's voxel GI (Metro), else the unoccluded sky") \
+  X(bool, rtPretrace, true, 0, 1, "", "rt", "rt", kSettingPlain, "screen-space pre-trace: march the depth buffer first, real rays only where it finds nothing") \
+  X(uint32_t, rtPretraceSteps, 16, 1, 256, "steps", "rt", "rt", kSettingPlain, "depth samples along a pre-traced ray") \
+  X(float, rtPretracePixels, 0.0f, 0.0f, 16384.0f, "px", "rt", "rt", kSettingAuto, "screen length of a pre-traced ray (auto: 128 px per 360 lines of the image)") \
+  X(float, rtThickness, 0.02f, 0.0f, 1.0f, "x distance", "rt", "rt", kSettingPlain, "assumed thickness of what the depth buffer shows, as a fraction of its view distance") \
+  X(bool, rtHalfRays, false, 0, 1, "", "rt", "", kSettingPlain, "0.5 rays per pixel: a checkerboard that alternates each frame; the other half borrows a neighbour's ray") \
+  X(bool, rtHalfResolution, false, 0, 1, "", "rt", "", kSettingPlain, "0.25 rays per pixel: one pixel of each 2x2, cycling, depth-aware noisy upsampling (INSIDE); wins over rtHalfRays") \
+  X(bool, rtTwoRays, false, 0, 1, "", "rt", "", kSettingPlain, "2 rays per traced pixel (pre-trace, trace and hit lighting run twice; twice the cost, half the variance)") \
+  X(uint32_t, rtMaxAccumFrames, 32, 1, 1024, "frames", "rt", "", kSettingPlain, "temporal accumulation window while the camera holds still") \
+  X(float, rtFireflyClamp, 0.0f, 0.0f, 1e6f, "x RMS", "rt", "rt", kSettingPlain, "a sample's luma above this multiple of its neighbourhood's / history's RMS is clipped, in linear space (0: off)") \
+  X(bool, rtLumaRejection, true, 0, 1, "", "rt", "", kSettingPlain, "when the light changes, clip each pixel's history to this frame's samples around it (no ghosting; RE ENGINE)") \
+  X(uint32_t, rtDisocclusionRays, 0, 0, 64, "rays", "rt", "", kSettingPlain, "rays per 8x8 cell holding a pixel whose history was rejected (RE ENGINE; 0: off)") \
+  X(bool, rtDenoise, true, 0, 1, "", "rt", "", kSettingPlain, "two-pass spatial denoiser on the SH after accumulation (Metro's)") \
+  X(float, rtDenoiseRadius, 0.0f, 0.0f, 1e6f, "m", "rt", "", kSettingAuto, "denoiser pass 1 base radius; pass 2 uses half (Metro: 6 m and 3 m)") \
+  X(bool, rtScreenRadiance, true, 0, 1, "", "rt", "rt", kSettingPlain, "hits seen on screen last frame reuse its shaded radiance, so light bounces more than once") \
+  X(bool, rtHitSky, true, 0, 1, "", "rt", "rt", kSettingPlain, "hits lit afresh (off screen) also see the sky, through one more ray") \
+  X(bool, rtEmitterSampling, true, 0, 1, "", "rt", "rt", kSettingPlain, "emissive triangles are sampled at pixels and hits through shadow rays, not found only by chance") \
+  X(float, rtCullAngle, 0.002f, 0.0f, 3.14159f, "rad", "rt", "rt", kSettingPlain, "contribution culling: instances subtending less are left out of the top level") \
+  X(float, rtCullMargin, 0.0f, 0.0f, 1e6f, "m", "rt", "rt", kSettingPlain, "expanded frustum: margin around the view frustum (besides the ray length)") \
+  X(uint32_t, rtRefitTop, 16, 0, 65536, "meshes", "rt", "", kSettingPlain, "deforming meshes whose BLAS is refitted each frame: the highest priorities (Metro: 16)") \
+  X(uint32_t, rtRefitRandom, 4, 0, 65536, "meshes", "rt", "", kSettingPlain, "plus this many others drawn at random, so none waits forever (Metro: 4)") \
+  X(uint32_t, rtRefitVertexBudget, 1u << 20, 0, 1u << 30, "vertices", "rt", "", kSettingPlain, "vertices refitted per frame at most (the first pick always goes)") \
+  X(bool, rtRawRayProbe, false, 0, 1, "", "rt", "", kSettingNoPanel, "benchmark: also trace the same rays with a trivial kernel (rt.rawRays; bench --rays)") \
+  X(float, legacyAoRadius, 0.0f, 0.0f, 1e6f, "m", "legacy", "legacy", kSettingAuto, "reach of SSAO and voxel AO") \
+  X(float, legacyAoThickness, 0.1f, 0.0f, 1.0f, "", "legacy", "legacy", kSettingPlain, "GTAO thickness heuristic: how fast a horizon falls back behind thin occluders (0 infinitely thick, 1 paper thin)") \
+  X(uint32_t, legacyAoSlices, 1, 1, 16, "slices", "legacy", "legacy", kSettingPlain, "GTAO slice directions per pixel and frame (the 2x2 interleave and the accumulation supply more)") \
+  X(uint32_t, legacyAoSteps, 4, 1, 64, "samples", "legacy", "legacy", kSettingPlain, "GTAO depth samples per direction and side") \
+  X(uint32_t, legacyAoDivisor, 2, 1, 2, "", "legacy", "legacy", kSettingPow2, "SSAO resolution divisor: 1 full, 2 half") \
+  X(uint32_t, legacyAoFrames, 8, 1, 64, "frames", "legacy", "", kSettingPlain, "SSAO temporal accumulation window (1: off)") \
+  X(uint32_t, legacyConeDivisor, 4, 1, 4, "", "legacy", "", kSettingPow2, "cone tracing resolution divisor: 1 full, 2 half, 4 quarter") \
+  X(uint32_t, legacyVoxelResolution, 64, 8, 256, "voxels", "legacy", "legacy", kSettingPow2, "clipmap resolution R: each level holds R^3 voxels") \
+  X(float, legacyLevel0Extent, 0.0f, 0.0f, 1e6f, "m", "legacy", "legacy", kSettingAuto, "side of the finest clipmap level; coarser levels double it until the scene is covered") \
+  X(uint32_t, legacyMaxLevels, 4, 1, 4, "levels", "legacy", "legacy", kSettingPlain, "clipmap levels at most") \
+  X(float, legacyConeRange, 0.0f, 0.0f, 1e6f, "m", "legacy", "", kSettingAuto, "cones stop after this distance") \
+  X(float, legacyConeStep, 1.0f, 0.2f, 2.0f, "x diameter", "legacy", "", kSettingPlain, "cone step as a fraction of its diameter: smaller is slower and more exact") \
+  X(bool, legacyScreenRadiance, true, 0, 1, "", "legacy", "legacy", kSettingPlain, "voxels seen last frame take its shaded radiance, so light bounces more than once") \
+  X(bool, legacyPartialVoxels, true, 0, 1, "", "legacy", "", kSettingPlain, "deforming or moved instances re-voxelize only the voxels they and their shadows reach") \
+  X(bool, legacyVoxelizeEveryFrame, false, 0, 1, "", "legacy", "", kSettingPlain, "rebuild the voxels every frame, even when nothing they hold changed") \
+  X(uint32_t, legacySettleFrames, 4, 0, 64, "frames", "legacy", "", kSettingPlain, "after a change, rebuild the voxels this many more frames so bounces settle")
+// clang-format on
+
+struct RenderSettings {
+#define TL_SETTING_MEMBER(type, name, def, ...) type name = def;
+  TL_RENDER_SETTINGS(TL_SETTING_MEMBER)
+#undef TL_SETTING_MEMBER
+};
+
+enum class SettingType { Bool, UInt, Float, Enum };
+
+// One setting as the schema knows it. `get`/`set` read and write it as a double (a bool as 0 or
+// 1, the material mode as its index in `choices`); `set` takes a value already checked.
+struct SettingInfo {
+  std::string_view name;
+  SettingType type;
+  double defaultValue, min, max;
+  std::string_view unit;
+  std::string_view owner;    // "common" or a lighting path's name
+  std::string_view history;  // space-separated names of the paths whose history it resets
+  uint32_t flags;
+  std::string_view help;
+  std::vector<std::string_view> choices;  // names of an enum's values, in order
+  double (*get)(const RenderSettings&);
+  void (*set)(RenderSettings&, double);
+
+  bool resetsHistoryOf(std::string_view path) const;
+};
+
+// Every setting, in declaration order.
+const std::vector<SettingInfo>& settingsSchema();
+const SettingInfo* findSetting(std::string_view name);
+
+// Why `value` (already in the setting's C++ type: a whole number for an integer, 0/1 for a
+// switch, an index for an enum) is not valid for the setting, or nothing when it is.
+std::optional<std::string> settingRangeError(const SettingInfo& setting, double value);
+// "2048", "true", "0.25", "clay": the value as text (for `--set`, tables and the UI).
+std::string formatSetting(const SettingInfo& setting, double value);
+// Parses `text` ("true", "2048", "0.5", "clay") into the setting's stored value, then checks
+// the range; throws std::invalid_argument with what the setting takes.
+double parseSetting(const SettingInfo& setting, std::string_view text);
+// What the setting takes, in words: "a whole number in [256, 8192], a power of two".
+std::string settingDomain(const SettingInfo& setting);
+
+// The hash of the settings whose `history` column names `path` (0 when none does): the frame
+// key's settings part for that path, so changing one of them restarts its history.
+uint64_t historySettingsHash(const RenderSettings& settings, std::string_view path);
+
+// Defaults that scale with the scene (sceneScale: the diagonal of its bounds, metres), shared
+// by the paths and the editor's lighting panel: an AO radius of 5% of the scene between
+// 0.1 and 1 m (Metro's SSAO reached about 1 m), rays and cones as long as the scene up to
+// Metro's 50 m (which also bounds how far outside the view the RT top level keeps instances).
+inline float sceneScaledAoRadius(float sceneScale) { return std::clamp(0.05f * sceneScale, 0.1f, 1.0f); }
+inline float sceneScaledRayLength(float sceneScale) { return std::clamp(sceneScale, 1e-3f, 50.0f); }
+// The pre-trace's march in pixels when not set: a constant share of the image height (128 px
+// at 360 lines), so it covers the same part of the view at any resolution.
+inline float pretraceAutoPixels(uint32_t height) { return std::max(16.0f, float(height) * (128.0f / 360.0f)); }
+inline float sceneScaledBlendDistance(float sceneScale) { return 2.0f * std::max(sceneScale, 1e-3f); }
+// The RT denoiser's pass-1 radius: a sixth of the scene, within Metro's 6 m.
+inline float sceneScaledDenoiseRadius(float sceneScale) { return std::clamp(sceneScale / 6.0f, 0.25f, 6.0f); }
+// The legacy clipmap's finest level: the scene, at most R/4 m.
+inline float autoLevel0Extent(float sceneScale, uint32_t voxelResolution) {
+  return std::min(sceneScale, 0.25f * float(voxelResolution));
+}
+// What a kSettingAuto setting stands for at 0 in a scene of this size (metres, pixels).
+std::optional<float> autoSettingValue(std::string_view name, const RenderSettings& settings, float sceneScale);
+
+}  // namespace tl::lighting

@@ -1,0 +1,79 @@
+#include "scene/scene.h"
+
+#include <fmt/format.h>
+
+#include <map>
+
+namespace tl::scene {
+namespace {
+
+const char* sourceName(ImageSource s) {
+  switch (s) {
+    case ImageSource::File: return "file";
+    case ImageSource::DataUri: return "data URI";
+    case ImageSource::BufferView: return "bufferView";
+    case ImageSource::Generated: return "generated";
+  }
+  return "?";
+}
+
+std::string formatName(const Texture& t) {
+  std::string bits = t.fileBits == 8 ? "8-bit" : t.fileBits == 16 ? "16-bit" : fmt::format("{}-bit float", t.fileBits);
+  if (t.fileBits == 16 && t.fileFormat == "openexr") bits = "16-bit float";
+  const char* gpu = t.format == TexelFormat::Rgba8 ? (t.srgb ? "RGBA8 sRGB" : "RGBA8")
+                    : t.format == TexelFormat::Rgba16Unorm ? "RGBA16" : "RGBA16F";
+  return fmt::format("{} {} ({}) -> {}", t.fileFormat.empty() ? "image" : t.fileFormat, bits, sourceName(t.source), gpu);
+}
+
+// "3 a, 1 b" from counts in first-seen order.
+std::string counts(const std::vector<std::pair<std::string, size_t>>& c) {
+  std::string out;
+  for (const auto& [what, n] : c) out += fmt::format("{}{} {}", out.empty() ? "" : ", ", n, what);
+  return out;
+}
+
+void count(std::vector<std::pair<std::string, size_t>>& c, const std::string& what) {
+  for (auto& [w, n] : c)
+    if (w == what) return void(++n);
+  c.emplace_back(what, 1);
+}
+
+}  // namespace
+
+std::vector<std::string> sceneReport(const Scene& s) {
+  std::vector<std::string> lines;
+  size_t triangles = 0, deforming = 0, generatedTangents = 0;
+  for (const auto& m : s.meshes) {
+    triangles += m.indices.size() / 3;
+    deforming += m.deforms();
+    generatedTangents += m.generatedTangents;
+  }
+  lines.push_back(fmt::format("meshes: {} ({} triangles, {} with morph targets, {} with generated tangents), instances: {}",
+                              s.meshes.size(), triangles, deforming, generatedTangents, s.instances.size()));
+  std::vector<std::pair<std::string, size_t>> modes;
+  for (const auto& m : s.materials)
+    count(modes, m.alphaMode == AlphaMode::Mask ? "alpha MASK" : m.alphaMode == AlphaMode::Blend ? "alpha BLEND" : "opaque");
+  lines.push_back(fmt::format("materials: {} ({})", s.materials.size(), counts(modes)));
+  std::vector<std::pair<std::string, size_t>> formats;
+  size_t placeholders = 0;
+  for (const auto& t : s.textures) {
+    count(formats, formatName(t));
+    placeholders += t.placeholder;
+  }
+  lines.push_back(fmt::format("textures: {}{}{}", s.textures.size(), formats.empty() ? "" : " (" + counts(formats) + ")",
+                              placeholders ? fmt::format(", {} missing (magenta placeholder)", placeholders) : ""));
+  std::vector<std::pair<std::string, size_t>> lights;
+  for (const auto& l : s.lights)
+    count(lights, l.type == LightType::Directional ? "directional" : l.type == LightType::Spot ? "spot" : "point");
+  lines.push_back(fmt::format("lights: {}{}", s.lights.size(), lights.empty() ? "" : " (" + counts(lights) + ")"));
+  lines.push_back(fmt::format("cameras: {} perspective", s.cameras.size()));
+  lines.push_back(fmt::format("animations: {} morph-weight channels, {:.3g} s", s.morphAnimations.size(), s.animationSeconds));
+  std::string extensions;
+  for (const auto& e : s.extensionsUsed) extensions += (extensions.empty() ? "" : ", ") + e;
+  lines.push_back(fmt::format("extensions: {}", extensions.empty() ? "none" : extensions));
+  for (const auto& i : s.ignored) lines.push_back("ignored: " + i);
+  if (s.ignored.empty()) lines.push_back("ignored: nothing");
+  return lines;
+}
+
+}  // namespace tl::scene

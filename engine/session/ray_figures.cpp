@@ -1,0 +1,74 @@
+#include "session/ray_figures.h"
+
+#include "lighting/rt/rt_path.h"
+#include "shared/rt.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace tl::session {
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+double medianOf(const PassTimes& passes, const std::string& pass) {
+  for (const auto& [name, ms] : passes)
+    if (name == pass) return median(ms);
+  return 0.0;
+}
+
+}  // namespace
+
+void requestRayFigureBuffers(Session& session) {
+  session.requestBuffer(lighting::kPretraceHits);
+  session.requestBuffer("gbuffer.depth");
+}
+
+void enableRayProbe(Session& session) {
+  if (session.path() != "rt") throw SessionError("--rays measures the rt path: add --path rt");
+  session.settings().rtRawRayProbe = true;
+}
+
+nlohmann::json rayFigures(Session& session, const PassTimes& passes) {
+  const auto& pre = session.buffer(lighting::kPretraceHits);
+  const auto depth = session.buffer("gbuffer.depth").texels();
+  std::vector<uint32_t> hits(pre.bytes.size() / 4);
+  std::memcpy(hits.data(), pre.bytes.data(), hits.size() * 4);
+  size_t surface = 0, pending = 0;
+  const uint32_t w = session.settings().width;
+  const uint32_t frame = uint32_t(session.frameIndex() - 1);  // the last frame rendered
+  const uint32_t pattern = lighting::rtRayPattern(session.settings());
+  for (size_t i = 0; i < hits.size() && i < depth.size(); ++i) {
+    if (depth[i] <= 0.0f) continue;
+    if (!shared::tlRtTracesThisFrame(glm::ivec2(int(i % w), int(i / w)), frame, pattern)) continue;
+    ++surface;
+    pending += shared::tlRtIsPending(hits[i]);
+  }
+  const double rawMs = medianOf(passes, "rt.rawRays"), traceMs = medianOf(passes, "rt.trace");
+  const double rawPendingMs = medianOf(passes, "rt.rawRays.pending");
+  const double rawRate = rawMs > 0.0 ? double(surface) / (rawMs * 1e-3) : 0.0;
+  const double rawPendingRate = rawPendingMs > 0.0 ? double(pending) / (rawPendingMs * 1e-3) : 0.0;
+  const double rtRate = traceMs > 0.0 ? double(pending) / (traceMs * 1e-3) : 0.0;
+  const double pixels = double(session.settings().width) * session.settings().height;
+  return {{"surfacePixels", surface},  // traced this frame (all, this frame's checkerboard or 2x2 pixel)
+          {"realRays", pending},
+          {"pretraceShare", surface ? 1.0 - double(pending) / double(surface) : 0.0},
+          {"realRaysPerPixel", pending / pixels},
+          {"rawKernelMs", rawMs},
+          {"rawRaysPerSecond", rawRate},
+          {"traceMs", traceMs},
+          {"rtRaysPerSecond", rtRate},
+          {"rtOverRaw", rawRate > 0.0 ? rtRate / rawRate : 0.0},
+          // The same trivial kernel on only the rays rt.trace traced: those left after the
+          // pre-trace are the long, incoherent ones, slower per ray for any kernel.
+          {"rawPendingKernelMs", rawPendingMs},
+          {"rawPendingRaysPerSecond", rawPendingRate},
+          {"rtOverRawSameRays", rawPendingRate > 0.0 ? rtRate / rawPendingRate : 0.0}};
+}
+
+
+}  // namespace tl::session

@@ -1,0 +1,21 @@
+#version 460
+// The sun shadow map's vertex stage for cut-out (alpha MASK) casters: shadow.vert plus the
+// UV and the instance the fragment stage needs for the alpha test.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/frame.h"
+#include "shared/scene.h"
+
+layout(location = kAttrPosition) in vec3 inPosition;
+layout(location = kAttrUv) in vec2 inUv;
+layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; };
+layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
+
+layout(location = 0) out vec2 outUv;
+layout(location = 1) flat out uint outInstance;
+
+void main() {
+  GpuInstance inst = instances[gl_InstanceIndex];
+  gl_Position = frame.sunViewProj * (inst.modelRelative * vec4(inPosition, 1.0));
+  outUv = inUv;
+  outInstance = gl_InstanceIndex;
+}
