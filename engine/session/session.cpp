@@ -2,6 +2,7 @@
 
 #include "lighting/common/albedo_view_pass.h"
 #include "lighting/common/composite_pass.h"
+#include "lighting/common/environment_table.h"
 #include "lighting/common/light_table.h"
 #include "lighting/common/lights_pass.h"
 #include "lighting/common/gbuffer_pass.h"
@@ -222,7 +223,12 @@ lighting::FrameKey Session::frameKey(uint64_t frame) const {
   KeyHasher light;
   light.all(glm::normalize(lighting_.sunDirection), lighting_.sunIrradiance, double(lighting_.sunAngularRadius));
   key.hash(FramePart::Sun) = addLights(light, lighting_.lights).done();
-  key.hash(FramePart::Sky) = KeyHasher().add(lighting_.skyRadiance).done();
+  KeyHasher sky;
+  sky.add(lighting_.skyRadiance);
+  if (const auto& map = lighting_.environmentMap)
+    sky.all(double(map->contentHash >> 32), double(map->contentHash & 0xFFFFFFFFu), double(lighting_.environmentRotation),
+            double(lighting_.environmentIntensity));
+  key.hash(FramePart::Sky) = sky.done();
   key.hash(FramePart::Scene) = gpuScene_ ? gpuScene_->id() : 0;
   if (scene_) {
     std::vector<glm::dmat4> transforms;
@@ -283,6 +289,16 @@ void Session::setSize(uint32_t width, uint32_t height) {
   settings_.height = height;
 }
 
+void Session::setLighting(const Lighting& lighting) {
+  const bool shChanged = lighting.environmentMap &&
+                         (lighting.environmentMap != lighting_.environmentMap ||
+                          lighting.environmentRotation != lighting_.environmentRotation ||
+                          lighting.environmentIntensity != lighting_.environmentIntensity);
+  lighting_ = lighting;
+  if (shChanged)
+    environmentSh_ = scene::environmentSh9(*lighting_.environmentMap, lighting_.environmentRotation, lighting_.environmentIntensity);
+}
+
 float autoExposureEv(const Lighting& l, float brightestEmission) {
   // A white Lambertian surface facing the sun under the sky has radiance E/pi + L.
   double brightestLight = 0.0;
@@ -290,7 +306,8 @@ float autoExposureEv(const Lighting& l, float brightestEmission) {
     const double e = shared::tlLuminance(light.radiometric());
     brightestLight = std::max(brightestLight, light.type == scene::LightType::Directional ? e : e / 4.0);
   }
-  double white = shared::tlLuminance(l.sunIrradiance) / glm::pi<double>() + shared::tlLuminance(l.skyRadiance) +
+  const glm::vec3 sky = l.environmentMap ? l.environmentMap->meanRadiance * l.environmentIntensity : l.skyRadiance;
+  double white = shared::tlLuminance(l.sunIrradiance) / glm::pi<double>() + shared::tlLuminance(sky) +
                  0.1 * brightestEmission + brightestLight / glm::pi<double>();
   return float(std::log2(std::max(white, 1e-3)));
 }
@@ -337,6 +354,14 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
   fc.flags |= uint32_t(settings_.materials) << shared::kFrameMaterialsShift;
   fc.sceneScale = float(scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0);
   fc.lightCount = 0;  // renderOne writes the light table and its count
+  if (const auto& map = lighting_.environmentMap) {
+    fc.flags |= shared::kFrameFlagEnvironment;
+    fc.envWidth = map->width;
+    fc.envHeight = map->height;
+    fc.envParams = glm::vec4(std::cos(lighting_.environmentRotation), std::sin(lighting_.environmentRotation),
+                             lighting_.environmentIntensity, 0.0f);
+    for (size_t i = 0; i < environmentSh_.size(); ++i) fc.envSh[i] = environmentSh_[i];
+  }
 }
 
 void Session::renderOne(bool readback) {
@@ -390,6 +415,21 @@ void Session::beginOne(bool readback) {
     graph.declareImported(lighting::kLightTable,
                           graph::ResourceDesc::buffer(lightTable_.size(), "lights other than the sun (shared/lights.h GpuLight[])"));
     executor_->bindImportedBuffer(lighting::kLightTable, lightTable_);
+  }
+  // The environment map's table exists only in frames with a map (the reference samples it).
+  if (const auto& map = lighting_.environmentMap) {
+    if (environmentTableHash_ != map->contentHash || environmentTable_.size() == 0) {
+      const std::vector<float> table = scene::environmentTable(*map);
+      device_->waitIdle();  // an earlier frame may still read the table being replaced
+      environmentTable_ = gpu::Buffer(*device_, table.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                      gpu::MemoryUsage::Upload, lighting::kEnvironmentTable);
+      environmentTable_.write(table.data(), table.size() * sizeof(float));
+      environmentTableHash_ = map->contentHash;
+    }
+    graph.declareImported(lighting::kEnvironmentTable,
+                          graph::ResourceDesc::buffer(environmentTable_.size(),
+                                                      "the environment map's texels and importance table (shared/environment.h)"));
+    executor_->bindImportedBuffer(lighting::kEnvironmentTable, environmentTable_);
   }
 
   lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, constants_, *executor_, view_.position};

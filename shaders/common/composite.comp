@@ -32,7 +32,9 @@ void main() {
   if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
   float depth = texelFetch(gDepth, p, 0).r;
   if (depth <= 0.0) {  // reversed Z: nothing drawn, the sky is visible
-    imageStore(outRadiance, p, vec4(frame.skyRadiance.rgb, 1.0));
+    vec2 ndc = (vec2(p) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
+    vec4 onNear = frame.invViewProj * vec4(ndc, 1.0, 1.0);  // reversed Z: 1 is the near plane
+    imageStore(outRadiance, p, vec4(tlSkyRadiance(frame, normalize(onNear.xyz / onNear.w)), 1.0));
     return;
   }
   vec2 uv = (vec2(p) + 0.5) * frame.viewport.zw;
@@ -54,9 +56,9 @@ void main() {
   // Indirect diffuse: the diffuse layer's albedo under uniform light from the irradiance's
   // directions (shared/shading.h; exact for a uniform sky), radiance = albedo / pi * E.
   float ao = pathAmbientOcclusion(p);
-  vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), frame.skyRadiance.rgb);
+  vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), tlSkyIrradiance(frame, n));
   radiance += tlEnvironmentDiffuse(s, dot(n, v)) * kInvPi * irradiance;
   // Indirect specular: from the path's SH where it has one, else the sky's (times AO).
-  radiance += pathSpecular(p, n, v, position, ao, s, frame.skyRadiance.rgb);
+  radiance += pathSpecular(p, n, v, position, ao, s, tlSkyRadiance(frame, reflect(-v, n)));
   imageStore(outRadiance, p, vec4(radiance, 1.0));
 }

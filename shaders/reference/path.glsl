@@ -34,6 +34,7 @@ vec3 lightResponse(vec3 toLight) {
   return nl > 0.0 ? tlBrdf(gLightSurface, gLightNormal, gLightView, toLight) * nl : vec3(0.0);
 }
 #include "common/lights.glsl"
+#include "common/environment.glsl"
 
 // Ambient occlusion of this sample's primary hit (1 when the camera ray sees the sky): the
 // ground truth the real-time paths' AO is measured against, at the same radius.
@@ -44,10 +45,15 @@ float gAo;
 vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
   gAo = 1.0;
   vec3 throughput = vec3(1.0), radiance = vec3(0.0);
+  // The BRDF density of the direction being traced, for multiple importance sampling against
+  // the environment map's samples; 0 where nothing else could have drawn it (the camera ray,
+  // the caller's first direction).
+  float directionPdf = 0.0;
   for (uint bounce = firstBounce;; ++bounce) {
     traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
     if (hit.positionT.w < 0.0) {
-      radiance += throughput * frame.skyRadiance.rgb;
+      float w = environmentMapOn() && directionPdf > 0.0 ? environmentMisWeight(directionPdf, environmentPdf(dir)) : 1.0;
+      radiance += throughput * environmentRadiance(dir) * w;
       break;
     }
     radiance += throughput * hit.emission.rgb;
@@ -90,9 +96,27 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
       radiance += throughput * shadeLights(position, n, uvec3(floatBitsToUint(u.x), floatBitsToUint(u.y), gSample));
     }
 
+    // The environment map by next-event estimation: a direction drawn by its importance table,
+    // weighted against the BRDF's density for it (the power heuristic); the BRDF's own
+    // samples that escape take the complementary weight above.
+    float pSpec = tlBrdfSpecularProbability(s, dot(n, v));
+    if (environmentMapOn()) {
+      float envPdf;
+      vec3 l = environmentSample(next2(), envPdf);
+      float nl = dot(n, l);
+      if (envPdf > 0.0 && nl > 0.0 && dot(geometric, l) > 0.0) {
+        visible = 0.0;
+        traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
+                    0xFF, 0, 0, 1, position, 0.0, l, 1e30, 1);
+        if (visible > 0.0) {
+          float w = environmentMisWeight(envPdf, tlBrdfPdf(s, n, v, l, pSpec));
+          radiance += throughput * environmentRadiance(l) * tlBrdf(s, n, v, l) * (nl * w / envPdf);
+        }
+      }
+    }
+
     // Next direction from the BRDF (shared/shading.h): the single-scattering lobe from its
     // visible normals, the rest by cosine, each in proportion to its albedo; weight f cos / pdf.
-    float pSpec = tlBrdfSpecularProbability(s, dot(n, v));
     vec2 u = next2();
     vec2 choice = next2();
     vec3 l = tlSampleBrdf(s, n, v, pSpec, u, choice.x);
@@ -101,6 +125,7 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
     float pdf = tlBrdfPdf(s, n, v, l, pSpec);
     if (!(pdf > 1e-8)) break;
     throughput *= tlBrdf(s, n, v, l) * (nl / pdf);
+    directionPdf = pdf;
 
     // Russian roulette from the fourth scattering event on keeps long paths unbiased and cheap:
     // a path survives with the probability its throughput carries (at most 0.95, so even a

@@ -93,7 +93,8 @@ vec3 emitterLight(vec3 start, vec3 normal, uvec3 seed, out vec3 direction) {
 // The hit lit afresh: the sun through a shadow ray, the emitters through one sample (when on;
 // else its own emission as found), and with hitSky the sky through one ray drawn around the
 // hit's normal by cosine: for a uniform sky L the reflected radiance is albedo / pi * (pi L *
-// the escaping share), so one ray's estimate is albedo * L when it escapes. `normal` faces
+// the escaping share), so one ray's estimate is albedo * L when it escapes (with an environment
+// map, its band-limited radiance along the ray: frame.h tlSkyRadiance). `normal` faces
 // the ray; `seed` draws the sky ray and the emitter sample.
 vec3 freshHitRadiance(vec3 hitPosition, float distance, uint hit, vec3 normal, vec3 emission, uvec3 seed) {
   vec3 radiance = emissionFromRays() ? emission : vec3(0.0);
@@ -105,9 +106,9 @@ vec3 freshHitRadiance(vec3 hitPosition, float distance, uint hit, vec3 normal, v
   float nl = dot(normal, toSun);
   if ((frame.flags & kFrameFlagSunShadows) != 0u && nl > 0.0)
     radiance += albedo * kInvPi * frame.sunIrradiance.rgb * (nl * unoccluded(start, toSun, 1e30));
-  if (push.hitSky != 0u && any(greaterThan(frame.skyRadiance.rgb, vec3(0.0)))) {
+  if (push.hitSky != 0u && ((frame.flags & kFrameFlagEnvironment) != 0u || any(greaterThan(frame.skyRadiance.rgb, vec3(0.0))))) {
     vec3 d = tlLocalToWorld(tlSampleCosineHemisphere(tlRandom2(seed)), normal);
-    radiance += albedo * frame.skyRadiance.rgb * unoccluded(start, d, 1e30);
+    radiance += albedo * tlSkyRadiance(frame, d) * unoccluded(start, d, 1e30);
   }
   if (push.emitterCount > 0u) {
     vec3 d;
