@@ -1,11 +1,13 @@
 #include "cli_args.h"
 
+#include "scene/environment_map.h"
 #include "scene/input_limits.h"
 
 #include <fmt/format.h>
 
 #include <charconv>
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -101,6 +103,25 @@ void applyLight(tl::session::Session& session, const LightArgs& a) {
   }
   if (!a.sun.empty()) l.sunIrradiance = parseColor(a.sun, "--sun");
   if (!a.sky.empty()) l.skyRadiance = parseColor(a.sky, "--sky");
+  if (!a.environment.empty()) {
+    try {
+      l.environmentMap = std::make_shared<const tl::scene::EnvironmentMap>(tl::scene::loadEnvironmentMap(a.environment));
+    } catch (const tl::scene::SceneError& e) {
+      throw SessionError(e.what());
+    }
+  }
+  if ((a.environmentRotation || a.environmentIntensity) && !l.environmentMap)
+    throw SessionError("--environment-rotation and --environment-intensity need --environment FILE");
+  if (a.environmentRotation) {
+    if (!std::isfinite(*a.environmentRotation) || std::abs(*a.environmentRotation) > 360.0f)
+      throw SessionError(fmt::format("--environment-rotation {} is out of range: -360 to 360 degrees", *a.environmentRotation));
+    l.environmentRotation = float(*a.environmentRotation * M_PI / 180.0);
+  }
+  if (a.environmentIntensity) {
+    if (!(*a.environmentIntensity >= 0.0f && *a.environmentIntensity <= 1e6f))
+      throw SessionError(fmt::format("--environment-intensity {} is out of range: 0 to 1e6", *a.environmentIntensity));
+    l.environmentIntensity = *a.environmentIntensity;
+  }
   if (a.exposureEv) {
     const float most = tl::scene::InputLimits::kMaxExposureEv;
     if (!(std::abs(*a.exposureEv) <= most))

@@ -33,6 +33,9 @@ struct ViewArgs {
 struct LightArgs {
   std::string sunDir, sun, sky;
   std::optional<float> exposureEv;
+  std::string environment;                    // an equirectangular EXR/HDR in place of the uniform sky
+  std::optional<float> environmentRotation;   // degrees about +Y
+  std::optional<float> environmentIntensity;  // multiplier
 };
 
 // "640x360" -> {640, 360}; throws SessionError with the offending text.

@@ -109,6 +109,11 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--sun-dir", o.light.sunDir, "direction sunlight travels, x,y,z");
   cmd.add_option("--sun", o.light.sun, "sun irradiance E (W/m^2-like; white Lambertian facing it shows E/pi), E or r,g,b");
   cmd.add_option("--sky", o.light.sky, "uniform sky radiance L, L or r,g,b");
+  cmd.add_option("--environment", o.light.environment,
+                 "equirectangular environment map (EXR, HDR: radiance on the sky's scale) in place of the uniform sky");
+  cmd.add_option("--environment-rotation", o.light.environmentRotation,
+                 "turn the environment map about +Y, degrees (counter-clockwise seen from above)");
+  cmd.add_option("--environment-intensity", o.light.environmentIntensity, "multiply the environment map's radiance");
   cmd.add_option("--exposure", o.light.exposureEv, "exposure in EV (default: from the sun and sky)");
   cmd.add_option("--sun-size", o.sunSizeDegrees, "angular radius of the sun in degrees (0.27 = the real sun): soft shadows")
       ->check(CLI::Range(0.01f, 10.0f));

@@ -381,16 +381,44 @@ void SceneWriter::sun(glm::vec3 travel, float irradiance, glm::vec3 color) {
   l.name = "sun";
   l.type = "directional";
   l.color = {color.r, color.g, color.b};
-  l.intensity = irradiance;
-  model_.lights.push_back(l);
+  l.intensity = double(irradiance) * 683.0;  // lux: Twinlight's irradiance times 683 lm/W
+  light(l, glm::vec3(0.0f), travel);
+}
+
+void SceneWriter::pointLight(const std::string& name, glm::vec3 position, float candela, glm::vec3 color, float range) {
+  tinygltf::Light l;
+  l.name = name;
+  l.type = "point";
+  l.color = {color.r, color.g, color.b};
+  l.intensity = candela;
+  if (range > 0.0f) l.range = range;
+  light(l, position, glm::vec3(0.0f, 0.0f, -1.0f));
+}
+
+void SceneWriter::spotLight(const std::string& name, glm::vec3 position, glm::vec3 direction, float candela,
+                            float innerDegrees, float outerDegrees, glm::vec3 color) {
+  tinygltf::Light l;
+  l.name = name;
+  l.type = "spot";
+  l.color = {color.r, color.g, color.b};
+  l.intensity = candela;
+  l.spot.innerConeAngle = glm::radians(innerDegrees);
+  l.spot.outerConeAngle = glm::radians(outerDegrees);
+  light(l, position, direction);
+}
+
+void SceneWriter::light(tinygltf::Light l, glm::vec3 position, glm::vec3 direction) {
+  const std::string name = l.name;
+  model_.lights.push_back(std::move(l));
   if (std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), "KHR_lights_punctual") == model_.extensionsUsed.end())
     model_.extensionsUsed.push_back("KHR_lights_punctual");
-  // Directional lights shine down their node's -Z.
-  glm::vec3 d = glm::normalize(travel);
+  // Lights shine down their node's -Z.
+  glm::vec3 d = glm::normalize(direction);
   glm::vec3 up = std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
   glm::quat q = glm::quat_cast(glm::inverse(glm::mat3(glm::lookAt(glm::vec3(0.0f), d, up))));
   tinygltf::Node n;
-  n.name = "sun";
+  n.name = name;
+  if (position != glm::vec3(0.0f)) n.translation = {position.x, position.y, position.z};
   n.rotation = {q.x, q.y, q.z, q.w};
   tinygltf::Value::Object ext;
   ext["light"] = tinygltf::Value(int(model_.lights.size() - 1));

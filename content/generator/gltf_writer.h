@@ -80,11 +80,21 @@ class SceneWriter {
   int node(const std::string& name, int mesh, glm::vec3 translation, glm::vec3 eulerDegrees = glm::vec3(0.0f),
             glm::vec3 scale = glm::vec3(1.0f));
   void camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees);
+  // The sun's irradiance on Twinlight's scale (white Lambertian facing it: E / pi), written as
+  // glTF's lux: E x 683 lm/W (shaders/shared/lights.h).
   void sun(glm::vec3 travelDirection, float irradiance, glm::vec3 color = glm::vec3(1.0f));
+  // KHR_lights_punctual point and spot lights, in candela; range 0: unlimited. A spot shines
+  // along `direction` with cone half-angles in degrees.
+  void pointLight(const std::string& name, glm::vec3 position, float candela, glm::vec3 color = glm::vec3(1.0f),
+                  float range = 0.0f);
+  void spotLight(const std::string& name, glm::vec3 position, glm::vec3 direction, float candela, float innerDegrees,
+                 float outerDegrees, glm::vec3 color = glm::vec3(1.0f));
   void sky(glm::vec3 radiance);
   void write(const std::filesystem::path& dir);
 
  private:
+  // Adds the light and a root node holding it, turned so its -Z is `direction`.
+  void light(tinygltf::Light l, glm::vec3 position, glm::vec3 direction);
   int accessor(const void* data, size_t bytes, size_t count, int componentType, int type, int target,
                const std::vector<double>& min = {}, const std::vector<double>& max = {});
   int texture(const tinygltf::Image& image);

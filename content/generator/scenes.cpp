@@ -383,6 +383,61 @@ void banners(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// An interior lit only by lamps: a closed 6 x 3 x 5 m room (0.2 m walls, no window, black sky)
+// with a table, a cabinet and a sphere, two warm point lights (bulbs of about 1000 lm: 80 cd)
+// and a spot light (400 cd, cone 20/30 degrees) on the sphere. Every path's local lights, their
+// shadows and their bounce light are measured here (docs/accuracy.md).
+void lamps(const std::filesystem::path& dir) {
+  SceneWriter w("lamps");
+  int plaster = w.material({"plaster_white", {0.80f, 0.78f, 0.74f}, 0.0f, 0.9f});
+  int floorMat = w.material({"floor_oak", {0.45f, 0.30f, 0.18f}, 0.0f, 0.6f});
+  int blue = w.material({"cabinet_blue", {0.15f, 0.25f, 0.55f}, 0.0f, 0.7f});
+  int wood = w.material({"table_wood", {0.55f, 0.38f, 0.22f}, 0.0f, 0.7f});
+  int copper = w.material({"copper", {0.95f, 0.64f, 0.54f}, 1.0f, 0.35f});
+  const float t = 0.2f, h = 3.0f;
+  wall(w, "floor", floorMat, {0.0f, -t / 2, 0.0f}, {6.0f + 2 * t, t, 5.0f + 2 * t});
+  wall(w, "ceiling", plaster, {0.0f, h + t / 2, 0.0f}, {6.0f + 2 * t, t, 5.0f + 2 * t});
+  wall(w, "wall_north", plaster, {0.0f, h / 2, -2.5f - t / 2}, {6.0f, h, t});
+  wall(w, "wall_south", plaster, {0.0f, h / 2, 2.5f + t / 2}, {6.0f, h, t});
+  wall(w, "wall_west", plaster, {-3.0f - t / 2, h / 2, 0.0f}, {t, h, 5.0f});
+  wall(w, "wall_east", plaster, {3.0f + t / 2, h / 2, 0.0f}, {t, h, 5.0f});
+  wall(w, "table_top", wood, {-0.8f, 0.75f, -0.6f}, {1.6f, 0.06f, 0.9f});
+  for (int i = 0; i < 4; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "table_leg_%d", i + 1);
+    wall(w, name, wood, {-0.8f + ((i & 1) ? 0.7f : -0.7f), 0.36f, -0.6f + ((i & 2) ? 0.38f : -0.38f)}, {0.06f, 0.72f, 0.06f});
+  }
+  wall(w, "cabinet", blue, {2.3f, 0.9f, -1.9f}, {1.0f, 1.8f, 0.6f});
+  w.node("copper_sphere", w.mesh("sphere", sphere(0.4f, 48, 24), copper), {1.2f, 0.4f, 0.6f});
+  w.pointLight("bulb_table", {-0.8f, 1.6f, -0.6f}, 80.0f, {1.0f, 0.78f, 0.55f});
+  w.pointLight("bulb_corner", {-2.4f, 2.6f, 1.9f}, 80.0f, {1.0f, 0.85f, 0.7f}, 10.0f);
+  w.spotLight("spot_sphere", {1.2f, 2.9f, 0.6f}, {0.0f, -1.0f, 0.0f}, 400.0f, 20.0f, 30.0f);
+  w.camera("room_view", {2.6f, 1.7f, 2.3f}, {-0.6f, 0.8f, -1.0f}, 60.0f);
+  w.sky({0.0f, 0.0f, 0.0f});
+  w.write(dir);
+}
+
+// Many lights: 256 point lights (a 16 x 16 grid, 0.5 m apart, 0.8 to 2.3 m up, 8 to 68 cd,
+// four colours) over a 20 m grey ground under a black sky, seen from above at an angle. For the
+// light table's many-light sampling: its noise, its convergence and its cost against the count.
+void lampGrid(const std::filesystem::path& dir) {
+  SceneWriter w("lamp_grid");
+  int grey = w.material({"ground_grey", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  wall(w, "ground", grey, {0.0f, -0.1f, 0.0f}, {20.0f, 0.2f, 20.0f});
+  const glm::vec3 colours[4] = {{1.0f, 0.8f, 0.6f}, {0.6f, 0.8f, 1.0f}, {1.0f, 1.0f, 1.0f}, {0.8f, 1.0f, 0.7f}};
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 16; ++j) {
+      char name[32];
+      std::snprintf(name, sizeof name, "lamp_%02d_%02d", i, j);
+      const float x = -3.75f + 0.5f * float(i), z = -3.75f + 0.5f * float(j);
+      w.pointLight(name, {x, 0.8f + 0.1f * float((i * 7 + j * 3) % 16), z}, 8.0f + 4.0f * float((i * 5 + j * 11) % 16),
+                   colours[(i + 2 * j) % 4]);
+    }
+  w.camera("above", {0.0f, 6.0f, 6.0f}, {0.0f, 0.0f, 0.0f}, 60.0f);
+  w.sky({0.0f, 0.0f, 0.0f});
+  w.write(dir);
+}
+
 // Textures as .glb exports carry them: images inside the binary (bufferViews), one 8-bit PNG
 // base colour and one 16-bit PNG emissive whose texel, 128/65535, is 1.5e-4 after sRGB
 // decoding: times the emissive strength 1e4 the right quad glows with radiance 1.51, which an
@@ -574,6 +629,8 @@ int main(int argc, char** argv) {
     tl::content::doorwayRoom(dir);
     tl::content::slitCorridor(dir);
     tl::content::twinRooms(dir);
+    tl::content::lamps(dir);
+    tl::content::lampGrid(dir);
     tl::content::embeddedTextures(dir);
     tl::content::normalProbe(dir);
     tl::content::cutout(dir);

@@ -43,6 +43,12 @@ struct LightingOutputs {
   // The AO also darkens the diffuse GI (legacy: coarse voxel GI needs SSAO's contact detail).
   // Off for ray-traced GI, whose rays already saw the occluders.
   bool aoOnGi = false;
+  // A top level the light table's shadow rays at the pixels trace (lights.direct): the rt
+  // path's, then any bottom levels a frame rewrites. Empty: the lights are unshadowed (direct, legacy).
+  std::vector<std::string> shadowStructures;
+  VkAccelerationStructureKHR shadowTlasHandle = VK_NULL_HANDLE;
+  // Set by the session, not the path: the lights.direct image the composite adds ("" if none).
+  std::string lightsRadiance;
 };
 
 // What a path is, for everything that must treat paths differently without knowing their

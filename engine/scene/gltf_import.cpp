@@ -23,6 +23,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <set>
 
 namespace tl::scene {
@@ -315,6 +316,39 @@ bool withinWorld(const Bounds& b) {
   return most <= InputLimits::kMaxCoordinate;
 }
 
+// One KHR_lights_punctual light at its node's place. One rule with the rest of the import
+// (ImportValues): a plain value out of range is clamped with one warning naming the light
+// (negative light does not exist: 0), a value that is not a finite float or beyond the light
+// limit is one error, and data the specification forbids (an unknown type, a colour of other
+// than 3 numbers, cones with inner >= outer or outside [0, pi/2]) is one error, not a guess.
+// Returns nothing, with a warning, when the node's transform leaves no direction.
+std::optional<Light> readLight(const tinygltf::Light& gl, const std::string& nodeName, const glm::dvec3& position,
+                               const glm::dquat& orientation, ImportValues& values) {
+  Light l;
+  l.name = gl.name.empty() ? nodeName : gl.name;
+  const std::string what = fmt::format("light `{}`", l.name);
+  if (gl.type == "directional") l.type = LightType::Directional;
+  else if (gl.type == "point") l.type = LightType::Point;
+  else if (gl.type == "spot") l.type = LightType::Spot;
+  else values.fail(fmt::format("{} has type `{}` (KHR_lights_punctual: directional, point or spot)", what, gl.type));
+  l.color = values.lightColor(gl.color, l.color, what + " color");
+  l.intensity = values.light(gl.intensity, what + " intensity");
+  values.requireLightRange(l.color * l.intensity, what + " (color x intensity)");
+  if (gl.range > 0 && std::isfinite(float(gl.range))) l.range = float(gl.range);
+  if (l.type == LightType::Spot) {
+    l.innerConeAngle = values.finite(gl.spot.innerConeAngle, what + " innerConeAngle");
+    l.outerConeAngle = values.finite(gl.spot.outerConeAngle, what + " outerConeAngle");
+    if (!(l.innerConeAngle >= 0.0f && l.innerConeAngle < l.outerConeAngle && l.outerConeAngle <= 0.5f * glm::pi<float>() + 1e-6f))
+      values.fail(fmt::format("{} has cone angles inner {} and outer {} (0 <= inner < outer <= pi/2)", what,
+                              l.innerConeAngle, l.outerConeAngle));
+  }
+  l.position = position;
+  l.direction = glm::normalize(orientation * glm::dvec3(0.0, 0.0, -1.0));
+  if (allFinite(l.direction)) return l;
+  values.warn(fmt::format("{} has no direction (its node's transform is singular); it is ignored", what));
+  return std::nullopt;
+}
+
 // Everything in the file Twinlight does not render (or renders approximately), one entry per
 // feature with how often the file uses it: Scene::ignored and one warning each.
 class IgnoredFeatures {
@@ -395,14 +429,6 @@ void scanIgnored(const tinygltf::Model& model, IgnoredFeatures& ignored) {
   for (const auto& c : model.cameras)
     if (c.type == "orthographic") ignored.add("orthographic camera", "dropped (not in --camera's list)");
   if (model.scenes.size() > 1) ignored.add("scenes besides the default", "not loaded");
-  bool sun = false;
-  for (const auto& l : model.lights) {
-    if (l.type == "directional" && !sun) {
-      sun = true;
-      continue;
-    }
-    ignored.add(fmt::format("{} light", l.type), "not shaded (the first directional light is the sun)");
-  }
 }
 
 }  // namespace
@@ -688,24 +714,9 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
     if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end()) {
       const auto& li = it->second.Get("light");
       int index = li.IsInt() ? li.GetNumberAsInt() : -1;
-      if (index >= 0 && size_t(index) < model.lights.size()) {
-        const auto& gl = model.lights[size_t(index)];
-        Light l;
-        l.name = gl.name.empty() ? nodeName : gl.name;
-        const std::string what = fmt::format("light `{}`", l.name);
-        l.type = gl.type == "directional" ? LightType::Directional : gl.type == "spot" ? LightType::Spot : LightType::Point;
-        l.color = values.lightColor(gl.color, l.color, what + " color");
-        l.intensity = values.light(gl.intensity, what + " intensity");
-        values.requireLightRange(l.color * l.intensity, what + " (color x intensity)");
-        if (gl.range > 0 && std::isfinite(float(gl.range))) l.range = float(gl.range);
-        // The glTF ranges: 0 <= inner < outer <= pi/2.
-        l.outerConeAngle = values.clamped(gl.spot.outerConeAngle, 1e-4f, 1.5707964f, what + " outerConeAngle");
-        l.innerConeAngle = values.clamped(gl.spot.innerConeAngle, 0.0f, l.outerConeAngle, what + " innerConeAngle");
-        l.position = position;
-        l.direction = glm::normalize(orientation * glm::dvec3(0.0, 0.0, -1.0));
-        if (allFinite(l.direction)) scene.lights.push_back(l);
-        else values.warn(fmt::format("{} has no direction (its node's transform is singular); it is ignored", what));
-      }
+      if (index < 0 || size_t(index) >= model.lights.size())
+        values.fail(fmt::format("node `{}` refers to light {}, which does not exist", nodeName, index));
+      if (auto l = readLight(model.lights[size_t(index)], nodeName, position, orientation, values)) scene.lights.push_back(*l);
     }
     for (int child : node.children) visit(child, world, depth + 1);
   };
@@ -761,12 +772,14 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
     }
   }
 
-  // Environment: the first directional light is the sun; the sky comes from extras.
-  for (const auto& l : scene.lights) {
+  // Environment: the first directional light is the sun; the others are shaded from the light table.
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
     if (l.type != LightType::Directional) continue;
     scene.environment.sunDirection = l.direction;
-    scene.environment.sunIrradiance = l.color * l.intensity;
+    scene.environment.sunIrradiance = l.radiometric();
     scene.environment.sunFromFile = true;
+    scene.environment.sunLight = i;
     break;
   }
   auto readSky = [&](const tinygltf::Value& extras) {

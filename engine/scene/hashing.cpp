@@ -76,6 +76,17 @@ uint64_t hashScene(const Scene& s) {
   h.add(s.environment.sunDirection);
   h.add(s.environment.sunIrradiance);
   h.add(s.environment.skyRadiance);
+  for (const auto& l : s.lights) {
+    h.add(l.type);
+    h.add(l.color);
+    h.add(l.intensity);
+    float range = l.range.value_or(0.0f);
+    h.add(range);
+    h.add(l.innerConeAngle);
+    h.add(l.outerConeAngle);
+    h.add(l.position);
+    h.add(l.direction);
+  }
   return h.done();
 }
 

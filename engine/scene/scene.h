@@ -143,27 +143,34 @@ struct Camera {
 
 enum class LightType : uint8_t { Directional, Point, Spot };
 
-// KHR_lights_punctual, in its units: directional intensity is illuminance in lux (= the
-// irradiance E of the sun), point/spot intensity is luminous intensity in candela.
+// KHR_lights_punctual, in its units: directional intensity is illuminance in lux, point and spot
+// intensity is luminous intensity in candela. Twinlight shades them on its radiometric scale,
+// the photometric value divided by kLumensPerWatt (shaders/shared/lights.h states the
+// convention): radiometric() gives that.
+inline constexpr double kLumensPerWatt = 683.0;
 struct Light {
   std::string name;
   LightType type = LightType::Point;
   glm::vec3 color{1.0f};
-  float intensity = 1.0f;
-  std::optional<float> range;
-  float innerConeAngle = 0.0f;
-  float outerConeAngle = 0.7853982f;
+  float intensity = 1.0f;                // lux (directional) or candela (point, spot)
+  std::optional<float> range;            // metres; empty: unlimited
+  float innerConeAngle = 0.0f;           // spot, radians, 0 <= inner < outer
+  float outerConeAngle = 0.7853982f;     // spot, radians, <= pi/2
   glm::dvec3 position{0.0};
   glm::dvec3 direction{0.0, 0.0, -1.0};  // the direction the light travels
+  // Irradiance E (directional) or intensity I (point, spot) on Twinlight's scale, per channel.
+  glm::vec3 radiometric() const { return color * float(double(intensity) / kLumensPerWatt); }
 };
 
-// Lighting environment. From the scene's first directional light (the sun) and the
-// scene's extras {"twinlight": {"sky_radiance": [r,g,b]}}; defaults when absent.
+// Lighting environment. The sun is the scene's first directional light (its illuminance on
+// Twinlight's scale: lux / kLumensPerWatt); the sky comes from the scene's extras
+// {"twinlight": {"sky_radiance": [r,g,b]}}; defaults when absent.
 struct Environment {
   glm::dvec3 sunDirection = glm::normalize(glm::dvec3(-0.4, -1.0, -0.3));  // travel direction
   glm::vec3 sunIrradiance{20.0f};  // E, W/m^2-like units: white Lambertian facing it has radiance E/pi
   glm::vec3 skyRadiance{1.0f};     // uniform sky radiance L
   bool sunFromFile = false;
+  std::optional<size_t> sunLight;  // which of Scene::lights is the sun (the others are shaded from the light table)
 };
 
 struct Scene {
@@ -174,7 +181,7 @@ struct Scene {
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
   std::vector<Camera> cameras;
-  std::vector<Light> lights;        // punctual lights other than the sun too
+  std::vector<Light> lights;        // every KHR_lights_punctual light, the sun (Environment::sunLight) included
   Environment environment;
   std::vector<MorphAnimation> morphAnimations;
   double animationSeconds = 0.0;    // the longest channel: animations loop over it

@@ -96,6 +96,10 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
                           {"sunAngularRadius", l.sunAngularRadius},
                           {"skyRadiance", {l.skyRadiance.r, l.skyRadiance.g, l.skyRadiance.b}},
                           {"exposureEv", session.exposureEv()}};
+  if (l.environmentMap)
+    manifest["lighting"]["environment"] = {{"file", l.environmentMap->path.string()},
+                                           {"rotationRadians", l.environmentRotation},
+                                           {"intensity", l.environmentIntensity}};
   manifest["settings"] = settingsJson(session.settings());
   // Which albedo the RT hits read: the database (file, schema, revision) and how many
   // combinations resolve to each source; null database: texture averages and unsaved edits.

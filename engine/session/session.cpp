@@ -2,6 +2,9 @@
 
 #include "lighting/common/albedo_view_pass.h"
 #include "lighting/common/composite_pass.h"
+#include "lighting/common/environment_table.h"
+#include "lighting/common/light_table.h"
+#include "lighting/common/lights_pass.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/shadow_pass.h"
 #include "lighting/common/taa_pass.h"
@@ -23,6 +26,7 @@ namespace tl::session {
 struct Session::Passes {
   lighting::GbufferPass gbuffer;
   lighting::ShadowPass shadow;
+  lighting::LightsPass lights;
   lighting::CompositePass composite;
   lighting::TaaPass taa;
   lighting::TonemapPass tonemap;
@@ -108,6 +112,9 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   lighting_.sunDirection = env.sunDirection;
   lighting_.sunIrradiance = env.sunFromFile ? env.sunIrradiance : glm::vec3(0.0f);
   lighting_.skyRadiance = env.skyRadiance;
+  lighting_.lights.clear();
+  for (size_t i = 0; i < scene_->lights.size(); ++i)
+    if (i != env.sunLight) lighting_.lights.push_back(scene_->lights[i]);
   lighting_.exposureEv.reset();
   brightestEmission_ = 0.0f;
   for (const auto& m : scene_->materials)
@@ -195,6 +202,16 @@ void Session::setCompareView(std::optional<CompareView> view) {
                                                      : std::optional<std::string>("this build has no reference path"));
 }
 
+namespace {
+// Every light but the sun joins the frame key's light part.
+lighting::KeyHasher& addLights(lighting::KeyHasher& h, const std::vector<scene::Light>& lights) {
+  for (const auto& l : lights)
+    h.all(double(l.type), l.color, double(l.intensity), double(l.range.value_or(0.0f)), double(l.innerConeAngle),
+          double(l.outerConeAngle), l.position, l.direction);
+  return h;
+}
+}  // namespace
+
 lighting::FrameKey Session::frameKey(uint64_t frame) const {
   using lighting::FramePart;
   using lighting::KeyHasher;
@@ -203,11 +220,15 @@ lighting::FrameKey Session::frameKey(uint64_t frame) const {
   key.hash(FramePart::CameraOrientation) = KeyHasher().all(view_.forward, view_.up).done();
   key.hash(FramePart::Projection) =
       KeyHasher().all(double(view_.yfovRadians), double(view_.znear), double(settings_.width), double(settings_.height)).done();
-  key.hash(FramePart::Sun) = KeyHasher()
-                                 .all(glm::normalize(lighting_.sunDirection), lighting_.sunIrradiance,
-                                      double(lighting_.sunAngularRadius))
-                                 .done();
-  key.hash(FramePart::Sky) = KeyHasher().add(lighting_.skyRadiance).done();
+  KeyHasher light;
+  light.all(glm::normalize(lighting_.sunDirection), lighting_.sunIrradiance, double(lighting_.sunAngularRadius));
+  key.hash(FramePart::Sun) = addLights(light, lighting_.lights).done();
+  KeyHasher sky;
+  sky.add(lighting_.skyRadiance);
+  if (const auto& map = lighting_.environmentMap)
+    sky.all(double(map->contentHash >> 32), double(map->contentHash & 0xFFFFFFFFu), double(lighting_.environmentRotation),
+            double(lighting_.environmentIntensity));
+  key.hash(FramePart::Sky) = sky.done();
   key.hash(FramePart::Scene) = gpuScene_ ? gpuScene_->id() : 0;
   if (scene_) {
     std::vector<glm::dmat4> transforms;
@@ -268,10 +289,26 @@ void Session::setSize(uint32_t width, uint32_t height) {
   settings_.height = height;
 }
 
+void Session::setLighting(const Lighting& lighting) {
+  const bool shChanged = lighting.environmentMap &&
+                         (lighting.environmentMap != lighting_.environmentMap ||
+                          lighting.environmentRotation != lighting_.environmentRotation ||
+                          lighting.environmentIntensity != lighting_.environmentIntensity);
+  lighting_ = lighting;
+  if (shChanged)
+    environmentSh_ = scene::environmentSh9(*lighting_.environmentMap, lighting_.environmentRotation, lighting_.environmentIntensity);
+}
+
 float autoExposureEv(const Lighting& l, float brightestEmission) {
   // A white Lambertian surface facing the sun under the sky has radiance E/pi + L.
-  double white = shared::tlLuminance(l.sunIrradiance) / glm::pi<double>() + shared::tlLuminance(l.skyRadiance) +
-                 0.1 * brightestEmission;
+  double brightestLight = 0.0;
+  for (const auto& light : l.lights) {
+    const double e = shared::tlLuminance(light.radiometric());
+    brightestLight = std::max(brightestLight, light.type == scene::LightType::Directional ? e : e / 4.0);
+  }
+  const glm::vec3 sky = l.environmentMap ? l.environmentMap->meanRadiance * l.environmentIntensity : l.skyRadiance;
+  double white = shared::tlLuminance(l.sunIrradiance) / glm::pi<double>() + shared::tlLuminance(sky) +
+                 0.1 * brightestEmission + brightestLight / glm::pi<double>();
   return float(std::log2(std::max(white, 1e-3)));
 }
 
@@ -316,6 +353,15 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
   fc.flags = glm::length(lighting_.sunIrradiance) > 0.0f ? shared::kFrameFlagSunShadows : 0u;
   fc.flags |= uint32_t(settings_.materials) << shared::kFrameMaterialsShift;
   fc.sceneScale = float(scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0);
+  fc.lightCount = 0;  // renderOne writes the light table and its count
+  if (const auto& map = lighting_.environmentMap) {
+    fc.flags |= shared::kFrameFlagEnvironment;
+    fc.envWidth = map->width;
+    fc.envHeight = map->height;
+    fc.envParams = glm::vec4(std::cos(lighting_.environmentRotation), std::sin(lighting_.environmentRotation),
+                             lighting_.environmentIntensity, 0.0f);
+    for (size_t i = 0; i < environmentSh_.size(); ++i) fc.envSh[i] = environmentSh_[i];
+  }
 }
 
 void Session::renderOne(bool readback) {
@@ -356,6 +402,35 @@ void Session::beginOne(bool readback) {
                         graph::ResourceDesc::buffer(brdfTables_.size(), "the shared BRDF's tables (shared/brdf_lut.h)"));
   executor_->bindImportedBuffer(lighting::kBrdfTables, brdfTables_);
   gpuScene_->importBuffers(graph, *executor_);
+  // The light table exists only in frames that have lights to shade: without, no pass reads it.
+  const auto lights = lighting::buildLightTable(lighting_.lights, view_.position, fc.sceneScale);
+  if (!lights.empty()) {
+    const VkDeviceSize bytes = lights.size() * sizeof(shared::GpuLight);
+    if (lightTable_.size() < bytes)
+      lightTable_ = gpu::Buffer(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
+                                lighting::kLightTable);
+    lightTable_.write(lights.data(), bytes);
+    fc.lightCount = uint32_t(lights.size());
+    constants_.write(&fc, sizeof(fc));
+    graph.declareImported(lighting::kLightTable,
+                          graph::ResourceDesc::buffer(lightTable_.size(), "lights other than the sun (shared/lights.h GpuLight[])"));
+    executor_->bindImportedBuffer(lighting::kLightTable, lightTable_);
+  }
+  // The environment map's table exists only in frames with a map (the reference samples it).
+  if (const auto& map = lighting_.environmentMap) {
+    if (environmentTableHash_ != map->contentHash || environmentTable_.size() == 0) {
+      const std::vector<float> table = scene::environmentTable(*map);
+      device_->waitIdle();  // an earlier frame may still read the table being replaced
+      environmentTable_ = gpu::Buffer(*device_, table.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                      gpu::MemoryUsage::Upload, lighting::kEnvironmentTable);
+      environmentTable_.write(table.data(), table.size() * sizeof(float));
+      environmentTableHash_ = map->contentHash;
+    }
+    graph.declareImported(lighting::kEnvironmentTable,
+                          graph::ResourceDesc::buffer(environmentTable_.size(),
+                                                      "the environment map's texels and importance table (shared/environment.h)"));
+    executor_->bindImportedBuffer(lighting::kEnvironmentTable, environmentTable_);
+  }
 
   lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, constants_, *executor_, view_.position};
   in.instanceAlbedo = &albedo_->instanceAlbedo();
@@ -367,6 +442,9 @@ void Session::beginOne(bool readback) {
   passes_->gbuffer.add(graph, in);
   passes_->shadow.add(graph, in);
   lighting::LightingOutputs outputs = path->addPasses(graph, in);
+  // A path that computes the whole image (the reference) shades the lights itself.
+  if (outputs.radiance.empty())
+    outputs.lightsRadiance = passes_->lights.add(graph, in, outputs.shadowStructures, outputs.shadowTlasHandle);
   passes_->composite.add(graph, in, outputs);
   if (in.temporalAntialiasing) passes_->taa.add(graph, in);
   passes_->albedoView.add(graph, in);

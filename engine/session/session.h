@@ -10,10 +10,12 @@
 #include "lighting/common/display_pass.h"
 #include "lighting/common/frame_inputs.h"
 #include "lighting/lighting_path.h"
+#include "scene/environment_map.h"
 #include "scene/scene.h"
 #include "session/image_io.h"
 #include "session/live_compare.h"
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -43,6 +45,16 @@ struct Lighting {
   glm::vec3 skyRadiance{1.0f};    // uniform radiance L over the whole sphere
   std::optional<float> exposureEv;  // empty: derived from the light (see autoExposureEv)
   float sunAngularRadius = 0.00465f;  // radians (the real sun)
+  // Every light but the sun: point, spot and further directional lights in glTF's units (lux,
+  // candela; shaders/shared/lights.h has the scale they are shaded on). Loaded from the scene.
+  std::vector<scene::Light> lights;
+  // An environment map in place of the uniform sky (shaders/shared/environment.h), turned by
+  // environmentRotation (radians, about +Y, counter-clockwise seen from above) and scaled by
+  // environmentIntensity. Lighting data like the sun and the sky: set by the CLI's
+  // --environment, kept across scene loads. Empty: the uniform sky.
+  std::shared_ptr<const scene::EnvironmentMap> environmentMap;
+  float environmentRotation = 0.0f;
+  float environmentIntensity = 1.0f;
 };
 
 struct PathInfo {
@@ -99,7 +111,7 @@ class Session {
   void useSceneCamera(size_t index);  // throws SessionError when out of range
   void fitViewToScene();
 
-  void setLighting(const Lighting& lighting) { lighting_ = lighting; }
+  void setLighting(const Lighting& lighting);
   const Lighting& lighting() const { return lighting_; }
   float exposureEv() const;  // the EV in use (explicit or automatic)
 
@@ -233,6 +245,13 @@ class Session {
   std::unique_ptr<Passes> passes_;
   gpu::Buffer constants_;
   gpu::Buffer brdfTables_;  // shared/brdf_lut.h BrdfTables, written once
+  // The environment map's table (shared/environment.h), uploaded when the map changes; exists
+  // only once a map was set. Its SH projection is recomputed when the map, its rotation or its
+  // intensity change (setLighting).
+  gpu::Buffer environmentTable_;
+  uint64_t environmentTableHash_ = 0;
+  std::array<glm::vec4, 9> environmentSh_{};
+  gpu::Buffer lightTable_;  // shared/lights.h GpuLight[], rewritten each frame; grows, exists once a scene has lights
   lighting::RenderSettings settings_;
   View view_;
   std::optional<View> previousView_;
@@ -259,7 +278,8 @@ class Session {
 
 // Exposure that maps a white surface lit by this sun and sky to about 1.0 before tonemapping.
 // In scenes lit by emitters, a white surface near the brightest one (taken as a tenth of its
-// radiance: a rule of thumb for a light of modest solid angle) counts too.
+// radiance: a rule of thumb for a light of modest solid angle) counts too, and so does a white
+// surface facing the brightest other light (a point or spot light from 2 m).
 float autoExposureEv(const Lighting& lighting, float brightestEmission = 0.0f);
 
 }  // namespace tl::session

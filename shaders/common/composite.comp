@@ -1,6 +1,6 @@
 #version 460
-// Composite shared by every lighting path: sun through the shadow map, the sky (times AO
-// when a path provides it), emission. Output is scene-linear radiance.
+// Composite shared by every lighting path: sun through the shadow map, the light table's
+// radiance (lights.direct), the sky (times AO when a path provides it), emission. Output is scene-linear radiance.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame.h"
 #include "shared/gbuffer.h"
@@ -17,6 +17,7 @@ layout(set = 0, binding = kCompositeEmissive) uniform sampler2D gEmissive;
 layout(set = 0, binding = kCompositeDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kCompositeShadow) uniform sampler2DShadow sunShadow;
 layout(set = 0, binding = kCompositeOutput, rgba32f) uniform writeonly image2D outRadiance;  // kCompositeHdrFormat
+layout(set = 0, binding = kCompositeLights) uniform sampler2D lightsRadiance;
 layout(push_constant) uniform Push { CompositePush push; };
 
 #include "common/camera.glsl"
@@ -31,7 +32,9 @@ void main() {
   if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
   float depth = texelFetch(gDepth, p, 0).r;
   if (depth <= 0.0) {  // reversed Z: nothing drawn, the sky is visible
-    imageStore(outRadiance, p, vec4(frame.skyRadiance.rgb, 1.0));
+    vec2 ndc = (vec2(p) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
+    vec4 onNear = frame.invViewProj * vec4(ndc, 1.0, 1.0);  // reversed Z: 1 is the near plane
+    imageStore(outRadiance, p, vec4(tlSkyRadiance(frame, normalize(onNear.xyz / onNear.w)), 1.0));
     return;
   }
   vec2 uv = (vec2(p) + 0.5) * frame.viewport.zw;
@@ -48,12 +51,14 @@ void main() {
     vec3 sun = frame.sunIrradiance.rgb * (nl * sunVisibilitySoft(position, n, p));
     radiance += sun * tlBrdf(s, n, v, frame.sunToLight.xyz);
   }
+  // Point, spot and further directional lights (lights.direct), when the scene has any.
+  if ((push.flags & kCompositeHasLights) != 0u) radiance += texelFetch(lightsRadiance, p, 0).rgb;
   // Indirect diffuse: the diffuse layer's albedo under uniform light from the irradiance's
   // directions (shared/shading.h; exact for a uniform sky), radiance = albedo / pi * E.
   float ao = pathAmbientOcclusion(p);
-  vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), frame.skyRadiance.rgb);
+  vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), tlSkyIrradiance(frame, n));
   radiance += tlEnvironmentDiffuse(s, dot(n, v)) * kInvPi * irradiance;
   // Indirect specular: from the path's SH where it has one, else the sky's (times AO).
-  radiance += pathSpecular(p, n, v, position, ao, s, frame.skyRadiance.rgb);
+  radiance += pathSpecular(p, n, v, position, ao, s, tlSkyRadiance(frame, reflect(-v, n)));
   imageStore(outRadiance, p, vec4(radiance, 1.0));
 }

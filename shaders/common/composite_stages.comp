@@ -38,6 +38,6 @@ void main() {
   // The surface only for its albedo: what occlusion puts back (path_indirect.glsl).
   vec4 material = texelFetch(gMaterial, p, 0);
   SurfaceParams s = tlMaterialSurface(texelFetch(gBaseColor, p, 0).rgb, material.x, material.y, tlFrameMaterials(frame.flags));
-  vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), frame.skyRadiance.rgb);
+  vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), tlSkyIrradiance(frame, n));
   imageStore(outIrradiance, p, vec4(irradiance, 1.0));
 }

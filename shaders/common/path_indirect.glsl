@@ -31,13 +31,14 @@ ShLumaCoCg pathSh(ivec2 p) { return tlShMake(texelFetch(pathShY, p, 0), texelFet
 ShLumaCoCg farSh(ivec2 p) { return tlShMake(texelFetch(farShY, p, 0), texelFetch(farCoCg, p, 0).xy); }
 float farAmbientOcclusion(ivec2 p) { return clamp(texelFetch(farAo, p, 0).r, 0.0, 1.0); }
 
-// Without a path's GI: the uniform sky, irradiance pi*L on an unoccluded surface, times AO.
+// Without a path's GI: the sky's irradiance on an unoccluded surface (`skyIrradiance`: pi*L for
+// the uniform sky, the environment map's SH irradiance, frame.h tlSkyIrradiance), times AO.
 // With it: the path's irradiance resolved against the normal (it already holds the sky's
 // occlusion, so AO is not applied twice unless the path asks), fading beyond the blend
 // distance to the far field (another path's GI) or, without one, to the sky.
-vec3 pathDiffuseIrradiance(ivec2 p, vec3 n, vec3 position, float ao, vec3 albedo, vec3 skyRadiance) {
+vec3 pathDiffuseIrradiance(ivec2 p, vec3 n, vec3 position, float ao, vec3 albedo, vec3 openSkyIrradiance) {
   vec3 occlusion = tlMultiBounceAo(ao, albedo);
-  vec3 skyIrradiance = kPi * skyRadiance * occlusion;
+  vec3 skyIrradiance = openSkyIrradiance * occlusion;
   if ((push.flags & kCompositeHasGi) == 0u) return skyIrradiance;
   vec3 gi = tlShResolveIrradiance(pathSh(p), n);
   if ((push.flags & kCompositeAoOnGi) != 0u) gi *= occlusion;
@@ -49,8 +50,9 @@ vec3 pathDiffuseIrradiance(ivec2 p, vec3 n, vec3 position, float ao, vec3 albedo
   return mix(far, gi, fade);
 }
 
-// Indirect specular radiance. Without a path's GI (or with kCompositeSpecularGi off): the
-// uniform sky through the split-sum environment BRDF, times AO. With it: the specular the
+// Indirect specular radiance. Without a path's GI (or with kCompositeSpecularGi off): the sky
+// (`skyRadiance`: the uniform sky's, or the environment map's band-limited radiance along the
+// mirror direction) through the split-sum environment BRDF, times AO. With it: the specular the
 // path's SH implies (shared/sh_specular.h: dominant direction, roughness from the
 // directionality, GGX), so a metal indoors reflects the room, not the sky; it fades beyond
 // the blend distance like the diffuse.

@@ -108,7 +108,7 @@ void main() {
       if (t < push.aoRadius) aoOcclusion = occlusion;
       t += stepLength;
     }
-    vec3 radiance = gathered + (1.0 - occlusion) * frame.skyRadiance.rgb;
+    vec3 radiance = gathered + (1.0 - occlusion) * tlSkyRadiance(frame, dir);
     float w = i == 0 ? wAxis : wRing;
     float cosTheta = local.z;
     sh = tlShAdd(sh, tlShScale(tlShProjectRadiance(dir, radiance), w / (0.25 + 0.5 * cosTheta)));

@@ -5,6 +5,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_nonuniform_qualifier : require
 #include "shared/frame.h"
+#include "shared/lights.h"
 #include "shared/legacy.h"
 #include "shared/rt.h"
 #include "shared/scene.h"
@@ -40,6 +41,13 @@ bool screenRadiance(vec3 position, vec3 normal, out vec3 radiance) {
 }
 
 #include "common/sun_shadow.glsl"
+
+// The light table (shared/lights.h) injected like the sun, but unshadowed: no shadow map
+// exists for point and spot lights yet, so a lamp's light reaches every surface facing it.
+vec3 gLightNormal, gLightAlbedo;
+float lightVisibility(vec3 toLight, float distance) { return 1.0; }
+vec3 lightResponse(vec3 toLight) { return gLightAlbedo * (kInvPi * max(dot(gLightNormal, toLight), 0.0)); }
+#include "common/lights.glsl"
 
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
@@ -79,6 +87,11 @@ void main() {
     float nl = dot(ns, frame.sunToLight.xyz);
     vec3 radiance = emission;
     if (nl > 0.0) radiance += albedo * kInvPi * frame.sunIrradiance.rgb * (nl * sunVisibility(inPosition, ns));
+    if (frame.lightCount > 0u) {
+      gLightNormal = ns;
+      gLightAlbedo = albedo;
+      radiance += shadeLights(inPosition, ns, uvec3(uvec2(v.xy), uint(v.z) + 977u * uint(side)));
+    }
     vec3 seen;
     if (screenRadiance(inPosition, ns, seen)) radiance = seen;
     for (int f = 0; f < 6; ++f)

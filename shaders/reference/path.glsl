@@ -1,7 +1,7 @@
 // The reference path tracer's paths, shared by its ray-generation shaders (trace.rgen:
 // radiance and AO seen by the camera; irradiance.rgen: the diffuse irradiance at the camera's
 // primary hit). The includer declares `frame`, `tlas` and `push` (RefPush) and includes
-// shared/frame.h, reference.h, ray_origin.h, sampling.h and shading.h.
+// shared/frame.h, lights.h, reference.h, ray_origin.h, sampling.h and shading.h.
 
 layout(location = 0) rayPayloadEXT RefHit hit;
 layout(location = 1) rayPayloadEXT float visible;
@@ -16,6 +16,25 @@ vec2 next2() {
   uvec3 h = tlPcg3d(uvec3(gPixel.x | (gDimension++ << 16u), gPixel.y, gSample ^ (push.seed * 0x9E3779B9u)));
   return vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y));
 }
+
+// The light table (shared/lights.h) by next-event estimation from each scattering point: a
+// shadow ray per light (per resampled pick beyond kLightsLoopMax lights). Delta lights cannot
+// be hit by a BRDF-sampled ray, so no multiple importance sampling is needed.
+vec3 gLightOrigin, gLightNormal, gLightGeometric, gLightView;
+SurfaceParams gLightSurface;
+float lightVisibility(vec3 toLight, float distance) {
+  if (dot(gLightGeometric, toLight) <= 0.0) return 0.0;
+  visible = 0.0;
+  traceRayEXT(tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
+              0xFF, 0, 0, 1, gLightOrigin, 0.0, toLight, distance * (1.0 - 1e-4), 1);
+  return visible;
+}
+vec3 lightResponse(vec3 toLight) {
+  float nl = dot(gLightNormal, toLight);
+  return nl > 0.0 ? tlBrdf(gLightSurface, gLightNormal, gLightView, toLight) * nl : vec3(0.0);
+}
+#include "common/lights.glsl"
+#include "common/environment.glsl"
 
 // Ambient occlusion of this sample's primary hit (1 when the camera ray sees the sky): the
 // ground truth the real-time paths' AO is measured against, at the same radius.
@@ -42,10 +61,15 @@ void gather(inout vec3 radiance, uint depth, vec3 light) {
 vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
   gAo = 1.0;
   vec3 throughput = vec3(1.0), radiance = vec3(0.0);
+  // The BRDF density of the direction being traced, for multiple importance sampling against
+  // the environment map's samples; 0 where nothing else could have drawn it (the camera ray,
+  // the caller's first direction).
+  float directionPdf = 0.0;
   for (uint bounce = firstBounce;; ++bounce) {
     traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
     if (hit.positionT.w < 0.0) {
-      gather(radiance, bounce, throughput * frame.skyRadiance.rgb);
+      float w = environmentMapOn() && directionPdf > 0.0 ? environmentMisWeight(directionPdf, environmentPdf(dir)) : 1.0;
+      gather(radiance, bounce, throughput * environmentRadiance(dir) * w);
       break;
     }
     gather(radiance, bounce, throughput * hit.emission.rgb);
@@ -78,9 +102,37 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
       gather(radiance, bounce + 1u, throughput * frame.sunIrradiance.rgb * (sunNl * visible) * tlBrdf(s, n, v, toSun));
     }
 
+    if (frame.lightCount > 0u) {
+      gLightOrigin = position;
+      gLightNormal = n;
+      gLightGeometric = geometric;
+      gLightView = v;
+      gLightSurface = s;
+      vec2 u = next2();
+      gather(radiance, bounce + 1u, throughput * shadeLights(position, n, uvec3(floatBitsToUint(u.x), floatBitsToUint(u.y), gSample)));
+    }
+
+    // The environment map by next-event estimation: a direction drawn by its importance table,
+    // weighted against the BRDF's density for it (the power heuristic); the BRDF's own
+    // samples that escape take the complementary weight above.
+    float pSpec = tlBrdfSpecularProbability(s, dot(n, v));
+    if (environmentMapOn()) {
+      float envPdf;
+      vec3 l = environmentSample(next2(), envPdf);
+      float nl = dot(n, l);
+      if (envPdf > 0.0 && nl > 0.0 && dot(geometric, l) > 0.0) {
+        visible = 0.0;
+        traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
+                    0xFF, 0, 0, 1, position, 0.0, l, 1e30, 1);
+        if (visible > 0.0) {
+          float w = environmentMisWeight(envPdf, tlBrdfPdf(s, n, v, l, pSpec));
+          gather(radiance, bounce + 1u, throughput * environmentRadiance(l) * tlBrdf(s, n, v, l) * (nl * w / envPdf));
+        }
+      }
+    }
+
     // Next direction from the BRDF (shared/shading.h): the single-scattering lobe from its
     // visible normals, the rest by cosine, each in proportion to its albedo; weight f cos / pdf.
-    float pSpec = tlBrdfSpecularProbability(s, dot(n, v));
     vec2 u = next2();
     vec2 choice = next2();
     vec3 l = tlSampleBrdf(s, n, v, pSpec, u, choice.x);
@@ -89,6 +141,7 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
     float pdf = tlBrdfPdf(s, n, v, l, pSpec);
     if (!(pdf > 1e-8)) break;
     throughput *= tlBrdf(s, n, v, l) * (nl / pdf);
+    directionPdf = pdf;
 
     // Russian roulette from the fourth scattering event on keeps long paths unbiased and cheap:
     // a path survives with the probability its throughput carries (at most 0.95, so even a

@@ -3,11 +3,13 @@
 // shaded radiance where the hit was on screen (Metro: "lighting already computed in a deferred
 // way? use it"), re-coloured to the hit's albedo; else the sun through a shadow ray, the sky
 // through one cosine-distributed ray (RtPush::hitSky), and the emitters through one sample
-// (RtPush::emitterCount) or, without emitter sampling, the hit's own emission. Also the
-// pixel's own emitter sample. Include after rt/rt_common.glsl. The shadow miss shader is miss index 0 of
-// every pipeline that includes this. With the radiance cache on (RtPush::cacheLookup) a hit
-// lit afresh takes the light arriving from everything but the sun and the emitters from its
-// cell (shared/rt_cache.h) instead of the sky ray: every bounce, at the price of a lookup.
+// (RtPush::emitterCount) or, without emitter sampling, the hit's own emission, and the light
+// table (shared/lights.h) by next-event estimation with shadow rays. Also the pixel's own
+// emitter sample (the light table at the pixel is lights.direct's). Include after
+// rt/rt_common.glsl. The shadow miss shader is miss index 0 of every pipeline that includes
+// this. With the radiance cache on (RtPush::cacheLookup) a hit lit afresh takes the light
+// arriving from everything but the sun, the emitters and the light table from its cell
+// (shared/rt_cache.h) instead of the sky ray: every bounce, at the price of a lookup.
 #include "shared/rt_cache.h"
 layout(set = 0, binding = kRtBindingTlas) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = kRtBindingHistRadiance) uniform sampler2D previousRadiance;
@@ -20,6 +22,16 @@ layout(set = 0, binding = kRtBindingEmitters, std430) readonly buffer Emitters {
 layout(set = 0, binding = kRtBindingCacheEntries, std430) readonly buffer CacheEntries { RtCacheEntry cacheEntries[]; };
 
 layout(location = 1) rayPayloadEXT float visible;
+
+// The light table at a hit lit afresh: a Lambertian surface of the hit's albedo, shadow rays
+// from gLightStart (the includes below need them declared first).
+vec3 gLightStart, gLightNormal, gLightAlbedo;
+float unoccluded(vec3 start, vec3 direction, float tMax);
+float lightVisibility(vec3 toLight, float distance) {
+  return unoccluded(gLightStart, toLight, distance >= 1e29 ? 1e30 : distance * (1.0 - 1e-4));
+}
+vec3 lightResponse(vec3 toLight) { return gLightAlbedo * (kInvPi * max(dot(gLightNormal, toLight), 0.0)); }
+#include "common/lights.glsl"
 
 // With emitter sampling on, a ray that finds an emitter leaves its emission out: the emitter
 // sample (emitterLight) counts that light instead.
@@ -120,6 +132,12 @@ vec3 directHitRadiance(vec3 start, vec3 albedo, vec3 normal, vec3 emission, uvec
     vec3 light = emitterLight(start, normal, seed + uvec3(0u, 0u, 0x9E3779B9u), d);
     radiance += albedo * kInvPi * light * max(dot(normal, d), 0.0);
   }
+  if (frame.lightCount > 0u) {
+    gLightStart = start;
+    gLightNormal = normal;
+    gLightAlbedo = albedo;
+    radiance += shadeLights(start, normal, seed + uvec3(0u, 0x6A09E667u, 0u));
+  }
   return radiance;
 }
 
@@ -131,9 +149,10 @@ vec3 directHitRadiance(vec3 start, vec3 albedo, vec3 normal, vec3 emission, uvec
 vec3 hitIncoming(vec3 hitPosition, vec3 start, vec3 normal, uvec3 seed) {
   vec3 incoming;
   if (cachedIncoming(hitPosition, normal, incoming)) return incoming;
-  if (push.hitSky != 0u && any(greaterThan(frame.skyRadiance.rgb, vec3(0.0)))) {
+  if (push.hitSky != 0u && ((frame.flags & kFrameFlagEnvironment) != 0u || any(greaterThan(frame.skyRadiance.rgb, vec3(0.0))))) {
     vec3 d = tlLocalToWorld(tlSampleCosineHemisphere(tlRandom2(seed)), normal);
-    return frame.skyRadiance.rgb * unoccluded(start, d, 1e30);
+    // With an environment map, its band-limited radiance along the ray (frame.h tlSkyRadiance).
+    return tlSkyRadiance(frame, d) * unoccluded(start, d, 1e30);
   }
   return vec3(0.0);
 }

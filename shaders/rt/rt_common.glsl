@@ -1,6 +1,7 @@
 // What every pass of the RT path shares: the frame, the blue noise, the G-buffer's depth
 // and normal, and the one ray generation (shared/rt.h) they all repeat.
 #include "shared/frame.h"
+#include "shared/lights.h"
 #include "shared/packing.h"
 #include "shared/ray_origin.h"
 #include "shared/rt.h"

@@ -4,6 +4,7 @@
 #ifndef TL_SHARED_FRAME_H
 #define TL_SHARED_FRAME_H
 #include "common.h"
+#include "environment.h"
 #include "material_mode.h"
 
 TL_BEGIN
@@ -26,6 +27,12 @@ struct FrameConstants {
   float sceneScale;      // characteristic scene size in metres (bounds diagonal)
   vec4 jitter;           // xy: this frame's TAA offset of the projection, in NDC (0 without TAA); viewProj
                          // includes it, prevViewProj does not: motion vectors subtract it
+  uint lightCount;       // entries of the light table (shared/lights.h): point, spot, further directional lights
+  uint envWidth;         // the environment map's texels (kFrameFlagEnvironment; shared/environment.h)
+  uint envHeight;
+  uint envPad0;
+  vec4 envParams;        // x, y: cosine and sine of the map's rotation about +Y; z: its intensity
+  vec4 envSh[9];         // rgb: the map's radiance on the SH basis (rotation and intensity applied)
 };
 
 TL_CONST uint kFrameFlagSunShadows = 1u;
@@ -35,6 +42,16 @@ TL_FN uint tlFrameMaterials(uint flags) { return (flags >> kFrameMaterialsShift)
 
 // Set-0 binding of the frame constants in every pass that reads them.
 TL_CONST uint kBindingFrame = 0;
+
+// The sky a surface sees without a path's GI, or a ray that escapes: the environment map's
+// band-limited radiance along unit direction d (shared/environment.h) or the uniform sky; the
+// irradiance on an unoccluded surface of unit normal n (pi L for the uniform sky).
+TL_FN vec3 tlSkyRadiance(FrameConstants f, vec3 d) {
+  return (f.flags & kFrameFlagEnvironment) != 0u ? tlEnvShRadiance(f.envSh, d) : vec3(f.skyRadiance);
+}
+TL_FN vec3 tlSkyIrradiance(FrameConstants f, vec3 n) {
+  return (f.flags & kFrameFlagEnvironment) != 0u ? tlEnvShIrradiance(f.envSh, n) : kPi * vec3(f.skyRadiance);
+}
 TL_END
 
 #ifdef __cplusplus

@@ -41,12 +41,14 @@ TL_CONST uint kCompositeStageIrradiance = 13;  // rgba16f: the diffuse irradianc
 TL_CONST uint kCompositeFarShY = 14;
 TL_CONST uint kCompositeFarCoCg = 15;
 TL_CONST uint kCompositeFarAo = 16;
+TL_CONST uint kCompositeLights = 17;  // rgba16f: the light table's reflected radiance (lights.direct)
 
 TL_CONST uint kCompositeHasAo = 1u;
 TL_CONST uint kCompositeHasGi = 2u;
 TL_CONST uint kCompositeAoOnGi = 4u;
 TL_CONST uint kCompositeHasFarGi = 8u;
 TL_CONST uint kCompositeSpecularGi = 16u;  // specular from the path's SH (else the sky's, times AO)
+TL_CONST uint kCompositeHasLights = 32u;   // lights.direct is bound: add it
 struct CompositePush {
   uint flags;               // kCompositeHas*: which path outputs are bound
   float giBlendDistance;    // beyond this view distance GI fades to the far field, else the sky (0: never)

@@ -307,7 +307,8 @@ TEST(HardNumbers, NegativeLightIsClampedWithAWarning) {
   EXPECT_EQ(s.lights[0].color, glm::vec3(0.0f, 0.5f, 1.0f));
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_CONTAINS(s.warnings[0], "light `lamp` color is negative");
-  EXPECT_EQ(s.environment.sunIrradiance, glm::vec3(0.0f, 1.5f, 3.0f));
+  // The sun's irradiance is colour x lux on Twinlight's radiometric scale (683 lm/W).
+  EXPECT_EQ(s.environment.sunIrradiance, glm::vec3(0.0f, 1.5f, 3.0f) / 683.0f);
 
   s = loadGltf(write(tmp, "neg_intensity.gltf", withLight({{"type", "point"}, {"intensity", -5}})));
   EXPECT_EQ(s.lights.at(0).intensity, 0.0f);

@@ -271,4 +271,93 @@ TEST(SceneErrors, DegenerateTrianglesGiveFiniteNormals) {
 }
 
 }  // namespace
+// ---- KHR_lights_punctual ------------------------------------------------------------------
+
+// The triangle with lights: two directional lights, a point light and a spot light, each on
+// its own node (the spot at (0, 3, 0) turned to shine down -Y).
+nlohmann::json triangleWithLights() {
+  auto j = triangle("t.bin");
+  j["extensionsUsed"] = {"KHR_lights_punctual"};
+  j["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "directional"}, {"name", "sun"}, {"intensity", 683.0 * 5.0}},
+      {{"type", "directional"}, {"name", "fill"}, {"intensity", 683.0}, {"color", {1.0, 0.5, 0.25}}},
+      {{"type", "point"}, {"name", "bulb"}, {"intensity", 100.0}, {"range", 8.0}},
+      {{"type", "spot"}, {"name", "spot"}, {"intensity", 683.0}, {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.6}}}}};
+  const double s = std::sqrt(0.5);  // a rotation of -90 degrees about x: -Z becomes -Y
+  j["nodes"] = {{{"mesh", 0}},
+                {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
+                {{"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}},
+                {{"translation", {1.0, 2.0, 3.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}},
+                {{"translation", {0.0, 3.0, 0.0}}, {"rotation", {-s, 0.0, 0.0, s}}, {"extensions", {{"KHR_lights_punctual", {{"light", 3}}}}}}};
+  j["scenes"][0]["nodes"] = {0, 1, 2, 3, 4};
+  return j;
+}
+
+TEST(SceneLights, EveryLightIsReadInItsUnitsAndTheFirstDirectionalIsTheSun) {
+  TempDir tmp;
+  writeTriangleBin(tmp.path / "t.bin");
+  writeText(tmp.path / "lights.gltf", triangleWithLights().dump());
+  Scene s = loadGltf(tmp.path / "lights.gltf");
+  ASSERT_EQ(s.lights.size(), 4u);
+  ASSERT_TRUE(s.environment.sunLight);
+  EXPECT_EQ(*s.environment.sunLight, 0u);
+  // 683 x 5 lux is E = 5 on Twinlight's scale: a Blender sun of strength 5 exported with its
+  // default (physical) conversion next to a world of strength 5.
+  EXPECT_NEAR(s.environment.sunIrradiance.x, 5.0f, 1e-5f);
+  EXPECT_EQ(s.lights[1].type, LightType::Directional);
+  EXPECT_NEAR(s.lights[1].radiometric().y, 0.5f, 1e-6f);  // 683 lux, colour 0.5
+  EXPECT_EQ(s.lights[2].type, LightType::Point);
+  EXPECT_NEAR(s.lights[2].intensity, 100.0f, 0.0f);
+  EXPECT_NEAR(s.lights[2].radiometric().x, 100.0f / 683.0f, 1e-7f);
+  ASSERT_TRUE(s.lights[2].range);
+  EXPECT_EQ(*s.lights[2].range, 8.0f);
+  EXPECT_NEAR(s.lights[2].position.x, 1.0, 1e-12);
+  EXPECT_NEAR(s.lights[2].position.z, 3.0, 1e-12);
+  EXPECT_EQ(s.lights[3].type, LightType::Spot);
+  EXPECT_NEAR(s.lights[3].innerConeAngle, 0.2f, 1e-7f);
+  EXPECT_NEAR(s.lights[3].outerConeAngle, 0.6f, 1e-7f);
+  EXPECT_NEAR(s.lights[3].direction.y, -1.0, 1e-9);  // its node turned -Z to -Y
+  // The lights are part of the content: moving one changes the scene's hash.
+  auto j = triangleWithLights();
+  j["nodes"][3]["translation"] = {1.0, 2.5, 3.0};
+  writeText(tmp.path / "moved.gltf", j.dump());
+  EXPECT_NE(loadGltf(tmp.path / "moved.gltf").contentHash, s.contentHash);
+}
+
+TEST(SceneLights, LightsAgainstTheSpecificationAreOneClearError) {
+  TempDir tmp;
+  writeTriangleBin(tmp.path / "t.bin");
+  auto cones = triangleWithLights();
+  cones["extensions"]["KHR_lights_punctual"]["lights"][3]["spot"]["innerConeAngle"] = 0.7;
+  writeText(tmp.path / "cones.gltf", cones.dump());
+  expectOneLineErrorNaming(tmp.path / "cones.gltf", "cone angles");
+  auto outside = triangleWithLights();
+  outside["extensions"]["KHR_lights_punctual"]["lights"][3]["spot"]["outerConeAngle"] = 2.0;
+  writeText(tmp.path / "outside.gltf", outside.dump());
+  expectOneLineErrorNaming(tmp.path / "outside.gltf", "cone angles");
+  auto type = triangleWithLights();
+  type["extensions"]["KHR_lights_punctual"]["lights"][2]["type"] = "area";
+  writeText(tmp.path / "type.gltf", type.dump());
+  expectOneLineErrorNaming(tmp.path / "type.gltf", "has type `area`");
+  auto missing = triangleWithLights();
+  missing["nodes"][3]["extensions"]["KHR_lights_punctual"]["light"] = 9;
+  writeText(tmp.path / "missing.gltf", missing.dump());
+  expectOneLineErrorNaming(tmp.path / "missing.gltf", "refers to light 9");
+}
+
+TEST(SceneLights, NegativeLightIsNoLightWithOneWarning) {
+  // The import's rule for plain out-of-range values (scene/import_values.h): clamped, warned.
+  TempDir tmp;
+  writeTriangleBin(tmp.path / "t.bin");
+  auto negative = triangleWithLights();
+  negative["extensions"]["KHR_lights_punctual"]["lights"][2]["intensity"] = -1.0;
+  writeText(tmp.path / "negative.gltf", negative.dump());
+  const Scene s = loadGltf(tmp.path / "negative.gltf");
+  ASSERT_EQ(s.lights.size(), 4u);
+  EXPECT_EQ(s.lights[2].intensity, 0.0f);
+  size_t naming = 0;
+  for (const auto& w : s.warnings) naming += w.find("light `bulb` intensity is negative") != std::string::npos;
+  EXPECT_EQ(naming, 1u);
+}
+
 }  // namespace tl::scene

@@ -51,7 +51,8 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
                          {shared::kCompositeShadow, sampled},
                          {shared::kCompositeOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                          {shared::kCompositeShadowDepth, sampled},
-                         {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+                         {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                         {shared::kCompositeLights, sampled}};
     for (const auto& b : PathInputs::bindings()) d.layout.bindings.push_back(b);
     d.layout.pushConstantBytes = sizeof(shared::CompositePush);
     pipeline_ = gpu::createComputePipeline(in.device, d);
@@ -72,6 +73,9 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
                    (push.flags & shared::kCompositeHasGi);
   if (far) push.flags |= shared::kCompositeHasFarGi;
   if (in.settings.specularGi) push.flags |= shared::kCompositeSpecularGi;
+  // The light table's radiance (lights.direct); without lights the base colour stands in, unread.
+  const std::string lights = path.lightsRadiance.empty() ? std::string("gbuffer.baseColor") : path.lightsRadiance;
+  if (!path.lightsRadiance.empty()) push.flags |= shared::kCompositeHasLights;
   push.giBlendDistance = path.giBlendDistance;
   push.openSkyDirectionality = path.openSkyDirectionality;
   push.farOpenSkyDirectionality = path.farOpenSkyDirectionality;
@@ -99,10 +103,11 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
           b.read(n, Usage::Sampled);
         b.read(kGbufferDepth, Usage::Sampled);
         if (sun) b.read(kShadowSunDepth, Usage::Sampled);
+        if (lights != "gbuffer.baseColor") b.read(lights, Usage::Sampled);
         inputs.declareReads(b, "gbuffer.baseColor");
         b.create(output, in.temporalAntialiasing ? unresolvedDesc : hdrDesc, Usage::StorageWrite);
       },
-      [this, &in, sun, push, inputs, output](graph::PassContext& ctx) {
+      [this, &in, sun, push, inputs, output, lights](graph::PassContext& ctx) {
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
         VkSampler point = pointSampler_.handle();
         // The binding must still hold a depth image; the G-buffer's depth stands in, unread.
@@ -118,7 +123,8 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
             .sampledImage(shared::kCompositeShadow, shadow.view(), shadowSampler_.handle(), ro)
             .storageImage(shared::kCompositeOutput, ctx.image(output).view())
             .sampledImage(shared::kCompositeShadowDepth, shadow.view(), point, ro)
-            .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle());
+            .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle())
+            .sampledImage(shared::kCompositeLights, ctx.image(lights).view(), point, ro);
         inputs.bind(ctx, point);
         ctx.pushConstants(push);
         ctx.dispatch(in.settings.width, in.settings.height);

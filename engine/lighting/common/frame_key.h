@@ -24,7 +24,7 @@ enum class FramePart : uint32_t {
   CameraPosition,     // the camera's world position
   CameraOrientation,  // its forward and up directions
   Projection,         // vertical field of view, near plane, image size (not TAA's jitter)
-  Sun,                // the light: sun direction, irradiance, angular radius
+  Sun,                // the light: sun direction, irradiance, angular radius, and every other light
   Sky,                // the light: uniform sky radiance
   Scene,              // the environment: which scene is loaded (a new upload: another file, a reload)
   Geometry,           // deforming meshes' vertex versions (animation) and instance transforms

@@ -13,6 +13,8 @@
 #include "lighting/legacy/legacy_path.h"
 #include "lighting/legacy/voxel_regions.h"
 #include "lighting/lighting_path.h"
+#include "lighting/common/light_table.h"
+#include "lighting/common/lights_pass.h"
 #include "shared/scene.h"
 
 #include <fmt/format.h>
@@ -271,6 +273,7 @@ class LegacyPath final : public LightingPath {
         [&](graph::PassBuilder& b) {
           readSceneInputs(b, Usage::StorageRead);  // voxelize.vert fetches whole triangles
           b.read(shadow, Usage::Sampled);
+          if (in.constants.lightCount > 0) b.read(kLightTable, Usage::StorageRead);
           if (feedback) {
             b.read(kLegacyHistRadiance, Usage::Sampled);
             b.read(kLegacyHistDepth, Usage::Sampled);
@@ -319,6 +322,7 @@ class LegacyPath final : public LightingPath {
                 .storageImage(shared::kLegacyBindingRadiance, radiance.view())
                 .storageBuffer(shared::kLegacyBindingVertices, in.scene.vertexBuffer().handle())
                 .storageBuffer(shared::kLegacyBindingIndices, in.scene.indexBuffer().handle())
+                .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, in.scene.indexBuffer().handle()))
                 // Without feedback the bindings still need images: the G-buffer depth stands in, unread.
                 .sampledImage(shared::kLegacyBindingPrevRadiance, ctx.image(feedback ? kLegacyHistRadiance : kGbufferDepth).view(),
                               point_.handle(), kReadOnly)
@@ -604,7 +608,8 @@ class LegacyPath final : public LightingPath {
                          {shared::kLegacyBindingPrevRadiance, sampled},
                          {shared::kLegacyBindingPrevDepth, sampled},
                          {shared::kLegacyBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                         {shared::kLegacyBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+                         {shared::kLegacyBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                         {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
     d.layout.extraSets = {in.scene.table().layout()};
     d.layout.pushConstantBytes = sizeof(LegacyVoxelPush);
     // No vertex input: voxelize.vert fetches the vertices itself.

@@ -6,6 +6,10 @@
 #include "graph/executor.h"
 #include "lighting/common/decoders.h"
 #include "lighting/lighting_path.h"
+#include "lighting/common/environment_table.h"
+#include "lighting/common/light_table.h"
+#include "lighting/common/lights_pass.h"
+#include "shared/lights.h"
 #include "lighting/reference/reference_path.h"
 #include "scene/scene.h"
 #include "shared/brdf_lut.h"
@@ -82,6 +86,8 @@ class ReferencePath final : public LightingPath {
           readSceneInputs(b, graph::Usage::StorageRead);
           readStructures(b);
           b.read(kBrdfTables, graph::Usage::StorageRead);
+          if (in.constants.lightCount > 0) b.read(kLightTable, graph::Usage::StorageRead);
+          if (hasEnvironmentMap(in)) b.read(kEnvironmentTable, graph::Usage::StorageRead);
           b.read(kAccum, graph::Usage::StorageRead);
           b.write(kAccum, graph::Usage::StorageWrite);
           b.read(kAoAccum, graph::Usage::StorageRead);
@@ -109,7 +115,9 @@ class ReferencePath final : public LightingPath {
               .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
               .storageImage(shared::kRefBindingAoAccum, ctx.image(kAoAccum).view())
               .storageImage(shared::kRefBindingAo, ctx.image(kAo).view())
-              .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle());
+              .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle())
+              .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, ctx.buffer(kBrdfTables).handle()))
+              .storageBuffer(shared::kBindingEnvironment, environmentTableOrStandIn(ctx, in, ctx.buffer(kBrdfTables).handle()));
           ctx.flushDescriptors();
           in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_.layout(), shared::kSceneSet);
           VkExtent3D e = ctx.extent(kRadiance);
@@ -146,6 +154,8 @@ class ReferencePath final : public LightingPath {
           readSceneInputs(b, graph::Usage::StorageRead);
           readStructures(b);
           b.read(kBrdfTables, graph::Usage::StorageRead);
+          if (in.constants.lightCount > 0) b.read(kLightTable, graph::Usage::StorageRead);
+          if (hasEnvironmentMap(in)) b.read(kEnvironmentTable, graph::Usage::StorageRead);
           b.read(kIrradianceAccum, graph::Usage::StorageRead);
           b.write(kIrradianceAccum, graph::Usage::StorageWrite);
           b.create(kIrradiance,
@@ -168,7 +178,9 @@ class ReferencePath final : public LightingPath {
               .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
               .storageImage(shared::kRefBindingIrradianceAccum, ctx.image(kIrradianceAccum).view())
               .storageImage(shared::kRefBindingIrradiance, ctx.image(kIrradiance).view())
-              .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle());
+              .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle())
+              .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, ctx.buffer(kBrdfTables).handle()))
+              .storageBuffer(shared::kBindingEnvironment, environmentTableOrStandIn(ctx, in, ctx.buffer(kBrdfTables).handle()));
           ctx.flushDescriptors();
           in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, irradiancePipeline_.layout(),
                                 shared::kSceneSet);
@@ -314,7 +326,9 @@ class ReferencePath final : public LightingPath {
                            {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingAoAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                            {shared::kRefBindingAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
       d.layout.extraSets = {in.scene.table().layout()};
       d.layout.pushConstantBytes = sizeof(shared::RefPush);
       pipeline_ = gpu::createRayTracingPipeline(in.device, d);
@@ -329,7 +343,9 @@ class ReferencePath final : public LightingPath {
                            {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingIrradianceAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                            {shared::kRefBindingIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
       irradiancePipeline_ = gpu::createRayTracingPipeline(in.device, d);
 
       // The depth split: the trace pass's paths again, their light summed by depth.

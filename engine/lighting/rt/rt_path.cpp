@@ -6,6 +6,8 @@
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/copy_pass.h"
 #include "lighting/common/gbuffer_pass.h"
+#include "lighting/common/light_table.h"
+#include "lighting/common/lights_pass.h"
 #include "lighting/lighting_path.h"
 #include "lighting/rt/blue_noise.h"
 #include "lighting/rt/radiance_cache.h"
@@ -280,6 +282,10 @@ class RtPath final : public LightingPath {
     out.diffuseShY = giShY;
     out.diffuseCoCg = giCoCg;
     out.giBlendDistance = params_.blendDistance;
+    // The light table at the pixels: shadow rays against this top level (lights.direct).
+    out.shadowStructures = {kRtTlas};
+    if (scene_->hasDeforming()) out.shadowStructures.push_back(kRtBlasDeforming);
+    out.shadowTlasHandle = scene_->topLevel().structure().handle();
     // Metro: beyond the blend distance, the legacy pipeline's GI. Its passes join the frame
     // only when some of the scene lies that far away; otherwise nobody pays for them.
     farLegacy_ = s.rtFarLegacy && farthestSceneDistance(in) > (1.0f - kGiBlendWidthFraction) * params_.blendDistance;
@@ -381,7 +387,7 @@ class RtPath final : public LightingPath {
           readCommon(b);
           b.read(r.hits, Usage::StorageRead);
           b.read(r.hitSurface, Usage::StorageRead);
-          readHitLighting(b, screenRadiance);
+          readHitLighting(b, screenRadiance, in);
           if (first)
             for (const char* n : {first->shY, first->coCg, first->ao}) b.read(n, Usage::Sampled);
           b.create(r.shY,
@@ -402,7 +408,7 @@ class RtPath final : public LightingPath {
           VkSampler pt = point_.handle();
           ctx.bind(lighting_);
           ctx.pushConstants(p);
-          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance)
+          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance, in)
               .storageImage(shared::kRtBindingHitsIn, ctx.image(r.hits).view())
               .storageImage(shared::kRtBindingSurfaceIn, ctx.image(r.hitSurface).view())
               .storageImage(shared::kRtBindingShY, ctx.image(r.shY).view())
@@ -453,7 +459,7 @@ class RtPath final : public LightingPath {
         [&](graph::PassBuilder& b) {
           readCommon(b);
           b.read(kCoCgAo, Usage::Sampled);
-          readHitLighting(b, screenRadiance);
+          readHitLighting(b, screenRadiance, in);
           b.create(kCellShY, cells(VK_FORMAT_R16G16B16A16_SFLOAT, "disocclusion rays per 8x8 cell: mean SH luma"),
                    Usage::StorageWrite);
           b.create(kCellCoCgAo, cells(VK_FORMAT_R16G16B16A16_SFLOAT, "disocclusion rays: mean chroma (xy), AO (z)"),
@@ -466,7 +472,7 @@ class RtPath final : public LightingPath {
           rays.screenRadiance = useScreenRadiance(ctx, push, screenRadiance && !restart_);
           ctx.bind(disocclusion_);
           ctx.pushConstants(rays);
-          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance)
+          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance, in)
               .sampledImage(shared::kRtBindingCoCg, ctx.image(kCoCgAo).view(), point_.handle(), kReadOnly)
               .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
               .storageImage(shared::kRtBindingCellShY, ctx.image(kCellShY).view())
@@ -557,14 +563,16 @@ class RtPath final : public LightingPath {
 
   // What shading a hit reads (rt/hit_lighting.glsl): the top level, last frame's image and
   // depth for hits seen on screen, and the G-buffer's material there.
-  void readHitLighting(graph::PassBuilder& b, bool screenRadiance) const {
+  void readHitLighting(graph::PassBuilder& b, bool screenRadiance, const FrameInputs& in) const {
     readStructures(b);
+    if (in.constants.lightCount > 0) b.read(kLightTable, Usage::StorageRead);
     b.read(kHistDepth, Usage::Sampled);
     if (screenRadiance) b.read(kHistRadiance, Usage::Sampled);
     if (cache_.active()) b.read(kRtCacheEntries, Usage::StorageRead);
     for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive"}) b.read(n, Usage::Sampled);
   }
-  gpu::DescriptorWriter& writeHitLighting(gpu::DescriptorWriter& w, graph::PassContext& ctx, bool screenRadiance) {
+  gpu::DescriptorWriter& writeHitLighting(gpu::DescriptorWriter& w, graph::PassContext& ctx, bool screenRadiance,
+                                          const FrameInputs& in) {
     // Without history the binding still needs an image: the depth history stands in, unread.
     const gpu::Image& radiance = ctx.image(screenRadiance ? kHistRadiance : kHistDepth);
     VkSampler pt = point_.handle();
@@ -573,6 +581,7 @@ class RtPath final : public LightingPath {
         // Without the cache its binding still needs a buffer: the emitters stand in, unread.
         .storageBuffer(shared::kRtBindingCacheEntries,
                        cache_.active() ? ctx.buffer(kRtCacheEntries).handle() : scene_->emitterData().handle())
+        .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, scene_->emitterData().handle()))
         .sampledImage(shared::kRtBindingHistRadiance, radiance.view(), pt, kReadOnly)
         .sampledImage(shared::kRtBindingHistDepth, ctx.image(kHistDepth).view(), pt, kReadOnly)
         .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), pt, kReadOnly)
@@ -663,6 +672,7 @@ class RtPath final : public LightingPath {
     }
     const std::vector<B> hitLighting = {{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
                                         {shared::kRtBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                        {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                         {shared::kRtBindingHistRadiance, sampled},
                                         {shared::kRtBindingHistDepth, sampled},
                                         {shared::kRtBindingBaseColor, sampled},

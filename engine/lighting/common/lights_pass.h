@@ -1,0 +1,42 @@
+// lights.direct: the light table's reflected radiance at every G-buffer pixel (shaders/common/
+// lights_shade.glsl), through the shared BRDF, added by the composite. Unshadowed, or with one
+// ray-query shadow ray per light against a top level the path provides (the rt path's). Only
+// frames with lights (FrameConstants::lightCount > 0) have the pass.
+#pragma once
+
+#include "gpu/pipeline.h"
+#include "gpu/resources.h"
+#include "graph/graph.h"
+#include "lighting/common/frame_inputs.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace tl::lighting {
+
+inline constexpr const char* kLightsRadiance = "lights.radiance";  // RGBA16F, 0 on the sky
+// With more lights than every point evaluates (shared/lights.h kLightsLoopMax), each path
+// accumulates the noisy estimate in its own persistent "lights.accum.<path>" while the frame
+// key's camera, projection, light, scene, geometry and the path's settings stay.
+
+// What a pass that shades the light table binds at kBindingLights: the table, or in frames
+// without lights `standIn` (any buffer the pass binds anyway), which the shaders never read
+// (lightCount is 0). Such a pass declares b.read(kLightTable) only when in.constants.lightCount > 0.
+VkBuffer lightTableOrStandIn(graph::PassContext& ctx, const FrameInputs& in, VkBuffer standIn);
+
+class LightsPass {
+ public:
+  // Returns the name of what it wrote, or "" when the frame has no lights (no pass then).
+  // `structures` names the top level (first) and the bottom levels its rays may reach that the
+  // frame rewrites; `tlasHandle` is the top level: shadow rays. Empty: unshadowed.
+  std::string add(graph::RenderGraph& graph, FrameInputs& in, const std::vector<std::string>& structures,
+                  VkAccelerationStructureKHR tlasHandle);
+
+ private:
+  gpu::Pipeline unshadowed_, traced_;
+  gpu::Sampler point_;
+  std::map<std::string, HistoryKeeper, std::less<>> accumulation_;  // per lighting path
+};
+
+}  // namespace tl::lighting

@@ -1,0 +1,58 @@
+// A surface point lit by the light table (shared/lights.h): every light when there are at most
+// kLightsLoopMax, else kLightPicks lights chosen by resampled importance sampling (candidates
+// drawn by power, one kept in proportion to its unshadowed contribution here: power and
+// distance, cone, cosine), each an unbiased estimate of the sum. The includer includes
+// shared/frame.h, lights.h and sampling.h, declares `frame`, and defines before including
+//   float lightVisibility(vec3 toLight, float distance)  1 where the light is seen from the
+//                                                         point (a shadow ray; 1: unshadowed)
+//   vec3 lightResponse(vec3 toLight)                      the BRDF times the cosine there
+layout(set = 0, binding = kBindingLights, std430) readonly buffer LightTable { GpuLight lights[]; };
+
+// The light whose cumulative selection probability first exceeds u.
+uint lightPick(float u) {
+  uint lo = 0u, hi = frame.lightCount - 1u;
+  while (lo < hi) {
+    uint mid = (lo + hi) / 2u;
+    if (u < lights[mid].direction.w) hi = mid;
+    else lo = mid + 1u;
+  }
+  return lo;
+}
+
+// Reflected radiance from one light, with its visibility (no shadow ray for a light that
+// cannot contribute).
+vec3 lightContribution(LightIncidence li) {
+  if (all(equal(li.irradiance, vec3(0.0)))) return vec3(0.0);
+  vec3 response = lightResponse(li.toLight);
+  if (all(equal(response, vec3(0.0)))) return vec3(0.0);
+  return li.irradiance * response * lightVisibility(li.toLight, li.distance);
+}
+
+// The light table's reflected radiance at `position` (normal n: for resampling only); `seed`
+// draws the picks when there are many lights.
+vec3 shadeLights(vec3 position, vec3 n, uvec3 seed) {
+  vec3 sum = vec3(0.0);
+  if (frame.lightCount <= kLightsLoopMax) {
+    for (uint i = 0u; i < frame.lightCount; ++i) sum += lightContribution(tlLightIncidence(lights[i], position));
+    return sum;
+  }
+  for (uint pick = 0u; pick < kLightPicks; ++pick) {
+    float weightSum = 0.0, keptTarget = 0.0;
+    LightIncidence kept;
+    for (uint c = 0u; c < kLightCandidates; ++c) {
+      uvec3 h = tlPcg3d(seed + uvec3(0u, 0u, (pick * kLightCandidates + c + 1u) * 0x9E3779B9u));
+      uint i = lightPick(tlUintToUnitFloat(h.x));
+      LightIncidence li = tlLightIncidence(lights[i], position);
+      float target = tlLightTarget(li, n);
+      float weight = target / max(lights[i].intensity.w, 1e-30);
+      weightSum += weight;
+      if (weight > 0.0 && tlUintToUnitFloat(h.y) * weightSum < weight) {
+        kept = li;
+        keptTarget = target;
+      }
+    }
+    // Resampled importance sampling: f(y) / target(y) * (the weights' sum) / candidates.
+    if (keptTarget > 0.0) sum += lightContribution(kept) * (weightSum / (float(kLightCandidates) * keptTarget));
+  }
+  return sum / float(kLightPicks);
+}

@@ -1,0 +1,117 @@
+// The scene's lights other than the sun (KHR_lights_punctual point, spot and further
+// directional lights), as every path shades them: one std430 array of GpuLight at set 0
+// binding kBindingLights ("lights.table"), written each frame by the session with positions
+// relative to the camera (lighting/common/light_table.h). A scene without such lights has no
+// table: FrameConstants::lightCount is 0 and nothing reads the binding.
+//
+// Units. Twinlight's radiometric scale is glTF's photometric one divided by 683 lm/W (the
+// luminous efficacy glTF exporters such as Blender's use to turn watts into lumens): a
+// directional light of L lux has irradiance E = L / 683, a point or spot light of C candela has
+// intensity I = C / 683, and a white Lambertian surface facing a light of irradiance E shows
+// radiance E / pi. The sky (extras.twinlight.sky_radiance, --sky) and the CLI's --sun are
+// already on that scale, so a Blender sun of strength S W/m^2, exported as 683 S lux, arrives
+// as E = S next to a world of the same strength, as in Blender.
+#ifndef TL_SHARED_LIGHTS_H
+#define TL_SHARED_LIGHTS_H
+#include "common.h"
+
+TL_BEGIN
+TL_CONST float kLumensPerWatt = 683.0f;
+
+TL_CONST uint kLightDirectional = 0u;
+TL_CONST uint kLightPoint = 1u;
+TL_CONST uint kLightSpot = 2u;
+
+// Set-0 binding of the light table in every pass that shades lights (beside the BRDF tables').
+TL_CONST uint kBindingLights = 49u;
+
+// Bindings of the lights.direct pass (set 0; also kBindingFrame, kBindingBrdfTables, kBindingLights):
+// the G-buffer it shades, its output, and the top level its shadow rays trace (rt only).
+TL_CONST uint kLightsPassBaseColor = 1u;
+TL_CONST uint kLightsPassNormal = 2u;
+TL_CONST uint kLightsPassMaterial = 3u;
+TL_CONST uint kLightsPassDepth = 4u;
+TL_CONST uint kLightsPassOutput = 5u;
+TL_CONST uint kLightsPassTlas = 6u;
+TL_CONST uint kLightsPassAccum = 7u;  // rgba32f, persistent: sum of estimates (rgb) and their count (a)
+
+// With more than kLightsLoopMax lights the pass's estimate is noisy: it accumulates while
+// nothing it depends on changes (the frame key), like the reference, and writes the mean.
+struct LightsPush {
+  uint accumulate;  // 1: add this frame's estimate to the sum (more than kLightsLoopMax lights)
+  uint restart;     // 1: the sum starts over this frame
+  uint pad0, pad1;
+};
+
+// Up to this many lights every shading point evaluates all of them (exact: no noise). With more,
+// it takes kLightPicks lights, each chosen by resampled importance sampling among
+// kLightCandidates drawn in proportion to power (GpuLight::intensity.w): the cost stays the same
+// however many lights there are (a binary search per candidate), and the candidates' unshadowed
+// contribution at the point (power and distance, cone and cosine) picks the one traced.
+TL_CONST uint kLightsLoopMax = 8u;
+TL_CONST uint kLightCandidates = 8u;
+TL_CONST uint kLightPicks = 2u;
+
+struct GpuLight {
+  vec4 position;   // xyz: camera-relative position (point, spot); w: range in metres (0: unlimited)
+  vec4 direction;  // xyz: unit direction the light travels (directional; a spot's axis); w: cumulative selection probability
+  vec4 intensity;  // rgb: intensity I (point, spot) or irradiance E (directional), Twinlight units; w: selection probability
+  float cosOuter;  // spot: cos(outer cone angle); -1 otherwise
+  float coneScale; // spot: 1 / max(cos inner - cos outer, 1e-3)
+  uint type;       // kLight*
+  uint pad;
+};
+
+// What a light sends to a point: the unit direction towards it, its distance (1e30 for a
+// directional light) and the irradiance on a surface facing it there (times n.l for irradiance).
+struct LightIncidence {
+  vec3 toLight;
+  float distance;
+  vec3 irradiance;
+};
+
+// KHR_lights_punctual's recommended cone falloff: 0 outside the outer cone, 1 inside the
+// inner one, and the square of a linear ramp in the cosine between them.
+TL_FN float tlSpotAttenuation(float cosOuter, float coneScale, float cosAngle) {
+  float t = tlSaturate((cosAngle - cosOuter) * coneScale);
+  return t * t;
+}
+
+// KHR_lights_punctual's recommended range window: the inverse square law, brought smoothly to
+// zero at the range (max(1 - (d / range)^4, 0)); 1 without a range.
+TL_FN float tlLightRangeWindow(float distance, float range) {
+  if (!(range > 0.0f)) return 1.0f;
+  float r = distance / range;
+  r = r * r;
+  return tlSaturate(1.0f - r * r);
+}
+
+TL_FN LightIncidence tlLightIncidence(GpuLight light, vec3 position) {
+  LightIncidence li;
+  if (light.type == kLightDirectional) {
+    li.toLight = -vec3(light.direction);
+    li.distance = 1e30f;
+    li.irradiance = vec3(light.intensity);
+    return li;
+  }
+  vec3 d = vec3(light.position) - position;
+  float d2 = max(dot(d, d), 1e-12f);
+  li.distance = sqrt(d2);
+  li.toLight = d / li.distance;
+  float cone = light.type == kLightSpot ? tlSpotAttenuation(light.cosOuter, light.coneScale, -dot(vec3(light.direction), li.toLight))
+                                        : 1.0f;
+  li.irradiance = vec3(light.intensity) * (cone * tlLightRangeWindow(li.distance, light.position.w) / d2);
+  return li;
+}
+
+// What resampling keeps a candidate by: its unshadowed irradiance at the point times the
+// cosine (luminance), the part of the light's contribution that does not depend on the BRDF.
+TL_FN float tlLightTarget(LightIncidence li, vec3 n) {
+  return tlLuminance(li.irradiance) * max(dot(n, li.toLight), 0.0f);
+}
+TL_END
+
+#ifdef __cplusplus
+static_assert(sizeof(tl::shared::GpuLight) == 64);
+#endif
+#endif

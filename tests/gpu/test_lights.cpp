@@ -1,0 +1,307 @@
+// Point and spot lights (the light table, shaders/shared/lights.h) in every path against closed
+// forms, and each real-time path against the reference in a room lit only by lamps:
+//   - a point light of I = 683 cd (I = 1 on Twinlight's scale) 2 m above content/plane.gltf
+//     (Lambertian 0.8 in the diffuse material mode, no sun, black sky): the radiance at distance r
+//     from the point under it is rho / pi * I cos(theta) / d^2 = rho / pi * 2 / (4 + r^2)^1.5, in
+//     every path (a missing cosine is 41% off at the edge, a wrong unit 683x);
+//   - a spot light's cone: KHR_lights_punctual's falloff across its edge;
+//   - shadows: a box between a point light and the floor hides it in rt and the reference;
+//   - content/lamps.gltf: each path's mean radiance against the reference's.
+#include "gpu_fixture.h"
+#include "../common/test_scenes.h"
+
+#include "lighting/common/composite_pass.h"
+#include "lighting/common/lights_pass.h"
+#include "shared/color.h"
+#include "shared/lights.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace tl::test {
+namespace {
+
+const char* finalImage(const std::string& path) {
+  return path == "reference" ? "reference.radiance" : lighting::kCompositeHdr;
+}
+
+constexpr uint32_t kSize = 64;
+constexpr double kHeight = 4.0;                 // the camera, looking straight down at the origin
+constexpr double kTanHalfFov = 0.57735026919;   // 60 degrees vertical
+
+// Distance on the plane y = 0 from the origin to what pixel (x, y) sees.
+double planeRadius(uint32_t x, uint32_t y) {
+  const double nx = (x + 0.5) / (kSize / 2.0) - 1.0, ny = (y + 0.5) / (kSize / 2.0) - 1.0;
+  return kHeight * kTanHalfFov * std::hypot(nx, ny);
+}
+
+class LightsTest : public RayTracingTest {
+ protected:
+  // content/plane.gltf seen from 4 m straight above, no sun, black sky, Lambertian materials,
+  // lit by `lights`; the final image of `path` after `frames` frames.
+  std::vector<float> renderPlane(const std::string& path, const std::vector<scene::Light>& lights, uint32_t frames,
+                                 std::unique_ptr<scene::Scene> scene = nullptr) {
+    auto& s = session();
+    if (scene) s.installScene(std::move(scene));
+    else s.loadScene(contentFile("plane.gltf"));
+    s.setSize(kSize, kSize);
+    session::View v;
+    v.position = {0.0, kHeight, 0.0};
+    v.forward = {0.0, -1.0, 0.0};
+    v.up = {0.0, 0.0, -1.0};
+    v.yfovRadians = float(2.0 * std::atan(kTanHalfFov));
+    s.setView(v);
+    session::Lighting l = s.lighting();
+    l.sunIrradiance = glm::vec3(0.0f);
+    l.skyRadiance = glm::vec3(0.0f);
+    l.lights = lights;
+    l.exposureEv = 0.0f;
+    s.setLighting(l);
+    s.settings().materials = lighting::MaterialMode::Diffuse;
+    s.settings().referenceSamplesPerFrame = 16;
+    s.setPath(path);
+    s.requestBuffer(finalImage(path));
+    s.renderFrames(frames);
+    return s.buffer(finalImage(path)).texels();
+  }
+  // The plane's albedo as the path sees it: the G-buffer holds it as 8-bit sRGB; the reference
+  // reads the material.
+  double albedo(const std::string& path) {
+    const float rho = session().scene().materials[0].baseColorFactor.r;
+    if (path == "reference") return rho;
+    return shared::tlSrgbToLinear(glm::vec3(std::round(shared::tlLinearToSrgb(glm::vec3(rho)).r * 255.0f) / 255.0f)).r;
+  }
+};
+
+scene::Light point(glm::dvec3 position, float candela) {
+  scene::Light l;
+  l.type = scene::LightType::Point;
+  l.intensity = candela;
+  l.position = position;
+  return l;
+}
+
+double red(const std::vector<float>& texels, uint32_t x, uint32_t y) { return texels[(size_t(y) * kSize + x) * 4]; }
+
+// Worst relative error (and where) of the pixels of row `y` from the centre outwards against L(r).
+struct RowError {
+  double worst = 0.0;
+  uint32_t at = 0;
+};
+template <class F>
+RowError rowError(const std::vector<float>& img, uint32_t y, F expected) {
+  RowError e;
+  for (uint32_t x = kSize / 2; x < kSize; x += 2) {
+    const double want = expected(planeRadius(x, y));
+    if (!(want > 1e-4)) continue;
+    const double err = std::abs(red(img, x, y) / want - 1.0);
+    if (err > e.worst) e.worst = err, e.at = x;
+  }
+  return e;
+}
+
+// Tolerances: half floats (1e-3), the G-buffer's normal encoding, and for the reference 16 x 4
+// jittered samples over a pixel whose radiance varies by under 1% across it; legacy adds the
+// voxel cones' own gathering of the lit plane (measured: none above half-float rounding).
+struct PathTolerance {
+  const char* path;
+  uint32_t frames;
+  double tolerance;
+};
+constexpr PathTolerance kPlanePaths[] = {{"direct", 1, 0.01}, {"legacy", 4, 0.01}, {"rt", 2, 0.01}, {"reference", 4, 0.02}};
+
+TEST_F(LightsTest, PointLightOverAPlaneGivesICosThetaOverDSquaredInEveryPath) {
+  for (const auto& p : kPlanePaths) {
+    const auto img = renderPlane(p.path, {point({0.0, 2.0, 0.0}, 683.0f)}, p.frames);
+    const double rho = albedo(p.path);
+    const RowError e = rowError(img, kSize / 2, [&](double r) { return rho / shared::kPi * 2.0 / std::pow(4.0 + r * r, 1.5); });
+    std::printf("%s: worst relative error %.4f at x = %u (r = %.2f m)\n", p.path, e.worst, e.at, planeRadius(e.at, kSize / 2));
+    EXPECT_LT(e.worst, p.tolerance) << p.path << " at pixel x = " << e.at;
+  }
+}
+
+TEST_F(LightsTest, SpotConeFallsOffAsKhrLightsPunctualSaysInEveryPath) {
+  // 2 m up, pointing down, cone 15 / 30 degrees: full inside r = 0.54 m, dark beyond r = 1.15 m.
+  scene::Light spot = point({0.0, 2.0, 0.0}, 683.0f);
+  spot.type = scene::LightType::Spot;
+  spot.innerConeAngle = glm::radians(15.0f);
+  spot.outerConeAngle = glm::radians(30.0f);
+  spot.direction = {0.0, -1.0, 0.0};
+  const double cosInner = std::cos(glm::radians(15.0)), cosOuter = std::cos(glm::radians(30.0));
+  for (const auto& p : kPlanePaths) {
+    const auto img = renderPlane(p.path, {spot}, p.frames);
+    const double rho = albedo(p.path);
+    auto expected = [&](double r) {
+      const double d = std::sqrt(4.0 + r * r), cosAngle = 2.0 / d;
+      const double t = std::clamp((cosAngle - cosOuter) / (cosInner - cosOuter), 0.0, 1.0);
+      return rho / shared::kPi * t * t * cosAngle / (d * d);
+    };
+    // Pixels well inside the falloff ramp (not at its kinks, where one pixel spans a change of slope).
+    double worst = 0.0;
+    uint32_t at = 0;
+    for (uint32_t x = kSize / 2; x < kSize; ++x) {
+      const double r = planeRadius(x, kSize / 2);
+      if (r > 1.1 || std::abs(r - 2.0 * std::tan(glm::radians(15.0))) < 0.08) continue;
+      const double err = std::abs(red(img, x, kSize / 2) - expected(r)) / expected(0.0);
+      if (err > worst) worst = err, at = x;
+    }
+    std::printf("%s: worst error %.4f of the centre's radiance at x = %u\n", p.path, worst, at);
+    EXPECT_LT(worst, p.tolerance) << p.path;
+    // Outside the outer cone nothing arrives.
+    EXPECT_LT(std::abs(red(img, kSize - 2, kSize / 2)), 1e-3 * expected(0.0)) << p.path;
+  }
+}
+
+// content/plane.gltf with a 1 m cube of the plane's material standing on it at the origin.
+std::unique_ptr<scene::Scene> planeWithBox() {
+  auto s = std::make_unique<scene::Scene>(scene::loadGltf(contentFile("plane.gltf")));
+  auto cube = makeCubeScene(s->materials[0], 1.0f, glm::vec3(0.0f, 0.5f, 0.0f));
+  scene::Mesh mesh = cube->meshes[0];
+  mesh.material = s->meshes[0].material;
+  mesh.contentHash = scene::hashBytes(mesh.vertices.data(), mesh.vertices.size() * sizeof(scene::Vertex));
+  s->contentHash ^= mesh.contentHash;
+  scene::Instance box = cube->instances[0];
+  box.name = "box";
+  box.mesh = uint32_t(s->meshes.size());
+  box.node = uint32_t(s->instances.size());
+  s->meshes.push_back(std::move(mesh));
+  s->instances.push_back(box);
+  s->bounds.extend(box.worldBounds);
+  return s;
+}
+
+TEST_F(LightsTest, ABoxHidesAPointLightInTheRayTracedPathsButNotInTheUnshadowedOne) {
+  // A 1 m cube on the floor under a light 2 m above the origin: the floor 0.85 m from the
+  // cube's centre is seen by the camera (past the cube's top edge: from 4 m it sees the floor
+  // beyond 0.67 m) but not by the light (the line to it crosses the top face at 0.43 m; the
+  // floor is hidden out to 1 m). The direct path's light table has no shadow map yet: it is lit
+  // there; rt and the reference trace shadow rays: it is dark.
+  uint32_t x = kSize / 2;
+  while (planeRadius(x, kSize / 2) < 0.82) ++x;
+  const double r = planeRadius(x, kSize / 2);
+  ASSERT_LT(r, 0.9);
+  for (const auto& p : kPlanePaths) {
+    const std::string path = p.path;
+    if (path == "legacy") continue;  // unshadowed like direct, plus its voxel GI: the closed form is direct's
+    const auto img = renderPlane(path, {point({0.0, 2.0, 0.0}, 683.0f)}, p.frames, planeWithBox());
+    const double lit = albedo(path) / shared::kPi * 2.0 / std::pow(4.0 + r * r, 1.5);
+    const double got = red(img, x, kSize / 2);
+    std::printf("%s: floor beside the cube %.5f (unshadowed %.5f)\n", path.c_str(), got, lit);
+    if (path == "direct") {
+      EXPECT_NEAR(got, lit, p.tolerance * lit);
+    } else {
+      // Only light bounced off the cube's side may arrive: far below the direct light.
+      EXPECT_LT(got, 0.1 * lit) << path;
+    }
+  }
+}
+
+// 256 point lights over the plane (symmetric in x and z, so the image's orientation does not
+// matter): beyond kLightsLoopMax every pixel estimates the sum by resampled picks, noisy, and
+// accumulates while nothing changes. On a plane nothing occludes, so the exact image is the sum
+// rho / pi * sum I cos / d^2: the error after 16 frames must be about a quarter of one frame's
+// (1/sqrt(16)), in the direct path (unshadowed) and in rt (shadow rays).
+std::vector<scene::Light> symmetricLampGrid() {
+  std::vector<scene::Light> lights;
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 16; ++j) {
+      const double x = -3.75 + 0.5 * i, z = -3.75 + 0.5 * j;
+      const double y = 0.8 + 0.1 * (std::abs(x) + std::abs(z));
+      lights.push_back(point({x, y, z}, float(683.0 * (0.2 + 0.1 * std::fmod(std::abs(x) * 3.0 + std::abs(z), 2.0)))));
+    }
+  return lights;
+}
+
+double exactLampGrid(const std::vector<scene::Light>& lights, double rho, double x, double z) {
+  double e = 0.0;
+  for (const auto& l : lights) {
+    const glm::dvec3 d = l.position - glm::dvec3(x, 0.0, z);
+    const double d2 = glm::dot(d, d);
+    e += double(l.intensity) / 683.0 * (d.y / std::sqrt(d2)) / d2;
+  }
+  return rho / shared::kPi * e;
+}
+
+TEST_F(LightsTest, ManyLightsConvergeToTheExactSumOverFrames) {
+  const auto lights = symmetricLampGrid();
+  ASSERT_GT(lights.size(), size_t(shared::kLightsLoopMax));
+  for (const char* path : {"direct", "rt"}) {
+    double error[2] = {0.0, 0.0}, meanRatio = 0.0;
+    const uint32_t frames[2] = {1, 16};
+    for (int k = 0; k < 2; ++k) {
+      const auto img = renderPlane(path, lights, frames[k]);
+      const double rho = albedo(path);
+      double sum2 = 0.0, ref2 = 0.0, gotSum = 0.0, wantSum = 0.0;
+      for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x) {
+          const double nx = (x + 0.5) / (kSize / 2.0) - 1.0, ny = (y + 0.5) / (kSize / 2.0) - 1.0;
+          const double want = exactLampGrid(lights, rho, kHeight * kTanHalfFov * nx, kHeight * kTanHalfFov * ny);
+          const double got = red(img, x, y);
+          sum2 += (got - want) * (got - want);
+          ref2 += want * want;
+          gotSum += got;
+          wantSum += want;
+        }
+      error[k] = std::sqrt(sum2 / ref2);
+      meanRatio = gotSum / wantSum;
+    }
+    std::printf("%s: relative RMS error %.4f after 1 frame, %.4f after 16 (ratio %.2f), image mean %.4f of the exact\n",
+                path, error[0], error[1], error[0] / error[1], meanRatio);
+    // Unbiased noise falls as 1/sqrt(frames): 4x over 16 frames (measured 3.97 and 3.91); a
+    // bias would level it off and move the image's mean (measured within 0.5% of the exact).
+    EXPECT_GT(error[0] / error[1], 3.0) << path << ": the estimate does not converge like 1/sqrt(frames)";
+    EXPECT_LT(error[1], 0.15) << path;
+    EXPECT_NEAR(meanRatio, 1.0, 0.02) << path;
+  }
+}
+
+// The mean radiance (luminance) of the final image of `path` on content/lamps.gltf at 96 x 54;
+// `bounces`: the reference's scattering events; `feedback`: legacy's and rt's reuse of the
+// last frame's image (their multi-bounce).
+double lampsMean(session::Session& s, const std::string& path, uint32_t frames, uint32_t bounces, bool feedback) {
+  s.loadScene(contentFile("lamps.gltf"));
+  s.setSize(96, 54);
+  s.setPath(path);
+  s.settings().referenceSamplesPerFrame = 16;
+  s.settings().referenceBounces = bounces;
+  s.settings().rtScreenRadiance = feedback;
+  s.settings().legacyScreenRadiance = feedback;
+  s.setFrameIndex(0);
+  s.requestBuffer(finalImage(path));
+  s.renderFrames(frames);
+  const auto img = s.buffer(finalImage(path)).texels();
+  double sum = 0.0;
+  for (size_t i = 0; i + 3 < img.size(); i += 4) sum += shared::tlLuminance(glm::vec3(img[i], img[i + 1], img[i + 2]));
+  return sum / double(img.size() / 4);
+}
+
+TEST_F(LightsTest, EachPathLightsARoomOfLampsCloseToTheReference) {
+  // content/lamps.gltf: a closed room lit only by two point lights and a spot. Each path's mean
+  // radiance against the reference's (64 paths per pixel) with as many bounces as the path
+  // computes: direct light only for the direct path; direct light and one bounce for legacy and
+  // rt without their frame-to-frame feedback (their multi-bounce; with it, against every bounce:
+  // legacy 0.461, rt 0.665, the interior deficit docs/accuracy.md describes). Tolerances are the measured
+  // gaps with a margin, far below a lamp missing from a path (the spot alone is about a third of
+  // the direct light) or a unit error (683x).
+  auto& s = session();
+  const double direct = lampsMean(s, "reference", 4, 1, true);
+  const double oneBounce = lampsMean(s, "reference", 4, 2, true);
+  ASSERT_GT(direct, 0.0);
+  struct Case {
+    const char* path;
+    uint32_t frames;
+    double reference, tolerance;
+  };
+  // Measured (96 x 54, lavapipe): direct 1.036 (its lights cast no shadow yet), legacy 0.771
+  // (cone-traced voxels), rt 1.001.
+  const Case cases[] = {{"direct", 1, direct, 0.08}, {"legacy", 8, oneBounce, 0.30}, {"rt", 16, oneBounce, 0.05}};
+  for (const auto& c : cases) {
+    const double mean = lampsMean(s, c.path, c.frames, 64, false);
+    std::printf("%s: mean radiance %.5f, reference %.5f (ratio %.3f)\n", c.path, mean, c.reference, mean / c.reference);
+    EXPECT_NEAR(mean / c.reference, 1.0, c.tolerance) << c.path;
+  }
+  std::printf("reference: direct light %.5f, direct light and one bounce %.5f\n", direct, oneBounce);
+}
+
+}  // namespace
+}  // namespace tl::test
