@@ -74,6 +74,8 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
     ImGui::MenuItem("Help", "F1", &showHelp);
     ImGui::MenuItem("Buffers", "F2", &app.buffersOpen());
     ImGui::MenuItem("Compare", "F3", &app.compareOpen());
+    const size_t warnings = app.session().hasScene() ? app.session().scene().warnings.size() : 0;
+    ImGui::MenuItem(fmt::format("Scene warnings ({})", warnings).c_str(), nullptr, &app.sceneWarningsOpen(), warnings > 0);
     ImGui::EndMenu();
   }
   ImGui::EndMainMenuBar();
@@ -441,6 +443,34 @@ void errorPopup(std::string& error) {
 
 }  // namespace
 
+// What the importer said about the scene (Scene::warnings; the ignored features among them):
+// the missing texture, the extension not applied, where the terminal is not in view.
+void sceneWarningsPanel(EditorApp& app) {
+  if (!app.sceneWarningsOpen() || !app.session().hasScene()) return;
+  const scene::Scene& s = app.session().scene();
+  ImGui::SetNextWindowPos(ImVec2(320, 80), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(520, 220), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Scene warnings", &app.sceneWarningsOpen())) {
+    ImGui::End();
+    return;
+  }
+  ImGui::TextWrapped("%s: %zu warning%s from the importer (also on the terminal and in `twinlight info --scene`)",
+                     s.path.filename().string().c_str(), s.warnings.size(), s.warnings.size() == 1 ? "" : "s");
+  if (!s.ignored.empty()) {
+    ImGui::Separator();
+    ImGui::TextUnformatted("ignored or approximated: renders differently from the file");
+    for (const std::string& line : s.ignored) ImGui::BulletText("%s", line.c_str());
+  }
+  ImGui::Separator();
+  ImGui::TextUnformatted("every warning");
+  for (const std::string& line : s.warnings) {
+    ImGui::Bullet();
+    ImGui::SameLine();
+    ImGui::TextWrapped("%s", line.c_str());
+  }
+  ImGui::End();
+}
+
 void drawPanels(EditorApp& app) {
   beginTrackedFrame();
   mainMenu(app, app.showHelp_, app.showBrowser_);
@@ -453,6 +483,7 @@ void drawPanels(EditorApp& app) {
   comparePanel(app);
   compareViewportOverlay(app);
   buffersPanel(app, app.buffersOpen());
+  sceneWarningsPanel(app);
   statusBar(app);
   shaderErrorWindow(app);
   helpWindow(app.showHelp_);
