@@ -459,7 +459,11 @@ void sceneWarningsPanel(EditorApp& app) {
   if (!s.ignored.empty()) {
     ImGui::Separator();
     ImGui::TextUnformatted("ignored or approximated: renders differently from the file");
-    for (const std::string& line : s.ignored) ImGui::BulletText("%s", line.c_str());
+    for (const std::string& line : s.ignored) {
+      ImGui::Bullet();
+      ImGui::SameLine();
+      ImGui::TextWrapped("%s", line.c_str());
+    }
   }
   ImGui::Separator();
   ImGui::TextUnformatted("every warning");

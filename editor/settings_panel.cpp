@@ -127,9 +127,8 @@ void presetRow(EditorApp& app) {
   }
   tooltip("Fast / Balanced / Reference-like for this path (Balanced: the defaults), then your own.\n"
           "Ctrl+Z undoes a preset like any other change.");
-  ImGui::SameLine();
   static char name[64] = "";
-  ImGui::SetNextItemWidth(90);
+  ImGui::SetNextItemWidth(120);
   ImGui::InputTextWithHint("##presetName", "name", name, sizeof name);
   ImGui::SameLine();
   ImGui::BeginDisabled(name[0] == 0);

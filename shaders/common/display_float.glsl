@@ -38,6 +38,9 @@ void main() {
   } else if (push.mode == kDisplayModeFinal) {
     c = v.rgb;
 #ifndef DISPLAY_3D
+  } else if (push.meaning != kDisplayMeaningNone &&
+             texelFetch(instanceId, ivec2(uv * vec2(textureSize(instanceId, 0))), 0).r == 0u) {
+    c = vec3(0.04);  // no surface: a normal or the irradiance at it means nothing here
   } else if (push.meaning == kDisplayMeaningOctNormal) {
     c = tlOctDecode(v.rg) * 0.5 + 0.5;  // a direction as colour: +X red, +Y green, +Z blue
   } else if (push.meaning == kDisplayMeaningShIrradiance) {

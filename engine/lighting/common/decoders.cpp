@@ -174,10 +174,10 @@ std::optional<MeaningView> meaningView(const std::string& text) {
   if (spec.name == "rt-hit-surface" || spec.name == "oct-normal")
     return MeaningView{spec.name == "oct-normal" ? shared::kDisplayMeaningOctNormal : shared::kDisplayMeaningHitNormal,
                        spec.name == "oct-normal" ? "shading normal" : "hit normal", "",
-                       "a direction as colour: red +X, green +Y, blue +Z; 0.5 grey = 0, darker = negative",
+                       "a direction as colour: red +X, green +Y, blue +Z; 0.5 grey = 0, darker = negative; no surface: near black",
                        false, false, {}};
   if (spec.name == "sh-irradiance" && spec.companions.count("coCg") && spec.companions.count("normal"))
-    return MeaningView{shared::kDisplayMeaningShIrradiance, "irradiance at the pixel normal", "W/m^2 for a sun in W/m^2",
+    return MeaningView{shared::kDisplayMeaningShIrradiance, "irradiance at the pixel normal", "W/m^2",
                        "what the SH resolves to at the G-buffer normal, over the range (black to white per channel)",
                        true, false, {spec.companions.at("coCg"), spec.companions.at("normal")}};
   return std::nullopt;
