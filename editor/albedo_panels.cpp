@@ -90,7 +90,6 @@ void orphanSection(EditorApp& app) {
       if (ImGui::Button("Re-apply to the new key")) reapply(app, i, *o.sameLabel);
       tooltip(fmt::format("Override {} (the same mesh + material name, its content changed) with this colour.",
                           lib.entries()[*o.sameLabel].combination.label).c_str());
-      ImGui::SameLine();
     }
     ImGui::BeginDisabled(!selected);
     if (ImGui::Button("Re-apply to selected") && selected) reapply(app, i, lib.combinationOf(*selected));
