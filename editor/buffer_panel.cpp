@@ -260,12 +260,7 @@ void viewerControls(EditorApp& app) {
 
   if (live != v.readbacks.end() && (meaning && v.meaning ? meaning->fitted : !integer)) {
     std::vector<float> values =
-        meaning && v.meaning ? lighting::meaningValues(info->desc.decoder, live->second,
-                                                       [&](const std::string& c) -> const graph::Readback* {
-                                                         auto it = v.readbacks.find(c);
-                                                         return it == v.readbacks.end() ? nullptr : &it->second;
-                                                       })
-                             : channelValues(live->second, v.channel, v.slice);
+        meaning && v.meaning ? v.meaningValues : channelValues(live->second, v.channel, v.slice);
     std::vector<float> h = histogram(values, v.rangeMin, v.rangeMax, 64);
     size_t invalid = 0, negative = 0;
     for (float x : values) invalid += !std::isfinite(x), negative += x < 0.0f;

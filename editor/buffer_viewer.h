@@ -38,6 +38,9 @@ struct ViewerState {
   std::optional<glm::uvec3> probe; // the texel under the cursor
   // The last read-back of the resource and its decoder's companions.
   std::map<std::string, graph::Readback> readbacks;
+  // The shown meaning's values over the last read-back (decoders.h meaningValues), computed
+  // once per read-back, not per UI frame; empty for stored values or a fixed meaning.
+  std::vector<float> meaningValues;
 };
 
 // What the probe shows for texel `t` of the viewed resource, from the last read-backs: its

@@ -170,17 +170,18 @@ void EditorApp::collectEngineFrame() {
     for (const std::string& c : lighting::decoderCompanions(decoder))
       if (session_->hasBuffer(c)) viewer_.readbacks[c] = session_->buffer(c);
     const graph::Readback& shown = viewer_.readbacks[asks.viewed];
+    // A meaning is fitted on what it shows (hit distances, irradiance), a fixed one not at all.
+    const auto meaning = shownMeaning(viewer_, decoder);
+    viewer_.meaningValues = meaning ? lighting::meaningValues(decoder, shown,
+                                                              [&](const std::string& c) -> const graph::Readback* {
+                                                                auto it = viewer_.readbacks.find(c);
+                                                                return it == viewer_.readbacks.end() ? nullptr : &it->second;
+                                                              })
+                                    : std::vector<float>{};
     if (viewer_.autoFitPending && shown.extent.width > 0) {
       // A frame with nothing in it yet (all zero: an accumulation's first frame, the albedo
       // impact before any edit) fits nothing: the range waits for one with data.
-      // A meaning is fitted on what it shows (hit distances, irradiance), a fixed one not at all.
-      const auto meaning = shownMeaning(viewer_, decoder);
-      const auto values = meaning ? lighting::meaningValues(decoder, shown,
-                                                  [&](const std::string& c) -> const graph::Readback* {
-                                                    auto it = viewer_.readbacks.find(c);
-                                                    return it == viewer_.readbacks.end() ? nullptr : &it->second;
-                                                  })
-                                  : channelValues(shown, viewer_.channel, viewer_.slice);
+      const auto values = meaning ? viewer_.meaningValues : channelValues(shown, viewer_.channel, viewer_.slice);
       if (meaning && !meaning->fitted) {
         viewer_.autoFitPending = false;
       } else if (auto range = fitRange(values)) {

@@ -378,10 +378,47 @@ void fileBrowser(EditorApp& app, bool& open, std::filesystem::path& dir) {
   ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 280, display.y * 0.5f - 230), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(560, 460), ImGuiCond_FirstUseEver);
   ImGui::Begin("Open scene or capture", &open);
+  // A typed path: a folder goes there, a scene or a capture (its folder or manifest.json) opens.
+  static char typed[1024] = "";
+  static std::string pathError;
+  ImGui::SetNextItemWidth(-60);
+  const bool entered = ImGui::InputTextWithHint("##path", "type a path, Enter", typed, sizeof typed,
+                                                ImGuiInputTextFlags_EnterReturnsTrue);
+  trackItem("browser.path");
+  ImGui::SameLine();
+  if (entered || ImGui::Button("Go")) {
+    std::filesystem::path p = typed;
+    std::error_code ec;
+    pathError.clear();
+    if (std::filesystem::is_directory(p, ec) && std::filesystem::exists(p / "manifest.json", ec)) {
+      app.openCapture(p), open = false;
+    } else if (std::filesystem::is_directory(p, ec)) {
+      dir = std::filesystem::absolute(p, ec);
+    } else if (p.filename() == "manifest.json" && std::filesystem::exists(p, ec)) {
+      app.openCapture(p.parent_path()), open = false;
+    } else if (std::filesystem::exists(p, ec)) {
+      app.openScene(p), open = false;  // a file that is no scene is refused by the loader, with its reason
+    } else {
+      pathError = fmt::format("{}: no such file or folder", p.string());
+    }
+    if (!open) typed[0] = 0;
+  }
+  if (!pathError.empty()) ImGui::TextWrapped("%s", pathError.c_str());
   ImGui::TextWrapped("%s", dir.string().c_str());
   if (ImGui::Button("Up") && dir.has_parent_path()) dir = dir.parent_path();
   ImGui::SameLine();
   if (ImGui::Button("Project content")) dir = gpu::contentDirectory();
+  ImGui::SameLine();
+  static char filter[128] = "";
+  ImGui::SetNextItemWidth(-1);
+  ImGui::InputTextWithHint("##filter", "filter by name", filter, sizeof filter);
+  trackItem("browser.filter");
+  auto passes = [&](const std::string& name) {
+    std::string a = name, b = filter;
+    for (auto& c : a) c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (auto& c : b) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return a.find(b) != std::string::npos;
+  };
   ImGui::BeginChild("files");
   std::error_code ec;
   std::vector<std::filesystem::directory_entry> entries;
@@ -389,6 +426,7 @@ void fileBrowser(EditorApp& app, bool& open, std::filesystem::path& dir) {
   std::sort(entries.begin(), entries.end(), [](auto& a, auto& b) { return a.path().filename() < b.path().filename(); });
   for (auto& e : entries) {
     std::string name = e.path().filename().string();
+    if (!passes(name)) continue;
     if (e.is_directory(ec)) {
       if (name[0] != '.' && ImGui::Selectable(("[dir] " + name).c_str())) dir = e.path();
     } else {
