@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <filesystem>
 
 namespace tl::editor {
@@ -49,6 +50,64 @@ bool passes(const AlbedoEntry& e, Filter f) {
   return true;
 }
 
+// Re-applying and deleting orphans are edits like any other: Ctrl+Z undoes them, Save writes them.
+void reapply(EditorApp& app, size_t orphan, uint32_t combination) {
+  auto& lib = app.session().albedo();
+  lib.reapplyOrphan(orphan, combination);
+  app.notify(fmt::format("re-applied the override of {} to {} (key {}); Save writes it", lib.orphans()[orphan].label,
+                         lib.entries()[combination].combination.label,
+                         albedo::keyToHex(lib.entries()[combination].combination.key)));
+}
+
+// Overrides that reach no hit any more, with the colour they held, why, and what to do.
+void orphanSection(EditorApp& app) {
+  auto& lib = app.session().albedo();
+  const size_t count = lib.orphanCount();
+  if (count == 0) return;
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+  const bool open = ImGui::CollapsingHeader(fmt::format("Orphaned overrides ({})###orphans", count).c_str(),
+                                            ImGuiTreeNodeFlags_DefaultOpen);
+  ImGui::PopStyleColor();
+  tooltip("Artist overrides whose mesh + material key is in no combination of this scene: the content\n"
+      "changed after the edit (an export with another colour, UVs or geometry), or it is gone.\n"
+      "They stay in the database until re-applied or deleted; Save keeps them.");
+  if (!open) return;
+  const auto selected = app.selected();
+  const float height = std::min(170.0f, ImGui::GetTextLineHeightWithSpacing() * 6.5f * float(count) + 8.0f);
+  ImGui::BeginChild("orphans", ImVec2(0, height), true);
+  for (size_t i = 0; i < lib.orphans().size(); ++i) {
+    const albedo::OrphanOverride& o = lib.orphans()[i];
+    if (o.removed) continue;
+    ImGui::PushID(int(i));
+    ImGui::ColorButton("##lost", colour(o.rgb), 0, ImVec2(28, 28));
+    ImGui::SameLine();
+    ImGui::BeginGroup();
+    ImGui::TextUnformatted(o.label.c_str());
+    ImGui::TextDisabled("%.3f %.3f %.3f, key %s, %s", o.rgb.r, o.rgb.g, o.rgb.b, albedo::keyToHex(o.key).c_str(),
+                        o.editedAt.empty() ? "never saved" : o.editedAt.c_str());
+    ImGui::EndGroup();
+    if (o.sameLabel) {
+      if (ImGui::Button("Re-apply to the new key")) reapply(app, i, *o.sameLabel);
+      tooltip(fmt::format("Override {} (the same mesh + material name, its content changed) with this colour.",
+                          lib.entries()[*o.sameLabel].combination.label).c_str());
+    }
+    ImGui::BeginDisabled(!selected);
+    if (ImGui::Button("Re-apply to selected") && selected) reapply(app, i, lib.combinationOf(*selected));
+    ImGui::EndDisabled();
+    tooltip(selected ? fmt::format("Override {} with this colour.", lib.entryOf(*selected).combination.label).c_str()
+                     : "Select an instance to give its mesh + material this colour.");
+    ImGui::SameLine();
+    if (ImGui::Button("Delete")) lib.deleteOrphan(i);
+    tooltip("Forget this override: the database drops it on Save (Ctrl+Z undoes).");
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextDisabled("%s", albedo::orphanReason(o).c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::Separator();
+    ImGui::PopID();
+  }
+  ImGui::EndChild();
+}
+
 }  // namespace
 
 void albedoInspectorSection(EditorApp& app, uint32_t instance) {
@@ -72,6 +131,19 @@ void albedoInspectorSection(EditorApp& app, uint32_t instance) {
                 e.baked->coverage, e.baked->viewVariance);
   else
     ImGui::TextDisabled(e.stale ? "not baked: stale (content changed since the bake)" : "not baked");
+  // An override made before this combination's content changed.
+  for (size_t i = 0; i < lib.orphans().size(); ++i) {
+    const albedo::OrphanOverride& o = lib.orphans()[i];
+    if (o.removed || o.sameLabel != c) continue;
+    ImGui::PushID(int(i));
+    ImGui::ColorButton("##orphan", colour(o.rgb), 0, ImVec2(14, 14));
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Re-apply")) reapply(app, i, c);
+    tooltip(albedo::orphanReason(o).c_str());
+    ImGui::SameLine();
+    ImGui::TextDisabled("its override from before the change");
+    ImGui::PopID();
+  }
   ImGui::Text("texture average %.3f %.3f %.3f", e.textureAverage.r, e.textureAverage.g, e.textureAverage.b);
 
   glm::vec3 edit = e.override.value_or(e.resolved);
@@ -167,6 +239,8 @@ void albedoPanel(EditorApp& app) {
     ImGui::EndDisabled();
     if (!app.lastBakeSummary().empty()) ImGui::TextWrapped("%s", app.lastBakeSummary().c_str());
   }
+
+  orphanSection(app);
 
   static int filter = 0;
   size_t counts[3] = {};

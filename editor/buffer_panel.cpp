@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace tl::editor {
 namespace {
@@ -86,8 +87,8 @@ void resourceTable(EditorApp& app) {
   ImGui::EndTable();
 }
 
-// A horizontal bar of the false-colour ramp with the range's ends.
-void falseColourLegend(float lo, float hi) {
+// A horizontal bar of the false-colour ramp with the range's ends (and their unit).
+void falseColourLegend(float lo, float hi, const std::string& unit = {}) {
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const ImVec2 p = ImGui::GetCursorScreenPos();
   const float w = ImGui::GetContentRegionAvail().x, h = 12.0f;
@@ -99,8 +100,9 @@ void falseColourLegend(float lo, float hi) {
                                 ImGui::GetColorU32(ImVec4(b.r, b.g, b.b, 1)), ImGui::GetColorU32(ImVec4(a.r, a.g, a.b, 1)));
   }
   ImGui::Dummy(ImVec2(w, h));
-  ImGui::Text("%.4g", lo);
-  const std::string right = fmt::format("{:.4g}", hi);
+  const std::string suffix = unit.empty() ? "" : " " + unit;
+  ImGui::Text("%.4g%s", lo, suffix.c_str());
+  const std::string right = fmt::format("{:.4g}{}", hi, suffix);
   ImGui::SameLine(std::max(0.0f, w - ImGui::CalcTextSize(right.c_str()).x));
   ImGui::TextUnformatted(right.c_str());
 }
@@ -132,6 +134,45 @@ void probe(EditorApp& app, const graph::ResourceDesc& desc) {
   for (auto& [label, value] : lines.decoded) ImGui::Text("  %s: %s", label.c_str(), value.c_str());
 }
 
+// A swatch with a caption, on one line.
+void swatch(const glm::vec3& c, const char* caption) {
+  ImGui::ColorButton(caption, ImVec4(c.r, c.g, c.b, 1.0f), ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
+  ImGui::SameLine(0.0f, 4.0f);
+  ImGui::TextUnformatted(caption);
+}
+
+// The legend of what the viewport shows for a meaning: the quantity, its scale and flat colours.
+void meaningControls(EditorApp& app, const lighting::MeaningView& m) {
+  ViewerState& v = app.viewer();
+  ImGui::TextWrapped("%s%s: %s", m.quantity.c_str(), m.unit.empty() ? "" : fmt::format(" ({})", m.unit).c_str(),
+                     m.legend.c_str());
+  if (m.fitted) {
+    ImGui::SetNextItemWidth(-110);
+    ImGui::DragFloatRange2("range", &v.rangeMin, &v.rangeMax, std::max(1e-4f, (v.rangeMax - v.rangeMin) * 0.005f), 0.0f,
+                           0.0f, "%.4g", "%.4g");
+    ImGui::SameLine();
+    if (ImGui::Button("Auto-fit")) v.autoFitPending = true;
+  }
+  if (m.falseColour) falseColourLegend(v.rangeMin, v.rangeMax, m.unit);
+  if (m.meaning == shared::kDisplayMeaningHitDistance) {
+    swatch(shared::tlDisplayMissColour(), "miss (sky)");
+    ImGui::SameLine();
+    swatch(shared::tlDisplayPendingColour(), "pending");
+  } else if (m.meaning == shared::kDisplayMeaningOctNormal || m.meaning == shared::kDisplayMeaningHitNormal) {
+    const struct {
+      glm::vec3 n;
+      const char* caption;
+    } axes[] = {{{1, 0, 0}, "+X"}, {{-1, 0, 0}, "-X"}, {{0, 1, 0}, "+Y"}, {{0, -1, 0}, "-Y"}, {{0, 0, 1}, "+Z"}, {{0, 0, -1}, "-Z"}};
+    for (size_t i = 0; i < std::size(axes); ++i) {
+      if (i) ImGui::SameLine();
+      swatch(axes[i].n * 0.5f + 0.5f, axes[i].caption);
+    }
+  } else if (m.meaning == shared::kDisplayMeaningShIrradiance) {
+    ImGui::Checkbox("NaN/Inf/neg", &v.highlightInvalid);
+    tooltip("negative irradiance (SH ringing) blue, NaN magenta, infinity yellow; negative SH coefficients are valid");
+  }
+}
+
 void viewerControls(EditorApp& app) {
   ViewerState& v = app.viewer();
   const graph::PhysicalInfo* info = nullptr;
@@ -150,7 +191,22 @@ void viewerControls(EditorApp& app) {
   ImGui::Checkbox("Live", &v.live);
   ImGui::SameLine();
   if (ImGui::Button("Refresh")) v.refresh = true;
-  if (!integer) {
+  const auto meaning = lighting::meaningView(info->desc.decoder);
+  const bool negativesValid = !lighting::negativesInvalid(info->desc.decoder, info->desc.format);
+  if (meaning) {
+    int shown = v.meaning ? 0 : 1;
+    ImGui::RadioButton(meaning->quantity.c_str(), &shown, 0);
+    trackItem("buffers.meaning");
+    tooltip("what the buffer means (decoded on the GPU), with its legend");
+    ImGui::SameLine();
+    ImGui::RadioButton("stored values", &shown, 1);
+    trackItem("buffers.raw");
+    tooltip("the values as stored (channels, range, false colour)");
+    if ((shown == 0) != v.meaning) v.meaning = shown == 0, v.autoFitPending = true;
+  }
+  if (meaning && v.meaning) {
+    meaningControls(app, *meaning);
+  } else if (!integer) {
     static const char* kChannels[] = {"RGB", "R", "G", "B", "A", "luminance"};
     int channel = int(v.channel);
     ImGui::SetNextItemWidth(110);
@@ -168,8 +224,10 @@ void viewerControls(EditorApp& app) {
     ImGui::Checkbox("false colour", &v.falseColour);
     ImGui::EndDisabled();
     ImGui::SameLine();
-    ImGui::Checkbox("NaN/Inf/neg", &v.highlightInvalid);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("magenta: NaN, yellow: infinity, blue: negative");
+    ImGui::Checkbox(negativesValid ? "NaN/Inf" : "NaN/Inf/neg", &v.highlightInvalid);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(negativesValid ? "magenta: NaN, yellow: infinity (negatives are valid data here)"
+                                       : "magenta: NaN, yellow: infinity, blue: negative");
     if (v.falseColour && v.channel != shared::kDisplayChannelRgb) falseColourLegend(v.rangeMin, v.rangeMax);
   }
   if (info->desc.extent.depth > 1) {
@@ -200,13 +258,18 @@ void viewerControls(EditorApp& app) {
     ImGui::TextDisabled("A-B: mean |d| %.4g, max %.4g", a.empty() ? 0.0 : sum / double(a.size()), worst);
   }
 
-  if (live != v.readbacks.end() && !integer) {
-    std::vector<float> values = channelValues(live->second, v.channel, v.slice);
+  if (live != v.readbacks.end() && (meaning && v.meaning ? meaning->fitted : !integer)) {
+    std::vector<float> values =
+        meaning && v.meaning ? v.meaningValues : channelValues(live->second, v.channel, v.slice);
     std::vector<float> h = histogram(values, v.rangeMin, v.rangeMax, 64);
     size_t invalid = 0, negative = 0;
     for (float x : values) invalid += !std::isfinite(x), negative += x < 0.0f;
     ImGui::PlotHistogram("##histogram", h.data(), int(h.size()), 0,
-                         fmt::format("{} texels, {} NaN/Inf, {} negative", values.size(), invalid, negative).c_str(), 0.0f,
+                         fmt::format("{} texels, {} {}, {} negative{}", values.size(), invalid,
+                                     meaning && v.meaning ? "without a value" : "NaN/Inf", negative,
+                                     negativesValid && !(meaning && v.meaning) ? " (valid here)" : "")
+                             .c_str(),
+                         0.0f,
                          *std::max_element(h.begin(), h.end()) * 1.05f + 1e-6f, ImVec2(ImGui::GetContentRegionAvail().x, 70));
   }
   probe(app, info->desc);

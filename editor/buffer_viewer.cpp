@@ -14,8 +14,13 @@ glm::vec4 viewerWindow(const ViewerState& v) {
   return glm::vec4(v.centre - 0.5f * size, size, size);
 }
 
+std::optional<lighting::MeaningView> shownMeaning(const ViewerState& v, const std::string& decoder) {
+  if (!v.meaning) return std::nullopt;
+  return lighting::meaningView(decoder);
+}
+
 lighting::DisplayRequest displayRequest(const ViewerState& v, const std::string& hoverPreview, VkFormat hoverFormat,
-                                        float exposureScale) {
+                                        float exposureScale, const std::string& decoder, VkFormat format) {
   lighting::DisplayRequest d;
   if (!hoverPreview.empty()) {
     // A glance while hovering a pass: [0, 1] for normalised formats, the exposure for HDR.
@@ -30,6 +35,8 @@ lighting::DisplayRequest displayRequest(const ViewerState& v, const std::string&
   d.channel = v.channel;
   d.falseColour = v.falseColour && v.channel != shared::kDisplayChannelRgb;
   d.highlightInvalid = v.highlightInvalid;
+  d.negativesValid = !lighting::negativesInvalid(decoder, format);
+  if (auto m = shownMeaning(v, decoder)) d.meaning = m->meaning, d.companions = m->companions, d.falseColour = false;
   d.window = viewerWindow(v);
   d.slice = v.slice;
   d.keepCopy = v.keepCopy;

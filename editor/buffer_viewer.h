@@ -25,6 +25,7 @@ struct ViewerState {
   bool autoFitPending = true;      // fit the range to the next read-back
   bool falseColour = false;
   bool highlightInvalid = true;
+  bool meaning = true;             // what a decoded resource means (decoders.h meaningView), not its values
   float zoom = 1.0f;               // display pixels per source pixel at 1 = the whole image
   glm::vec2 centre{0.5f};          // source UV at the viewport's centre
   uint32_t slice = 0;              // 3D resources
@@ -37,6 +38,9 @@ struct ViewerState {
   std::optional<glm::uvec3> probe; // the texel under the cursor
   // The last read-back of the resource and its decoder's companions.
   std::map<std::string, graph::Readback> readbacks;
+  // The shown meaning's values over the last read-back (decoders.h meaningValues), computed
+  // once per read-back, not per UI frame; empty for stored values or a fixed meaning.
+  std::vector<float> meaningValues;
 };
 
 // What the probe shows for texel `t` of the viewed resource, from the last read-backs: its
@@ -49,8 +53,12 @@ std::optional<ProbeLines> probeTexel(const ViewerState& v, const std::string& de
 
 // The display request for the state (`hoverPreview` overrides the resource while a pass is
 // hovered in the Timing panel; its range then comes from the format).
+// `decoder`, `format`: the viewed resource's (its meaning, which negatives are invalid).
 lighting::DisplayRequest displayRequest(const ViewerState& v, const std::string& hoverPreview, VkFormat hoverFormat,
-                                        float exposureScale);
+                                        float exposureScale, const std::string& decoder = {},
+                                        VkFormat format = VK_FORMAT_UNDEFINED);
+// The meaning the viewer shows for a resource with this decoder now (none: its values).
+std::optional<lighting::MeaningView> shownMeaning(const ViewerState& v, const std::string& decoder);
 // The source UV rectangle shown (offset, size) for a zoom and centre.
 glm::vec4 viewerWindow(const ViewerState& v);
 // Values of the shown channel over the read-back (the slice of a 3D image), as the display

@@ -32,6 +32,34 @@ std::string figure(const std::optional<double>& v, const char* format) {
   return v ? fmt::format(fmt::runtime(format), *v) : std::string("—");
 }
 
+// Each side's relMSE as a bar with the reference's noise as a band at its end: a side's
+// figure against a noisy reference holds about that much of the reference's own error, so
+// its own lies within the band. Two bands that overlap cannot be ranked yet.
+[[gnu::noinline]] void relMseBands(const std::vector<session::LiveError>& errors, const std::string& reference, double noise) {
+  double top = noise;
+  for (const auto& e : errors)
+    if (e.relMse && e.path != reference) top = std::max(top, *e.relMse);
+  if (!(top > 0.0)) return;
+  ImGui::TextDisabled("relMSE, with the reference's noise as a band (the path's own error lies in it):");
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const float labelWidth = 80.0f, height = ImGui::GetTextLineHeight();
+  for (const auto& e : errors) {
+    if (!e.relMse || e.path == reference) continue;
+    ImGui::TextUnformatted(e.path.c_str());
+    ImGui::SameLine(labelWidth);
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float width = std::max(40.0f, ImGui::GetContentRegionAvail().x - 150.0f);
+    const double r = *e.relMse, low = std::max(0.0, r - noise);
+    auto x = [&](double v) { return p.x + float(v / top) * width; };
+    dl->AddRectFilled(ImVec2(p.x, p.y + 2), ImVec2(x(low), p.y + height - 2), IM_COL32(90, 150, 230, 255));
+    dl->AddRectFilled(ImVec2(x(low), p.y + 2), ImVec2(std::max(x(r), x(low) + 1.0f), p.y + height - 2), IM_COL32(90, 150, 230, 90));
+    dl->AddRect(ImVec2(x(low), p.y + 1), ImVec2(std::max(x(r), x(low) + 1.0f), p.y + height - 1), IM_COL32(200, 200, 200, 200));
+    ImGui::Dummy(ImVec2(width, height));
+    ImGui::SameLine();
+    ImGui::Text("%.4f (own %.4f..%.4f)", r, low, r);
+  }
+}
+
 }  // namespace
 
 void comparePanel(EditorApp& app) {
@@ -133,6 +161,9 @@ void comparePanel(EditorApp& app) {
     ImGui::EndTable();
   }
   const auto errors = live->errors();
+  // (A plain double, not `noise`: GCC 12 takes the optional's value as maybe uninitialised.)
+  const double noiseValue = live->referenceUnavailable() ? -1.0 : live->referenceNoise().value_or(-1.0);
+  if (noiseValue >= 0.0) relMseBands(errors, app.session().referencePath(), noiseValue);
   if (!live->referenceUnavailable() && !trusted) {
     ImGui::PushStyleColor(ImGuiCol_Text, grey);
     ImGui::TextWrapped("reference still converging: its noise is not yet well below the gap between the paths");

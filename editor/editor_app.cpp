@@ -17,6 +17,7 @@
 #include <imgui_impl_vulkan.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstring>
 #include <thread>
 
@@ -256,6 +257,10 @@ void EditorApp::frame() {
   input_.feed(ImGui::GetIO());
   ImGui::NewFrame();
   drawPanels(*this);
+  // Whatever changed a setting or the light this frame (a widget, Paste JSON, a script) is
+  // one undo step; a drag under way folds into the step it began.
+  if (session_->hasScene() && !load_.valid())
+    history_.observe(session_->settings(), session_->lighting(), ImGui::IsAnyItemActive());
   handleCameraInput(seconds);
   if (playing_ && session_->animated() && !load_.valid())
     session_->setAnimationTime(std::fmod(session_->animationTime() + seconds, std::max(session_->scene().animationSeconds, 1e-3)));
@@ -331,8 +336,9 @@ void EditorApp::handleCameraInput(float seconds) {
     if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O, false)) showBrowser_ = true;
     // Albedo edits (the inspector's override): undo, redo, save.
     auto& albedo = session_->albedo();
-    if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z, false)) io.KeyShift ? albedo.redo() : albedo.undo();
-    if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y, false)) albedo.redo();
+    // Undo and redo: settings, lighting and albedo edits, the latest first.
+    if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z, false)) io.KeyShift ? redo() : undo();
+    if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y, false)) redo();
     if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S, false) && albedo.database() && albedo.unsaved()) {
       try {
         albedo.save();
@@ -453,6 +459,7 @@ void EditorApp::finishLoad() {
       camera_.reset(session_->view(), glm::length(session_->scene().bounds.size()));
       selected_.reset();
       preview_.clear();
+      announceScene();
     }
     watchScene();
     settings_.addRecent(std::filesystem::absolute(loadingPath_).string());
@@ -460,6 +467,7 @@ void EditorApp::finishLoad() {
     reopenAlbedoDatabase();
     // After the database: attaching one drops unsaved edits, which a reload puts back.
     if (keptAcrossReload_) restoreAfterReload();
+    history_.reset(session_->settings(), session_->lighting());
   } catch (const std::exception& e) {
     keptAcrossReload_.reset();
     watchScene();  // a broken export is not retried until the file changes again
@@ -498,6 +506,68 @@ void EditorApp::writeScreenshot(const gpu::Buffer& pixels, VkExtent2D ext) {
 }
 
 void EditorApp::openAlbedoDatabase(const std::filesystem::path& file) {
+  attachAlbedoDatabase(file);
+  if (session_->albedo().orphanCount()) notifyOrphans();
+}
+
+void EditorApp::announceScene() {
+  const scene::Scene& s = session_->scene();
+  showSceneWarnings_ = !s.warnings.empty();
+  if (!s.warnings.empty())
+    notify(fmt::format("{} import warning{}: View > Scene warnings", s.warnings.size(), s.warnings.size() == 1 ? "" : "s"));
+  // A file with no sun and nothing emissive would show only the uniform sky: flat. The
+  // editor (not a headless render, whose light is the file's) lights it with the default sun.
+  bool emissive = false;
+  for (const auto& m : s.materials) emissive |= m.emissiveStrength * glm::length(m.emissiveFactor) > 0.0f;
+  if (!s.environment.sunFromFile && !emissive) {
+    session::Lighting l = session_->lighting();
+    l.sunIrradiance = scene::Environment{}.sunIrradiance;
+    session_->setLighting(l);
+    const glm::dvec3 toSun = -glm::normalize(l.sunDirection);
+    notify(fmt::format("no light in the file: a default sun of {:.0f} W/m2 at {:.0f} deg elevation and the sky (Lighting panel)",
+                       l.sunIrradiance.r, glm::degrees(std::asin(std::clamp(toSun.y, -1.0, 1.0)))));
+  }
+}
+
+std::string EditorApp::undo() {
+  auto& albedo = session_->albedo();
+  const auto settingsAt = history_.undoTime(), albedoAt = albedo.undoTime();
+  if (!settingsAt && !albedoAt) return {};
+  if (albedoAt && (!settingsAt || *albedoAt > *settingsAt)) {
+    albedo.undo();
+    return "undid an albedo edit";
+  }
+  const std::string what = history_.undoLabel();
+  session::Lighting lighting = session_->lighting();
+  history_.undo(session_->settings(), lighting);
+  session_->setLighting(lighting);
+  notify("undid " + what);
+  return "undid " + what;
+}
+
+std::string EditorApp::redo() {
+  auto& albedo = session_->albedo();
+  const auto settingsAt = history_.redoTime(), albedoAt = albedo.redoTime();
+  if (!settingsAt && !albedoAt) return {};
+  if (albedoAt && (!settingsAt || *albedoAt < *settingsAt)) {
+    albedo.redo();
+    return "redid an albedo edit";
+  }
+  const std::string what = history_.redoLabel();
+  session::Lighting lighting = session_->lighting();
+  history_.redo(session_->settings(), lighting);
+  session_->setLighting(lighting);
+  notify("redid " + what);
+  return "redid " + what;
+}
+
+void EditorApp::notifyOrphans() {
+  const size_t n = session_->albedo().orphanCount();
+  notify(fmt::format("{} albedo override{} reach{} no mesh + material of this scene: see Albedo > Orphaned overrides", n,
+                     n == 1 ? "" : "s", n == 1 ? "es" : ""));
+}
+
+void EditorApp::attachAlbedoDatabase(const std::filesystem::path& file) {
   if (bake_) throw session::SessionError("a bake is running: cancel it first");
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
   session_->openAlbedoDatabase(file);
@@ -516,8 +586,9 @@ void EditorApp::reopenAlbedoDatabase() {
     return;
   }
   try {
-    openAlbedoDatabase(file);
+    attachAlbedoDatabase(file);
     notify(fmt::format("reopened the albedo database {}", file.string()));
+    if (session_->albedo().orphanCount()) notifyOrphans();
   } catch (const std::exception& e) {
     showError(fmt::format("cannot reopen the albedo database {}: {}", file.string(), e.what()));
   }

@@ -15,6 +15,7 @@
 #include "gpu/descriptor_pool.h"
 #include "gpu/shader_reload.h"
 #include "gpu/swapchain.h"
+#include "session/edit_history.h"
 #include "session/session.h"
 
 #include <deque>
@@ -80,6 +81,11 @@ class EditorApp {
   double engineFps() const;
   double shownFrameAge() const;
   InputQueue& input() { return input_; }
+  // Undo and redo across the edit histories (render settings and lighting, albedo overrides):
+  // the latest edit first, whichever it was; Ctrl+Z / Ctrl+Y. Each returns what it did ("" = nothing).
+  std::string undo();
+  std::string redo();
+  session::EditHistory& editHistory() { return history_; }
   void focusSelection();
   // Moves the editor camera by metres along its right, up and forward axes.
   void moveCamera(const glm::dvec3& rightUpForward) { camera_.translate(rightUpForward); }
@@ -106,6 +112,7 @@ class EditorApp {
   // The Compare panel: while compareView() holds a value the viewport is split between two
   // paths (applied to the session each frame; an unavailable side is refused with its reason).
   bool& compareOpen() { return showCompare_; }
+  bool& sceneWarningsOpen() { return showSceneWarnings_; }  // opens itself for a scene with warnings
   // Morph animations advance with the wall clock while playing (on by default).
   bool& playing() { return playing_; }
   std::optional<session::CompareView>& compareView() { return compareView_; }
@@ -116,6 +123,8 @@ class EditorApp {
   void showHelp(bool on) { showHelp_ = on; }
   // The albedo database: bakes run one batch per frame so the UI stays responsive.
   void openAlbedoDatabase(const std::filesystem::path& file);
+  // A status-bar note that overrides lost their mesh + material (the Albedo panel lists them).
+  void notifyOrphans();
   void startAlbedoBake(bool force);
   void cancelAlbedoBake() { if (bake_) bake_->cancel(); }
   const albedo::BakeJob* albedoBake() const { return bake_.get(); }
@@ -146,10 +155,12 @@ class EditorApp {
   void applyBookmark(int slot, bool save);
   void saveSettingsIfChanged();
   void reopenAlbedoDatabase();
+  void attachAlbedoDatabase(const std::filesystem::path& file);  // openAlbedoDatabase without notes
   std::string sceneKey() const;
   void writeScreenshot(const gpu::Buffer& pixels, VkExtent2D extent);
 
   Settings settings_;
+  session::EditHistory history_;  // render settings and lighting; reset with each scene
   nlohmann::json savedSettings_;  // what settings.json holds now
   GLFWwindow* window_ = nullptr;
   VkSurfaceKHR surface_ = VK_NULL_HANDLE;
@@ -171,6 +182,8 @@ class EditorApp {
   ViewerState viewer_;         // what is shown otherwise, and how (the Buffers panel)
   bool showBuffers_ = false;
   bool showCompare_ = false;
+  bool showSceneWarnings_ = false;
+  void announceScene();  // warnings and the default light of a scene just loaded
   bool playing_ = true;
   std::optional<session::CompareView> compareView_;
   bool draggingWipe_ = false;
@@ -218,7 +231,12 @@ class EditorApp {
   // Reloading the scene when its file changes (scene_reload.cpp).
   struct KeptAcrossReload {
     std::string selected;  // instance name
-    std::vector<std::pair<albedo::AlbedoKey, glm::vec3>> overrides;
+    struct Override {
+      albedo::AlbedoKey key;
+      glm::vec3 rgb;
+      std::string label;
+    };
+    std::vector<Override> overrides;
     std::optional<session::Lighting> lighting;  // when edited away from the scene's own
     double animationTime = 0.0;
   };

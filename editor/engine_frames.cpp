@@ -30,15 +30,18 @@ void EditorApp::startEngineFrame() {
     if (!capture) session_->setView(camera_.view());
     VkFormat hoverFormat = VK_FORMAT_UNDEFINED;
     std::string decoder;
+    VkFormat viewedFormat = VK_FORMAT_UNDEFINED;
     uint64_t texels = 0;
     for (const auto& r : session_->resources()) {
       if (r.name == preview_) hoverFormat = r.desc.format;
       if (r.name == viewer_.resource)
-        decoder = r.desc.decoder, texels = uint64_t(r.desc.extent.width) * r.desc.extent.height * r.desc.extent.depth;
+        decoder = r.desc.decoder, viewedFormat = r.desc.format,
+        texels = uint64_t(r.desc.extent.width) * r.desc.extent.height * r.desc.extent.depth;
     }
     // Live read-back of big volumes (the voxel clipmap) would cost more than the frame.
     const bool liveReadback = showBuffers_ && viewer_.live && texels <= (uint64_t(1) << 22);
-    lighting::DisplayRequest display = displayRequest(viewer_, preview_, hoverFormat, std::exp2(-session_->exposureEv()));
+    lighting::DisplayRequest display =
+        displayRequest(viewer_, preview_, hoverFormat, std::exp2(-session_->exposureEv()), decoder, viewedFormat);
     display.selectedInstance = selected_ ? *selected_ + 1 : 0;
     session_->setDisplay(display);
     // The viewer's read-back (histogram, probe, range fit): the shown resource and what its
@@ -167,10 +170,21 @@ void EditorApp::collectEngineFrame() {
     for (const std::string& c : lighting::decoderCompanions(decoder))
       if (session_->hasBuffer(c)) viewer_.readbacks[c] = session_->buffer(c);
     const graph::Readback& shown = viewer_.readbacks[asks.viewed];
+    // A meaning is fitted on what it shows (hit distances, irradiance), a fixed one not at all.
+    const auto meaning = shownMeaning(viewer_, decoder);
+    viewer_.meaningValues = meaning ? lighting::meaningValues(decoder, shown,
+                                                              [&](const std::string& c) -> const graph::Readback* {
+                                                                auto it = viewer_.readbacks.find(c);
+                                                                return it == viewer_.readbacks.end() ? nullptr : &it->second;
+                                                              })
+                                    : std::vector<float>{};
     if (viewer_.autoFitPending && shown.extent.width > 0) {
       // A frame with nothing in it yet (all zero: an accumulation's first frame, the albedo
       // impact before any edit) fits nothing: the range waits for one with data.
-      if (auto range = fitRange(channelValues(shown, viewer_.channel, viewer_.slice))) {
+      const auto values = meaning ? viewer_.meaningValues : channelValues(shown, viewer_.channel, viewer_.slice);
+      if (meaning && !meaning->fitted) {
+        viewer_.autoFitPending = false;
+      } else if (auto range = fitRange(values)) {
         std::tie(viewer_.rangeMin, viewer_.rangeMax) = *range;
         viewer_.autoFitPending = false;
       }

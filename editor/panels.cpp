@@ -74,6 +74,8 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
     ImGui::MenuItem("Help", "F1", &showHelp);
     ImGui::MenuItem("Buffers", "F2", &app.buffersOpen());
     ImGui::MenuItem("Compare", "F3", &app.compareOpen());
+    const size_t warnings = app.session().hasScene() ? app.session().scene().warnings.size() : 0;
+    ImGui::MenuItem(fmt::format("Scene warnings ({})", warnings).c_str(), nullptr, &app.sceneWarningsOpen(), warnings > 0);
     ImGui::EndMenu();
   }
   ImGui::EndMainMenuBar();
@@ -376,10 +378,47 @@ void fileBrowser(EditorApp& app, bool& open, std::filesystem::path& dir) {
   ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 280, display.y * 0.5f - 230), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(560, 460), ImGuiCond_FirstUseEver);
   ImGui::Begin("Open scene or capture", &open);
+  // A typed path: a folder goes there, a scene or a capture (its folder or manifest.json) opens.
+  static char typed[1024] = "";
+  static std::string pathError;
+  ImGui::SetNextItemWidth(-60);
+  const bool entered = ImGui::InputTextWithHint("##path", "type a path, Enter", typed, sizeof typed,
+                                                ImGuiInputTextFlags_EnterReturnsTrue);
+  trackItem("browser.path");
+  ImGui::SameLine();
+  if (entered || ImGui::Button("Go")) {
+    std::filesystem::path p = typed;
+    std::error_code ec;
+    pathError.clear();
+    if (std::filesystem::is_directory(p, ec) && std::filesystem::exists(p / "manifest.json", ec)) {
+      app.openCapture(p), open = false;
+    } else if (std::filesystem::is_directory(p, ec)) {
+      dir = std::filesystem::absolute(p, ec);
+    } else if (p.filename() == "manifest.json" && std::filesystem::exists(p, ec)) {
+      app.openCapture(p.parent_path()), open = false;
+    } else if (std::filesystem::exists(p, ec)) {
+      app.openScene(p), open = false;  // a file that is no scene is refused by the loader, with its reason
+    } else {
+      pathError = fmt::format("{}: no such file or folder", p.string());
+    }
+    if (!open) typed[0] = 0;
+  }
+  if (!pathError.empty()) ImGui::TextWrapped("%s", pathError.c_str());
   ImGui::TextWrapped("%s", dir.string().c_str());
   if (ImGui::Button("Up") && dir.has_parent_path()) dir = dir.parent_path();
   ImGui::SameLine();
   if (ImGui::Button("Project content")) dir = gpu::contentDirectory();
+  ImGui::SameLine();
+  static char filter[128] = "";
+  ImGui::SetNextItemWidth(-1);
+  ImGui::InputTextWithHint("##filter", "filter by name", filter, sizeof filter);
+  trackItem("browser.filter");
+  auto passes = [&](const std::string& name) {
+    std::string a = name, b = filter;
+    for (auto& c : a) c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (auto& c : b) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return a.find(b) != std::string::npos;
+  };
   ImGui::BeginChild("files");
   std::error_code ec;
   std::vector<std::filesystem::directory_entry> entries;
@@ -387,6 +426,7 @@ void fileBrowser(EditorApp& app, bool& open, std::filesystem::path& dir) {
   std::sort(entries.begin(), entries.end(), [](auto& a, auto& b) { return a.path().filename() < b.path().filename(); });
   for (auto& e : entries) {
     std::string name = e.path().filename().string();
+    if (!passes(name)) continue;
     if (e.is_directory(ec)) {
       if (name[0] != '.' && ImGui::Selectable(("[dir] " + name).c_str())) dir = e.path();
     } else {
@@ -441,6 +481,38 @@ void errorPopup(std::string& error) {
 
 }  // namespace
 
+// What the importer said about the scene (Scene::warnings; the ignored features among them):
+// the missing texture, the extension not applied, where the terminal is not in view.
+void sceneWarningsPanel(EditorApp& app) {
+  if (!app.sceneWarningsOpen() || !app.session().hasScene()) return;
+  const scene::Scene& s = app.session().scene();
+  ImGui::SetNextWindowPos(ImVec2(320, 80), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(520, 220), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Scene warnings", &app.sceneWarningsOpen())) {
+    ImGui::End();
+    return;
+  }
+  ImGui::TextWrapped("%s: %zu warning%s from the importer (also on the terminal and in `twinlight info --scene`)",
+                     s.path.filename().string().c_str(), s.warnings.size(), s.warnings.size() == 1 ? "" : "s");
+  if (!s.ignored.empty()) {
+    ImGui::Separator();
+    ImGui::TextUnformatted("ignored or approximated: renders differently from the file");
+    for (const std::string& line : s.ignored) {
+      ImGui::Bullet();
+      ImGui::SameLine();
+      ImGui::TextWrapped("%s", line.c_str());
+    }
+  }
+  ImGui::Separator();
+  ImGui::TextUnformatted("every warning");
+  for (const std::string& line : s.warnings) {
+    ImGui::Bullet();
+    ImGui::SameLine();
+    ImGui::TextWrapped("%s", line.c_str());
+  }
+  ImGui::End();
+}
+
 void drawPanels(EditorApp& app) {
   beginTrackedFrame();
   mainMenu(app, app.showHelp_, app.showBrowser_);
@@ -453,6 +525,7 @@ void drawPanels(EditorApp& app) {
   comparePanel(app);
   compareViewportOverlay(app);
   buffersPanel(app, app.buffersOpen());
+  sceneWarningsPanel(app);
   statusBar(app);
   shaderErrorWindow(app);
   helpWindow(app.showHelp_);

@@ -42,7 +42,7 @@ void EditorApp::reloadScene() {
   KeptAcrossReload kept;
   if (selected_ && *selected_ < s.instances.size()) kept.selected = s.instances[*selected_].name;
   for (const auto& e : session_->albedo().entries())
-    if (e.override) kept.overrides.emplace_back(e.combination.key, *e.override);
+    if (e.override) kept.overrides.push_back({e.combination.key, *e.override, e.combination.label});
   if (!sceneLighting(session_->lighting(), s.environment)) kept.lighting = session_->lighting();
   kept.animationTime = session_->animationTime();
   keptAcrossReload_ = std::move(kept);
@@ -57,17 +57,26 @@ void EditorApp::restoreAfterReload() {
   selected_.reset();
   for (uint32_t i = 0; i < s.instances.size(); ++i)
     if (!kept.selected.empty() && s.instances[i].name == kept.selected) selected_ = i;
-  // Overrides follow their mesh + material key: a combination the export changed is new.
+  // Overrides follow their mesh + material key: a combination the export changed is new,
+  // and an override of the old one becomes an orphan (Albedo panel), never silently lost.
   auto& albedo = session_->albedo();
-  for (const auto& [key, rgb] : kept.overrides)
-    for (uint32_t c = 0; c < albedo.entries().size(); ++c)
-      if (albedo.entries()[c].combination.key == key && albedo.entries()[c].override != rgb) albedo.setOverride(c, rgb);
+  const size_t orphansBefore = albedo.orphanCount();
+  for (const auto& o : kept.overrides) {
+    bool found = false;
+    for (uint32_t c = 0; c < albedo.entries().size(); ++c) {
+      if (albedo.entries()[c].combination.key != o.key) continue;
+      found = true;
+      if (albedo.entries()[c].override != o.rgb) albedo.setOverride(c, o.rgb);
+    }
+    if (!found) albedo.keepOrphan(o.key, o.rgb, o.label);
+  }
   if (kept.lighting) session_->setLighting(*kept.lighting);
   session_->setAnimationTime(kept.animationTime);
   ++sceneReloads_;
   const std::string text = fmt::format("reloaded {} (changed on disk): camera, selection and overrides kept", s.path.string());
   fmt::print("{}\n", text);
   notify(text);
+  if (albedo.orphanCount() > orphansBefore) notifyOrphans();
 }
 
 std::filesystem::path EditorApp::defaultImagePath(const char* extension) const {

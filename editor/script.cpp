@@ -1,6 +1,7 @@
 #include "script.h"
 
 #include "editor_app.h"
+#include "settings_panel.h"
 #include "ui_helpers.h"
 #include "gpu/install_paths.h"
 #include "session/capture.h"
@@ -241,6 +242,54 @@ void Script::step(EditorApp& app) {
           if (got != arg) return fail(app, fmt::format("expected albedo source `{}`, but it is `{}`", arg, got));
           fmt::print("script: albedo source is `{}`\n", got);
         }
+      } else if (cmd == "undo" || cmd == "redo") {
+        const std::string did = cmd == "undo" ? app.undo() : app.redo();
+        if (did.empty()) return fail(app, "nothing to " + cmd);
+        fmt::print("script: {}\n", did);
+      } else if (cmd == "preset") {
+        applyNamedPreset(app, arg);
+      } else if (cmd == "save-preset") {
+        fmt::print("script: wrote preset {}\n", saveNamedPreset(app, arg).string());
+      } else if (cmd == "expect-scene-warnings") {
+        const auto& warnings = app.session().scene().warnings;
+        if (std::to_string(warnings.size()) != arg)
+          return fail(app, fmt::format("expected {} scene warning(s), but there are {}", arg, warnings.size()));
+        if (!warnings.empty() && !app.sceneWarningsOpen()) return fail(app, "the Scene warnings panel is not open");
+        fmt::print("script: {} scene warning(s)\n", warnings.size());
+        for (const auto& w : warnings) fmt::print("script: warning: {}\n", w);
+      } else if (cmd == "expect-orphans") {
+        const auto& lib = app.session().albedo();
+        if (std::to_string(lib.orphanCount()) != arg)
+          return fail(app, fmt::format("expected {} orphaned override(s), but there are {}", arg, lib.orphanCount()));
+        fmt::print("script: {} orphaned override(s)\n", lib.orphanCount());
+        for (const auto& o : lib.orphans())
+          if (!o.removed)
+            fmt::print("script: orphan `{}` {:.3f} {:.3f} {:.3f}: {}\n", o.label, o.rgb.r, o.rgb.g, o.rgb.b,
+                       albedo::orphanReason(o));
+      } else if (cmd == "orphan-reapply" || cmd == "orphan-delete") {
+        auto& lib = app.session().albedo();
+        std::istringstream words(arg);
+        size_t index = 0;
+        std::string target;
+        if (!(words >> index)) return fail(app, cmd + " needs the orphan's number (0 = the first listed)");
+        words >> target;
+        // The index among those listed (not removed), as the Albedo panel shows them.
+        std::optional<size_t> orphan;
+        for (size_t i = 0, listed = 0; i < lib.orphans().size() && !orphan; ++i)
+          if (!lib.orphans()[i].removed && listed++ == index) orphan = i;
+        if (!orphan) return fail(app, fmt::format("there is no orphaned override {} ({} listed)", index, lib.orphanCount()));
+        if (cmd == "orphan-delete") {
+          lib.deleteOrphan(*orphan);
+        } else if (target == "selected") {
+          if (!app.selected()) return fail(app, "orphan-reapply N selected needs a selected instance");
+          lib.reapplyOrphan(*orphan, lib.combinationOf(*app.selected()));
+        } else if (target.empty()) {
+          const auto same = lib.orphans()[*orphan].sameLabel;
+          if (!same) return fail(app, fmt::format("`{}` has no new key (no combination with its name)", lib.orphans()[*orphan].label));
+          lib.reapplyOrphan(*orphan, *same);
+        } else {
+          return fail(app, fmt::format("orphan-reapply N [selected], not `{}`", target));
+        }
       } else if (cmd == "copy-file") {
         std::istringstream files(arg);
         std::string src, dst;
@@ -290,6 +339,23 @@ void Script::step(EditorApp& app) {
         if (it == std::end(names)) return fail(app, fmt::format("unknown channel `{}`", arg));
         app.viewer().channel = uint32_t(it - std::begin(names));
         app.viewer().autoFitPending = true;
+      } else if (cmd == "view-meaning") {
+        if (arg != "on" && arg != "off") return fail(app, "view-meaning on|off");
+        app.viewer().meaning = arg == "on";
+        app.viewer().autoFitPending = true;
+      } else if (cmd == "expect-meaning") {
+        std::string decoder;
+        for (const auto& r : app.session().resources())
+          if (r.name == app.viewer().resource) decoder = r.desc.decoder;
+        const auto m = shownMeaning(app.viewer(), decoder);
+        const std::string shown = m ? m->quantity : "stored values";
+        if (shown.find(arg) == std::string::npos)
+          return fail(app, fmt::format("expected `{}` to show {}, but it shows {}", app.viewer().resource, arg, shown));
+        if (m && m->fitted && app.viewer().autoFitPending)
+          return fail(app, fmt::format("`{}`: the {} range is not fitted yet", app.viewer().resource, shown));
+        fmt::print("script: `{}` shows {}{}\n", app.viewer().resource, shown,
+                   m && m->fitted ? fmt::format(" over {:.4g} .. {:.4g} {}", app.viewer().rangeMin, app.viewer().rangeMax, m->unit)
+                                  : std::string());
       } else if (cmd == "view-false-colour") {
         app.viewer().falseColour = arg == "on";
       } else if (cmd == "view-zoom") {

@@ -22,12 +22,19 @@
 //   albedo-bake            bake the scene into it (one batch a frame) and wait until done
 //   albedo-override R G B  override the selected instance's albedo (linear RGB)
 //   albedo-undo, albedo-redo, albedo-save
+//   expect-scene-warnings N  fail unless the scene has N import warnings (and their panel is open); lists them
+//   expect-orphans N       fail unless N overrides are orphaned (their mesh + material is gone); lists them
+//   orphan-reapply I [selected]  re-apply orphan I (0 = first listed) to its new key, or to the selection
+//   orphan-delete I        delete orphan I (removed from the database on albedo-save)
 //   albedo-impact          remember this image and show what later albedo edits change
 //   expect-albedo-source S fail unless the selected instance's albedo comes from S
 //                          (override, baked, texture average)
 //   buffers on|off         the Buffers panel
 //   view RESOURCE          show a resource through the viewer (range fitted); `final` for the image
 //   view-channel C         rgb, r, g, b, a or luminance
+//   view-meaning on|off    what a decoded resource means (default) or its stored values
+//   expect-meaning TEXT    fail unless the viewer shows a meaning containing TEXT (`stored values`
+//                          when raw), with its range fitted; prints the range
 //   view-false-colour on|off, view-zoom Z U V (zoom Z around source UV), view-slice N
 //   keep-b, show-b on|off  A/B against a kept copy
 //   view-probe X Y         probe texel (X, Y) as if hovered
@@ -54,6 +61,9 @@
 //   expect-notice TEXT     fail unless a status-bar message contains TEXT
 //   expect-labels-fit      fail when a panel's label was cut off by its window last frame
 //   set NAME=VALUE         change a render setting (what the Lighting panel's widget for it does)
+//   undo, redo             Ctrl+Z / Ctrl+Y: the latest settings, lighting or albedo edit
+//   preset NAME            a preset of the current path (Fast, Balanced, Reference-like) or your own
+//   save-preset NAME       write every panel setting to the presets folder as NAME.json
 //   expect-setting NAME V  fail unless the setting's value reads V ("512", "clay", "true")
 //   copy-file SRC DST      copy SRC over DST as an exporter does (a temporary, then a rename)
 //   expect-reload          wait (up to 60 s) until the scene reloaded after the last

@@ -1,7 +1,9 @@
 #include "settings_panel.h"
 
 #include "editor_app.h"
+#include "session/presets.h"
 #include "session/settings_json.h"
+#include "settings.h"
 #include "ui_helpers.h"
 
 #include <fmt/format.h>
@@ -88,7 +90,87 @@ void settingWidget(const SettingInfo& s, lighting::RenderSettings& settings, flo
   if (next != value && !lighting::settingRangeError(s, next)) s.set(settings, next);
 }
 
+// The artist's presets: settings JSON files in the config directory's presets folder.
+std::vector<std::filesystem::path> userPresets() {
+  std::vector<std::filesystem::path> out;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(presetDirectory(), ec))
+    if (e.is_regular_file(ec) && e.path().extension() == ".json") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void applyPresetOrShow(EditorApp& app, const std::string& name) {
+  try {
+    applyNamedPreset(app, name);
+  } catch (const std::exception& e) {
+    app.showError(e.what());
+  }
+}
+
+void presetRow(EditorApp& app) {
+  auto& session = app.session();
+  ImGui::SetNextItemWidth(170);
+  if (ImGui::BeginCombo("Preset", fmt::format("{} presets", session.path()).c_str())) {
+    for (const session::Preset& p : session::builtInPresets()) {
+      if (p.path != session.path()) continue;
+      if (ImGui::Selectable(p.name.c_str())) applyPresetOrShow(app, p.name);
+      tooltip(p.description.c_str());
+    }
+    const auto mine = userPresets();
+    if (!mine.empty()) ImGui::Separator();
+    for (const auto& file : mine) {
+      if (ImGui::Selectable(file.stem().string().c_str())) applyPresetOrShow(app, file.stem().string());
+      tooltip(file.string().c_str());
+    }
+    ImGui::EndCombo();
+  }
+  tooltip("Fast / Balanced / Reference-like for this path (Balanced: the defaults), then your own.\n"
+          "Ctrl+Z undoes a preset like any other change.");
+  static char name[64] = "";
+  ImGui::SetNextItemWidth(120);
+  ImGui::InputTextWithHint("##presetName", "name", name, sizeof name);
+  ImGui::SameLine();
+  ImGui::BeginDisabled(name[0] == 0);
+  if (ImGui::SmallButton("Save preset")) {
+    try {
+      app.notify(fmt::format("wrote preset {}", saveNamedPreset(app, name).string()));
+    } catch (const std::exception& e) {
+      app.showError(e.what());
+    }
+  }
+  ImGui::EndDisabled();
+  tooltip("Every setting as JSON in the presets folder: `twinlight render --settings FILE` and\n"
+          "`twinlight compare --settings FILE` read it as it is");
+}
+
 }  // namespace
+
+std::filesystem::path presetDirectory() { return configDirectory() / "presets"; }
+
+void applyNamedPreset(EditorApp& app, const std::string& name) {
+  auto& session = app.session();
+  for (const session::Preset& p : session::builtInPresets())
+    if (p.path == session.path() && p.name == name) {
+      session.settings() = session::applyPreset(session.settings(), p);
+      app.notify(fmt::format("preset {} for {}: {}", p.name, p.path, p.description));
+      return;
+    }
+  const std::filesystem::path file = presetDirectory() / (name + ".json");
+  if (!std::filesystem::exists(file))
+    throw session::SessionError(fmt::format("no preset `{}` for {} (built in: Fast, Balanced, Reference-like; yours: {})",
+                                            name, session.path(), presetDirectory().string()));
+  session.settings() = session::loadPresetFile(file, session.settings());
+  app.notify(fmt::format("preset {} from {}", name, file.string()));
+}
+
+std::filesystem::path saveNamedPreset(EditorApp& app, const std::string& name) {
+  if (name.empty() || name.find_first_of("/\\") != std::string::npos || name.front() == '.')
+    throw session::SessionError(fmt::format("a preset name is a plain file name, not `{}`", name));
+  const std::filesystem::path file = presetDirectory() / (name + ".json");
+  session::savePresetFile(file, app.session().settings());
+  return file;
+}
 
 void settingsSection(EditorApp& app) {
   auto& session = app.session();
@@ -127,6 +209,19 @@ void settingsSection(EditorApp& app) {
   }
   tooltip("Every setting back to its default (the image size stays the viewport's)");
   if (!pasteError.empty()) ImGui::TextWrapped("paste: %s", pasteError.c_str());
+  presetRow(app);
+  // Undo and redo of settings and lighting, one step per change of a schema entry (a drag is one).
+  auto& history = app.editHistory();
+  ImGui::BeginDisabled(!history.canUndo());
+  if (ImGui::SmallButton("Undo")) app.undo();
+  ImGui::EndDisabled();
+  tooltip(history.canUndo() ? ("Undo " + history.undoLabel() + " (Ctrl+Z: the latest edit, albedo included)").c_str()
+                            : "Nothing to undo: settings and lighting edits of this scene are undone here");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!history.canRedo());
+  if (ImGui::SmallButton("Redo")) app.redo();
+  ImGui::EndDisabled();
+  tooltip(history.canRedo() ? ("Redo " + history.redoLabel() + " (Ctrl+Y)").c_str() : "Nothing to redo");
 
   // Owners in the order the schema first names them: common, then the paths.
   std::vector<std::string_view> owners;

@@ -3,6 +3,10 @@
 #include "scene/material_average.h"
 #include "shared/albedo.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
 #include <map>
 
 namespace tl::albedo {
@@ -14,6 +18,14 @@ const char* sourceName(AlbedoSource source) {
     case AlbedoSource::TextureAverage: return "texture average";
   }
   return "?";
+}
+
+std::string orphanReason(const OrphanOverride& orphan) {
+  if (orphan.sameLabel)
+    return "its mesh or material changed since the edit (positions, UVs, base colour, metallic or alpha: the key "
+           "hashes them), so the override reaches no hit";
+  return "no mesh + material of this scene is called that or has its key: removed, renamed and changed, or "
+         "edited in another scene that shares this database";
 }
 
 AlbedoLibrary::AlbedoLibrary(const scene::Scene& scene, const BakeSettings& settings) {
@@ -37,6 +49,7 @@ void AlbedoLibrary::attach(std::unique_ptr<AlbedoDatabase> db) {
   edits_.clear();
   undoCount_ = savedAt_ = 0;
   savedAtInvalid_ = false;
+  orphans_.clear();
   for (AlbedoEntry& e : entries_) e.override.reset();
   reload();
 }
@@ -66,7 +79,70 @@ void AlbedoLibrary::reload() {
     auto [lo, hi] = keyOfLabel.equal_range(e.combination.label);
     for (auto it = lo; it != hi; ++it) e.stale |= !e.baked && it->second != key;
   }
+  findOrphans(overrides);
   resolve();
+}
+
+void AlbedoLibrary::findOrphans(const std::map<AlbedoKey, OverrideEntry>& overrides) {
+  std::map<AlbedoKey, uint32_t> ours;
+  std::map<std::string, uint32_t> byLabel;
+  for (uint32_t c = 0; c < entries_.size(); ++c) {
+    ours.emplace(entries_[c].combination.key, c);
+    byLabel.emplace(entries_[c].combination.label, c);
+  }
+  // Existing orphans keep their place (edits refer to them by index); the database's new
+  // ones are added after them.
+  for (OrphanOverride& o : orphans_) o.inDatabase = false;
+  for (const auto& [key, row] : overrides) {
+    if (ours.count(key)) continue;
+    auto it = std::find_if(orphans_.begin(), orphans_.end(), [&](const OrphanOverride& o) { return o.key == key; });
+    if (it == orphans_.end()) {
+      OrphanOverride o;
+      o.key = key, o.rgb = row.rgb, o.label = row.label, o.editedAt = row.editedAt;
+      it = orphans_.insert(orphans_.end(), o);
+    }
+    it->inDatabase = it->rgb == row.rgb;
+    if (it->inDatabase) it->editedAt = row.editedAt;
+  }
+  for (OrphanOverride& o : orphans_) {
+    auto l = byLabel.find(o.label);
+    o.sameLabel = l == byLabel.end() ? std::nullopt : std::optional<uint32_t>(l->second);
+  }
+}
+
+size_t AlbedoLibrary::orphanCount() const {
+  return size_t(std::count_if(orphans_.begin(), orphans_.end(), [](const OrphanOverride& o) { return !o.removed; }));
+}
+
+void AlbedoLibrary::keepOrphan(AlbedoKey key, const glm::vec3& rgb, const std::string& label) {
+  for (const AlbedoEntry& e : entries_)
+    if (e.combination.key == key) return;  // not an orphan here
+  auto it = std::find_if(orphans_.begin(), orphans_.end(), [&](const OrphanOverride& o) { return o.key == key; });
+  if (it == orphans_.end()) {
+    OrphanOverride o;
+    o.key = key, o.label = label;
+    it = orphans_.insert(orphans_.end(), o);
+    for (uint32_t c = 0; c < entries_.size(); ++c)
+      if (entries_[c].combination.label == label) it->sameLabel = c;
+  }
+  if (it->rgb != rgb || !it->inDatabase) it->rgb = rgb, it->inDatabase = false, it->editedAt.clear();
+  it->removed = false;
+}
+
+void AlbedoLibrary::reapplyOrphan(size_t orphan, uint32_t combination) {
+  if (orphans_.at(orphan).removed) return;
+  push({combination, entries_.at(combination).override, orphans_[orphan].rgb, orphan}, false);
+}
+
+void AlbedoLibrary::deleteOrphan(size_t orphan) {
+  if (orphans_.at(orphan).removed) return;
+  push({std::nullopt, std::nullopt, std::nullopt, orphan}, false);
+}
+
+bool AlbedoLibrary::unsaved() const {
+  if (savedAt_ != undoCount_ || savedAtInvalid_) return true;
+  // An orphan carried over a reload that the database does not hold yet.
+  return std::any_of(orphans_.begin(), orphans_.end(), [](const OrphanOverride& o) { return !o.removed && !o.inDatabase; });
 }
 
 void AlbedoLibrary::resolve() {
@@ -91,16 +167,32 @@ void AlbedoLibrary::apply(uint32_t combination, const std::optional<glm::vec3>& 
   resolve();
 }
 
+void AlbedoLibrary::step(const Edit& edit, bool forward) {
+  if (edit.orphan) orphans_.at(*edit.orphan).removed = forward;
+  if (edit.combination) apply(*edit.combination, forward ? edit.after : edit.before);
+}
+
+std::optional<double> AlbedoLibrary::undoTime() const {
+  return canUndo() ? std::optional<double>(edits_[undoCount_ - 1].madeAt) : std::nullopt;
+}
+
+std::optional<double> AlbedoLibrary::redoTime() const {
+  return canRedo() ? std::optional<double>(edits_[undoCount_].madeAt) : std::nullopt;
+}
+
 void AlbedoLibrary::push(Edit edit, bool merge) {
+  edit.madeAt = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
   edits_.resize(undoCount_);  // a new edit drops what could be redone
   if (savedAt_ > undoCount_) savedAtInvalid_ = true;
-  if (merge && !edits_.empty() && undoCount_ != savedAt_ && edits_.back().combination == edit.combination) {
+  if (merge && !edit.orphan && !edits_.empty() && undoCount_ != savedAt_ && !edits_.back().orphan &&
+      edits_.back().combination == edit.combination) {
     edits_.back().after = edit.after;
+    edits_.back().madeAt = edit.madeAt;
   } else {
     edits_.push_back(edit);
     ++undoCount_;
   }
-  apply(edit.combination, edit.after);
+  step(edit, true);
 }
 
 void AlbedoLibrary::setOverride(uint32_t combination, const glm::vec3& rgb, bool merge) {
@@ -115,13 +207,13 @@ void AlbedoLibrary::clearOverride(uint32_t combination) {
 bool AlbedoLibrary::undo() {
   if (!canUndo()) return false;
   --undoCount_;
-  apply(edits_[undoCount_].combination, edits_[undoCount_].before);
+  step(edits_[undoCount_], false);
   return true;
 }
 
 bool AlbedoLibrary::redo() {
   if (!canRedo()) return false;
-  apply(edits_[undoCount_].combination, edits_[undoCount_].after);
+  step(edits_[undoCount_], true);
   ++undoCount_;
   return true;
 }
@@ -139,7 +231,18 @@ void AlbedoLibrary::save() {
     else if (!e.override && it != stored.end())
       clear.push_back(e.combination.key);
   }
+  // Orphans stay in the database until re-applied or deleted; one carried over a reload
+  // is written so that it outlives the session.
+  for (const OrphanOverride& o : orphans_) {
+    const bool inStore = stored.count(o.key) != 0;
+    if (o.removed && inStore) clear.push_back(o.key);
+    else if (!o.removed && !o.inDatabase) set.push_back({o.key, o.rgb, now, o.label});
+  }
   db_->writeOverrides(set, clear);
+  for (OrphanOverride& o : orphans_) {
+    o.inDatabase = !o.removed;
+    if (!o.removed && o.editedAt.empty()) o.editedAt = now;
+  }
   savedAt_ = undoCount_;
   savedAtInvalid_ = false;
 }

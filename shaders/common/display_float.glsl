@@ -1,6 +1,8 @@
 // The float display, for 2D sources and (DISPLAY_3D) a slice of a 3D source.
 #include "shared/display.h"
 #include "shared/color.h"
+#include "shared/packing.h"
+#include "shared/sh.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 #ifdef DISPLAY_3D
@@ -9,6 +11,10 @@ layout(set = 0, binding = kDisplaySource) uniform sampler3D source;
 layout(set = 0, binding = kDisplaySource) uniform sampler2D source;
 #endif
 layout(set = 0, binding = kDisplayInstanceId) uniform usampler2D instanceId;
+#ifndef DISPLAY_3D
+layout(set = 0, binding = kDisplayCompanionA) uniform sampler2D companionA;
+layout(set = 0, binding = kDisplayCompanionB) uniform sampler2D companionB;
+#endif
 layout(set = 0, binding = kDisplayOutput, rgba8) uniform writeonly image2D display;
 layout(push_constant) uniform Push { DisplayPush push; };
 
@@ -31,6 +37,26 @@ void main() {
     c = vec3(0.04);  // outside the image (zoomed out or panned)
   } else if (push.mode == kDisplayModeFinal) {
     c = v.rgb;
+#ifndef DISPLAY_3D
+  } else if (push.meaning != kDisplayMeaningNone &&
+             texelFetch(instanceId, ivec2(uv * vec2(textureSize(instanceId, 0))), 0).r == 0u) {
+    c = vec3(0.04);  // no surface: a normal or the irradiance at it means nothing here
+  } else if (push.meaning == kDisplayMeaningOctNormal) {
+    c = tlOctDecode(v.rg) * 0.5 + 0.5;  // a direction as colour: +X red, +Y green, +Z blue
+  } else if (push.meaning == kDisplayMeaningShIrradiance) {
+    // What the SH means at this pixel: the irradiance it resolves to at the G-buffer normal
+    // (companions sampled at the same relative position: the cones may be quarter size).
+    ShLumaCoCg sh = tlShMake(v, textureLod(companionA, uv, 0.0).rg);
+    vec3 e = tlShResolveIrradiance(sh, tlOctDecode(textureLod(companionB, uv, 0.0).rg));
+    vec3 t = (e - push.rangeMin) / max(push.rangeMax - push.rangeMin, 1e-20);
+    c = tlLinearToSrgb(clamp(t, 0.0, 1.0));
+    // Negative irradiance is wrong (SH ringing); raw negative coefficients are not.
+    if ((push.flags & kDisplayFlagHighlight) != 0u) {
+      if (any(isnan(e))) c = vec3(1.0, 0.0, 1.0);
+      else if (any(isinf(e))) c = vec3(1.0, 1.0, 0.0);
+      else if (any(lessThan(e, vec3(0.0)))) c = vec3(0.0, 0.4, 1.0);
+    }
+#endif
   } else {
     if (push.channels == 1u) v = vec4(v.r, v.r, v.r, 1.0);
     if (push.channels == 2u) v = vec4(v.r, v.g, 0.0, 1.0);
@@ -47,7 +73,7 @@ void main() {
       bvec3 nan = isnan(shown), inf = isinf(shown);
       if (any(nan)) c = vec3(1.0, 0.0, 1.0);
       else if (any(inf)) c = vec3(1.0, 1.0, 0.0);
-      else if (any(lessThan(shown, vec3(0.0)))) c = vec3(0.0, 0.4, 1.0);
+      else if ((push.flags & kDisplayFlagNegativesValid) == 0u && any(lessThan(shown, vec3(0.0)))) c = vec3(0.0, 0.4, 1.0);
     }
   }
   c = grid(uv, size, sourceSize, c);

@@ -1,6 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "shared/display.h"
+#include "shared/packing.h"
+#include "shared/rt.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = kDisplaySource) uniform usampler2D source;
@@ -26,8 +28,20 @@ void main() {
   vec2 uv = sourceUv(p, size);
   ivec2 sourceSize = textureSize(source, 0);
   vec3 c = vec3(0.04);
-  if (all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0))))
-    c = idColor(texelFetch(source, ivec2(uv * vec2(sourceSize)), 0).r);
+  if (all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)))) {
+    uvec4 v = texelFetch(source, ivec2(uv * vec2(sourceSize)), 0);
+    if (push.meaning == kDisplayMeaningHitDistance) {
+      // Near blue to far red over the range; a miss and a pending ray flat (the legend says which).
+      c = tlRtIsMiss(v.r)      ? tlDisplayMissColour()
+          : tlRtIsPending(v.r) ? tlDisplayPendingColour()
+                               : tlDisplayFalseColour((tlRtHitDistance(v.r) - push.rangeMin) /
+                                                      max(push.rangeMax - push.rangeMin, 1e-20));
+    } else if (push.meaning == kDisplayMeaningHitNormal) {
+      c = tlOctDecodeSnorm16(v.r) * 0.5 + 0.5;
+    } else {
+      c = idColor(v.r);
+    }
+  }
   c = grid(uv, size, sourceSize, c);
   imageStore(display, p, vec4(outline(uv, c), 1.0));
 }

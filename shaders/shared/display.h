@@ -10,6 +10,8 @@ TL_BEGIN
 TL_CONST uint kDisplaySource = 0;      // sampler2D / usampler2D / sampler3D: what is shown
 TL_CONST uint kDisplayInstanceId = 1;  // usampler2D: gbuffer.instanceId, for the outline
 TL_CONST uint kDisplayOutput = 2;      // rgba8 storage image: display.ldr
+TL_CONST uint kDisplayCompanionA = 3;  // sampler2D: a resource a meaning reads beside the source
+TL_CONST uint kDisplayCompanionB = 4;  //   (SH irradiance: A the chroma, B the octahedral normal)
 
 TL_CONST uint kDisplayModeFinal = 0;   // an already display-encoded image: copied
 TL_CONST uint kDisplayModeLinear = 1;  // a float resource: (value - min) / (max - min), sRGB-encoded
@@ -26,6 +28,18 @@ TL_CONST uint kDisplayChannelLuminance = 5;
 TL_CONST uint kDisplayFlagFalseColour = 1u;  // one channel through tlDisplayFalseColour
 TL_CONST uint kDisplayFlagHighlight = 2u;    // NaN magenta, infinity yellow, negative blue
 TL_CONST uint kDisplayFlagGrid = 4u;         // texel borders (when zoomed in far enough)
+TL_CONST uint kDisplayFlagNegativesValid = 8u;  // with Highlight: negatives are data here (normals, SH), not flagged
+
+// What a decoded resource means, shown instead of its stored values (lighting/common/
+// decoders.h meaningView): the viewer's default for a resource whose decoder has one.
+TL_CONST uint kDisplayMeaningNone = 0;         // the stored values
+TL_CONST uint kDisplayMeaningHitDistance = 1;  // r32ui hit record: distance in false colour; miss, pending flat
+TL_CONST uint kDisplayMeaningOctNormal = 2;    // rg oct normal (float): the unit vector as colour, n * 0.5 + 0.5
+TL_CONST uint kDisplayMeaningHitNormal = 3;    // rg32ui hit surface: its oct snorm16 normal as colour
+TL_CONST uint kDisplayMeaningShIrradiance = 4; // L1 SH of luma + chroma (A) at the normal (B): irradiance over the range
+// The flat colours of a hit record that is no hit (their legend in the Buffers panel).
+TL_FN vec3 tlDisplayMissColour() { return vec3(0.12f, 0.16f, 0.28f); }
+TL_FN vec3 tlDisplayPendingColour() { return vec3(0.45f, 0.45f, 0.45f); }
 
 struct DisplayPush {
   vec4 window;        // the part of the source shown: UV offset (xy) and size (zw)
@@ -37,6 +51,8 @@ struct DisplayPush {
   float rangeMax;     // linear mode: value shown white
   uint flags;         // kDisplayFlag*
   float slice;        // 3D sources: w coordinate of the slice shown (0..1)
+  uint meaning;       // kDisplayMeaning*
+  uint pad0, pad1, pad2;
 };
 
 // False colour for t in [0, 1]: dark blue, blue, cyan, green, yellow, red (the legend draws
@@ -54,6 +70,6 @@ TL_FN vec3 tlDisplayFalseColour(float t) {
 TL_END
 
 #ifdef __cplusplus
-static_assert(sizeof(tl::shared::DisplayPush) == 48);
+static_assert(sizeof(tl::shared::DisplayPush) == 64);
 #endif
 #endif

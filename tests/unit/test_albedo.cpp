@@ -447,5 +447,105 @@ TEST(AlbedoLibrary, MarksStaleWhenTheContentChangedSinceTheBake) {
   EXPECT_EQ(lib.entryOf(0).source, AlbedoSource::TextureAverage);
 }
 
+// An override saved before the material changed is listed with its colour and the reason,
+// survives saves, and re-applying it moves it to the new key in one undoable step.
+TEST(AlbedoLibrary, AnOverrideOrphanedByAContentChangeIsListedAndReapplied) {
+  auto s = test::makeCubeScene(plainMaterial());
+  const fs::path file = tempFile("orphan.db");
+  const glm::vec3 colour(0.2f, 0.4f, 0.6f);
+  AlbedoKey oldKey = 0;
+  {
+    AlbedoLibrary lib(*s);
+    lib.attach(std::make_unique<AlbedoDatabase>(file));
+    EXPECT_EQ(lib.orphanCount(), 0u);
+    lib.setOverride(0, colour);
+    lib.save();
+    oldKey = lib.entries()[0].combination.key;
+  }
+  s->materials[0].baseColorFactor = glm::vec4(0.8f, 0.1f, 0.1f, 1.0f);  // re-exported with another colour
+  AlbedoLibrary lib(*s);
+  lib.attach(std::make_unique<AlbedoDatabase>(file));
+  EXPECT_FALSE(lib.entryOf(0).override) << "the new key has no override";
+  ASSERT_EQ(lib.orphanCount(), 1u);
+  const OrphanOverride& o = lib.orphans()[0];
+  EXPECT_EQ(o.key, oldKey);
+  EXPECT_EQ(o.rgb, colour);
+  EXPECT_EQ(o.label, lib.entries()[0].combination.label);
+  ASSERT_EQ(o.sameLabel, std::optional<uint32_t>(0u));
+  EXPECT_TRUE(o.inDatabase);
+  EXPECT_FALSE(o.editedAt.empty());
+  EXPECT_NE(orphanReason(o).find("changed"), std::string::npos);
+  EXPECT_FALSE(lib.unsaved());
+
+  lib.save();  // saving without acting keeps it
+  EXPECT_EQ(lib.database()->overrides().count(oldKey), 1u);
+
+  lib.reapplyOrphan(0, *o.sameLabel);
+  EXPECT_EQ(lib.orphanCount(), 0u);
+  EXPECT_EQ(lib.entryOf(0).source, AlbedoSource::Override);
+  EXPECT_EQ(*lib.entryOf(0).override, colour);
+  EXPECT_TRUE(lib.unsaved());
+  ASSERT_TRUE(lib.undo()) << "one step";
+  EXPECT_EQ(lib.orphanCount(), 1u);
+  EXPECT_FALSE(lib.entryOf(0).override);
+  ASSERT_TRUE(lib.redo());
+  lib.save();
+  const auto rows = lib.database()->overrides();
+  EXPECT_EQ(rows.count(oldKey), 0u) << "the old key's row is gone";
+  ASSERT_EQ(rows.count(lib.entries()[0].combination.key), 1u);
+  EXPECT_EQ(rows.at(lib.entries()[0].combination.key).rgb, colour);
+}
+
+// An override of a combination the scene no longer has (another scene's, or removed) is
+// listed without a same-label match and is removed from the database only when deleted.
+TEST(AlbedoLibrary, AnOrphanIsDeletedOnlyWhenAskedAndTheDeleteUndoes) {
+  auto s = test::makeCubeScene(plainMaterial());
+  const fs::path file = tempFile("orphan_delete.db");
+  {
+    AlbedoDatabase db(file);
+    db.writeOverrides({{0x1234, glm::vec3(0.9f, 0.8f, 0.7f), "2026-12-01T00:00:00Z", "gone / paint"}}, {});
+  }
+  AlbedoLibrary lib(*s);
+  lib.attach(std::make_unique<AlbedoDatabase>(file));
+  ASSERT_EQ(lib.orphanCount(), 1u);
+  EXPECT_FALSE(lib.orphans()[0].sameLabel);
+  EXPECT_NE(orphanReason(lib.orphans()[0]).find("no mesh + material"), std::string::npos);
+  lib.deleteOrphan(0);
+  EXPECT_EQ(lib.orphanCount(), 0u);
+  EXPECT_TRUE(lib.unsaved());
+  ASSERT_TRUE(lib.undo());
+  EXPECT_EQ(lib.orphanCount(), 1u);
+  EXPECT_FALSE(lib.unsaved());
+  ASSERT_TRUE(lib.redo());
+  EXPECT_EQ(lib.database()->overrides().size(), 1u) << "nothing leaves the database before a save";
+  lib.save();
+  EXPECT_TRUE(lib.database()->overrides().empty());
+  EXPECT_FALSE(lib.unsaved());
+}
+
+// An unsaved override whose key vanished in a reload is kept as an orphan, counts as
+// unsaved, and a save writes it under its old key (it outlives the session).
+TEST(AlbedoLibrary, AnUnsavedOverrideCarriedOverAReloadIsKeptAndSaved) {
+  auto s = test::makeCubeScene(plainMaterial());
+  const fs::path file = tempFile("orphan_kept.db");
+  AlbedoLibrary before(*s);
+  const AlbedoKey oldKey = before.entries()[0].combination.key;
+  const std::string label = before.entries()[0].combination.label;
+  s->materials[0].metallic = 1.0f;
+  AlbedoLibrary lib(*s);
+  lib.attach(std::make_unique<AlbedoDatabase>(file));
+  lib.keepOrphan(lib.entries()[0].combination.key, glm::vec3(0.5f), label);
+  EXPECT_EQ(lib.orphanCount(), 0u) << "a key the scene still has is no orphan";
+  lib.keepOrphan(oldKey, glm::vec3(0.1f, 0.2f, 0.3f), label);
+  ASSERT_EQ(lib.orphanCount(), 1u);
+  EXPECT_EQ(lib.orphans()[0].sameLabel, std::optional<uint32_t>(0u));
+  EXPECT_FALSE(lib.orphans()[0].inDatabase);
+  EXPECT_TRUE(lib.unsaved()) << "the orphan is only in memory";
+  lib.save();
+  EXPECT_FALSE(lib.unsaved());
+  ASSERT_EQ(lib.database()->overrides().count(oldKey), 1u);
+  EXPECT_EQ(lib.database()->overrides().at(oldKey).label, label);
+}
+
 }  // namespace
 }  // namespace tl::albedo

@@ -3,13 +3,16 @@
 #include "gpu/formats.h"
 #include "shared/albedo.h"
 #include "shared/color.h"
+#include "shared/display.h"
 #include "shared/packing.h"
 #include "shared/rt.h"
 #include "shared/sh.h"
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 
 namespace tl::lighting {
@@ -178,6 +181,66 @@ DecodedLines decodeTexel(const std::string& text, const DecodeInput& in) {
   const DecoderSpec spec = parseDecoderSpec(text);
   auto it = kDecoders.find(spec.name);
   return it == kDecoders.end() ? DecodedLines{} : it->second(in, spec);
+}
+
+std::optional<MeaningView> meaningView(const std::string& text) {
+  const DecoderSpec spec = parseDecoderSpec(text);
+  if (spec.name == "rt-hit-record")
+    return MeaningView{shared::kDisplayMeaningHitDistance, "hit distance", "m",
+                       "near (blue) to far (red) over the range; dark blue-grey: miss (sky), grey: pending (traced later)",
+                       true, true, {}};
+  if (spec.name == "rt-hit-surface" || spec.name == "oct-normal")
+    return MeaningView{spec.name == "oct-normal" ? shared::kDisplayMeaningOctNormal : shared::kDisplayMeaningHitNormal,
+                       spec.name == "oct-normal" ? "shading normal" : "hit normal", "",
+                       "a direction as colour: red +X, green +Y, blue +Z; 0.5 grey = 0, darker = negative; no surface: near black",
+                       false, false, {}};
+  if (spec.name == "sh-irradiance" && spec.companions.count("coCg") && spec.companions.count("normal"))
+    return MeaningView{shared::kDisplayMeaningShIrradiance, "irradiance at the pixel normal", "W/m^2",
+                       "what the SH resolves to at the G-buffer normal, over the range (black to white per channel)",
+                       true, false, {spec.companions.at("coCg"), spec.companions.at("normal")}};
+  return std::nullopt;
+}
+
+std::vector<float> meaningValues(const std::string& text, const graph::Readback& r,
+                                 const std::function<const graph::Readback*(const std::string&)>& companion) {
+  const auto view = meaningView(text);
+  if (!view || !view->fitted || r.extent.width == 0) return {};
+  const float none = std::numeric_limits<float>::quiet_NaN();
+  std::vector<float> out(size_t(r.extent.width) * r.extent.height, none);
+  if (view->meaning == shared::kDisplayMeaningHitDistance) {
+    for (uint32_t y = 0; y < r.extent.height; ++y)
+      for (uint32_t x = 0; x < r.extent.width; ++x) {
+        const uint32_t hit = uintAt(r, x, y, 0);
+        if (shared::tlRtIsHit(hit)) out[size_t(y) * r.extent.width + x] = shared::tlRtHitDistance(hit);
+      }
+    return out;
+  }
+  // SH irradiance: the probe's decoding, texel by texel.
+  for (const std::string& c : view->companions)
+    if (!companion || !companion(c)) return {};
+  const DecoderSpec spec = parseDecoderSpec(text);
+  for (uint32_t y = 0; y < r.extent.height; ++y)
+    for (uint32_t x = 0; x < r.extent.width; ++x) {
+      DecodeInput in{r, x, y, 0, companion, nullptr};
+      auto shY = floatsAt(r, x, y, 0);
+      auto coCg = companionAt(in, spec.companions.at("coCg"));
+      auto n = companionAt(in, spec.companions.at("normal"));
+      if (shY.size() < 4 || coCg.size() < 2 || n.size() < 2) continue;
+      const shared::ShLumaCoCg sh = shared::tlShMake(glm::vec4(shY[0], shY[1], shY[2], shY[3]), glm::vec2(coCg[0], coCg[1]));
+      const glm::vec3 e = shared::tlShResolveIrradiance(sh, shared::tlOctDecode(glm::vec2(n[0], n[1])));
+      out[size_t(y) * r.extent.width + x] = std::max({e.r, e.g, e.b});  // what the RGB display's range must hold
+    }
+  return out;
+}
+
+bool negativesInvalid(const std::string& text, VkFormat format) {
+  const std::string name = parseDecoderSpec(text).name;
+  if (name == "oct-normal" || name == "sh-irradiance" || name == "rt-hit-surface") return false;
+  switch (format) {
+    case VK_FORMAT_R8_SNORM: case VK_FORMAT_R8G8_SNORM: case VK_FORMAT_R8G8B8A8_SNORM: case VK_FORMAT_R16_SNORM:
+    case VK_FORMAT_R16G16_SNORM: case VK_FORMAT_R16G16B16A16_SNORM: return false;  // signed by choice
+    default: return true;
+  }
 }
 
 }  // namespace tl::lighting

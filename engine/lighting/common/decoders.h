@@ -19,6 +19,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -51,5 +52,30 @@ DecodedLines rawTexel(const graph::Readback& resource, uint32_t x, uint32_t y, u
 DecodedLines decodeTexel(const std::string& spec, const DecodeInput& input);
 // The resources a spec needs read back beside its own.
 std::vector<std::string> decoderCompanions(const std::string& spec);
+
+// What a decoded resource means, as the viewer shows it by default (its stored values stay
+// one click away): the quantity, its unit, how to read the colours, and how the display
+// maps it (shared/display.h kDisplayMeaning*).
+struct MeaningView {
+  uint32_t meaning = 0;                 // kDisplayMeaning*
+  std::string quantity;                 // "hit distance", "shading normal", ...
+  std::string unit;                     // "m"; empty for a direction
+  std::string legend;                   // how to read the colours
+  bool fitted = false;                  // over a range fitted to meaningValues (else fixed colours)
+  bool falseColour = false;             // a scalar through the false-colour ramp (its legend)
+  std::vector<std::string> companions;  // the display's companions A, B, by name
+};
+// None for a decoder whose stored values already read as what they mean (instance ids are
+// a colour per instance, per-instance albedo is a colour) or an unknown spec.
+std::optional<MeaningView> meaningView(const std::string& spec);
+// The meaning's value per texel of slice 0, row by row (a scalar: hit distance in metres,
+// irradiance luminance), NaN where there is none (a miss); for the range fit and the
+// histogram. Empty when the meaning is not fitted or a companion was not read back.
+std::vector<float> meaningValues(const std::string& spec, const graph::Readback& resource,
+                                 const std::function<const graph::Readback*(const std::string&)>& companion);
+// Whether a negative stored value is invalid in such a resource, so the viewer flags it:
+// not for directions (octahedral normals, SNORM data) nor SH coefficients, whose L1 terms
+// are signed; yes for radiance, irradiance, colours and the rest.
+bool negativesInvalid(const std::string& spec, VkFormat format);
 
 }  // namespace tl::lighting

@@ -21,7 +21,9 @@ void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w
       d.shader = shader;
       d.layout.bindings = {{shared::kDisplaySource, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                            {shared::kDisplayInstanceId, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                           {shared::kDisplayOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+                           {shared::kDisplayOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                           {shared::kDisplayCompanionA, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                           {shared::kDisplayCompanionB, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
       d.layout.pushConstantBytes = sizeof(shared::DisplayPush);
       return gpu::createComputePipeline(device, d);
     };
@@ -61,17 +63,34 @@ void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w
   push.rangeMax = request.rangeMax;
   push.window = request.window;
   push.flags = (request.falseColour ? shared::kDisplayFlagFalseColour : 0u) |
-               (request.highlightInvalid ? shared::kDisplayFlagHighlight : 0u) | shared::kDisplayFlagGrid;
+               (request.highlightInvalid ? shared::kDisplayFlagHighlight : 0u) |
+               (request.negativesValid ? shared::kDisplayFlagNegativesValid : 0u) | shared::kDisplayFlagGrid;
   push.slice = volume ? (float(std::min(request.slice, desc.extent.depth - 1)) + 0.5f) / float(desc.extent.depth) : 0.0f;
+  // A meaning needs its companions as 2D images of the frame; without them, the stored values.
+  std::vector<std::string> companions = request.companions;
+  bool companionsHere = !volume && source == requested;
+  for (const std::string& c : companions) {
+    auto cid = graph.find(c);
+    companionsHere &= cid && graph.resources()[*cid].desc.type == graph::ResourceType::Image &&
+                      graph.resources()[*cid].desc.extent.depth <= 1;
+  }
+  push.meaning = companionsHere && push.mode != shared::kDisplayModeFinal ? request.meaning : shared::kDisplayMeaningNone;
+  if (push.meaning == shared::kDisplayMeaningNone) companions.clear();
+  companions.resize(2);  // unused slots show the source (the shader reads them only for a meaning)
+  for (std::string& c : companions)
+    if (c.empty()) c = source;
   graph.addPass(
       "display", graph::PassKind::Compute,
       [&](graph::PassBuilder& b) {
         b.read(source, graph::Usage::Sampled);
         if (source != kGbufferChannels[5].name) b.read(kGbufferChannels[5].name, graph::Usage::Sampled);
+        for (size_t i = 0; i < companions.size(); ++i)
+          if (companions[i] != source && companions[i] != kGbufferChannels[5].name && (i == 0 || companions[i] != companions[0]))
+            b.read(companions[i], graph::Usage::Sampled);
         b.create(kDisplayLdr, graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "editor viewport image").displayReferred(),
                  graph::Usage::StorageWrite);
       },
-      [this, push, source, volume](graph::PassContext& ctx) {
+      [this, push, source, volume, companions](graph::PassContext& ctx) {
         const gpu::Pipeline& p = push.mode == shared::kDisplayModeId ? uintPipeline_ : volume ? float3dPipeline_ : floatPipeline_;
         const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
         ctx.bind(p);
@@ -79,7 +98,9 @@ void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w
         ctx.descriptors()
             .sampledImage(shared::kDisplaySource, ctx.image(source).view(), sampler_.handle(), ro)
             .sampledImage(shared::kDisplayInstanceId, ctx.image(kGbufferChannels[5].name).view(), sampler_.handle(), ro)
-            .storageImage(shared::kDisplayOutput, ctx.image(kDisplayLdr).view());
+            .storageImage(shared::kDisplayOutput, ctx.image(kDisplayLdr).view())
+            .sampledImage(shared::kDisplayCompanionA, ctx.image(companions[0]).view(), sampler_.handle(), ro)
+            .sampledImage(shared::kDisplayCompanionB, ctx.image(companions[1]).view(), sampler_.handle(), ro);
         ctx.dispatch(ctx.extent(kDisplayLdr).width, ctx.extent(kDisplayLdr).height);
       });
   graph.markOutput(kDisplayLdr);

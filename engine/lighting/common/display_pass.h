@@ -11,6 +11,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace tl::lighting {
 
@@ -25,10 +26,16 @@ struct DisplayRequest {
   uint32_t channel = 0;           // shared/display.h kDisplayChannel*
   bool falseColour = false;
   bool highlightInvalid = false;  // NaN, infinity, negative
+  bool negativesValid = false;    // with highlightInvalid: negatives are data (decoders.h negativesInvalid)
   glm::vec4 window{0.0f, 0.0f, 1.0f, 1.0f};  // the source's UV rectangle shown (zoom and pan)
   uint32_t slice = 0;             // 3D sources: which z slice
   bool keepCopy = false;          // this frame: copy the source to display.copyB ("B")
   bool showCopy = false;          // show display.copyB instead of the source
+  // What the source means instead of its stored values (shared/display.h kDisplayMeaning*,
+  // decoders.h meaningView), with the resources that meaning reads beside it (A, B). A
+  // companion the frame does not hold shows the stored values instead.
+  uint32_t meaning = 0;
+  std::vector<std::string> companions;
 };
 
 class DisplayPass {

@@ -1,0 +1,87 @@
+// The editor's undo history of render settings and lighting (session/edit_history.h): steps
+// by schema entry, drags folded, undo touching only what a step changed.
+#include "session/edit_history.h"
+
+#include <gtest/gtest.h>
+
+namespace tl::session {
+namespace {
+
+TEST(EditHistory, EverySchemaEntryUndoesAndRedoes) {
+  lighting::RenderSettings s;
+  Lighting l;
+  EditHistory h;
+  h.reset(s, l);
+  EXPECT_FALSE(h.observe(s, l, false)) << "nothing changed";
+  // Each panel setting of the schema, changed to another valid value, is one undoable step.
+  size_t checked = 0;
+  for (const lighting::SettingInfo& info : lighting::settingsSchema()) {
+    if (info.flags & lighting::kSettingNoPanel) continue;
+    const double before = info.get(s);
+    info.set(s, before == info.max ? info.min : info.max);
+    const double after = info.get(s);  // as stored (a float setting rounds)
+    ASSERT_TRUE(h.observe(s, l, false)) << info.name;
+    EXPECT_NE(h.undoLabel().find(std::string(info.name)), std::string::npos) << h.undoLabel();
+    ASSERT_TRUE(h.undo(s, l));
+    EXPECT_EQ(info.get(s), before) << info.name;
+    ASSERT_TRUE(h.redo(s, l));
+    EXPECT_EQ(info.get(s), after) << info.name;
+    ASSERT_TRUE(h.undo(s, l));
+    ++checked;
+  }
+  EXPECT_GT(checked, 40u);
+  EXPECT_FALSE(h.observe(s, l, false)) << "an undo is not a new edit";
+}
+
+TEST(EditHistory, ADragIsOneStepAndUndoLeavesOtherEntriesAlone) {
+  lighting::RenderSettings s;
+  Lighting l;
+  EditHistory h;
+  h.reset(s, l);
+  s.taaBlend = 0.2f;
+  h.observe(s, l, false);
+  s.taaBlend = 0.3f;
+  h.observe(s, l, true);  // the same drag
+  s.taaBlend = 0.4f;
+  h.observe(s, l, true);
+  EXPECT_EQ(h.steps(), 1u);
+  s.shadowMapSize = 512;
+  h.observe(s, l, true);  // another entry: a new step even while "continuing"
+  EXPECT_EQ(h.steps(), 2u);
+  s.width = 1234;  // the viewport resized: not an edit
+  EXPECT_FALSE(h.observe(s, l, false));
+  ASSERT_TRUE(h.undo(s, l));
+  EXPECT_EQ(s.shadowMapSize, 2048u);
+  EXPECT_FLOAT_EQ(s.taaBlend, 0.4f);
+  ASSERT_TRUE(h.undo(s, l));
+  EXPECT_FLOAT_EQ(s.taaBlend, lighting::RenderSettings{}.taaBlend) << "the drag as a whole";
+  EXPECT_EQ(s.width, 1234u) << "the image size is the viewport's";
+  EXPECT_FALSE(h.canUndo());
+  ASSERT_TRUE(h.redo(s, l));
+  EXPECT_FLOAT_EQ(s.taaBlend, 0.4f);
+  s.softShadows = false;
+  h.observe(s, l, false);
+  EXPECT_FALSE(h.canRedo()) << "a new edit drops the redo history";
+}
+
+TEST(EditHistory, LightingIsUndoneWithTheSettings) {
+  lighting::RenderSettings s;
+  Lighting l;
+  EditHistory h;
+  h.reset(s, l);
+  const Lighting before = l;
+  l.sunIrradiance = glm::vec3(3.0f);
+  l.exposureEv = 2.0f;
+  s.taa = true;
+  ASSERT_TRUE(h.observe(s, l, false));
+  EXPECT_NE(h.undoLabel().find("lighting"), std::string::npos);
+  ASSERT_TRUE(h.undo(s, l));
+  EXPECT_TRUE(sameLighting(l, before));
+  EXPECT_FALSE(s.taa);
+  ASSERT_TRUE(h.redo(s, l));
+  EXPECT_EQ(l.sunIrradiance, glm::vec3(3.0f));
+  EXPECT_TRUE(s.taa);
+}
+
+}  // namespace
+}  // namespace tl::session
