@@ -515,11 +515,12 @@ void EditorApp::announceScene() {
   showSceneWarnings_ = !s.warnings.empty();
   if (!s.warnings.empty())
     notify(fmt::format("{} import warning{}: View > Scene warnings", s.warnings.size(), s.warnings.size() == 1 ? "" : "s"));
-  // A file with no sun and nothing emissive would show only the uniform sky: flat. The
-  // editor (not a headless render, whose light is the file's) lights it with the default sun.
+  // A file with no light (no sun, no punctual light, nothing emissive) would show only the
+  // uniform sky: flat. The editor (not a headless render, whose light is the file's) lights it
+  // with the default sun.
   bool emissive = false;
   for (const auto& m : s.materials) emissive |= m.emissiveStrength * glm::length(m.emissiveFactor) > 0.0f;
-  if (!s.environment.sunFromFile && !emissive) {
+  if (!s.environment.sunFromFile && !emissive && s.lights.empty()) {
     session::Lighting l = session_->lighting();
     l.sunIrradiance = scene::Environment{}.sunIrradiance;
     session_->setLighting(l);
