@@ -214,6 +214,8 @@ class ReferencePath final : public LightingPath {
           readSceneInputs(b, graph::Usage::StorageRead);
           readStructures(b);
           b.read(kBrdfTables, graph::Usage::StorageRead);
+          if (in.constants.lightCount > 0) b.read(kLightTable, graph::Usage::StorageRead);
+          if (hasEnvironmentMap(in)) b.read(kEnvironmentTable, graph::Usage::StorageRead);
           b.read(kDepthAccum, graph::Usage::StorageRead);
           b.write(kDepthAccum, graph::Usage::StorageWrite);
           for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
@@ -237,7 +239,10 @@ class ReferencePath final : public LightingPath {
                         .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
                         .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
                         .storageImage(shared::kRefBindingDepthAccum, ctx.image(kDepthAccum).view())
-                        .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle());
+                        .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle())
+                        .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, ctx.buffer(kBrdfTables).handle()))
+                        .storageBuffer(shared::kBindingEnvironment,
+                                       environmentTableOrStandIn(ctx, in, ctx.buffer(kBrdfTables).handle()));
           for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
             d.storageImage(shared::kRefBindingDepth0 + g, ctx.image(names[g]).view());
           ctx.flushDescriptors();
@@ -357,7 +362,9 @@ class ReferencePath final : public LightingPath {
                            {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {shared::kRefBindingDepthAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {shared::kBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
       for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
         d.layout.bindings.push_back({shared::kRefBindingDepth0 + g, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
       depthPipeline_ = gpu::createRayTracingPipeline(in.device, d);

@@ -429,7 +429,7 @@ class RtPath final : public LightingPath {
         "rt.cache.update", graph::PassKind::RayTracing,
         [&](graph::PassBuilder& b) {
           readCommon(b);
-          readHitLighting(b, screenRadiance);
+          readHitLighting(b, screenRadiance, in);
           b.create(kRtCacheSamples, cache_.samplesDesc(in), Usage::StorageWrite);
           b.create(kRtCacheOutcomes, cache_.outcomesDesc(in), Usage::StorageWrite);
         },
@@ -438,7 +438,7 @@ class RtPath final : public LightingPath {
           p.screenRadiance = useScreenRadiance(ctx, push, screenRadiance && !restart_);
           ctx.bind(cacheUpdate_);
           ctx.pushConstants(p);
-          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance)
+          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance, in)
               .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
               .storageBuffer(shared::kRtBindingCacheSamples, ctx.buffer(kRtCacheSamples).handle())
               .storageBuffer(shared::kRtBindingCacheOutcomes, ctx.buffer(kRtCacheOutcomes).handle());
