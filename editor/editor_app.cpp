@@ -52,11 +52,11 @@ EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<s
   createWindow();
   initImgui();
   if (script) script_ = std::make_unique<Script>(*script);
-  // Edit a shader under shaders/ while the editor runs: it is recompiled and swapped in.
-  // An installed program without the source tree has none to watch.
+  // Edit a shader under shaders/ or a plugin's under plugins/ while the editor runs: it is
+  // recompiled and swapped in. An installed program without the source tree has none to watch.
   const std::filesystem::path shaderSources = gpu::shaderSourceDirectory();
   if (!shaderSources.empty() && std::filesystem::is_directory(shaderSources))
-    reloader_ = std::make_unique<gpu::ShaderReloader>(shaderSources);
+    reloader_ = std::make_unique<gpu::ShaderReloader>(shaderSources, std::filesystem::path(), gpu::pluginSourceDirectory());
   std::filesystem::path first = scene.value_or(gpu::contentDirectory() / "atrium.gltf");
   // `twinlight CAPTURE_FOLDER`: the capture's buffers, no scene at all.
   if (std::filesystem::exists(first / "manifest.json")) {

@@ -498,6 +498,7 @@ int runInfo() {
     auto add = [&](bool on, const char* what) {
       if (on) caps += fmt::format("{}{}", caps.empty() ? "" : ", ", what);
     };
+    add(p.plugin, "plugin");
     add(p.capabilities.isReference, "reference");
     add(p.capabilities.needsRayTracing, "needs ray tracing");
     add(p.capabilities.accumulates, "accumulates");
@@ -540,7 +541,7 @@ int main(int argc, char** argv) {
   RenderOptions render;
   auto* renderCmd = app.add_subcommand("render", "render a scene headless and save the image(s)");
   renderCmd->add_option("--scene", render.scene, "glTF file (.gltf/.glb); default content/atrium.gltf");
-  renderCmd->add_option("--path", render.path, "lighting path: direct, rt, reference (`twinlight info` lists them)");
+  renderCmd->add_option("--path", render.path, "lighting path (`twinlight info` lists them)");
   renderCmd->add_option("--frames", render.frames, "frames to render (the last one is saved)")
       ->check(CLI::Range(1u, kMaxFrames))
       ->capture_default_str();

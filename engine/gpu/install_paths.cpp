@@ -51,4 +51,11 @@ std::filesystem::path shaderSourceDirectory() {
   return std::filesystem::is_directory(source, ec) ? source : std::filesystem::path();
 }
 
+std::filesystem::path pluginSourceDirectory() {
+  if (auto env = fromEnvironment("TWINLIGHT_PLUGIN_SOURCES"); !env.empty()) return env;
+  const std::filesystem::path source = std::filesystem::path(TWINLIGHT_SOURCE_ROOT) / "plugins";
+  std::error_code ec;
+  return std::filesystem::is_directory(source, ec) ? source : std::filesystem::path();
+}
+
 }  // namespace tl::gpu

@@ -22,5 +22,8 @@ std::filesystem::path contentDirectory();
 // GLSL sources for hot reload: $TWINLIGHT_SHADER_SOURCES, else the source tree's shaders/
 // when it still exists; empty when there are none (an installed program without sources).
 std::filesystem::path shaderSourceDirectory();
+// Plugin sources for hot reload (their shaders/ folders): $TWINLIGHT_PLUGIN_SOURCES, else the
+// source tree's plugins/ when it exists; empty otherwise.
+std::filesystem::path pluginSourceDirectory();
 
 }  // namespace tl::gpu

@@ -79,10 +79,11 @@ void reportPipelineError(const std::string& pipeline, const std::string& message
   spdlog::error("pipeline `{}` kept its last good shaders: {}", pipeline, message);
 }
 
-ShaderReloader::ShaderReloader(std::filesystem::path sources, std::filesystem::path output)
-    : sources_(sources.empty() ? shaderSourceDirectory() : std::move(sources)),
+ShaderReloader::ShaderReloader(std::filesystem::path sources, std::filesystem::path output, std::filesystem::path plugins)
+    : sources_(sources.empty() ? shaderSourceDirectory() : sources),
       output_(output.empty() ? std::filesystem::temp_directory_path() / fmt::format("twinlight-shaders-{}", getpid())
-                             : std::move(output)) {
+                             : std::move(output)),
+      plugins_(plugins.empty() && sources.empty() ? pluginSourceDirectory() : std::move(plugins)) {
   setShaderOverrideDirectory(output_);
 }
 
@@ -96,17 +97,25 @@ ShaderReloader::~ShaderReloader() {
 ShaderReloadResult ShaderReloader::poll() {
   ShaderReloadResult result;
   std::set<std::filesystem::path> changed;
-  std::vector<std::filesystem::path> stages;
-  std::error_code ec;
-  for (auto it = std::filesystem::recursive_directory_iterator(sources_, ec); !ec && it != std::filesystem::recursive_directory_iterator();
-       it.increment(ec)) {
-    const std::filesystem::path p = it->path().lexically_normal();
-    if (!it->is_regular_file() || !isShaderSource(p)) continue;
-    const auto stamp = std::filesystem::last_write_time(p, ec);
-    auto [entry, added] = stamps_.try_emplace(p, stamp);
-    if (!added && entry->second != stamp) changed.insert(p), entry->second = stamp;
-    if (kStages.count(p.extension().string())) stages.push_back(p);
-  }
+  // Each stage with the shader path it compiles to: relative to shaders/, or for a plugin's,
+  // "plugins/" + its path relative to plugins/.
+  std::vector<std::pair<std::filesystem::path, std::string>> named;
+  auto scan = [&](const std::filesystem::path& root, const std::string& prefix) {
+    std::error_code ec;
+    if (root.empty()) return;
+    for (auto it = std::filesystem::recursive_directory_iterator(root, ec); !ec && it != std::filesystem::recursive_directory_iterator();
+         it.increment(ec)) {
+      const std::filesystem::path p = it->path().lexically_normal();
+      if (!it->is_regular_file() || !isShaderSource(p)) continue;
+      const auto stamp = std::filesystem::last_write_time(p, ec);
+      auto [entry, added] = stamps_.try_emplace(p, stamp);
+      if (!added && entry->second != stamp) changed.insert(p), entry->second = stamp;
+      if (kStages.count(p.extension().string()))
+        named.emplace_back(p, prefix + std::filesystem::relative(p, root).generic_string());
+    }
+  };
+  scan(sources_, "");
+  scan(plugins_, "plugins/");
   if (!primed_) {
     primed_ = true;
     return result;
@@ -114,11 +123,10 @@ ShaderReloadResult ShaderReloader::poll() {
   if (changed.empty()) return result;
 
   bool any = false;
-  for (const auto& stage : stages) {
+  for (const auto& [stage, relative] : named) {
     std::set<std::filesystem::path> deps{stage};
     includesOf(stage, sources_, deps);
     if (std::none_of(deps.begin(), deps.end(), [&](const auto& d) { return changed.count(d); })) continue;
-    const std::string relative = std::filesystem::relative(stage, sources_).generic_string();
     const std::string error = compile(stage, sources_, output_ / (relative + ".spv"));
     if (error.empty()) {
       compileErrors_.erase(relative);

@@ -29,7 +29,12 @@ struct ShaderReloadResult {
 class ShaderReloader {
  public:
   // `sources`: the shaders/ folder (default: the source tree's). `output`: where SPIR-V goes.
-  explicit ShaderReloader(std::filesystem::path sources = {}, std::filesystem::path output = {});
+  // `plugins`: a second source root, the plugins/ folder (default: the source tree's, when
+  // `sources` is the default too): a stage there, plugins/<name>/shaders/x.comp, is compiled
+  // to the shader path "plugins/<name>/shaders/x.comp" (as the build does, cmake/Shaders.cmake),
+  // with `sources` on its include path like every shader.
+  explicit ShaderReloader(std::filesystem::path sources = {}, std::filesystem::path output = {},
+                          std::filesystem::path plugins = {});
   // Back to the build's shaders: the override folder goes, pipelines rebuild from the build.
   ~ShaderReloader();
   ShaderReloader(const ShaderReloader&) = delete;
@@ -43,9 +48,10 @@ class ShaderReloader {
   // last successful reload).
   std::vector<std::string> errors() const;
   const std::filesystem::path& sources() const { return sources_; }
+  const std::filesystem::path& plugins() const { return plugins_; }
 
  private:
-  std::filesystem::path sources_, output_;
+  std::filesystem::path sources_, output_, plugins_;
   std::map<std::filesystem::path, std::filesystem::file_time_type> stamps_;
   std::map<std::string, std::string> compileErrors_;  // shader -> message
   bool primed_ = false;

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -78,11 +79,23 @@ class LightingPath {
 };
 
 // The lighting paths this build knows, in the order they are listed (the editor, `twinlight
-// info`, compare): the built-in ones, then any registered with registerLightingPath. The
-// session makes one of each; nothing else names them.
+// info`, compare): the built-in ones, then the plugins' (plugins/, registered with
+// registerLightingPath) in the order of their names. The session makes one of each; nothing
+// else names them.
 using LightingPathFactory = std::unique_ptr<LightingPath> (*)();
 const std::vector<LightingPathFactory>& lightingPathRegistry();
+// Adds a plugin's path (once per factory); its name must not be taken (std::logic_error).
+// Cheap to call before main(): the factory's path is made once, for its name, and dropped.
 void registerLightingPath(LightingPathFactory factory);
+// Whether the path of this name came from registerLightingPath (a plugin), not the engine.
+bool isPluginPath(std::string_view name);
+
+// A plugin registers its path from a static object in its own .cpp:
+//   static const LightingPathRegistrar registrar(makeMyPath);
+// (plugins/CMakeLists.txt links plugins WHOLE_ARCHIVE so that object file is kept.)
+struct LightingPathRegistrar {
+  explicit LightingPathRegistrar(LightingPathFactory factory) { registerLightingPath(factory); }
+};
 
 // Sun + sky without indirect light: the baseline every other path adds to.
 std::unique_ptr<LightingPath> makeDirectPath();

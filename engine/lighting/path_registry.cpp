@@ -1,11 +1,37 @@
 #include "lighting/lighting_path.h"
 
+#include <algorithm>
+#include <stdexcept>
+
 namespace tl::lighting {
 namespace {
 
-std::vector<LightingPathFactory>& registry() {
-  static std::vector<LightingPathFactory> paths = {makeDirectPath, makeLegacyPath, makeRtPath, makeReferencePath};
-  return paths;
+struct Entry {
+  LightingPathFactory make;
+  std::string name;
+  bool plugin;
+};
+
+// Function-local statics: plugins register from static initialisers, in whatever order the
+// linker runs them, so the table must exist before the first of them.
+std::vector<Entry>& entries() {
+  static std::vector<Entry> table = [] {
+    std::vector<Entry> t;
+    for (LightingPathFactory f : {makeDirectPath, makeLegacyPath, makeRtPath, makeReferencePath})
+      t.push_back({f, f()->name(), false});
+    return t;
+  }();
+  return table;
+}
+
+std::vector<LightingPathFactory>& factories() {
+  static std::vector<LightingPathFactory> list;
+  return list;
+}
+
+void rebuildFactories() {
+  factories().clear();
+  for (const Entry& e : entries()) factories().push_back(e.make);
 }
 
 }  // namespace
@@ -16,12 +42,28 @@ std::optional<std::string> LightingPath::unavailableReason(const gpu::Device& de
   return std::nullopt;
 }
 
-const std::vector<LightingPathFactory>& lightingPathRegistry() { return registry(); }
+const std::vector<LightingPathFactory>& lightingPathRegistry() {
+  if (factories().size() != entries().size()) rebuildFactories();
+  return factories();
+}
 
 void registerLightingPath(LightingPathFactory factory) {
-  for (LightingPathFactory f : registry())
-    if (f == factory) return;
-  registry().push_back(factory);
+  auto& table = entries();
+  for (const Entry& e : table)
+    if (e.make == factory) return;
+  std::string name = factory()->name();
+  for (const Entry& e : table)
+    if (e.name == name) throw std::logic_error("two lighting paths are named `" + name + "`");
+  // Plugins after the built-ins, by name: the same order whatever order the linker chose.
+  auto at = std::find_if(table.begin(), table.end(), [&](const Entry& e) { return e.plugin && e.name > name; });
+  table.insert(at, {factory, std::move(name), true});
+  rebuildFactories();
+}
+
+bool isPluginPath(std::string_view name) {
+  for (const Entry& e : entries())
+    if (e.name == name) return e.plugin;
+  return false;
 }
 
 }  // namespace tl::lighting

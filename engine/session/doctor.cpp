@@ -100,9 +100,9 @@ DoctorReport runDoctor(Session& session, const DoctorOptions& o) {
   // The reference first: the others' energy is measured against it.
   std::vector<std::string> order;
   for (const auto& p : session.paths())
-    if (p.available && p.name == "reference") order.push_back(p.name);
+    if (p.available && p.capabilities.isReference) order.push_back(p.name);
   for (const auto& p : session.paths())
-    if (p.available && p.name != "reference") order.push_back(p.name);
+    if (p.available && !p.capabilities.isReference) order.push_back(p.name);
 
   std::optional<double> referenceMean;
   for (const std::string& name : order) {
@@ -112,7 +112,7 @@ DoctorReport runDoctor(Session& session, const DoctorOptions& o) {
     session.setPath(name);
     session.setView(startView);
     session.settings() = startSettings;
-    const bool reference = name == "reference";
+    const bool reference = name == session.referencePath();
     if (reference) session.settings().referenceSamplesPerFrame = std::min(o.referenceSpp, 16u);
     const uint32_t frames = reference ? std::max(1u, (o.referenceSpp + 15) / 16) : std::max(1u, o.frames);
     session.resetHistory();

@@ -146,7 +146,8 @@ std::vector<PathInfo> Session::paths() const {
   std::vector<PathInfo> out;
   for (auto& p : paths_) {
     auto reason = p->unavailableReason(*device_);
-    out.push_back({p->name(), p->description(), !reason, reason.value_or(""), p->capabilities()});
+    out.push_back({p->name(), p->description(), !reason, reason.value_or(""), p->capabilities(),
+                   lighting::isPluginPath(p->name())});
   }
   return out;
 }

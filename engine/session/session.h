@@ -63,6 +63,7 @@ struct PathInfo {
   bool available = true;
   std::string unavailableReason;
   lighting::PathCapabilities capabilities;
+  bool plugin = false;  // from plugins/ (lighting::registerLightingPath), not built in
 };
 
 class Session {

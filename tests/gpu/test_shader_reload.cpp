@@ -77,5 +77,25 @@ TEST_F(GpuTest, ABrokenShaderReportsFileAndLineAndKeepsRendering) {
   fs::remove_all(root);
 }
 
+// A plugin's shaders are the second source root: an edited one is recompiled to the shader
+// path its pipeline loads (plugins/<name>/shaders/<file>), with shaders/ on its include path.
+TEST(ShaderReload, PluginShadersAreASecondSourceRoot) {
+  const fs::path root = fs::temp_directory_path() / "twinlight-reload-plugin-test";
+  fs::remove_all(root);
+  fs::create_directories(root);
+  fs::copy(fs::path(TWINLIGHT_SOURCE_ROOT) / "plugins", root / "plugins", fs::copy_options::recursive);
+  const fs::path grey = root / "plugins" / "ao_debug" / "shaders" / "ao_grey.comp";
+  {
+    gpu::ShaderReloader reloader(fs::path(TWINLIGHT_SOURCE_ROOT) / "shaders", root / "spv", root / "plugins");
+    EXPECT_TRUE(reloader.poll().recompiled.empty()) << "the first poll only records";
+    rewrite(grey, readText(grey) + "\n// edited\n");
+    gpu::ShaderReloadResult r = reloader.poll();
+    EXPECT_TRUE(r.errors.empty()) << (r.errors.empty() ? "" : r.errors[0]);
+    EXPECT_EQ(r.recompiled, std::vector<std::string>{"plugins/ao_debug/shaders/ao_grey.comp"});
+    EXPECT_TRUE(fs::exists(root / "spv" / "plugins" / "ao_debug" / "shaders" / "ao_grey.comp.spv"));
+  }
+  fs::remove_all(root);
+}
+
 }  // namespace
 }  // namespace tl::test

@@ -67,7 +67,7 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(float, rtSimplifyRatio, 0.25f, 0.01f, 1.0f, "x", "rt", "rt", kSettingPlain, "RT (BLAS) mesh triangles / source triangles (Metro: about 4x fewer); 1 = the full mesh") \
   X(float, rtSimplifyError, 0.01f, 0.0f, 1.0f, "x size", "rt", "rt", kSettingPlain, "largest deviation the simplifier may introduce, as a fraction of the mesh's size") \
   X(float, rtAoRadius, 0.0f, 0.0f, 1e6f, "m", "rt", "rt reference", kSettingAuto, "RTAO radius: a hit closer than this occludes (also the reference's AO)") \
-  X(float, rtRayLength, 0.0f, 0.0f, 1e6f, "m", "rt", "rt", kSettingAuto, "GI rays stop after this distance; also the top level's culling margin") \
+  X(float, rtRayLength, 0.0f, 0.0f, 1e6f, "m", "rt", "rt bentsky", kSettingAuto, "GI rays stop after this distance; also the top level's culling margin") \
   X(float, rtBlendDistance, 0.0f, 0.0f, 1e6f, "m", "rt", "rt", kSettingAuto, "beyond this view distance RT GI fades to the far field (Metro: 250 m); the top level culls instances beyond it") \
   X(bool, rtFarLegacy, true, 0, 1, "", "rt", "", kSettingPlain, "the far field beyond the blend distance is the legacy path's voxel GI (Metro), else the unoccluded sky") \
   X(bool, rtPretrace, true, 0, 1, "", "rt", "rt", kSettingPlain, "screen-space pre-trace: march the depth buffer first, real rays only where it finds nothing") \
@@ -99,6 +99,8 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(uint32_t, rtRefitRandom, 4, 0, 65536, "meshes", "rt", "", kSettingPlain, "plus this many others drawn at random, so none waits forever (Metro: 4)") \
   X(uint32_t, rtRefitVertexBudget, 1u << 20, 0, 1u << 30, "vertices", "rt", "", kSettingPlain, "vertices refitted per frame at most (the first pick always goes)") \
   X(bool, rtRawRayProbe, false, 0, 1, "", "rt", "", kSettingNoPanel, "benchmark: also trace the same rays with a trivial kernel (rt.rawRays; bench --rays)") \
+  X(uint32_t, bentSkyRays, 4, 1, 64, "rays", "bentsky", "bentsky", kSettingPlain, "bentsky plugin: sky-visibility rays per pixel and frame (cosine-distributed, as long as rtRayLength)") \
+  X(uint32_t, bentSkyMaxFrames, 32, 1, 1024, "frames", "bentsky", "", kSettingPlain, "bentsky plugin: accumulation window while the view holds still") \
   X(float, legacyAoRadius, 0.0f, 0.0f, 1e6f, "m", "legacy", "legacy", kSettingAuto, "reach of SSAO and voxel AO") \
   X(float, legacyAoThickness, 0.1f, 0.0f, 1.0f, "", "legacy", "legacy", kSettingPlain, "GTAO thickness heuristic: how fast a horizon falls back behind thin occluders (0 infinitely thick, 1 paper thin)") \
   X(uint32_t, legacyAoSlices, 1, 1, 16, "slices", "legacy", "legacy", kSettingPlain, "GTAO slice directions per pixel and frame (the 2x2 interleave and the accumulation supply more)") \
