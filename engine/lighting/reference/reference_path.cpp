@@ -259,10 +259,11 @@ class ReferencePath final : public LightingPath {
     geometry_ = gpu::Buffer(in.device, table.size() * sizeof(table[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                             gpu::MemoryUsage::Upload, "reference.instanceGeometry");
     geometry_.write(table.data(), table.size() * sizeof(table[0]));
-    // The pipelines' layouts name this scene's descriptor-table layout, which goes with the
-    // scene: built again for each scene (a shader reload rebuilds them from this description,
-    // so a layout of a scene since unloaded would be used after it was destroyed).
-    {
+    // The pipelines' layouts name the scene table's layout, which is the device's and the same
+    // for every scene (gpu::Device::sharedSetLayout): built once, not with each scene (on
+    // lavapipe each takes tens of seconds to compile), and again only if that layout changes.
+    if (pipelinesSceneLayout_ != in.scene.table().layout()) {
+      pipelinesSceneLayout_ = in.scene.table().layout();
       gpu::RayTracingPipelineDesc d;
       d.name = "reference.trace";
       d.raygen = kRaygen;
@@ -411,6 +412,7 @@ class ReferencePath final : public LightingPath {
   }
 
   uint64_t sceneId_ = 0;
+  VkDescriptorSetLayout pipelinesSceneLayout_ = VK_NULL_HANDLE;  // the scene-table layout the pipelines were built on
   std::vector<gpu::AccelerationStructure> blas_;
   std::vector<uint64_t> blasVersion_;  // per mesh: the vertex version its bottom level holds
   gpu::Buffer deformingStorage_;       // the deforming meshes' bottom levels, side by side
