@@ -98,6 +98,7 @@ class RtPath final : public LightingPath {
     push.emitterCount = s.rtEmitterSampling ? scene_->emitterCount() : 0u;
     push.cameraWorld = glm::vec4(glm::vec3(in.cameraWorld), 0.0f);
     cache_.plan(in, push, scale, scene_->maxEmitterRadiance());
+    push.maxAccumFrames = cache_.temporalWindow(push.maxAccumFrames);
 
     for (int i = 0; i < 4; ++i) graph.declarePersistent(histNames[i], histDescs[i]);
     const bool screenRadiance = s.rtScreenRadiance;
