@@ -1,12 +1,11 @@
 // The lighting sidecar (session/lighting_file.h) and colour temperature (scene/color_temperature.h):
 // a file written and read back is the same lighting and the same text; every bad value is one
 // error naming the key; black-body colours against the CIE's published chromaticities.
+#include "../common/temp_dir.h"
 #include "scene/color_temperature.h"
 #include "session/lighting_file.h"
 
-#include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -54,9 +53,8 @@ TEST(ColorTemperature, SixtyFiveHundredKelvinIsNearWhiteAndTheRgbHasLuminanceOne
 
 class LightingFileTest : public ::testing::Test {
  protected:
-  fs::path dir = fs::temp_directory_path() / fmt::format("tl_lighting_file_{}", ::getpid());
-  void SetUp() override { fs::create_directories(dir); }
-  void TearDown() override { fs::remove_all(dir); }
+  test::TempDir scratch;
+  const fs::path& dir = scratch.path;
   fs::path write(const std::string& name, const std::string& text) {
     const fs::path p = dir / name;
     std::ofstream(p) << text;
