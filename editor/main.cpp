@@ -8,6 +8,7 @@
 #include "compare_cameras.h"
 #include "session/capture.h"
 #include "cli_args.h"
+#include "session/lighting_file.h"
 #include "cli_output.h"
 #include "editor_app.h"
 #include "gpu/install_paths.h"
@@ -106,6 +107,12 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--look-from", o.view.lookFrom, "camera position x,y,z (metres, y up)");
   cmd.add_option("--look-at", o.view.lookAt, "point the camera looks at, x,y,z");
   cmd.add_option("--fov", o.view.fovDegrees, "vertical field of view in degrees");
+  cmd.add_option("--lighting", o.light.lighting,
+                 "lighting file (SCENE.lighting.json: sun, sky, environment, exposure, punctual lights) in place of the "
+                 "scene's own; the light options below win over it");
+  cmd.add_option("--save-lighting", o.light.saveLighting,
+                 "write the lighting this command renders with (the scene's lights, --lighting and every light option) "
+                 "to a lighting file");
   cmd.add_option("--sun-dir", o.light.sunDir, "direction sunlight travels, x,y,z");
   cmd.add_option("--sun", o.light.sun, "sun irradiance E (W/m^2-like; white Lambertian facing it shows E/pi), E or r,g,b");
   cmd.add_option("--sky", o.light.sky, "uniform sky radiance L, L or r,g,b");
@@ -216,6 +223,7 @@ void prepareSession(Session& session, const RenderOptions& o) {
     light.sunAngularRadius = glm::radians(*o.sunSizeDegrees);
     session.setLighting(light);
   }
+  if (!o.light.saveLighting.empty()) tl::session::writeLightingFile(o.light.saveLighting, session.lighting());
   session.setAnimationTime(o.time);
   session.setAnimationStep(o.animateFps ? 1.0 / *o.animateFps : 0.0);
 }

@@ -27,7 +27,7 @@ layout(location = 1) rayPayloadEXT float visible;
 // from gLightStart (the includes below need them declared first).
 vec3 gLightStart, gLightNormal, gLightAlbedo;
 float unoccluded(vec3 start, vec3 direction, float tMax);
-float lightVisibility(vec3 toLight, float distance) {
+float lightVisibility(uint light, vec3 toLight, float distance) {
   return unoccluded(gLightStart, toLight, distance >= 1e29 ? 1e30 : distance * (1.0 - 1e-4));
 }
 vec3 lightResponse(vec3 toLight) { return gLightAlbedo * (kInvPi * max(dot(gLightNormal, toLight), 0.0)); }

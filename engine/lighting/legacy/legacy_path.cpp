@@ -14,6 +14,7 @@
 #include "lighting/legacy/voxel_regions.h"
 #include "lighting/lighting_path.h"
 #include "lighting/common/light_table.h"
+#include "lighting/common/light_shadows.h"
 #include "lighting/common/lights_pass.h"
 #include "shared/scene.h"
 
@@ -274,6 +275,10 @@ class LegacyPath final : public LightingPath {
           readSceneInputs(b, Usage::StorageRead);  // voxelize.vert fetches whole triangles
           b.read(shadow, Usage::Sampled);
           if (in.constants.lightCount > 0) b.read(kLightTable, Usage::StorageRead);
+          if (in.lightShadowViews > 0) {
+            b.read(kLightShadowViews, Usage::StorageRead);
+            b.read(kLightShadowAtlas, Usage::Sampled);
+          }
           if (feedback) {
             b.read(kLegacyHistRadiance, Usage::Sampled);
             b.read(kLegacyHistDepth, Usage::Sampled);
@@ -323,6 +328,12 @@ class LegacyPath final : public LightingPath {
                 .storageBuffer(shared::kLegacyBindingVertices, in.scene.vertexBuffer().handle())
                 .storageBuffer(shared::kLegacyBindingIndices, in.scene.indexBuffer().handle())
                 .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, in.scene.indexBuffer().handle()))
+                // Without light shadow maps, stand-ins no light points to: the index buffer, the sun's map.
+                .storageBuffer(shared::kBindingLightShadowViews, in.lightShadowViews > 0 ? ctx.buffer(kLightShadowViews).handle()
+                                                                                          : in.scene.indexBuffer().handle())
+                .sampledImage(shared::kBindingLightShadowAtlas,
+                              ctx.image(in.lightShadowViews > 0 ? std::string(kLightShadowAtlas) : std::string(shadow)).view(),
+                              shadowSampler_.handle(), kReadOnly)
                 // Without feedback the bindings still need images: the G-buffer depth stands in, unread.
                 .sampledImage(shared::kLegacyBindingPrevRadiance, ctx.image(feedback ? kLegacyHistRadiance : kGbufferDepth).view(),
                               point_.handle(), kReadOnly)
@@ -609,7 +620,9 @@ class LegacyPath final : public LightingPath {
                          {shared::kLegacyBindingPrevDepth, sampled},
                          {shared::kLegacyBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                          {shared::kLegacyBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                         {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+                         {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                         {shared::kBindingLightShadowViews, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                         {shared::kBindingLightShadowAtlas, sampled}};
     d.layout.extraSets = {in.scene.table().layout()};
     d.layout.pushConstantBytes = sizeof(LegacyVoxelPush);
     // No vertex input: voxelize.vert fetches the vertices itself.
