@@ -315,8 +315,8 @@ void EditorApp::handleCameraInput(float seconds) {
     const glm::vec4 before = viewerWindow(viewer_);
     const glm::vec2 texel = glm::vec2(before) + uv * glm::vec2(before.z, before.w);
     viewer_.zoom = std::clamp(viewer_.zoom * std::exp2(0.25f * io.MouseWheel), 1.0f, 256.0f);
-    const float size = 1.0f / viewer_.zoom;
-    viewer_.centre = texel - (uv - 0.5f) * size;
+    const glm::vec4 after = viewerWindow(viewer_);
+    viewer_.centre = texel - (uv - 0.5f) * glm::vec2(after.z, after.w);
   }
   const bool flying = ImGui::IsMouseDown(1) && viewportHovered_;
   if (flying) {

@@ -364,6 +364,29 @@ void Script::step(EditorApp& app) {
         app.viewer().zoom = z, app.viewer().centre = glm::vec2(u, v);
       } else if (cmd == "view-slice") {
         app.viewer().slice = uint32_t(std::stoul(arg));
+      } else if (cmd == "expect-slice" || cmd == "expect-square-texels") {
+        const graph::PhysicalInfo* info = nullptr;
+        for (const auto& r : app.session().resources())
+          if (r.name == app.viewer().resource) info = &r;
+        if (!info) return fail(app, fmt::format("`{}` is not a resource of the frame", app.viewer().resource));
+        const VkExtent3D e = info->desc.extent;
+        if (cmd == "expect-slice") {
+          const std::string shown = lighting::sliceMeaning(info->desc.decoder, e, app.viewer().slice);
+          if (e.depth <= 1 || shown != arg)
+            return fail(app, fmt::format("expected `{}`'s slice to read `{}`, but it reads `{}`", info->name, arg,
+                                         e.depth > 1 ? shown : "nothing: it is 2D"));
+          fmt::print("script: `{}` slice {}: {}\n", info->name, app.viewer().slice, shown);
+        } else {
+          // A texel's width and height on screen, from the window the viewer shows.
+          const glm::vec4 w = viewerWindow(app.viewer());
+          const glm::vec2 viewport = app.viewportSize();
+          const float texelW = viewport.x / (w.z * float(e.width)), texelH = viewport.y / (w.w * float(e.height));
+          if (!(std::abs(texelW / texelH - 1.0f) < 0.01f))
+            return fail(app, fmt::format("`{}` ({}x{}) shows texels {:.3f} x {:.3f} px: not square", info->name, e.width,
+                                         e.height, texelW, texelH));
+          fmt::print("script: `{}` ({}x{}) shows square texels of {:.3f} px, window {:.3f} x {:.3f} of the image\n", info->name,
+                     e.width, e.height, texelW, w.z, w.w);
+        }
       } else if (cmd == "view-probe") {
         unsigned x, y;
         if (std::sscanf(arg.c_str(), "%u %u", &x, &y) != 2) return fail(app, "view-probe needs X Y");

@@ -36,6 +36,9 @@
 //   expect-meaning TEXT    fail unless the viewer shows a meaning containing TEXT (`stored values`
 //                          when raw), with its range fitted; prints the range
 //   view-false-colour on|off, view-zoom Z U V (zoom Z around source UV), view-slice N
+//   expect-slice TEXT      fail unless the 3D image's slice is named TEXT ("level 1, world z voxel 5 of 64")
+//   expect-square-texels   fail unless the viewed resource's texels show square in the viewport
+//                          (its true aspect); prints the shown window
 //   keep-b, show-b on|off  A/B against a kept copy
 //   view-probe X Y         probe texel (X, Y) as if hovered
 //   expect-probe X Y TEXT  fail unless texel (X, Y)'s raw or decoded lines contain TEXT (or one of A|B)
