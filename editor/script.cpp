@@ -12,6 +12,7 @@
 #include <GLFW/glfw3.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <map>
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 namespace tl::editor {
 namespace {
@@ -81,6 +83,26 @@ void Script::step(EditorApp& app) {
                  double(frames) / seconds, frames, double(engine) / seconds, engine, 1000.0 * app.shownFrameAge(),
                  1000.0 * cpu / double(std::max<uint64_t>(frames, 1)), 100.0 * processCpu / seconds,
                  app.session().settings().width, app.session().settings().height, path, app.session().device().name());
+      // Where the frames went: the UI thread's wall time by phase, then CPU by thread group
+      // (the engine's threads run at a lower priority and are marked so), per UI frame.
+      const FrameProfile& p = app.frameProfile();
+      const double perFrame = 1000.0 / double(std::max<uint64_t>(frames, 1));
+      fmt::print("editor: a UI frame's wall time: input {:.1f} ms, panels {:.1f} ms, present {:.1f} ms, pacing sleep {:.1f} ms\n",
+                 perFrame * (p.input - measureProfile_.input), perFrame * (p.panels - measureProfile_.panels),
+                 perFrame * (p.present - measureProfile_.present), perFrame * (p.sleep - measureProfile_.sleep));
+      std::vector<std::pair<double, std::string>> threads;
+      for (const auto& [group, cpuNow] : threadCpuByGroup()) {
+        auto before = measureThreads_.find(group);
+        const double used = cpuNow - (before == measureThreads_.end() ? 0.0 : before->second);
+        if (used > 0.0) threads.push_back({used, group});
+      }
+      std::sort(threads.rbegin(), threads.rend());
+      std::string list;
+      for (const auto& [used, group] : threads) list += fmt::format("{}{} {:.1f}", list.empty() ? "" : ", ", group, perFrame * used);
+      double load[3] = {};
+      std::ifstream("/proc/loadavg") >> load[0] >> load[1] >> load[2];
+      fmt::print("editor: CPU ms a UI frame by thread: {}; machine load {:.1f} on {} CPUs\n", list, load[0],
+                 std::thread::hardware_concurrency());
     }
     return;
   }
@@ -198,6 +220,8 @@ void Script::step(EditorApp& app) {
         measureEngineStart_ = app.engineFramesDone();
         measureCpu_ = threadCpuSeconds();
         measureProcessCpu_ = processCpuSeconds();
+        measureThreads_ = threadCpuByGroup();
+        measureProfile_ = app.frameProfile();
         measureSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
         return;
       } else if (cmd == "screenshot") {

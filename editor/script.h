@@ -75,10 +75,13 @@
 //   quit
 #pragma once
 
+#include "frame_profile.h"
+
 #include <glm/glm.hpp>
 
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -104,6 +107,8 @@ class Script {
   int captureWaitFrames_ = 0;
   uint64_t measureEngineStart_ = 0;
   double measureCpu_ = 0.0, measureProcessCpu_ = 0.0;
+  std::map<std::string, double> measureThreads_;  // frame_profile.h, at the start of `measure`
+  FrameProfile measureProfile_;
   bool waitLoaded_ = false;
   bool waitBake_ = false;
   std::string waitShaderError_;
