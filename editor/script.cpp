@@ -533,6 +533,12 @@ void Script::step(EditorApp& app) {
         if (std::sscanf(arg.c_str(), "%f %f", &x, &y) != 2) return fail(app, "mouse-click needs X Y");
         app.input().click({x, y});
         return;
+      } else if (cmd == "mouse-wheel") {
+        float x, y, steps;
+        if (std::sscanf(arg.c_str(), "%f %f %f", &x, &y, &steps) != 3) return fail(app, "mouse-wheel needs X Y STEPS");
+        app.input().push({InputEvent::Kind::Move, {x, y}});
+        app.input().push({InputEvent::Kind::Wheel, {}, 0, false, {0.0f, steps}});
+        return;
       } else if (cmd == "click-ui" || cmd == "double-click-ui") {
         const auto item = trackedItem(arg);
         if (!item) return fail(app, fmt::format("no control `{}` on screen", arg));

@@ -57,6 +57,7 @@
 //                          among its causes, and now holds fewer samples than it did then
 //   mouse-click X Y        a person's left click at window pixel (X, Y), through the window's input
 //   click-ui NAME, double-click-ui NAME   the same on a named control (ui_helpers.h trackItem)
+//   mouse-wheel X Y STEPS  the wheel turned STEPS (negative: down, scrolls a panel's contents up) at (X, Y)
 //   key [ctrl+][shift+]K   a quick tap of key K (F1, Z, Enter, ...), pressed and released in one frame
 //   type TEXT              characters typed into the focused text field
 //   expect-compare-mode M  fail unless the compare view shows M (wipe or difference)
