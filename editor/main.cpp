@@ -779,11 +779,11 @@ int main(int argc, char** argv) {
       for (std::string p; std::getline(list, p, ',');)
         if (!p.empty()) compare.paths.push_back(p);
       if (comparePresets) {
-        // Each preset of the listed paths is a configuration ("rt Fast"); Balanced is the
+        // Each preset of the listed paths is a configuration ("rt-Fast"); Balanced is the
         // path at its defaults, so the paths are not measured a second time on their own.
         for (const tl::session::Preset& p : tl::session::builtInPresets())
           if (compare.paths.empty() || std::count(compare.paths.begin(), compare.paths.end(), p.path))
-            compare.variants.push_back({p.path + " " + p.name, p.path, tl::session::presetSettingsJson(p)});
+            compare.variants.push_back({p.path + "-" + p.name, p.path, tl::session::presetSettingsJson(p)});
         if (compare.variants.empty()) throw UsageError("--presets: no built-in preset is for the --paths given");
         compare.paths.clear();
       }
