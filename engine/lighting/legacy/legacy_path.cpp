@@ -111,7 +111,8 @@ class LegacyPath final : public LightingPath {
         [&](graph::PassBuilder& b) {
           readCommon(b);
           b.create(kLegacyAoRaw,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, aw, ah, "GTAO visibility (r) and view depth (g), 1/aoDivisor"),
+                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, aw, ah, "GTAO visibility (r) and view depth (g), 1/aoDivisor")
+                       .decodedAs("ao"),
                    Usage::StorageWrite);
         },
         [this, &in, push, aw, ah](graph::PassContext& ctx) {
@@ -128,7 +129,7 @@ class LegacyPath final : public LightingPath {
     const graph::ResourceDesc voxelDesc = graph::ResourceDesc::image3D(
         VK_FORMAT_R16G16B16A16_SFLOAT, 6 * R, R, N * R,
         fmt::format("voxels per face (+x -x +y -y +z -z blocks along x): radiance, opacity; {} level(s) of {}^3 stacked in z",
-                    N, R));
+                    N, R)).decodedAs("voxel-faces");
     const graph::ResourceDesc voxelMipsDesc =
         graph::ResourceDesc::image3D(VK_FORMAT_R16G16B16A16_SFLOAT, 3 * R, R / 2, N * R / 2,
                                      "voxels per face, mips 1.. (front-to-back along each face's axis)", mips);
@@ -163,7 +164,8 @@ class LegacyPath final : public LightingPath {
           for (const char* n : {kLegacyAoRaw, kLegacyHistSsao, "gbuffer.motion"}) b.read(n, Usage::Sampled);
           b.create(kLegacySsao,
                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, aw, ah,
-                                                "GTAO accumulated over frames (r), view depth (g), frames (b), 1/aoDivisor"),
+                                                "GTAO accumulated over frames (r), view depth (g), frames (b), 1/aoDivisor")
+                       .decodedAs("ao"),
                    Usage::StorageWrite);
         },
         [this, &in, push, aw, ah](graph::PassContext& ctx) {
@@ -223,7 +225,7 @@ class LegacyPath final : public LightingPath {
         [&](graph::PassBuilder& b) {
           readCommon(b);
           for (const char* n : {kLegacySsao, kConeShY, kConeCoCgAo}) b.read(n, Usage::Sampled);
-          b.create(kLegacyAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO"), Usage::StorageWrite);
+          b.create(kLegacyAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO").decodedAs("ao"), Usage::StorageWrite);
           b.create(kLegacyShY,
                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "diffuse irradiance, SH luma")
                        .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kLegacyCoCg)),

@@ -89,7 +89,8 @@ class ReferencePath final : public LightingPath {
           b.read(kAoAccum, graph::Usage::StorageRead);
           b.write(kAoAccum, graph::Usage::StorageWrite);
           b.create(kAo, graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
-                                                     "ambient occlusion at the AO radius (cosine-weighted), ground truth"),
+                                                     "ambient occlusion at the AO radius (cosine-weighted), ground truth")
+                       .decodedAs("ao"),
                    graph::Usage::StorageWrite);
           b.create(kRadiance, graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "path-traced radiance"),
                    graph::Usage::StorageWrite);

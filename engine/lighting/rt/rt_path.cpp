@@ -180,7 +180,7 @@ class RtPath final : public LightingPath {
           readCommon(b);
           b.read(accCoCgAo, Usage::Sampled);
           b.read(kViewDepth, Usage::Sampled);
-          b.create(kAo, image(VK_FORMAT_R16_SFLOAT, "filtered ambient occlusion"), Usage::StorageWrite);
+          b.create(kAo, image(VK_FORMAT_R16_SFLOAT, "filtered ambient occlusion").decodedAs("ao"), Usage::StorageWrite);
         },
         [this, &in, push, accCoCgAo](graph::PassContext& ctx) {
           ctx.bind(aoFilter_);
