@@ -100,13 +100,50 @@ bool readPixels(OIIO::ImageInput& in, int ch, OIIO::TypeDesc want, void* out) {
 
 }  // namespace
 
+std::vector<uint8_t> jpegWithoutMetadata(const std::vector<uint8_t>& bytes) {
+  const size_t n = bytes.size();
+  std::vector<uint8_t> out(bytes.begin(), bytes.begin() + std::min<size_t>(n, 2));  // SOI
+  size_t pos = 2;
+  while (pos < n) {
+    while (pos < n && bytes[pos] != 0xFF) ++pos;  // libjpeg skips bytes between segments
+    while (pos < n && bytes[pos] == 0xFF) ++pos;  // fill bytes
+    if (pos >= n) break;
+    const uint8_t marker = bytes[pos++];
+    if (marker == 0x00) continue;  // a stuffed zero: not a marker
+    if (marker == 0xDA || marker == 0xD9) {  // start of scan, end of image: the rest as it is
+      out.push_back(0xFF);
+      out.push_back(marker);
+      out.insert(out.end(), bytes.begin() + ptrdiff_t(pos), bytes.end());
+      return out;
+    }
+    const bool standalone = marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7);
+    size_t end = pos;
+    if (!standalone) {
+      const size_t length = pos + 2 <= n ? (size_t(bytes[pos]) << 8 | bytes[pos + 1]) : 0;
+      end = std::min(n, pos + 2 + (length >= 2 ? length - 2 : 0));
+    }
+    const bool metadata = (marker >= 0xE1 && marker <= 0xEF && marker != 0xEE) || marker == 0xFE;
+    if (!metadata) {
+      out.push_back(0xFF);
+      out.push_back(marker);
+      out.insert(out.end(), bytes.begin() + ptrdiff_t(pos), bytes.begin() + ptrdiff_t(end));
+    }
+    pos = end;
+  }
+  return out;
+}
+
 bool decodeImage(const std::vector<uint8_t>& bytes, Texture& t, std::string& error) {
   const char* format = formatOf(bytes);
   if (!format) {
     error = "neither PNG, JPEG, OpenEXR nor Radiance HDR";
     return false;
   }
-  OIIO::Filesystem::IOMemReader reader(const_cast<uint8_t*>(bytes.data()), bytes.size());
+  // A JPEG's metadata never reaches OpenImageIO's parsers (jpegWithoutMetadata says why).
+  const bool jpeg = std::strcmp(format, "jpeg") == 0;
+  const std::vector<uint8_t> stripped = jpeg ? jpegWithoutMetadata(bytes) : std::vector<uint8_t>();
+  const std::vector<uint8_t>& decoded = jpeg ? stripped : bytes;
+  OIIO::Filesystem::IOMemReader reader(const_cast<uint8_t*>(decoded.data()), decoded.size());
   OIIO::ImageSpec opened;
   // glTF's colours are not premultiplied by alpha; OpenImageIO premultiplies a PNG's colour by
   // its alpha on reading unless told to keep it as stored (a texel of colour 10 and alpha 11
