@@ -1,6 +1,7 @@
 #include "lighting/common/light_shadow_pass.h"
 
 #include "graph/executor.h"
+#include "lighting/common/shadow_pass.h"
 #include "shared/lights.h"
 #include "shared/scene.h"
 
@@ -11,28 +12,11 @@ namespace tl::lighting {
 void LightShadowPass::add(graph::RenderGraph& graph, FrameInputs& in, const LightShadowPlan& plan) {
   if (plan.views.empty()) return;
   if (!pipeline_) {
-    gpu::GraphicsPipelineDesc d;
-    d.name = "shadow.lights";
-    d.vertexShader = "common/light_shadow.vert";
-    d.layout.bindings = {{shared::kBindingLightShadowViews, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-    d.layout.extraSets = {in.scene.table().layout()};
-    d.layout.pushConstantBytes = sizeof(shared::LightShadowPush);
-    d.depthFormat = VK_FORMAT_D32_SFLOAT;
-    d.vertexBindings = scene::GpuScene::vertexBindings();
-    for (const auto& a : scene::GpuScene::vertexAttributes())
-      if (a.location == shared::kAttrPosition) d.vertexAttributes.push_back(a);
-    d.cullMode = VK_CULL_MODE_NONE;  // thin and single-sided casters cast from both sides
-    d.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
-    d.depthBias = true;
-    d.depthClamp = true;  // casters nearer than the near plane clamp to it instead of vanishing
-    pipeline_ = gpu::createGraphicsPipeline(in.device, d);
-    d.name = "shadow.lights.masked";
-    d.vertexShader = "common/light_shadow_masked.vert";
-    d.fragmentShader = "common/shadow_masked.frag";
-    d.vertexAttributes.clear();
-    for (const auto& a : scene::GpuScene::vertexAttributes())
-      if (a.location == shared::kAttrPosition || a.location == shared::kAttrUv) d.vertexAttributes.push_back(a);
-    maskedPipeline_ = gpu::createGraphicsPipeline(in.device, d);
+    gpu::PipelineLayoutDesc layout;
+    layout.bindings = {{shared::kBindingLightShadowViews, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+    layout.pushConstantBytes = sizeof(shared::LightShadowPush);
+    createCasterPipelines(in, layout, "shadow.lights", "common/light_shadow.vert", "common/light_shadow_masked.vert",
+                          pipeline_, maskedPipeline_);
   }
 
   const uint32_t tile = plan.tileTexels, columns = plan.columns, views = uint32_t(plan.views.size());
