@@ -31,7 +31,7 @@ void ShadowPass::add(graph::RenderGraph& graph, FrameInputs& in) {
     d.fragmentShader = "common/shadow_masked.frag";
     d.vertexAttributes.clear();
     for (const auto& a : scene::GpuScene::vertexAttributes())
-      if (a.location == shared::kAttrPosition || a.location == shared::kAttrUv) d.vertexAttributes.push_back(a);
+      if (a.location != shared::kAttrNormal && a.location != shared::kAttrTangent) d.vertexAttributes.push_back(a);
     maskedPipeline_ = gpu::createGraphicsPipeline(in.device, d);
   }
 
