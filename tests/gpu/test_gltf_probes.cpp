@@ -185,13 +185,13 @@ TEST_F(GltfProbeTest, SamplerWrapModesAndFiltersAreTheFilesOwn) {
   for (const auto& [name, wrap] : wraps)
     for (float wide : {-0.25f, 1.25f, 1.75f})
       for (float v : {0.25f, 0.75f}) expectTexel(f, quads.at(name), (wide + 1.0f) / 3.0f, v, quadrantTexel({wrap(wide), v}), name);
-  // Magnified 2x2: halfway between the red and green texel centres LINEAR mixes them half and
+  // Magnified 2x2, on the red-green row (v = 0.25, a texel centre): halfway across LINEAR mixes them half and
   // half (decoded from sRGB before filtering), NEAREST shows one of them whole.
-  const glm::vec3 mixed = shared::tlSrgbToLinear(baseAt(f, pixelAt(quads.at("linear"), f.width, 0.5f, 0.75f)));
+  const glm::vec3 mixed = shared::tlSrgbToLinear(baseAt(f, pixelAt(quads.at("linear"), f.width, 0.5f, 0.25f)));
   EXPECT_NEAR(mixed.r, 0.5f, 0.08f);
   EXPECT_NEAR(mixed.g, 0.5f, 0.08f);
   EXPECT_NEAR(mixed.r + mixed.g, 1.0f, 0.02f);
-  const glm::vec3 sharp = baseAt(f, pixelAt(quads.at("nearest"), f.width, 0.5f, 0.75f));
+  const glm::vec3 sharp = baseAt(f, pixelAt(quads.at("nearest"), f.width, 0.5f, 0.25f));
   EXPECT_NEAR(sharp.r + sharp.g, 1.0f, 1.5f / 255.0f);
   EXPECT_NEAR(sharp.r * sharp.g, 0.0f, 1e-3f) << "nearest: one texel, not a mix";
 }
