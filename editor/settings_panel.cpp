@@ -232,8 +232,14 @@ void settingsSection(EditorApp& app) {
     ImGui::SetNextItemOpen(open, ImGuiCond_Appearing);
     const std::string header = fmt::format("{}{}##settings.{}", owner, owner == session.path() ? " (this path)" : "", owner);
     if (!ImGui::CollapsingHeader(header.c_str())) continue;
+    // The widgets leave room for the group's longest name: a label is never cut off.
+    float labelWidth = 0.0f;
+    for (const SettingInfo& s : lighting::settingsSchema())
+      if (s.owner == owner) labelWidth = std::max(labelWidth, ImGui::CalcTextSize(std::string(s.name).c_str()).x);
+    ImGui::PushItemWidth(-(labelWidth + ImGui::GetStyle().ItemInnerSpacing.x + 1.0f));
     for (const SettingInfo& s : lighting::settingsSchema())
       if (s.owner == owner && !(s.flags & lighting::kSettingNoPanel)) settingWidget(s, settings, sceneScale);
+    ImGui::PopItemWidth();
   }
 }
 

@@ -1,5 +1,9 @@
 #include "gpu/descriptor_table.h"
 
+#include "gpu/check.h"
+
+#include <fmt/format.h>
+
 #include <utility>
 
 namespace tl::gpu {
@@ -24,7 +28,11 @@ DescriptorTable::DescriptorTable(Device& device, const std::vector<Binding>& bin
   VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, &fi};
   lci.bindingCount = uint32_t(b.size());
   lci.pBindings = b.data();
-  TL_VK(vkCreateDescriptorSetLayout(device.handle(), &lci, nullptr, &layout_));
+  // The layout is the device's, shared by every table of the same shape (each scene's).
+  std::string key = "table";
+  for (size_t i = 0; i < b.size(); ++i)
+    key += fmt::format(" {}:{}x{}/{}", b[i].binding, int(b[i].descriptorType), b[i].descriptorCount, flags[i]);
+  layout_ = device.sharedSetLayout(key, lci);
   device.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, uint64_t(layout_), name);
 
   VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -54,12 +62,8 @@ DescriptorTable& DescriptorTable::operator=(DescriptorTable&& o) noexcept {
 void DescriptorTable::reset() {
   if (device_ && layout_) {
     VkDevice d = device_->handle();
-    VkDescriptorSetLayout l = layout_;
     VkDescriptorPool p = pool_;
-    device_->destroyLater([d, l, p] {
-      vkDestroyDescriptorPool(d, p, nullptr);
-      vkDestroyDescriptorSetLayout(d, l, nullptr);
-    });
+    device_->destroyLater([d, p] { vkDestroyDescriptorPool(d, p, nullptr); });  // the layout is the device's
   }
   layout_ = VK_NULL_HANDLE;
   pool_ = VK_NULL_HANDLE;
@@ -78,9 +82,14 @@ void DescriptorTable::writeBuffer(uint32_t binding, VkDescriptorType type, VkBuf
 }
 
 void DescriptorTable::writeImages(uint32_t binding, const std::vector<VkImageView>& views, VkSampler sampler) {
+  writeImages(binding, views, std::vector<VkSampler>(views.size(), sampler));
+}
+
+void DescriptorTable::writeImages(uint32_t binding, const std::vector<VkImageView>& views, const std::vector<VkSampler>& samplers) {
   if (views.empty()) return;
+  TL_CHECK(samplers.size() == views.size(), "{} samplers for {} image views", samplers.size(), views.size());
   std::vector<VkDescriptorImageInfo> infos;
-  for (auto v : views) infos.push_back({sampler, v, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+  for (size_t i = 0; i < views.size(); ++i) infos.push_back({samplers[i], views[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   w.dstSet = set_;
   w.dstBinding = binding;

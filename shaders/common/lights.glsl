@@ -3,8 +3,8 @@
 // drawn by power, one kept in proportion to its unshadowed contribution here: power and
 // distance, cone, cosine), each an unbiased estimate of the sum. The includer includes
 // shared/frame.h, lights.h and sampling.h, declares `frame`, and defines before including
-//   float lightVisibility(vec3 toLight, float distance)  1 where the light is seen from the
-//                                                         point (a shadow ray; 1: unshadowed)
+//   float lightVisibility(uint light, vec3 toLight, float distance)  1 where light `light` of the
+//                                   table is seen from the point (a shadow ray, a shadow map; 1: unshadowed)
 //   vec3 lightResponse(vec3 toLight)                      the BRDF times the cosine there
 layout(set = 0, binding = kBindingLights, std430) readonly buffer LightTable { GpuLight lights[]; };
 
@@ -21,11 +21,11 @@ uint lightPick(float u) {
 
 // Reflected radiance from one light, with its visibility (no shadow ray for a light that
 // cannot contribute).
-vec3 lightContribution(LightIncidence li) {
+vec3 lightContribution(uint light, LightIncidence li) {
   if (all(equal(li.irradiance, vec3(0.0)))) return vec3(0.0);
   vec3 response = lightResponse(li.toLight);
   if (all(equal(response, vec3(0.0)))) return vec3(0.0);
-  return li.irradiance * response * lightVisibility(li.toLight, li.distance);
+  return li.irradiance * response * lightVisibility(light, li.toLight, li.distance);
 }
 
 // The light table's reflected radiance at `position` (normal n: for resampling only); `seed`
@@ -33,12 +33,13 @@ vec3 lightContribution(LightIncidence li) {
 vec3 shadeLights(vec3 position, vec3 n, uvec3 seed) {
   vec3 sum = vec3(0.0);
   if (frame.lightCount <= kLightsLoopMax) {
-    for (uint i = 0u; i < frame.lightCount; ++i) sum += lightContribution(tlLightIncidence(lights[i], position));
+    for (uint i = 0u; i < frame.lightCount; ++i) sum += lightContribution(i, tlLightIncidence(lights[i], position));
     return sum;
   }
   for (uint pick = 0u; pick < kLightPicks; ++pick) {
     float weightSum = 0.0, keptTarget = 0.0;
     LightIncidence kept;
+    uint keptIndex = 0u;
     for (uint c = 0u; c < kLightCandidates; ++c) {
       uvec3 h = tlPcg3d(seed + uvec3(0u, 0u, (pick * kLightCandidates + c + 1u) * 0x9E3779B9u));
       uint i = lightPick(tlUintToUnitFloat(h.x));
@@ -48,11 +49,12 @@ vec3 shadeLights(vec3 position, vec3 n, uvec3 seed) {
       weightSum += weight;
       if (weight > 0.0 && tlUintToUnitFloat(h.y) * weightSum < weight) {
         kept = li;
+        keptIndex = i;
         keptTarget = target;
       }
     }
     // Resampled importance sampling: f(y) / target(y) * (the weights' sum) / candidates.
-    if (keptTarget > 0.0) sum += lightContribution(kept) * (weightSum / (float(kLightCandidates) * keptTarget));
+    if (keptTarget > 0.0) sum += lightContribution(keptIndex, kept) * (weightSum / (float(kLightCandidates) * keptTarget));
   }
   return sum / float(kLightPicks);
 }

@@ -13,9 +13,8 @@
 layout(set = 0, binding = kLegacyBindingFrame) uniform Frame { FrameConstants frame; };
 layout(set = 0, binding = kLegacyBindingShadow) uniform sampler2DShadow sunShadow;
 layout(set = 0, binding = kLegacyBindingRadiance, rgba16f) uniform writeonly image3D radianceOut;
-layout(set = kSceneSet, binding = kSceneBindingMaterials, std430) readonly buffer Materials { GpuMaterial materials[]; };
 layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
-layout(set = kSceneSet, binding = kSceneBindingTextures) uniform sampler2D sceneTextures[];
+#include "common/material.glsl"
 layout(set = 0, binding = kLegacyBindingPrevRadiance) uniform sampler2D previousRadiance;
 layout(set = 0, binding = kLegacyBindingPrevDepth) uniform sampler2D previousDepth;
 layout(push_constant) uniform Push { LegacyVoxelPush push; };
@@ -42,17 +41,22 @@ bool screenRadiance(vec3 position, vec3 normal, out vec3 radiance) {
 
 #include "common/sun_shadow.glsl"
 
-// The light table (shared/lights.h) injected like the sun, but unshadowed: no shadow map
-// exists for point and spot lights yet, so a lamp's light reaches every surface facing it.
-vec3 gLightNormal, gLightAlbedo;
-float lightVisibility(vec3 toLight, float distance) { return 1.0; }
+// The light table (shared/lights.h) injected like the sun: point and spot lights through their
+// shadow maps (common/light_shadow.glsl; frames without maps bind stand-ins, never read since
+// no light then names a view), the rest unshadowed.
+vec3 gLightPosition, gLightNormal, gLightAlbedo;
+float lightVisibility(uint light, vec3 toLight, float distance);
 vec3 lightResponse(vec3 toLight) { return gLightAlbedo * (kInvPi * max(dot(gLightNormal, toLight), 0.0)); }
 #include "common/lights.glsl"
+#include "common/light_shadow.glsl"
+float lightVisibility(uint light, vec3 toLight, float distance) { return lightShadowVisibility(light, gLightPosition, gLightNormal); }
 
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) flat in uint inInstance;
+layout(location = 4) in vec2 inUv1;
+layout(location = 5) in vec4 inColor;
 
 const vec3 kFace[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));
 
@@ -66,11 +70,9 @@ void main() {
   // scissor bounds only the two raster axes, not depth.
   if (any(lessThan(v, push.regionMin.xyz)) || any(greaterThanEqual(v, push.regionMax.xyz))) return;
   GpuMaterial m = materials[instances[inInstance].material];
-  vec4 base = m.baseColorFactor;
-  if (m.baseColorTexture != kNoTexture) base *= texture(sceneTextures[nonuniformEXT(m.baseColorTexture)], inUv);
-  if (tlMaterialCutout(m.alphaCutoff, base.a)) return;
-  vec3 emission = m.emissive.rgb;
-  if (m.emissiveTexture != kNoTexture) emission *= texture(sceneTextures[nonuniformEXT(m.emissiveTexture)], inUv).rgb;
+  vec4 base = materialBaseColor(m, inUv, inUv1, inColor);
+  if (materialCutout(m, base.a)) return;
+  vec3 emission = materialEmission(m, inUv, inUv1);
   vec3 albedo = tlMaterialHitAlbedo(clamp(base.rgb, 0.0, 1.0), m.metallic, tlFrameMaterials(frame.flags));
   vec3 n = normalize(inNormal);
   ivec3 z = ivec3(0, 0, int(level) * R);
@@ -88,6 +90,7 @@ void main() {
     vec3 radiance = emission;
     if (nl > 0.0) radiance += albedo * kInvPi * frame.sunIrradiance.rgb * (nl * sunVisibility(inPosition, ns));
     if (frame.lightCount > 0u) {
+      gLightPosition = inPosition;
       gLightNormal = ns;
       gLightAlbedo = albedo;
       radiance += shadeLights(inPosition, ns, uvec3(uvec2(v.xy), uint(v.z) + 977u * uint(side)));

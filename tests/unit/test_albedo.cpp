@@ -78,7 +78,7 @@ TEST(AlbedoKey, ChangesWithEverythingItHashes) {
     s->textures.push_back(test::makeCheckerTexture(8, 2, {255, 255, 255}, {0, 0, 0}));
     s->textures[0].rgba8[0] = texel;
     s->textures[0].contentHash = scene::hashBytes(s->textures[0].rgba8.data(), s->textures[0].rgba8.size(), 8);
-    s->materials[0].baseColorTexture = 0;
+    s->materials[0].baseColorTexture = scene::TextureRef{0};
     return cubeKey(*s);
   };
   EXPECT_NE(textured(255), textured(254)) << "texture texels";
@@ -312,6 +312,18 @@ TEST(AlbedoDatabase, RefusesANewerSchema) {
   sqlite3_exec(db, "PRAGMA user_version = 99", nullptr, nullptr, nullptr);
   sqlite3_close(db);
   expectRefusedUntouched(file, "newer Twinlight");
+}
+
+// A negative user_version (SQLite stores any 32-bit integer) is no schema: refused before any
+// migration runs (fuzz_albedo_db found it indexing the migrations at -1).
+TEST(AlbedoDatabase, RefusesANegativeSchema) {
+  const fs::path file = tempFile("negative.db");
+  { AlbedoDatabase db(file); }
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(file.string().c_str(), &db), SQLITE_OK);
+  sqlite3_exec(db, "PRAGMA user_version = -1", nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  expectRefusedUntouched(file, "schema -1, which no Twinlight writes");
 }
 
 // A schema-1 file (before labels) opens, migrates and keeps its rows.

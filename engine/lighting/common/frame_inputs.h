@@ -64,6 +64,9 @@ struct FrameInputs {
   // (lighting/common/frame_key.h), and writes its decision into the log (may be null).
   FrameKey key;
   std::vector<HistoryDecision>* historyLog = nullptr;
+  // Views of point and spot light shadow maps this frame (lighting/common/light_shadows.h): with
+  // any, "lights.shadowViews" is imported and "shadow.lightsDepth" can be drawn for who reads it.
+  uint32_t lightShadowViews = 0;
 };
 
 }  // namespace tl::lighting

@@ -1,6 +1,8 @@
 // lights.direct: the light table's reflected radiance at every G-buffer pixel (shaders/common/
-// lights_shade.glsl), through the shared BRDF, added by the composite. Unshadowed, or with one
-// ray-query shadow ray per light against a top level the path provides (the rt path's). Only
+// lights_shade.glsl), through the shared BRDF, added by the composite. With one ray-query shadow
+// ray per light against a top level the path provides (the rt path's), else through the point
+// and spot lights' shadow maps when the frame has any (lighting/common/light_shadow_pass.h), else
+// unshadowed (only directional lights in the table). Only
 // frames with lights (FrameConstants::lightCount > 0) have the pass.
 #pragma once
 
@@ -29,13 +31,13 @@ class LightsPass {
  public:
   // Returns the name of what it wrote, or "" when the frame has no lights (no pass then).
   // `structures` names the top level (first) and the bottom levels its rays may reach that the
-  // frame rewrites; `tlasHandle` is the top level: shadow rays. Empty: unshadowed.
+  // frame rewrites; `tlasHandle` is the top level: shadow rays. Empty: shadow maps.
   std::string add(graph::RenderGraph& graph, FrameInputs& in, const std::vector<std::string>& structures,
                   VkAccelerationStructureKHR tlasHandle);
 
  private:
-  gpu::Pipeline unshadowed_, traced_;
-  gpu::Sampler point_;
+  gpu::Pipeline unshadowed_, shadowed_, traced_;
+  gpu::Sampler point_, shadowCompare_;
   std::map<std::string, HistoryKeeper, std::less<>> accumulation_;  // per lighting path
 };
 
