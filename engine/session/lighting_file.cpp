@@ -333,6 +333,11 @@ std::string lightingJson(const Lighting& lighting, const std::filesystem::path& 
 
 void writeLightingFile(const std::filesystem::path& file, const Lighting& lighting) {
   const std::string text = lightingJson(lighting, file.parent_path().empty() ? std::filesystem::current_path() : file.parent_path());
+  // Like an image written with --out: the folder is made when it does not exist yet.
+  std::error_code dirError;
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), dirError);
+  if (dirError)
+    throw SessionError(fmt::format("{}: cannot make its folder for the lighting file: {}", file.string(), dirError.message()));
   std::filesystem::path tmp = file;
   tmp += ".tmp";
   {

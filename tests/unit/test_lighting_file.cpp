@@ -128,6 +128,15 @@ TEST_F(LightingFileTest, WrittenAndReadBackIsTheSameLightingAndTheSameText) {
   EXPECT_EQ(lightingSidecarPath("a/b/scene.gltf"), fs::path("a/b/scene.lighting.json"));
 }
 
+TEST_F(LightingFileTest, WritingIntoAFolderThatDoesNotExistYetMakesIt) {
+  // Like --out for images: --save-lighting into a new folder must not depend on something else
+  // having made it first.
+  const fs::path file = dir / "new" / "deeper" / "scene.lighting.json";
+  writeLightingFile(file, sample());
+  EXPECT_EQ(readLightingFile(file, Lighting{}).lights.size(), 3u);
+  EXPECT_FALSE(fs::exists(fs::path(file) += ".tmp"));
+}
+
 TEST_F(LightingFileTest, AbsentKeysKeepTheBaseAndTemperaturesBecomeRgb) {
   const Lighting base = sample();
   const Lighting l = readLightingFile(write("t.lighting.json", R"({"format": "twinlight.lighting", "version": 1,
