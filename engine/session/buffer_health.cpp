@@ -74,6 +74,9 @@ bool holdsNonNegativeValues(const std::string& name, const std::string& descript
   // Signed by nature, whatever the description says.
   for (const char* signedPart : {"coCg", "CoCg", "shY", "difference", "motion", "normal", "Normal"})
     if (contains(name, signedPart)) return false;
+  // A direction's components are signed, whatever else the texel holds (bentsky.history: the
+  // mean escaping direction beside its visibility).
+  if (contains(description, "direction")) return false;
   for (const char* quantity : {"radiance", "irradiance", "emitted", "emission", "AO", "ambient occlusion", "visibility",
                                "sum of"})
     if (contains(description, quantity)) return true;
