@@ -33,10 +33,14 @@ namespace {
 
 std::string imguiIniPath;  // ImGui keeps the pointer: it must outlive the context
 std::vector<std::string> droppedFiles;
+// The window was exposed (uncovered, restored): its pixels are the editor's to draw again.
+bool windowExposed = true;
 
 void onDrop(GLFWwindow*, int count, const char** paths) {
   for (int i = 0; i < count; ++i) droppedFiles.emplace_back(paths[i]);
 }
+
+void onRefresh(GLFWwindow*) { windowExposed = true; }
 
 void checkVk(VkResult r) {
   if (r != VK_SUCCESS) throw gpu::Error(fmt::format("Dear ImGui's Vulkan backend: {}", gpu::resultName(r)));
@@ -137,6 +141,7 @@ void EditorApp::createWindow() {
   if (!window_) throw std::runtime_error("cannot create the editor window");
   input_.attach(window_);
   glfwSetDropCallback(window_, onDrop);
+  glfwSetWindowRefreshCallback(window_, onRefresh);
 
   gpu::DeviceOptions options;
   uint32_t n = 0;
@@ -213,6 +218,23 @@ double EditorApp::fps() const {
   return sum > 0.0 ? 1000.0 * double(n) / sum : 0.0;
 }
 
+double EditorApp::presentedFps() const {
+  if (presentTimes_.size() < 2) return 0.0;
+  const double span = glfwGetTime() - presentTimes_.front();
+  return span > 0.0 ? double(presentTimes_.size() - 1) / span : 0.0;
+}
+
+void EditorApp::refreshShownFigures(double now) {
+  constexpr double kRefreshSeconds = 0.25;
+  if (figures_.at >= 0.0 && now - figures_.at < kRefreshSeconds) return;
+  figures_.uiFps = fps();
+  figures_.presentedFps = presentedFps();
+  figures_.engineFps = engineFps();
+  figures_.frameAgeMs = 1000.0 * shownFrameAge();
+  figures_.passMs.assign(frameHistory_.begin(), frameHistory_.end());
+  figures_.at = now;
+}
+
 double EditorApp::engineFps() const {
   if (engineFrameEnds_.size() < 2) return 0.0;
   const double span = engineFrameEnds_.back() - engineFrameEnds_.front();
@@ -237,6 +259,7 @@ void EditorApp::frame() {
   if (resized_ || swapchain_->extent().width != uint32_t(w) || swapchain_->extent().height != uint32_t(h)) {
     swapchain_->recreate({uint32_t(w), uint32_t(h)}, settings_.vsync);
     resized_ = false;
+    redraw_.invalidate();
   }
   double now = glfwGetTime();
   float seconds = float(now - lastTime_);
@@ -250,7 +273,8 @@ void EditorApp::frame() {
   if (script_) script_->step(*this);
   // A bake uses the engine's device between its frames (its batches wait for their own work).
   if (!session_->frameInFlight()) stepAlbedoBake();
-  if (framesDrawn_ % 15 == 0) pollShaders(), saveSettingsIfChanged();
+  if (uiFrames_ % 15 == 0) pollShaders(), saveSettingsIfChanged();
+  refreshShownFigures(now);
 
   const double panelsStart = glfwGetTime();
   profile_.input += panelsStart - frameStart;
@@ -270,22 +294,43 @@ void EditorApp::frame() {
   ImGui::Render();
   const double presentStart = glfwGetTime();
   profile_.panels += presentStart - panelsStart;
-  recordAndPresent();
+  presentIfChanged();
   profile_.present += glfwGetTime() - presentStart;
 
-  ++framesDrawn_;
+  ++uiFrames_;
   frameHistory_.push_back(seconds * 1000.0);
   if (frameHistory_.size() > 240) frameHistory_.pop_front();
   // At most 60 UI frames a second, 40 while the engine renders (above the 30 an artist
   // needs): what the interface does not need, the engine gets (on a software device both
-  // share the CPU).
+  // share the CPU). The wait takes the window's events as they come (into the input queue,
+  // in order), so nothing is lost between passes.
   const double frameBudget = session_->frameInFlight() ? 1.0 / 40.0 : 1.0 / 60.0;
-  const double spare = frameBudget - (glfwGetTime() - frameStart);
-  if (spare > 0.0) {
-    const double sleepStart = glfwGetTime();
-    std::this_thread::sleep_for(std::chrono::duration<double>(spare));
-    profile_.sleep += glfwGetTime() - sleepStart;
-  }
+  const double sleepStart = glfwGetTime();
+  for (double spare = frameBudget - (sleepStart - frameStart); spare > 0.0;
+       spare = frameBudget - (glfwGetTime() - frameStart))
+    glfwWaitEventsTimeout(spare);
+  profile_.sleep += glfwGetTime() - sleepStart;
+}
+
+// Draws and presents the window when what it would show changed since it was last drawn,
+// and the window's previous frame is done: on lavapipe presenting waits until the frame is
+// drawn, so a redraw submitted behind an unfinished one would hold the interface up.
+void EditorApp::presentIfChanged() {
+  if (!session_->hasScene() && !session_->hasCapture() && !viewportImage_->empty()) viewportImage_->clear(), redraw_.invalidate();
+  uint64_t hash = drawDataHash(*ImGui::GetDrawData());
+  hash = scene::hashBytes(&viewportMin_, sizeof viewportMin_, hash);
+  hash = scene::hashBytes(&viewportSize_, sizeof viewportSize_, hash);
+  redraw_.observe(hash);
+  if (viewportImage_->hasNewPixels() || windowExposed) redraw_.invalidate();
+  windowExposed = false;
+  const bool busy = uiDevice_->completedValue() < swapchain_->lastSubmission();
+  if (!redraw_.shouldDraw(busy, screenshotPath_.has_value())) return;
+  if (!recordAndPresent()) return;  // out of date: still pending, drawn after the resize
+  redraw_.drew();
+  ++framesPresented_;
+  const double now = glfwGetTime();
+  presentTimes_.push_back(now);
+  while (presentTimes_.size() > 2 && now - presentTimes_.front() > 2.0) presentTimes_.pop_front();
 }
 
 void EditorApp::handleCameraInput(float seconds) {

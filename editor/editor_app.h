@@ -12,6 +12,7 @@
 #include "scene_watcher.h"
 #include "settings.h"
 #include "viewport_image.h"
+#include "window_redraw.h"
 
 #include "gpu/descriptor_pool.h"
 #include "gpu/shader_reload.h"
@@ -81,6 +82,15 @@ class EditorApp {
   // how old (seconds since its input was taken) the frame on screen is.
   double engineFps() const;
   double shownFrameAge() const;
+  // The figures the panels show (rates, the frame's age, the loop's recent pass times),
+  // refreshed a few times a second rather than every pass: a figure that changed every pass
+  // would have the window drawn again every pass (window_redraw.h).
+  struct ShownFigures {
+    double uiFps = 0.0, presentedFps = 0.0, engineFps = 0.0, frameAgeMs = 0.0;
+    std::vector<float> passMs;  // the loop's recent passes, oldest first
+    double at = -1.0;           // glfwGetTime() when taken
+  };
+  const ShownFigures& shownFigures() const { return figures_; }
   InputQueue& input() { return input_; }
   // Undo and redo across the edit histories (render settings and lighting, albedo overrides):
   // the latest edit first, whichever it was; Ctrl+Z / Ctrl+Y. Each returns what it did ("" = nothing).
@@ -136,10 +146,17 @@ class EditorApp {
   const std::string& lastBakeSummary() const { return lastBakeSummary_; }
   const std::string& pinnedPreview() const { return viewer_.resource; }
   void showBrowser(bool on) { showBrowser_ = on; }
-  uint64_t framesDrawn() const { return framesDrawn_; }
+  // Passes of the UI loop (each takes the input, runs the panels, starts and collects engine
+  // frames): the interface's frame rate. A pass whose window would look as it does is not
+  // drawn; framesPresented() counts those that were, redrawsDeferred() the passes that put a
+  // needed redraw off because the window's previous frame was still being drawn.
+  uint64_t uiFrames() const { return uiFrames_; }
+  uint64_t framesPresented() const { return framesPresented_; }
+  uint64_t redrawsDeferred() const { return redraw_.deferred(); }
   // Where the UI frames' wall time went since the start (`measure` prints the differences).
   const FrameProfile& frameProfile() const { return profile_; }
-  double fps() const;
+  double fps() const;            // UI loop passes per second, over the last 30
+  double presentedFps() const;   // window frames presented per second, over the last 2 s
   const std::deque<double>& frameHistoryMs() const { return frameHistory_; }
   // Viewport panel rectangle in window pixels (valid after the first frame).
   glm::vec2 viewportMin() const { return viewportMin_; }
@@ -153,7 +170,9 @@ class EditorApp {
   void handleCameraInput(float seconds);
   void startEngineFrame();
   void collectEngineFrame();
-  void recordAndPresent();
+  bool recordAndPresent();  // false: the swapchain is out of date, nothing was drawn
+  void presentIfChanged();
+  void refreshShownFigures(double now);
   void finishLoad();
   void applyBookmark(int slot, bool save);
   void saveSettingsIfChanged();
@@ -216,7 +235,10 @@ class EditorApp {
   double shownBegunAt_ = -1.0;          // input time of the frame on screen
   std::vector<uint8_t> pickIds_;        // gbuffer.instanceId of the frame on screen
   VkExtent3D pickExtent_{};
-  uint64_t framesDrawn_ = 0;
+  uint64_t uiFrames_ = 0, framesPresented_ = 0;
+  WindowRedraw redraw_;
+  std::deque<double> presentTimes_;  // glfwGetTime() of recent presented frames
+  ShownFigures figures_;
   FrameProfile profile_;
   std::deque<double> frameHistory_;
   double lastTime_ = 0.0;

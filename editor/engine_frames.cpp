@@ -195,12 +195,11 @@ void EditorApp::collectEngineFrame() {
   }
 }
 
-void EditorApp::recordAndPresent() {
+bool EditorApp::recordAndPresent() {
   auto& d = *uiDevice_;
-  if (!session_->hasScene() && !session_->hasCapture()) viewportImage_->clear();
   if (!swapchain_->acquire()) {
     resized_ = true;
-    return;
+    return false;
   }
   VkCommandBuffer cmd = d.beginCommands();
   VkImage target = swapchain_->image();
@@ -232,11 +231,13 @@ void EditorApp::recordAndPresent() {
     vkCmdCopyImageToBuffer(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, shot->handle(), 1, &region);
     gpu::transitionImage(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
   }
-  if (!swapchain_->submitAndPresent(cmd)) resized_ = true;
+  const bool presented = swapchain_->submitAndPresent(cmd);
+  if (!presented) resized_ = true;
   if (shot) {
     d.wait(swapchain_->lastSubmission());
     writeScreenshot(*shot, ext);
   }
+  return presented;
 }
 
 }  // namespace tl::editor

@@ -8,6 +8,7 @@
 #include "graph/executor.h"
 
 #include <optional>
+#include <vector>
 
 namespace tl::editor {
 
@@ -15,9 +16,12 @@ class ViewportImage {
  public:
   explicit ViewportImage(gpu::Device& device) : device_(device) {}
 
-  // Pixels of a finished frame (display.ldr, rgba8): uploaded by the next record().
+  // Pixels of a finished frame (display.ldr, rgba8): uploaded by the next record(). Pixels
+  // equal to those shown (a still, converged image) change nothing and are dropped.
   void set(const graph::Readback& display);
   bool empty() const { return !image_ && !staged_; }
+  // New pixels wait for record(): the window needs drawing again.
+  bool hasNewPixels() const { return staged_.has_value(); }
   void clear();
   // Records the upload of new pixels (if any) and the blit of the image, scaled, into
   // `target` (TRANSFER_DST_OPTIMAL) over the rectangle [min, max) in window pixels.
@@ -28,6 +32,8 @@ class ViewportImage {
   gpu::Image image_;  // left in TRANSFER_SRC_OPTIMAL between frames
   std::optional<gpu::Buffer> staged_;
   VkExtent2D stagedExtent_{};
+  std::vector<uint8_t> shown_;  // the pixels last set, to tell a repeated image
+  VkExtent2D shownExtent_{};
 };
 
 }  // namespace tl::editor
