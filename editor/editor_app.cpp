@@ -92,13 +92,13 @@ EditorApp::~EditorApp() {
     }
     session_->device().waitIdle();
   }
+  if (presenter_) presenter_->stop();  // its thread draws with Dear ImGui's backend
   if (uiDevice_) uiDevice_->waitIdle();
   if (load_.valid()) load_.wait();
   ImGui_ImplVulkan_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
-  viewportImage_.reset();
-  swapchain_.reset();
+  presenter_.reset();
   imguiPool_.reset();
   if (surface_) vkDestroySurfaceKHR(uiDevice_->instance(), surface_, nullptr);
   session_.reset();
@@ -153,8 +153,7 @@ void EditorApp::createWindow() {
   checkVk(glfwCreateWindowSurface(uiDevice_->instance(), window_, nullptr, &surface_));
   int w, h;
   glfwGetFramebufferSize(window_, &w, &h);
-  swapchain_ = std::make_unique<gpu::Swapchain>(*uiDevice_, surface_, VkExtent2D{uint32_t(w), uint32_t(h)}, settings_.vsync);
-  viewportImage_ = std::make_unique<ViewportImage>(*uiDevice_);
+  presenter_ = std::make_unique<WindowPresenter>(*uiDevice_, surface_, VkExtent2D{uint32_t(w), uint32_t(h)}, settings_.vsync);
 }
 
 void EditorApp::initImgui() {
@@ -182,18 +181,21 @@ void EditorApp::initImgui() {
   info.Queue = d.queue();
   info.DescriptorPool = imguiPool_->handle();
   info.MinImageCount = 2;
-  info.ImageCount = swapchain_->imageCount();
+  info.ImageCount = presenter_->swapchain().imageCount();
   info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
   info.CheckVkResultFn = checkVk;
-  ImGui_ImplVulkan_Init(&info, swapchain_->renderPass());
+  ImGui_ImplVulkan_Init(&info, presenter_->swapchain().renderPass());
   d.immediate([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
   ImGui_ImplVulkan_DestroyFontUploadObjects();
+  // From here on the window's device is the presenter's thread's alone.
+  presenter_->start();
 }
 
 int EditorApp::run() {
   lastTime_ = glfwGetTime();
   while (!glfwWindowShouldClose(window_) && !quit_) frame();
   saveSettingsIfChanged();
+  presenter_->finish();  // a screenshot asked for last is written, its validation counted
   if (script_ && script_->failed()) {
     fmt::print(stderr, "twinlight: error: script: {}\n", script_->failure());
     return 1;
@@ -218,17 +220,13 @@ double EditorApp::fps() const {
   return sum > 0.0 ? 1000.0 * double(n) / sum : 0.0;
 }
 
-double EditorApp::presentedFps() const {
-  if (presentTimes_.size() < 2) return 0.0;
-  const double span = glfwGetTime() - presentTimes_.front();
-  return span > 0.0 ? double(presentTimes_.size() - 1) / span : 0.0;
-}
-
 void EditorApp::refreshShownFigures(double now) {
-  constexpr double kRefreshSeconds = 0.25;
+  constexpr double kRefreshSeconds = 0.5;
   if (figures_.at >= 0.0 && now - figures_.at < kRefreshSeconds) return;
   figures_.uiFps = fps();
-  figures_.presentedFps = presentedFps();
+  const uint64_t presented = framesPresented();
+  figures_.presentedFps = figures_.at < 0.0 ? 0.0 : double(presented - presentedAtFigures_) / (now - figures_.at);
+  presentedAtFigures_ = presented;
   figures_.engineFps = engineFps();
   figures_.frameAgeMs = 1000.0 * shownFrameAge();
   figures_.passMs.assign(frameHistory_.begin(), frameHistory_.end());
@@ -255,11 +253,6 @@ void EditorApp::frame() {
   if (w == 0 || h == 0) {  // minimised: nothing to draw, do not spin
     glfwWaitEventsTimeout(0.1);
     return;
-  }
-  if (resized_ || swapchain_->extent().width != uint32_t(w) || swapchain_->extent().height != uint32_t(h)) {
-    swapchain_->recreate({uint32_t(w), uint32_t(h)}, settings_.vsync);
-    resized_ = false;
-    redraw_.invalidate();
   }
   double now = glfwGetTime();
   float seconds = float(now - lastTime_);
@@ -302,35 +295,45 @@ void EditorApp::frame() {
   if (frameHistory_.size() > 240) frameHistory_.pop_front();
   // At most 60 UI frames a second, 40 while the engine renders (above the 30 an artist
   // needs): what the interface does not need, the engine gets (on a software device both
-  // share the CPU). The wait takes the window's events as they come (into the input queue,
-  // in order), so nothing is lost between passes.
+  // share the CPU). Passes are paced against a running deadline, so a wake-up that comes
+  // late on a loaded machine is made up by the next wait instead of lowering the rate. The
+  // wait takes the window's events as they come (into the input queue, in order), so nothing
+  // is lost between passes.
   const double frameBudget = session_->frameInFlight() ? 1.0 / 40.0 : 1.0 / 60.0;
   const double sleepStart = glfwGetTime();
-  for (double spare = frameBudget - (sleepStart - frameStart); spare > 0.0;
-       spare = frameBudget - (glfwGetTime() - frameStart))
-    glfwWaitEventsTimeout(spare);
+  nextPassAt_ = std::max(nextPassAt_ + frameBudget, sleepStart - frameBudget);  // late by more than a pass: no catching up
+  for (double spare = nextPassAt_ - sleepStart; spare > 0.0; spare = nextPassAt_ - glfwGetTime()) glfwWaitEventsTimeout(spare);
   profile_.sleep += glfwGetTime() - sleepStart;
 }
 
-// Draws and presents the window when what it would show changed since it was last drawn,
-// and the window's previous frame is done: on lavapipe presenting waits until the frame is
-// drawn, so a redraw submitted behind an unfinished one would hold the interface up.
+// Hands the window's thread a frame when what the window would show changed: the UI loop
+// never waits for the drawing (on lavapipe presenting waits until the frame is drawn).
 void EditorApp::presentIfChanged() {
-  if (!session_->hasScene() && !session_->hasCapture() && !viewportImage_->empty()) viewportImage_->clear(), redraw_.invalidate();
+  for (const std::string& e : presenter_->takeErrors()) showError(e);
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  const bool clearImage = imageShown_ && !session_->hasScene() && !session_->hasCapture();
+  if (clearImage) imageShown_ = false, shownImage_.clear(), newImage_.reset();
   uint64_t hash = drawDataHash(*ImGui::GetDrawData());
   hash = scene::hashBytes(&viewportMin_, sizeof viewportMin_, hash);
   hash = scene::hashBytes(&viewportSize_, sizeof viewportSize_, hash);
+  const int32_t window[3] = {w, h, settings_.vsync ? 1 : 0};
+  hash = scene::hashBytes(window, sizeof window, hash);
   redraw_.observe(hash);
-  if (viewportImage_->hasNewPixels() || windowExposed) redraw_.invalidate();
+  if (newImage_ || clearImage || windowExposed || screenshotPath_) redraw_.invalidate();
   windowExposed = false;
-  const bool busy = uiDevice_->completedValue() < swapchain_->lastSubmission();
-  if (!redraw_.shouldDraw(busy, screenshotPath_.has_value())) return;
-  if (!recordAndPresent()) return;  // out of date: still pending, drawn after the resize
-  redraw_.drew();
-  ++framesPresented_;
-  const double now = glfwGetTime();
-  presentTimes_.push_back(now);
-  while (presentTimes_.size() > 2 && now - presentTimes_.front() > 2.0) presentTimes_.pop_front();
+  if (!redraw_.take()) return;
+  WindowPresenter::Frame frame;
+  frame.ui = DrawDataCopy(*ImGui::GetDrawData());
+  frame.viewportMin = glm::ivec2(viewportMin_);
+  frame.viewportMax = glm::ivec2(viewportMin_ + viewportSize_);
+  frame.windowSize = {uint32_t(w), uint32_t(h)};
+  frame.vsync = settings_.vsync;
+  frame.image = std::move(newImage_);
+  frame.clearImage = clearImage;
+  frame.screenshot = std::move(screenshotPath_);
+  newImage_.reset(), screenshotPath_.reset();
+  presenter_->submit(std::move(frame));
 }
 
 void EditorApp::handleCameraInput(float seconds) {
@@ -533,30 +536,6 @@ void EditorApp::finishLoad() {
 std::filesystem::path EditorApp::defaultCaptureFolder() const {
   const std::string scene = session_->hasScene() ? session_->scene().name : "none";
   return std::filesystem::path("captures") / fmt::format("{}-{}-frame{}", scene, session_->path(), session_->frameIndex());
-}
-
-void EditorApp::writeScreenshot(const gpu::Buffer& pixels, VkExtent2D ext) {
-  std::filesystem::path file = *screenshotPath_;
-  screenshotPath_.reset();
-  std::vector<uint8_t> rgb(size_t(ext.width) * ext.height * 3);
-  const auto* src = static_cast<const uint8_t*>(pixels.mapped());
-  const bool bgra = swapchain_->format() == VK_FORMAT_B8G8R8A8_UNORM;
-  for (size_t i = 0; i < size_t(ext.width) * ext.height; ++i) {
-    rgb[i * 3 + 0] = src[i * 4 + (bgra ? 2 : 0)];
-    rgb[i * 3 + 1] = src[i * 4 + 1];
-    rgb[i * 3 + 2] = src[i * 4 + (bgra ? 0 : 2)];
-  }
-  try {
-    session::writeFileAtomically(file, [&](const std::string& tmp) {
-      auto out = OIIO::ImageOutput::create(file.string());
-      OIIO::ImageSpec spec(int(ext.width), int(ext.height), 3, OIIO::TypeDesc::UINT8);
-      return out && out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) && out->close();
-    });
-  } catch (const std::exception& e) {
-    showError(fmt::format("cannot write the screenshot: {}", e.what()));
-    return;
-  }
-  fmt::print("wrote {}\n", std::filesystem::absolute(file).string());
 }
 
 void EditorApp::openAlbedoDatabase(const std::filesystem::path& file) {

@@ -76,16 +76,16 @@ void Script::step(EditorApp& app) {
                        measureSeconds_;
       const uint64_t frames = app.uiFrames() - measureStart_, engine = app.engineFramesDone() - measureEngineStart_;
       const uint64_t presented = app.framesPresented() - measurePresentedStart_;
-      const uint64_t deferred = app.redrawsDeferred() - measureDeferredStart_;
+      const uint64_t superseded = app.framesSuperseded() - measureSupersededStart_;
       const double cpu = threadCpuSeconds() - measureCpu_, processCpu = processCpuSeconds() - measureProcessCpu_;
       const auto& compare = app.compareView();
       const std::string path = compare ? fmt::format("compare {} | {}", compare->left, compare->right) : app.session().path();
       // The UI's frame rate is its loop's: every pass takes the input and runs the panels.
       // Presented frames are the passes that drew the window (what changed on screen).
-      fmt::print("editor: UI loop {:.1f} fps over {} passes, window presented {:.1f} fps ({} frames, {} redraws put off "
-                 "while the last was drawing), engine {:.2f} fps ({} frames), frame on screen {:.0f} ms old, "
+      fmt::print("editor: UI loop {:.1f} fps over {} passes, window presented {:.1f} fps ({} frames; {} replaced "
+                 "by a newer one before drawn), engine {:.2f} fps ({} frames), frame on screen {:.0f} ms old, "
                  "UI thread {:.1f} ms CPU a pass, process {:.0f}% of a core, render {}x{}, path {}, {}\n",
-                 double(frames) / seconds, frames, double(presented) / seconds, presented, deferred,
+                 double(frames) / seconds, frames, double(presented) / seconds, presented, superseded,
                  double(engine) / seconds, engine, 1000.0 * app.shownFrameAge(),
                  1000.0 * cpu / double(std::max<uint64_t>(frames, 1)), 100.0 * processCpu / seconds,
                  app.session().settings().width, app.session().settings().height, path, app.session().device().name());
@@ -116,6 +116,10 @@ void Script::step(EditorApp& app) {
   if (waitFrames_ > 0) {
     if (app.engineActive() ? app.engineFramesDone() < waitUntil_ : --waitFrames_ > 0) return;
     waitFrames_ = 0;
+  }
+  if (waitScreenshot_) {
+    if (app.screenshotPending()) return;
+    waitScreenshot_ = false;
   }
   if (waitCapture_) {
     if (app.frameCapturePending()) return;
@@ -224,7 +228,7 @@ void Script::step(EditorApp& app) {
         measureFrames_ = std::max(1, std::stoi(arg));
         measureStart_ = app.uiFrames();
         measurePresentedStart_ = app.framesPresented();
-        measureDeferredStart_ = app.redrawsDeferred();
+        measureSupersededStart_ = app.framesSuperseded();
         measureEngineStart_ = app.engineFramesDone();
         measureCpu_ = threadCpuSeconds();
         measureProcessCpu_ = processCpuSeconds();
@@ -234,7 +238,8 @@ void Script::step(EditorApp& app) {
         return;
       } else if (cmd == "screenshot") {
         app.requestScreenshot(arg);
-        return;  // taken at the end of this frame
+        waitScreenshot_ = true;
+        return;  // taken by the window's thread: the script goes on once it is written
       } else if (cmd == "snapshot" || cmd == "expect-viewport-changed") {
         if (cmd == "expect-viewport-changed" && snapshot_.empty()) return fail(app, "no snapshot to compare with");
         capture_ = cmd == "snapshot" ? Capture::Snapshot : Capture::Compare;

@@ -118,7 +118,8 @@ class Script {
   std::string waitShaderError_;
   int shaderErrorFrames_ = 0;
   int measureFrames_ = 0;
-  uint64_t measureStart_ = 0, measurePresentedStart_ = 0, measureDeferredStart_ = 0;
+  uint64_t measureStart_ = 0, measurePresentedStart_ = 0, measureSupersededStart_ = 0;
+  bool waitScreenshot_ = false;
   double measureSeconds_ = 0.0;
   std::string failure_;
   enum class Capture { None, Snapshot, Compare } capture_ = Capture::None;

@@ -10,12 +10,6 @@ void ViewportImage::set(const graph::Readback& display) {
   if (display.extent.width == 0 || display.extent.height == 0 || display.format != VK_FORMAT_R8G8B8A8_UNORM) return;
   const VkDeviceSize bytes = VkDeviceSize(display.extent.width) * display.extent.height * 4;
   if (display.bytes.size() < bytes) return;
-  const VkExtent2D extent{display.extent.width, display.extent.height};
-  if (image_ && !staged_ && extent.width == shownExtent_.width && extent.height == shownExtent_.height &&
-      std::equal(shown_.begin(), shown_.end(), display.bytes.begin()))
-    return;
-  shown_.assign(display.bytes.begin(), display.bytes.begin() + std::ptrdiff_t(bytes));
-  shownExtent_ = extent;
   // A fresh staging buffer each time: the one before may still be read by a UI frame in
   // flight (its destruction waits for that frame).
   staged_.emplace(device_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUsage::Upload, "ui.viewport.staging");
@@ -25,7 +19,6 @@ void ViewportImage::set(const graph::Readback& display) {
 
 void ViewportImage::clear() {
   staged_.reset();
-  shown_.clear();
   image_ = gpu::Image();
 }
 

@@ -1,14 +1,13 @@
 // The engine's latest finished frame on the window's device. The engine renders on a device
 // of its own (lavapipe, like many drivers, has one queue: a window sharing it would present
 // only after every engine frame, at the engine's pace), reads its display image back, and
-// the interface uploads those pixels here and blits them under its panels every UI frame.
+// the window's thread uploads those pixels here and blits them under the panels.
 #pragma once
 
 #include "gpu/resources.h"
 #include "graph/executor.h"
 
 #include <optional>
-#include <vector>
 
 namespace tl::editor {
 
@@ -16,12 +15,9 @@ class ViewportImage {
  public:
   explicit ViewportImage(gpu::Device& device) : device_(device) {}
 
-  // Pixels of a finished frame (display.ldr, rgba8): uploaded by the next record(). Pixels
-  // equal to those shown (a still, converged image) change nothing and are dropped.
+  // Pixels of a finished frame (display.ldr, rgba8): uploaded by the next record().
   void set(const graph::Readback& display);
   bool empty() const { return !image_ && !staged_; }
-  // New pixels wait for record(): the window needs drawing again.
-  bool hasNewPixels() const { return staged_.has_value(); }
   void clear();
   // Records the upload of new pixels (if any) and the blit of the image, scaled, into
   // `target` (TRANSFER_DST_OPTIMAL) over the rectangle [min, max) in window pixels.
@@ -32,8 +28,6 @@ class ViewportImage {
   gpu::Image image_;  // left in TRANSFER_SRC_OPTIMAL between frames
   std::optional<gpu::Buffer> staged_;
   VkExtent2D stagedExtent_{};
-  std::vector<uint8_t> shown_;  // the pixels last set, to tell a repeated image
-  VkExtent2D shownExtent_{};
 };
 
 }  // namespace tl::editor

@@ -30,21 +30,9 @@ uint64_t drawDataHash(const ImDrawData& data) {
   return h;
 }
 
-bool WindowRedraw::observe(uint64_t drawHash) {
-  const bool changed = !any_ || drawHash != last_;
+void WindowRedraw::observe(uint64_t drawHash) {
+  if (!any_ || drawHash != last_) pending_ = true;
   last_ = drawHash, any_ = true;
-  pending_ |= changed;
-  return changed;
-}
-
-bool WindowRedraw::shouldDraw(bool windowBusy, bool force) {
-  if (force) return true;
-  if (!pending_) return false;
-  if (windowBusy) {
-    ++deferred_;
-    return false;
-  }
-  return true;
 }
 
 }  // namespace tl::editor

@@ -5,10 +5,11 @@
 // so the loop runs at its own rate, handling input every pass, and the window is drawn only
 // when what it would show differs from what it shows: Dear ImGui's draw data (vertices,
 // indices, commands, clip rectangles, textures) hashed, a new engine image, the viewport's
-// place, an expose of the window, a screenshot.
+// place, the window's size, an expose of the window, a screenshot.
 #pragma once
 
 #include <cstdint>
+#include <utility>
 
 struct ImDrawData;
 
@@ -19,24 +20,18 @@ uint64_t drawDataHash(const ImDrawData& data);
 
 class WindowRedraw {
  public:
-  // Notes what this pass of the loop would draw; true when it differs from the last call
-  // (the first call: always).
-  bool observe(uint64_t drawHash);
-  // Something outside the draw data changed the window's pixels (a new engine image, an
-  // expose, a resize): draw at the next chance.
+  // Notes what this pass of the loop would draw (a hash of it); a change asks for a redraw.
+  void observe(uint64_t drawHash);
+  // Something outside the hash changed the window's pixels (a new engine image, an expose, a
+  // screenshot to take): draw this pass.
   void invalidate() { pending_ = true; }
-  // Whether to draw now. `windowBusy`: the window's previous frame is still being drawn;
-  // the UI does not wait for it (on lavapipe presenting waits for the drawing), the redraw
-  // stays pending for a later pass. `force`: a screenshot, drawn whatever the wait.
-  bool shouldDraw(bool windowBusy, bool force);
-  void drew() { pending_ = false; }
-  uint64_t deferred() const { return deferred_; }  // passes that had to put a redraw off
+  // Whether to draw this pass; the request is then taken.
+  bool take() { return std::exchange(pending_, false); }
 
  private:
   uint64_t last_ = 0;
   bool any_ = false;
   bool pending_ = true;
-  uint64_t deferred_ = 0;
 };
 
 }  // namespace tl::editor
