@@ -301,7 +301,8 @@ void EditorApp::frame() {
   // is lost between passes.
   const double frameBudget = session_->frameInFlight() ? 1.0 / 40.0 : 1.0 / 60.0;
   const double sleepStart = glfwGetTime();
-  nextPassAt_ = std::max(nextPassAt_ + frameBudget, sleepStart - frameBudget);  // late by more than a pass: no catching up
+  // Late by more than a pass (a stall): at most one pass is made up, not the whole stall.
+  nextPassAt_ = std::max(nextPassAt_ + frameBudget, sleepStart - frameBudget);
   for (double spare = nextPassAt_ - sleepStart; spare > 0.0; spare = nextPassAt_ - glfwGetTime()) glfwWaitEventsTimeout(spare);
   profile_.sleep += glfwGetTime() - sleepStart;
 }
