@@ -33,10 +33,14 @@ namespace {
 
 std::string imguiIniPath;  // ImGui keeps the pointer: it must outlive the context
 std::vector<std::string> droppedFiles;
+// The window was exposed (uncovered, restored): its pixels are the editor's to draw again.
+bool windowExposed = true;
 
 void onDrop(GLFWwindow*, int count, const char** paths) {
   for (int i = 0; i < count; ++i) droppedFiles.emplace_back(paths[i]);
 }
+
+void onRefresh(GLFWwindow*) { windowExposed = true; }
 
 void checkVk(VkResult r) {
   if (r != VK_SUCCESS) throw gpu::Error(fmt::format("Dear ImGui's Vulkan backend: {}", gpu::resultName(r)));
@@ -88,13 +92,13 @@ EditorApp::~EditorApp() {
     }
     session_->device().waitIdle();
   }
+  if (presenter_) presenter_->stop();  // its thread draws with Dear ImGui's backend
   if (uiDevice_) uiDevice_->waitIdle();
   if (load_.valid()) load_.wait();
   ImGui_ImplVulkan_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
-  viewportImage_.reset();
-  swapchain_.reset();
+  presenter_.reset();
   imguiPool_.reset();
   if (surface_) vkDestroySurfaceKHR(uiDevice_->instance(), surface_, nullptr);
   session_.reset();
@@ -137,6 +141,7 @@ void EditorApp::createWindow() {
   if (!window_) throw std::runtime_error("cannot create the editor window");
   input_.attach(window_);
   glfwSetDropCallback(window_, onDrop);
+  glfwSetWindowRefreshCallback(window_, onRefresh);
 
   gpu::DeviceOptions options;
   uint32_t n = 0;
@@ -148,8 +153,7 @@ void EditorApp::createWindow() {
   checkVk(glfwCreateWindowSurface(uiDevice_->instance(), window_, nullptr, &surface_));
   int w, h;
   glfwGetFramebufferSize(window_, &w, &h);
-  swapchain_ = std::make_unique<gpu::Swapchain>(*uiDevice_, surface_, VkExtent2D{uint32_t(w), uint32_t(h)}, settings_.vsync);
-  viewportImage_ = std::make_unique<ViewportImage>(*uiDevice_);
+  presenter_ = std::make_unique<WindowPresenter>(*uiDevice_, surface_, VkExtent2D{uint32_t(w), uint32_t(h)}, settings_.vsync);
 }
 
 void EditorApp::initImgui() {
@@ -177,18 +181,21 @@ void EditorApp::initImgui() {
   info.Queue = d.queue();
   info.DescriptorPool = imguiPool_->handle();
   info.MinImageCount = 2;
-  info.ImageCount = swapchain_->imageCount();
+  info.ImageCount = presenter_->swapchain().imageCount();
   info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
   info.CheckVkResultFn = checkVk;
-  ImGui_ImplVulkan_Init(&info, swapchain_->renderPass());
+  ImGui_ImplVulkan_Init(&info, presenter_->swapchain().renderPass());
   d.immediate([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
   ImGui_ImplVulkan_DestroyFontUploadObjects();
+  // From here on the window's device is the presenter's thread's alone.
+  presenter_->start();
 }
 
 int EditorApp::run() {
   lastTime_ = glfwGetTime();
   while (!glfwWindowShouldClose(window_) && !quit_) frame();
   saveSettingsIfChanged();
+  presenter_->finish();  // a screenshot asked for last is written, its validation counted
   if (script_ && script_->failed()) {
     fmt::print(stderr, "twinlight: error: script: {}\n", script_->failure());
     return 1;
@@ -213,6 +220,19 @@ double EditorApp::fps() const {
   return sum > 0.0 ? 1000.0 * double(n) / sum : 0.0;
 }
 
+void EditorApp::refreshShownFigures(double now) {
+  constexpr double kRefreshSeconds = 0.5;
+  if (figures_.at >= 0.0 && now - figures_.at < kRefreshSeconds) return;
+  figures_.uiFps = fps();
+  const uint64_t presented = framesPresented();
+  figures_.presentedFps = figures_.at < 0.0 ? 0.0 : double(presented - presentedAtFigures_) / (now - figures_.at);
+  presentedAtFigures_ = presented;
+  figures_.engineFps = engineFps();
+  figures_.frameAgeMs = 1000.0 * shownFrameAge();
+  figures_.passMs.assign(frameHistory_.begin(), frameHistory_.end());
+  figures_.at = now;
+}
+
 double EditorApp::engineFps() const {
   if (engineFrameEnds_.size() < 2) return 0.0;
   const double span = engineFrameEnds_.back() - engineFrameEnds_.front();
@@ -234,10 +254,6 @@ void EditorApp::frame() {
     glfwWaitEventsTimeout(0.1);
     return;
   }
-  if (resized_ || swapchain_->extent().width != uint32_t(w) || swapchain_->extent().height != uint32_t(h)) {
-    swapchain_->recreate({uint32_t(w), uint32_t(h)}, settings_.vsync);
-    resized_ = false;
-  }
   double now = glfwGetTime();
   float seconds = float(now - lastTime_);
   lastTime_ = now;
@@ -250,7 +266,8 @@ void EditorApp::frame() {
   if (script_) script_->step(*this);
   // A bake uses the engine's device between its frames (its batches wait for their own work).
   if (!session_->frameInFlight()) stepAlbedoBake();
-  if (framesDrawn_ % 15 == 0) pollShaders(), saveSettingsIfChanged();
+  if (uiFrames_ % 15 == 0) pollShaders(), saveSettingsIfChanged();
+  refreshShownFigures(now);
 
   const double panelsStart = glfwGetTime();
   profile_.input += panelsStart - frameStart;
@@ -270,22 +287,54 @@ void EditorApp::frame() {
   ImGui::Render();
   const double presentStart = glfwGetTime();
   profile_.panels += presentStart - panelsStart;
-  recordAndPresent();
+  presentIfChanged();
   profile_.present += glfwGetTime() - presentStart;
 
-  ++framesDrawn_;
+  ++uiFrames_;
   frameHistory_.push_back(seconds * 1000.0);
   if (frameHistory_.size() > 240) frameHistory_.pop_front();
   // At most 60 UI frames a second, 40 while the engine renders (above the 30 an artist
   // needs): what the interface does not need, the engine gets (on a software device both
-  // share the CPU).
+  // share the CPU). Passes are paced against a running deadline, so a wake-up that comes
+  // late on a loaded machine is made up by the next wait instead of lowering the rate. The
+  // wait takes the window's events as they come (into the input queue, in order), so nothing
+  // is lost between passes.
   const double frameBudget = session_->frameInFlight() ? 1.0 / 40.0 : 1.0 / 60.0;
-  const double spare = frameBudget - (glfwGetTime() - frameStart);
-  if (spare > 0.0) {
-    const double sleepStart = glfwGetTime();
-    std::this_thread::sleep_for(std::chrono::duration<double>(spare));
-    profile_.sleep += glfwGetTime() - sleepStart;
-  }
+  const double sleepStart = glfwGetTime();
+  // Late by more than a pass (a stall): at most one pass is made up, not the whole stall.
+  nextPassAt_ = std::max(nextPassAt_ + frameBudget, sleepStart - frameBudget);
+  for (double spare = nextPassAt_ - sleepStart; spare > 0.0; spare = nextPassAt_ - glfwGetTime()) glfwWaitEventsTimeout(spare);
+  profile_.sleep += glfwGetTime() - sleepStart;
+}
+
+// Hands the window's thread a frame when what the window would show changed: the UI loop
+// never waits for the drawing (on lavapipe presenting waits until the frame is drawn).
+void EditorApp::presentIfChanged() {
+  for (const std::string& e : presenter_->takeErrors()) showError(e);
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  const bool clearImage = imageShown_ && !session_->hasScene() && !session_->hasCapture();
+  if (clearImage) imageShown_ = false, shownImage_.clear(), newImage_.reset();
+  uint64_t hash = drawDataHash(*ImGui::GetDrawData());
+  hash = scene::hashBytes(&viewportMin_, sizeof viewportMin_, hash);
+  hash = scene::hashBytes(&viewportSize_, sizeof viewportSize_, hash);
+  const int32_t window[3] = {w, h, settings_.vsync ? 1 : 0};
+  hash = scene::hashBytes(window, sizeof window, hash);
+  redraw_.observe(hash);
+  if (newImage_ || clearImage || windowExposed || screenshotPath_) redraw_.invalidate();
+  windowExposed = false;
+  if (!redraw_.take()) return;
+  WindowPresenter::Frame frame;
+  frame.ui = DrawDataCopy(*ImGui::GetDrawData());
+  frame.viewportMin = glm::ivec2(viewportMin_);
+  frame.viewportMax = glm::ivec2(viewportMin_ + viewportSize_);
+  frame.windowSize = {uint32_t(w), uint32_t(h)};
+  frame.vsync = settings_.vsync;
+  frame.image = std::move(newImage_);
+  frame.clearImage = clearImage;
+  frame.screenshot = std::move(screenshotPath_);
+  newImage_.reset(), screenshotPath_.reset();
+  presenter_->submit(std::move(frame));
 }
 
 void EditorApp::handleCameraInput(float seconds) {
@@ -488,30 +537,6 @@ void EditorApp::finishLoad() {
 std::filesystem::path EditorApp::defaultCaptureFolder() const {
   const std::string scene = session_->hasScene() ? session_->scene().name : "none";
   return std::filesystem::path("captures") / fmt::format("{}-{}-frame{}", scene, session_->path(), session_->frameIndex());
-}
-
-void EditorApp::writeScreenshot(const gpu::Buffer& pixels, VkExtent2D ext) {
-  std::filesystem::path file = *screenshotPath_;
-  screenshotPath_.reset();
-  std::vector<uint8_t> rgb(size_t(ext.width) * ext.height * 3);
-  const auto* src = static_cast<const uint8_t*>(pixels.mapped());
-  const bool bgra = swapchain_->format() == VK_FORMAT_B8G8R8A8_UNORM;
-  for (size_t i = 0; i < size_t(ext.width) * ext.height; ++i) {
-    rgb[i * 3 + 0] = src[i * 4 + (bgra ? 2 : 0)];
-    rgb[i * 3 + 1] = src[i * 4 + 1];
-    rgb[i * 3 + 2] = src[i * 4 + (bgra ? 0 : 2)];
-  }
-  try {
-    session::writeFileAtomically(file, [&](const std::string& tmp) {
-      auto out = OIIO::ImageOutput::create(file.string());
-      OIIO::ImageSpec spec(int(ext.width), int(ext.height), 3, OIIO::TypeDesc::UINT8);
-      return out && out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) && out->close();
-    });
-  } catch (const std::exception& e) {
-    showError(fmt::format("cannot write the screenshot: {}", e.what()));
-    return;
-  }
-  fmt::print("wrote {}\n", std::filesystem::absolute(file).string());
 }
 
 void EditorApp::openAlbedoDatabase(const std::filesystem::path& file) {

@@ -3,6 +3,8 @@
 // submitted by the UI thread and collected when the GPU is done, while the UI goes on at its
 // own rate; the latest finished frame (its display image, read back) is blitted into the
 // swapchain under a transparent viewport panel, with its age, and the UI drawn over it.
+// Nor does it wait for the window: the window is drawn only when what it shows changed
+// (window_redraw.h), on a thread of its own (window_presenter.h).
 #pragma once
 
 #include "buffer_viewer.h"
@@ -11,11 +13,11 @@
 #include "input_queue.h"
 #include "scene_watcher.h"
 #include "settings.h"
-#include "viewport_image.h"
+#include "window_presenter.h"
+#include "window_redraw.h"
 
 #include "gpu/descriptor_pool.h"
 #include "gpu/shader_reload.h"
-#include "gpu/swapchain.h"
 #include "session/edit_history.h"
 #include "session/session.h"
 
@@ -63,6 +65,8 @@ class EditorApp {
   std::optional<uint32_t> selected() const { return selected_; }
   void clickViewport(glm::vec2 windowPos);    // picks the instance under the cursor
   void requestScreenshot(const std::filesystem::path& file) { screenshotPath_ = file; }
+  // A screenshot asked for and not yet written (the window's thread takes it).
+  bool screenshotPending() const { return screenshotPath_ || (presenter_ && presenter_->screenshotPending()); }
   // Writes every buffer of the next engine frame into `dir` (EXR + manifest.json).
   void requestFrameCapture(const std::filesystem::path& dir) { frameCapturePath_ = dir; }
   void requestQuit() { quit_ = true; }
@@ -81,6 +85,15 @@ class EditorApp {
   // how old (seconds since its input was taken) the frame on screen is.
   double engineFps() const;
   double shownFrameAge() const;
+  // The figures the panels show (rates, the frame's age, the loop's recent pass times),
+  // refreshed a few times a second rather than every pass: a figure that changed every pass
+  // would have the window drawn again every pass (window_redraw.h).
+  struct ShownFigures {
+    double uiFps = 0.0, presentedFps = 0.0, engineFps = 0.0, frameAgeMs = 0.0;
+    std::vector<float> passMs;  // the loop's recent passes, oldest first
+    double at = -1.0;           // glfwGetTime() when taken
+  };
+  const ShownFigures& shownFigures() const { return figures_; }
   InputQueue& input() { return input_; }
   // Undo and redo across the edit histories (render settings and lighting, albedo overrides):
   // the latest edit first, whichever it was; Ctrl+Z / Ctrl+Y. Each returns what it did ("" = nothing).
@@ -136,10 +149,16 @@ class EditorApp {
   const std::string& lastBakeSummary() const { return lastBakeSummary_; }
   const std::string& pinnedPreview() const { return viewer_.resource; }
   void showBrowser(bool on) { showBrowser_ = on; }
-  uint64_t framesDrawn() const { return framesDrawn_; }
+  // Passes of the UI loop (each takes the input, runs the panels, starts and collects engine
+  // frames): the interface's frame rate. A pass whose window would look as it does is not
+  // drawn; framesPresented() counts the window frames presented, framesSuperseded() those
+  // handed to the window's thread and replaced by a newer one before it got to them.
+  uint64_t uiFrames() const { return uiFrames_; }
+  uint64_t framesPresented() const { return presenter_ ? presenter_->presented() : 0; }
+  uint64_t framesSuperseded() const { return presenter_ ? presenter_->superseded() : 0; }
   // Where the UI frames' wall time went since the start (`measure` prints the differences).
   const FrameProfile& frameProfile() const { return profile_; }
-  double fps() const;
+  double fps() const;            // UI loop passes per second, over the last 30
   const std::deque<double>& frameHistoryMs() const { return frameHistory_; }
   // Viewport panel rectangle in window pixels (valid after the first frame).
   glm::vec2 viewportMin() const { return viewportMin_; }
@@ -153,14 +172,14 @@ class EditorApp {
   void handleCameraInput(float seconds);
   void startEngineFrame();
   void collectEngineFrame();
-  void recordAndPresent();
+  void presentIfChanged();
+  void refreshShownFigures(double now);
   void finishLoad();
   void applyBookmark(int slot, bool save);
   void saveSettingsIfChanged();
   void reopenAlbedoDatabase();
   void attachAlbedoDatabase(const std::filesystem::path& file);  // openAlbedoDatabase without notes
   std::string sceneKey() const;
-  void writeScreenshot(const gpu::Buffer& pixels, VkExtent2D extent);
 
   Settings settings_;
   session::EditHistory history_;  // render settings and lighting; reset with each scene
@@ -169,8 +188,12 @@ class EditorApp {
   VkSurfaceKHR surface_ = VK_NULL_HANDLE;
   std::unique_ptr<gpu::Device> uiDevice_;  // the window's: swapchain, Dear ImGui, the viewport image
   std::unique_ptr<session::Session> session_;
-  std::unique_ptr<gpu::Swapchain> swapchain_;
-  std::unique_ptr<ViewportImage> viewportImage_;
+  std::unique_ptr<WindowPresenter> presenter_;
+  // The engine image last handed to the window (an equal one is not handed again) and a new
+  // one waiting for the next window frame.
+  std::vector<uint8_t> shownImage_;
+  std::optional<graph::Readback> newImage_;
+  bool imageShown_ = false;
   InputQueue input_;
   std::unique_ptr<gpu::DescriptorPool> imguiPool_;
   std::unique_ptr<Script> script_;
@@ -209,17 +232,20 @@ class EditorApp {
   std::optional<FrameAsks> inFlight_;
   bool renderDocPending_ = false;
   std::deque<Notice> notices_;
-  bool resized_ = false;
   bool captureInFlight_ = false;
   uint64_t engineFramesDone_ = 0, engineFramesBegun_ = 0;
   std::deque<double> engineFrameEnds_;  // glfwGetTime() of recent finished frames
   double shownBegunAt_ = -1.0;          // input time of the frame on screen
   std::vector<uint8_t> pickIds_;        // gbuffer.instanceId of the frame on screen
   VkExtent3D pickExtent_{};
-  uint64_t framesDrawn_ = 0;
+  uint64_t uiFrames_ = 0;
+  WindowRedraw redraw_;
+  ShownFigures figures_;
+  uint64_t presentedAtFigures_ = 0;  // framesPresented() when the figures were taken
   FrameProfile profile_;
   std::deque<double> frameHistory_;
   double lastTime_ = 0.0;
+  double nextPassAt_ = 0.0;  // glfwGetTime() the next pass of the UI loop is due
   glm::vec2 lastMouse_{0.0f};
   glm::vec2 pressPos_{0.0f};
   bool dragged_ = false;

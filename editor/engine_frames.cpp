@@ -1,7 +1,7 @@
 // The editor's engine frames and its own: the UI thread starts an engine frame with the
 // input it has, goes on drawing the interface while the engine's device works, and collects
 // the frame when it is done (its display image, picking ids, the viewer's read-backs, a
-// capture). The window's device presents the latest finished image every UI frame.
+// capture). The window's thread shows the latest finished image (window_presenter.h).
 #include "editor_app.h"
 
 #include "gpu/renderdoc.h"
@@ -127,7 +127,8 @@ void EditorApp::collectEngineFrame() {
   while (engineFrameEnds_.size() > 2 && now - engineFrameEnds_.front() > 2.0) engineFrameEnds_.pop_front();
 
   if (const graph::Readback* shown = session_->displayReadback()) {
-    viewportImage_->set(*shown);
+    // An image equal to the one shown (a still, converged frame) changes nothing on screen.
+    if (shown->bytes != shownImage_) shownImage_ = shown->bytes, newImage_ = *shown, imageShown_ = true;
     shownBegunAt_ = asks.begunAt;
     if (asks.snapshot) capture_ = shown->texels();
   } else if (asks.snapshot) {
@@ -192,50 +193,6 @@ void EditorApp::collectEngineFrame() {
       }
     }
     if (asks.keepCopy) viewer_.copyOf = asks.viewed, viewer_.copyReadback = shown;
-  }
-}
-
-void EditorApp::recordAndPresent() {
-  auto& d = *uiDevice_;
-  if (!session_->hasScene() && !session_->hasCapture()) viewportImage_->clear();
-  if (!swapchain_->acquire()) {
-    resized_ = true;
-    return;
-  }
-  VkCommandBuffer cmd = d.beginCommands();
-  VkImage target = swapchain_->image();
-  VkExtent2D ext = swapchain_->extent();
-  gpu::transitionImage(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-  VkClearColorValue clear{{0.09f, 0.09f, 0.10f, 1.0f}};
-  VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  vkCmdClearColorImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &clear, 1, &range);
-  // The engine's latest image, scaled into the viewport panel (linear filter: render scale).
-  if (viewportSize_.x >= 1.0f && viewportSize_.y >= 1.0f)
-    viewportImage_->record(cmd, target, ext, glm::ivec2(viewportMin_), glm::ivec2(viewportMin_ + viewportSize_));
-
-  VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  rp.renderPass = swapchain_->renderPass();
-  rp.framebuffer = swapchain_->framebuffer();
-  rp.renderArea = {{0, 0}, ext};
-  vkCmdBeginRenderPass(cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
-  ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
-  vkCmdEndRenderPass(cmd);
-
-  std::optional<gpu::Buffer> shot;
-  if (screenshotPath_) {
-    shot.emplace(d, VkDeviceSize(ext.width) * ext.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUsage::Readback,
-                 "ui.screenshot");
-    gpu::transitionImage(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {ext.width, ext.height, 1};
-    vkCmdCopyImageToBuffer(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, shot->handle(), 1, &region);
-    gpu::transitionImage(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
-  }
-  if (!swapchain_->submitAndPresent(cmd)) resized_ = true;
-  if (shot) {
-    d.wait(swapchain_->lastSubmission());
-    writeScreenshot(*shot, ext);
   }
 }
 

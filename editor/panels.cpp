@@ -290,12 +290,16 @@ void timingPanel(EditorApp& app) {
   }
   app.previewResource(hoveredOutput == "display.ldr" ? "" : hoveredOutput);
   ImGui::Separator();
-  const auto& history = app.frameHistoryMs();
-  std::vector<float> values(history.begin(), history.end());
-  ImGui::Text("Frame time (CPU+GPU), %.1f fps", app.fps());
-  if (!values.empty())
-    ImGui::PlotLines("##history", values.data(), int(values.size()), 0, nullptr, 0.0f,
-                     *std::max_element(values.begin(), values.end()) * 1.2f, ImVec2(ImGui::GetContentRegionAvail().x, 80));
+  // The UI loop's passes (what input waits for), not the window's redraws: a pass that
+  // changes nothing on screen is not drawn again (window_redraw.h).
+  const auto& figures = app.shownFigures();
+  ImGui::Text("UI loop %.1f passes/s, window drawn %.1f/s", figures.uiFps, figures.presentedFps);
+  tooltip("Every pass of the UI loop takes the input and runs the panels; the window is drawn only when what it shows "
+          "changed. The graph: each pass's time in ms.");
+  if (!figures.passMs.empty())
+    ImGui::PlotLines("##history", figures.passMs.data(), int(figures.passMs.size()), 0, nullptr, 0.0f,
+                     *std::max_element(figures.passMs.begin(), figures.passMs.end()) * 1.2f,
+                     ImVec2(ImGui::GetContentRegionAvail().x, 80));
   ImGui::End();
 }
 
@@ -311,9 +315,11 @@ void statusBar(EditorApp& app) {
   const std::string path = compare ? "compare " + compare->left + " | " + compare->right : "path " + s.path();
   // The interface and the engine run at their own rates: both are shown, with the age of the
   // engine frame on screen (how far behind the input it is).
+  // (Refreshed a few times a second: window_redraw.h.)
+  const auto& figures = app.shownFigures();
   ImGui::Text("%s  |  render %ux%u (scale %.2f)  |  UI %.0f fps, engine %.1f fps, frame %.0f ms old  |  %s  |  %s%s%s",
-              s.device().name().c_str(), s.settings().width, s.settings().height, app.settings().renderScale, app.fps(),
-              app.engineFps(), 1000.0 * app.shownFrameAge(), path.c_str(),
+              s.device().name().c_str(), s.settings().width, s.settings().height, app.settings().renderScale, figures.uiFps,
+              figures.engineFps, figures.frameAgeMs, path.c_str(),
               s.hasCapture()  ? ("capture " + s.capture()->dir().string() + " (File > Close capture)").c_str()
               : s.hasScene() ? s.scene().name.c_str()
                              : "no scene",

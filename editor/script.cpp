@@ -74,20 +74,26 @@ void Script::step(EditorApp& app) {
     if (--measureFrames_ == 0) {
       double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count() -
                        measureSeconds_;
-      uint64_t frames = app.framesDrawn() - measureStart_, engine = app.engineFramesDone() - measureEngineStart_;
+      const uint64_t frames = app.uiFrames() - measureStart_, engine = app.engineFramesDone() - measureEngineStart_;
+      const uint64_t presented = app.framesPresented() - measurePresentedStart_;
+      const uint64_t superseded = app.framesSuperseded() - measureSupersededStart_;
       const double cpu = threadCpuSeconds() - measureCpu_, processCpu = processCpuSeconds() - measureProcessCpu_;
       const auto& compare = app.compareView();
       const std::string path = compare ? fmt::format("compare {} | {}", compare->left, compare->right) : app.session().path();
-      fmt::print("editor: UI {:.1f} fps over {} frames, engine {:.2f} fps ({} frames), frame on screen {:.0f} ms old, "
-                 "UI thread {:.1f} ms CPU a frame, process {:.0f}% of a core, render {}x{}, path {}, {}\n",
-                 double(frames) / seconds, frames, double(engine) / seconds, engine, 1000.0 * app.shownFrameAge(),
+      // The UI's frame rate is its loop's: every pass takes the input and runs the panels.
+      // Presented frames are the passes that drew the window (what changed on screen).
+      fmt::print("editor: UI loop {:.1f} fps over {} passes, window presented {:.1f} fps ({} frames; {} replaced "
+                 "by a newer one before drawn), engine {:.2f} fps ({} frames), frame on screen {:.0f} ms old, "
+                 "UI thread {:.1f} ms CPU a pass, process {:.0f}% of a core, render {}x{}, path {}, {}\n",
+                 double(frames) / seconds, frames, double(presented) / seconds, presented, superseded,
+                 double(engine) / seconds, engine, 1000.0 * app.shownFrameAge(),
                  1000.0 * cpu / double(std::max<uint64_t>(frames, 1)), 100.0 * processCpu / seconds,
                  app.session().settings().width, app.session().settings().height, path, app.session().device().name());
       // Where the frames went: the UI thread's wall time by phase, then CPU by thread group
       // (the engine's threads run at a lower priority and are marked so), per UI frame.
       const FrameProfile& p = app.frameProfile();
       const double perFrame = 1000.0 / double(std::max<uint64_t>(frames, 1));
-      fmt::print("editor: a UI frame's wall time: input {:.1f} ms, panels {:.1f} ms, present {:.1f} ms, pacing sleep {:.1f} ms\n",
+      fmt::print("editor: a UI pass's wall time: input {:.1f} ms, panels {:.1f} ms, present {:.1f} ms, pacing sleep {:.1f} ms\n",
                  perFrame * (p.input - measureProfile_.input), perFrame * (p.panels - measureProfile_.panels),
                  perFrame * (p.present - measureProfile_.present), perFrame * (p.sleep - measureProfile_.sleep));
       std::vector<std::pair<double, std::string>> threads;
@@ -101,7 +107,7 @@ void Script::step(EditorApp& app) {
       for (const auto& [used, group] : threads) list += fmt::format("{}{} {:.1f}", list.empty() ? "" : ", ", group, perFrame * used);
       double load[3] = {};
       std::ifstream("/proc/loadavg") >> load[0] >> load[1] >> load[2];
-      fmt::print("editor: CPU ms a UI frame by thread: {}; machine load {:.1f} on {} CPUs\n", list, load[0],
+      fmt::print("editor: CPU ms a UI pass by thread: {}; machine load {:.1f} on {} CPUs\n", list, load[0],
                  std::thread::hardware_concurrency());
     }
     return;
@@ -110,6 +116,10 @@ void Script::step(EditorApp& app) {
   if (waitFrames_ > 0) {
     if (app.engineActive() ? app.engineFramesDone() < waitUntil_ : --waitFrames_ > 0) return;
     waitFrames_ = 0;
+  }
+  if (waitScreenshot_) {
+    if (app.screenshotPending()) return;
+    waitScreenshot_ = false;
   }
   if (waitCapture_) {
     if (app.frameCapturePending()) return;
@@ -216,7 +226,9 @@ void Script::step(EditorApp& app) {
         return;
       } else if (cmd == "measure") {
         measureFrames_ = std::max(1, std::stoi(arg));
-        measureStart_ = app.framesDrawn();
+        measureStart_ = app.uiFrames();
+        measurePresentedStart_ = app.framesPresented();
+        measureSupersededStart_ = app.framesSuperseded();
         measureEngineStart_ = app.engineFramesDone();
         measureCpu_ = threadCpuSeconds();
         measureProcessCpu_ = processCpuSeconds();
@@ -226,7 +238,8 @@ void Script::step(EditorApp& app) {
         return;
       } else if (cmd == "screenshot") {
         app.requestScreenshot(arg);
-        return;  // taken at the end of this frame
+        waitScreenshot_ = true;
+        return;  // taken by the window's thread: the script goes on once it is written
       } else if (cmd == "snapshot" || cmd == "expect-viewport-changed") {
         if (cmd == "expect-viewport-changed" && snapshot_.empty()) return fail(app, "no snapshot to compare with");
         capture_ = cmd == "snapshot" ? Capture::Snapshot : Capture::Compare;

@@ -13,7 +13,10 @@
 //   render-scale S         engine resolution relative to the viewport
 //   help on|off, browser on|off
 //   wait N                 let N engine frames finish (UI frames when nothing renders)
-//   measure N              draw N UI frames and print the UI's and the engine's frame rates
+//   measure N              run N passes of the UI loop and print its rate (the UI's frame
+//                          rate: each pass takes the input and runs the panels), the window
+//                          frames presented (a pass that changes nothing on screen is not
+//                          drawn again) and the engine's frame rate
 //   screenshot FILE        save the whole window as PNG
 //   capture [DIR]          write every buffer of the next frame (EXR + manifest.json) into DIR
 //   snapshot               remember the viewport image of the next frame
@@ -115,7 +118,8 @@ class Script {
   std::string waitShaderError_;
   int shaderErrorFrames_ = 0;
   int measureFrames_ = 0;
-  uint64_t measureStart_ = 0;
+  uint64_t measureStart_ = 0, measurePresentedStart_ = 0, measureSupersededStart_ = 0;
+  bool waitScreenshot_ = false;
   double measureSeconds_ = 0.0;
   std::string failure_;
   enum class Capture { None, Snapshot, Compare } capture_ = Capture::None;

@@ -1,7 +1,7 @@
 // The engine's latest finished frame on the window's device. The engine renders on a device
 // of its own (lavapipe, like many drivers, has one queue: a window sharing it would present
 // only after every engine frame, at the engine's pace), reads its display image back, and
-// the interface uploads those pixels here and blits them under its panels every UI frame.
+// the window's thread uploads those pixels here and blits them under the panels.
 #pragma once
 
 #include "gpu/resources.h"
