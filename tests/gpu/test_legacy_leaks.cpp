@@ -180,26 +180,31 @@ TEST(LegacyStepContrast, MeasuresAStepAndIgnoresARamp) {
   EXPECT_NEAR(stepContrast(stepped, 4, all, w, h).worst, 0.03, 0.002);
 }
 
-// The lit room's far wall (x = -4, facing +x) is flat and gets no sun, only sky and bounce
-// light, so the truth on it is smooth; a voxel is ~3.4 pixels here. Measured: worst step
-// 0.91 %, 99th percentile 0.39 %.
-TEST_F(LegacyLeakTest, NoVoxelSizedStepsOnAFlatWall) {
-  auto& s = session();
+// The step contrast of `image` over the flat middle of the wall whose normal is `wallNormal`
+// (x only), seen from `position` along `forward` at 128x96 after 8 frames: wall pixels at
+// least 12 pixels (~0.4 m, 3 voxels) from the wall's edges, away from the corners' darkening
+// (a gradient, not a step).
+StepContrast wallStepContrast(session::Session& s, glm::dvec3 position, glm::dvec3 forward, float wallNormal,
+                              const char* image) {
   s.installScene(makeTwoRooms());
   lightTwoRooms(s);
   s.setPath("legacy");
   const uint32_t w = 128, h = 96;
   s.setSize(w, h);
-  s.requestBuffer(kCompositeHdr);
+  s.requestBuffer(image);
   s.requestBuffer("gbuffer.normal");
-  look({-0.6, 1.5, 0.0}, {-1.0, 0.0, 0.0}, 1.0f);
+  session::View v = s.view();
+  v.position = position;
+  v.forward = glm::normalize(forward);
+  v.up = {0.0, 1.0, 0.0};
+  v.yfovRadians = 1.0f;
+  s.setView(v);
   s.renderFrames(8);
   auto n = s.buffer("gbuffer.normal").texels();
-  // Wall pixels at least 12 pixels (~0.4 m, 3 voxels) from its edges: the flat middle,
-  // away from the corners' darkening (a gradient, not a step).
   constexpr int kMargin = 12;
   std::vector<bool> facing(size_t(w) * h), wall(size_t(w) * h);
-  for (size_t i = 0; i < facing.size(); ++i) facing[i] = shared::tlOctDecode(glm::vec2(n[2 * i], n[2 * i + 1])).x > 0.99f;
+  for (size_t i = 0; i < facing.size(); ++i)
+    facing[i] = shared::tlOctDecode(glm::vec2(n[2 * i], n[2 * i + 1])).x * wallNormal > 0.99f;
   for (uint32_t y = 0; y < h; ++y)
     for (uint32_t x = 0; x < w; ++x) {
       bool all = true;
@@ -210,12 +215,33 @@ TEST_F(LegacyLeakTest, NoVoxelSizedStepsOnAFlatWall) {
         }
       wall[size_t(y) * w + x] = all;
     }
-  const auto& hdr = s.buffer(kCompositeHdr);
-  StepContrast c = stepContrast(hdr.texels(), hdr.channels(), wall, w, h);
+  const auto& b = s.buffer(image);
+  StepContrast c = stepContrast(b.texels(), b.channels(), wall, w, h);
+  std::printf("%s step contrast: worst %.4f, 99th percentile %.4f over %zu pairs\n", image, c.worst, c.p99, c.pairs);
+  EXPECT_GT(c.pairs, size_t(w * h / 3)) << "the camera should see the wall";
+  return c;
+}
+
+// The lit room's far wall (x = -4, facing +x) is flat and gets no sun, only sky and bounce
+// light, so the truth on it is smooth and GI is all of its light; a voxel is ~3.4 pixels
+// here. Measured: worst step 0.91 %, 99th percentile 0.39 %.
+TEST_F(LegacyLeakTest, NoVoxelSizedStepsOnAFlatWall) {
+  const StepContrast c = wallStepContrast(session(), {-0.6, 1.5, 0.0}, {-1.0, 0.0, 0.0}, 1.0f, kCompositeHdr);
   RecordProperty("step_contrast_worst", std::to_string(c.worst));
   RecordProperty("step_contrast_p99", std::to_string(c.p99));
-  std::printf("step contrast: worst %.4f, 99th percentile %.4f over %zu pairs\n", c.worst, c.p99, c.pairs);
-  ASSERT_GT(c.pairs, size_t(w * h / 3)) << "the camera should see the wall";
+  EXPECT_LT(c.worst, 0.02);
+}
+
+// The shared wall's sunlit side (x = 0, facing -x), its half at z > 0 seen from 1.5 m (a
+// voxel ~8 pixels): a flat lit wall. The sun (E = 20) is most of its light and would hide the
+// GI's steps, so the criterion reads the composite's irradiance without the sun (sky and
+// bounce: all the GI), where a step is the GI's own. Measured: worst step 0.59 %, 99th
+// percentile 0.38 %; cones whose samples snap to texel centres along each face's axis (tried
+// against the leak, docs/accuracy.md) show 7.5 % here and 4.6 % on the far wall.
+TEST_F(LegacyLeakTest, NoVoxelSizedStepsOnASunlitWall) {
+  const StepContrast c = wallStepContrast(session(), {-1.5, 1.5, 0.9}, {1.0, 0.0, 0.0}, -1.0f, kCompositeIrradiance);
+  RecordProperty("step_contrast_worst", std::to_string(c.worst));
+  RecordProperty("step_contrast_p99", std::to_string(c.p99));
   EXPECT_LT(c.worst, 0.02);
 }
 
