@@ -86,6 +86,7 @@ void settingWidget(const SettingInfo& s, lighting::RenderSettings& settings, flo
       break;
     }
   }
+  trackItem("settings." + label);  // scripts reach the widget itself: click-ui settings.NAME
   tooltip(settingTooltip(s, settings, sceneScale).c_str());
   if (next != value && !lighting::settingRangeError(s, next)) s.set(settings, next);
 }

@@ -27,14 +27,20 @@ VkBuffer lightTableOrStandIn(graph::PassContext& ctx, const FrameInputs& in, VkB
 
 class LightsPass {
  public:
-  // Returns the name of what it wrote, or "" when the frame has no lights (no pass then).
+  // Returns the name of what it wrote, or "" when the frame has no lights (no pass then);
+  // with the `redeferred` setting the light table's share of the I-buffer, lights.Ldg first.
   // `structures` names the top level (first) and the bottom levels its rays may reach that the
   // frame rewrites; `tlasHandle` is the top level: shadow rays. Empty: unshadowed.
   std::string add(graph::RenderGraph& graph, FrameInputs& in, const std::vector<std::string>& structures,
                   VkAccelerationStructureKHR tlasHandle);
 
  private:
-  gpu::Pipeline unshadowed_, traced_;
+  // Redeferred shading (lighting/common/redeferred_pass.h): the light table's share of the
+  // I-buffer (lights.Ldg ...) instead of radiance; returns lights.Ldg.
+  std::string addIbuffer(graph::RenderGraph& graph, FrameInputs& in, const std::vector<std::string>& structures,
+                         VkAccelerationStructureKHR tlasHandle);
+
+  gpu::Pipeline unshadowed_, traced_, ibufferUnshadowed_, ibufferTraced_;
   gpu::Sampler point_;
   std::map<std::string, HistoryKeeper, std::less<>> accumulation_;  // per lighting path
 };

@@ -48,7 +48,9 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
 // Distances flagged kSettingAuto are "scaled to the scene" at 0 (see autoSettingValue).
 // History: what a path's accumulated samples estimate restarts it; the ray pattern, the
 // accumulation window, denoisers and update policies change only noise, weights or work
-// (docs/architecture.md, "The frame key").
+// (docs/architecture.md, "The frame key"). Redeferred shading changes how the composite
+// applies light, downstream of every path's history: it resets none (its own light sums keep
+// their own accumulation images).
 // clang-format off
 #define TL_RENDER_SETTINGS(X) \
   X(uint32_t, width, 640, 1, 16384, "px", "common", "", kSettingNoPanel, "image width (--size)") \
@@ -60,6 +62,7 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(bool, softShadows, true, 0, 1, "", "common", "", kSettingPlain, "PCSS: penumbrae from the sun's angular size (off: 3x3 PCF, --hard-shadows)") \
   X(float, pcssMaxRadiusTexels, 16.0f, 0.0f, 64.0f, "texels", "common", "", kSettingPlain, "widest PCSS filter") \
   X(bool, specularGi, true, 0, 1, "", "common", "", kSettingPlain, "indirect specular from the path's SH (dominant direction, GGX; Metro); off: the sky's specular times AO") \
+  X(bool, redeferred, false, 0, 1, "", "common", "", kSettingPlain, "redeferred shading (Fools Engine): lights accumulate material-free sums (ibuffer.*), one material pass applies the materials; off: the deferred composite") \
   X(bool, taa, false, 0, 1, "", "common", "", kSettingPlain, "temporal anti-aliasing: jittered projection, YCoCg-clipped history (not the reference, which jitters its own rays)") \
   X(float, taaBlend, 0.1f, 0.01f, 1.0f, "", "common", "", kSettingPlain, "TAA: weight of the new frame in the history; lower is smoother and slower to follow") \
   X(uint32_t, referenceBounces, 64, 1, 64, "events", "reference", "reference", kSettingPlain, "scattering events per path (1 = direct light only, 2 = one indirect bounce); Russian roulette ends paths first") \
