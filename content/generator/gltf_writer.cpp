@@ -221,18 +221,7 @@ int SceneWriter::material(const MaterialSpec& spec) {
     tinygltf::Image img;
     img.uri = spec.baseColorTexture;
     img.name = std::filesystem::path(spec.baseColorTexture).stem().string();
-    model_.images.push_back(img);
-    if (model_.samplers.empty()) {
-      tinygltf::Sampler s;
-      s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-      s.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-      model_.samplers.push_back(s);
-    }
-    tinygltf::Texture t;
-    t.source = int(model_.images.size() - 1);
-    t.sampler = 0;
-    model_.textures.push_back(t);
-    m.pbrMetallicRoughness.baseColorTexture.index = int(model_.textures.size() - 1);
+    m.pbrMetallicRoughness.baseColorTexture.index = texture(img);
   }
   model_.materials.push_back(m);
   return int(model_.materials.size() - 1);

@@ -1,5 +1,6 @@
 // The environment map on the CPU (scene/environment_map.h, shared/environment.h): its
 // directions, its importance table and its spherical-harmonic projection against closed forms.
+#include "../common/temp_dir.h"
 #include "scene/environment_map.h"
 #include "scene/scene.h"
 #include "shared/environment.h"
@@ -14,18 +15,11 @@
 namespace tl::scene {
 namespace {
 
+using tl::test::contentFile;
+using tl::test::TempDir;
+
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("twinlight-env-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 EnvironmentMap uniform(uint32_t w, uint32_t h, glm::vec3 l) { return makeEnvironmentMap(w, h, std::vector<glm::vec3>(size_t(w) * h, l)); }
 

@@ -2,6 +2,7 @@
 // allows (a file, a data: URI, a .glb bufferView) at 8 and 16 bits and as floats, kept in a
 // precision that holds their values; tangents generated the way MikkTSpace and the exporters
 // write them, and supplied ones used as given.
+#include "../common/temp_dir.h"
 #include "scene/scene.h"
 #include "scene/scene_internal.h"
 #include "shared/color.h"
@@ -18,20 +19,12 @@
 namespace tl::scene {
 namespace {
 
+using tl::test::contentFile;
+using tl::test::TempDir;
+
 namespace fs = std::filesystem;
 
-fs::path content(const char* name) { return fs::path(TWINLIGHT_CONTENT_DIR) / name; }
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("twinlight-gltf-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 const Material& material(const Scene& s, const std::string& name) {
   for (auto& m : s.materials)
@@ -85,7 +78,7 @@ void writeTexturedTriangle(const fs::path& file, const std::vector<std::string>&
 // colour stays 8-bit, the 16-bit emissive keeps its value (128/65535 decoded from sRGB, times
 // the strength 1e4: 1.51, where 8 bits give 0).
 TEST(GltfImages, GlbBufferViewsAt8And16Bits) {
-  Scene s = loadGltf(content("embedded_textures.glb"));
+  Scene s = loadGltf(contentFile("embedded_textures.glb"));
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
   const Material& base = material(s, "base_colour_8bit");
   ASSERT_TRUE(base.baseColorTexture);
@@ -109,7 +102,7 @@ TEST(GltfImages, GlbBufferViewsAt8And16Bits) {
 }
 
 TEST(GltfImages, DataUri) {
-  Scene s = loadGltf(content("normal_probe.gltf"));
+  Scene s = loadGltf(contentFile("normal_probe.gltf"));
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
   const Material& m = material(s, "normal_mapped");
   ASSERT_TRUE(m.normalTexture);
@@ -152,7 +145,7 @@ TEST(GltfImages, FilesAtEveryDepth) {
 // with T = +X, so w = -1; mirroring u flips T and w. Generated tangents must equal what the
 // probe scene supplies.
 TEST(GltfTangents, GeneratedMatchSuppliedOnPlainAndMirroredUvs) {
-  Scene s = loadGltf(content("normal_probe.gltf"));
+  Scene s = loadGltf(contentFile("normal_probe.gltf"));
   for (const char* pair : {"plain", "mirrored"}) {
     const Mesh& generated = mesh(s, std::string(pair) + "_generated");
     const Mesh& supplied = mesh(s, std::string(pair) + "_supplied");
@@ -256,7 +249,7 @@ TEST(GltfIgnored, EachIgnoredFeatureIsOneLineAndOneWarning) {
   EXPECT_EQ(std::count_if(report.begin(), report.end(), [](auto& l) { return l.rfind("ignored: ", 0) == 0; }),
             std::ptrdiff_t(expected.size()));
 
-  Scene plain = loadGltf(content("cutout.gltf"));
+  Scene plain = loadGltf(contentFile("cutout.gltf"));
   EXPECT_TRUE(plain.ignored.empty());
   EXPECT_EQ(sceneReport(plain).back(), "ignored: nothing");
 }

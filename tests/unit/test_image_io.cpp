@@ -2,6 +2,7 @@
 // half floats; one with any value beyond 65504 is written in 32-bit floats, so nothing clips,
 // and the write reports how many pixels would have clipped and how many are not finite. Under
 // `--sun 1e6` 63-67% of the pixels used to clip silently at 65504.
+#include "../common/temp_dir.h"
 #include "session/image_io.h"
 
 #include <gtest/gtest.h>
@@ -17,17 +18,11 @@
 namespace tl::session {
 namespace {
 
+using tl::test::contentFile;
+using tl::test::TempDir;
+
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("twinlight-image-io-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 // A 2x2 RGBA32F read-back holding `rgba` (four texels).
 graph::Readback rgba32f(const std::array<float, 16>& rgba) {

@@ -4,6 +4,7 @@
 // finite as the float it becomes and within its range (negative light clamped with a warning).
 // Each test is a reproducer from the issue or the fuzzers: before the fix it crashed, hung,
 // read outside its buffer or produced NaN.
+#include "../common/temp_dir.h"
 #include "scene/input_limits.h"
 #include "scene/scene.h"
 #include "scene/scene_internal.h"
@@ -22,18 +23,11 @@
 namespace tl::scene {
 namespace {
 
+using tl::test::contentFile;
+using tl::test::TempDir;
+
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("twinlight-limits-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 void writeBytes(const fs::path& p, const std::string& bytes) { std::ofstream(p, std::ios::binary) << bytes; }
 

@@ -1,6 +1,7 @@
 // Morph targets: import of the banners scene (one copy of the shared mesh per node, one
 // channel each), weights interpolated between keys and looping, vertices deformed by the
 // closed form, conservative bounds, and a bad channel refused with one clear line.
+#include "../common/temp_dir.h"
 #include "scene/morph.h"
 
 #include <gtest/gtest.h>
@@ -12,12 +13,13 @@
 namespace tl::scene {
 namespace {
 
+using tl::test::contentFile;
+
 namespace fs = std::filesystem;
 
-fs::path content(const char* name) { return fs::path(TWINLIGHT_CONTENT_DIR) / name; }
 
 const Scene& banners() {
-  static const Scene scene = loadGltf(content("banners.gltf"));
+  static const Scene scene = loadGltf(contentFile("banners.gltf"));
   return scene;
 }
 
@@ -90,13 +92,13 @@ TEST(Morph, VerticesFollowTheClosedForm) {
 TEST(Morph, AChannelWithTheWrongValueCountIsOneClearError) {
   const fs::path dir = fs::temp_directory_path() / "twinlight-morph-bad";
   fs::create_directories(dir);
-  auto j = nlohmann::json::parse(std::ifstream(content("banners.gltf")));
+  auto j = nlohmann::json::parse(std::ifstream(contentFile("banners.gltf")));
   // The first channel's output accessor claims one value fewer.
   int sampler = j["animations"][0]["channels"][0]["sampler"];
   int output = j["animations"][0]["samplers"][sampler]["output"];
   j["accessors"][output]["count"] = int(j["accessors"][output]["count"]) - 1;
   std::ofstream(dir / "banners.gltf") << j.dump();
-  fs::copy_file(content("banners.bin"), dir / "banners.bin", fs::copy_options::overwrite_existing);
+  fs::copy_file(contentFile("banners.bin"), dir / "banners.bin", fs::copy_options::overwrite_existing);
   try {
     loadGltf(dir / "banners.gltf");
     FAIL() << "accepted";

@@ -1,6 +1,7 @@
 // glTF import of every content scene and of broken files: one clear single-line error
 // naming the file, or a warning and a placeholder for a missing texture; content hashes
 // stable across loads and renames, sensitive to content.
+#include "../common/temp_dir.h"
 #include "scene/scene.h"
 
 #include <gtest/gtest.h>
@@ -13,20 +14,12 @@
 namespace tl::scene {
 namespace {
 
+using tl::test::contentFile;
+using tl::test::TempDir;
+
 namespace fs = std::filesystem;
 
-fs::path content(const char* name) { return fs::path(TWINLIGHT_CONTENT_DIR) / name; }
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("twinlight-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 void writeText(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
 nlohmann::json readJson(const fs::path& p) { return nlohmann::json::parse(std::ifstream(p)); }
@@ -55,7 +48,7 @@ void expectWellFormed(const Scene& s) {
 }
 
 TEST(SceneImport, Atrium) {
-  Scene s = loadGltf(content("atrium.gltf"));
+  Scene s = loadGltf(contentFile("atrium.gltf"));
   expectWellFormed(s);
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
   EXPECT_TRUE(s.environment.sunFromFile);
@@ -78,7 +71,7 @@ TEST(SceneImport, Atrium) {
 }
 
 TEST(SceneImport, CornellHasColouredWallsAndAnEmitter) {
-  Scene s = loadGltf(content("cornell.gltf"));
+  Scene s = loadGltf(contentFile("cornell.gltf"));
   expectWellFormed(s);
   const Material* red = findMaterial(s, "cornell_red");
   ASSERT_NE(red, nullptr);
@@ -92,35 +85,35 @@ TEST(SceneImport, CornellHasColouredWallsAndAnEmitter) {
 
 TEST(SceneImport, FurnaceAndPlaneAreUnderAUniformSky) {
   for (const char* name : {"furnace.gltf", "plane.gltf"}) {
-    Scene s = loadGltf(content(name));
+    Scene s = loadGltf(contentFile(name));
     expectWellFormed(s);
     EXPECT_EQ(s.environment.skyRadiance, glm::vec3(1.0f)) << name;
     EXPECT_FALSE(s.environment.sunFromFile) << name;
   }
-  Scene plane = loadGltf(content("plane.gltf"));
+  Scene plane = loadGltf(contentFile("plane.gltf"));
   EXPECT_NEAR(plane.bounds.size().x, 100.0, 1e-6);
 }
 
 TEST(SceneHashes, StableAcrossLoadsAndRenames) {
-  Scene a = loadGltf(content("atrium.gltf"));
-  Scene b = loadGltf(content("atrium.gltf"));
+  Scene a = loadGltf(contentFile("atrium.gltf"));
+  Scene b = loadGltf(contentFile("atrium.gltf"));
   EXPECT_EQ(a.contentHash, b.contentHash);
   TempDir tmp;
   // Copy under other names: the .gltf renamed, the texture directory kept (its uri).
-  fs::copy_file(content("atrium.bin"), tmp.path / "atrium.bin");
+  fs::copy_file(contentFile("atrium.bin"), tmp.path / "atrium.bin");
   fs::create_directories(tmp.path / "textures");
-  fs::copy_file(content("textures/checker.png"), tmp.path / "textures" / "checker.png");
-  fs::copy_file(content("atrium.gltf"), tmp.path / "renamed_scene.gltf");
+  fs::copy_file(contentFile("textures/checker.png"), tmp.path / "textures" / "checker.png");
+  fs::copy_file(contentFile("atrium.gltf"), tmp.path / "renamed_scene.gltf");
   Scene c = loadGltf(tmp.path / "renamed_scene.gltf");
   EXPECT_EQ(a.contentHash, c.contentHash);
   for (size_t i = 0; i < a.materials.size(); ++i) EXPECT_EQ(a.materials[i].contentHash, c.materials[i].contentHash);
 }
 
 TEST(SceneHashes, ChangeExactlyWithContent) {
-  Scene base = loadGltf(content("plane.gltf"));
+  Scene base = loadGltf(contentFile("plane.gltf"));
   TempDir tmp;
-  fs::copy_file(content("plane.bin"), tmp.path / "plane.bin");
-  auto j = readJson(content("plane.gltf"));
+  fs::copy_file(contentFile("plane.bin"), tmp.path / "plane.bin");
+  auto j = readJson(contentFile("plane.gltf"));
   j["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"][0] = 0.5;
   writeText(tmp.path / "plane.gltf", j.dump());
   Scene changed = loadGltf(tmp.path / "plane.gltf");

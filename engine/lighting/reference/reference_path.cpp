@@ -83,11 +83,7 @@ class ReferencePath final : public LightingPath {
     graph.addPass(
         "reference.trace", graph::PassKind::RayTracing,
         [&](graph::PassBuilder& b) {
-          readSceneInputs(b, graph::Usage::StorageRead);
-          readStructures(b);
-          b.read(kBrdfTables, graph::Usage::StorageRead);
-          if (in.constants.lightCount > 0) b.read(kLightTable, graph::Usage::StorageRead);
-          if (hasEnvironmentMap(in)) b.read(kEnvironmentTable, graph::Usage::StorageRead);
+          readPathInputs(b, in);
           b.read(kAccum, graph::Usage::StorageRead);
           b.write(kAccum, graph::Usage::StorageWrite);
           b.read(kAoAccum, graph::Usage::StorageRead);
@@ -105,24 +101,12 @@ class ReferencePath final : public LightingPath {
           push.seed = 0;
           ctx.bind(pipeline_);
           ctx.pushConstants(push);
-          ctx.descriptors()
-              .uniformBuffer(shared::kRefBindingFrame, in.constantsBuffer.handle())
-              .accelerationStructure(shared::kRefBindingTlas, tlas_.structure().handle())
+          writePathInputs(ctx, in)
               .storageImage(shared::kRefBindingAccum, ctx.image(kAccum).view())
               .storageImage(shared::kRefBindingRadiance, ctx.image(kRadiance).view())
-              .storageBuffer(shared::kRefBindingGeometry, geometry_.handle())
-              .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
-              .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
               .storageImage(shared::kRefBindingAoAccum, ctx.image(kAoAccum).view())
-              .storageImage(shared::kRefBindingAo, ctx.image(kAo).view())
-              .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle())
-              .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, ctx.buffer(kBrdfTables).handle()))
-              .storageBuffer(shared::kBindingEnvironment, environmentTableOrStandIn(ctx, in, ctx.buffer(kBrdfTables).handle()));
-          ctx.flushDescriptors();
-          in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_.layout(), shared::kSceneSet);
-          VkExtent3D e = ctx.extent(kRadiance);
-          ctx.device.ext().cmdTraceRays(ctx.cmd, &pipeline_.raygenRegion, &pipeline_.missRegion, &pipeline_.hitRegion,
-                                        &pipeline_.callableRegion, e.width, e.height, 1);
+              .storageImage(shared::kRefBindingAo, ctx.image(kAo).view());
+          traceRays(ctx, in, pipeline_, ctx.extent(kRadiance));
           samples_ += push.samplesPerFrame;
         });
     addIrradiancePass(graph, in, push);
@@ -151,11 +135,7 @@ class ReferencePath final : public LightingPath {
     graph.addPass(
         "reference.irradiance", graph::PassKind::RayTracing,
         [&](graph::PassBuilder& b) {
-          readSceneInputs(b, graph::Usage::StorageRead);
-          readStructures(b);
-          b.read(kBrdfTables, graph::Usage::StorageRead);
-          if (in.constants.lightCount > 0) b.read(kLightTable, graph::Usage::StorageRead);
-          if (hasEnvironmentMap(in)) b.read(kEnvironmentTable, graph::Usage::StorageRead);
+          readPathInputs(b, in);
           b.read(kIrradianceAccum, graph::Usage::StorageRead);
           b.write(kIrradianceAccum, graph::Usage::StorageWrite);
           b.create(kIrradiance,
@@ -170,24 +150,10 @@ class ReferencePath final : public LightingPath {
           push.seed = 1;  // independent of the radiance samples
           ctx.bind(irradiancePipeline_);
           ctx.pushConstants(push);
-          ctx.descriptors()
-              .uniformBuffer(shared::kRefBindingFrame, in.constantsBuffer.handle())
-              .accelerationStructure(shared::kRefBindingTlas, tlas_.structure().handle())
-              .storageBuffer(shared::kRefBindingGeometry, geometry_.handle())
-              .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
-              .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
+          writePathInputs(ctx, in)
               .storageImage(shared::kRefBindingIrradianceAccum, ctx.image(kIrradianceAccum).view())
-              .storageImage(shared::kRefBindingIrradiance, ctx.image(kIrradiance).view())
-              .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle())
-              .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, ctx.buffer(kBrdfTables).handle()))
-              .storageBuffer(shared::kBindingEnvironment, environmentTableOrStandIn(ctx, in, ctx.buffer(kBrdfTables).handle()));
-          ctx.flushDescriptors();
-          in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, irradiancePipeline_.layout(),
-                                shared::kSceneSet);
-          VkExtent3D e = ctx.extent(kIrradiance);
-          const auto& p = irradiancePipeline_;
-          ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion,
-                                        e.width, e.height, 1);
+              .storageImage(shared::kRefBindingIrradiance, ctx.image(kIrradiance).view());
+          traceRays(ctx, in, irradiancePipeline_, ctx.extent(kIrradiance));
           irradianceSamples_ += push.samplesPerFrame;
         });
   }
@@ -211,11 +177,7 @@ class ReferencePath final : public LightingPath {
     graph.addPass(
         "reference.bounces", graph::PassKind::RayTracing,
         [&](graph::PassBuilder& b) {
-          readSceneInputs(b, graph::Usage::StorageRead);
-          readStructures(b);
-          b.read(kBrdfTables, graph::Usage::StorageRead);
-          if (in.constants.lightCount > 0) b.read(kLightTable, graph::Usage::StorageRead);
-          if (hasEnvironmentMap(in)) b.read(kEnvironmentTable, graph::Usage::StorageRead);
+          readPathInputs(b, in);
           b.read(kDepthAccum, graph::Usage::StorageRead);
           b.write(kDepthAccum, graph::Usage::StorageWrite);
           for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
@@ -232,26 +194,10 @@ class ReferencePath final : public LightingPath {
           push.seed = 0;  // the trace pass's seed
           ctx.bind(depthPipeline_);
           ctx.pushConstants(push);
-          auto& d = ctx.descriptors()
-                        .uniformBuffer(shared::kRefBindingFrame, in.constantsBuffer.handle())
-                        .accelerationStructure(shared::kRefBindingTlas, tlas_.structure().handle())
-                        .storageBuffer(shared::kRefBindingGeometry, geometry_.handle())
-                        .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
-                        .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
-                        .storageImage(shared::kRefBindingDepthAccum, ctx.image(kDepthAccum).view())
-                        .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle())
-                        .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, ctx.buffer(kBrdfTables).handle()))
-                        .storageBuffer(shared::kBindingEnvironment,
-                                       environmentTableOrStandIn(ctx, in, ctx.buffer(kBrdfTables).handle()));
+          auto& d = writePathInputs(ctx, in).storageImage(shared::kRefBindingDepthAccum, ctx.image(kDepthAccum).view());
           for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
             d.storageImage(shared::kRefBindingDepth0 + g, ctx.image(names[g]).view());
-          ctx.flushDescriptors();
-          in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, depthPipeline_.layout(),
-                                shared::kSceneSet);
-          VkExtent3D e = ctx.extent(names[0]);
-          const auto& p = depthPipeline_;
-          ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion,
-                                        e.width, e.height, 1);
+          traceRays(ctx, in, depthPipeline_, ctx.extent(names[0]));
           depthSamples_ += push.samplesPerFrame;
         });
   }
@@ -322,18 +268,8 @@ class ReferencePath final : public LightingPath {
       d.raygen = kRaygen;
       d.misses.assign(std::begin(kMisses), std::end(kMisses));
       d.hitGroups = {{kClosestHit, kAnyHit}};
-      d.layout.bindings = {{shared::kRefBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                           {shared::kRefBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-                           {shared::kRefBindingAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kRefBindingRadiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kRefBindingGeometry, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kRefBindingAoAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kRefBindingAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+      d.layout.bindings = pathInputBindings({shared::kRefBindingAccum, shared::kRefBindingRadiance,
+                                             shared::kRefBindingAoAccum, shared::kRefBindingAo});
       d.layout.extraSets = {in.scene.table().layout()};
       d.layout.pushConstantBytes = sizeof(shared::RefPush);
       pipeline_ = gpu::createRayTracingPipeline(in.device, d);
@@ -341,32 +277,15 @@ class ReferencePath final : public LightingPath {
       // The irradiance pass: the same paths, misses and hit shader from another ray generation.
       d.name = "reference.irradiance";
       d.raygen = kIrradianceRaygen;
-      d.layout.bindings = {{shared::kRefBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                           {shared::kRefBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-                           {shared::kRefBindingGeometry, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kRefBindingIrradianceAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kRefBindingIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+      d.layout.bindings = pathInputBindings({shared::kRefBindingIrradianceAccum, shared::kRefBindingIrradiance});
       irradiancePipeline_ = gpu::createRayTracingPipeline(in.device, d);
 
       // The depth split: the trace pass's paths again, their light summed by depth.
       d.name = "reference.bounces";
       d.raygen = kDepthRaygen;
-      d.layout.bindings = {{shared::kRefBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                           {shared::kRefBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-                           {shared::kRefBindingGeometry, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kRefBindingDepthAccum, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {shared::kBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-      for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
-        d.layout.bindings.push_back({shared::kRefBindingDepth0 + g, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+      std::vector<uint32_t> depthImages{shared::kRefBindingDepthAccum};
+      for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g) depthImages.push_back(shared::kRefBindingDepth0 + g);
+      d.layout.bindings = pathInputBindings(depthImages);
       depthPipeline_ = gpu::createRayTracingPipeline(in.device, d);
     }
   }
@@ -445,6 +364,50 @@ class ReferencePath final : public LightingPath {
   void readStructures(graph::PassBuilder& b) const {
     b.read(kTlas, graph::Usage::AccelerationStructureRead);
     if (deformingStorage_) b.read(kBlasDeforming, graph::Usage::AccelerationStructureRead);
+  }
+
+  // What every path-tracing pass (trace, irradiance, bounces) reads: the scene, the structures,
+  // the BRDF tables, and the light and environment tables where the scene has them.
+  void readPathInputs(graph::PassBuilder& b, const FrameInputs& in) const {
+    readSceneInputs(b, graph::Usage::StorageRead);
+    readStructures(b);
+    b.read(kBrdfTables, graph::Usage::StorageRead);
+    if (in.constants.lightCount > 0) b.read(kLightTable, graph::Usage::StorageRead);
+    if (hasEnvironmentMap(in)) b.read(kEnvironmentTable, graph::Usage::StorageRead);
+  }
+  // Their layouts: those inputs' bindings, then the pass's own storage images.
+  static std::vector<gpu::Binding> pathInputBindings(const std::vector<uint32_t>& storageImages) {
+    std::vector<gpu::Binding> bindings = {{shared::kRefBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                          {shared::kRefBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+                                          {shared::kRefBindingGeometry, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                          {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                          {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                          {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                          {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                          {shared::kBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+    for (uint32_t binding : storageImages) bindings.push_back({binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+    return bindings;
+  }
+  // And their descriptors; the caller adds its images. A scene without lights or an
+  // environment map binds a stand-in the shaders never read.
+  gpu::DescriptorWriter& writePathInputs(graph::PassContext& ctx, const FrameInputs& in) const {
+    const VkBuffer standIn = ctx.buffer(kBrdfTables).handle();
+    return ctx.descriptors()
+        .uniformBuffer(shared::kRefBindingFrame, in.constantsBuffer.handle())
+        .accelerationStructure(shared::kRefBindingTlas, tlas_.structure().handle())
+        .storageBuffer(shared::kRefBindingGeometry, geometry_.handle())
+        .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
+        .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
+        .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle())
+        .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, standIn))
+        .storageBuffer(shared::kBindingEnvironment, environmentTableOrStandIn(ctx, in, standIn));
+  }
+  // One path per pixel of `extent`, with the scene's descriptor table beside the pass's set.
+  static void traceRays(graph::PassContext& ctx, const FrameInputs& in, const gpu::Pipeline& p, VkExtent3D extent) {
+    ctx.flushDescriptors();
+    in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, p.layout(), shared::kSceneSet);
+    ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion,
+                                  extent.width, extent.height, 1);
   }
 
   uint64_t sceneId_ = 0;

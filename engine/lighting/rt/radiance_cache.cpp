@@ -57,7 +57,15 @@ graph::ResourceDesc RtRadianceCache::outcomesDesc(const FrameInputs& in) const {
 
 void RtRadianceCache::plan(FrameInputs& in, shared::RtPush& push, float sceneScale, float maxEmitterRadiance) {
   const RenderSettings& s = in.settings;
-  if (auto it = in.executor.readbacks().find(kRtCacheOutcomes); it != in.executor.readbacks().end()) {
+  // A new scene starts the switch over (off, measuring): the outcomes still held and the
+  // decision they led to are another scene's, and an image must not depend on what was
+  // rendered before it.
+  const uint64_t scene = in.key.hash(FramePart::Scene);
+  if (scene != switchScene_) {
+    switch_ = RtCacheSwitch{};
+    measured_ = {};
+    switchScene_ = scene;
+  } else if (auto it = in.executor.readbacks().find(kRtCacheOutcomes); it != in.executor.readbacks().end()) {
     measured_ = countCacheOutcomes(it->second.bytes);
     switch_.update(measured_, s.rtCacheMinShare);
   }

@@ -74,6 +74,7 @@ class RtRadianceCache {
   void createPipelines(gpu::Device& device);
 
   RtCacheSwitch switch_;
+  uint64_t switchScene_ = 0;  // the frame key's scene hash the switch's measurements belong to
   HistoryKeeper history_;
   bool active_ = false, wasActive_ = false, restart_ = false;
   uint32_t tile_ = 8, bounces_ = 3;
