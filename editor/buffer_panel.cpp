@@ -107,6 +107,19 @@ void falseColourLegend(float lo, float hi, const std::string& unit = {}) {
   ImGui::TextUnformatted(right.c_str());
 }
 
+// A horizontal black-to-white bar with its ends' captions (values shown as the grey level).
+void greyLegend(const char* left, const char* right) {
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const ImVec2 p = ImGui::GetCursorScreenPos();
+  const float w = ImGui::GetContentRegionAvail().x, h = 12.0f;
+  dl->AddRectFilledMultiColor(p, ImVec2(p.x + w, p.y + h), IM_COL32(0, 0, 0, 255), IM_COL32(255, 255, 255, 255),
+                              IM_COL32(255, 255, 255, 255), IM_COL32(0, 0, 0, 255));
+  ImGui::Dummy(ImVec2(w, h));
+  ImGui::TextUnformatted(left);
+  ImGui::SameLine(std::max(0.0f, w - ImGui::CalcTextSize(right).x));
+  ImGui::TextUnformatted(right);
+}
+
 // The texel under the mouse when it is over the viewport.
 std::optional<glm::uvec3> hoveredTexel(EditorApp& app, const graph::Readback& r) {
   const ImVec2 m = ImGui::GetIO().MousePos;
@@ -167,6 +180,10 @@ void meaningControls(EditorApp& app, const lighting::MeaningView& m) {
       if (i) ImGui::SameLine();
       swatch(axes[i].n * 0.5f + 0.5f, axes[i].caption);
     }
+  } else if (m.meaning == shared::kDisplayMeaningAo) {
+    greyLegend("0 occluded", "1 open");
+    ImGui::Checkbox("NaN/neg/>1", &v.highlightInvalid);
+    tooltip("a visibility outside 0..1 is wrong: NaN magenta, negative blue, above 1 yellow");
   } else if (m.meaning == shared::kDisplayMeaningShIrradiance) {
     ImGui::Checkbox("NaN/Inf/neg", &v.highlightInvalid);
     tooltip("negative irradiance (SH ringing) blue, NaN magenta, infinity yellow; negative SH coefficients are valid");
@@ -231,8 +248,13 @@ void viewerControls(EditorApp& app) {
     if (v.falseColour && v.channel != shared::kDisplayChannelRgb) falseColourLegend(v.rangeMin, v.rangeMax);
   }
   if (info->desc.extent.depth > 1) {
-    int slice = int(v.slice);
-    if (ImGui::SliderInt("slice", &slice, 0, int(info->desc.extent.depth) - 1)) v.slice = uint32_t(slice);
+    // The slider names the axis it walks and what the index is (a clipmap level and voxel).
+    int slice = int(std::min(v.slice, info->desc.extent.depth - 1));
+    const std::string label = lighting::sliceMeaning(info->desc.decoder, info->desc.extent, uint32_t(slice));
+    ImGui::SetNextItemWidth(-60);
+    if (ImGui::SliderInt("z slice", &slice, 0, int(info->desc.extent.depth) - 1, label.c_str())) v.slice = uint32_t(slice);
+    trackItem("buffers.slice");
+    tooltip("a 3D image is shown one z slice at a time, texels square (its true aspect)");
   }
   ImGui::SetNextItemWidth(120);
   ImGui::SliderFloat("zoom", &v.zoom, 1.0f, 256.0f, "%.1fx", ImGuiSliderFlags_Logarithmic);

@@ -10,8 +10,15 @@
 namespace tl::editor {
 
 glm::vec4 viewerWindow(const ViewerState& v) {
-  const float size = 1.0f / std::max(v.zoom, 1e-3f);
-  return glm::vec4(v.centre - 0.5f * size, size, size);
+  const float base = 1.0f / std::max(v.zoom, 1e-3f);
+  const float a = std::isfinite(v.aspect) && v.aspect > 0.0f ? v.aspect : 1.0f;
+  const glm::vec2 size = base * (a >= 1.0f ? glm::vec2(1.0f, a) : glm::vec2(1.0f / a, 1.0f));
+  return glm::vec4(v.centre - 0.5f * size, size);
+}
+
+float viewerAspect(uint32_t w, uint32_t h, const glm::vec2& viewport) {
+  if (w == 0 || h == 0 || !(viewport.x > 0.0f) || !(viewport.y > 0.0f)) return 1.0f;
+  return (float(w) / float(h)) / (viewport.x / viewport.y);
 }
 
 std::optional<lighting::MeaningView> shownMeaning(const ViewerState& v, const std::string& decoder) {

@@ -28,6 +28,10 @@ struct ViewerState {
   bool meaning = true;             // what a decoded resource means (decoders.h meaningView), not its values
   float zoom = 1.0f;               // display pixels per source pixel at 1 = the whole image
   glm::vec2 centre{0.5f};          // source UV at the viewport's centre
+  // The source's shape against the viewport's, (source w/h) / (viewport w/h): the window is
+  // that much taller than wide (or wider, below 1) so texels stay square — a 6:1 voxel
+  // clipmap slice is not stretched to the viewport. Set each frame for the viewed resource.
+  float aspect = 1.0f;
   uint32_t slice = 0;              // 3D resources
   bool live = true;                // read the resource back every frame (histogram, probe)
   bool refresh = false;            // one read-back when not live
@@ -59,8 +63,10 @@ lighting::DisplayRequest displayRequest(const ViewerState& v, const std::string&
                                         VkFormat format = VK_FORMAT_UNDEFINED);
 // The meaning the viewer shows for a resource with this decoder now (none: its values).
 std::optional<lighting::MeaningView> shownMeaning(const ViewerState& v, const std::string& decoder);
-// The source UV rectangle shown (offset, size) for a zoom and centre.
+// The source UV rectangle shown (offset, size) for a zoom, centre and aspect.
 glm::vec4 viewerWindow(const ViewerState& v);
+// The aspect (ViewerState::aspect) of a source of w x h texels in a viewport of that size.
+float viewerAspect(uint32_t w, uint32_t h, const glm::vec2& viewport);
 // Values of the shown channel over the read-back (the slice of a 3D image), as the display
 // computes them.
 std::vector<float> channelValues(const graph::Readback& r, uint32_t channel, uint32_t slice);

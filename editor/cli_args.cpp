@@ -2,6 +2,7 @@
 
 #include "scene/environment_map.h"
 #include "scene/input_limits.h"
+#include "session/lighting_file.h"
 
 #include <fmt/format.h>
 
@@ -96,6 +97,7 @@ void applyView(tl::session::Session& session, const ViewArgs& a) {
 
 void applyLight(tl::session::Session& session, const LightArgs& a) {
   tl::session::Lighting l = session.lighting();
+  if (!a.lighting.empty()) l = tl::session::readLightingFile(a.lighting, l);
   if (!a.sunDir.empty()) {
     glm::dvec3 d = parseVec3(a.sunDir, "--sun-dir");
     if (glm::length(d) < 1e-9) throw SessionError("--sun-dir must not be zero");

@@ -31,6 +31,8 @@ struct ViewArgs {
 };
 
 struct LightArgs {
+  std::string lighting;      // a lighting file (session/lighting_file.h) applied first; the options below win over it
+  std::string saveLighting;  // where to write the lighting the command renders with
   std::string sunDir, sun, sky;
   std::optional<float> exposureEv;
   std::string environment;                    // an equirectangular EXR/HDR in place of the uniform sky
@@ -46,6 +48,7 @@ glm::dvec3 parseVec3(const std::string& text, const char* what);
 glm::vec3 parseColor(const std::string& text, const char* what);
 
 void applyView(tl::session::Session& session, const ViewArgs& args);
+// --lighting FILE first, then each light option over it.
 void applyLight(tl::session::Session& session, const LightArgs& args);
 
 // What a subcommand that otherwise succeeded returns: 1, with one error line, when the Vulkan

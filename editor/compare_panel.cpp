@@ -40,7 +40,9 @@ std::string figure(const std::optional<double>& v, const char* format) {
   for (const auto& e : errors)
     if (e.relMse && e.path != reference) top = std::max(top, *e.relMse);
   if (!(top > 0.0)) return;
-  ImGui::TextDisabled("relMSE, with the reference's noise as a band (the path's own error lies in it):");
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  ImGui::TextWrapped("relMSE, with the reference's noise as a band (the path's own error lies in it):");
+  ImGui::PopStyleColor();
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const float labelWidth = 80.0f, height = ImGui::GetTextLineHeight();
   for (const auto& e : errors) {
@@ -48,15 +50,18 @@ std::string figure(const std::optional<double>& v, const char* format) {
     ImGui::TextUnformatted(e.path.c_str());
     ImGui::SameLine(labelWidth);
     const ImVec2 p = ImGui::GetCursorScreenPos();
-    const float width = std::max(40.0f, ImGui::GetContentRegionAvail().x - 150.0f);
     const double r = *e.relMse, low = std::max(0.0, r - noise);
+    // The bar takes what the figure beside it leaves, so the figure is never cut off.
+    const std::string text = fmt::format("{:.4f} (own {:.4f}..{:.4f})", r, low, r);
+    const float width = std::max(40.0f, ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize(text.c_str()).x -
+                                            2.0f * ImGui::GetStyle().ItemSpacing.x);
     auto x = [&](double v) { return p.x + float(v / top) * width; };
     dl->AddRectFilled(ImVec2(p.x, p.y + 2), ImVec2(x(low), p.y + height - 2), IM_COL32(90, 150, 230, 255));
     dl->AddRectFilled(ImVec2(x(low), p.y + 2), ImVec2(std::max(x(r), x(low) + 1.0f), p.y + height - 2), IM_COL32(90, 150, 230, 90));
     dl->AddRect(ImVec2(x(low), p.y + 1), ImVec2(std::max(x(r), x(low) + 1.0f), p.y + height - 1), IM_COL32(200, 200, 200, 200));
     ImGui::Dummy(ImVec2(width, height));
     ImGui::SameLine();
-    ImGui::Text("%.4f (own %.4f..%.4f)", r, low, r);
+    ImGui::TextUnformatted(text.c_str());
   }
 }
 

@@ -252,6 +252,8 @@ void EditorApp::frame() {
   if (!session_->frameInFlight()) stepAlbedoBake();
   if (framesDrawn_ % 15 == 0) pollShaders(), saveSettingsIfChanged();
 
+  const double panelsStart = glfwGetTime();
+  profile_.input += panelsStart - frameStart;
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   input_.feed(ImGui::GetIO());
@@ -266,7 +268,10 @@ void EditorApp::frame() {
     session_->setAnimationTime(std::fmod(session_->animationTime() + seconds, std::max(session_->scene().animationSeconds, 1e-3)));
   startEngineFrame();
   ImGui::Render();
+  const double presentStart = glfwGetTime();
+  profile_.panels += presentStart - panelsStart;
   recordAndPresent();
+  profile_.present += glfwGetTime() - presentStart;
 
   ++framesDrawn_;
   frameHistory_.push_back(seconds * 1000.0);
@@ -276,7 +281,11 @@ void EditorApp::frame() {
   // share the CPU).
   const double frameBudget = session_->frameInFlight() ? 1.0 / 40.0 : 1.0 / 60.0;
   const double spare = frameBudget - (glfwGetTime() - frameStart);
-  if (spare > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(spare));
+  if (spare > 0.0) {
+    const double sleepStart = glfwGetTime();
+    std::this_thread::sleep_for(std::chrono::duration<double>(spare));
+    profile_.sleep += glfwGetTime() - sleepStart;
+  }
 }
 
 void EditorApp::handleCameraInput(float seconds) {
@@ -315,8 +324,8 @@ void EditorApp::handleCameraInput(float seconds) {
     const glm::vec4 before = viewerWindow(viewer_);
     const glm::vec2 texel = glm::vec2(before) + uv * glm::vec2(before.z, before.w);
     viewer_.zoom = std::clamp(viewer_.zoom * std::exp2(0.25f * io.MouseWheel), 1.0f, 256.0f);
-    const float size = 1.0f / viewer_.zoom;
-    viewer_.centre = texel - (uv - 0.5f) * size;
+    const glm::vec4 after = viewerWindow(viewer_);
+    viewer_.centre = texel - (uv - 0.5f) * glm::vec2(after.z, after.w);
   }
   const bool flying = ImGui::IsMouseDown(1) && viewportHovered_;
   if (flying) {

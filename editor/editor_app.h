@@ -6,6 +6,7 @@
 #pragma once
 
 #include "buffer_viewer.h"
+#include "frame_profile.h"
 #include "camera_controller.h"
 #include "input_queue.h"
 #include "scene_watcher.h"
@@ -136,6 +137,8 @@ class EditorApp {
   const std::string& pinnedPreview() const { return viewer_.resource; }
   void showBrowser(bool on) { showBrowser_ = on; }
   uint64_t framesDrawn() const { return framesDrawn_; }
+  // Where the UI frames' wall time went since the start (`measure` prints the differences).
+  const FrameProfile& frameProfile() const { return profile_; }
   double fps() const;
   const std::deque<double>& frameHistoryMs() const { return frameHistory_; }
   // Viewport panel rectangle in window pixels (valid after the first frame).
@@ -214,6 +217,7 @@ class EditorApp {
   std::vector<uint8_t> pickIds_;        // gbuffer.instanceId of the frame on screen
   VkExtent3D pickExtent_{};
   uint64_t framesDrawn_ = 0;
+  FrameProfile profile_;
   std::deque<double> frameHistory_;
   double lastTime_ = 0.0;
   glm::vec2 lastMouse_{0.0f};

@@ -32,11 +32,13 @@ void EditorApp::startEngineFrame() {
     std::string decoder;
     VkFormat viewedFormat = VK_FORMAT_UNDEFINED;
     uint64_t texels = 0;
+    viewer_.aspect = 1.0f;
     for (const auto& r : session_->resources()) {
       if (r.name == preview_) hoverFormat = r.desc.format;
       if (r.name == viewer_.resource)
         decoder = r.desc.decoder, viewedFormat = r.desc.format,
-        texels = uint64_t(r.desc.extent.width) * r.desc.extent.height * r.desc.extent.depth;
+        texels = uint64_t(r.desc.extent.width) * r.desc.extent.height * r.desc.extent.depth,
+        viewer_.aspect = viewerAspect(r.desc.extent.width, r.desc.extent.height, viewportSize_);
     }
     // Live read-back of big volumes (the voxel clipmap) would cost more than the frame.
     const bool liveReadback = showBuffers_ && viewer_.live && texels <= (uint64_t(1) << 22);

@@ -8,6 +8,7 @@
 #include "compare_cameras.h"
 #include "session/capture.h"
 #include "cli_args.h"
+#include "session/lighting_file.h"
 #include "cli_output.h"
 #include "editor_app.h"
 #include "gpu/install_paths.h"
@@ -18,6 +19,7 @@
 #include "session/compare.h"
 #include "session/doctor.h"
 #include "session/image_io.h"
+#include "session/presets.h"
 #include "session/settings_json.h"
 #include "session/settings_reference.h"
 #include "session/shard.h"
@@ -106,6 +108,12 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--look-from", o.view.lookFrom, "camera position x,y,z (metres, y up)");
   cmd.add_option("--look-at", o.view.lookAt, "point the camera looks at, x,y,z");
   cmd.add_option("--fov", o.view.fovDegrees, "vertical field of view in degrees");
+  cmd.add_option("--lighting", o.light.lighting,
+                 "lighting file (SCENE.lighting.json: sun, sky, environment, exposure, punctual lights) in place of the "
+                 "scene's own; the light options below win over it");
+  cmd.add_option("--save-lighting", o.light.saveLighting,
+                 "write the lighting this command renders with (the scene's lights, --lighting and every light option) "
+                 "to a lighting file");
   cmd.add_option("--sun-dir", o.light.sunDir, "direction sunlight travels, x,y,z");
   cmd.add_option("--sun", o.light.sun, "sun irradiance E (W/m^2-like; white Lambertian facing it shows E/pi), E or r,g,b");
   cmd.add_option("--sky", o.light.sky, "uniform sky radiance L, L or r,g,b");
@@ -216,6 +224,7 @@ void prepareSession(Session& session, const RenderOptions& o) {
     light.sunAngularRadius = glm::radians(*o.sunSizeDegrees);
     session.setLighting(light);
   }
+  if (!o.light.saveLighting.empty()) tl::session::writeLightingFile(o.light.saveLighting, session.lighting());
   session.setAnimationTime(o.time);
   session.setAnimationStep(o.animateFps ? 1.0 / *o.animateFps : 0.0);
 }
@@ -585,6 +594,10 @@ int main(int argc, char** argv) {
   compareCmd->add_option("--scene", compareScenes,
                          "glTF file(s); several make a sweep with a report per scene (default content/atrium.gltf)");
   compareCmd->add_option("--paths", comparePaths, "comma-separated paths (default: every available one)");
+  bool comparePresets = false;
+  compareCmd->add_flag("--presets", comparePresets,
+                       "measure the built-in presets (Fast, Balanced, Reference-like) of the --paths (default: every "
+                       "path, the reference's included) instead of the paths alone");
   compareCmd->add_option("--spp", compare.referenceSpp, "reference samples per pixel (<= 16 or a multiple of 16)")
       ->check(CLI::Range(1u, kMaxSpp))
       ->capture_default_str();
@@ -773,10 +786,20 @@ int main(int argc, char** argv) {
       std::stringstream list(comparePaths);
       for (std::string p; std::getline(list, p, ',');)
         if (!p.empty()) compare.paths.push_back(p);
+      if (comparePresets) {
+        // Each preset of the listed paths is a configuration ("rt-Fast"); Balanced is the
+        // path at its defaults, so the paths are not measured a second time on their own.
+        for (const tl::session::Preset& p : tl::session::builtInPresets())
+          if (compare.paths.empty() || std::count(compare.paths.begin(), compare.paths.end(), p.path))
+            compare.variants.push_back({p.path + "-" + p.name, p.path, tl::session::presetSettingsJson(p)});
+        if (compare.variants.empty()) throw UsageError("--presets: no built-in preset is for the --paths given");
+        compare.paths.clear();
+      }
       if (!compareRender.settingsFile.empty()) {
         // A list of configurations, or settings every path starts from (prepareSession).
         const nlohmann::json file = tl::session::readSettingsFile(compareRender.settingsFile, true);
         if (file.is_array()) {
+          if (comparePresets) throw UsageError("--presets and a --settings list of configurations: give one of them");
           compare.variants = compareVariants(file, compareRender.settingsFile);
           compareRender.settingsFile.clear();
         }

@@ -12,6 +12,7 @@
 #include <GLFW/glfw3.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <map>
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 namespace tl::editor {
 namespace {
@@ -81,6 +83,26 @@ void Script::step(EditorApp& app) {
                  double(frames) / seconds, frames, double(engine) / seconds, engine, 1000.0 * app.shownFrameAge(),
                  1000.0 * cpu / double(std::max<uint64_t>(frames, 1)), 100.0 * processCpu / seconds,
                  app.session().settings().width, app.session().settings().height, path, app.session().device().name());
+      // Where the frames went: the UI thread's wall time by phase, then CPU by thread group
+      // (the engine's threads run at a lower priority and are marked so), per UI frame.
+      const FrameProfile& p = app.frameProfile();
+      const double perFrame = 1000.0 / double(std::max<uint64_t>(frames, 1));
+      fmt::print("editor: a UI frame's wall time: input {:.1f} ms, panels {:.1f} ms, present {:.1f} ms, pacing sleep {:.1f} ms\n",
+                 perFrame * (p.input - measureProfile_.input), perFrame * (p.panels - measureProfile_.panels),
+                 perFrame * (p.present - measureProfile_.present), perFrame * (p.sleep - measureProfile_.sleep));
+      std::vector<std::pair<double, std::string>> threads;
+      for (const auto& [group, cpuNow] : threadCpuByGroup()) {
+        auto before = measureThreads_.find(group);
+        const double used = cpuNow - (before == measureThreads_.end() ? 0.0 : before->second);
+        if (used > 0.0) threads.push_back({used, group});
+      }
+      std::sort(threads.rbegin(), threads.rend());
+      std::string list;
+      for (const auto& [used, group] : threads) list += fmt::format("{}{} {:.1f}", list.empty() ? "" : ", ", group, perFrame * used);
+      double load[3] = {};
+      std::ifstream("/proc/loadavg") >> load[0] >> load[1] >> load[2];
+      fmt::print("editor: CPU ms a UI frame by thread: {}; machine load {:.1f} on {} CPUs\n", list, load[0],
+                 std::thread::hardware_concurrency());
     }
     return;
   }
@@ -198,6 +220,8 @@ void Script::step(EditorApp& app) {
         measureEngineStart_ = app.engineFramesDone();
         measureCpu_ = threadCpuSeconds();
         measureProcessCpu_ = processCpuSeconds();
+        measureThreads_ = threadCpuByGroup();
+        measureProfile_ = app.frameProfile();
         measureSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
         return;
       } else if (cmd == "screenshot") {
@@ -364,6 +388,29 @@ void Script::step(EditorApp& app) {
         app.viewer().zoom = z, app.viewer().centre = glm::vec2(u, v);
       } else if (cmd == "view-slice") {
         app.viewer().slice = uint32_t(std::stoul(arg));
+      } else if (cmd == "expect-slice" || cmd == "expect-square-texels") {
+        const graph::PhysicalInfo* info = nullptr;
+        for (const auto& r : app.session().resources())
+          if (r.name == app.viewer().resource) info = &r;
+        if (!info) return fail(app, fmt::format("`{}` is not a resource of the frame", app.viewer().resource));
+        const VkExtent3D e = info->desc.extent;
+        if (cmd == "expect-slice") {
+          const std::string shown = lighting::sliceMeaning(info->desc.decoder, e, app.viewer().slice);
+          if (e.depth <= 1 || shown != arg)
+            return fail(app, fmt::format("expected `{}`'s slice to read `{}`, but it reads `{}`", info->name, arg,
+                                         e.depth > 1 ? shown : "nothing: it is 2D"));
+          fmt::print("script: `{}` slice {}: {}\n", info->name, app.viewer().slice, shown);
+        } else {
+          // A texel's width and height on screen, from the window the viewer shows.
+          const glm::vec4 w = viewerWindow(app.viewer());
+          const glm::vec2 viewport = app.viewportSize();
+          const float texelW = viewport.x / (w.z * float(e.width)), texelH = viewport.y / (w.w * float(e.height));
+          if (!(std::abs(texelW / texelH - 1.0f) < 0.01f))
+            return fail(app, fmt::format("`{}` ({}x{}) shows texels {:.3f} x {:.3f} px: not square", info->name, e.width,
+                                         e.height, texelW, texelH));
+          fmt::print("script: `{}` ({}x{}) shows square texels of {:.3f} px, window {:.3f} x {:.3f} of the image\n", info->name,
+                     e.width, e.height, texelW, w.z, w.w);
+        }
       } else if (cmd == "view-probe") {
         unsigned x, y;
         if (std::sscanf(arg.c_str(), "%u %u", &x, &y) != 2) return fail(app, "view-probe needs X Y");
@@ -485,6 +532,12 @@ void Script::step(EditorApp& app) {
         float x, y;
         if (std::sscanf(arg.c_str(), "%f %f", &x, &y) != 2) return fail(app, "mouse-click needs X Y");
         app.input().click({x, y});
+        return;
+      } else if (cmd == "mouse-wheel") {
+        float x, y, steps;
+        if (std::sscanf(arg.c_str(), "%f %f %f", &x, &y, &steps) != 3) return fail(app, "mouse-wheel needs X Y STEPS");
+        app.input().push({InputEvent::Kind::Move, {x, y}});
+        app.input().push({InputEvent::Kind::Wheel, {}, 0, false, {0.0f, steps}});
         return;
       } else if (cmd == "click-ui" || cmd == "double-click-ui") {
         const auto item = trackedItem(arg);

@@ -36,6 +36,9 @@
 //   expect-meaning TEXT    fail unless the viewer shows a meaning containing TEXT (`stored values`
 //                          when raw), with its range fitted; prints the range
 //   view-false-colour on|off, view-zoom Z U V (zoom Z around source UV), view-slice N
+//   expect-slice TEXT      fail unless the 3D image's slice is named TEXT ("level 1, world z voxel 5 of 64")
+//   expect-square-texels   fail unless the viewed resource's texels show square in the viewport
+//                          (its true aspect); prints the shown window
 //   keep-b, show-b on|off  A/B against a kept copy
 //   view-probe X Y         probe texel (X, Y) as if hovered
 //   expect-probe X Y TEXT  fail unless texel (X, Y)'s raw or decoded lines contain TEXT (or one of A|B)
@@ -54,6 +57,7 @@
 //                          among its causes, and now holds fewer samples than it did then
 //   mouse-click X Y        a person's left click at window pixel (X, Y), through the window's input
 //   click-ui NAME, double-click-ui NAME   the same on a named control (ui_helpers.h trackItem)
+//   mouse-wheel X Y STEPS  the wheel turned STEPS (negative: down, scrolls a panel's contents up) at (X, Y)
 //   key [ctrl+][shift+]K   a quick tap of key K (F1, Z, Enter, ...), pressed and released in one frame
 //   type TEXT              characters typed into the focused text field
 //   expect-compare-mode M  fail unless the compare view shows M (wipe or difference)
@@ -72,10 +76,13 @@
 //   quit
 #pragma once
 
+#include "frame_profile.h"
+
 #include <glm/glm.hpp>
 
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -101,6 +108,8 @@ class Script {
   int captureWaitFrames_ = 0;
   uint64_t measureEngineStart_ = 0;
   double measureCpu_ = 0.0, measureProcessCpu_ = 0.0;
+  std::map<std::string, double> measureThreads_;  // frame_profile.h, at the start of `measure`
+  FrameProfile measureProfile_;
   bool waitLoaded_ = false;
   bool waitBake_ = false;
   std::string waitShaderError_;

@@ -69,7 +69,13 @@ void settingWidget(const SettingInfo& s, lighting::RenderSettings& settings, flo
     case SettingType::Float: {
       float v = float(value);
       const std::string unit = s.unit.empty() ? "" : " " + std::string(s.unit);
-      if (s.flags & lighting::kSettingAuto) {
+      if (s.flags & lighting::kSettingPow2) {  // a few rates (redeferredRate: 1, 0.5, 0.25)
+        if (ImGui::BeginCombo(label.c_str(), lighting::formatSetting(s, value).c_str())) {
+          for (double r = s.max; r >= s.min; r /= 2.0)
+            if (ImGui::Selectable(lighting::formatSetting(s, r).c_str(), r == value)) next = r;
+          ImGui::EndCombo();
+        }
+      } else if (s.flags & lighting::kSettingAuto) {
         if (ImGui::DragFloat(label.c_str(), &v, 0.01f, float(s.min), float(s.max), v > 0.0f ? ("%.3g" + unit).c_str() : "auto"))
           next = std::clamp(double(v), s.min, s.max);
       } else if (s.min > 0.0 && s.max / s.min >= 100.0) {
@@ -233,8 +239,14 @@ void settingsSection(EditorApp& app) {
     ImGui::SetNextItemOpen(open, ImGuiCond_Appearing);
     const std::string header = fmt::format("{}{}##settings.{}", owner, owner == session.path() ? " (this path)" : "", owner);
     if (!ImGui::CollapsingHeader(header.c_str())) continue;
+    // The widgets leave room for the group's longest name: a label is never cut off.
+    float labelWidth = 0.0f;
+    for (const SettingInfo& s : lighting::settingsSchema())
+      if (s.owner == owner) labelWidth = std::max(labelWidth, ImGui::CalcTextSize(std::string(s.name).c_str()).x);
+    ImGui::PushItemWidth(-(labelWidth + ImGui::GetStyle().ItemInnerSpacing.x + 1.0f));
     for (const SettingInfo& s : lighting::settingsSchema())
       if (s.owner == owner && !(s.flags & lighting::kSettingNoPanel)) settingWidget(s, settings, sceneScale);
+    ImGui::PopItemWidth();
   }
 }
 

@@ -9,4 +9,4 @@ shift 2
 # Leaks inside the system's libraries (OpenImageIO keeps an error string per failed open) are
 # theirs, listed in tests/sanitizer/lsan.supp; a leak of Twinlight's own stops the run.
 export LSAN_OPTIONS="suppressions=$(cd "$(dirname "$0")/.." && pwd)/tests/sanitizer/lsan.supp:print_suppressions=0${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
-exec nice "$fuzzer" -max_total_time="$seconds" "$@"
+exec nice -n 19 "$fuzzer" -max_total_time="$seconds" "$@"

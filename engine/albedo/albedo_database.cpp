@@ -200,6 +200,11 @@ AlbedoDatabase::AlbedoDatabase(const std::filesystem::path& file, bool create) :
     if (id != kApplicationId && (id != 0 || tableCount != 0))
       throw DatabaseError(fmt::format("{}: an SQLite database of another application, not an albedo database; left untouched",
                                       file.string()));
+    // SQLite's user_version is any 32-bit integer; only 0..kSchemaVersion have migrations (a
+    // negative one indexed kMigrations[-1], found by fuzz_albedo_db).
+    if (schemaVersion() < 0)
+      throw DatabaseError(fmt::format("{}: schema {}, which no Twinlight writes: not an albedo database; left untouched",
+                                      file.string(), schemaVersion()));
     if (schemaVersion() > kSchemaVersion)
       throw DatabaseError(fmt::format("{}: written by a newer Twinlight (schema {}, this one reads up to {}); left untouched",
                                       file.string(), schemaVersion(), kSchemaVersion));

@@ -95,7 +95,8 @@ void AlbedoLibrary::findOrphans(const std::map<AlbedoKey, OverrideEntry>& overri
   for (OrphanOverride& o : orphans_) o.inDatabase = false;
   for (const auto& [key, row] : overrides) {
     if (ours.count(key)) continue;
-    auto it = std::find_if(orphans_.begin(), orphans_.end(), [&](const OrphanOverride& o) { return o.key == key; });
+    // Captured by name: clang 14 (the fuzz presets) cannot capture a structured binding.
+    auto it = std::find_if(orphans_.begin(), orphans_.end(), [&key = key](const OrphanOverride& o) { return o.key == key; });
     if (it == orphans_.end()) {
       OrphanOverride o;
       o.key = key, o.rgb = row.rgb, o.label = row.label, o.editedAt = row.editedAt;
@@ -117,7 +118,7 @@ size_t AlbedoLibrary::orphanCount() const {
 void AlbedoLibrary::keepOrphan(AlbedoKey key, const glm::vec3& rgb, const std::string& label) {
   for (const AlbedoEntry& e : entries_)
     if (e.combination.key == key) return;  // not an orphan here
-  auto it = std::find_if(orphans_.begin(), orphans_.end(), [&](const OrphanOverride& o) { return o.key == key; });
+  auto it = std::find_if(orphans_.begin(), orphans_.end(), [&key = key](const OrphanOverride& o) { return o.key == key; });
   if (it == orphans_.end()) {
     OrphanOverride o;
     o.key = key, o.label = label;

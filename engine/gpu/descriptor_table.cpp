@@ -1,5 +1,7 @@
 #include "gpu/descriptor_table.h"
 
+#include <fmt/format.h>
+
 #include <utility>
 
 namespace tl::gpu {
@@ -24,7 +26,11 @@ DescriptorTable::DescriptorTable(Device& device, const std::vector<Binding>& bin
   VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, &fi};
   lci.bindingCount = uint32_t(b.size());
   lci.pBindings = b.data();
-  TL_VK(vkCreateDescriptorSetLayout(device.handle(), &lci, nullptr, &layout_));
+  // The layout is the device's, shared by every table of the same shape (each scene's).
+  std::string key = "table";
+  for (size_t i = 0; i < b.size(); ++i)
+    key += fmt::format(" {}:{}x{}/{}", b[i].binding, int(b[i].descriptorType), b[i].descriptorCount, flags[i]);
+  layout_ = device.sharedSetLayout(key, lci);
   device.setName(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, uint64_t(layout_), name);
 
   VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -54,12 +60,8 @@ DescriptorTable& DescriptorTable::operator=(DescriptorTable&& o) noexcept {
 void DescriptorTable::reset() {
   if (device_ && layout_) {
     VkDevice d = device_->handle();
-    VkDescriptorSetLayout l = layout_;
     VkDescriptorPool p = pool_;
-    device_->destroyLater([d, l, p] {
-      vkDestroyDescriptorPool(d, p, nullptr);
-      vkDestroyDescriptorSetLayout(d, l, nullptr);
-    });
+    device_->destroyLater([d, p] { vkDestroyDescriptorPool(d, p, nullptr); });  // the layout is the device's
   }
   layout_ = VK_NULL_HANDLE;
   pool_ = VK_NULL_HANDLE;

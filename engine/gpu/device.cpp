@@ -72,12 +72,26 @@ Device::Device(const DeviceOptions& options) {
   createLogicalDevice(options);
 }
 
+VkDescriptorSetLayout Device::sharedSetLayout(const std::string& key, const VkDescriptorSetLayoutCreateInfo& info) {
+  auto [it, added] = sharedSetLayouts_.try_emplace(key, VK_NULL_HANDLE);
+  if (added) {
+    try {
+      TL_VK(vkCreateDescriptorSetLayout(device_, &info, nullptr, &it->second));
+    } catch (...) {
+      sharedSetLayouts_.erase(it);
+      throw;
+    }
+  }
+  return it->second;
+}
+
 Device::~Device() {
   if (device_) {
     waitTimeline(submitted_);  // a device that hangs stops the process here, not in vkDeviceWaitIdle
     vkDeviceWaitIdle(device_);
     for (auto& g : garbage_) g.destroy();
     garbage_.clear();
+    for (auto& [key, layout] : sharedSetLayouts_) vkDestroyDescriptorSetLayout(device_, layout, nullptr);
     for (auto& s : commandSlots_) vkDestroyCommandPool(device_, s.pool, nullptr);
     vkDestroySemaphore(device_, timeline_, nullptr);
     vkDestroyDevice(device_, nullptr);

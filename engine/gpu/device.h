@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -107,6 +108,12 @@ class Device {
   void destroyLater(std::function<void()> destroy);
   void collectGarbage();
 
+  // A descriptor-set layout made once per distinct `key` (its bindings, counts and flags) and
+  // kept until the device goes. Tables that come and go with a scene share it, so pipelines
+  // built on it stay valid across scenes and need not be compiled again (on lavapipe a
+  // ray-tracing pipeline takes tens of seconds to compile).
+  VkDescriptorSetLayout sharedSetLayout(const std::string& key, const VkDescriptorSetLayoutCreateInfo& info);
+
   // VK_EXT_debug_utils names and labels; no-ops when the extension is absent.
   void setName(VkObjectType type, uint64_t handle, std::string_view name) const;
   void beginLabel(VkCommandBuffer cmd, std::string_view label) const;
@@ -154,6 +161,7 @@ class Device {
   double timeoutSeconds_ = 600.0;
   std::deque<CommandSlot> commandSlots_;
   std::deque<Garbage> garbage_;
+  std::map<std::string, VkDescriptorSetLayout> sharedSetLayouts_;
   std::atomic<uint32_t> validationErrors_{0};
   mutable std::mutex messagesMutex_;
   std::vector<std::string> messages_;

@@ -52,6 +52,13 @@ std::vector<uint8_t> readContained(const std::filesystem::path& gltfFile, const 
 // must be set: 16-bit colour is decoded from sRGB here), grey -> rgb, missing alpha -> one,
 // under the image limits of scene/input_limits.h; false with `error` for anything else.
 bool decodeImage(const std::vector<uint8_t>& bytes, Texture& t, std::string& error);
+// A JPEG's bytes without the metadata segments a texture never uses (APP1-APP13, APP15 and
+// comments: EXIF, XMP, ICC, Photoshop/IPTC): OpenImageIO 2.4 parses them on open() and its IPTC
+// reader reads past the end of an APP13 segment (heap-buffer-overflow found by fuzz_image).
+// APP0 (JFIF) and APP14 (Adobe colour transform) stay: libjpeg decodes by them. Markers are
+// found the way libjpeg finds them (garbage between segments skipped, lengths below 2 read
+// as empty), so that no segment libjpeg would hand to OpenImageIO is left in.
+std::vector<uint8_t> jpegWithoutMetadata(const std::vector<uint8_t>& bytes);
 
 // Normals (area-weighted if absent, any degenerate one replaced) and tangents (supplied ones
 // as given, else generated the MikkTSpace way: mesh_processing.cpp), all finite and unit

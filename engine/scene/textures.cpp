@@ -52,14 +52,86 @@ const char* formatOf(const std::vector<uint8_t>& bytes) {
   return nullptr;
 }
 
-// Channel c (0..3) of an RGBA texel from `ch` stored channels: grey -> rgb, missing alpha -> one.
+// Spreads `texels` pixels of `ch` channels, packed at the start of `p` (room for 4 each), to
+// RGBA in place: grey -> rgb, a missing alpha -> `one`. Backwards, so that no pixel is
+// overwritten before it is read; one loop per channel count, nothing decided per texel.
 template <class T>
-T expand(const T* s, int ch, int c, T one) {
-  if (c < 3) return ch >= 3 ? s[c] : s[0];
-  return ch == 2 ? s[1] : ch >= 4 ? s[3] : one;
+void widenToRgba(T* p, int ch, size_t texels, T one) {
+  switch (ch) {
+    case 1:
+      for (size_t i = texels; i-- > 0;) {
+        const T grey = p[i];
+        p[4 * i] = p[4 * i + 1] = p[4 * i + 2] = grey, p[4 * i + 3] = one;
+      }
+      break;
+    case 2:
+      for (size_t i = texels; i-- > 0;) {
+        const T grey = p[2 * i], alpha = p[2 * i + 1];
+        p[4 * i] = p[4 * i + 1] = p[4 * i + 2] = grey, p[4 * i + 3] = alpha;
+      }
+      break;
+    case 3:
+      for (size_t i = texels; i-- > 0;) {
+        const T r = p[3 * i], g = p[3 * i + 1], b = p[3 * i + 2];
+        p[4 * i] = r, p[4 * i + 1] = g, p[4 * i + 2] = b, p[4 * i + 3] = one;
+      }
+      break;
+    default:
+      break;  // already RGBA
+  }
+}
+
+// Reads every pixel (all `ch` channels) as `want` into `out`. OpenImageIO 2.4's read_image
+// reads scanline images through a scratch buffer sized for 64 MB of scanlines whatever the
+// image's height, even when no conversion is asked for (ImageInput::read_scanlines): a 64x64
+// PNG allocated 64 MB per decode, which under AddressSanitizer cost milliseconds (poisoning
+// its shadow) and held the image fuzzer to ~10 decodes a second on the shared machine. The
+// scanlines are read as stored straight into a buffer of the image's size and converted here.
+// Tiled images and per-channel types (OpenEXR) are left to read_image.
+bool readPixels(OIIO::ImageInput& in, int ch, OIIO::TypeDesc want, void* out) {
+  const OIIO::ImageSpec& spec = in.spec();
+  if (spec.tile_width != 0 || !spec.channelformats.empty()) return in.read_image(0, 0, 0, ch, want, out);
+  const size_t values = size_t(spec.width) * size_t(spec.height) * size_t(ch);
+  std::vector<std::byte> stored(spec.format == want ? 0 : values * spec.format.size());
+  void* target = spec.format == want ? out : stored.data();
+  if (!in.read_native_scanlines(0, 0, spec.y, spec.y + spec.height, 0, target)) return false;
+  return spec.format == want || OIIO::convert_pixel_values(spec.format, target, want, out, int(values));
 }
 
 }  // namespace
+
+std::vector<uint8_t> jpegWithoutMetadata(const std::vector<uint8_t>& bytes) {
+  const size_t n = bytes.size();
+  std::vector<uint8_t> out(bytes.begin(), bytes.begin() + std::min<size_t>(n, 2));  // SOI
+  size_t pos = 2;
+  while (pos < n) {
+    while (pos < n && bytes[pos] != 0xFF) ++pos;  // libjpeg skips bytes between segments
+    while (pos < n && bytes[pos] == 0xFF) ++pos;  // fill bytes
+    if (pos >= n) break;
+    const uint8_t marker = bytes[pos++];
+    if (marker == 0x00) continue;  // a stuffed zero: not a marker
+    if (marker == 0xDA || marker == 0xD9) {  // start of scan, end of image: the rest as it is
+      out.push_back(0xFF);
+      out.push_back(marker);
+      out.insert(out.end(), bytes.begin() + ptrdiff_t(pos), bytes.end());
+      return out;
+    }
+    const bool standalone = marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7);
+    size_t end = pos;
+    if (!standalone) {
+      const size_t length = pos + 2 <= n ? (size_t(bytes[pos]) << 8 | bytes[pos + 1]) : 0;
+      end = std::min(n, pos + 2 + (length >= 2 ? length - 2 : 0));
+    }
+    const bool metadata = (marker >= 0xE1 && marker <= 0xEF && marker != 0xEE) || marker == 0xFE;
+    if (!metadata) {
+      out.push_back(0xFF);
+      out.push_back(marker);
+      out.insert(out.end(), bytes.begin() + ptrdiff_t(pos), bytes.begin() + ptrdiff_t(end));
+    }
+    pos = end;
+  }
+  return out;
+}
 
 bool decodeImage(const std::vector<uint8_t>& bytes, Texture& t, std::string& error) {
   const char* format = formatOf(bytes);
@@ -67,12 +139,21 @@ bool decodeImage(const std::vector<uint8_t>& bytes, Texture& t, std::string& err
     error = "neither PNG, JPEG, OpenEXR nor Radiance HDR";
     return false;
   }
-  OIIO::Filesystem::IOMemReader reader(const_cast<uint8_t*>(bytes.data()), bytes.size());
+  // A JPEG's metadata never reaches OpenImageIO's parsers (jpegWithoutMetadata says why).
+  const bool jpeg = std::strcmp(format, "jpeg") == 0;
+  const std::vector<uint8_t> stripped = jpeg ? jpegWithoutMetadata(bytes) : std::vector<uint8_t>();
+  const std::vector<uint8_t>& decoded = jpeg ? stripped : bytes;
+  OIIO::Filesystem::IOMemReader reader(const_cast<uint8_t*>(decoded.data()), decoded.size());
   OIIO::ImageSpec opened;
+  // glTF's colours are not premultiplied by alpha; OpenImageIO premultiplies a PNG's colour by
+  // its alpha on reading unless told to keep it as stored (a texel of colour 10 and alpha 11
+  // came back as colour 0.43 out of 255).
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
   // The proxy is set after create(): OpenImageIO 2.4 drops one given to create() or in the
   // open() configuration for its PNG reader.
   auto in = OIIO::ImageInput::create(format);
-  if (!in || !in->set_ioproxy(&reader) || !in->open(std::string("memory.") + format, opened)) {
+  if (!in || !in->set_ioproxy(&reader) || !in->open(std::string("memory.") + format, opened, config)) {
     error = in ? in->geterror() : OIIO::geterror();
     if (error.empty()) error = fmt::format("not a readable {} image", format);
     return false;
@@ -100,41 +181,40 @@ bool decodeImage(const std::vector<uint8_t>& bytes, Texture& t, std::string& err
   const bool deep = spec.format.size() > 1 && !isFloat;
   t.fileBits = isFloat ? int(spec.format.size()) * 8 : deep ? 16 : 8;
 
+  // Each pixel is read into the texture's own storage and widened to RGBA there.
   if (!isFloat && !deep) {
-    std::vector<uint8_t> raw(texels * size_t(ch));
-    if (!in->read_image(0, 0, 0, ch, OIIO::TypeDesc::UINT8, raw.data())) {
+    t.format = TexelFormat::Rgba8;
+    t.rgba8.resize(texels * 4);
+    if (!readPixels(*in, ch, OIIO::TypeDesc::UINT8, t.rgba8.data())) {
+      t.rgba8.clear();
       error = in->geterror();
       return false;
     }
-    t.format = TexelFormat::Rgba8;
-    t.rgba8.resize(texels * 4);
-    for (size_t i = 0; i < texels; ++i)
-      for (int c = 0; c < 4; ++c) t.rgba8[i * 4 + size_t(c)] = expand<uint8_t>(&raw[i * size_t(ch)], ch, c, 255);
+    widenToRgba<uint8_t>(t.rgba8.data(), ch, texels, 255);
     return true;
   }
   if (deep && !t.srgb) {
-    std::vector<uint16_t> raw(texels * size_t(ch));
-    if (!in->read_image(0, 0, 0, ch, OIIO::TypeDesc::UINT16, raw.data())) {
+    t.format = TexelFormat::Rgba16Unorm;
+    t.rgba16.resize(texels * 4);
+    if (!readPixels(*in, ch, OIIO::TypeDesc::UINT16, t.rgba16.data())) {
+      t.rgba16.clear();
       error = in->geterror();
       return false;
     }
-    t.format = TexelFormat::Rgba16Unorm;
-    t.rgba16.resize(texels * 4);
-    for (size_t i = 0; i < texels; ++i)
-      for (int c = 0; c < 4; ++c) t.rgba16[i * 4 + size_t(c)] = expand<uint16_t>(&raw[i * size_t(ch)], ch, c, 65535);
+    widenToRgba<uint16_t>(t.rgba16.data(), ch, texels, 65535);
     return true;
   }
   // Float images, and 16-bit colour decoded from sRGB here (alpha stays linear).
-  std::vector<float> raw(texels * size_t(ch));
-  if (!in->read_image(0, 0, 0, ch, OIIO::TypeDesc::FLOAT, raw.data())) {
+  std::vector<float> pixels(texels * 4);
+  if (!readPixels(*in, ch, OIIO::TypeDesc::FLOAT, pixels.data())) {
     error = in->geterror();
     return false;
   }
+  widenToRgba<float>(pixels.data(), ch, texels, 1.0f);
   t.format = TexelFormat::Rgba16Float;
   t.rgba16.resize(texels * 4);
   for (size_t i = 0; i < texels; ++i) {
-    glm::vec4 v;
-    for (int c = 0; c < 4; ++c) v[c] = expand<float>(&raw[i * size_t(ch)], ch, c, 1.0f);
+    glm::vec4 v(pixels[4 * i], pixels[4 * i + 1], pixels[4 * i + 2], pixels[4 * i + 3]);
     if (!isFloat) v = glm::vec4(shared::tlSrgbToLinear(glm::vec3(v)), v.a);
     for (int c = 0; c < 4; ++c) {
       // Half floats top out at 65504; a larger or non-finite texel would poison every filter tap.

@@ -60,6 +60,13 @@ lighting::RenderSettings applyPreset(const lighting::RenderSettings& base, const
   return out;
 }
 
+nlohmann::json presetSettingsJson(const Preset& preset) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [name, value] : preset.values)
+    out[name] = settingsJson(applySettingText(lighting::RenderSettings{}, name + "=" + value)).at(name);
+  return out;
+}
+
 void savePresetFile(const std::filesystem::path& file, const lighting::RenderSettings& settings) {
   nlohmann::json j = settingsJson(settings);
   for (const lighting::SettingInfo& s : lighting::settingsSchema())

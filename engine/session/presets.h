@@ -6,6 +6,8 @@
 
 #include "lighting/common/render_settings.h"
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -26,6 +28,10 @@ const std::vector<Preset>& builtInPresets();
 // its default first (so presets do not stack), then the preset's values. Throws
 // std::invalid_argument naming a setting the schema does not take.
 lighting::RenderSettings applyPreset(const lighting::RenderSettings& base, const Preset& preset);
+
+// The preset as a settings object of its own values, typed as the schema types them
+// ({"shadowMapSize": 1024, "softShadows": false}): a `compare` configuration's "settings".
+nlohmann::json presetSettingsJson(const Preset& preset);
 
 // An artist's preset: every panel setting as JSON, written atomically (SessionError naming
 // the file when it cannot be), read back with readSettingsFile's checks.

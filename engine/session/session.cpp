@@ -3,6 +3,8 @@
 #include "lighting/common/albedo_view_pass.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/environment_table.h"
+#include "lighting/common/light_shadow_pass.h"
+#include "lighting/common/light_shadows.h"
 #include "lighting/common/light_table.h"
 #include "lighting/common/lights_pass.h"
 #include "lighting/common/gbuffer_pass.h"
@@ -26,6 +28,7 @@ namespace tl::session {
 struct Session::Passes {
   lighting::GbufferPass gbuffer;
   lighting::ShadowPass shadow;
+  lighting::LightShadowPass lightShadow;
   lighting::LightsPass lights;
   lighting::CompositePass composite;
   lighting::TaaPass taa;
@@ -403,7 +406,23 @@ void Session::beginOne(bool readback) {
   executor_->bindImportedBuffer(lighting::kBrdfTables, brdfTables_);
   gpuScene_->importBuffers(graph, *executor_);
   // The light table exists only in frames that have lights to shade: without, no pass reads it.
-  const auto lights = lighting::buildLightTable(lighting_.lights, view_.position, fc.sceneScale);
+  auto lights = lighting::buildLightTable(lighting_.lights, view_.position, fc.sceneScale);
+  // Point and spot lights' shadow maps (direct, legacy): their views exist only with such lights.
+  const scene::Bounds& bounds = scene_->bounds;
+  const glm::dvec3 relMin = bounds.valid() ? bounds.min - view_.position : glm::dvec3(-1.0);
+  const glm::dvec3 relMax = bounds.valid() ? bounds.max - view_.position : glm::dvec3(1.0);
+  const lighting::LightShadowPlan shadowPlan =
+      lighting::planLightShadows(lights, settings_.lightShadowMapSize, settings_.lightShadowMaxLights, relMin, relMax);
+  if (!shadowPlan.views.empty()) {
+    const VkDeviceSize bytes = shadowPlan.views.size() * sizeof(shared::GpuShadowView);
+    if (lightShadowViews_.size() < bytes)
+      lightShadowViews_ = gpu::Buffer(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
+                                      lighting::kLightShadowViews);
+    lightShadowViews_.write(shadowPlan.views.data(), bytes);
+    graph.declareImported(lighting::kLightShadowViews,
+                          graph::ResourceDesc::buffer(lightShadowViews_.size(), "point and spot light shadow views (shared/lights.h GpuShadowView[])"));
+    executor_->bindImportedBuffer(lighting::kLightShadowViews, lightShadowViews_);
+  }
   if (!lights.empty()) {
     const VkDeviceSize bytes = lights.size() * sizeof(shared::GpuLight);
     if (lightTable_.size() < bytes)
@@ -441,10 +460,15 @@ void Session::beginOne(bool readback) {
   in.historyLog = &historyLog_;
   passes_->gbuffer.add(graph, in);
   passes_->shadow.add(graph, in);
+  in.lightShadowViews = uint32_t(shadowPlan.views.size());
+  passes_->lightShadow.add(graph, in, shadowPlan);  // culled in paths that trace their shadows
   lighting::LightingOutputs outputs = path->addPasses(graph, in);
   // A path that computes the whole image (the reference) shades the lights itself.
   if (outputs.radiance.empty())
     outputs.lightsRadiance = passes_->lights.add(graph, in, outputs.shadowStructures, outputs.shadowTlasHandle);
+  in.refineLights = [this, &in, &outputs](graph::RenderGraph& g) {
+    passes_->lights.addIbufferRefine(g, in, outputs.shadowStructures, outputs.shadowTlasHandle);
+  };
   passes_->composite.add(graph, in, outputs);
   if (in.temporalAntialiasing) passes_->taa.add(graph, in);
   passes_->albedoView.add(graph, in);

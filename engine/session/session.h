@@ -252,6 +252,7 @@ class Session {
   uint64_t environmentTableHash_ = 0;
   std::array<glm::vec4, 9> environmentSh_{};
   gpu::Buffer lightTable_;  // shared/lights.h GpuLight[], rewritten each frame; grows, exists once a scene has lights
+  gpu::Buffer lightShadowViews_;  // shared/lights.h GpuShadowView[] of point and spot light shadow maps, rewritten each frame
   lighting::RenderSettings settings_;
   View view_;
   std::optional<View> previousView_;

@@ -43,6 +43,16 @@ void main() {
     c = vec3(0.04);  // no surface: a normal or the irradiance at it means nothing here
   } else if (push.meaning == kDisplayMeaningOctNormal) {
     c = tlOctDecode(v.rg) * 0.5 + 0.5;  // a direction as colour: +X red, +Y green, +Z blue
+  } else if (push.meaning == kDisplayMeaningAo) {
+    // The visibility as the grey level itself (not sRGB-encoded): what AO views show, so 0.5
+    // reads as mid grey. NaN magenta, negative blue, above 1 yellow (more than a half-float step:
+    // rounding) — none is a visibility.
+    c = vec3(clamp(v.r, 0.0, 1.0));
+    if ((push.flags & kDisplayFlagHighlight) != 0u) {
+      if (isnan(v.r)) c = vec3(1.0, 0.0, 1.0);
+      else if (v.r < 0.0) c = vec3(0.0, 0.4, 1.0);
+      else if (v.r > 1.001) c = vec3(1.0, 1.0, 0.0);
+    }
   } else if (push.meaning == kDisplayMeaningShIrradiance) {
     // What the SH means at this pixel: the irradiance it resolves to at the G-buffer normal
     // (companions sampled at the same relative position: the cones may be quarter size).

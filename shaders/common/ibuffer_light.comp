@@ -26,9 +26,15 @@ layout(set = 0, binding = kIbufferLightsDg) uniform sampler2D lightsDg;
 layout(set = 0, binding = kIbufferLightsSg1) uniform sampler2D lightsSg1;
 layout(set = 0, binding = kIbufferLightsSg2) uniform sampler2D lightsSg2;
 layout(set = 0, binding = kIbufferLightsMs) uniform sampler2D lightsMs;
+layout(set = 0, binding = kIbufferRefineMaskSampled) uniform sampler2D refineMask;
+layout(set = 0, binding = kIbufferFilledDg) uniform sampler2D filledDg;  // the refining run: ibuffer.filled.*
+layout(set = 0, binding = kIbufferFilledSg1) uniform sampler2D filledSg1;
+layout(set = 0, binding = kIbufferFilledSg2) uniform sampler2D filledSg2;
+layout(set = 0, binding = kIbufferFilledMs) uniform sampler2D filledMs;
 layout(push_constant) uniform Push { CompositePush push; };
 
 #include "common/camera.glsl"
+#include "common/ibuffer_stage.glsl"
 #include "common/path_indirect.glsl"
 
 #define TL_SUN_SHADOW_PCSS
@@ -44,7 +50,21 @@ void store(ivec2 p, IbufferSums sums) {
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+  if (push.ibufferStage == kIbufferStageRefine) {
+    // The whole I-buffer: the filled (and pattern) pixels as ibuffer.upsample left them, the
+    // marked ones shaded below.
+    if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+    if (texelFetch(refineMask, p, 0).r != kIbufferRefined) {
+      imageStore(outDg, p, texelFetch(filledDg, p, 0));
+      imageStore(outSg1, p, texelFetch(filledSg1, p, 0));
+      imageStore(outSg2, p, texelFetch(filledSg2, p, 0));
+      imageStore(outMs, p, texelFetch(filledMs, p, 0));
+      return;
+    }
+  } else {
+    p = ibufferStagePixel(push.ibufferStage, push.ibufferPattern);
+    if (p.x < 0) return;
+  }
   float depth = texelFetch(gDepth, p, 0).r;
   if (depth <= 0.0) {  // the sky: no surface (the material pass shows the sky's radiance)
     store(p, tlIbufferZero());

@@ -11,6 +11,6 @@
 #include "shared/shading.h"
 
 vec3 gShadowOrigin;  // unused: no shadow rays
-float lightVisibility(vec3 toLight, float distance) { return 1.0; }
+float lightVisibility(uint light, vec3 toLight, float distance) { return 1.0; }
 
 #include "common/ibuffer_lights.glsl"

@@ -3,14 +3,14 @@
 // drawn by power, one kept in proportion to its unshadowed contribution here: power and
 // distance, cone, cosine), each an unbiased estimate of the sum. The includer includes
 // shared/frame.h, lights.h and sampling.h, declares `frame`, and defines before including
-//   float lightVisibility(vec3 toLight, float distance)  1 where the light is seen from the
-//                                                         point (a shadow ray; 1: unshadowed)
+//   float lightVisibility(uint light, vec3 toLight, float distance)  1 where light `light` of the
+//                                   table is seen from the point (a shadow ray, a shadow map; 1: unshadowed)
 //   vec3 lightResponse(vec3 toLight)                      the BRDF times the cosine there
 // and the sum is reflected radiance. An includer that sums something else (the I-buffer's
 // light sums, common/ibuffer_lights.glsl) defines TL_LIGHTS_CUSTOM_SUM and, instead of
 // lightResponse, the type LightSum with lightSumZero(), lightSumAdd(LightSum, LightSum),
-// lightSumScale(LightSum, float) and LightSum lightContribution(LightIncidence li) (one light,
-// its visibility included).
+// lightSumScale(LightSum, float) and LightSum lightContribution(uint light, LightIncidence li)
+// (light `light` of the table, its visibility included).
 layout(set = 0, binding = kBindingLights, std430) readonly buffer LightTable { GpuLight lights[]; };
 
 #ifndef TL_LIGHTS_CUSTOM_SUM
@@ -21,11 +21,11 @@ vec3 lightSumScale(vec3 a, float k) { return a * k; }
 
 // Reflected radiance from one light, with its visibility (no shadow ray for a light that
 // cannot contribute).
-vec3 lightContribution(LightIncidence li) {
+vec3 lightContribution(uint light, LightIncidence li) {
   if (all(equal(li.irradiance, vec3(0.0)))) return vec3(0.0);
   vec3 response = lightResponse(li.toLight);
   if (all(equal(response, vec3(0.0)))) return vec3(0.0);
-  return li.irradiance * response * lightVisibility(li.toLight, li.distance);
+  return li.irradiance * response * lightVisibility(light, li.toLight, li.distance);
 }
 #endif
 
@@ -45,12 +45,13 @@ uint lightPick(float u) {
 LightSum shadeLights(vec3 position, vec3 n, uvec3 seed) {
   LightSum sum = lightSumZero();
   if (frame.lightCount <= kLightsLoopMax) {
-    for (uint i = 0u; i < frame.lightCount; ++i) sum = lightSumAdd(sum, lightContribution(tlLightIncidence(lights[i], position)));
+    for (uint i = 0u; i < frame.lightCount; ++i) sum = lightSumAdd(sum, lightContribution(i, tlLightIncidence(lights[i], position)));
     return sum;
   }
   for (uint pick = 0u; pick < kLightPicks; ++pick) {
     float weightSum = 0.0, keptTarget = 0.0;
     LightIncidence kept;
+    uint keptIndex = 0u;
     for (uint c = 0u; c < kLightCandidates; ++c) {
       uvec3 h = tlPcg3d(seed + uvec3(0u, 0u, (pick * kLightCandidates + c + 1u) * 0x9E3779B9u));
       uint i = lightPick(tlUintToUnitFloat(h.x));
@@ -60,12 +61,13 @@ LightSum shadeLights(vec3 position, vec3 n, uvec3 seed) {
       weightSum += weight;
       if (weight > 0.0 && tlUintToUnitFloat(h.y) * weightSum < weight) {
         kept = li;
+        keptIndex = i;
         keptTarget = target;
       }
     }
     // Resampled importance sampling: f(y) / target(y) * (the weights' sum) / candidates.
     if (keptTarget > 0.0)
-      sum = lightSumAdd(sum, lightSumScale(lightContribution(kept), weightSum / (float(kLightCandidates) * keptTarget)));
+      sum = lightSumAdd(sum, lightSumScale(lightContribution(keptIndex, kept), weightSum / (float(kLightCandidates) * keptTarget)));
   }
   return lightSumScale(sum, 1.0 / float(kLightPicks));
 }

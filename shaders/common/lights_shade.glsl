@@ -1,5 +1,5 @@
-// The body of the lights.direct pass (lights.comp: unshadowed; lights_traced.comp: shadow rays
-// by ray query): each G-buffer pixel lit by the light table through the shared BRDF. The
+// The body of the lights.direct pass (lights.comp: unshadowed; lights_shadowed.comp: shadow
+// maps; lights_traced.comp: shadow rays by ray query): each G-buffer pixel lit by the light table through the shared BRDF. The
 // includer declares the bindings below' common part and defines lightVisibility.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; };
@@ -14,7 +14,7 @@ layout(push_constant) uniform Push { LightsPush push; };
 #include "common/camera.glsl"
 
 SurfaceParams gSurface;
-vec3 gNormalHere, gView;  // the includer declares gShadowOrigin (where shadow rays start)
+vec3 gPosition, gNormalHere, gView;  // the includer declares gShadowOrigin (where shadow rays start)
 
 vec3 lightResponse(vec3 toLight) {
   float nl = dot(gNormalHere, toLight);
@@ -33,6 +33,7 @@ void main() {
     return;
   }
   vec3 position = cameraRelativePosition((vec2(p) + 0.5) * frame.viewport.zw, depth);
+  gPosition = position;
   gNormalHere = tlOctDecode(texelFetch(gNormal, p, 0).xy);
   gView = normalize(-position);
   vec4 material = texelFetch(gMaterial, p, 0);

@@ -13,7 +13,7 @@
 layout(set = 0, binding = kLightsPassTlas) uniform accelerationStructureEXT tlas;
 vec3 gShadowOrigin;
 
-float lightVisibility(vec3 toLight, float distance) {
+float lightVisibility(uint light, vec3 toLight, float distance) {
   rayQueryEXT q;
   rayQueryInitializeEXT(q, tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT, 0xFF, gShadowOrigin, 0.0,
                         toLight, distance * (1.0 - 1e-4));

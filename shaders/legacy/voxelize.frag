@@ -42,12 +42,15 @@ bool screenRadiance(vec3 position, vec3 normal, out vec3 radiance) {
 
 #include "common/sun_shadow.glsl"
 
-// The light table (shared/lights.h) injected like the sun, but unshadowed: no shadow map
-// exists for point and spot lights yet, so a lamp's light reaches every surface facing it.
-vec3 gLightNormal, gLightAlbedo;
-float lightVisibility(vec3 toLight, float distance) { return 1.0; }
+// The light table (shared/lights.h) injected like the sun: point and spot lights through their
+// shadow maps (common/light_shadow.glsl; frames without maps bind stand-ins, never read since
+// no light then names a view), the rest unshadowed.
+vec3 gLightPosition, gLightNormal, gLightAlbedo;
+float lightVisibility(uint light, vec3 toLight, float distance);
 vec3 lightResponse(vec3 toLight) { return gLightAlbedo * (kInvPi * max(dot(gLightNormal, toLight), 0.0)); }
 #include "common/lights.glsl"
+#include "common/light_shadow.glsl"
+float lightVisibility(uint light, vec3 toLight, float distance) { return lightShadowVisibility(light, gLightPosition, gLightNormal); }
 
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
@@ -88,6 +91,7 @@ void main() {
     vec3 radiance = emission;
     if (nl > 0.0) radiance += albedo * kInvPi * frame.sunIrradiance.rgb * (nl * sunVisibility(inPosition, ns));
     if (frame.lightCount > 0u) {
+      gLightPosition = inPosition;
       gLightNormal = ns;
       gLightAlbedo = albedo;
       radiance += shadeLights(inPosition, ns, uvec3(uvec2(v.xy), uint(v.z) + 977u * uint(side)));

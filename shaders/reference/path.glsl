@@ -22,7 +22,7 @@ vec2 next2() {
 // be hit by a BRDF-sampled ray, so no multiple importance sampling is needed.
 vec3 gLightOrigin, gLightNormal, gLightGeometric, gLightView;
 SurfaceParams gLightSurface;
-float lightVisibility(vec3 toLight, float distance) {
+float lightVisibility(uint light, vec3 toLight, float distance) {
   if (dot(gLightGeometric, toLight) <= 0.0) return 0.0;
   visible = 0.0;
   traceRayEXT(tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,

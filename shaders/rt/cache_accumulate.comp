@@ -2,7 +2,8 @@
 // The radiance cache's sums (shared/rt_cache.h): one invocation per cell and per sample.
 // A cell's invocation clears the sum the next frame adds into (the other parity) and drops a
 // cell without samples for RtCachePush::maxAge frames; a sample's invocation finds or claims
-// its cell (linear probing, compare-and-swap on the key) and adds itself in fixed point.
+// its cell and its coarse cell (linear probing, compare-and-swap on the key) and adds itself to
+// both in fixed point.
 // On a restart every cell is emptied and no sample is taken.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/rt.h"
@@ -29,18 +30,22 @@ void main() {
   if (push.restart != 0u || i >= push.sampleCount) return;
   RtCacheSample s = samples[i];
   if (s.cell.y == 0u) return;
-  uvec3 h = tlPcg3d(uvec3(i, push.frame, 0x2545F491u));
-  for (uint k = 0u; k < kRtCacheProbes; ++k) {
-    uint slot = (s.cell.x + k) & push.entryMask;
-    uint owner = atomicCompSwap(accum[slot].key, 0u, s.cell.y);
-    if (owner != 0u && owner != s.cell.y) continue;
-    accum[slot].stamp = push.frame;
-    uint at = 4u * current;
-    if (atomicAdd(accum[slot].sum[at + 3u], 1u) < kRtCacheSampleCap) {
-      atomicAdd(accum[slot].sum[at], tlRtCacheToFixed(s.radiance.r, push.bound, tlUintToUnitFloat(h.x)));
-      atomicAdd(accum[slot].sum[at + 1u], tlRtCacheToFixed(s.radiance.g, push.bound, tlUintToUnitFloat(h.y)));
-      atomicAdd(accum[slot].sum[at + 2u], tlRtCacheToFixed(s.radiance.b, push.bound, tlUintToUnitFloat(h.z)));
+  // The sample goes to its cell and to its coarse cell (shared/rt_cache.h).
+  for (uint level = 0u; level < 2u; ++level) {
+    uvec2 cell = level == 0u ? s.cell.xy : s.cell.zw;
+    uvec3 h = tlPcg3d(uvec3(i, push.frame, 0x2545F491u + level));
+    for (uint k = 0u; k < kRtCacheProbes; ++k) {
+      uint slot = (cell.x + k) & push.entryMask;
+      uint owner = atomicCompSwap(accum[slot].key, 0u, cell.y);
+      if (owner != 0u && owner != cell.y) continue;
+      accum[slot].stamp = push.frame;
+      uint at = 4u * current;
+      if (atomicAdd(accum[slot].sum[at + 3u], 1u) < kRtCacheSampleCap) {
+        atomicAdd(accum[slot].sum[at], tlRtCacheToFixed(s.radiance.r, push.bound, tlUintToUnitFloat(h.x)));
+        atomicAdd(accum[slot].sum[at + 1u], tlRtCacheToFixed(s.radiance.g, push.bound, tlUintToUnitFloat(h.y)));
+        atomicAdd(accum[slot].sum[at + 2u], tlRtCacheToFixed(s.radiance.b, push.bound, tlUintToUnitFloat(h.z)));
+      }
+      break;
     }
-    return;
   }
 }

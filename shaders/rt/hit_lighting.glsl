@@ -27,7 +27,7 @@ layout(location = 1) rayPayloadEXT float visible;
 // from gLightStart (the includes below need them declared first).
 vec3 gLightStart, gLightNormal, gLightAlbedo;
 float unoccluded(vec3 start, vec3 direction, float tMax);
-float lightVisibility(vec3 toLight, float distance) {
+float lightVisibility(uint light, vec3 toLight, float distance) {
   return unoccluded(gLightStart, toLight, distance >= 1e29 ? 1e30 : distance * (1.0 - 1e-4));
 }
 vec3 lightResponse(vec3 toLight) { return gLightAlbedo * (kInvPi * max(dot(gLightNormal, toLight), 0.0)); }
@@ -95,13 +95,9 @@ vec3 emitterLight(vec3 start, vec3 normal, uvec3 seed, out vec3 direction) {
   return e.radiance.rgb * tlRtEmitterInversePdf(e, distance2, cosLight) * unoccluded(start, direction, reach);
 }
 
-// The radiance cache's C at a camera-relative position with `normal`: false where its cell
-// holds no sample (or the cache is off).
-bool cachedIncoming(vec3 position, vec3 normal, out vec3 incoming) {
+// The radiance cache's C in one cell: false where it holds no sample.
+bool cachedCell(uvec2 cell, out vec3 incoming) {
   incoming = vec3(0.0);
-  if (push.cacheLookup == 0u) return false;
-  uvec2 cell = tlRtCacheCell(position + push.cameraWorld.xyz, normal, length(position), push.cacheCellSize,
-                             push.cacheCellAngle);
   for (uint k = 0u; k < kRtCacheProbes; ++k) {
     RtCacheEntry e = cacheEntries[(cell.x + k) & push.cacheEntryMask];
     if (e.key != cell.y) continue;  // holes left by dropped cells: probe on
@@ -110,6 +106,17 @@ bool cachedIncoming(vec3 position, vec3 normal, out vec3 incoming) {
     return true;
   }
   return false;
+}
+
+// The radiance cache's C at a camera-relative position with `normal`: its cell's, else its
+// coarse cell's (shared/rt_cache.h); false where neither holds a sample (or the cache is off).
+bool cachedIncoming(vec3 position, vec3 normal, out vec3 incoming) {
+  incoming = vec3(0.0);
+  if (push.cacheLookup == 0u) return false;
+  vec3 world = position + push.cameraWorld.xyz;
+  float distance = length(position);
+  if (cachedCell(tlRtCacheCell(world, normal, distance, push.cacheCellSize, push.cacheCellAngle), incoming)) return true;
+  return cachedCell(tlRtCacheCoarseCell(world, normal, distance, push.cacheCellSize, push.cacheCellAngle), incoming);
 }
 
 // Where rays leave a hit rebuilt from its stored distance: the stored distance is a half, so

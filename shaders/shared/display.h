@@ -37,6 +37,7 @@ TL_CONST uint kDisplayMeaningHitDistance = 1;  // r32ui hit record: distance in 
 TL_CONST uint kDisplayMeaningOctNormal = 2;    // rg oct normal (float): the unit vector as colour, n * 0.5 + 0.5
 TL_CONST uint kDisplayMeaningHitNormal = 3;    // rg32ui hit surface: its oct snorm16 normal as colour
 TL_CONST uint kDisplayMeaningShIrradiance = 4; // L1 SH of luma + chroma (A) at the normal (B): irradiance over the range
+TL_CONST uint kDisplayMeaningAo = 5;           // ambient occlusion (r): the visibility as a grey level
 // The flat colours of a hit record that is no hit (their legend in the Buffers panel).
 TL_FN vec3 tlDisplayMissColour() { return vec3(0.12f, 0.16f, 0.28f); }
 TL_FN vec3 tlDisplayPendingColour() { return vec3(0.45f, 0.45f, 0.45f); }

@@ -40,7 +40,8 @@ TL_CONST uint kLightsPassAccum = 7u;  // rgba32f, persistent: sum of estimates (
 struct LightsPush {
   uint accumulate;  // 1: add this frame's estimate to the sum (more than kLightsLoopMax lights)
   uint restart;     // 1: the sum starts over this frame
-  uint pad0, pad1;
+  uint ibufferStage;    // redeferred form: kIbufferStage* (shared/redeferred.h)
+  uint ibufferPattern;  // redeferred form: kIbufferPattern*
 };
 
 // Up to this many lights every shading point evaluates all of them (exact: no noise). With more,
@@ -59,8 +60,52 @@ struct GpuLight {
   float cosOuter;  // spot: cos(outer cone angle); -1 otherwise
   float coneScale; // spot: 1 / max(cos inner - cos outer, 1e-3)
   uint type;       // kLight*
-  uint pad;
+  uint shadowView; // first of its shadow views (shared/lights.h GpuShadowView; 6 for a cube), kNoLightShadow: none
 };
+
+// Shadow maps of point and spot lights (the direct and legacy paths; rt and the reference trace
+// shadow rays). Every shadowed light has perspective views of 90 degrees or less, each one tile
+// of the depth atlas "shadow.lightsDepth" (D32F, standard Z: 0 at the near plane): a spot whose
+// cone fits kLightShadowMaxSpotTan one view along its axis, a point light (or a wider spot) six,
+// a cube's faces in the order +x -x +y -y +z -z. Each view's field of view is widened by
+// kLightShadowGuardTexels on every side, so the filter's taps for the directions the view owns
+// never leave its tile. The views are "lights.shadowViews" at kBindingLightShadowViews.
+TL_CONST uint kNoLightShadow = 0xFFFFFFFFu;
+TL_CONST float kLightShadowGuardTexels = 4.0f;
+TL_CONST float kLightShadowMaxSpotTan = 1.7320508f;  // tan 60 degrees: wider spots take a cube
+TL_CONST float kLightShadowNear = 0.02f;              // metres: casters closer to a light clamp to it
+// Receivers are pushed along their normal and towards the light by these many texels of the
+// map at their distance (world units grow with distance in a perspective map).
+TL_CONST float kLightShadowNormalOffsetTexels = 1.5f;
+TL_CONST float kLightShadowBiasTexels = 2.0f;
+TL_CONST uint kBindingLightShadowViews = 52u;
+TL_CONST uint kBindingLightShadowAtlas = 53u;  // sampler2DShadow over shadow.lightsDepth
+
+struct GpuShadowView {
+  mat4 viewProj;  // camera-relative world -> this view's clip space (Vulkan, z in [0,1])
+  vec4 tile;      // xy: the tile's corner in the atlas (uv), zw: its size (uv)
+  vec4 params;    // x: near, y: far (metres), z: texel size per metre of depth (2 tan(fov/2) / tile texels), w: the light's view count (1 or 6)
+};
+
+// Push constants of the shadow.lights raster: the view drawn.
+struct LightShadowPush {
+  uint view;
+  uint pad0, pad1, pad2;
+};
+
+// The depth a receiver at view depth w (metres along the view's axis) has in its view's map:
+// glm::perspectiveRH_ZO's z / w.
+TL_FN float tlShadowViewDepth(float nearPlane, float farPlane, float w) {
+  return farPlane / (farPlane - nearPlane) * (1.0f - nearPlane / max(w, nearPlane));
+}
+
+// Which of a cube's six views (+x -x +y -y +z -z) sees direction d from the light.
+TL_FN uint tlCubeFace(vec3 d) {
+  vec3 a = abs(d);
+  if (a.x >= a.y && a.x >= a.z) return d.x >= 0.0f ? 0u : 1u;
+  if (a.y >= a.z) return d.y >= 0.0f ? 2u : 3u;
+  return d.z >= 0.0f ? 4u : 5u;
+}
 
 // What a light sends to a point: the unit direction towards it, its distance (1e30 for a
 // directional light) and the irradiance on a surface facing it there (times n.l for irradiance).
@@ -113,5 +158,7 @@ TL_END
 
 #ifdef __cplusplus
 static_assert(sizeof(tl::shared::GpuLight) == 64);
+static_assert(sizeof(tl::shared::GpuShadowView) == 96);
+static_assert(sizeof(tl::shared::LightShadowPush) == 16);
 #endif
 #endif

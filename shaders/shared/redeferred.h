@@ -43,6 +43,75 @@ TL_CONST uint kIbufferAccumSg1 = 29u;
 TL_CONST uint kIbufferAccumSg2 = 30u;
 TL_CONST uint kIbufferAccumMs = 31u;
 
+// The illumination stage's shading rate (the `redeferredRate` setting): which pixels the
+// illumination passes shade first. The rest are filled from them by ibuffer.upsample where the
+// surface and the light are smooth, and shaded too (a second, refining run of the same passes)
+// where they are not: across geometry edges and where the shaded neighbours' light disagrees
+// (shadow edges, a lamp's falloff).
+TL_CONST uint kIbufferPatternEvery = 0u;        // rate 1: every pixel
+TL_CONST uint kIbufferPatternCheckerboard = 1u; // rate 1/2: pixels with x + y even
+TL_CONST uint kIbufferPatternBlocks = 2u;       // rate 1/4: the top-left pixel of each 2x2 block
+// What one run of an illumination pass shades (LightsPush/CompositePush ibufferStage).
+TL_CONST uint kIbufferStageEvery = 0u;    // every pixel (rate 1)
+TL_CONST uint kIbufferStagePattern = 1u;  // the pattern's pixels, dispatched densely
+TL_CONST uint kIbufferStageRefine = 2u;   // the pixels ibuffer.upsample marked kIbufferRefined (ibuffer.light: and
+                                          // the filled ones copied, so its output is the whole I-buffer)
+// ibuffer.refine's values: how each pixel's I-buffer was made.
+TL_CONST float kIbufferShadedFirst = 0.0f;  // a pattern pixel (or the sky)
+TL_CONST float kIbufferFilled = 1.0f;       // filled from its shaded neighbours
+TL_CONST float kIbufferRefined = 2.0f;      // shaded at full rate (an edge)
+// Bindings of ibuffer.upsample (set 0): the pattern's sums (ibuffer.shaded.*) sampled at
+// kIbufferLights*, the filled ones (ibuffer.filled.*) written at kIbufferOut*, the G-buffer at
+// kIbufferNormal/Material/Depth, the mark it writes here. The refining run of ibuffer.light
+// samples the filled sums at kIbufferFilled* and the light table's refined share at kIbufferLights*.
+TL_CONST uint kIbufferRefineMask = 32u;         // r32f storage image (ibuffer.refine)
+TL_CONST uint kIbufferRefineMaskSampled = 33u;  // the same, sampled by the refining runs
+TL_CONST uint kIbufferFilledDg = 34u;
+TL_CONST uint kIbufferFilledSg1 = 35u;
+TL_CONST uint kIbufferFilledSg2 = 36u;
+TL_CONST uint kIbufferFilledMs = 37u;
+
+// ibuffer.upsample's edges: a shaded neighbour off this pixel's tangent plane by more than
+// this share of the pixel's distance, at a normal's cosine below, or a roughness further than
+// this, is another surface; neighbours whose diffuse or specular sums' luminance spread is more
+// than kIbufferEdgeLight of the largest (above kIbufferLightFloor, W/m^2) straddle a change of
+// light. Either way the pixel is shaded rather than filled.
+TL_CONST float kIbufferEdgePlane = 0.02f;
+TL_CONST float kIbufferEdgeCosine = 0.9f;
+TL_CONST float kIbufferEdgeRoughness = 0.1f;
+TL_CONST float kIbufferEdgeLight = 0.25f;
+TL_CONST float kIbufferLightFloor = 1e-6f;
+// The fill's normal weights, cosine^k: the specular sums vary faster with the normal.
+TL_CONST float kIbufferDiffuseNormalPower = 8.0f;
+TL_CONST float kIbufferSpecularNormalPower = 32.0f;
+struct IbufferUpsamplePush {
+  uint pattern;  // kIbufferPattern*
+  uint pad0, pad1, pad2;
+};
+
+// Pattern of a rate: 1 -> every pixel, 0.5 -> checkerboard, 0.25 -> 2x2 blocks.
+TL_FN uint tlIbufferPattern(float rate) {
+  return rate >= 1.0f ? kIbufferPatternEvery : (rate >= 0.5f ? kIbufferPatternCheckerboard : kIbufferPatternBlocks);
+}
+// Whether pattern `pattern` shades pixel p first.
+TL_FN bool tlIbufferShadedFirst(ivec2 p, uint pattern) {
+  if (pattern == kIbufferPatternCheckerboard) return ((p.x + p.y) & 1) == 0;
+  if (pattern == kIbufferPatternBlocks) return ((p.x | p.y) & 1) == 0;
+  return true;
+}
+// The dense dispatch of the pattern's pixels: its grid for an image of `size`, and the pixel
+// invocation q shades.
+TL_FN uvec2 tlIbufferPatternGrid(uvec2 size, uint pattern) {
+  if (pattern == kIbufferPatternCheckerboard) return uvec2((size.x + 1u) / 2u, size.y);
+  if (pattern == kIbufferPatternBlocks) return uvec2((size.x + 1u) / 2u, (size.y + 1u) / 2u);
+  return size;
+}
+TL_FN ivec2 tlIbufferPatternPixel(ivec2 q, uint pattern) {
+  if (pattern == kIbufferPatternCheckerboard) return ivec2(2 * q.x + (q.y & 1), q.y);
+  if (pattern == kIbufferPatternBlocks) return 2 * q;
+  return q;
+}
+
 // One sum of the I-buffer per quantity (rgb: colour of the light).
 struct IbufferSums {
   vec3 dg, sg1, sg2, ms;

@@ -17,8 +17,11 @@
 //
 // Each frame (rt/cache_update.rgen) one pixel in each tile of RtPush::cacheTile^2 pixels
 // starts a path of up to RtPush::cacheBounces cosine-distributed rays; every vertex's sample
-// of C (the light its next vertex sends back) goes to its cell: the path's last vertex takes
-// its incoming light from the cache itself, so light keeps bouncing from frame to frame.
+// of C (the light its next vertex sends back) goes to its cell and to its coarse cell (a hit
+// whose cell is empty reads the coarse one): the path's last vertex takes its incoming light
+// from the cache itself, so light keeps bouncing from frame to frame. The paths go on through
+// surfaces seen on screen (last frame's image is itself still converging, and fed back it
+// slowed the cache down: docs/accuracy.md).
 // rt.cache.accumulate adds the samples into fixed-point sums (atomics of uint: portable,
 // order-independent), rt.cache.resolve blends each cell's mean into its radiance with a
 // history of at most RtCachePush::maxSamples samples, so light that went away leaves.
@@ -30,12 +33,17 @@
 TL_BEGIN
 TL_CONST uint kRtCacheProbes = 8u;        // slots tried from a cell's hash before giving up
 TL_CONST uint kRtCacheMaxLevel = 20u;     // cells grow up to kRtCacheCellSize * 2^20
+TL_CONST uint kRtCacheCoarseLevels = 2u;  // a sample's coarse cell: 2^2 times its own cell's size
 TL_CONST uint kRtCacheMaxBounces = 8u;    // longest update path (rays)
 TL_CONST uint kRtCacheMaxAge = 120u;      // frames a cell with no new sample is kept
 // A cell's history also fades with time: its weight falls by 1/kRtCacheHistoryFrames a frame,
 // so a cell sampled rarely forgets the samples taken while the cache was still filling (whose
 // last vertices found nothing to read: a cold start is biased dark) within a few such spans.
-TL_CONST float kRtCacheHistoryFrames = 8.0f;
+// The cache reaches its fixed point (every bounce) like a damped iteration: each frame a cell
+// moves about 1/kRtCacheHistoryFrames of the way, and the bounces it reads through its path's
+// last vertex are worth rho^k of that; in a closed white box (rho = 0.8) 8 frames left the
+// cache 9% short after 64 frames, 4 frames 3% (docs/accuracy.md).
+TL_CONST float kRtCacheHistoryFrames = 4.0f;
 // Fixed point: a sample at the bound (RtCachePush::bound) is 2^22; at most kRtCacheSampleCap
 // samples a frame per cell are summed, so a sum never overflows 32 bits.
 TL_CONST float kRtCacheFixedOne = 4194304.0f;
@@ -66,7 +74,7 @@ struct RtCacheEntry {
 };
 // One path vertex's sample, std430.
 struct RtCacheSample {
-  uvec4 cell;     // x: slot hash, y: key (0: no sample), zw: unused
+  uvec4 cell;     // x: slot hash, y: key (0: no sample); zw: the same of its coarse cell
   vec4 radiance;  // rgb: the incoming radiance sampled at the vertex
 };
 
@@ -95,15 +103,24 @@ TL_FN uint tlRtCacheNormalBucket(vec3 n) {
   if (ay >= az) return n.y >= 0.0f ? 2u : 3u;
   return n.z >= 0.0f ? 4u : 5u;
 }
-// The cell of a world position: x the slot hash, y the key (never 0).
-TL_FN uvec2 tlRtCacheCell(vec3 world, vec3 normal, float distance, float cellSize, float cellAngle) {
-  uint level = tlRtCacheLevel(distance, cellSize, cellAngle);
+// The cell of a world position at `level`: x the slot hash, y the key (never 0).
+TL_FN uvec2 tlRtCacheCellAtLevel(vec3 world, vec3 normal, uint level, float cellSize) {
   float size = cellSize * exp2(float(level));
   ivec3 c = ivec3(floor(world / size));
   uint tag = tlPcgHash(level * 6u + tlRtCacheNormalBucket(normal) + 1u);
   uvec3 h = tlPcg3d(uvec3(uint(c.x), uint(c.y), uint(c.z) ^ tag));
   uint key = h.y ^ tlPcgHash(h.z);
   return uvec2(h.x, key == 0u ? 1u : key);
+}
+// The cell of a world position at `distance` from the camera: x the slot hash, y the key.
+TL_FN uvec2 tlRtCacheCell(vec3 world, vec3 normal, float distance, float cellSize, float cellAngle) {
+  return tlRtCacheCellAtLevel(world, normal, tlRtCacheLevel(distance, cellSize, cellAngle), cellSize);
+}
+// The coarse cell holding it, kRtCacheCoarseLevels levels up: every sample goes to both, and a
+// hit whose own cell holds nothing reads this one, which holds 4^kRtCacheCoarseLevels times
+// as many samples (a hit finding nothing would lose every bounce beyond it).
+TL_FN uvec2 tlRtCacheCoarseCell(vec3 world, vec3 normal, float distance, float cellSize, float cellAngle) {
+  return tlRtCacheCellAtLevel(world, normal, tlRtCacheLevel(distance, cellSize, cellAngle) + kRtCacheCoarseLevels, cellSize);
 }
 
 // A sample in fixed point: clamped to the bound, rounded stochastically by `u` in [0, 1)

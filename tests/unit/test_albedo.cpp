@@ -314,6 +314,18 @@ TEST(AlbedoDatabase, RefusesANewerSchema) {
   expectRefusedUntouched(file, "newer Twinlight");
 }
 
+// A negative user_version (SQLite stores any 32-bit integer) is no schema: refused before any
+// migration runs (fuzz_albedo_db found it indexing the migrations at -1).
+TEST(AlbedoDatabase, RefusesANegativeSchema) {
+  const fs::path file = tempFile("negative.db");
+  { AlbedoDatabase db(file); }
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(file.string().c_str(), &db), SQLITE_OK);
+  sqlite3_exec(db, "PRAGMA user_version = -1", nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  expectRefusedUntouched(file, "schema -1, which no Twinlight writes");
+}
+
 // A schema-1 file (before labels) opens, migrates and keeps its rows.
 TEST(AlbedoDatabase, MigratesAVersionOneFile) {
   const fs::path file = tempFile("v1.db");

@@ -114,6 +114,35 @@ TEST(Decoders, ShIrradianceUsesTheCompanionsAtTheSameRelativePosition) {
   EXPECT_LT(glm::length(parseVec(find(lines, "dominant direction")) - dir), 0.01f);
 }
 
+TEST(Decoders, AmbientOcclusionIsTheVisibilityAndAGreyMeaning) {
+  EXPECT_EQ(find(decodeTexel("ao", {oneTexel(VK_FORMAT_R32_SFLOAT, 0.25f)}), "visibility"), "0.250 (75% occluded)");
+  const auto m = meaningView("ao");
+  ASSERT_TRUE(m);
+  EXPECT_EQ(m->quantity, "ambient occlusion");
+  EXPECT_FALSE(m->fitted) << "visibility has its own fixed range, 0..1";
+  EXPECT_TRUE(negativesInvalid("ao", VK_FORMAT_R16_SFLOAT));
+}
+
+TEST(Decoders, VoxelFacesNameTheFaceLevelAndVoxel) {
+  // R = 2: six face blocks of 2 along x (12 wide), 2 levels of 2 along z (4 deep), RGBA32F.
+  graph::Readback r;
+  r.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  r.extent = {12, 2, 4};
+  for (uint32_t z = 0; z < 4; ++z)
+    for (uint32_t y = 0; y < 2; ++y)
+      for (uint32_t x = 0; x < 12; ++x) appendBytes(r.bytes, glm::vec4(float(x), float(y), float(z), 0.5f));
+  DecodedLines lines = decodeTexel("voxel-faces", {r, 5, 1, 3});
+  EXPECT_EQ(find(lines, "face").substr(0, 2), "+y") << "x 5 is in block 2 of +x -x +y -y +z -z";
+  EXPECT_EQ(find(lines, "voxel"), "level 1, x 1 y 1 z 1 of 2");
+  EXPECT_EQ(parseVec(find(lines, "radiance")), glm::vec3(5.0f, 1.0f, 3.0f));
+  EXPECT_EQ(find(lines, "opacity"), "0.500");
+  EXPECT_EQ(find(decodeTexel("voxel-faces", {r, 11, 0, 0}), "face").substr(0, 2), "-z");
+  // The slice index named: level and world z voxel; a plain 3D image says its axis.
+  EXPECT_EQ(sliceMeaning("voxel-faces", {384, 64, 256}, 70), "level 1, world z voxel 6 of 64");
+  EXPECT_EQ(sliceMeaning("voxel-faces", {384, 64, 64}, 500), "level 0, world z voxel 63 of 64") << "past the end: the last";
+  EXPECT_EQ(sliceMeaning("", {8, 8, 10}, 5), "z 5 of 10");
+}
+
 TEST(Decoders, InstanceIdNamesTheInstance) {
   scene::Scene s;
   s.instances.resize(3);

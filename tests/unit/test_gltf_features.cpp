@@ -8,6 +8,7 @@
 #include "shared/color.h"
 
 #include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -15,6 +16,8 @@
 #include <array>
 #include <cstring>
 #include <fstream>
+#include <iterator>
+#include <utility>
 
 namespace tl::scene {
 namespace {
@@ -41,6 +44,7 @@ const Mesh& mesh(const Scene& s, const std::string& name) {
 void writeImage(const fs::path& file, int channels, const std::vector<float>& values, OIIO::TypeDesc type) {
   auto out = OIIO::ImageOutput::create(file.string());
   OIIO::ImageSpec spec(2, 2, channels, type);
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // colour written as given, as glTF exporters do
   ASSERT_TRUE(out && out->open(file.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, values.data()) && out->close())
       << OIIO::geterror();
 }
@@ -138,6 +142,39 @@ TEST(GltfImages, FilesAtEveryDepth) {
   EXPECT_NEAR(texelValue(colour, 0).a, 1000.0f / 65535.0f, 1e-4f);  // alpha is linear
   // Content hashes tell the texel formats apart and follow the texels.
   EXPECT_NE(glow.contentHash, colour.contentHash);
+}
+
+// Every channel count widens to RGBA texel by texel (grey -> rgb, grey + alpha, rgb opaque,
+// rgba as is) in each decoding path: 8 bits, 16 bits linear, and float (read in the file's
+// own type and converted by Twinlight, textures.cpp readPixels). Channels differ by 1/255.
+// Colour comes back as stored, not premultiplied by alpha (glTF's convention; OpenImageIO's
+// PNG reader premultiplies unless told not to).
+TEST(GltfImages, EveryChannelCountWidensToRgba) {
+  TempDir tmp;
+  const std::pair<OIIO::TypeDesc, const char*> types[] = {
+      {OIIO::TypeDesc::UINT8, "png"}, {OIIO::TypeDesc::UINT16, "png"}, {OIIO::TypeDesc::HALF, "exr"}};
+  for (int ch = 1; ch <= 4; ++ch)
+    for (const auto& [type, extension] : types) {
+      std::vector<float> values;
+      for (int p = 0; p < 4; ++p)
+        for (int c = 0; c < ch; ++c) values.push_back(float(10 * (p + 1) + c) / 255.0f);
+      const fs::path file = tmp.path / fmt::format("{}_{}.{}", ch, type.size(), extension);
+      writeImage(file, ch, values, type);
+      std::ifstream in(file, std::ios::binary);
+      const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      Texture t;
+      t.srgb = false;
+      std::string error;
+      ASSERT_TRUE(decodeImage(bytes, t, error)) << file << ": " << error;
+      ASSERT_EQ(t.width * t.height, 4u);
+      for (size_t p = 0; p < 4; ++p) {
+        auto v = [&](int c) { return values[p * size_t(ch) + size_t(c)]; };
+        const glm::vec4 expected = ch >= 3 ? glm::vec4(v(0), v(1), v(2), ch == 4 ? v(3) : 1.0f)
+                                           : glm::vec4(v(0), v(0), v(0), ch == 2 ? v(1) : 1.0f);
+        for (int c = 0; c < 4; ++c)
+          EXPECT_NEAR(texelValue(t, p)[c], expected[c], 1e-3f) << file << " pixel " << p << " channel " << c;
+      }
+    }
 }
 
 // Tangents: the exporters' convention. On a quad in XZ facing +Y with u along +X and v along

@@ -9,6 +9,7 @@
 #include "scene/scene.h"
 #include "scene/scene_internal.h"
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -16,6 +17,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -270,6 +272,52 @@ TEST(HardImport, ImagesAreLimitedBeforeTheirPixelsAreAllocated) {
   const std::string gif = "GIF89a......";
   EXPECT_FALSE(decodeImage(std::vector<uint8_t>(gif.begin(), gif.end()), t, error));
   EXPECT_EQ(error, "neither PNG, JPEG, OpenEXR nor Radiance HDR");
+}
+
+bool hasJpegSegment(const std::vector<uint8_t>& bytes, uint8_t marker) {
+  for (size_t i = 0; i + 1 < bytes.size(); ++i)
+    if (bytes[i] == 0xFF && bytes[i + 1] == marker) return true;
+  return false;
+}
+
+// A JPEG's metadata segments are dropped before OpenImageIO sees them: its IPTC reader read past
+// the end of an APP13 segment (fuzz_image, heap-buffer-overflow under ASan; the input is kept in
+// fuzz/regressions/image/ and replayed here, where an ASan build catches it). A JPEG with EXIF,
+// IPTC and a comment keeps its pixels.
+TEST(HardImport, JpegMetadataNeverReachesTheDecoder) {
+  std::ifstream found(fs::path(TWINLIGHT_SOURCE_ROOT) / "fuzz/regressions/image/iptc_past_app13.jpg", std::ios::binary);
+  const std::vector<uint8_t> iptc((std::istreambuf_iterator<char>(found)), std::istreambuf_iterator<char>());
+  ASSERT_TRUE(hasJpegSegment(iptc, 0xED));
+  EXPECT_FALSE(hasJpegSegment(jpegWithoutMetadata(iptc), 0xED));
+  Texture t;
+  std::string error;
+  decodeImage(iptc, t, error);  // refused or decoded; never read out of bounds
+
+  TempDir tmp;
+  const fs::path file = tmp.path / "tagged.jpg";
+  OIIO::ImageSpec spec(8, 8, 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("ImageDescription", "a comment");
+  spec.attribute("IPTC:Caption", "a caption");
+  spec.attribute("Exif:ImageUniqueID", "an exif tag");
+  std::vector<uint8_t> pixels(8 * 8 * 3);
+  for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = uint8_t(i * 5);
+  auto out = OIIO::ImageOutput::create(file.string());
+  ASSERT_TRUE(out && out->open(file.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) && out->close());
+  std::ifstream in(file, std::ios::binary);
+  const std::vector<uint8_t> tagged((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::vector<uint8_t> plain = jpegWithoutMetadata(tagged);
+  for (uint8_t marker : {0xE1, 0xED, 0xFE}) {
+    EXPECT_TRUE(hasJpegSegment(tagged, marker)) << int(marker);
+    EXPECT_FALSE(hasJpegSegment(plain, marker)) << int(marker);
+  }
+  EXPECT_TRUE(hasJpegSegment(plain, 0xE0));  // JFIF stays
+  std::vector<uint8_t> expected(8 * 8 * 3);
+  auto reader = OIIO::ImageInput::open(file.string());
+  ASSERT_TRUE(reader && reader->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, expected.data()));
+  ASSERT_TRUE(decodeImage(tagged, t, error)) << error;
+  ASSERT_EQ(t.rgba8.size(), 8u * 8u * 4u);
+  for (size_t p = 0; p < 64; ++p)
+    for (size_t c = 0; c < 3; ++c) EXPECT_EQ(t.rgba8[p * 4 + c], expected[p * 3 + c]) << p << " " << c;
 }
 
 // ---- numbers --------------------------------------------------------------------------------

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 namespace tl::session {
@@ -46,6 +47,21 @@ TEST(Presets, PresetsDoNotStackAndBalancedIsTheDefaults) {
     d.shadowMapSize = 512;
     return session::settingsJson(d).dump();
   }());
+}
+
+TEST(Presets, AsCompareSettingsEachPresetIsItsOwnValuesTyped) {
+  for (const Preset& p : builtInPresets()) {
+    const nlohmann::json j = presetSettingsJson(p);
+    EXPECT_EQ(j.size(), p.values.size()) << p.path << " " << p.name;
+    // Applied to the defaults, the object gives what the preset gives.
+    EXPECT_EQ(settingsJson(applySettingsJson(lighting::RenderSettings{}, j)).dump(),
+              settingsJson(applyPreset(lighting::RenderSettings{}, p)).dump())
+        << p.path << " " << p.name;
+  }
+  const auto& all = builtInPresets();
+  auto fast = std::find_if(all.begin(), all.end(), [](const Preset& p) { return p.path == "direct" && p.name == "Fast"; });
+  ASSERT_NE(fast, all.end());
+  EXPECT_EQ(presetSettingsJson(*fast), (nlohmann::json{{"shadowMapSize", 1024}, {"softShadows", false}}));
 }
 
 TEST(Presets, AnArtistsPresetRoundTripsWithoutTheImageSize) {

@@ -40,6 +40,27 @@ TEST(RtCache, TwoSidesOfAWallAreTwoCells) {
   EXPECT_EQ(tlRtCacheCell(p + vec3(0.001f, 0.0f, 0.0f), vec3(0, 0.3f, 1), 3.0f, 0.01f, 0.02f), front);
 }
 
+// The coarse cell a hit falls back to: kRtCacheCoarseLevels levels up, so 4^2 cells of the
+// same facing share it (cells at 3 m are 0.08 m: coarse ones 0.32 m); never the fine cell.
+TEST(RtCache, CoarseCellHoldsItsNeighbours) {
+  std::set<std::pair<uint32_t, uint32_t>> fine, coarse;
+  for (int x = 0; x < 4; ++x)
+    for (int z = 0; z < 4; ++z) {
+      const vec3 p = vec3(0.32f * 3.0f + 0.08f * (float(x) + 0.5f), 0.5f, 0.32f * 2.0f + 0.08f * (float(z) + 0.5f));
+      const uvec2 f = tlRtCacheCell(p, vec3(0, 1, 0), 3.0f, 0.01f, 0.02f);
+      const uvec2 c = tlRtCacheCoarseCell(p, vec3(0, 1, 0), 3.0f, 0.01f, 0.02f);
+      EXPECT_EQ(c, tlRtCacheCellAtLevel(p, vec3(0, 1, 0), 3u + kRtCacheCoarseLevels, 0.01f));
+      EXPECT_NE(c.y, f.y);
+      fine.insert({f.x, f.y});
+      coarse.insert({c.x, c.y});
+    }
+  EXPECT_EQ(fine.size(), 16u);
+  EXPECT_EQ(coarse.size(), 1u);
+  // The other side of the wall is another coarse cell.
+  EXPECT_NE(tlRtCacheCoarseCell(vec3(1.0f, 0.5f, 0.7f), vec3(0, -1, 0), 3.0f, 0.01f, 0.02f).y,
+            tlRtCacheCoarseCell(vec3(1.0f, 0.5f, 0.7f), vec3(0, 1, 0), 3.0f, 0.01f, 0.02f).y);
+}
+
 TEST(RtCache, KeysRarelyCollide) {
   std::set<uint32_t> keys;
   int n = 0;

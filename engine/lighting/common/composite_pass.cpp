@@ -194,7 +194,7 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
         b.read(kGbufferDepth, Usage::Sampled);
         inputs.declareReads(b, "gbuffer.baseColor");
         b.create(kCompositeAo,
-                 graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "the AO the composite applied (0: sky)"),
+                 graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "the AO the composite applied (0: sky)").decodedAs("ao"),
                  Usage::StorageWrite);
         b.create(kCompositeIrradiance,
                  graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,

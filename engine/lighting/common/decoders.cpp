@@ -136,6 +136,26 @@ DecodedLines ibufferSum(const DecodeInput& in, const std::string& quantity) {
   return {{"sum", vec(sum)}, {"luminance", fmt::format("{:.6g}", shared::tlLuminance(sum))}, {"weighs", meaning}};
 }
 
+// Ambient occlusion: the visibility the lighting multiplies by (other channels, e.g. the view
+// depth a temporal filter keeps beside it, are shown by the raw values).
+DecodedLines ambientOcclusion(const DecodeInput& in) {
+  auto v = floatsAt(in.resource, in.x, in.y, in.z);
+  if (v.empty()) return {};
+  return {{"visibility", fmt::format("{:.3f} ({:.0f}% occluded)", v[0], 100.0f * (1.0f - v[0]))}};
+}
+
+// The clipmap's layout (shared/legacy.h): R from the height, levels stacked in z.
+constexpr const char* kVoxelFaceNames[] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+DecodedLines voxelFaces(const DecodeInput& in) {
+  const uint32_t R = in.resource.extent.height;
+  auto v = floatsAt(in.resource, in.x, in.y, in.z);
+  if (R == 0 || v.size() < 4 || in.x / R >= 6) return {};
+  return {{"face", fmt::format("{} (the radiance it sends towards {})", kVoxelFaceNames[in.x / R], kVoxelFaceNames[in.x / R])},
+          {"voxel", fmt::format("level {}, x {} y {} z {} of {}", in.z / R, in.x % R, in.y, in.z % R, R)},
+          {"radiance", vec(glm::vec3(v[0], v[1], v[2]))},
+          {"opacity", fmt::format("{:.3f}", v[3])}};
+}
+
 }  // namespace
 
 DecoderSpec parseDecoderSpec(const std::string& text) {
@@ -190,6 +210,8 @@ DecodedLines decodeTexel(const std::string& text, const DecodeInput& in) {
       {"sh-irradiance", [](const DecodeInput& i, const DecoderSpec& s) { return shIrradiance(i, s); }},
       {"albedo-source", [](const DecodeInput& i, const DecoderSpec&) { return albedoSource(i); }},
       {kDepthShareDecoder, [](const DecodeInput& i, const DecoderSpec& s) { return depthShare(i, s); }},
+      {"ao", [](const DecodeInput& i, const DecoderSpec&) { return ambientOcclusion(i); }},
+      {"voxel-faces", [](const DecodeInput& i, const DecoderSpec&) { return voxelFaces(i); }},
   };
   const DecoderSpec spec = parseDecoderSpec(text);
   if (spec.name.rfind(kIbufferDecoderPrefix, 0) == 0) return ibufferSum(in, spec.name.substr(std::string_view(kIbufferDecoderPrefix).size()));
@@ -212,6 +234,10 @@ std::optional<MeaningView> meaningView(const std::string& text) {
     return MeaningView{shared::kDisplayMeaningShIrradiance, "irradiance at the pixel normal", "W/m^2",
                        "what the SH resolves to at the G-buffer normal, over the range (black to white per channel)",
                        true, false, {spec.companions.at("coCg"), spec.companions.at("normal")}};
+  if (spec.name == "ao")
+    return MeaningView{shared::kDisplayMeaningAo, "ambient occlusion", "",
+                       "visibility as grey: white = open (1), black = fully occluded (0); no surface: near black",
+                       false, false, {}};
   return std::nullopt;
 }
 
@@ -255,6 +281,14 @@ bool negativesInvalid(const std::string& text, VkFormat format) {
     case VK_FORMAT_R16G16_SNORM: case VK_FORMAT_R16G16B16A16_SNORM: return false;  // signed by choice
     default: return true;
   }
+}
+
+std::string sliceMeaning(const std::string& text, const VkExtent3D& extent, uint32_t slice) {
+  const uint32_t depth = std::max(1u, extent.depth), R = extent.height;
+  slice = std::min(slice, depth - 1);  // what the display shows for a slice past the end
+  if (parseDecoderSpec(text).name == "voxel-faces" && R > 0 && depth % R == 0)
+    return fmt::format("level {}, world z voxel {} of {}", slice / R, slice % R, R);
+  return fmt::format("z {} of {}", slice, depth);
 }
 
 }  // namespace tl::lighting

@@ -14,6 +14,9 @@
 //   -sg2, -ms              the sum, its luminance and what it weighs
 //   depth-share            rgba32f radiance of one group of path depths (reference.bounce*);
 //                          whole=RESOURCE (the pixel's whole radiance): the group's share of it
+//   ao                     ambient occlusion: visibility in r (1 open, 0 fully occluded)
+//   voxel-faces            3D rgba16f anisotropic voxels (shared/legacy.h): six face blocks of
+//                          R^3 along x (R = the height), levels of R stacked in z (world axes)
 #pragma once
 
 #include "graph/executor.h"
@@ -80,5 +83,9 @@ std::vector<float> meaningValues(const std::string& spec, const graph::Readback&
 // not for directions (octahedral normals, SNORM data) nor SH coefficients, whose L1 terms
 // are signed; yes for radiance, irradiance, colours and the rest.
 bool negativesInvalid(const std::string& spec, VkFormat format);
+
+// What a 3D resource's slice index is, by its decoder ("level 1, world z voxel 5 of 64"), or
+// the plain axis ("z 37 of 192") when the decoder does not say.
+std::string sliceMeaning(const std::string& spec, const VkExtent3D& extent, uint32_t slice);
 
 }  // namespace tl::lighting

@@ -13,6 +13,7 @@
 #include "shared/frame.h"
 
 #include <algorithm>
+#include <functional>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -64,6 +65,12 @@ struct FrameInputs {
   // (lighting/common/frame_key.h), and writes its decision into the log (may be null).
   FrameKey key;
   std::vector<HistoryDecision>* historyLog = nullptr;
+  // Views of point and spot light shadow maps this frame (lighting/common/light_shadows.h): with
+  // any, "lights.shadowViews" is imported and "shadow.lightsDepth" can be drawn for who reads it.
+  uint32_t lightShadowViews = 0;
+  // Redeferred below full rate: adds the light table's refining run (lights.direct.refine, the
+  // pixels ibuffer.upsample could not fill), which whoever added lights.direct owns.
+  std::function<void(graph::RenderGraph&)> refineLights;
 };
 
 }  // namespace tl::lighting

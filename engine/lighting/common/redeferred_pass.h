@@ -29,6 +29,19 @@ inline constexpr std::array<const char*, 4> kLightsIbuffer = {"lights.Ldg", "lig
 // The "light only" view: the I-buffer resolved against white (RGBA32F scene-linear radiance;
 // the sky where nothing is drawn). Made only in frames that read it.
 inline constexpr const char* kIbufferLightOnly = "ibuffer.lightOnly";
+// Below full rate (`redeferredRate`): how ibuffer.upsample made each pixel's I-buffer (R32F,
+// shared/redeferred.h: 0 shaded by the pattern or the sky, 1 filled, 2 shaded as an edge).
+inline constexpr const char* kIbufferRefine = "ibuffer.refine";
+// Below full rate the sums pass through: ibuffer.light writes the pattern's pixels
+// (ibuffer.shaded.*), ibuffer.upsample fills the rest (ibuffer.filled.*), the refining run of
+// ibuffer.light shades the marked ones into ibuffer.* from them and from the light table's
+// refined share (lights.refined.*, lights.direct.refine).
+inline constexpr std::array<const char*, 4> kIbufferShaded = {"ibuffer.shaded.Ldg", "ibuffer.shaded.Lsg1", "ibuffer.shaded.Lsg2",
+                                                              "ibuffer.shaded.Lms"};
+inline constexpr std::array<const char*, 4> kIbufferFilled = {"ibuffer.filled.Ldg", "ibuffer.filled.Lsg1", "ibuffer.filled.Lsg2",
+                                                              "ibuffer.filled.Lms"};
+inline constexpr std::array<const char*, 4> kLightsRefined = {"lights.refined.Ldg", "lights.refined.Lsg1", "lights.refined.Lsg2",
+                                                              "lights.refined.Lms"};
 // The decoder of an I-buffer image ("ibuffer" in lighting/common/decoders.h): which sum it holds.
 std::string ibufferDecoder(size_t quantity);
 
@@ -41,11 +54,13 @@ class RedeferredPass {
            VkSampler point, VkSampler shadowCompare);
 
  private:
+  // `stage`: shared::kIbufferStage* (every pixel, the pattern's, the refined ones).
   void addLight(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push,
-                const CompositePathInputs& inputs, VkSampler point, VkSampler shadowCompare);
+                const CompositePathInputs& inputs, VkSampler point, VkSampler shadowCompare, uint32_t stage);
+  void addUpsample(graph::RenderGraph& graph, FrameInputs& in, uint32_t pattern, VkSampler point);
   void addLightOnly(graph::RenderGraph& graph, FrameInputs& in, VkSampler point);
 
-  gpu::Pipeline light_, material_, lightOnly_;
+  gpu::Pipeline light_, material_, lightOnly_, upsample_;
 };
 
 }  // namespace tl::lighting

@@ -5,34 +5,39 @@
 
 namespace tl::lighting {
 
+void createCasterPipelines(FrameInputs& in, gpu::PipelineLayoutDesc layout, const std::string& name,
+                           const char* vertexShader, const char* maskedVertexShader, gpu::Pipeline& opaque,
+                           gpu::Pipeline& masked) {
+  gpu::GraphicsPipelineDesc d;
+  d.name = name;
+  d.vertexShader = vertexShader;
+  d.layout = std::move(layout);
+  d.layout.extraSets = {in.scene.table().layout()};
+  d.depthFormat = VK_FORMAT_D32_SFLOAT;
+  d.vertexBindings = scene::GpuScene::vertexBindings();
+  for (const auto& a : scene::GpuScene::vertexAttributes())
+    if (a.location == shared::kAttrPosition) d.vertexAttributes.push_back(a);
+  d.cullMode = VK_CULL_MODE_NONE;
+  d.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
+  d.depthBias = true;
+  d.depthClamp = true;
+  opaque = gpu::createGraphicsPipeline(in.device, d);
+  d.name = name + ".masked";
+  d.vertexShader = maskedVertexShader;
+  d.fragmentShader = "common/shadow_masked.frag";
+  d.vertexAttributes.clear();
+  for (const auto& a : scene::GpuScene::vertexAttributes())
+    if (a.location == shared::kAttrPosition || a.location == shared::kAttrUv) d.vertexAttributes.push_back(a);
+  masked = gpu::createGraphicsPipeline(in.device, d);
+}
+
 void ShadowPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   const uint32_t size = in.settings.shadowMapSize;
   if (!pipeline_) {
-    gpu::GraphicsPipelineDesc d;
-    d.name = "shadow.sun";
-    d.vertexShader = "common/shadow.vert";
-    d.layout.bindings = {{shared::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}};
-    d.layout.extraSets = {in.scene.table().layout()};
-    d.depthFormat = VK_FORMAT_D32_SFLOAT;
-    d.vertexBindings = scene::GpuScene::vertexBindings();
-    // The depth-only vertex shader reads positions alone (other attributes would be fetched
-    // for nothing: a performance warning of the validation layers).
-    for (const auto& a : scene::GpuScene::vertexAttributes())
-      if (a.location == shared::kAttrPosition) d.vertexAttributes.push_back(a);
-    d.cullMode = VK_CULL_MODE_NONE;  // thin and single-sided casters must cast from both sides
-    d.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
-    d.depthBias = true;
-    d.depthClamp = true;  // casters between the sun and the near plane clamp to it instead of vanishing
-    pipeline_ = gpu::createGraphicsPipeline(in.device, d);
-    // Cut-out materials (alpha MASK) need their texture's alpha: a fragment stage that
-    // discards, only for the instances that have one, so opaque casters keep the depth-only path.
-    d.name = "shadow.sun.masked";
-    d.vertexShader = "common/shadow_masked.vert";
-    d.fragmentShader = "common/shadow_masked.frag";
-    d.vertexAttributes.clear();
-    for (const auto& a : scene::GpuScene::vertexAttributes())
-      if (a.location == shared::kAttrPosition || a.location == shared::kAttrUv) d.vertexAttributes.push_back(a);
-    maskedPipeline_ = gpu::createGraphicsPipeline(in.device, d);
+    gpu::PipelineLayoutDesc layout;
+    layout.bindings = {{shared::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}};
+    createCasterPipelines(in, layout, "shadow.sun", "common/shadow.vert", "common/shadow_masked.vert", pipeline_,
+                          maskedPipeline_);
   }
 
   graph.addPass(

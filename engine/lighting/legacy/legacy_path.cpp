@@ -14,6 +14,7 @@
 #include "lighting/legacy/voxel_regions.h"
 #include "lighting/lighting_path.h"
 #include "lighting/common/light_table.h"
+#include "lighting/common/light_shadows.h"
 #include "lighting/common/lights_pass.h"
 #include "shared/scene.h"
 
@@ -110,7 +111,8 @@ class LegacyPath final : public LightingPath {
         [&](graph::PassBuilder& b) {
           readCommon(b);
           b.create(kLegacyAoRaw,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, aw, ah, "GTAO visibility (r) and view depth (g), 1/aoDivisor"),
+                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, aw, ah, "GTAO visibility (r) and view depth (g), 1/aoDivisor")
+                       .decodedAs("ao"),
                    Usage::StorageWrite);
         },
         [this, &in, push, aw, ah](graph::PassContext& ctx) {
@@ -127,7 +129,7 @@ class LegacyPath final : public LightingPath {
     const graph::ResourceDesc voxelDesc = graph::ResourceDesc::image3D(
         VK_FORMAT_R16G16B16A16_SFLOAT, 6 * R, R, N * R,
         fmt::format("voxels per face (+x -x +y -y +z -z blocks along x): radiance, opacity; {} level(s) of {}^3 stacked in z",
-                    N, R));
+                    N, R)).decodedAs("voxel-faces");
     const graph::ResourceDesc voxelMipsDesc =
         graph::ResourceDesc::image3D(VK_FORMAT_R16G16B16A16_SFLOAT, 3 * R, R / 2, N * R / 2,
                                      "voxels per face, mips 1.. (front-to-back along each face's axis)", mips);
@@ -162,7 +164,8 @@ class LegacyPath final : public LightingPath {
           for (const char* n : {kLegacyAoRaw, kLegacyHistSsao, "gbuffer.motion"}) b.read(n, Usage::Sampled);
           b.create(kLegacySsao,
                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, aw, ah,
-                                                "GTAO accumulated over frames (r), view depth (g), frames (b), 1/aoDivisor"),
+                                                "GTAO accumulated over frames (r), view depth (g), frames (b), 1/aoDivisor")
+                       .decodedAs("ao"),
                    Usage::StorageWrite);
         },
         [this, &in, push, aw, ah](graph::PassContext& ctx) {
@@ -222,7 +225,7 @@ class LegacyPath final : public LightingPath {
         [&](graph::PassBuilder& b) {
           readCommon(b);
           for (const char* n : {kLegacySsao, kConeShY, kConeCoCgAo}) b.read(n, Usage::Sampled);
-          b.create(kLegacyAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO"), Usage::StorageWrite);
+          b.create(kLegacyAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO").decodedAs("ao"), Usage::StorageWrite);
           b.create(kLegacyShY,
                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "diffuse irradiance, SH luma")
                        .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kLegacyCoCg)),
@@ -274,6 +277,10 @@ class LegacyPath final : public LightingPath {
           readSceneInputs(b, Usage::StorageRead);  // voxelize.vert fetches whole triangles
           b.read(shadow, Usage::Sampled);
           if (in.constants.lightCount > 0) b.read(kLightTable, Usage::StorageRead);
+          if (in.lightShadowViews > 0) {
+            b.read(kLightShadowViews, Usage::StorageRead);
+            b.read(kLightShadowAtlas, Usage::Sampled);
+          }
           if (feedback) {
             b.read(kLegacyHistRadiance, Usage::Sampled);
             b.read(kLegacyHistDepth, Usage::Sampled);
@@ -323,6 +330,12 @@ class LegacyPath final : public LightingPath {
                 .storageBuffer(shared::kLegacyBindingVertices, in.scene.vertexBuffer().handle())
                 .storageBuffer(shared::kLegacyBindingIndices, in.scene.indexBuffer().handle())
                 .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, in.scene.indexBuffer().handle()))
+                // Without light shadow maps, stand-ins no light points to: the index buffer, the sun's map.
+                .storageBuffer(shared::kBindingLightShadowViews, in.lightShadowViews > 0 ? ctx.buffer(kLightShadowViews).handle()
+                                                                                          : in.scene.indexBuffer().handle())
+                .sampledImage(shared::kBindingLightShadowAtlas,
+                              ctx.image(in.lightShadowViews > 0 ? std::string(kLightShadowAtlas) : std::string(shadow)).view(),
+                              shadowSampler_.handle(), kReadOnly)
                 // Without feedback the bindings still need images: the G-buffer depth stands in, unread.
                 .sampledImage(shared::kLegacyBindingPrevRadiance, ctx.image(feedback ? kLegacyHistRadiance : kGbufferDepth).view(),
                               point_.handle(), kReadOnly)
@@ -609,7 +622,9 @@ class LegacyPath final : public LightingPath {
                          {shared::kLegacyBindingPrevDepth, sampled},
                          {shared::kLegacyBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                          {shared::kLegacyBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                         {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+                         {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                         {shared::kBindingLightShadowViews, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                         {shared::kBindingLightShadowAtlas, sampled}};
     d.layout.extraSets = {in.scene.table().layout()};
     d.layout.pushConstantBytes = sizeof(LegacyVoxelPush);
     // No vertex input: voxelize.vert fetches the vertices itself.

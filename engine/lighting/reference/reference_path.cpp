@@ -89,7 +89,8 @@ class ReferencePath final : public LightingPath {
           b.read(kAoAccum, graph::Usage::StorageRead);
           b.write(kAoAccum, graph::Usage::StorageWrite);
           b.create(kAo, graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
-                                                     "ambient occlusion at the AO radius (cosine-weighted), ground truth"),
+                                                     "ambient occlusion at the AO radius (cosine-weighted), ground truth")
+                       .decodedAs("ao"),
                    graph::Usage::StorageWrite);
           b.create(kRadiance, graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "path-traced radiance"),
                    graph::Usage::StorageWrite);
@@ -259,10 +260,11 @@ class ReferencePath final : public LightingPath {
     geometry_ = gpu::Buffer(in.device, table.size() * sizeof(table[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                             gpu::MemoryUsage::Upload, "reference.instanceGeometry");
     geometry_.write(table.data(), table.size() * sizeof(table[0]));
-    // The pipelines' layouts name this scene's descriptor-table layout, which goes with the
-    // scene: built again for each scene (a shader reload rebuilds them from this description,
-    // so a layout of a scene since unloaded would be used after it was destroyed).
-    {
+    // The pipelines' layouts name the scene table's layout, which is the device's and the same
+    // for every scene (gpu::Device::sharedSetLayout): built once, not with each scene (on
+    // lavapipe each takes tens of seconds to compile), and again only if that layout changes.
+    if (pipelinesSceneLayout_ != in.scene.table().layout()) {
+      pipelinesSceneLayout_ = in.scene.table().layout();
       gpu::RayTracingPipelineDesc d;
       d.name = "reference.trace";
       d.raygen = kRaygen;
@@ -411,6 +413,7 @@ class ReferencePath final : public LightingPath {
   }
 
   uint64_t sceneId_ = 0;
+  VkDescriptorSetLayout pipelinesSceneLayout_ = VK_NULL_HANDLE;  // the scene-table layout the pipelines were built on
   std::vector<gpu::AccelerationStructure> blas_;
   std::vector<uint64_t> blasVersion_;  // per mesh: the vertex version its bottom level holds
   gpu::Buffer deformingStorage_;       // the deforming meshes' bottom levels, side by side

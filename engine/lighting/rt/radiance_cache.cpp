@@ -81,6 +81,7 @@ void RtRadianceCache::plan(FrameInputs& in, shared::RtPush& push, float sceneSca
     history_.forget();
   }
   wasActive_ = active_;
+  age_ = active_ && !restart_ ? age_ + 1u : 0u;
 
   // One path per tile of tile_ x tile_ pixels: the largest tile that gives rtCachePaths, so
   // the cache's samples (and cost) do not fall with the image size. Off, the probe paths go on
@@ -168,6 +169,11 @@ void RtRadianceCache::addPasses(graph::RenderGraph& graph, FrameInputs& in) {
             .storageBuffer(shared::kRtBindingCacheEntries, ctx.buffer(kRtCacheEntries).handle());
         ctx.dispatch(entries, 1, 1, 64, 1, 1);
       });
+}
+
+uint32_t RtRadianceCache::temporalWindow(uint32_t frames) const {
+  if (!active_) return frames;
+  return std::min(frames, std::max(2u, age_ / 2u));
 }
 
 std::vector<std::pair<std::string, double>> RtRadianceCache::figures() const {

@@ -59,6 +59,12 @@ class RtRadianceCache {
   void plan(FrameInputs& in, shared::RtPush& push, float sceneScale, float maxEmitterRadiance);
   bool active() const { return active_; }  // the cache is read and written this frame
   bool restart() const { return restart_; }
+  // Frames the cache has run since it last started over (0: this frame starts it).
+  uint32_t age() const { return age_; }
+  // The RT path's temporal window (`frames` at most) while the cache runs: samples taken while
+  // it was warming up (its light still rising bounce by bounce from a cold start) are kept
+  // for at most half its age, so the image does not average in the first, darker frames.
+  uint32_t temporalWindow(uint32_t frames) const;
   uint32_t paths(const FrameInputs& in) const { return tilesX(in) * tilesY(in); }
   uint32_t tilesX(const FrameInputs& in) const { return (in.settings.width + tile_ - 1) / tile_; }
   uint32_t tilesY(const FrameInputs& in) const { return (in.settings.height + tile_ - 1) / tile_; }
@@ -79,6 +85,7 @@ class RtRadianceCache {
   bool active_ = false, wasActive_ = false, restart_ = false;
   uint32_t tile_ = 8, bounces_ = 3;
   uint32_t frame_ = 0;  // the cache's own frame count: the parity of its sums
+  uint32_t age_ = 0;
   shared::RtCachePush push_{};
   RtCacheOutcomes measured_;
   gpu::Pipeline accumulate_, resolve_;

@@ -98,6 +98,7 @@ class RtPath final : public LightingPath {
     push.emitterCount = s.rtEmitterSampling ? scene_->emitterCount() : 0u;
     push.cameraWorld = glm::vec4(glm::vec3(in.cameraWorld), 0.0f);
     cache_.plan(in, push, scale, scene_->maxEmitterRadiance());
+    push.maxAccumFrames = cache_.temporalWindow(push.maxAccumFrames);
 
     for (int i = 0; i < 4; ++i) graph.declarePersistent(histNames[i], histDescs[i]);
     const bool screenRadiance = s.rtScreenRadiance;
@@ -179,7 +180,7 @@ class RtPath final : public LightingPath {
           readCommon(b);
           b.read(accCoCgAo, Usage::Sampled);
           b.read(kViewDepth, Usage::Sampled);
-          b.create(kAo, image(VK_FORMAT_R16_SFLOAT, "filtered ambient occlusion"), Usage::StorageWrite);
+          b.create(kAo, image(VK_FORMAT_R16_SFLOAT, "filtered ambient occlusion").decodedAs("ao"), Usage::StorageWrite);
         },
         [this, &in, push, accCoCgAo](graph::PassContext& ctx) {
           ctx.bind(aoFilter_);
@@ -639,9 +640,12 @@ class RtPath final : public LightingPath {
   }
 
   // The pipelines that trace the scene: their any-hit shader (alpha MASK) reads the scene's
-  // materials and textures, so their layouts name this scene's descriptor-table layout and are
-  // built again with each scene (as the reference's are).
+  // materials and textures, so their layouts name the scene table's layout. That layout is the
+  // device's, the same for every scene (gpu::Device::sharedSetLayout): they are built once, not
+  // with each scene (a minute of compilation on lavapipe), and again only if it changes.
   void createRayPipelines(FrameInputs& in) {
+    if (rayPipelinesSceneLayout_ == in.scene.table().layout()) return;
+    rayPipelinesSceneLayout_ = in.scene.table().layout();
     using B = gpu::Binding;
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     const std::vector<B> common = {{shared::kRtBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
@@ -835,6 +839,7 @@ class RtPath final : public LightingPath {
   std::unique_ptr<LightingPath> farField_;  // the legacy path, for GI beyond the blend distance
   bool farLegacy_ = false;
   uint64_t sceneId_ = 0;
+  VkDescriptorSetLayout rayPipelinesSceneLayout_ = VK_NULL_HANDLE;  // the scene-table layout the ray pipelines were built on
   uint64_t albedoVersion_ = ~0ull;
   uint32_t materials_ = 0;  // the material override mode the instance albedos were set for
   uint32_t sceneInstances_ = 0;

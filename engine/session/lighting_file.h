@@ -1,0 +1,35 @@
+// The lighting sidecar: SCENE.lighting.json beside a scene holds what an artist set up on top
+// of it (sun, sky, environment map with its rotation and intensity, exposure, and every
+// punctual light with its transform), read back by `--lighting FILE` on every rendering
+// subcommand. One module writes and reads it; docs/user-guide.md ("Saving lighting") shows the
+// format. Every value is checked after conversion (degrees to radians, kelvin to RGB): a bad
+// one is one SessionError naming the file and the key, and nothing is applied.
+#pragma once
+
+#include "session/session.h"
+
+#include <filesystem>
+#include <string>
+
+namespace tl::session {
+
+inline constexpr const char* kLightingFormat = "twinlight.lighting";
+inline constexpr int kLightingFormatVersion = 1;
+
+// scene.gltf -> scene.lighting.json (beside it).
+std::filesystem::path lightingSidecarPath(const std::filesystem::path& scene);
+
+// `base` with what `file` sets: each top-level key present replaces that part of the lighting
+// ("lights" the whole list, "environment": null the map); absent keys keep `base`'s. Relative
+// environment paths are relative to the file's folder.
+Lighting readLightingFile(const std::filesystem::path& file, const Lighting& base);
+
+// The JSON text of `lighting` (every key; the environment map's path relative to `folder`
+// when it lies inside it, else absolute).
+std::string lightingJson(const Lighting& lighting, const std::filesystem::path& folder);
+
+// Writes lightingJson to `file` through a temporary file renamed over it (a failed write
+// leaves any earlier file intact). Throws SessionError.
+void writeLightingFile(const std::filesystem::path& file, const Lighting& lighting);
+
+}  // namespace tl::session

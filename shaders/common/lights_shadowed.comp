@@ -1,0 +1,18 @@
+#version 460
+// lights.direct with shadow maps (the direct and legacy paths): point and spot lights with a map
+// (shadow.lightsDepth) are hidden where it holds a caster; lights without one reach every point.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/frame.h"
+#include "shared/lights.h"
+#include "shared/packing.h"
+#include "shared/ray_origin.h"
+#include "shared/sampling.h"
+#include "shared/shading.h"
+
+vec3 gShadowOrigin;  // unused: no shadow rays
+float lightVisibility(uint light, vec3 toLight, float distance);
+
+#include "common/lights_shade.glsl"
+#include "common/light_shadow.glsl"
+
+float lightVisibility(uint light, vec3 toLight, float distance) { return lightShadowVisibility(light, gPosition, gNormalHere); }
