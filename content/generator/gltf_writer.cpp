@@ -209,7 +209,26 @@ int SceneWriter::material(const MaterialSpec& spec) {
         model_.extensionsUsed.push_back("KHR_materials_emissive_strength");
     }
   }
-  if (spec.baseColorTextureIndex >= 0) m.pbrMetallicRoughness.baseColorTexture.index = spec.baseColorTextureIndex;
+  if (spec.baseColorTextureIndex >= 0) {
+    auto& info = m.pbrMetallicRoughness.baseColorTexture;
+    info.index = spec.baseColorTextureIndex;
+    info.texCoord = spec.baseColorUse.texCoord;
+    if (spec.baseColorUse.transform) {
+      const auto& u = spec.baseColorUse;
+      tinygltf::Value::Object t;
+      t["offset"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(u.offset.x)), tinygltf::Value(double(u.offset.y))});
+      t["rotation"] = tinygltf::Value(double(u.rotation));
+      t["scale"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(u.scale.x)), tinygltf::Value(double(u.scale.y))});
+      if (u.texCoordOverride >= 0) t["texCoord"] = tinygltf::Value(u.texCoordOverride);
+      info.extensions["KHR_texture_transform"] = tinygltf::Value(t);
+      if (std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), "KHR_texture_transform") == model_.extensionsUsed.end())
+        model_.extensionsUsed.push_back("KHR_texture_transform");
+    }
+  }
+  if (spec.occlusionTextureIndex >= 0) {
+    m.occlusionTexture.index = spec.occlusionTextureIndex;
+    m.occlusionTexture.strength = spec.occlusionStrength;
+  }
   if (spec.emissiveTextureIndex >= 0) m.emissiveTexture.index = spec.emissiveTextureIndex;
   if (spec.normalTextureIndex >= 0) m.normalTexture.index = spec.normalTextureIndex;
   if (!spec.alphaMode.empty()) {
@@ -265,6 +284,23 @@ int SceneWriter::texture(const tinygltf::Image& img) {
   return int(model_.textures.size() - 1);
 }
 
+int SceneWriter::sampledTexture(int texture, int magFilter, int minFilter, int wrapS, int wrapT) {
+  tinygltf::Sampler s;
+  s.magFilter = magFilter;
+  s.minFilter = minFilter;
+  s.wrapS = wrapS;
+  s.wrapT = wrapT;
+  size_t k = 0;
+  while (k < model_.samplers.size() && !(model_.samplers[k].magFilter == magFilter && model_.samplers[k].minFilter == minFilter &&
+                                          model_.samplers[k].wrapS == wrapS && model_.samplers[k].wrapT == wrapT))
+    ++k;
+  if (k == model_.samplers.size()) model_.samplers.push_back(s);
+  tinygltf::Texture t = model_.textures.at(size_t(texture));
+  t.sampler = int(k);
+  model_.textures.push_back(t);
+  return int(model_.textures.size() - 1);
+}
+
 int SceneWriter::mesh(const std::string& name, const Shape& shape, int material) {
   glm::vec3 lo(1e30f), hi(-1e30f);
   for (auto& p : shape.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
@@ -281,6 +317,44 @@ int SceneWriter::mesh(const std::string& name, const Shape& shape, int material)
   if (!shape.tangents.empty())
     prim.attributes["TANGENT"] = accessor(shape.tangents.data(), shape.tangents.size() * 16, shape.tangents.size(),
                                           TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, TINYGLTF_TARGET_ARRAY_BUFFER);
+  if (!shape.uvs1.empty())
+    prim.attributes["TEXCOORD_1"] = accessor(shape.uvs1.data(), shape.uvs1.size() * 8, shape.uvs1.size(),
+                                             TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, TINYGLTF_TARGET_ARRAY_BUFFER);
+  if (!shape.colors.empty()) {
+    const size_t n = shape.colors.size();
+    int colorAccessor = -1;
+    switch (shape.colorType) {
+      case Shape::ColorType::FloatVec3: {
+        std::vector<glm::vec3> rgb;
+        for (const auto& c : shape.colors) rgb.emplace_back(c);
+        colorAccessor = accessor(rgb.data(), n * 12, n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER);
+        break;
+      }
+      case Shape::ColorType::FloatVec4:
+        colorAccessor = accessor(shape.colors.data(), n * 16, n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4,
+                                 TINYGLTF_TARGET_ARRAY_BUFFER);
+        break;
+      case Shape::ColorType::UnormByteVec4: {
+        std::vector<uint8_t> b;
+        for (const auto& c : shape.colors)
+          for (int k = 0; k < 4; ++k) b.push_back(uint8_t(std::lround(glm::clamp(c[k], 0.0f, 1.0f) * 255.0f)));
+        colorAccessor = accessor(b.data(), b.size(), n, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4,
+                                 TINYGLTF_TARGET_ARRAY_BUFFER);
+        model_.accessors[size_t(colorAccessor)].normalized = true;
+        break;
+      }
+      case Shape::ColorType::UnormShortVec4: {
+        std::vector<uint16_t> u;
+        for (const auto& c : shape.colors)
+          for (int k = 0; k < 4; ++k) u.push_back(uint16_t(std::lround(glm::clamp(c[k], 0.0f, 1.0f) * 65535.0f)));
+        colorAccessor = accessor(u.data(), u.size() * 2, n, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4,
+                                 TINYGLTF_TARGET_ARRAY_BUFFER);
+        model_.accessors[size_t(colorAccessor)].normalized = true;
+        break;
+      }
+    }
+    prim.attributes["COLOR_0"] = colorAccessor;
+  }
   prim.indices = accessor(shape.indices.data(), shape.indices.size() * 4, shape.indices.size(),
                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   tinygltf::Mesh m;

@@ -22,6 +22,11 @@ struct Shape {
   std::vector<glm::vec3> positions, normals;
   std::vector<glm::vec2> uvs;
   std::vector<glm::vec4> tangents;  // optional: written as TANGENT (xyz, w = handedness) when present
+  std::vector<glm::vec2> uvs1;      // optional: TEXCOORD_1
+  std::vector<glm::vec4> colors;    // optional: COLOR_0, written as colorType below
+  // COLOR_0's accessor: FLOAT VEC3 (alpha dropped), FLOAT VEC4, or normalized UNSIGNED_BYTE /
+  // UNSIGNED_SHORT VEC4, the forms glTF allows.
+  enum class ColorType { FloatVec3, FloatVec4, UnormByteVec4, UnormShortVec4 } colorType = ColorType::FloatVec4;
   std::vector<uint32_t> indices;
   void append(const Shape& other);
 };
@@ -33,6 +38,17 @@ Shape cylinder(float radius, float height, int segments);       // base at y = 0
 Shape sphere(float radius, int segments, int rings);            // centred
 Shape torus(float major, float minor, int segments, int sides); // in XZ, centred
 Shape transformed(const Shape& s, const glm::mat4& m);
+
+// A textureInfo's UV set and KHR_texture_transform (written only when `transform` is set;
+// texCoordOverride >= 0 becomes the extension's texCoord).
+struct TextureUse {
+  int texCoord = 0;
+  bool transform = false;
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;
+  glm::vec2 scale{1.0f};
+  int texCoordOverride = -1;
+};
 
 struct MaterialSpec {
   std::string name;
@@ -46,6 +62,9 @@ struct MaterialSpec {
   int baseColorTextureIndex = -1;
   int emissiveTextureIndex = -1;
   int normalTextureIndex = -1;
+  int occlusionTextureIndex = -1;
+  float occlusionStrength = 1.0f;
+  TextureUse baseColorUse;       // the base-colour texture's UV set and transform
   std::string alphaMode;         // "" (OPAQUE), "MASK" or "BLEND"
   float alphaCutoff = 0.5f;
   bool doubleSided = false;
@@ -65,6 +84,9 @@ class SceneWriter {
   int embeddedTexture(const std::string& name, const std::vector<unsigned char>& bytes, const std::string& mimeType);
   // An image given as a data: URI (base64 in the JSON) and a texture sampling it.
   int dataUriTexture(const std::string& name, const std::string& uri);
+  // A texture with the same image as `texture` and its own sampler (glTF's GL enums; the
+  // writer keeps one sampler per distinct set of values).
+  int sampledTexture(int texture, int magFilter, int minFilter, int wrapS, int wrapT);
   // Writes a single .glb (JSON, buffer and embedded images in one file) instead of .gltf + .bin.
   void binary() { binary_ = true; }
   int mesh(const std::string& name, const Shape& shape, int material);

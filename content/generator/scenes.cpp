@@ -514,6 +514,136 @@ void normalProbe(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// The texture-sampling probes share one 2x2 image, a texel per colour: top row (v < 0.5)
+// red, green; bottom row blue, white (8-bit sRGB; 0 and 255 decode to 0 and 1 exactly). Each
+// probe lays 1 m quads side by side on the ground (u along +X, v along -Z) under a camera
+// above them; tests/gpu/test_gltf_probes.cpp reads which texel lands where.
+int quadrantTexture(SceneWriter& w) {
+  const std::vector<float> texels = {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
+  return w.embeddedTexture("quadrants", encodeImage("png", 2, 2, 3, texels, 8), "image/png");
+}
+
+void probeView(SceneWriter& w, int quads) {
+  w.camera("above", {0.0f, 0.9f * float(quads) + 1.0f, 0.6f}, {0.0f, 0.0f, 0.0f}, 50.0f);
+  w.sun({0.0f, -1.0f, 0.0f}, 10.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+}
+
+float probeX(int i, int quads) { return (float(i) - 0.5f * float(quads - 1)) * 1.1f; }
+
+// KHR_texture_transform, nearest-filtered so texels stay whole: quads with no transform, an
+// offset (0.5, 0), a rotation of pi/2 with offset (0, 1) (uv' = (v, 1 - u)), a scale (3, 1),
+// and the identity with the extension's texCoord 1 picking a TEXCOORD_1 mirrored in u.
+void textureTransformProbe(const std::filesystem::path& dir) {
+  SceneWriter w("texture_transform_probe");
+  const int texture = w.sampledTexture(quadrantTexture(w), TINYGLTF_TEXTURE_FILTER_NEAREST, TINYGLTF_TEXTURE_FILTER_NEAREST,
+                                       TINYGLTF_TEXTURE_WRAP_REPEAT, TINYGLTF_TEXTURE_WRAP_REPEAT);
+  struct Probe {
+    const char* name;
+    TextureUse use;
+  };
+  TextureUse offset{0, true, {0.5f, 0.0f}};
+  TextureUse rotation{0, true, {0.0f, 1.0f}, 1.5707963f};
+  TextureUse scale{0, true, {0.0f, 0.0f}, 0.0f, {3.0f, 1.0f}};
+  TextureUse override{0, true, {0.0f, 0.0f}, 0.0f, {1.0f, 1.0f}, 1};
+  const Probe probes[] = {{"identity", {}}, {"offset", offset}, {"rotation", rotation}, {"scale", scale}, {"texcoord_override", override}};
+  const int n = int(std::size(probes));
+  for (int i = 0; i < n; ++i) {
+    MaterialSpec spec{probes[i].name, {1.0f, 1.0f, 1.0f}, 0.0f, 1.0f};
+    spec.baseColorTextureIndex = texture;
+    spec.baseColorUse = probes[i].use;
+    Shape q = quad(1.0f, 1.0f);
+    q.uvs1 = q.uvs;
+    for (auto& uv : q.uvs1) uv.x = 1.0f - uv.x;
+    w.node(probes[i].name, w.mesh(probes[i].name, q, w.material(spec)), {probeX(i, n), 0.0f, 0.0f});
+  }
+  probeView(w, n);
+  w.write(dir);
+}
+
+// Sampler wrap modes and filters: quads whose UVs run from -1 to 2 across (v from 0 to 1)
+// sample the quadrant image through REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT (nearest), and a
+// quad with UVs 0..1 magnifies it through LINEAR and one through NEAREST.
+void samplerProbe(const std::filesystem::path& dir) {
+  SceneWriter w("sampler_probe");
+  const int image = quadrantTexture(w);
+  struct Probe {
+    const char* name;
+    int filter, wrap;
+    bool wide;
+  };
+  const Probe probes[] = {{"repeat", TINYGLTF_TEXTURE_FILTER_NEAREST, TINYGLTF_TEXTURE_WRAP_REPEAT, true},
+                          {"clamp", TINYGLTF_TEXTURE_FILTER_NEAREST, TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE, true},
+                          {"mirror", TINYGLTF_TEXTURE_FILTER_NEAREST, TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT, true},
+                          {"linear", TINYGLTF_TEXTURE_FILTER_LINEAR, TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE, false},
+                          {"nearest", TINYGLTF_TEXTURE_FILTER_NEAREST, TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE, false}};
+  const int n = int(std::size(probes));
+  for (int i = 0; i < n; ++i) {
+    MaterialSpec spec{probes[i].name, {1.0f, 1.0f, 1.0f}, 0.0f, 1.0f};
+    spec.baseColorTextureIndex = w.sampledTexture(image, probes[i].filter, probes[i].filter, probes[i].wrap, probes[i].wrap);
+    Shape q = quad(1.0f, 1.0f);
+    if (probes[i].wide)
+      for (auto& uv : q.uvs) uv.x = uv.x * 3.0f - 1.0f;
+    w.node(probes[i].name, w.mesh(probes[i].name, q, w.material(spec)), {probeX(i, n), 0.0f, 0.0f});
+  }
+  probeView(w, n);
+  w.write(dir);
+}
+
+// A texture's texCoord index: the quad's TEXCOORD_0 is one point (the red texel's centre)
+// and its TEXCOORD_1 the usual 0..1; the base-colour texture reads set 1, so all four texels
+// show (set 0 would paint the quad red).
+void texcoord1Probe(const std::filesystem::path& dir) {
+  SceneWriter w("texcoord1_probe");
+  const int texture = w.sampledTexture(quadrantTexture(w), TINYGLTF_TEXTURE_FILTER_NEAREST, TINYGLTF_TEXTURE_FILTER_NEAREST,
+                                       TINYGLTF_TEXTURE_WRAP_REPEAT, TINYGLTF_TEXTURE_WRAP_REPEAT);
+  MaterialSpec spec{"second_uv_set", {1.0f, 1.0f, 1.0f}, 0.0f, 1.0f};
+  spec.baseColorTextureIndex = texture;
+  spec.baseColorUse.texCoord = 1;
+  Shape q = quad(1.0f, 1.0f);
+  q.uvs1 = q.uvs;
+  for (auto& uv : q.uvs) uv = {0.25f, 0.25f};
+  w.node("second_uv_set", w.mesh("second_uv_set", q, w.material(spec)), {0.0f, 0.0f, 0.0f});
+  probeView(w, 1);
+  w.write(dir);
+}
+
+// COLOR_0 multiplied into the base colour (0.5 grey): white, black, red as float VEC3, green
+// as normalized bytes, blue as normalized shorts, and a normalized-byte colour whose alpha 0
+// cuts a MASK material out. Under the sky alone (no sun) a lone Lambertian-plus-specular quad
+// reflects a ρ + s, linear in its albedo ρ, so (L_colour - L_black) / (L_white - L_black) is
+// the colour itself, channel by channel (tests/gpu/test_gltf_probes.cpp).
+void color0Probe(const std::filesystem::path& dir) {
+  SceneWriter w("color0_probe");
+  const int grey = w.material({"grey", {0.5f, 0.5f, 0.5f}, 0.0f, 1.0f});
+  MaterialSpec maskSpec{"grey_mask", {0.5f, 0.5f, 0.5f}, 0.0f, 1.0f};
+  maskSpec.alphaMode = "MASK";
+  const int mask = w.material(maskSpec);
+  struct Probe {
+    const char* name;
+    glm::vec4 colour;
+    Shape::ColorType type;
+    int material;
+  };
+  const Probe probes[] = {{"white", {1, 1, 1, 1}, Shape::ColorType::FloatVec3, grey},
+                          {"black", {0, 0, 0, 1}, Shape::ColorType::FloatVec3, grey},
+                          {"red", {1, 0, 0, 1}, Shape::ColorType::FloatVec3, grey},
+                          {"green", {0, 1, 0, 1}, Shape::ColorType::UnormByteVec4, grey},
+                          {"blue", {0, 0, 1, 1}, Shape::ColorType::UnormShortVec4, grey},
+                          {"cut_out", {1, 1, 1, 0}, Shape::ColorType::UnormByteVec4, mask}};
+  const int n = int(std::size(probes));
+  for (int i = 0; i < n; ++i) {
+    Shape q = quad(1.0f, 1.0f);
+    q.colors.assign(q.positions.size(), probes[i].colour);
+    q.colorType = probes[i].type;
+    w.node(probes[i].name, w.mesh(probes[i].name, q, probes[i].material), {probeX(i, n), 0.0f, 0.0f});
+  }
+  w.camera("above", {0.0f, 0.9f * float(n) + 1.0f, 0.6f}, {0.0f, 0.0f, 0.0f}, 50.0f);
+  w.sun({0.0f, -1.0f, 0.0f}, 0.0f);  // no sun: the importer's default one would shine otherwise
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
 // Alpha MASK everywhere: a 2 m red quad 1 m above a 0.8 grey floor whose base-colour texture's
 // alpha is 0 on every texel (cutoff 0.5), under a sun straight overhead (E = 10) and a uniform
 // sky (L = 1). Cut out in every stage, it leaves the floor below as lit as the open floor:
@@ -634,6 +764,10 @@ int main(int argc, char** argv) {
     tl::content::embeddedTextures(dir);
     tl::content::normalProbe(dir);
     tl::content::cutout(dir);
+    tl::content::textureTransformProbe(dir);
+    tl::content::samplerProbe(dir);
+    tl::content::texcoord1Probe(dir);
+    tl::content::color0Probe(dir);
     tl::content::writeHardScenes(dir / "hard");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());

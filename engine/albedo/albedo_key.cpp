@@ -28,12 +28,21 @@ class KeyHasher {
     u64(s.size());
     XXH64_update(state_, s.data(), s.size());
   }
-  void texture(const scene::Scene& scene, const std::optional<uint32_t>& index) {
-    if (!index || *index >= scene.textures.size()) return u32(0);
-    const scene::Texture& t = scene.textures[*index];
+  // A texture the bake samples. Its UV set, transform and sampler enter only where they are
+  // not glTF's defaults, so keys of files without them stay what they were.
+  void texture(const scene::Scene& scene, const std::optional<scene::TextureRef>& ref) {
+    if (!ref || ref->texture >= scene.textures.size()) return u32(0);
+    const scene::Texture& t = scene.textures[ref->texture];
     u32(1);
     u64(t.contentHash);  // width, height and texels
     u32(t.srgb ? 1 : 0);
+    if (*ref != scene::TextureRef{ref->texture}) {
+      u32(ref->texCoord);
+      f32(ref->offset.x), f32(ref->offset.y), f32(ref->rotation), f32(ref->scale.x), f32(ref->scale.y);
+    }
+    if (t.sampler != scene::SamplerMode{})
+      u32(uint32_t(t.sampler.wrapS) | uint32_t(t.sampler.wrapT) << 4 | uint32_t(t.sampler.magNearest) << 8 |
+          uint32_t(t.sampler.minNearest) << 9 | uint32_t(t.sampler.mipNearest) << 10 | uint32_t(t.sampler.noMipmaps) << 11);
   }
   uint64_t digest() const { return XXH64_digest(state_); }
 
@@ -68,6 +77,17 @@ AlbedoKey albedoKey(const scene::Scene& scene, uint32_t meshIndex, const BakeSet
   for (const scene::Vertex& v : mesh.vertices) {
     h.f32(v.position.x), h.f32(v.position.y), h.f32(v.position.z);
     h.f32(v.uv.x), h.f32(v.uv.y);
+  }
+  // The second UV set and vertex colours, only where a file has them (the keys of files
+  // without stay what they were).
+  const bool uv1 = std::any_of(mesh.vertices.begin(), mesh.vertices.end(), [](const scene::Vertex& v) { return v.uv1 != glm::vec2(0.0f); });
+  const bool colour = std::any_of(mesh.vertices.begin(), mesh.vertices.end(), [](const scene::Vertex& v) { return v.color != glm::vec4(1.0f); });
+  if (uv1 || colour) {
+    h.text("uv1+color");
+    for (const scene::Vertex& v : mesh.vertices) {
+      h.f32(v.uv1.x), h.f32(v.uv1.y);
+      for (int c = 0; c < 4; ++c) h.f32(v.color[c]);
+    }
   }
   h.u64(mesh.indices.size());
   for (uint32_t i : mesh.indices) h.u32(i);

@@ -1,5 +1,7 @@
 #include "gpu/descriptor_table.h"
 
+#include "gpu/check.h"
+
 #include <fmt/format.h>
 
 #include <utility>
@@ -80,9 +82,14 @@ void DescriptorTable::writeBuffer(uint32_t binding, VkDescriptorType type, VkBuf
 }
 
 void DescriptorTable::writeImages(uint32_t binding, const std::vector<VkImageView>& views, VkSampler sampler) {
+  writeImages(binding, views, std::vector<VkSampler>(views.size(), sampler));
+}
+
+void DescriptorTable::writeImages(uint32_t binding, const std::vector<VkImageView>& views, const std::vector<VkSampler>& samplers) {
   if (views.empty()) return;
+  TL_CHECK(samplers.size() == views.size(), "{} samplers for {} image views", samplers.size(), views.size());
   std::vector<VkDescriptorImageInfo> infos;
-  for (auto v : views) infos.push_back({sampler, v, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+  for (size_t i = 0; i < views.size(); ++i) infos.push_back({samplers[i], views[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   w.dstSet = set_;
   w.dstBinding = binding;

@@ -24,6 +24,8 @@ class DescriptorTable {
 
   void writeBuffer(uint32_t binding, VkDescriptorType type, VkBuffer buffer);
   void writeImages(uint32_t binding, const std::vector<VkImageView>& views, VkSampler sampler);
+  // One sampler per view (samplers[i] goes with views[i]).
+  void writeImages(uint32_t binding, const std::vector<VkImageView>& views, const std::vector<VkSampler>& samplers);
   void bind(VkCommandBuffer cmd, VkPipelineBindPoint point, VkPipelineLayout layout, uint32_t setIndex) const;
 
  private:

@@ -244,6 +244,11 @@ Sampler::Sampler(Device& device, VkFilter filter, VkSamplerAddressMode address, 
   device.setName(VK_OBJECT_TYPE_SAMPLER, uint64_t(sampler_), name);
 }
 
+Sampler::Sampler(Device& device, const VkSamplerCreateInfo& info, std::string_view name) : device_(&device) {
+  TL_VK(vkCreateSampler(device.handle(), &info, nullptr, &sampler_));
+  device.setName(VK_OBJECT_TYPE_SAMPLER, uint64_t(sampler_), name);
+}
+
 Sampler& Sampler::operator=(Sampler&& o) noexcept {
   if (this != &o) {
     reset();

@@ -115,6 +115,8 @@ class Sampler {
   Sampler() = default;
   Sampler(Device& device, VkFilter filter, VkSamplerAddressMode address, std::string_view name,
           bool compareDepth = false, float maxAnisotropy = 1.0f);
+  // Any sampler (per-axis wrap, separate filters): the scene's glTF samplers.
+  Sampler(Device& device, const VkSamplerCreateInfo& info, std::string_view name);
   ~Sampler() { reset(); }
   Sampler(Sampler&& o) noexcept { *this = std::move(o); }
   Sampler& operator=(Sampler&& o) noexcept;

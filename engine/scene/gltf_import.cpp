@@ -386,36 +386,56 @@ void forEachTextureSlot(const tinygltf::Material& m, F f) {
   f("emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions);
 }
 
+// A material's textureInfo: its texture (through the cache), UV set and KHR_texture_transform
+// (whose texCoord overrides the textureInfo's, as the extension says). UV sets beyond
+// TEXCOORD_1 read TEXCOORD_0 (IgnoredFeatures says so).
+std::optional<TextureRef> textureRef(TextureCache& textures, int index, int texCoord, const tinygltf::ExtensionMap& extensions,
+                                     bool srgb, ImportValues& values, const std::string& what) {
+  const auto texture = textures.get(index, srgb);
+  if (!texture) return std::nullopt;
+  TextureRef r;
+  r.texture = *texture;
+  if (auto it = extensions.find("KHR_texture_transform"); it != extensions.end()) {
+    const auto& t = it->second;
+    auto pair = [&](const char* name, glm::vec2& out) {
+      if (!t.Has(name)) return;
+      const auto& v = t.Get(name);
+      if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+        values.fail(fmt::format("{} KHR_texture_transform {} is not two numbers", what, name));
+      for (int c = 0; c < 2; ++c) out[c] = values.finite(v.Get(c).GetNumberAsDouble(), fmt::format("{} KHR_texture_transform {}", what, name));
+    };
+    pair("offset", r.offset);
+    pair("scale", r.scale);
+    if (t.Has("rotation")) {
+      if (!t.Get("rotation").IsNumber()) values.fail(what + " KHR_texture_transform rotation is not a number");
+      r.rotation = values.finite(t.Get("rotation").GetNumberAsDouble(), what + " KHR_texture_transform rotation");
+    }
+    if (t.Has("texCoord") && t.Get("texCoord").IsInt()) texCoord = t.Get("texCoord").GetNumberAsInt();
+  }
+  r.texCoord = texCoord == 1 ? 1u : 0u;
+  return r;
+}
+
 void scanIgnored(const tinygltf::Model& model, IgnoredFeatures& ignored) {
   static const std::set<std::string> applied = {"KHR_materials_emissive_strength", "KHR_lights_punctual",
-                                                "KHR_mesh_quantization"};
+                                                "KHR_mesh_quantization", "KHR_texture_transform"};
   for (const auto& e : model.extensionsUsed)
     if (!applied.count(e)) ignored.add("extension " + e, "not applied (the file renders as if it were absent)");
   for (const auto& m : model.materials) {
     if (m.alphaMode == "BLEND") ignored.add("alpha BLEND", "drawn opaque (translucency is not rendered)");
     forEachTextureSlot(m, [&](const char* slot, int index, int texCoord, const tinygltf::ExtensionMap& extensions) {
       if (index < 0) return;
+      if (auto it = extensions.find("KHR_texture_transform"); it != extensions.end() && it->second.Has("texCoord") &&
+                                                               it->second.Get("texCoord").IsInt())
+        texCoord = it->second.Get("texCoord").GetNumberAsInt();
       if (std::string(slot) == "occlusionTexture")
         ignored.add("occlusionTexture", "not applied (ambient occlusion comes from the lighting path)");
-      if (texCoord != 0) ignored.add(fmt::format("TEXCOORD_{} in a {}", texCoord, slot), "sampled with TEXCOORD_0");
-      if (extensions.count("KHR_texture_transform"))
-        ignored.add("KHR_texture_transform", "texture offset, rotation and scale not applied");
-      if (size_t(index) >= model.textures.size()) return;
-      const int si = model.textures[size_t(index)].sampler;
-      if (si < 0 || size_t(si) >= model.samplers.size()) return;
-      const auto& sm = model.samplers[size_t(si)];
-      const bool repeat = sm.wrapS == TINYGLTF_TEXTURE_WRAP_REPEAT && sm.wrapT == TINYGLTF_TEXTURE_WRAP_REPEAT;
-      if (!repeat) ignored.add("sampler wrap mode clamp/mirror", "textures repeat");
-      const bool nearest = sm.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST || sm.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ||
-                           sm.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
-                           sm.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
-      if (nearest) ignored.add("sampler filter NEAREST", "textures filtered linearly (trilinear, anisotropic)");
+      if (texCoord > 1) ignored.add(fmt::format("TEXCOORD_{} in a {}", texCoord, slot), "sampled with TEXCOORD_0");
     });
   }
   for (const auto& mesh : model.meshes)
     for (const auto& p : mesh.primitives) {
       if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) ignored.add("points, lines and strips", "primitives skipped");
-      if (p.attributes.count("COLOR_0")) ignored.add("COLOR_0", "vertex colours not multiplied into the base colour");
       if (p.attributes.count("JOINTS_0") || p.attributes.count("WEIGHTS_0"))
         ignored.add("skinning (JOINTS_0/WEIGHTS_0)", "meshes drawn in their bind pose");
       for (const auto& target : p.targets)
@@ -482,7 +502,7 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
   // KHR_mesh_quantization only widens the attribute types, which the accessor reader decodes
   // (normalized and integer components of every size).
   static const std::set<std::string> supported = {"KHR_materials_emissive_strength", "KHR_lights_punctual",
-                                                  "KHR_mesh_quantization"};
+                                                  "KHR_mesh_quantization", "KHR_texture_transform"};
   for (const auto& e : model.extensionsRequired)
     if (!supported.count(e)) throw SceneError(fmt::format("{}: requires the unsupported extension {}", file.string(), e));
 
@@ -520,10 +540,18 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
     m.alphaMode = gm.alphaMode == "MASK" ? AlphaMode::Mask : gm.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
     m.alphaCutoff = values.clamped(gm.alphaCutoff, 0.0f, 1.0f, what + " alphaCutoff");
     m.doubleSided = gm.doubleSided;
-    m.baseColorTexture = textures.get(pbr.baseColorTexture.index, true);
-    m.metallicRoughnessTexture = textures.get(pbr.metallicRoughnessTexture.index, false);
-    m.normalTexture = textures.get(gm.normalTexture.index, false);
-    m.emissiveTexture = textures.get(gm.emissiveTexture.index, true);
+    m.baseColorTexture = textureRef(textures, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                    pbr.baseColorTexture.extensions, true, values, what + " baseColorTexture");
+    m.metallicRoughnessTexture =
+        textureRef(textures, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                   pbr.metallicRoughnessTexture.extensions, false, values, what + " metallicRoughnessTexture");
+    m.normalTexture = textureRef(textures, gm.normalTexture.index, gm.normalTexture.texCoord, gm.normalTexture.extensions,
+                                 false, values, what + " normalTexture");
+    m.emissiveTexture = textureRef(textures, gm.emissiveTexture.index, gm.emissiveTexture.texCoord,
+                                   gm.emissiveTexture.extensions, true, values, what + " emissiveTexture");
+    m.occlusionTexture = textureRef(textures, gm.occlusionTexture.index, gm.occlusionTexture.texCoord,
+                                    gm.occlusionTexture.extensions, false, values, what + " occlusionTexture");
+    m.occlusionStrength = values.clamped(gm.occlusionTexture.strength, 0.0f, 1.0f, what + " occlusionTexture.strength");
     scene.materials.push_back(std::move(m));
   }
   const uint32_t defaultMaterial = uint32_t(scene.materials.size());
@@ -573,6 +601,30 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
         auto uvs = rd.floats<2>(it->second, "TEXCOORD_0");
         if (uvs.size() != mesh.vertices.size()) rd.fail(fmt::format("mesh `{}` has {} UVs for {} vertices", name, uvs.size(), mesh.vertices.size()));
         for (size_t v = 0; v < uvs.size(); ++v) mesh.vertices[v].uv = uvs[v];
+      }
+      if (auto it = prim.attributes.find("TEXCOORD_1"); it != prim.attributes.end()) {
+        auto uvs = rd.floats<2>(it->second, "TEXCOORD_1");
+        if (uvs.size() != mesh.vertices.size()) rd.fail(fmt::format("mesh `{}` has {} TEXCOORD_1 for {} vertices", name, uvs.size(), mesh.vertices.size()));
+        for (size_t v = 0; v < uvs.size(); ++v) mesh.vertices[v].uv1 = uvs[v];
+      }
+      if (auto it = prim.attributes.find("COLOR_0"); it != prim.attributes.end()) {
+        // Linear RGB or RGBA as float or normalized integers (glTF 3.7.2.1), multiplied into
+        // the base colour; each component is kept to [0, 1] like baseColorFactor.
+        const bool rgba = it->second >= 0 && size_t(it->second) < model.accessors.size() &&
+                          model.accessors[size_t(it->second)].type == TINYGLTF_TYPE_VEC4;
+        std::vector<glm::vec4> colours;
+        if (rgba) colours = rd.floats<4>(it->second, "COLOR_0");
+        else for (const auto& c : rd.floats<3>(it->second, "COLOR_0")) colours.emplace_back(c, 1.0f);
+        if (colours.size() != mesh.vertices.size()) rd.fail(fmt::format("mesh `{}` has {} COLOR_0 for {} vertices", name, colours.size(), mesh.vertices.size()));
+        bool clampedAny = false;
+        for (size_t v = 0; v < colours.size(); ++v) {
+          for (int c = 0; c < 4; ++c)
+            if (!std::isfinite(colours[v][c])) rd.fail(fmt::format("mesh `{}` has a non-finite COLOR_0 (vertex {})", name, v));
+          const glm::vec4 kept = glm::clamp(colours[v], 0.0f, 1.0f);
+          clampedAny |= kept != colours[v];
+          mesh.vertices[v].color = kept;
+        }
+        if (clampedAny) values.warn(fmt::format("mesh `{}` has COLOR_0 components outside [0, 1]; they are clamped", name));
       }
       bool haveTangents = false;
       if (auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) {

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <atomic>
+#include <cmath>
 
 namespace tl::scene {
 
@@ -30,8 +31,63 @@ std::vector<VkVertexInputAttributeDescription> GpuScene::vertexAttributes() {
   return {{shared::kAttrPosition, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
           {shared::kAttrNormal, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
           {shared::kAttrTangent, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)},
-          {shared::kAttrUv, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)}};
+          {shared::kAttrUv, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+          {shared::kAttrUv1, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv1)},
+          {shared::kAttrColor, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color)}};
 }
+
+namespace {
+
+static_assert(offsetof(Vertex, uv) == shared::kVertexUv * sizeof(float));
+static_assert(offsetof(Vertex, uv1) == shared::kVertexUv1 * sizeof(float));
+static_assert(offsetof(Vertex, color) == shared::kVertexColor * sizeof(float));
+static_assert(sizeof(Vertex) == shared::kVertexFloats * sizeof(float));
+
+VkSamplerAddressMode addressMode(Wrap w) {
+  switch (w) {
+    case Wrap::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    case Wrap::MirroredRepeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+    case Wrap::Repeat: break;
+  }
+  return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+}
+
+// A glTF sampler as Vulkan's. Linear minification keeps 8x anisotropy (the default sampler's);
+// a nearest one does not (it would blur what the file asked to keep sharp).
+VkSamplerCreateInfo samplerInfo(gpu::Device& device, const SamplerMode& m) {
+  VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  ci.magFilter = m.magNearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
+  ci.minFilter = m.minNearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
+  ci.mipmapMode = m.mipNearest || m.noMipmaps ? VK_SAMPLER_MIPMAP_MODE_NEAREST : VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  ci.addressModeU = addressMode(m.wrapS);
+  ci.addressModeV = addressMode(m.wrapT);
+  ci.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  ci.maxLod = m.noMipmaps ? 0.0f : VK_LOD_CLAMP_NONE;
+  ci.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
+  if (!m.minNearest && !m.magNearest) {
+    ci.anisotropyEnable = VK_TRUE;
+    ci.maxAnisotropy = std::min(8.0f, device.limits().maxSamplerAnisotropy);
+  }
+  return ci;
+}
+
+shared::GpuTextureSlot textureSlot(const std::optional<TextureRef>& r) {
+  shared::GpuTextureSlot s{};
+  s.linear = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+  s.texture = shared::kNoTexture;
+  if (!r) return s;
+  // KHR_texture_transform: uv' = offset + R S uv with R's columns (cos, -sin) and (sin, cos);
+  // the extension's example (offset (0, 1), rotation pi/2, scale 0.5 shows the lower-left
+  // quadrant) fixes the sense of rotation.
+  const float c = std::cos(r->rotation), sn = std::sin(r->rotation);
+  s.linear = glm::vec4(c * r->scale.x, -sn * r->scale.x, sn * r->scale.y, c * r->scale.y);
+  s.offset = r->offset;
+  s.texture = r->texture;
+  s.texCoord = r->texCoord;
+  return s;
+}
+
+}  // namespace
 
 GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
   static std::atomic<uint64_t> nextId{1};
@@ -70,7 +126,17 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
   }
   TL_CHECK(textures_.size() <= shared::kSceneMaxTextures, "scene {} has {} textures; at most {} are supported",
            scene.name, textures_.size(), shared::kSceneMaxTextures);
-  sampler_ = gpu::Sampler(device, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT, "scene.sampler", false, 8.0f);
+  // One Vulkan sampler per distinct glTF sampler mode (textures sharing a mode share it).
+  std::vector<VkSampler> textureSamplers;
+  for (const Texture& t : scene.textures) {
+    size_t k = 0;
+    while (k < samplerModes_.size() && !(samplerModes_[k] == t.sampler)) ++k;
+    if (k == samplerModes_.size()) {
+      samplerModes_.push_back(t.sampler);
+      samplers_.emplace_back(device, samplerInfo(device, t.sampler), fmt::format("scene.sampler{}", k));
+    }
+    textureSamplers.push_back(samplers_[k].handle());
+  }
 
   // Materials.
   std::vector<GpuMaterial> materials;
@@ -82,10 +148,12 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
     g.roughness = m.roughness;
     g.normalScale = m.normalScale;
     g.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : 0.0f;
-    g.baseColorTexture = m.baseColorTexture.value_or(shared::kNoTexture);
-    g.normalTexture = m.normalTexture.value_or(shared::kNoTexture);
-    g.metallicRoughnessTexture = m.metallicRoughnessTexture.value_or(shared::kNoTexture);
-    g.emissiveTexture = m.emissiveTexture.value_or(shared::kNoTexture);
+    g.occlusionStrength = m.occlusionStrength;
+    g.baseColorTexture = textureSlot(m.baseColorTexture);
+    g.normalTexture = textureSlot(m.normalTexture);
+    g.metallicRoughnessTexture = textureSlot(m.metallicRoughnessTexture);
+    g.emissiveTexture = textureSlot(m.emissiveTexture);
+    g.occlusionTexture = textureSlot(m.occlusionTexture);
     materials.push_back(g);
   }
   materials_ = gpu::Buffer(device, materials.size() * sizeof(GpuMaterial), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
@@ -110,7 +178,7 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
   table_.writeBuffer(shared::kSceneBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, instances_.handle());
   std::vector<VkImageView> views;
   for (auto& t : textures_) views.push_back(t.view());
-  table_.writeImages(shared::kSceneBindingTextures, views, sampler_.handle());
+  table_.writeImages(shared::kSceneBindingTextures, views, textureSamplers);
 }
 
 void GpuScene::updateInstances(const Scene& scene, const glm::dvec3& camera, const glm::dvec3& previousCamera) {

@@ -93,7 +93,8 @@ class GpuScene {
   uint64_t id_ = 0;
   gpu::Buffer vertices_, indices_, materials_, instances_;
   std::vector<gpu::Image> textures_;
-  gpu::Sampler sampler_;
+  std::vector<SamplerMode> samplerModes_;  // distinct modes, one Vulkan sampler each
+  std::vector<gpu::Sampler> samplers_;
   gpu::DescriptorTable table_;
   std::vector<MeshRange> meshes_;
   std::vector<uint32_t> drawMesh_;             // per instance: its mesh

@@ -58,9 +58,16 @@ uint64_t hashMaterial(const Material& m, const std::vector<Texture>& textures) {
   h.add(m.alphaCutoff);
   uint8_t doubleSided = m.doubleSided;
   h.add(doubleSided);
-  for (const auto& t : {m.baseColorTexture, m.normalTexture, m.metallicRoughnessTexture, m.emissiveTexture}) {
-    uint64_t th = t && *t < textures.size() ? textures[*t].contentHash : 0;
+  h.add(m.occlusionStrength);
+  for (const auto& t : {m.baseColorTexture, m.normalTexture, m.metallicRoughnessTexture, m.emissiveTexture, m.occlusionTexture}) {
+    uint64_t th = t && t->texture < textures.size() ? textures[t->texture].contentHash : 0;
     h.add(th);
+    if (!t) continue;
+    h.add(t->texCoord);
+    h.add(t->offset);
+    h.add(t->rotation);
+    h.add(t->scale);
+    if (t->texture < textures.size()) h.add(textures[t->texture].sampler);
   }
   return h.done();
 }

@@ -18,20 +18,22 @@ glm::vec4 textureAverage(const Texture& t) {
   return glm::vec4(sum / double(n));
 }
 
+// The texture's mean over its whole image: a transform that shows part of it, and vertex
+// colours, are not weighed in (this is the far-field average, not a per-texel value).
 glm::vec3 materialAverageAlbedo(const Scene& scene, const Material& m, uint32_t materials) {
   glm::vec3 base = glm::vec3(m.baseColorFactor);
-  if (m.baseColorTexture && *m.baseColorTexture < scene.textures.size())
-    base *= glm::vec3(textureAverage(scene.textures[*m.baseColorTexture]));
+  if (m.baseColorTexture && m.baseColorTexture->texture < scene.textures.size())
+    base *= glm::vec3(textureAverage(scene.textures[m.baseColorTexture->texture]));
   float metallic = m.metallic;
-  if (m.metallicRoughnessTexture && *m.metallicRoughnessTexture < scene.textures.size())
-    metallic *= textureAverage(scene.textures[*m.metallicRoughnessTexture]).b;
+  if (m.metallicRoughnessTexture && m.metallicRoughnessTexture->texture < scene.textures.size())
+    metallic *= textureAverage(scene.textures[m.metallicRoughnessTexture->texture]).b;
   return shared::tlMaterialHitAlbedo(glm::clamp(base, 0.0f, 1.0f), glm::clamp(metallic, 0.0f, 1.0f), materials);
 }
 
 glm::vec3 materialAverageEmission(const Scene& scene, const Material& m) {
   glm::vec3 e = m.emissiveFactor * m.emissiveStrength;
-  if (m.emissiveTexture && *m.emissiveTexture < scene.textures.size())
-    e *= glm::vec3(textureAverage(scene.textures[*m.emissiveTexture]));
+  if (m.emissiveTexture && m.emissiveTexture->texture < scene.textures.size())
+    e *= glm::vec3(textureAverage(scene.textures[m.emissiveTexture->texture]));
   return e;
 }
 

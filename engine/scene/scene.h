@@ -21,9 +21,11 @@ struct Vertex {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f, 1.0f, 0.0f};
   glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz tangent, w handedness (+1/-1)
-  glm::vec2 uv{0.0f};
+  glm::vec2 uv{0.0f};                        // TEXCOORD_0
+  glm::vec2 uv1{0.0f};                       // TEXCOORD_1 (zeros when the file has none)
+  glm::vec4 color{1.0f};                     // COLOR_0, linear RGBA (white when the file has none)
 };
-static_assert(sizeof(Vertex) == 48);
+static_assert(sizeof(Vertex) == 72);
 
 struct Bounds {
   glm::dvec3 min{std::numeric_limits<double>::max()};
@@ -51,8 +53,21 @@ enum class TexelFormat : uint8_t { Rgba8, Rgba16Unorm, Rgba16Float };
 // Where a texture's image came from (what `twinlight info --scene` reports).
 enum class ImageSource : uint8_t { File, DataUri, BufferView, Generated };
 
+// A glTF sampler: wrap per axis and filters (glTF's GL enums resolved).
+enum class Wrap : uint8_t { Repeat, ClampToEdge, MirroredRepeat };
+struct SamplerMode {
+  Wrap wrapS = Wrap::Repeat;
+  Wrap wrapT = Wrap::Repeat;
+  bool magNearest = false;     // magFilter NEAREST (else LINEAR)
+  bool minNearest = false;     // minFilter NEAREST_* (else LINEAR_*)
+  bool mipNearest = false;     // minFilter *_MIPMAP_NEAREST
+  bool noMipmaps = false;      // minFilter NEAREST or LINEAR: the finest level only
+  bool operator==(const SamplerMode&) const = default;
+};
+
 struct Texture {
   std::string name;
+  SamplerMode sampler;           // how materials sample it (one entry per glTF texture)
   std::filesystem::path path;    // empty for embedded images
   uint32_t width = 0;
   uint32_t height = 0;
@@ -73,6 +88,17 @@ glm::vec4 texelValue(const Texture& t, size_t i);
 
 enum class AlphaMode : uint8_t { Opaque, Mask, Blend };
 
+// A texture a material reads: the texture, its UV set and its KHR_texture_transform
+// (uv' = T(offset) R(rotation) S(scale) uv, rotation counter-clockwise in radians).
+struct TextureRef {
+  uint32_t texture = 0;       // index into Scene::textures
+  uint32_t texCoord = 0;      // 0: TEXCOORD_0, 1: TEXCOORD_1
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;
+  glm::vec2 scale{1.0f};
+  bool operator==(const TextureRef&) const = default;
+};
+
 struct Material {
   std::string name;
   glm::vec4 baseColorFactor{1.0f};
@@ -84,10 +110,12 @@ struct Material {
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
   bool doubleSided = false;
-  std::optional<uint32_t> baseColorTexture;         // index into Scene::textures
-  std::optional<uint32_t> normalTexture;
-  std::optional<uint32_t> metallicRoughnessTexture;
-  std::optional<uint32_t> emissiveTexture;
+  float occlusionStrength = 1.0f;
+  std::optional<TextureRef> baseColorTexture;
+  std::optional<TextureRef> normalTexture;
+  std::optional<TextureRef> metallicRoughnessTexture;
+  std::optional<TextureRef> emissiveTexture;
+  std::optional<TextureRef> occlusionTexture;
   uint64_t contentHash = 0;  // parameters + the content hashes of the textures it uses
 };
 

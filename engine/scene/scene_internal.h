@@ -32,6 +32,9 @@ class TextureCache {
   std::map<std::pair<int, bool>, uint32_t> cache_;
 };
 
+// The sampler glTF texture `samplerIndex` names (-1: none, glTF's defaults).
+SamplerMode samplerMode(const tinygltf::Model& model, int samplerIndex);
+
 // loadGltf after reading the file: `bytes` are its contents (a .glb when `binary`); files it
 // names resolve next to `file`. The fuzz target (fuzz/fuzz_gltf.cpp) enters here.
 Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesystem::path& file, const LoadOptions& options);

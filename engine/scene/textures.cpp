@@ -133,6 +133,31 @@ std::vector<uint8_t> jpegWithoutMetadata(const std::vector<uint8_t>& bytes) {
   return out;
 }
 
+// glTF 3.8.4: wrap REPEAT (10497), CLAMP_TO_EDGE (33071), MIRRORED_REPEAT (33648); filters
+// NEAREST (9728), LINEAR (9729) and the four mipmap minifications. No sampler, or an
+// undefined filter: repeat and (tri)linear, Twinlight's choice where glTF leaves it open.
+SamplerMode samplerMode(const tinygltf::Model& model, int samplerIndex) {
+  SamplerMode s;
+  if (samplerIndex < 0 || size_t(samplerIndex) >= model.samplers.size()) return s;
+  const auto& g = model.samplers[size_t(samplerIndex)];
+  auto wrap = [](int mode) {
+    return mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? Wrap::ClampToEdge
+           : mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? Wrap::MirroredRepeat
+                                                           : Wrap::Repeat;
+  };
+  s.wrapS = wrap(g.wrapS);
+  s.wrapT = wrap(g.wrapT);
+  s.magNearest = g.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+  s.minNearest = g.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST || g.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+                 g.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
+  // Without mipmaps (NEAREST, LINEAR) the finest level is read: nearest level selection with
+  // maxLod 0 is set where the sampler is made (gpu_scene.cpp).
+  s.mipNearest = g.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+                 g.minFilter == TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST;
+  s.noMipmaps = g.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST || g.minFilter == TINYGLTF_TEXTURE_FILTER_LINEAR;
+  return s;
+}
+
 bool decodeImage(const std::vector<uint8_t>& bytes, Texture& t, std::string& error) {
   const char* format = formatOf(bytes);
   if (!format) {
@@ -288,6 +313,7 @@ std::optional<uint32_t> TextureCache::get(int textureIndex, bool srgb) {
   t.name = name;
   t.srgb = srgb;
   t.contentHash = hashTexels(t);
+  if (size_t(textureIndex) < model_.textures.size()) t.sampler = samplerMode(model_, model_.textures[size_t(textureIndex)].sampler);
   uint32_t index = uint32_t(scene_.textures.size());
   scene_.textures.push_back(std::move(t));
   cache_[{textureIndex, srgb}] = index;

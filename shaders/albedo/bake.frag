@@ -9,12 +9,14 @@
 layout(push_constant) uniform Draw { AlbedoBakeDraw draw; };
 
 layout(location = 0) in vec2 inUv;
+layout(location = 1) in vec2 inUv1;
+layout(location = 2) in vec4 inColor;
 layout(location = 0) out vec4 outAlbedo;
 
 void main() {
   GpuMaterial m = materials[draw.material];
-  vec4 base = materialBaseColor(m, inUv);
+  vec4 base = materialBaseColor(m, inUv, inUv1, inColor);
   if (materialCutout(m, base.a)) discard;
-  float metallic = clamp(materialRoughnessMetallic(m, inUv).y, 0.0, 1.0);
+  float metallic = clamp(materialRoughnessMetallic(m, inUv, inUv1).y, 0.0, 1.0);
   outAlbedo = vec4(tlRtHitAlbedoFromMaterial(clamp(base.rgb, 0.0, 1.0), metallic), 1.0);
 }

@@ -15,6 +15,8 @@ layout(location = 2) in vec2 inUv;
 layout(location = 3) in vec4 inClip;
 layout(location = 4) in vec4 inPrevClip;
 layout(location = 5) flat in uint inInstance;
+layout(location = 6) in vec2 inUv1;
+layout(location = 7) in vec4 inColor;
 
 layout(location = kGbufferBaseColor) out vec4 outBaseColor;
 layout(location = kGbufferNormal) out vec2 outNormal;
@@ -30,31 +32,30 @@ void main() {
   // The material override mode (shared/material_mode.h) decides what reaches the G-buffer; a
   // cut-out keeps its texture's alpha in every mode.
   uint materials = tlFrameMaterials(frame.flags);
-  vec4 base = materialBaseColor(m, inUv);
+  vec4 base = materialBaseColor(m, inUv, inUv1, inColor);
   if (materialCutout(m, base.a)) discard;
 
   // Geometric normal faces the viewer: single-sided walls seen from behind shade as their
   // back side instead of going black.
   vec3 n = normalize(inNormal);
   if (!gl_FrontFacing) n = -n;
-  if (m.normalTexture != kNoTexture && tlMaterialNormalMaps(materials)) {
+  if (m.normalTexture.texture != kNoTexture && tlMaterialNormalMaps(materials)) {
     vec3 t = inTangent.xyz - n * dot(n, inTangent.xyz);
     float tl = length(t);
     if (tl > 1e-6) {
       t /= tl;
       vec3 b = cross(n, t) * (inTangent.w < 0.0 ? -1.0 : 1.0);
-      vec3 tn = sampleTexture(m.normalTexture, inUv).xyz * 2.0 - 1.0;
+      vec3 tn = sampleSlot(m.normalTexture, inUv, inUv1).xyz * 2.0 - 1.0;
       tn.xy *= m.normalScale;
       vec3 mapped = t * tn.x + b * tn.y + n * tn.z;
       if (dot(mapped, mapped) > 1e-12) n = normalize(mapped);
     }
   }
 
-  vec2 rm = materialRoughnessMetallic(m, inUv);
+  vec2 rm = materialRoughnessMetallic(m, inUv, inUv1);
   float roughness = tlMaterialRoughness(rm.x, materials);
   float metallic = tlMaterialMetallic(rm.y, materials);
-  vec3 emissive = m.emissive.rgb;
-  if (m.emissiveTexture != kNoTexture) emissive *= sampleTexture(m.emissiveTexture, inUv).rgb;
+  vec3 emissive = materialEmission(m, inUv, inUv1);
 
   vec2 ndc = inClip.xy / inClip.w;
   vec2 prevNdc = inPrevClip.xy / inPrevClip.w;

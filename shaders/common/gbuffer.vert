@@ -7,6 +7,8 @@ layout(location = kAttrPosition) in vec3 inPosition;
 layout(location = kAttrNormal) in vec3 inNormal;
 layout(location = kAttrTangent) in vec4 inTangent;
 layout(location = kAttrUv) in vec2 inUv;
+layout(location = kAttrUv1) in vec2 inUv1;
+layout(location = kAttrColor) in vec4 inColor;
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; };
 layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
@@ -17,6 +19,8 @@ layout(location = 2) out vec2 outUv;
 layout(location = 3) out vec4 outClip;
 layout(location = 4) out vec4 outPrevClip;
 layout(location = 5) flat out uint outInstance;
+layout(location = 6) out vec2 outUv1;
+layout(location = 7) out vec4 outColor;
 
 void main() {
   GpuInstance inst = instances[gl_InstanceIndex];
@@ -29,6 +33,8 @@ void main() {
   outNormal = mat3(inst.normalMatrix) * inNormal;
   outTangent = vec4(mat3(inst.modelRelative) * inTangent.xyz, inTangent.w);
   outUv = inUv;
+  outUv1 = inUv1;
+  outColor = inColor;
   outInstance = uint(gl_InstanceIndex);
   gl_Position = clip;
 }

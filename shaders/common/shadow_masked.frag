@@ -8,8 +8,10 @@ layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffe
 
 layout(location = 0) in vec2 inUv;
 layout(location = 1) flat in uint inInstance;
+layout(location = 2) in vec2 inUv1;
+layout(location = 3) in float inAlpha;
 
 void main() {
   GpuMaterial m = materials[instances[inInstance].material];
-  if (materialCutout(m, materialBaseColor(m, inUv).a)) discard;
+  if (materialCutout(m, materialBaseColor(m, inUv, inUv1, vec4(1.0, 1.0, 1.0, inAlpha)).a)) discard;
 }

@@ -7,15 +7,21 @@
 
 layout(location = kAttrPosition) in vec3 inPosition;
 layout(location = kAttrUv) in vec2 inUv;
+layout(location = kAttrUv1) in vec2 inUv1;
+layout(location = kAttrColor) in vec4 inColor;
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; };
 layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
 
 layout(location = 0) out vec2 outUv;
 layout(location = 1) flat out uint outInstance;
+layout(location = 2) out vec2 outUv1;
+layout(location = 3) out float outAlpha;
 
 void main() {
   GpuInstance inst = instances[gl_InstanceIndex];
   gl_Position = frame.sunViewProj * (inst.modelRelative * vec4(inPosition, 1.0));
   outUv = inUv;
+  outUv1 = inUv1;
+  outAlpha = inColor.a;
   outInstance = gl_InstanceIndex;
 }

@@ -13,9 +13,8 @@
 layout(set = 0, binding = kLegacyBindingFrame) uniform Frame { FrameConstants frame; };
 layout(set = 0, binding = kLegacyBindingShadow) uniform sampler2DShadow sunShadow;
 layout(set = 0, binding = kLegacyBindingRadiance, rgba16f) uniform writeonly image3D radianceOut;
-layout(set = kSceneSet, binding = kSceneBindingMaterials, std430) readonly buffer Materials { GpuMaterial materials[]; };
 layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
-layout(set = kSceneSet, binding = kSceneBindingTextures) uniform sampler2D sceneTextures[];
+#include "common/material.glsl"
 layout(set = 0, binding = kLegacyBindingPrevRadiance) uniform sampler2D previousRadiance;
 layout(set = 0, binding = kLegacyBindingPrevDepth) uniform sampler2D previousDepth;
 layout(push_constant) uniform Push { LegacyVoxelPush push; };
@@ -56,6 +55,8 @@ layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) flat in uint inInstance;
+layout(location = 4) in vec2 inUv1;
+layout(location = 5) in vec4 inColor;
 
 const vec3 kFace[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));
 
@@ -69,11 +70,9 @@ void main() {
   // scissor bounds only the two raster axes, not depth.
   if (any(lessThan(v, push.regionMin.xyz)) || any(greaterThanEqual(v, push.regionMax.xyz))) return;
   GpuMaterial m = materials[instances[inInstance].material];
-  vec4 base = m.baseColorFactor;
-  if (m.baseColorTexture != kNoTexture) base *= texture(sceneTextures[nonuniformEXT(m.baseColorTexture)], inUv);
-  if (tlMaterialCutout(m.alphaCutoff, base.a)) return;
-  vec3 emission = m.emissive.rgb;
-  if (m.emissiveTexture != kNoTexture) emission *= texture(sceneTextures[nonuniformEXT(m.emissiveTexture)], inUv).rgb;
+  vec4 base = materialBaseColor(m, inUv, inUv1, inColor);
+  if (materialCutout(m, base.a)) return;
+  vec3 emission = materialEmission(m, inUv, inUv1);
   vec3 albedo = tlMaterialHitAlbedo(clamp(base.rgb, 0.0, 1.0), m.metallic, tlFrameMaterials(frame.flags));
   vec3 n = normalize(inNormal);
   ivec3 z = ivec3(0, 0, int(level) * R);

@@ -26,9 +26,11 @@ layout(location = 0) out vec3 outPosition;
 layout(location = 1) out vec3 outNormal;
 layout(location = 2) out vec2 outUv;
 layout(location = 3) flat out uint outInstance;
+layout(location = 4) out vec2 outUv1;
+layout(location = 5) out vec4 outColor;
 
 vec3 vertexVec3(uint vertex, uint at) {
-  uint b = vertex * kLegacyVertexFloats + at;
+  uint b = vertex * kVertexFloats + at;
   return vec3(vertexData[b], vertexData[b + 1u], vertexData[b + 2u]);
 }
 
@@ -71,8 +73,11 @@ void main() {
     gl_Position = vec4(-2.0, -2.0, 0.5, 1.0);  // all three corners outside the same clip plane: rejected
   }
   outPosition = world;
-  outNormal = mat3(inst.normalMatrix) * vertexVec3(vertex, 3u);
-  uint uvAt = vertex * kLegacyVertexFloats + 10u;
-  outUv = vec2(vertexData[uvAt], vertexData[uvAt + 1u]);
+  outNormal = mat3(inst.normalMatrix) * vertexVec3(vertex, kVertexNormal);
+  uint at = vertex * kVertexFloats;
+  outUv = vec2(vertexData[at + kVertexUv], vertexData[at + kVertexUv + 1u]);
+  outUv1 = vec2(vertexData[at + kVertexUv1], vertexData[at + kVertexUv1 + 1u]);
+  outColor = vec4(vertexData[at + kVertexColor], vertexData[at + kVertexColor + 1u], vertexData[at + kVertexColor + 2u],
+                  vertexData[at + kVertexColor + 3u]);
   outInstance = uint(gl_InstanceIndex);
 }

@@ -7,8 +7,7 @@
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Indices { uint i[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Vertices { float f[]; };
 layout(set = 0, binding = kRtBindingInstances, std430) readonly buffer Instances { RtInstance rtInstances[]; };
-
-const uint kVertexFloats = 12u;  // tl::scene::Vertex
+#include "shared/scene.h"
 
 vec3 vertexPosition(Vertices v, uint index) {
   uint b = index * kVertexFloats;

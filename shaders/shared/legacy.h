@@ -99,7 +99,6 @@ TL_CONST uint kLegacyBindingMotion = 19;        // gbuffer.motion
 TL_CONST uint kLegacyBindingSsaoOut = 20;       // reduced-res accumulated SSAO: AO (r), view depth (g), frames (b)
 TL_CONST uint kLegacyBindingVertices = 21;      // voxelize: the scene's vertex buffer (tl::scene::Vertex, 12 floats)
 TL_CONST uint kLegacyBindingIndices = 22;       // voxelize: the scene's index buffer
-TL_CONST uint kLegacyVertexFloats = 12;         // floats per vertex: position 3, normal 3, tangent 4, uv 2
 TL_END
 
 #ifdef __cplusplus

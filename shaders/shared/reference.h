@@ -10,7 +10,7 @@ TL_CONST uint kRefBindingTlas = 1;
 TL_CONST uint kRefBindingAccum = 2;      // rgba32f: sum of samples (persistent)
 TL_CONST uint kRefBindingRadiance = 3;   // rgba32f: the estimate, sum / count
 TL_CONST uint kRefBindingGeometry = 4;   // RefInstanceGeometry[]
-TL_CONST uint kRefBindingVertices = 5;   // scene vertices as floats (12 per vertex)
+TL_CONST uint kRefBindingVertices = 5;   // scene vertices as floats (kVertexFloats per vertex, shared/scene.h)
 TL_CONST uint kRefBindingIndices = 6;    // scene indices
 TL_CONST uint kRefBindingAoAccum = 7;    // r32f: sum of AO samples at the primary hit (persistent)
 TL_CONST uint kRefBindingAo = 8;         // r32f: ambient occlusion at the AO radius, sum / count
@@ -23,7 +23,6 @@ TL_CONST uint kRefBindingDepth0 = 12;      // rgba32f: the radiance of depth gro
 // 0-1 (emission and direct light), 2 (the first bounce), 3 (the second), 4 and more.
 TL_CONST uint kRefDepthGroups = 4;
 
-TL_CONST uint kVertexFloats = 12;        // tl::scene::Vertex: position 3, normal 3, tangent 4, uv 2
 
 // Where an instance's triangles are in the scene's shared vertex/index buffers.
 struct RefInstanceGeometry {

@@ -214,7 +214,7 @@ struct RtInstance {
   vec4 albedoScale;    // rgb: albedo / the texture-average fallback (1 unless a database entry or
                        // override applies): re-colours pre-traced hits, which read the G-buffer
   uvec2 indexAddress;  // device address of the instance's RT (simplified) triangle list
-  uvec2 vertexAddress; // device address of its first vertex (tl::scene::Vertex, 48 bytes)
+  uvec2 vertexAddress; // device address of its first vertex (tl::scene::Vertex, kVertexFloats floats)
   uint material;       // index into the scene's material table (alpha MASK: rt/alpha.rahit)
   uint pad0;
   uint pad1;

@@ -5,11 +5,24 @@
 
 TL_BEGIN
 // Vertex attribute locations of the one interleaved vertex format (position, normal,
-// tangent with handedness in w, uv); the C++ struct is tl::scene::Vertex.
+// tangent with handedness in w, TEXCOORD_0, TEXCOORD_1, COLOR_0); the C++ struct is
+// tl::scene::Vertex.
 TL_CONST uint kAttrPosition = 0;
 TL_CONST uint kAttrNormal = 1;
 TL_CONST uint kAttrTangent = 2;
 TL_CONST uint kAttrUv = 3;
+TL_CONST uint kAttrUv1 = 4;
+TL_CONST uint kAttrColor = 5;
+
+// The same vertex as floats, for shaders that fetch vertices from a storage buffer (ray hits,
+// the voxelizer): its size and where each attribute starts.
+TL_CONST uint kVertexFloats = 18;
+TL_CONST uint kVertexPosition = 0;
+TL_CONST uint kVertexNormal = 3;
+TL_CONST uint kVertexTangent = 6;
+TL_CONST uint kVertexUv = 10;
+TL_CONST uint kVertexUv1 = 12;
+TL_CONST uint kVertexColor = 14;
 
 TL_CONST uint kNoTexture = 0xFFFFFFFFu;
 
@@ -21,7 +34,17 @@ TL_CONST uint kSceneBindingInstances = 1;
 TL_CONST uint kSceneBindingTextures = 2;
 TL_CONST uint kSceneMaxTextures = 1024;
 
-// One material, std430. Texture fields index the scene's texture array (kNoTexture: none).
+// One texture a material reads (a glTF textureInfo): which entry of the texture array (its
+// sampler comes with it), which UV set, and the KHR_texture_transform as one affine map
+// uv' = L uv + offset, L = translation-free part of T * R * S (shared by every stage).
+struct GpuTextureSlot {
+  vec4 linear;     // L's columns: (linear.x, linear.y) and (linear.z, linear.w)
+  vec2 offset;
+  uint texture;    // kNoTexture: none
+  uint texCoord;   // 0: TEXCOORD_0, 1: TEXCOORD_1
+};
+
+// One material, std430. Texture slots index the scene's texture array (kNoTexture: none).
 struct GpuMaterial {
   vec4 baseColorFactor;     // linear RGB + alpha
   vec4 emissive;            // linear RGB radiance scale (factor * strength), w unused
@@ -29,11 +52,22 @@ struct GpuMaterial {
   float roughness;
   float normalScale;
   float alphaCutoff;        // 0 = opaque (tlMaterialCutout)
-  uint baseColorTexture;
-  uint normalTexture;
-  uint metallicRoughnessTexture;
-  uint emissiveTexture;
+  float occlusionStrength;  // glTF occlusionTexture.strength (read; the occlusion texture is not applied yet)
+  uint pad0;
+  uint pad1;
+  uint pad2;
+  GpuTextureSlot baseColorTexture;
+  GpuTextureSlot normalTexture;
+  GpuTextureSlot metallicRoughnessTexture;
+  GpuTextureSlot emissiveTexture;
+  GpuTextureSlot occlusionTexture;
 };
+
+// Where a slot samples its texture for a point with UV sets uv0 and uv1.
+TL_FN vec2 tlSlotUv(GpuTextureSlot s, vec2 uv0, vec2 uv1) {
+  vec2 uv = s.texCoord == 1u ? uv1 : uv0;
+  return vec2(s.linear.x * uv.x + s.linear.z * uv.y, s.linear.y * uv.x + s.linear.w * uv.y) + s.offset;
+}
 
 // One instance, std430. The transform is camera-relative: the translation has the camera
 // position subtracted in double precision on the CPU, so float on the GPU stays exact near
@@ -54,7 +88,8 @@ TL_FN bool tlMaterialCutout(float alphaCutoff, float alpha) { return alphaCutoff
 TL_END
 
 #ifdef __cplusplus
-static_assert(sizeof(tl::shared::GpuMaterial) == 64);
+static_assert(sizeof(tl::shared::GpuTextureSlot) == 32);
+static_assert(sizeof(tl::shared::GpuMaterial) == 224);
 static_assert(sizeof(tl::shared::GpuInstance) == 208);
 #endif
 #endif

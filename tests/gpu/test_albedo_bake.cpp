@@ -67,7 +67,7 @@ TEST_F(AlbedoBakeTest, WhiteMeshBakesToWhiteWithFullCoverageOfItsSquare) {
 TEST_F(AlbedoBakeTest, CheckerboardBakesToItsMean) {
   auto s = makeCubeScene(material(glm::vec3(1.0f)));
   s->textures.push_back(makeCheckerTexture(64, 8, {255, 255, 255}, {0, 0, 0}));
-  s->materials[0].baseColorTexture = 0;
+  s->materials[0].baseColorTexture = scene::TextureRef{0};
   BakedEntry e = bakeOne(*s);
   // Texels decode from sRGB to 1 and 0: mean 0.5, through the dielectric F0 rule.
   const glm::vec3 expected = shared::tlRtHitAlbedoFromMaterial(glm::vec3(0.5f), 0.0f);
@@ -89,7 +89,7 @@ TEST_F(AlbedoBakeTest, ViewsThatSeeDifferentColoursShowVariance) {
   // A 2x2 checker: the +-X faces sample its black cell, the others its white one.
   auto s = makeCubeScene(material(glm::vec3(1.0f)));
   s->textures.push_back(makeCheckerTexture(64, 2, {255, 255, 255}, {0, 0, 0}));
-  s->materials[0].baseColorTexture = 0;
+  s->materials[0].baseColorTexture = scene::TextureRef{0};
   for (int v = 0; v < 8; ++v) s->meshes[0].vertices[v].uv = glm::vec2(0.75f, 0.25f);  // black cell: +-X faces
   for (int v = 8; v < 24; ++v) s->meshes[0].vertices[v].uv = glm::vec2(0.25f);         // white cell: the others
   BakedEntry e = bakeOne(*s);

@@ -78,7 +78,7 @@ TEST(AlbedoKey, ChangesWithEverythingItHashes) {
     s->textures.push_back(test::makeCheckerTexture(8, 2, {255, 255, 255}, {0, 0, 0}));
     s->textures[0].rgba8[0] = texel;
     s->textures[0].contentHash = scene::hashBytes(s->textures[0].rgba8.data(), s->textures[0].rgba8.size(), 8);
-    s->materials[0].baseColorTexture = 0;
+    s->materials[0].baseColorTexture = scene::TextureRef{0};
     return cubeKey(*s);
   };
   EXPECT_NE(textured(255), textured(254)) << "texture texels";

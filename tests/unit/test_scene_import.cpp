@@ -61,7 +61,7 @@ TEST(SceneImport, Atrium) {
   const Material* checker = findMaterial(s, "checker_textured");
   ASSERT_NE(checker, nullptr);
   ASSERT_TRUE(checker->baseColorTexture);
-  const Texture& t = s.textures[*checker->baseColorTexture];
+  const Texture& t = s.textures[checker->baseColorTexture->texture];
   EXPECT_FALSE(t.placeholder);
   EXPECT_TRUE(t.srgb);
   EXPECT_EQ(t.width, 64u);

@@ -27,7 +27,7 @@ void createCasterPipelines(FrameInputs& in, gpu::PipelineLayoutDesc layout, cons
   d.fragmentShader = "common/shadow_masked.frag";
   d.vertexAttributes.clear();
   for (const auto& a : scene::GpuScene::vertexAttributes())
-    if (a.location == shared::kAttrPosition || a.location == shared::kAttrUv) d.vertexAttributes.push_back(a);
+    if (a.location != shared::kAttrNormal && a.location != shared::kAttrTangent) d.vertexAttributes.push_back(a);
   masked = gpu::createGraphicsPipeline(in.device, d);
 }
 
