@@ -69,7 +69,13 @@ void settingWidget(const SettingInfo& s, lighting::RenderSettings& settings, flo
     case SettingType::Float: {
       float v = float(value);
       const std::string unit = s.unit.empty() ? "" : " " + std::string(s.unit);
-      if (s.flags & lighting::kSettingAuto) {
+      if (s.flags & lighting::kSettingPow2) {  // a few rates (redeferredRate: 1, 0.5, 0.25)
+        if (ImGui::BeginCombo(label.c_str(), lighting::formatSetting(s, value).c_str())) {
+          for (double r = s.max; r >= s.min; r /= 2.0)
+            if (ImGui::Selectable(lighting::formatSetting(s, r).c_str(), r == value)) next = r;
+          ImGui::EndCombo();
+        }
+      } else if (s.flags & lighting::kSettingAuto) {
         if (ImGui::DragFloat(label.c_str(), &v, 0.01f, float(s.min), float(s.max), v > 0.0f ? ("%.3g" + unit).c_str() : "auto"))
           next = std::clamp(double(v), s.min, s.max);
       } else if (s.min > 0.0 && s.max / s.min >= 100.0) {
@@ -86,6 +92,7 @@ void settingWidget(const SettingInfo& s, lighting::RenderSettings& settings, flo
       break;
     }
   }
+  trackItem("settings." + label);  // scripts reach the widget itself: click-ui settings.NAME
   tooltip(settingTooltip(s, settings, sceneScale).c_str());
   if (next != value && !lighting::settingRangeError(s, next)) s.set(settings, next);
 }

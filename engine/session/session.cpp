@@ -467,6 +467,9 @@ void Session::beginOne(bool readback) {
   // A path that computes the whole image (the reference) shades the lights itself.
   if (outputs.radiance.empty())
     outputs.lightsRadiance = passes_->lights.add(graph, in, outputs.shadowStructures, outputs.shadowTlasHandle);
+  in.refineLights = [this, &in, &outputs](graph::RenderGraph& g) {
+    passes_->lights.addIbufferRefine(g, in, outputs.shadowStructures, outputs.shadowTlasHandle);
+  };
   passes_->composite.add(graph, in, outputs);
   if (in.temporalAntialiasing) passes_->taa.add(graph, in);
   passes_->albedoView.add(graph, in);

@@ -6,7 +6,28 @@
 //   float lightVisibility(uint light, vec3 toLight, float distance)  1 where light `light` of the
 //                                   table is seen from the point (a shadow ray, a shadow map; 1: unshadowed)
 //   vec3 lightResponse(vec3 toLight)                      the BRDF times the cosine there
+// and the sum is reflected radiance. An includer that sums something else (the I-buffer's
+// light sums, common/ibuffer_lights.glsl) defines TL_LIGHTS_CUSTOM_SUM and, instead of
+// lightResponse, the type LightSum with lightSumZero(), lightSumAdd(LightSum, LightSum),
+// lightSumScale(LightSum, float) and LightSum lightContribution(uint light, LightIncidence li)
+// (light `light` of the table, its visibility included).
 layout(set = 0, binding = kBindingLights, std430) readonly buffer LightTable { GpuLight lights[]; };
+
+#ifndef TL_LIGHTS_CUSTOM_SUM
+#define LightSum vec3
+vec3 lightSumZero() { return vec3(0.0); }
+vec3 lightSumAdd(vec3 a, vec3 b) { return a + b; }
+vec3 lightSumScale(vec3 a, float k) { return a * k; }
+
+// Reflected radiance from one light, with its visibility (no shadow ray for a light that
+// cannot contribute).
+vec3 lightContribution(uint light, LightIncidence li) {
+  if (all(equal(li.irradiance, vec3(0.0)))) return vec3(0.0);
+  vec3 response = lightResponse(li.toLight);
+  if (all(equal(response, vec3(0.0)))) return vec3(0.0);
+  return li.irradiance * response * lightVisibility(light, li.toLight, li.distance);
+}
+#endif
 
 // The light whose cumulative selection probability first exceeds u.
 uint lightPick(float u) {
@@ -19,21 +40,12 @@ uint lightPick(float u) {
   return lo;
 }
 
-// Reflected radiance from one light, with its visibility (no shadow ray for a light that
-// cannot contribute).
-vec3 lightContribution(uint light, LightIncidence li) {
-  if (all(equal(li.irradiance, vec3(0.0)))) return vec3(0.0);
-  vec3 response = lightResponse(li.toLight);
-  if (all(equal(response, vec3(0.0)))) return vec3(0.0);
-  return li.irradiance * response * lightVisibility(light, li.toLight, li.distance);
-}
-
 // The light table's reflected radiance at `position` (normal n: for resampling only); `seed`
 // draws the picks when there are many lights.
-vec3 shadeLights(vec3 position, vec3 n, uvec3 seed) {
-  vec3 sum = vec3(0.0);
+LightSum shadeLights(vec3 position, vec3 n, uvec3 seed) {
+  LightSum sum = lightSumZero();
   if (frame.lightCount <= kLightsLoopMax) {
-    for (uint i = 0u; i < frame.lightCount; ++i) sum += lightContribution(i, tlLightIncidence(lights[i], position));
+    for (uint i = 0u; i < frame.lightCount; ++i) sum = lightSumAdd(sum, lightContribution(i, tlLightIncidence(lights[i], position)));
     return sum;
   }
   for (uint pick = 0u; pick < kLightPicks; ++pick) {
@@ -54,7 +66,8 @@ vec3 shadeLights(vec3 position, vec3 n, uvec3 seed) {
       }
     }
     // Resampled importance sampling: f(y) / target(y) * (the weights' sum) / candidates.
-    if (keptTarget > 0.0) sum += lightContribution(keptIndex, kept) * (weightSum / (float(kLightCandidates) * keptTarget));
+    if (keptTarget > 0.0)
+      sum = lightSumAdd(sum, lightSumScale(lightContribution(keptIndex, kept), weightSum / (float(kLightCandidates) * keptTarget)));
   }
-  return sum / float(kLightPicks);
+  return lightSumScale(sum, 1.0 / float(kLightPicks));
 }

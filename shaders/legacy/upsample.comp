@@ -11,6 +11,7 @@
 // nearest depth in the 4x4 around them.
 #extension GL_GOOGLE_include_directive : require
 #include "legacy/legacy_common.glsl"
+#include "shared/bilateral.h"
 #include "shared/sh.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -26,9 +27,7 @@ ivec2 size;
 
 // Weight of a reduced texel from the view depth it stored (0: sky).
 float depthWeight(float w) {
-  if (w <= 0.0) return 0.0;
-  float rel = abs(w - w0) / (0.02 * w0);
-  return 1.0 / (1.0 + rel * rel);
+  return w <= 0.0 ? 0.0 : tlBilateralWeight(abs(w - w0) / w0, 0.02);
 }
 
 // The 2x2 reduced texels whose footprints' centres surround pixel p; at the borders the

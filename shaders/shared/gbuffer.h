@@ -55,7 +55,9 @@ struct CompositePush {
   float giBlendWidth;       // over this many metres
   float openSkyDirectionality;     // a uniform sky's directionality in the path's SH (shared/sh.h)
   float farOpenSkyDirectionality;  // and in the far field's
-  uint pad0, pad1, pad2;
+  uint ibufferStage;    // ibuffer.light: kIbufferStage* (shared/redeferred.h)
+  uint ibufferPattern;  // ibuffer.light: kIbufferPattern*
+  uint pad2;
 };
 
 // Bindings of the tonemap pass (set 0).

@@ -40,7 +40,8 @@ TL_CONST uint kLightsPassAccum = 7u;  // rgba32f, persistent: sum of estimates (
 struct LightsPush {
   uint accumulate;  // 1: add this frame's estimate to the sum (more than kLightsLoopMax lights)
   uint restart;     // 1: the sum starts over this frame
-  uint pad0, pad1;
+  uint ibufferStage;    // redeferred form: kIbufferStage* (shared/redeferred.h)
+  uint ibufferPattern;  // redeferred form: kIbufferPattern*
 };
 
 // Up to this many lights every shading point evaluates all of them (exact: no noise). With more,

@@ -37,31 +37,6 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
         });
     return;
   }
-  if (!pipeline_) {
-    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    gpu::ComputePipelineDesc d;
-    d.name = "composite";
-    d.shader = "common/composite.comp";
-    d.layout.bindings = {{shared::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                         {shared::kCompositeBaseColor, sampled},
-                         {shared::kCompositeNormal, sampled},
-                         {shared::kCompositeMaterial, sampled},
-                         {shared::kCompositeEmissive, sampled},
-                         {shared::kCompositeDepth, sampled},
-                         {shared::kCompositeShadow, sampled},
-                         {shared::kCompositeOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                         {shared::kCompositeShadowDepth, sampled},
-                         {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                         {shared::kCompositeLights, sampled}};
-    for (const auto& b : PathInputs::bindings()) d.layout.bindings.push_back(b);
-    d.layout.pushConstantBytes = sizeof(shared::CompositePush);
-    pipeline_ = gpu::createComputePipeline(in.device, d);
-    pointSampler_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "composite.point");
-    // Outside the shadow map is lit (border white + compare): the fit covers the view.
-    shadowSampler_ = gpu::Sampler(in.device, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER,
-                                  "composite.shadowCompare", true);
-  }
-
   // Without a sun the shadow map is never sampled (the shader tests kFrameFlagSunShadows):
   // not reading it lets the graph cull the shadow pass.
   const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
@@ -83,7 +58,7 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   // Absent outputs: the binding still needs an image; the base colour stands in, unread.
   const std::string standIn = "gbuffer.baseColor";
   const bool gi = (push.flags & shared::kCompositeHasGi) != 0;
-  const PathInputs inputs{path.ambientOcclusion.empty() ? standIn : path.ambientOcclusion,
+  const CompositePathInputs inputs{path.ambientOcclusion.empty() ? standIn : path.ambientOcclusion,
                           gi ? path.diffuseShY : standIn,
                           gi ? path.diffuseCoCg : standIn,
                           far ? path.farShY : standIn,
@@ -94,6 +69,40 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   const char* output = in.temporalAntialiasing ? kCompositeUnresolved : kCompositeHdr;
   const auto unresolvedDesc = graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h,
                                                            "scene-linear radiance before exposure, jittered (TAA input)");
+  if (pointSampler_.handle() == VK_NULL_HANDLE) {
+    pointSampler_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "composite.point");
+    // Outside the shadow map is lit (border white + compare): the fit covers the view.
+    shadowSampler_ = gpu::Sampler(in.device, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER,
+                                  "composite.shadowCompare", true);
+  }
+  // Redeferred shading (lighting/common/redeferred_pass.h): the same image from the I-buffer.
+  if (in.settings.redeferred) {
+    redeferred_.add(graph, in, push, inputs, output, in.temporalAntialiasing ? unresolvedDesc : hdrDesc,
+                    pointSampler_.handle(), shadowSampler_.handle());
+    addStages(graph, in, push, inputs);
+    return;
+  }
+  if (!pipeline_) {
+    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    gpu::ComputePipelineDesc d;
+    d.name = "composite";
+    d.shader = "common/composite.comp";
+    d.layout.bindings = {{shared::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                         {shared::kCompositeBaseColor, sampled},
+                         {shared::kCompositeNormal, sampled},
+                         {shared::kCompositeMaterial, sampled},
+                         {shared::kCompositeEmissive, sampled},
+                         {shared::kCompositeDepth, sampled},
+                         {shared::kCompositeShadow, sampled},
+                         {shared::kCompositeOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                         {shared::kCompositeShadowDepth, sampled},
+                         {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                         {shared::kCompositeLights, sampled}};
+    for (const auto& b : CompositePathInputs::bindings()) d.layout.bindings.push_back(b);
+    d.layout.pushConstantBytes = sizeof(shared::CompositePush);
+    pipeline_ = gpu::createComputePipeline(in.device, d);
+  }
+
   graph.addPass(
       "composite", graph::PassKind::Compute,
       [&](graph::PassBuilder& b) {
@@ -132,20 +141,20 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   addStages(graph, in, push, inputs);
 }
 
-std::vector<gpu::Binding> CompositePass::PathInputs::bindings() {
+std::vector<gpu::Binding> CompositePathInputs::bindings() {
   const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   return {{shared::kCompositeAo, sampled},     {shared::kCompositeShY, sampled},
           {shared::kCompositeCoCg, sampled},   {shared::kCompositeFarShY, sampled},
           {shared::kCompositeFarCoCg, sampled}, {shared::kCompositeFarAo, sampled}};
 }
 
-void CompositePass::PathInputs::declareReads(graph::PassBuilder& b, const std::string& alreadyRead) const {
+void CompositePathInputs::declareReads(graph::PassBuilder& b, const std::string& alreadyRead) const {
   // The stand-in may fill several bindings: a set reads it once.
   for (const std::string& n : std::set<std::string>{ao, shY, coCg, farShY, farCoCg, farAo})
     if (n != alreadyRead) b.read(n, Usage::Sampled);
 }
 
-void CompositePass::PathInputs::bind(graph::PassContext& ctx, VkSampler sampler) const {
+void CompositePathInputs::bind(graph::PassContext& ctx, VkSampler sampler) const {
   const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
   ctx.descriptors()
       .sampledImage(shared::kCompositeAo, ctx.image(ao).view(), sampler, ro)
@@ -157,7 +166,7 @@ void CompositePass::PathInputs::bind(graph::PassContext& ctx, VkSampler sampler)
 }
 
 void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push,
-                              const PathInputs& inputs) {
+                              const CompositePathInputs& inputs) {
   const uint32_t w = in.settings.width, h = in.settings.height;
   if (!stagesPipeline_) {
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
@@ -172,7 +181,7 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
                          {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                          {shared::kCompositeStageAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                          {shared::kCompositeStageIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
-    for (const auto& b : PathInputs::bindings()) d.layout.bindings.push_back(b);
+    for (const auto& b : CompositePathInputs::bindings()) d.layout.bindings.push_back(b);
     d.layout.pushConstantBytes = sizeof(shared::CompositePush);
     stagesPipeline_ = gpu::createComputePipeline(in.device, d);
   }

@@ -6,6 +6,7 @@
 #include "gpu/pipeline.h"
 #include "graph/graph.h"
 #include "lighting/common/frame_inputs.h"
+#include "lighting/common/redeferred_pass.h"
 #include "lighting/lighting_path.h"
 #include "shared/gbuffer.h"
 
@@ -23,22 +24,26 @@ inline constexpr const char* kTonemapLdr = "tonemap.ldr";      // RGBA8, sRGB-en
 inline constexpr const char* kCompositeAo = "composite.ao";                  // R16F
 inline constexpr const char* kCompositeIrradiance = "composite.irradiance";  // RGBA16F, sky + bounce, no sun
 
+// The path's images every pass that includes shaders/common/path_indirect.glsl samples (the
+// composite, its stages, and redeferred shading's two passes): an absent one is bound to a
+// stand-in the shader never reads.
+struct CompositePathInputs {
+  std::string ao, shY, coCg, farShY, farCoCg, farAo;
+  static std::vector<gpu::Binding> bindings();
+  // Each image once; `alreadyRead` (read by the pass for another binding) is left out.
+  void declareReads(graph::PassBuilder& b, const std::string& alreadyRead = {}) const;
+  void bind(graph::PassContext& ctx, VkSampler sampler) const;
+};
+
 class CompositePass {
  public:
   void add(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path);
 
  private:
-  // The path's images both composite passes sample (shaders/common/path_indirect.glsl): an
-  // absent one is bound to a stand-in the shader never reads.
-  struct PathInputs {
-    std::string ao, shY, coCg, farShY, farCoCg, farAo;
-    static std::vector<gpu::Binding> bindings();
-    // Each image once; `alreadyRead` (read by the pass for another binding) is left out.
-    void declareReads(graph::PassBuilder& b, const std::string& alreadyRead = {}) const;
-    void bind(graph::PassContext& ctx, VkSampler sampler) const;
-  };
-  void addStages(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push, const PathInputs& inputs);
+  void addStages(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push,
+                 const CompositePathInputs& inputs);
 
+  RedeferredPass redeferred_;
   gpu::Pipeline pipeline_;
   gpu::Pipeline stagesPipeline_;
   gpu::Sampler pointSampler_;

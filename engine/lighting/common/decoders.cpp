@@ -123,6 +123,19 @@ DecodedLines depthShare(const DecodeInput& in, const DecoderSpec& spec) {
   return out;
 }
 
+// One of the I-buffer's sums of light (shared/redeferred.h): its value, luminance and what it
+// weighs. A white dielectric would reflect about Ldg / pi of the diffuse share.
+DecodedLines ibufferSum(const DecodeInput& in, const std::string& quantity) {
+  auto v = floatsAt(in.resource, in.x, in.y, in.z);
+  if (v.size() < 3) return {};
+  const glm::vec3 sum(v[0], v[1], v[2]);
+  const char* meaning = quantity == "dg"    ? "sum of E n.l (1 - E_d(mu_i)): the diffuse layer's light"
+                        : quantity == "sg1" ? "sum of E n.l D V: the specular lobe's light, F = 1"
+                        : quantity == "sg2" ? "sum of E n.l D V (1 - v.h)^5: its Schlick-weighted part"
+                                            : "sum of E n.l (1 - E(mu_i)): the multiple-scattering lobe's light";
+  return {{"sum", vec(sum)}, {"luminance", fmt::format("{:.6g}", shared::tlLuminance(sum))}, {"weighs", meaning}};
+}
+
 // Ambient occlusion: the visibility the lighting multiplies by (other channels, e.g. the view
 // depth a temporal filter keeps beside it, are shown by the raw values).
 DecodedLines ambientOcclusion(const DecodeInput& in) {
@@ -201,6 +214,7 @@ DecodedLines decodeTexel(const std::string& text, const DecodeInput& in) {
       {"voxel-faces", [](const DecodeInput& i, const DecoderSpec&) { return voxelFaces(i); }},
   };
   const DecoderSpec spec = parseDecoderSpec(text);
+  if (spec.name.rfind(kIbufferDecoderPrefix, 0) == 0) return ibufferSum(in, spec.name.substr(std::string_view(kIbufferDecoderPrefix).size()));
   auto it = kDecoders.find(spec.name);
   return it == kDecoders.end() ? DecodedLines{} : it->second(in, spec);
 }

@@ -10,6 +10,8 @@
 //                          (oct normal): irradiance in the pixel's normal direction, and the SH's
 //                          dominant direction and directionality
 //   albedo-source          rgba16f per-instance albedo, source code in alpha (shared/albedo.h)
+//   ibuffer-dg, -sg1,      rgba32f sums of light of redeferred shading's I-buffer (shared/redeferred.h):
+//   -sg2, -ms              the sum, its luminance and what it weighs
 //   depth-share            rgba32f radiance of one group of path depths (reference.bounce*);
 //                          whole=RESOURCE (the pixel's whole radiance): the group's share of it
 //   ao                     ambient occlusion: visibility in r (1 open, 0 fully occluded)
@@ -30,6 +32,7 @@
 namespace tl::lighting {
 
 inline constexpr const char* kDepthShareDecoder = "depth-share";
+inline constexpr const char* kIbufferDecoderPrefix = "ibuffer-";  // + dg, sg1, sg2, ms
 
 struct DecoderSpec {
   std::string name;

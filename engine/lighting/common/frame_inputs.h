@@ -13,6 +13,7 @@
 #include "shared/frame.h"
 
 #include <algorithm>
+#include <functional>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -67,6 +68,9 @@ struct FrameInputs {
   // Views of point and spot light shadow maps this frame (lighting/common/light_shadows.h): with
   // any, "lights.shadowViews" is imported and "shadow.lightsDepth" can be drawn for who reads it.
   uint32_t lightShadowViews = 0;
+  // Redeferred below full rate: adds the light table's refining run (lights.direct.refine, the
+  // pixels ibuffer.upsample could not fill), which whoever added lights.direct owns.
+  std::function<void(graph::RenderGraph&)> refineLights;
 };
 
 }  // namespace tl::lighting

@@ -10,6 +10,7 @@
 #include "gpu/resources.h"
 #include "graph/graph.h"
 #include "lighting/common/frame_inputs.h"
+#include "shared/lights.h"
 
 #include <map>
 #include <string>
@@ -29,15 +30,27 @@ VkBuffer lightTableOrStandIn(graph::PassContext& ctx, const FrameInputs& in, VkB
 
 class LightsPass {
  public:
-  // Returns the name of what it wrote, or "" when the frame has no lights (no pass then).
+  // Returns the name of what it wrote, or "" when the frame has no lights (no pass then);
+  // with the `redeferred` setting the light table's share of the I-buffer, lights.Ldg first.
   // `structures` names the top level (first) and the bottom levels its rays may reach that the
   // frame rewrites; `tlasHandle` is the top level: shadow rays. Empty: shadow maps.
   std::string add(graph::RenderGraph& graph, FrameInputs& in, const std::vector<std::string>& structures,
                   VkAccelerationStructureKHR tlasHandle);
+  // Redeferred below full rate (`redeferredRate`): add() shaded the pattern's pixels; this
+  // shades the ones ibuffer.upsample marked (ibuffer.refine), into the same lights.L* sums.
+  void addIbufferRefine(graph::RenderGraph& graph, FrameInputs& in, const std::vector<std::string>& structures,
+                        VkAccelerationStructureKHR tlasHandle);
 
  private:
-  gpu::Pipeline unshadowed_, shadowed_, traced_;
+  // Redeferred shading (lighting/common/redeferred_pass.h): the light table's share of the
+  // I-buffer (lights.Ldg ...) instead of radiance; returns lights.Ldg.
+  // `stage`: shared::kIbufferStage* (every pixel, the pattern's, the refined ones).
+  std::string addIbuffer(graph::RenderGraph& graph, FrameInputs& in, const std::vector<std::string>& structures,
+                         VkAccelerationStructureKHR tlasHandle, uint32_t stage);
+
+  gpu::Pipeline unshadowed_, shadowed_, traced_, ibufferUnshadowed_, ibufferShadowed_, ibufferTraced_;
   gpu::Sampler point_, shadowCompare_;
+  shared::LightsPush ibufferPush_{};  // this frame's pattern run's: the refining run continues its sums
   std::map<std::string, HistoryKeeper, std::less<>> accumulation_;  // per lighting path
 };
 

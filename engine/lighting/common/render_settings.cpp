@@ -43,7 +43,7 @@ T fromDouble(double v) {
   else return T(v);
 }
 
-bool isPowerOfTwo(double v) { return v >= 1.0 && std::exp2(std::round(std::log2(v))) == v; }
+bool isPowerOfTwo(double v) { return v > 0.0 && std::exp2(std::round(std::log2(v))) == v; }
 
 std::vector<SettingInfo> buildSchema() {
   std::vector<SettingInfo> schema;
@@ -94,7 +94,7 @@ std::string settingDomain(const SettingInfo& s) {
                          s.flags & kSettingPow2 ? ", a power of two" : "");
     case SettingType::Float: break;
   }
-  return fmt::format("a number from {:g} to {:g}", s.min, s.max);
+  return fmt::format("a number from {:g} to {:g}{}", s.min, s.max, s.flags & kSettingPow2 ? ", a power of two" : "");
 }
 
 std::optional<std::string> settingRangeError(const SettingInfo& s, double value) {

@@ -40,7 +40,7 @@ inline std::optional<MaterialMode> parseMaterialMode(std::string_view name) {
 
 // Setting flags (the `flags` column).
 inline constexpr uint32_t kSettingPlain = 0;
-inline constexpr uint32_t kSettingPow2 = 1u << 0;     // a power of two within the range
+inline constexpr uint32_t kSettingPow2 = 1u << 0;     // a power of two within the range (1/2, 1/4 for a number)
 inline constexpr uint32_t kSettingAuto = 1u << 1;     // 0 means "derived from the scene or the image" (autoSettingValue)
 inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image size: --size, the render scale; probes)
 
@@ -48,7 +48,9 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
 // Distances flagged kSettingAuto are "scaled to the scene" at 0 (see autoSettingValue).
 // History: what a path's accumulated samples estimate restarts it; the ray pattern, the
 // accumulation window, denoisers and update policies change only noise, weights or work
-// (docs/architecture.md, "The frame key").
+// (docs/architecture.md, "The frame key"). Redeferred shading changes how the composite
+// applies light, downstream of every path's history: it resets none (its own light sums keep
+// their own accumulation images).
 // clang-format off
 #define TL_RENDER_SETTINGS(X) \
   X(uint32_t, width, 640, 1, 16384, "px", "common", "", kSettingNoPanel, "image width (--size)") \
@@ -62,6 +64,8 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(uint32_t, lightShadowMapSize, 512, 64, 4096, "texels", "common", "legacy", kSettingPlain, "side of each shadow-map view of a point or spot light (a point light has six; direct and legacy paths)") \
   X(uint32_t, lightShadowMaxLights, 8, 0, 32, "", "common", "legacy", kSettingPlain, "the most powerful point and spot lights that cast shadows in the direct and legacy paths (0: none; rt and the reference trace every light)") \
   X(bool, specularGi, true, 0, 1, "", "common", "", kSettingPlain, "indirect specular from the path's SH (dominant direction, GGX; Metro); off: the sky's specular times AO") \
+  X(bool, redeferred, false, 0, 1, "", "common", "", kSettingPlain, "redeferred shading (Fools Engine): lights accumulate material-free sums (ibuffer.*), one material pass applies the materials; off: the deferred composite") \
+  X(float, redeferredRate, 1.0f, 0.25f, 1.0f, "", "common", "", kSettingPow2, "redeferred: share of pixels the illumination passes shade first (1 all, 0.5 a checkerboard, 0.25 one of each 2x2); the rest filled depth- and normal-aware, edges of geometry and light shaded at full rate") \
   X(bool, taa, false, 0, 1, "", "common", "", kSettingPlain, "temporal anti-aliasing: jittered projection, YCoCg-clipped history (not the reference, which jitters its own rays)") \
   X(float, taaBlend, 0.1f, 0.01f, 1.0f, "", "common", "", kSettingPlain, "TAA: weight of the new frame in the history; lower is smoother and slower to follow") \
   X(uint32_t, referenceBounces, 64, 1, 64, "events", "reference", "reference", kSettingPlain, "scattering events per path (1 = direct light only, 2 = one indirect bounce); Russian roulette ends paths first") \
