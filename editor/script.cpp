@@ -555,6 +555,15 @@ void Script::step(EditorApp& app) {
       } else if (cmd == "click-ui" || cmd == "double-click-ui") {
         const auto item = trackedItem(arg);
         if (!item) return fail(app, fmt::format("no control `{}` on screen", arg));
+        if (!item->visible) {
+          // Drawn but scrolled out of its window: scroll to it first, as a person would, and
+          // click once it is in view (a click at its old place would land on another control).
+          if (++scrollFrames_ > 10) return fail(app, fmt::format("control `{}` stays out of view", arg));
+          scrollToItem(arg);
+          --next_;  // this line again next frame
+          return;
+        }
+        scrollFrames_ = 0;
         const glm::vec2 centre = 0.5f * (item->min + item->max);
         app.input().click(centre);
         if (cmd == "double-click-ui") app.input().click(centre);

@@ -117,6 +117,7 @@ class Script {
   bool waitBake_ = false;
   std::string waitShaderError_;
   int shaderErrorFrames_ = 0;
+  int scrollFrames_ = 0;  // frames click-ui has waited for its control to scroll into view
   int measureFrames_ = 0;
   uint64_t measureStart_ = 0, measurePresentedStart_ = 0, measureSupersededStart_ = 0;
   bool waitScreenshot_ = false;

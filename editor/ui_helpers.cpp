@@ -10,6 +10,7 @@ namespace {
 
 std::map<std::string, ItemRect> items, previousItems;
 std::vector<std::string> clipped, previousClipped;
+std::string scrollRequest;
 
 // Whether the last item (widget and label) ends inside its window's visible area; an item
 // scrolled out of view or in a collapsed window does not count.
@@ -34,8 +35,17 @@ void tooltip(const char* text) {
 void trackItem(const std::string& name) {
   checkLastItemFits();
   const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
-  items[name] = {glm::vec2(a.x, a.y), glm::vec2(b.x, b.y)};
+  ImGuiWindow* window = ImGui::GetCurrentWindow();
+  const bool visible = window && !window->SkipItems && a.y >= window->InnerClipRect.Min.y &&
+                       b.y <= window->InnerClipRect.Max.y;
+  items[name] = {glm::vec2(a.x, a.y), glm::vec2(b.x, b.y), visible};
+  if (name == scrollRequest) {
+    ImGui::SetScrollHereY(0.5f);
+    scrollRequest.clear();
+  }
 }
+
+void scrollToItem(const std::string& name) { scrollRequest = name; }
 
 std::optional<ItemRect> trackedItem(const std::string& name) {
   auto it = previousItems.find(name);

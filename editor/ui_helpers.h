@@ -20,8 +20,12 @@ void tooltip(const char* text);
 void trackItem(const std::string& name);
 struct ItemRect {
   glm::vec2 min, max;
+  bool visible = true;  // whole inside its window's visible area (not scrolled out, not collapsed)
 };
 std::optional<ItemRect> trackedItem(const std::string& name);
+// Asks the window that draws `name` next to scroll it to its middle, as a person scrolls to a
+// control before clicking it.
+void scrollToItem(const std::string& name);
 // Called once a frame before the panels draw: items not drawn again are forgotten.
 void beginTrackedFrame();
 
