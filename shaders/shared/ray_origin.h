@@ -21,9 +21,11 @@ TL_CONST float kRayOriginFloatScale = 1.0f / 65536.0f;
 TL_CONST float kRayOriginIntScale = 256.0f;
 
 TL_FN float tlOffsetComponent(float p, float n) {
+  if (abs(p) < kRayOriginNear) return p + kRayOriginFloatScale * n;
+  // Only here, away from zero, is the ULP step taken: at p = -0.0 the bits are INT_MIN and a
+  // step towards -inf would overflow an int (UBSan found it in RayOrigin's unit test).
   int of = int(kRayOriginIntScale * n);
-  float pi = TL_INT_AS_FLOAT(TL_FLOAT_AS_INT(p) + (p < 0.0f ? -of : of));
-  return abs(p) < kRayOriginNear ? p + kRayOriginFloatScale * n : pi;
+  return TL_INT_AS_FLOAT(TL_FLOAT_AS_INT(p) + (p < 0.0f ? -of : of));
 }
 
 // `n` is the geometric normal on the side the new ray leaves from.
