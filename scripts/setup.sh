@@ -17,7 +17,9 @@ build_dir="${TWINLIGHT_BUILD_DIR:-$root/build}"
 
 # Everything the build, the run and the tests need, from Debian's archive only.
 packages=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config ccache
+  # The fuzz targets (fuzz/, the default suite's fuzz.bounded): clang with libFuzzer and the sanitizers.
+  clang libclang-rt-dev
   libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools spirv-tools
   libglfw3-dev libimgui-dev libglm-dev
   libtinygltf-dev nlohmann-json3-dev libstb-dev
