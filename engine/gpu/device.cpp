@@ -1,4 +1,5 @@
 #include "gpu/device.h"
+#include "gpu/pipeline.h"
 #include "gpu/renderdoc.h"
 
 #include <fmt/format.h>
@@ -85,13 +86,42 @@ VkDescriptorSetLayout Device::sharedSetLayout(const std::string& key, const VkDe
   return it->second;
 }
 
+VkSampler Device::sampler(const SamplerDesc& desc) {
+  auto [it, added] = samplers_.try_emplace(desc.key(), VK_NULL_HANDLE);
+  if (added) {
+    VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    ci.magFilter = ci.minFilter = desc.filter;
+    ci.mipmapMode = desc.filter == VK_FILTER_LINEAR ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    ci.addressModeU = ci.addressModeV = ci.addressModeW = desc.address;
+    ci.maxLod = VK_LOD_CLAMP_NONE;
+    ci.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
+    ci.compareEnable = desc.compareDepth;
+    ci.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
+    try {
+      TL_VK(vkCreateSampler(device_, &ci, nullptr, &it->second));
+    } catch (...) {
+      samplers_.erase(it);
+      throw;
+    }
+    setName(VK_OBJECT_TYPE_SAMPLER, uint64_t(it->second), desc.name);
+  }
+  return it->second;
+}
+
+PipelineCache& Device::pipelines() {
+  if (!pipelines_) pipelines_ = std::make_unique<PipelineCache>();
+  return *pipelines_;
+}
+
 Device::~Device() {
   if (device_) {
     waitTimeline(submitted_);  // a device that hangs stops the process here, not in vkDeviceWaitIdle
     vkDeviceWaitIdle(device_);
+    pipelines_.reset();  // hands its objects to the garbage below
     for (auto& g : garbage_) g.destroy();
     garbage_.clear();
     for (auto& [key, layout] : sharedSetLayouts_) vkDestroyDescriptorSetLayout(device_, layout, nullptr);
+    for (auto& [key, sampler] : samplers_) vkDestroySampler(device_, sampler, nullptr);
     for (auto& s : commandSlots_) vkDestroyCommandPool(device_, s.pool, nullptr);
     vkDestroySemaphore(device_, timeline_, nullptr);
     vkDestroyDevice(device_, nullptr);

@@ -12,6 +12,8 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <memory>
+#include <tuple>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -32,6 +34,18 @@ struct DeviceOptions {
 
 // Exit status of a process the watchdog stopped.
 inline constexpr int kExitDeviceHung = 4;
+
+// A sampler by what it does; the device keeps one VkSampler per distinct description
+// (Device::sampler), named after it, so passes share them instead of each making its own.
+struct SamplerDesc {
+  VkFilter filter = VK_FILTER_NEAREST;
+  VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  bool compareDepth = false;  // a depth comparison sampler (shadow maps)
+  const char* name = "point.clamp";
+  auto key() const { return std::tuple(int(filter), int(address), compareDepth); }
+};
+
+class PipelineCache;  // gpu/pipeline.h
 
 // Extension entry points, loaded once.
 struct Extensions {
@@ -112,6 +126,10 @@ class Device {
   // kept until the device goes. Tables that come and go with a scene share it, so pipelines
   // built on it stay valid across scenes and need not be compiled again (on lavapipe a
   // ray-tracing pipeline takes tens of seconds to compile).
+  // The device-wide sampler for `desc`: made on first use, destroyed with the device.
+  VkSampler sampler(const SamplerDesc& desc);
+  // The device-wide pipelines built by description (gpu/pipeline.h), destroyed with the device.
+  PipelineCache& pipelines();
   VkDescriptorSetLayout sharedSetLayout(const std::string& key, const VkDescriptorSetLayoutCreateInfo& info);
 
   // VK_EXT_debug_utils names and labels; no-ops when the extension is absent.
@@ -162,6 +180,8 @@ class Device {
   std::deque<CommandSlot> commandSlots_;
   std::deque<Garbage> garbage_;
   std::map<std::string, VkDescriptorSetLayout> sharedSetLayouts_;
+  std::map<std::tuple<int, int, bool>, VkSampler> samplers_;
+  std::unique_ptr<PipelineCache> pipelines_;
   std::atomic<uint32_t> validationErrors_{0};
   mutable std::mutex messagesMutex_;
   std::vector<std::string> messages_;

@@ -67,8 +67,18 @@ void Pipeline::createLayout(Device& device, const PipelineLayoutDesc& desc, VkSh
   bindings_ = desc.bindings;
   pushConstantBytes_ = desc.pushConstantBytes;
   std::vector<VkDescriptorSetLayoutBinding> b;
-  for (auto& x : desc.bindings) b.push_back({x.binding, x.type, x.count, stages, nullptr});
+  std::vector<VkDescriptorBindingFlags> flags;
+  bool anyOptional = false;
+  for (auto& x : desc.bindings) {
+    b.push_back({x.binding, x.type, x.count, stages, nullptr});
+    flags.push_back(x.optional ? VK_DESCRIPTOR_BINDING_PARTIALLY_BOUND_BIT : 0);
+    anyOptional |= x.optional;
+  }
+  VkDescriptorSetLayoutBindingFlagsCreateInfo fci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_BINDING_FLAGS_CREATE_INFO};
+  fci.bindingCount = uint32_t(flags.size());
+  fci.pBindingFlags = flags.data();
   VkDescriptorSetLayoutCreateInfo sci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  if (anyOptional) sci.pNext = &fci;
   sci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
   sci.bindingCount = uint32_t(b.size());
   sci.pBindings = b.data();
@@ -297,6 +307,20 @@ Pipeline createRayTracingPipeline(Device& device, const RayTracingPipelineDesc& 
 }
 
 // ---- DescriptorWriter ------------------------------------------------------------------
+
+std::string PipelineCache::key(const ComputePipelineDesc& desc) {
+  std::string key = fmt::format("{}|{}|{}", desc.name, desc.shader, desc.layout.pushConstantBytes);
+  for (const Binding& b : desc.layout.bindings) key += fmt::format("|{}:{}:{}:{}", b.binding, int(b.type), b.count, b.optional);
+  for (VkDescriptorSetLayout s : desc.layout.extraSets) key += fmt::format("|set{}", uint64_t(s));
+  return key;
+}
+
+const Pipeline& PipelineCache::compute(Device& device, const ComputePipelineDesc& desc) {
+  const std::string k = key(desc);
+  auto it = pipelines_.find(k);
+  if (it == pipelines_.end()) it = pipelines_.emplace(k, createComputePipeline(device, desc)).first;
+  return it->second;
+}
 
 DescriptorWriter& DescriptorWriter::storageImage(uint32_t binding, VkImageView view) {
   Entry e{binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};

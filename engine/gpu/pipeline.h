@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct Binding {
   uint32_t binding = 0;
   VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
   uint32_t count = 1;
+  // May be left unwritten (partially bound): an optional input the shader is told is absent.
+  bool optional = false;
+  bool operator==(const Binding&) const = default;
 };
 
 struct PipelineLayoutDesc {
@@ -110,6 +114,19 @@ class Pipeline {
 };
 
 Pipeline createComputePipeline(Device& device, const ComputePipelineDesc& desc);
+
+// Compute pipelines by description, one per distinct (name, shader, layout), kept for the
+// device's life (Device::pipelines()): what pass builders bind, so a pass holds no pipeline.
+class PipelineCache {
+ public:
+  const Pipeline& compute(Device& device, const ComputePipelineDesc& desc);
+  bool contains(const ComputePipelineDesc& desc) const { return pipelines_.count(key(desc)) != 0; }
+  size_t size() const { return pipelines_.size(); }
+
+ private:
+  static std::string key(const ComputePipelineDesc& desc);
+  std::map<std::string, Pipeline> pipelines_;
+};
 Pipeline createGraphicsPipeline(Device& device, const GraphicsPipelineDesc& desc);
 Pipeline createRayTracingPipeline(Device& device, const RayTracingPipelineDesc& desc);
 

@@ -5,10 +5,9 @@
 // light is worth in a scene, at the price of sky visibility alone. It traces the rt path's top
 // level (the one acceleration structure the engine builds; rt's passes run to build and cull
 // it, so its GPU time in a benchmark includes theirs).
-#include "gpu/pipeline.h"
-#include "gpu/resources.h"
 #include "lighting/common/frame_inputs.h"
 #include "lighting/common/gbuffer_pass.h"
+#include "lighting/common/pass_builders.h"
 #include "lighting/lighting_path.h"
 
 #include "shaders/bent_sky.h"
@@ -19,7 +18,6 @@ namespace tl::plugins {
 namespace {
 
 using namespace lighting;
-using graph::Usage;
 
 constexpr const char* kHistory = "bentsky.history";
 constexpr const char* kShY = "bentsky.shY";
@@ -44,23 +42,6 @@ class BentSkyPath final : public LightingPath {
 
   LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
     const LightingOutputs rt = tracer_->addPasses(graph, in);  // for its top level
-    if (!pipeline_) {
-      const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-      gpu::ComputePipelineDesc d;
-      d.name = "bentsky.trace";
-      d.shader = "plugins/bent_sky/shaders/bent_sky.comp";
-      d.layout.bindings = {{shared::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                           {shared::kBentSkyNormal, sampled},
-                           {shared::kBentSkyDepth, sampled},
-                           {shared::kBentSkyTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-                           {shared::kBentSkyHistory, storage},
-                           {shared::kBentSkyShY, storage},
-                           {shared::kBentSkyCoCg, storage},
-                           {shared::kBentSkyAo, storage}};
-      d.layout.pushConstantBytes = sizeof(shared::BentSkyPush);
-      pipeline_ = gpu::createComputePipeline(in.device, d);
-      point_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "bentsky.point");
-    }
     const RenderSettings& s = in.settings;
     const uint32_t w = s.width, h = s.height;
     const float scale = std::max(in.constants.sceneScale, 1e-3f);
@@ -76,38 +57,19 @@ class BentSkyPath final : public LightingPath {
     push.rays = std::max(1u, s.bentSkyRays);
     push.frames = frames_;
     push.rayLength = s.rtRayLength > 0.0f ? s.rtRayLength : sceneScaledRayLength(scale);
-    const std::vector<std::string> structures = rt.shadowStructures;
-    const VkAccelerationStructureKHR tlas = rt.shadowTlasHandle;
-    graph.addPass(
-        "bentsky.trace", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          b.read(kFrameConstants, Usage::StorageRead);
-          b.read("gbuffer.normal", Usage::Sampled);
-          b.read(kGbufferDepth, Usage::Sampled);
-          for (const auto& st : structures) b.read(st, Usage::AccelerationStructureRead);
-          b.write(kHistory, Usage::StorageWrite);
-          b.create(kShY, graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "sky irradiance, L1 SH of luma (L0 only)"),
-                   Usage::StorageWrite);
-          b.create(kCoCg, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "sky irradiance, chroma"),
-                   Usage::StorageWrite);
-          b.create(kAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "sky visibility (cosine-weighted)"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push, tlas, w, h](graph::PassContext& ctx) {
-          const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
-          ctx.bind(pipeline_);
-          ctx.descriptors()
-              .uniformBuffer(shared::kBindingFrame, in.constantsBuffer.handle())
-              .sampledImage(shared::kBentSkyNormal, ctx.image("gbuffer.normal").view(), point_.handle(), ro)
-              .sampledImage(shared::kBentSkyDepth, ctx.image(kGbufferDepth).view(), point_.handle(), ro)
-              .accelerationStructure(shared::kBentSkyTlas, tlas)
-              .storageImage(shared::kBentSkyHistory, ctx.image(kHistory).view())
-              .storageImage(shared::kBentSkyShY, ctx.image(kShY).view())
-              .storageImage(shared::kBentSkyCoCg, ctx.image(kCoCg).view())
-              .storageImage(shared::kBentSkyAo, ctx.image(kAo).view());
-          ctx.pushConstants(push);
-          ctx.dispatch(w, h);
-        });
+    ComputePass(in.device, "bentsky.trace", "plugins/bent_sky/shaders/bent_sky.comp")
+        .uniform(shared::kBindingFrame, kFrameConstants)
+        .sampled(shared::kBentSkyNormal, "gbuffer.normal")
+        .sampled(shared::kBentSkyDepth, kGbufferDepth)
+        .accelerationStructure(shared::kBentSkyTlas, rt.shadowTlasHandle, rt.shadowStructures)
+        .storageInOut(shared::kBentSkyHistory, kHistory)
+        .storageOut(shared::kBentSkyShY, kShY,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "sky irradiance, L1 SH of luma (L0 only)"))
+        .storageOut(shared::kBentSkyCoCg, kCoCg, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "sky irradiance, chroma"))
+        .storageOut(shared::kBentSkyAo, kAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "sky visibility (cosine-weighted)"))
+        .push(push)
+        .dispatch(w, h)
+        .add(graph);
 
     LightingOutputs out;
     out.ambientOcclusion = kAo;
@@ -121,8 +83,6 @@ class BentSkyPath final : public LightingPath {
 
  private:
   std::unique_ptr<LightingPath> tracer_ = makeRtPath();
-  gpu::Pipeline pipeline_;
-  gpu::Sampler point_;
   HistoryKeeper history_;
   uint32_t frames_ = 0;
 };

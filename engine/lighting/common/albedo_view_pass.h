@@ -27,8 +27,6 @@ class AlbedoViewPass {
   bool hasBaseline() const { return haveBaseline_; }
 
  private:
-  gpu::Pipeline view_, impact_;
-  gpu::Sampler point_;
   gpu::Buffer perInstance_;
   uint64_t uploadedVersion_ = ~0ull;
   uint64_t sceneId_ = 0;

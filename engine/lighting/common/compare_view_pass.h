@@ -4,7 +4,6 @@
 // Only the editor's Compare panel adds it.
 #pragma once
 
-#include "gpu/pipeline.h"
 #include "graph/graph.h"
 #include "lighting/common/frame_inputs.h"
 
@@ -28,10 +27,6 @@ class CompareViewPass {
   // `haveLeft`/`haveRight`: whether those sides hold an image from an earlier frame or this one.
   void add(graph::RenderGraph& graph, FrameInputs& in, const CompareViewRequest& request, const std::string& rendered,
            bool haveLeft, bool haveRight);
-
- private:
-  gpu::Pipeline pipeline_;
-  gpu::Sampler sampler_;
 };
 
 }  // namespace tl::lighting

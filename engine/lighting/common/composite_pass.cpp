@@ -3,6 +3,7 @@
 
 #include "graph/executor.h"
 #include "lighting/common/gbuffer_pass.h"
+#include "lighting/common/pass_builders.h"
 #include "lighting/common/shadow_pass.h"
 #include "shared/brdf_lut.h"
 
@@ -11,6 +12,20 @@
 namespace tl::lighting {
 
 using graph::Usage;
+
+namespace {
+// The path's optional images, bound where the path made them (the push flags tell the shader
+// which): no stand-in fills an absent one.
+void addPathInputs(ComputePass& pass, const LightingOutputs& path, uint32_t flags) {
+  const bool gi = (flags & shared::kCompositeHasGi) != 0, far = (flags & shared::kCompositeHasFarGi) != 0;
+  pass.optionalSampled(shared::kCompositeAo, path.ambientOcclusion, (flags & shared::kCompositeHasAo) != 0)
+      .optionalSampled(shared::kCompositeShY, path.diffuseShY, gi)
+      .optionalSampled(shared::kCompositeCoCg, path.diffuseCoCg, gi)
+      .optionalSampled(shared::kCompositeFarShY, path.farShY, far)
+      .optionalSampled(shared::kCompositeFarCoCg, path.farCoCg, far)
+      .optionalSampled(shared::kCompositeFarAo, path.farAo, far);
+}
+}  // namespace
 
 void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path) {
   const uint32_t w = in.settings.width, h = in.settings.height;
@@ -48,14 +63,13 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
                    (push.flags & shared::kCompositeHasGi);
   if (far) push.flags |= shared::kCompositeHasFarGi;
   if (in.settings.specularGi) push.flags |= shared::kCompositeSpecularGi;
-  // The light table's radiance (lights.direct); without lights the base colour stands in, unread.
-  const std::string lights = path.lightsRadiance.empty() ? std::string("gbuffer.baseColor") : path.lightsRadiance;
+  // The light table's radiance (lights.direct), where the path made it.
   if (!path.lightsRadiance.empty()) push.flags |= shared::kCompositeHasLights;
   push.giBlendDistance = path.giBlendDistance;
   push.openSkyDirectionality = path.openSkyDirectionality;
   push.farOpenSkyDirectionality = path.farOpenSkyDirectionality;
   push.giBlendWidth = kGiBlendWidthFraction * path.giBlendDistance;
-  // Absent outputs: the binding still needs an image; the base colour stands in, unread.
+  // Redeferred's passes still bind a stand-in for an absent output (the base colour, unread).
   const std::string standIn = "gbuffer.baseColor";
   const bool gi = (push.flags & shared::kCompositeHasGi) != 0;
   const CompositePathInputs inputs{path.ambientOcclusion.empty() ? standIn : path.ambientOcclusion,
@@ -69,76 +83,28 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   const char* output = in.temporalAntialiasing ? kCompositeUnresolved : kCompositeHdr;
   const auto unresolvedDesc = graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h,
                                                            "scene-linear radiance before exposure, jittered (TAA input)");
-  if (pointSampler_.handle() == VK_NULL_HANDLE) {
-    pointSampler_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "composite.point");
-    // Outside the shadow map is lit (border white + compare): the fit covers the view.
-    shadowSampler_ = gpu::Sampler(in.device, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER,
-                                  "composite.shadowCompare", true);
-  }
   // Redeferred shading (lighting/common/redeferred_pass.h): the same image from the I-buffer.
   if (in.settings.redeferred) {
     redeferred_.add(graph, in, push, inputs, output, in.temporalAntialiasing ? unresolvedDesc : hdrDesc,
-                    pointSampler_.handle(), shadowSampler_.handle());
-    addStages(graph, in, push, inputs);
+                    in.device.sampler(samplers::point), in.device.sampler(samplers::sunShadowCompare));
+    addStages(graph, in, push, path);
     return;
   }
-  if (!pipeline_) {
-    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    gpu::ComputePipelineDesc d;
-    d.name = "composite";
-    d.shader = "common/composite.comp";
-    d.layout.bindings = {{shared::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                         {shared::kCompositeBaseColor, sampled},
-                         {shared::kCompositeNormal, sampled},
-                         {shared::kCompositeMaterial, sampled},
-                         {shared::kCompositeEmissive, sampled},
-                         {shared::kCompositeDepth, sampled},
-                         {shared::kCompositeShadow, sampled},
-                         {shared::kCompositeOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                         {shared::kCompositeShadowDepth, sampled},
-                         {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                         {shared::kCompositeLights, sampled}};
-    for (const auto& b : CompositePathInputs::bindings()) d.layout.bindings.push_back(b);
-    d.layout.pushConstantBytes = sizeof(shared::CompositePush);
-    pipeline_ = gpu::createComputePipeline(in.device, d);
-  }
-
-  graph.addPass(
-      "composite", graph::PassKind::Compute,
-      [&](graph::PassBuilder& b) {
-        b.read(kFrameConstants, Usage::StorageRead);
-        b.read(kBrdfTables, Usage::StorageRead);
-        for (const char* n : {"gbuffer.baseColor", "gbuffer.normal", "gbuffer.material", "gbuffer.emissive"})
-          b.read(n, Usage::Sampled);
-        b.read(kGbufferDepth, Usage::Sampled);
-        if (sun) b.read(kShadowSunDepth, Usage::Sampled);
-        if (lights != "gbuffer.baseColor") b.read(lights, Usage::Sampled);
-        inputs.declareReads(b, "gbuffer.baseColor");
-        b.create(output, in.temporalAntialiasing ? unresolvedDesc : hdrDesc, Usage::StorageWrite);
-      },
-      [this, &in, sun, push, inputs, output, lights](graph::PassContext& ctx) {
-        const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
-        VkSampler point = pointSampler_.handle();
-        // The binding must still hold a depth image; the G-buffer's depth stands in, unread.
-        const gpu::Image& shadow = ctx.image(sun ? kShadowSunDepth : kGbufferDepth);
-        ctx.bind(pipeline_);
-        ctx.descriptors()
-            .uniformBuffer(shared::kBindingFrame, in.constantsBuffer.handle())
-            .sampledImage(shared::kCompositeBaseColor, ctx.image("gbuffer.baseColor").view(), point, ro)
-            .sampledImage(shared::kCompositeNormal, ctx.image("gbuffer.normal").view(), point, ro)
-            .sampledImage(shared::kCompositeMaterial, ctx.image("gbuffer.material").view(), point, ro)
-            .sampledImage(shared::kCompositeEmissive, ctx.image("gbuffer.emissive").view(), point, ro)
-            .sampledImage(shared::kCompositeDepth, ctx.image(kGbufferDepth).view(), point, ro)
-            .sampledImage(shared::kCompositeShadow, shadow.view(), shadowSampler_.handle(), ro)
-            .storageImage(shared::kCompositeOutput, ctx.image(output).view())
-            .sampledImage(shared::kCompositeShadowDepth, shadow.view(), point, ro)
-            .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle())
-            .sampledImage(shared::kCompositeLights, ctx.image(lights).view(), point, ro);
-        inputs.bind(ctx, point);
-        ctx.pushConstants(push);
-        ctx.dispatch(in.settings.width, in.settings.height);
-      });
-  addStages(graph, in, push, inputs);
+  ComputePass pass(in.device, "composite", "common/composite.comp");
+  pass.uniform(shared::kBindingFrame, kFrameConstants)
+      .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
+      .sampled(shared::kCompositeBaseColor, "gbuffer.baseColor")
+      .sampled(shared::kCompositeNormal, "gbuffer.normal")
+      .sampled(shared::kCompositeMaterial, "gbuffer.material")
+      .sampled(shared::kCompositeEmissive, "gbuffer.emissive")
+      .sampled(shared::kCompositeDepth, kGbufferDepth)
+      .optionalSampled(shared::kCompositeShadow, kShadowSunDepth, sun, samplers::sunShadowCompare)
+      .optionalSampled(shared::kCompositeShadowDepth, kShadowSunDepth, sun)
+      .optionalSampled(shared::kCompositeLights, path.lightsRadiance, !path.lightsRadiance.empty())
+      .storageOut(shared::kCompositeOutput, output, in.temporalAntialiasing ? unresolvedDesc : hdrDesc);
+  addPathInputs(pass, path, push.flags);
+  pass.push(push).dispatch(w, h).add(graph);
+  addStages(graph, in, push, path);
 }
 
 std::vector<gpu::Binding> CompositePathInputs::bindings() {
@@ -166,90 +132,33 @@ void CompositePathInputs::bind(graph::PassContext& ctx, VkSampler sampler) const
 }
 
 void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push,
-                              const CompositePathInputs& inputs) {
+                              const LightingOutputs& path) {
   const uint32_t w = in.settings.width, h = in.settings.height;
-  if (!stagesPipeline_) {
-    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    gpu::ComputePipelineDesc d;
-    d.name = "composite.stages";
-    d.shader = "common/composite_stages.comp";
-    d.layout.bindings = {{shared::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                         {shared::kCompositeBaseColor, sampled},
-                         {shared::kCompositeNormal, sampled},
-                         {shared::kCompositeMaterial, sampled},
-                         {shared::kCompositeDepth, sampled},
-                         {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                         {shared::kCompositeStageAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                         {shared::kCompositeStageIrradiance, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
-    for (const auto& b : CompositePathInputs::bindings()) d.layout.bindings.push_back(b);
-    d.layout.pushConstantBytes = sizeof(shared::CompositePush);
-    stagesPipeline_ = gpu::createComputePipeline(in.device, d);
-  }
-  graph.addPass(
-      "composite.stages", graph::PassKind::Compute,
-      [&](graph::PassBuilder& b) {
-        b.read(kFrameConstants, Usage::StorageRead);
-        b.read(kBrdfTables, Usage::StorageRead);
-        for (const char* n : {"gbuffer.baseColor", "gbuffer.normal", "gbuffer.material"}) b.read(n, Usage::Sampled);
-        b.read(kGbufferDepth, Usage::Sampled);
-        inputs.declareReads(b, "gbuffer.baseColor");
-        b.create(kCompositeAo,
-                 graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "the AO the composite applied (0: sky)").decodedAs("ao"),
-                 Usage::StorageWrite);
-        b.create(kCompositeIrradiance,
-                 graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
-                                              "the diffuse irradiance the composite used: sky + bounce, no sun (0: sky)"),
-                 Usage::StorageWrite);
-      },
-      [this, &in, push, inputs](graph::PassContext& ctx) {
-        const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
-        VkSampler point = pointSampler_.handle();
-        ctx.bind(stagesPipeline_);
-        ctx.descriptors()
-            .uniformBuffer(shared::kBindingFrame, in.constantsBuffer.handle())
-            .sampledImage(shared::kCompositeBaseColor, ctx.image("gbuffer.baseColor").view(), point, ro)
-            .sampledImage(shared::kCompositeNormal, ctx.image("gbuffer.normal").view(), point, ro)
-            .sampledImage(shared::kCompositeMaterial, ctx.image("gbuffer.material").view(), point, ro)
-            .sampledImage(shared::kCompositeDepth, ctx.image(kGbufferDepth).view(), point, ro)
-            .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle())
-            .storageImage(shared::kCompositeStageAo, ctx.image(kCompositeAo).view())
-            .storageImage(shared::kCompositeStageIrradiance, ctx.image(kCompositeIrradiance).view());
-        inputs.bind(ctx, point);
-        ctx.pushConstants(push);
-        ctx.dispatch(in.settings.width, in.settings.height);
-      });
+  ComputePass pass(in.device, "composite.stages", "common/composite_stages.comp");
+  pass.uniform(shared::kBindingFrame, kFrameConstants)
+      .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
+      .sampled(shared::kCompositeBaseColor, "gbuffer.baseColor")
+      .sampled(shared::kCompositeNormal, "gbuffer.normal")
+      .sampled(shared::kCompositeMaterial, "gbuffer.material")
+      .sampled(shared::kCompositeDepth, kGbufferDepth)
+      .storageOut(shared::kCompositeStageAo, kCompositeAo,
+                  graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "the AO the composite applied (0: sky)").decodedAs("ao"))
+      .storageOut(shared::kCompositeStageIrradiance, kCompositeIrradiance,
+                  graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
+                                               "the diffuse irradiance the composite used: sky + bounce, no sun (0: sky)"));
+  addPathInputs(pass, path, push.flags);
+  pass.push(push).dispatch(w, h).add(graph);
 }
 
 void TonemapPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   const uint32_t w = in.settings.width, h = in.settings.height;
-  if (!pipeline_) {
-    gpu::ComputePipelineDesc d;
-    d.name = "tonemap";
-    d.shader = "common/tonemap.comp";
-    d.layout.bindings = {{shared::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                         {shared::kTonemapInput, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                         {shared::kTonemapOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
-    pipeline_ = gpu::createComputePipeline(in.device, d);
-    pointSampler_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "tonemap.point");
-  }
-  graph.addPass(
-      "tonemap", graph::PassKind::Compute,
-      [&](graph::PassBuilder& b) {
-        b.read(kFrameConstants, Usage::StorageRead);
-        b.read(kCompositeHdr, Usage::Sampled);
-        b.create(kTonemapLdr,
-                 graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "display image: exposure, ACES, sRGB").displayReferred(),
-                 Usage::StorageWrite);
-      },
-      [this, &in](graph::PassContext& ctx) {
-        ctx.bind(pipeline_);
-        ctx.descriptors()
-            .uniformBuffer(shared::kBindingFrame, in.constantsBuffer.handle())
-            .sampledImage(shared::kTonemapInput, ctx.image(kCompositeHdr).view(), pointSampler_.handle(),
-                          VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL)
-            .storageImage(shared::kTonemapOutput, ctx.image(kTonemapLdr).view());
-        ctx.dispatch(in.settings.width, in.settings.height);
-      });
+  ComputePass(in.device, "tonemap", "common/tonemap.comp")
+      .uniform(shared::kBindingFrame, kFrameConstants)
+      .sampled(shared::kTonemapInput, kCompositeHdr)
+      .storageOut(shared::kTonemapOutput, kTonemapLdr,
+                  graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "display image: exposure, ACES, sRGB").displayReferred())
+      .dispatch(w, h)
+      .add(graph);
   graph.markOutput(kTonemapLdr);
   graph.markOutput(kCompositeHdr);
 }

@@ -25,8 +25,8 @@ inline constexpr const char* kCompositeAo = "composite.ao";                  // 
 inline constexpr const char* kCompositeIrradiance = "composite.irradiance";  // RGBA16F, sky + bounce, no sun
 
 // The path's images every pass that includes shaders/common/path_indirect.glsl samples (the
-// composite, its stages, and redeferred shading's two passes): an absent one is bound to a
-// stand-in the shader never reads.
+// composite and its stages bind them as optional inputs (pass_builders.h); redeferred shading's
+// two passes still bind an absent one to a stand-in the shader never reads.
 struct CompositePathInputs {
   std::string ao, shY, coCg, farShY, farCoCg, farAo;
   static std::vector<gpu::Binding> bindings();
@@ -41,22 +41,14 @@ class CompositePass {
 
  private:
   void addStages(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push,
-                 const CompositePathInputs& inputs);
+                 const LightingOutputs& path);
 
   RedeferredPass redeferred_;
-  gpu::Pipeline pipeline_;
-  gpu::Pipeline stagesPipeline_;
-  gpu::Sampler pointSampler_;
-  gpu::Sampler shadowSampler_;
 };
 
 class TonemapPass {
  public:
   void add(graph::RenderGraph& graph, FrameInputs& in);
-
- private:
-  gpu::Pipeline pipeline_;
-  gpu::Sampler pointSampler_;
 };
 
 }  // namespace tl::lighting

@@ -1,10 +1,10 @@
 #include "lighting/common/display_pass.h"
 
 #include "gpu/formats.h"
-#include "graph/executor.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/copy_pass.h"
 #include "lighting/common/gbuffer_pass.h"
+#include "lighting/common/pass_builders.h"
 #include "shared/display.h"
 
 namespace tl::lighting {
@@ -14,24 +14,6 @@ void DisplayPass::add(graph::RenderGraph& graph, FrameInputs& in, const DisplayR
 }
 
 void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w, uint32_t h, const DisplayRequest& request) {
-  if (!floatPipeline_) {
-    auto make = [&](const char* name, const char* shader) {
-      gpu::ComputePipelineDesc d;
-      d.name = name;
-      d.shader = shader;
-      d.layout.bindings = {{shared::kDisplaySource, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                           {shared::kDisplayInstanceId, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                           {shared::kDisplayOutput, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                           {shared::kDisplayCompanionA, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                           {shared::kDisplayCompanionB, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
-      d.layout.pushConstantBytes = sizeof(shared::DisplayPush);
-      return gpu::createComputePipeline(device, d);
-    };
-    floatPipeline_ = make("display.float", "common/display_float.comp");
-    float3dPipeline_ = make("display.float3d", "common/display_float3d.comp");
-    uintPipeline_ = make("display.uint", "common/display_uint.comp");
-    sampler_ = gpu::Sampler(device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "display.point");
-  }
   const std::string requested = request.source.empty() ? kTonemapLdr : request.source;
   auto id = graph.find(requested);
   if (!id || graph.resources()[*id].desc.type != graph::ResourceType::Image)
@@ -79,30 +61,20 @@ void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w
   companions.resize(2);  // unused slots show the source (the shader reads them only for a meaning)
   for (std::string& c : companions)
     if (c.empty()) c = source;
-  graph.addPass(
-      "display", graph::PassKind::Compute,
-      [&](graph::PassBuilder& b) {
-        b.read(source, graph::Usage::Sampled);
-        if (source != kGbufferChannels[5].name) b.read(kGbufferChannels[5].name, graph::Usage::Sampled);
-        for (size_t i = 0; i < companions.size(); ++i)
-          if (companions[i] != source && companions[i] != kGbufferChannels[5].name && (i == 0 || companions[i] != companions[0]))
-            b.read(companions[i], graph::Usage::Sampled);
-        b.create(kDisplayLdr, graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "editor viewport image").displayReferred(),
-                 graph::Usage::StorageWrite);
-      },
-      [this, push, source, volume, companions](graph::PassContext& ctx) {
-        const gpu::Pipeline& p = push.mode == shared::kDisplayModeId ? uintPipeline_ : volume ? float3dPipeline_ : floatPipeline_;
-        const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
-        ctx.bind(p);
-        ctx.pushConstants(push);
-        ctx.descriptors()
-            .sampledImage(shared::kDisplaySource, ctx.image(source).view(), sampler_.handle(), ro)
-            .sampledImage(shared::kDisplayInstanceId, ctx.image(kGbufferChannels[5].name).view(), sampler_.handle(), ro)
-            .storageImage(shared::kDisplayOutput, ctx.image(kDisplayLdr).view())
-            .sampledImage(shared::kDisplayCompanionA, ctx.image(companions[0]).view(), sampler_.handle(), ro)
-            .sampledImage(shared::kDisplayCompanionB, ctx.image(companions[1]).view(), sampler_.handle(), ro);
-        ctx.dispatch(ctx.extent(kDisplayLdr).width, ctx.extent(kDisplayLdr).height);
-      });
+  const bool ids = push.mode == shared::kDisplayModeId;
+  ComputePass pass(device, ids ? "display.uint" : volume ? "display.float3d" : "display.float",
+                   ids ? "common/display_uint.comp" : volume ? "common/display_float3d.comp" : "common/display_float.comp");
+  if (ids)  // the integer view has no companions
+    pass.reads(companions[0], graph::Usage::Sampled).reads(companions[1], graph::Usage::Sampled);
+  else
+    pass.sampled(shared::kDisplayCompanionA, companions[0]).sampled(shared::kDisplayCompanionB, companions[1]);
+  pass.sampled(shared::kDisplaySource, source)
+      .sampled(shared::kDisplayInstanceId, kGbufferChannels[5].name)
+      .storageOut(shared::kDisplayOutput, kDisplayLdr,
+                  graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "editor viewport image").displayReferred())
+      .push(push)
+      .dispatch(w, h)
+      .add(graph);
   graph.markOutput(kDisplayLdr);
 }
 

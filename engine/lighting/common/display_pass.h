@@ -45,8 +45,6 @@ class DisplayPass {
   void add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w, uint32_t h, const DisplayRequest& request);
 
  private:
-  gpu::Pipeline floatPipeline_, float3dPipeline_, uintPipeline_;
-  gpu::Sampler sampler_;
   std::optional<graph::ResourceDesc> copyDesc_;  // what display.copyB holds, once kept
 };
 

@@ -4,7 +4,6 @@
 // screen feedback) already reads. Its history is the graph's persistent taa.history.
 #pragma once
 
-#include "gpu/pipeline.h"
 #include "graph/graph.h"
 #include "lighting/common/frame_inputs.h"
 
@@ -27,9 +26,6 @@ class TaaPass {
   void add(graph::RenderGraph& graph, FrameInputs& in);
 
  private:
-  gpu::Pipeline pipeline_;
-  gpu::Sampler pointSampler_;
-  gpu::Sampler linearSampler_;
   // Per path, the frame key of the last frame its TAA ran in: a history is used only by the
   // very next frame of that path (not after TAA was off or another path ran), and not across
   // a camera cut or a new scene.

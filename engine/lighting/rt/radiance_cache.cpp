@@ -2,6 +2,7 @@
 #include "lighting/rt/radiance_cache.h"
 
 #include "graph/executor.h"
+#include "lighting/common/pass_builders.h"
 #include "lighting/common/render_settings.h"
 
 #include <algorithm>
@@ -115,60 +116,25 @@ void RtRadianceCache::plan(FrameInputs& in, shared::RtPush& push, float sceneSca
   in.executor.requestReadback(kRtCacheOutcomes);
 }
 
-void RtRadianceCache::createPipelines(gpu::Device& device) {
-  using B = gpu::Binding;
-  const auto storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  auto compute = [&](const char* name, const char* shader, std::vector<B> bindings) {
-    gpu::ComputePipelineDesc d;
-    d.name = name;
-    d.shader = shader;
-    d.layout.bindings = std::move(bindings);
-    d.layout.pushConstantBytes = sizeof(shared::RtCachePush);
-    return gpu::createComputePipeline(device, d);
-  };
-  accumulate_ = compute("rt.cache.accumulate", "rt/cache_accumulate.comp",
-                        {{shared::kRtBindingCacheSamples, storage}, {shared::kRtBindingCacheAccum, storage}});
-  resolve_ = compute("rt.cache.resolve", "rt/cache_resolve.comp",
-                     {{shared::kRtBindingCacheAccum, storage}, {shared::kRtBindingCacheEntries, storage}});
-}
-
 void RtRadianceCache::addPasses(graph::RenderGraph& graph, FrameInputs& in) {
   if (!active_) return;
-  if (!accumulate_) createPipelines(in.device);
   const uint32_t entries = push_.entryMask + 1u;
   graph.declarePersistent(kRtCacheEntries, entriesDesc(entries));
   graph.declareCache(kRtCacheAccum, accumDesc(entries));
-  const shared::RtCachePush push = push_;
-  graph.addPass(
-      "rt.cache.accumulate", graph::PassKind::Compute,
-      [&](graph::PassBuilder& b) {
-        b.read(kRtCacheSamples, Usage::StorageRead);
-        b.read(kRtCacheAccum, Usage::StorageRead);
-        b.write(kRtCacheAccum, Usage::StorageWrite);
-      },
-      [this, push, entries](graph::PassContext& ctx) {
-        ctx.bind(accumulate_);
-        ctx.pushConstants(push);
-        ctx.descriptors()
-            .storageBuffer(shared::kRtBindingCacheSamples, ctx.buffer(kRtCacheSamples).handle())
-            .storageBuffer(shared::kRtBindingCacheAccum, ctx.buffer(kRtCacheAccum).handle());
-        ctx.dispatch(std::max(entries, push.sampleCount), 1, 1, 64, 1, 1);
-      });
-  graph.addPass(
-      "rt.cache.resolve", graph::PassKind::Compute,
-      [&](graph::PassBuilder& b) {
-        b.read(kRtCacheAccum, Usage::StorageRead);
-        b.read(kRtCacheEntries, Usage::StorageRead);
-        b.write(kRtCacheEntries, Usage::StorageWrite);
-      },
-      [this, push, entries](graph::PassContext& ctx) {
-        ctx.bind(resolve_);
-        ctx.pushConstants(push);
-        ctx.descriptors()
-            .storageBuffer(shared::kRtBindingCacheAccum, ctx.buffer(kRtCacheAccum).handle())
-            .storageBuffer(shared::kRtBindingCacheEntries, ctx.buffer(kRtCacheEntries).handle());
-        ctx.dispatch(entries, 1, 1, 64, 1, 1);
-      });
+  ComputePass(in.device, "rt.cache.accumulate", "rt/cache_accumulate.comp")
+      .bufferIn(shared::kRtBindingCacheSamples, kRtCacheSamples)
+      .reads(kRtCacheAccum, Usage::StorageRead)
+      .bufferOut(shared::kRtBindingCacheAccum, kRtCacheAccum)
+      .push(push_)
+      .dispatch(std::max(entries, push_.sampleCount), 1, 1, 64, 1, 1)
+      .add(graph);
+  ComputePass(in.device, "rt.cache.resolve", "rt/cache_resolve.comp")
+      .bufferIn(shared::kRtBindingCacheAccum, kRtCacheAccum)
+      .reads(kRtCacheEntries, Usage::StorageRead)
+      .bufferOut(shared::kRtBindingCacheEntries, kRtCacheEntries)
+      .push(push_)
+      .dispatch(entries, 1, 1, 64, 1, 1)
+      .add(graph);
 }
 
 uint32_t RtRadianceCache::temporalWindow(uint32_t frames) const {

@@ -77,8 +77,6 @@ class RtRadianceCache {
   std::vector<std::pair<std::string, double>> figures() const;
 
  private:
-  void createPipelines(gpu::Device& device);
-
   RtCacheSwitch switch_;
   uint64_t switchScene_ = 0;  // the frame key's scene hash the switch's measurements belong to
   HistoryKeeper history_;
@@ -88,7 +86,6 @@ class RtRadianceCache {
   uint32_t age_ = 0;
   shared::RtCachePush push_{};
   RtCacheOutcomes measured_;
-  gpu::Pipeline accumulate_, resolve_;
 };
 
 }  // namespace tl::lighting
