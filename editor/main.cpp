@@ -109,7 +109,7 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--look-at", o.view.lookAt, "point the camera looks at, x,y,z");
   cmd.add_option("--fov", o.view.fovDegrees, "vertical field of view in degrees");
   cmd.add_option("--lighting", o.light.lighting,
-                 "lighting file (SCENE.lighting.json: sun, sky, environment, exposure, punctual lights) in place of the "
+                 "lighting file (SCENE.lighting.json: sun, sky, environment, exposure, punctual and area lights) in place of the "
                  "scene's own; the light options below win over it");
   cmd.add_option("--save-lighting", o.light.saveLighting,
                  "write the lighting this command renders with (the scene's lights, --lighting and every light option) "

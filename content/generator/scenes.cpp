@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <stdexcept>
 
 namespace tl::content {
@@ -417,6 +418,56 @@ void lamps(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// Area lights (the lighting sidecar's rect, disk and tube: glTF has no area lights): a closed
+// 5 x 3 x 4 m white room (0.2 m walls, black sky, no sun) with a table and a copper sphere, lit
+// only by a 1.2 x 0.6 m ceiling panel of 1500 nits, a 0.25 m disk downlight of 3000 nits and a
+// 1.2 m tube (2 cm radius) on the west wall, all in area_room.lighting.json (`--lighting`).
+// Soft shadows, penumbrae under the table and glossy reflections of the panel in the sphere.
+void areaRoom(const std::filesystem::path& dir) {
+  SceneWriter w("area_room");
+  int plaster = w.material({"plaster_white", {0.80f, 0.80f, 0.80f}, 0.0f, 0.9f});
+  int floorMat = w.material({"floor_grey", {0.50f, 0.50f, 0.50f}, 0.0f, 0.4f});
+  int wood = w.material({"table_wood", {0.55f, 0.38f, 0.22f}, 0.0f, 0.7f});
+  int copper = w.material({"copper", {0.95f, 0.64f, 0.54f}, 1.0f, 0.25f});
+  const float t = 0.2f, h = 3.0f;
+  wall(w, "floor", floorMat, {0.0f, -t / 2, 0.0f}, {5.0f + 2 * t, t, 4.0f + 2 * t});
+  wall(w, "ceiling", plaster, {0.0f, h + t / 2, 0.0f}, {5.0f + 2 * t, t, 4.0f + 2 * t});
+  wall(w, "wall_north", plaster, {0.0f, h / 2, -2.0f - t / 2}, {5.0f, h, t});
+  wall(w, "wall_south", plaster, {0.0f, h / 2, 2.0f + t / 2}, {5.0f, h, t});
+  wall(w, "wall_west", plaster, {-2.5f - t / 2, h / 2, 0.0f}, {t, h, 4.0f});
+  wall(w, "wall_east", plaster, {2.5f + t / 2, h / 2, 0.0f}, {t, h, 4.0f});
+  wall(w, "table_top", wood, {-0.5f, 0.75f, -0.4f}, {1.4f, 0.06f, 0.8f});
+  for (int i = 0; i < 4; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "table_leg_%d", i + 1);
+    wall(w, name, wood, {-0.5f + ((i & 1) ? 0.62f : -0.62f), 0.36f, -0.4f + ((i & 2) ? 0.33f : -0.33f)}, {0.06f, 0.72f, 0.06f});
+  }
+  w.node("copper_sphere", w.mesh("sphere", sphere(0.35f, 48, 24), copper), {1.3f, 0.35f, 0.5f});
+  w.camera("room_view", {2.2f, 1.7f, 1.8f}, {-0.6f, 0.7f, -0.8f}, 60.0f);
+  w.sky({0.0f, 0.0f, 0.0f});
+  w.write(dir);
+  // The sidecar: what `--lighting` reads (session/lighting_file.h), intensities in nits.
+  std::ofstream sidecar(dir / "area_room.lighting.json", std::ios::binary | std::ios::trunc);
+  sidecar << R"({
+  "format": "twinlight.lighting",
+  "version": 1,
+  "sun": {"direction": [0.3, -1, 0.2], "irradiance": 0},
+  "sky": {"radiance": 0},
+  "exposure_ev": null,
+  "environment": null,
+  "lights": [
+    {"name": "ceiling_panel", "type": "rect", "position": [-0.5, 2.99, -0.4], "direction": [0, -1, 0], "width_axis": [1, 0, 0],
+     "width": 1.2, "height": 0.6, "temperature_k": 4000, "intensity": 1500},
+    {"name": "downlight", "type": "disk", "position": [1.3, 2.99, 0.5], "direction": [0, -1, 0], "radius": 0.25,
+     "temperature_k": 3000, "intensity": 3000},
+    {"name": "wall_tube", "type": "tube", "position": [-2.4, 2.0, 0.0], "direction": [0, 0, 1], "radius": 0.02, "length": 1.2,
+     "temperature_k": 2700, "intensity": 20000}
+  ]
+}
+)";
+  if (!sidecar) throw std::runtime_error("cannot write area_room.lighting.json");
+}
+
 // Many lights: 256 point lights (a 16 x 16 grid, 0.5 m apart, 0.8 to 2.3 m up, 8 to 68 cd,
 // four colours) over a 20 m grey ground under a black sky, seen from above at an angle. For the
 // light table's many-light sampling: its noise, its convergence and its cost against the count.
@@ -761,6 +812,7 @@ int main(int argc, char** argv) {
     tl::content::twinRooms(dir);
     tl::content::lamps(dir);
     tl::content::lampGrid(dir);
+    tl::content::areaRoom(dir);
     tl::content::embeddedTextures(dir);
     tl::content::normalProbe(dir);
     tl::content::cutout(dir);

@@ -169,24 +169,34 @@ struct Camera {
   std::optional<float> aspectRatio;
 };
 
-enum class LightType : uint8_t { Directional, Point, Spot };
+// Rect, Disk and Tube are area lights: glTF has none (KHR_lights_punctual), so they come only
+// from the lighting sidecar (session/lighting_file.h) and are never written into a glTF.
+enum class LightType : uint8_t { Directional, Point, Spot, Rect, Disk, Tube };
+inline bool isAreaLight(LightType t) { return t == LightType::Rect || t == LightType::Disk || t == LightType::Tube; }
 
 // KHR_lights_punctual, in its units: directional intensity is illuminance in lux, point and spot
 // intensity is luminous intensity in candela. Twinlight shades them on its radiometric scale,
 // the photometric value divided by kLumensPerWatt (shaders/shared/lights.h states the
-// convention): radiometric() gives that.
+// convention): radiometric() gives that. An area light's intensity is its radiance in nits
+// (cd/m^2), the same on both faces of a two-sided one (shared/area_lights.h).
 inline constexpr double kLumensPerWatt = 683.0;
 struct Light {
   std::string name;
   LightType type = LightType::Point;
   glm::vec3 color{1.0f};
-  float intensity = 1.0f;                // lux (directional) or candela (point, spot)
+  float intensity = 1.0f;                // lux (directional), candela (point, spot) or nits (area)
   std::optional<float> range;            // metres; empty: unlimited
   float innerConeAngle = 0.0f;           // spot, radians, 0 <= inner < outer
   float outerConeAngle = 0.7853982f;     // spot, radians, <= pi/2
   glm::dvec3 position{0.0};
-  glm::dvec3 direction{0.0, 0.0, -1.0};  // the direction the light travels
-  // Irradiance E (directional) or intensity I (point, spot) on Twinlight's scale, per channel.
+  glm::dvec3 direction{0.0, 0.0, -1.0};  // the direction the light travels (area: the front normal; a tube's axis)
+  // Area lights (metres): a rectangle's width (along widthAxis) and height, a disk's or tube's
+  // radius, a tube's length; a rectangle or disk emits from its front face only unless twoSided.
+  float width = 1.0f, height = 1.0f, radius = 0.1f, length = 1.0f;
+  bool twoSided = false;
+  glm::dvec3 widthAxis{1.0, 0.0, 0.0};   // projected perpendicular to direction (any other way if parallel)
+  // Irradiance E (directional), intensity I (point, spot) or radiance L (area) on Twinlight's
+  // scale, per channel.
   glm::vec3 radiometric() const { return color * float(double(intensity) / kLumensPerWatt); }
 };
 

@@ -64,7 +64,9 @@ std::vector<std::string> sceneReport(const Scene& s) {
                               placeholders ? fmt::format(", {} missing (magenta placeholder)", placeholders) : ""));
   std::vector<std::pair<std::string, size_t>> lights;
   for (const auto& l : s.lights)
-    count(lights, l.type == LightType::Directional ? "directional" : l.type == LightType::Spot ? "spot" : "point");
+    count(lights, l.type == LightType::Directional ? "directional" : l.type == LightType::Spot ? "spot"
+                  : l.type == LightType::Point     ? "point"
+                                                   : "area");
   lines.push_back(fmt::format("lights: {}{}", s.lights.size(), lights.empty() ? "" : " (" + counts(lights) + ")"));
   lines.push_back(fmt::format("cameras: {} perspective", s.cameras.size()));
   lines.push_back(fmt::format("animations: {} morph-weight channels, {:.3g} s", s.morphAnimations.size(), s.animationSeconds));

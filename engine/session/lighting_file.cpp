@@ -127,10 +127,53 @@ glm::vec3 readScaledColor(const Reader& r, const json& obj, const std::string& w
   return r.checkedLight(glm::dvec3(r.colorOrTemperature(obj, where)) * scale, key);
 }
 
+// A size in metres: more than 0, at most the largest coordinate, and still more than 0 as the
+// float the light table holds.
+float readSize(const Reader& r, const json& j, const std::string& where, const char* name) {
+  r.required(j, where, name);
+  const std::string key = where + "." + name;
+  const float x = float(r.number(j.at(name), key, 0.0, InputLimits::kMaxCoordinate, " m"));
+  if (!(x > 0.0f)) r.fail(key, "must be more than 0 m");
+  return x;
+}
+
+// The shape of an area light: a rectangle's width and height (and the way its width runs), a
+// disk's radius, a tube's length and radius; which faces emit.
+void readAreaShape(const Reader& r, const json& j, const std::string& where, scene::Light& l) {
+  const auto refuse = [&](const char* name, const char* why) {
+    if (j.contains(name)) r.fail(where + "." + name, why);
+  };
+  if (l.type == scene::LightType::Rect) {
+    l.width = readSize(r, j, where, "width");
+    l.height = readSize(r, j, where, "height");
+  } else {
+    refuse("width", "only a rect has a width");
+    refuse("height", "only a rect has a height");
+  }
+  if (l.type == scene::LightType::Disk || l.type == scene::LightType::Tube) l.radius = readSize(r, j, where, "radius");
+  else refuse("radius", "a rect has width and height, not a radius");
+  if (l.type == scene::LightType::Tube) l.length = readSize(r, j, where, "length");
+  else refuse("length", "only a tube has a length");
+  if (l.type == scene::LightType::Tube) {
+    refuse("two_sided", "a tube emits all round");
+    refuse("width_axis", "a tube has no width axis");
+    return;
+  }
+  if (j.contains("two_sided")) {
+    if (!j.at("two_sided").is_boolean()) r.fail(where + ".two_sided", "expected true or false");
+    l.twoSided = j.at("two_sided").get<bool>();
+  }
+  if (j.contains("width_axis")) {
+    l.widthAxis = r.direction(j.at("width_axis"), where + ".width_axis");
+    if (glm::length(glm::cross(l.widthAxis, l.direction)) < 1e-3)
+      r.fail(where + ".width_axis", "must not be parallel to direction (the light's normal)");
+  }
+}
+
 scene::Light readLight(const Reader& r, const json& j, const std::string& where) {
   if (!j.is_object()) r.fail(where, "expected an object");
   r.onlyKeys(j, where, {"name", "type", "position", "direction", "color", "temperature_k", "intensity", "range",
-                        "inner_cone_deg", "outer_cone_deg"});
+                        "inner_cone_deg", "outer_cone_deg", "width", "height", "radius", "length", "two_sided", "width_axis"});
   scene::Light l;
   if (j.contains("name")) {
     if (!j.at("name").is_string()) r.fail(where + ".name", "expected a string");
@@ -142,7 +185,10 @@ scene::Light readLight(const Reader& r, const json& j, const std::string& where)
   if (t == "point") l.type = scene::LightType::Point;
   else if (t == "spot") l.type = scene::LightType::Spot;
   else if (t == "directional") l.type = scene::LightType::Directional;
-  else r.fail(where + ".type", "expected \"point\", \"spot\" or \"directional\"");
+  else if (t == "rect") l.type = scene::LightType::Rect;
+  else if (t == "disk") l.type = scene::LightType::Disk;
+  else if (t == "tube") l.type = scene::LightType::Tube;
+  else r.fail(where + ".type", "expected \"point\", \"spot\", \"directional\", \"rect\", \"disk\" or \"tube\"");
   const bool positioned = l.type != scene::LightType::Directional, aimed = l.type != scene::LightType::Point;
   if (positioned) {
     r.required(j, where, "position");
@@ -158,11 +204,17 @@ scene::Light readLight(const Reader& r, const json& j, const std::string& where)
   }
   l.color = r.colorOrTemperature(j, where);
   r.required(j, where, "intensity");
+  const bool area = scene::isAreaLight(l.type);
   l.intensity = float(r.number(j.at("intensity"), where + ".intensity", 0.0, InputLimits::kMaxLight,
-                               l.type == scene::LightType::Directional ? " lux" : " cd"));
+                               l.type == scene::LightType::Directional ? " lux" : area ? " nits" : " cd"));
   r.checkedLight(glm::dvec3(l.color) * double(l.intensity), where + ".intensity");
+  if (area) readAreaShape(r, j, where, l);
+  else if (j.contains("width") || j.contains("height") || j.contains("radius") || j.contains("length") || j.contains("two_sided") ||
+           j.contains("width_axis"))
+    r.fail(where, "only an area light (rect, disk, tube) has a shape");
   if (j.contains("range") && !j.at("range").is_null()) {
     if (!positioned) r.fail(where + ".range", "a directional light has no range");
+    if (area) r.fail(where + ".range", "an area light has no range");
     const double range = r.number(j.at("range"), where + ".range", 0.0, InputLimits::kMaxCoordinate, " m");
     if (!(range > 0.0)) r.fail(where + ".range", "must be more than 0 (null: unlimited)");
     l.range = float(range);
@@ -191,6 +243,9 @@ const char* lightTypeName(scene::LightType t) {
   switch (t) {
     case scene::LightType::Directional: return "directional";
     case scene::LightType::Spot: return "spot";
+    case scene::LightType::Rect: return "rect";
+    case scene::LightType::Disk: return "disk";
+    case scene::LightType::Tube: return "tube";
     case scene::LightType::Point: break;
   }
   return "point";
@@ -320,7 +375,20 @@ std::string lightingJson(const Lighting& lighting, const std::filesystem::path& 
     if (l.type != scene::LightType::Point) o["direction"] = vecJson(unit(l.direction));
     o["color"] = colorJson(l.color);
     o["intensity"] = double(l.intensity);
-    if (l.type != scene::LightType::Directional) o["range"] = l.range ? ordered(double(*l.range)) : ordered(nullptr);
+    if (l.type != scene::LightType::Directional && !scene::isAreaLight(l.type))
+      o["range"] = l.range ? ordered(double(*l.range)) : ordered(nullptr);
+    if (l.type == scene::LightType::Rect) {
+      o["width"] = double(l.width);
+      o["height"] = double(l.height);
+    }
+    if (l.type == scene::LightType::Disk || l.type == scene::LightType::Tube) o["radius"] = double(l.radius);
+    if (l.type == scene::LightType::Tube) o["length"] = double(l.length);
+    if (l.type == scene::LightType::Rect || l.type == scene::LightType::Disk) {
+      o["two_sided"] = l.twoSided;
+      // A width axis along the normal means "any": left out, as a file that gave none.
+      if (glm::length(glm::cross(l.widthAxis, l.direction)) >= 1e-3 * glm::length(l.widthAxis) * glm::length(l.direction))
+        o["width_axis"] = vecJson(unit(l.widthAxis));
+    }
     if (l.type == scene::LightType::Spot) {
       o["inner_cone_deg"] = double(l.innerConeAngle) * kDegrees;
       o["outer_cone_deg"] = double(l.outerConeAngle) * kDegrees;

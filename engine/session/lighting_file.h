@@ -1,6 +1,6 @@
 // The lighting sidecar: SCENE.lighting.json beside a scene holds what an artist set up on top
 // of it (sun, sky, environment map with its rotation and intensity, exposure, and every
-// punctual light with its transform), read back by `--lighting FILE` on every rendering
+// punctual and area light with its transform; area lights live only here: glTF has none), read back by `--lighting FILE` on every rendering
 // subcommand. One module writes and reads it; docs/user-guide.md ("Saving lighting") shows the
 // format. Every value is checked after conversion (degrees to radians, kelvin to RGB): a bad
 // one is one SessionError naming the file and the key, and nothing is applied.

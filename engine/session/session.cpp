@@ -211,7 +211,8 @@ namespace {
 lighting::KeyHasher& addLights(lighting::KeyHasher& h, const std::vector<scene::Light>& lights) {
   for (const auto& l : lights)
     h.all(double(l.type), l.color, double(l.intensity), double(l.range.value_or(0.0f)), double(l.innerConeAngle),
-          double(l.outerConeAngle), l.position, l.direction);
+          double(l.outerConeAngle), l.position, l.direction, double(l.width), double(l.height), double(l.radius),
+          double(l.length), double(l.twoSided), l.widthAxis);
   return h;
 }
 }  // namespace
@@ -308,7 +309,9 @@ float autoExposureEv(const Lighting& l, float brightestEmission) {
   double brightestLight = 0.0;
   for (const auto& light : l.lights) {
     const double e = shared::tlLuminance(light.radiometric());
-    brightestLight = std::max(brightestLight, light.type == scene::LightType::Directional ? e : e / 4.0);
+    // An area light's radiance L lights a surface right under it with at most pi L.
+    const double seen = light.type == scene::LightType::Directional ? e : scene::isAreaLight(light.type) ? glm::pi<double>() * e : e / 4.0;
+    brightestLight = std::max(brightestLight, seen);
   }
   const glm::vec3 sky = l.environmentMap ? l.environmentMap->meanRadiance * l.environmentIntensity : l.skyRadiance;
   double white = shared::tlLuminance(l.sunIrradiance) / glm::pi<double>() + shared::tlLuminance(sky) +

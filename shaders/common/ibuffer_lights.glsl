@@ -25,6 +25,7 @@ layout(push_constant) uniform Push { LightsPush push; };
 SurfaceParams gGeometry;  // the surface's roughness only (tlIbufferSurface)
 vec3 gPosition, gNormalHere, gView;  // the includer declares gShadowOrigin (where shadow rays start)
 
+float lightVisibilityOf(uint light, LightIncidence li);  // common/lights.glsl
 #define TL_LIGHTS_CUSTOM_SUM
 #define LightSum IbufferSums
 IbufferSums lightSumZero() { return tlIbufferZero(); }
@@ -36,7 +37,7 @@ IbufferSums lightContribution(uint light, LightIncidence li) {
   if (all(equal(li.irradiance, vec3(0.0))) || !(dot(gNormalHere, li.toLight) > 0.0)) return tlIbufferZero();
   // tlLightIncidence's irradiance is at normal incidence; the I-buffer sums E n.l.
   float nl = dot(gNormalHere, li.toLight);
-  float visibility = lightVisibility(light, li.toLight, li.distance);
+  float visibility = lightVisibilityOf(light, li);
   return tlIbufferAddLight(tlIbufferZero(), gGeometry, gNormalHere, gView, li.toLight, li.irradiance * (nl * visibility));
 }
 

@@ -13,6 +13,7 @@
 #include "shared/shading.h"
 
 layout(set = 0, binding = kLightsPassTlas) uniform accelerationStructureEXT tlas;
+#define TL_LIGHTS_AREA TL_AREA_ANALYTIC_TRACED  // area lights: unshadowed light times shadow rays (common/lights.glsl)
 vec3 gShadowOrigin;
 
 float lightVisibility(uint light, vec3 toLight, float distance) {

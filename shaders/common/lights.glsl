@@ -10,8 +10,71 @@
 // light sums, common/ibuffer_lights.glsl) defines TL_LIGHTS_CUSTOM_SUM and, instead of
 // lightResponse, the type LightSum with lightSumZero(), lightSumAdd(LightSum, LightSum),
 // lightSumScale(LightSum, float) and LightSum lightContribution(uint light, LightIncidence li)
-// (light `light` of the table, its visibility included).
+// (light `light` of the table, its visibility included, through lightVisibilityOf).
+//
+// Area lights (shared/area_lights.h), by what the includer defines TL_LIGHTS_AREA as:
+//   TL_AREA_ANALYTIC (default)  the whole shape's unshadowed light (tlAreaLightAnalytic), times
+//                               lightVisibility towards it (1 for an area light: no shadow map)
+//   TL_AREA_ANALYTIC_TRACED     the same times the fraction of kAreaShadowRays shadow rays to
+//                               points drawn on the shape (2x2 strata) that arrive: exact where
+//                               the light is wholly seen or hidden, noisy only in penumbrae
+//   TL_AREA_SAMPLED             next-event estimation: one point drawn on the shape per light
+//                               (solid-angle pdf) and one shadow ray to it; with
+//                               TL_LIGHTS_AREA_MIS the includer also defines
+//                               float lightMisWeight(vec3 toLight, float lightPdf) and counts the
+//                               BRDF's rays that meet a light itself (common/area_lights_hit.glsl)
 layout(set = 0, binding = kBindingLights, std430) readonly buffer LightTable { GpuLight lights[]; };
+
+#define TL_AREA_ANALYTIC 0
+#define TL_AREA_ANALYTIC_TRACED 1
+#define TL_AREA_SAMPLED 2
+#ifndef TL_LIGHTS_AREA
+#define TL_LIGHTS_AREA TL_AREA_ANALYTIC
+#endif
+const uint kAreaShadowRays = 4u;
+
+vec3 gLightsAt;     // the point shadeLights shades
+uvec3 gLightsSeed;  // its seed
+
+// Light `i`'s incidence at `position`; `salt` tells apart the draws at one point.
+LightIncidence lightIncidence(uint i, vec3 position, uint salt) {
+#if TL_LIGHTS_AREA == TL_AREA_SAMPLED
+  if (tlIsAreaLight(lights[i].type)) {
+    uvec3 h = tlPcg3d(gLightsSeed + uvec3(salt * 0x85EBCA6Bu, i * 0xC2B2AE35u + 1u, 0x27D4EB2Fu));
+    return tlAreaLightSample(lights[i], position, vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y)));
+  }
+#endif
+  return tlLightIncidence(lights[i], position);
+}
+
+// The share of light `light` that reaches the point (li: its incidence there).
+float lightVisibilityOf(uint light, LightIncidence li) {
+#if TL_LIGHTS_AREA == TL_AREA_ANALYTIC_TRACED
+  if (tlIsAreaLight(lights[light].type)) {
+    float seen = 0.0, drawn = 0.0;
+    for (uint k = 0u; k < kAreaShadowRays; ++k) {
+      uvec3 h = tlPcg3d(gLightsSeed + uvec3(k * 0x9E3779B9u + 7u, light * 0xC2B2AE35u, 0x165667B1u));
+      vec2 u = (vec2(float(k & 1u), float(k >> 1u)) + vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y))) * 0.5;
+      LightIncidence s = tlAreaLightSample(lights[light], gLightsAt, u);
+      if (!(s.pdf > 0.0)) continue;
+      seen += lightVisibility(light, s.toLight, s.distance);
+      drawn += 1.0;
+    }
+    return drawn > 0.0 ? seen / drawn : 1.0;
+  }
+#endif
+  return lightVisibility(light, li.toLight, li.distance);
+}
+
+// The weight of a sampled area light's estimate against the BRDF's rays that meet it.
+float lightSampleWeight(LightIncidence li) {
+#if TL_LIGHTS_AREA == TL_AREA_SAMPLED && defined(TL_LIGHTS_AREA_MIS)
+  // With more lights than the loop takes, the BRDF's rays count no light (the picks' density is
+  // not known there), so the light's estimate keeps all its weight.
+  if (li.pdf > 0.0 && frame.lightCount <= kLightsLoopMax) return lightMisWeight(li.toLight, li.pdf);
+#endif
+  return 1.0;
+}
 
 #ifndef TL_LIGHTS_CUSTOM_SUM
 #define LightSum vec3
@@ -25,7 +88,7 @@ vec3 lightContribution(uint light, LightIncidence li) {
   if (all(equal(li.irradiance, vec3(0.0)))) return vec3(0.0);
   vec3 response = lightResponse(li.toLight);
   if (all(equal(response, vec3(0.0)))) return vec3(0.0);
-  return li.irradiance * response * lightVisibility(light, li.toLight, li.distance);
+  return li.irradiance * response * (lightVisibilityOf(light, li) * lightSampleWeight(li));
 }
 #endif
 
@@ -44,8 +107,10 @@ uint lightPick(float u) {
 // draws the picks when there are many lights.
 LightSum shadeLights(vec3 position, vec3 n, uvec3 seed) {
   LightSum sum = lightSumZero();
+  gLightsAt = position;
+  gLightsSeed = seed;
   if (frame.lightCount <= kLightsLoopMax) {
-    for (uint i = 0u; i < frame.lightCount; ++i) sum = lightSumAdd(sum, lightContribution(i, tlLightIncidence(lights[i], position)));
+    for (uint i = 0u; i < frame.lightCount; ++i) sum = lightSumAdd(sum, lightContribution(i, lightIncidence(i, position, 0u)));
     return sum;
   }
   for (uint pick = 0u; pick < kLightPicks; ++pick) {
@@ -55,7 +120,7 @@ LightSum shadeLights(vec3 position, vec3 n, uvec3 seed) {
     for (uint c = 0u; c < kLightCandidates; ++c) {
       uvec3 h = tlPcg3d(seed + uvec3(0u, 0u, (pick * kLightCandidates + c + 1u) * 0x9E3779B9u));
       uint i = lightPick(tlUintToUnitFloat(h.x));
-      LightIncidence li = tlLightIncidence(lights[i], position);
+      LightIncidence li = lightIncidence(i, position, pick * kLightCandidates + c + 1u);
       float target = tlLightTarget(li, n);
       float weight = target / max(lights[i].intensity.w, 1e-30);
       weightSum += weight;

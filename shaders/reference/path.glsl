@@ -19,7 +19,8 @@ vec2 next2() {
 
 // The light table (shared/lights.h) by next-event estimation from each scattering point: a
 // shadow ray per light (per resampled pick beyond kLightsLoopMax lights). Delta lights cannot
-// be hit by a BRDF-sampled ray, so no multiple importance sampling is needed.
+// be hit by a BRDF-sampled ray; an area light can, so its sampled point (shared/area_lights.h)
+// and the BRDF's rays that meet it (areaLightsMet) share it by the power heuristic.
 vec3 gLightOrigin, gLightNormal, gLightGeometric, gLightView;
 SurfaceParams gLightSurface;
 float lightVisibility(uint light, vec3 toLight, float distance) {
@@ -33,8 +34,31 @@ vec3 lightResponse(vec3 toLight) {
   float nl = dot(gLightNormal, toLight);
   return nl > 0.0 ? tlBrdf(gLightSurface, gLightNormal, gLightView, toLight) * nl : vec3(0.0);
 }
+float lightMisWeight(vec3 toLight, float lightPdf) {
+  float pSpec = tlBrdfSpecularProbability(gLightSurface, dot(gLightNormal, gLightView));
+  return tlPowerHeuristic(lightPdf, tlBrdfPdf(gLightSurface, gLightNormal, gLightView, toLight, pSpec));
+}
+#define TL_LIGHTS_AREA TL_AREA_SAMPLED
+#define TL_LIGHTS_AREA_MIS
 #include "common/lights.glsl"
 #include "common/environment.glsl"
+
+// The area lights a BRDF-drawn ray from `origin` meets before `tMax`, weighted against their
+// next-event samples (directionPdf: the BRDF's density of dir; 0: nothing else drew it, weight
+// 1). Lights block nothing, so the path goes on to what lies behind. With more lights than
+// kLightsLoopMax the next-event picks keep the whole weight and the rays count none.
+vec3 areaLightsMet(vec3 origin, vec3 dir, float tMax, float directionPdf) {
+  vec3 sum = vec3(0.0);
+  if (frame.lightCount > kLightsLoopMax) return sum;
+  for (uint i = 0u; i < frame.lightCount; ++i) {
+    if (!tlIsAreaLight(lights[i].type)) continue;
+    AreaHit h = tlAreaLightHit(lights[i], origin, dir);
+    if (!(h.t > 0.0) || h.t >= tMax) continue;
+    float w = directionPdf > 0.0 ? tlPowerHeuristic(directionPdf, h.pdf) : 1.0;
+    sum += lights[i].intensity.rgb * w;
+  }
+  return sum;
+}
 
 // Ambient occlusion of this sample's primary hit (1 when the camera ray sees the sky): the
 // ground truth the real-time paths' AO is measured against, at the same radius.
@@ -67,6 +91,9 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
   float directionPdf = 0.0;
   for (uint bounce = firstBounce;; ++bounce) {
     traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+    // Area lights are not shown to the camera (no path draws them): only scattered rays see them.
+    if (bounce > 0u && frame.lightCount > 0u)
+      gather(radiance, bounce, throughput * areaLightsMet(origin, dir, hit.positionT.w < 0.0 ? 1e30 : hit.positionT.w, directionPdf));
     if (hit.positionT.w < 0.0) {
       float w = environmentMapOn() && directionPdf > 0.0 ? environmentMisWeight(directionPdf, environmentPdf(dir)) : 1.0;
       gather(radiance, bounce, throughput * environmentRadiance(dir) * w);

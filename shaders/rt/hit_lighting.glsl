@@ -31,6 +31,7 @@ float lightVisibility(uint light, vec3 toLight, float distance) {
   return unoccluded(gLightStart, toLight, distance >= 1e29 ? 1e30 : distance * (1.0 - 1e-4));
 }
 vec3 lightResponse(vec3 toLight) { return gLightAlbedo * (kInvPi * max(dot(gLightNormal, toLight), 0.0)); }
+#define TL_LIGHTS_AREA TL_AREA_SAMPLED  // area lights: one point on the shape, one shadow ray
 #include "common/lights.glsl"
 
 // With emitter sampling on, a ray that finds an emitter leaves its emission out: the emitter

@@ -1,5 +1,6 @@
 // The scene's lights other than the sun (KHR_lights_punctual point, spot and further
-// directional lights), as every path shades them: one std430 array of GpuLight at set 0
+// directional lights; rectangle, disk and tube area lights from the lighting sidecar,
+// shared/area_lights.h), as every path shades them: one std430 array of GpuLight at set 0
 // binding kBindingLights ("lights.table"), written each frame by the session with positions
 // relative to the camera (lighting/common/light_table.h). A scene without such lights has no
 // table: FrameConstants::lightCount is 0 and nothing reads the binding.
@@ -10,10 +11,12 @@
 // intensity I = C / 683, and a white Lambertian surface facing a light of irradiance E shows
 // radiance E / pi. The sky (extras.twinlight.sky_radiance, --sky) and the CLI's --sun are
 // already on that scale, so a Blender sun of strength S W/m^2, exported as 683 S lux, arrives
-// as E = S next to a world of the same strength, as in Blender.
+// as E = S next to a world of the same strength, as in Blender. An area light of N nits
+// (cd/m^2) has radiance L = N / 683.
 #ifndef TL_SHARED_LIGHTS_H
 #define TL_SHARED_LIGHTS_H
 #include "common.h"
+#include "sampling.h"
 
 TL_BEGIN
 TL_CONST float kLumensPerWatt = 683.0f;
@@ -21,6 +24,9 @@ TL_CONST float kLumensPerWatt = 683.0f;
 TL_CONST uint kLightDirectional = 0u;
 TL_CONST uint kLightPoint = 1u;
 TL_CONST uint kLightSpot = 2u;
+TL_CONST uint kLightRect = 3u;  // area lights (shared/area_lights.h): every type from here on
+TL_CONST uint kLightDisk = 4u;
+TL_CONST uint kLightTube = 5u;
 
 // Set-0 binding of the light table in every pass that shades lights (beside the BRDF tables').
 TL_CONST uint kBindingLights = 49u;
@@ -54,13 +60,18 @@ TL_CONST uint kLightCandidates = 8u;
 TL_CONST uint kLightPicks = 2u;
 
 struct GpuLight {
-  vec4 position;   // xyz: camera-relative position (point, spot); w: range in metres (0: unlimited)
-  vec4 direction;  // xyz: unit direction the light travels (directional; a spot's axis); w: cumulative selection probability
-  vec4 intensity;  // rgb: intensity I (point, spot) or irradiance E (directional), Twinlight units; w: selection probability
+  vec4 position;   // xyz: camera-relative position (point, spot; an area light's centre); w: range in metres (0: unlimited)
+  vec4 direction;  // xyz: unit direction the light travels (directional; a spot's axis; a rectangle's or disk's front
+                   // normal; a tube's axis); w: cumulative selection probability
+  vec4 intensity;  // rgb: intensity I (point, spot), irradiance E (directional) or radiance L (area), Twinlight units;
+                   // w: selection probability
   float cosOuter;  // spot: cos(outer cone angle); -1 otherwise
   float coneScale; // spot: 1 / max(cos inner - cos outer, 1e-3)
   uint type;       // kLight*
   uint shadowView; // first of its shadow views (shared/lights.h GpuShadowView; 6 for a cube), kNoLightShadow: none
+  vec4 axisU;      // area: xyz half the width (rectangle), the radius (disk) or half the length (tube) along the
+                   // shape's first axis; w: a tube's radius
+  vec4 axisV;      // area: xyz the second half-extent (u x v along the front normal; a tube: 0); w: 1 two-sided
 };
 
 // Shadow maps of point and spot lights (the direct and legacy paths; rt and the reference trace
@@ -109,10 +120,13 @@ TL_FN uint tlCubeFace(vec3 d) {
 
 // What a light sends to a point: the unit direction towards it, its distance (1e30 for a
 // directional light) and the irradiance on a surface facing it there (times n.l for irradiance).
+// Area lights (shared/area_lights.h) give either the whole shape's light (pdf 0) or one sampled
+// point's, with its solid-angle pdf.
 struct LightIncidence {
   vec3 toLight;
   float distance;
   vec3 irradiance;
+  float pdf;  // a sampled area light's density of toLight per steradian; 0: deterministic
 };
 
 // KHR_lights_punctual's recommended cone falloff: 0 outside the outer cone, 1 inside the
@@ -131,8 +145,15 @@ TL_FN float tlLightRangeWindow(float distance, float range) {
   return tlSaturate(1.0f - r * r);
 }
 
+TL_END
+#include "area_lights.h"
+TL_BEGIN
+
+// The light's incidence at `position`; an area light's whole unshadowed shape (tlAreaLightAnalytic).
 TL_FN LightIncidence tlLightIncidence(GpuLight light, vec3 position) {
+  if (tlIsAreaLight(light.type)) return tlAreaLightAnalytic(light, position);
   LightIncidence li;
+  li.pdf = 0.0f;
   if (light.type == kLightDirectional) {
     li.toLight = -vec3(light.direction);
     li.distance = 1e30f;
@@ -157,7 +178,7 @@ TL_FN float tlLightTarget(LightIncidence li, vec3 n) {
 TL_END
 
 #ifdef __cplusplus
-static_assert(sizeof(tl::shared::GpuLight) == 64);
+static_assert(sizeof(tl::shared::GpuLight) == 96);
 static_assert(sizeof(tl::shared::GpuShadowView) == 96);
 static_assert(sizeof(tl::shared::LightShadowPush) == 16);
 #endif

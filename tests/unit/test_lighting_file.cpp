@@ -97,7 +97,32 @@ Lighting sample() {
   d.type = scene::LightType::Directional;
   d.direction = {0.0, -1.0, 0.0};
   d.intensity = 5000.0f;
-  l.lights = {p, s, d};
+  scene::Light r;
+  r.name = "panel";
+  r.type = scene::LightType::Rect;
+  r.position = {0.5, 2.9, 0.0};
+  r.direction = {0.0, -1.0, 0.0};
+  r.widthAxis = {0.0, 0.0, 1.0};
+  r.width = 1.2f;
+  r.height = 0.6f;
+  r.intensity = 2000.0f;  // nits
+  scene::Light c;
+  c.name = "disk";
+  c.type = scene::LightType::Disk;
+  c.position = {-1.0, 2.9, 0.0};
+  c.direction = {0.0, -1.0, 0.0};
+  c.radius = 0.3f;
+  c.twoSided = true;
+  c.intensity = 1500.0f;
+  scene::Light t;
+  t.name = "tube";
+  t.type = scene::LightType::Tube;
+  t.position = {0.0, 2.5, 1.0};
+  t.direction = {1.0, 0.0, 0.0};
+  t.radius = 0.02f;
+  t.length = 1.5f;
+  t.intensity = 5000.0f;
+  l.lights = {p, s, d, r, c, t};
   return l;
 }
 
@@ -112,8 +137,8 @@ TEST_F(LightingFileTest, WrittenAndReadBackIsTheSameLightingAndTheSameText) {
   EXPECT_EQ(back.skyRadiance, l.skyRadiance);
   EXPECT_EQ(back.exposureEv, l.exposureEv);
   EXPECT_FALSE(back.environmentMap);
-  ASSERT_EQ(back.lights.size(), 3u);
-  for (size_t i = 0; i < 3; ++i) {
+  ASSERT_EQ(back.lights.size(), 6u);
+  for (size_t i = 0; i < 6; ++i) {
     EXPECT_EQ(back.lights[i].name, l.lights[i].name);
     EXPECT_EQ(back.lights[i].type, l.lights[i].type);
     EXPECT_EQ(back.lights[i].color, l.lights[i].color);
@@ -121,7 +146,17 @@ TEST_F(LightingFileTest, WrittenAndReadBackIsTheSameLightingAndTheSameText) {
     EXPECT_EQ(back.lights[i].range, l.lights[i].range);
     EXPECT_EQ(back.lights[i].innerConeAngle, l.lights[i].innerConeAngle);
     EXPECT_EQ(back.lights[i].outerConeAngle, l.lights[i].outerConeAngle);
+    if (scene::isAreaLight(l.lights[i].type)) {
+      EXPECT_EQ(back.lights[i].position, l.lights[i].position);
+      EXPECT_EQ(back.lights[i].direction, l.lights[i].direction);
+      EXPECT_EQ(back.lights[i].width, l.lights[i].width);
+      EXPECT_EQ(back.lights[i].height, l.lights[i].height);
+      EXPECT_EQ(back.lights[i].radius, l.lights[i].radius);
+      EXPECT_EQ(back.lights[i].length, l.lights[i].length);
+      EXPECT_EQ(back.lights[i].twoSided, l.lights[i].twoSided);
+    }
   }
+  EXPECT_EQ(back.lights[3].widthAxis, l.lights[3].widthAxis);
   EXPECT_EQ(back.lights[0].position, l.lights[0].position);
   EXPECT_EQ(back.lights[1].direction, l.lights[1].direction);
   EXPECT_EQ(lightingJson(back, dir), lightingJson(l, dir));
@@ -133,7 +168,7 @@ TEST_F(LightingFileTest, WritingIntoAFolderThatDoesNotExistYetMakesIt) {
   // having made it first.
   const fs::path file = dir / "new" / "deeper" / "scene.lighting.json";
   writeLightingFile(file, sample());
-  EXPECT_EQ(readLightingFile(file, Lighting{}).lights.size(), 3u);
+  EXPECT_EQ(readLightingFile(file, Lighting{}).lights.size(), 6u);
   EXPECT_FALSE(fs::exists(fs::path(file) += ".tmp"));
 }
 
@@ -176,6 +211,20 @@ TEST_F(LightingFileTest, EveryBadValueIsOneErrorNamingItsKey) {
       {R"("lights": [{"type": "point", "position": [0, 1, 0], "intensity": 1, "range": 0}]})", "lights[0].range"},
       {R"("lights": [{"type": "point", "position": [0, 1, 0], "intensity": 1, "direction": [0, 1, 0]}]})", "lights[0].direction"},
       {R"("lights": {}})", "lights"},
+      // Area lights: every size more than 0 (also as a float), the shape's keys only, no range,
+      // a width axis not along the normal.
+      {R"("lights": [{"type": "rect", "position": [0, 2, 0], "direction": [0, -1, 0], "intensity": 100, "width": 1}]})", "lights[0].height"},
+      {R"("lights": [{"type": "rect", "position": [0, 2, 0], "direction": [0, -1, 0], "intensity": 100, "width": -1, "height": 1}]})", "lights[0].width"},
+      {R"("lights": [{"type": "disk", "position": [0, 2, 0], "direction": [0, -1, 0], "intensity": 100, "radius": 1e-300}]})", "lights[0].radius"},
+      {R"("lights": [{"type": "disk", "position": [0, 2, 0], "direction": [0, -1, 0], "intensity": 100, "radius": 1, "width": 1}]})", "lights[0].width"},
+      {R"("lights": [{"type": "disk", "position": [0, 2, 0], "direction": [0, -1, 0], "intensity": 100, "radius": 1, "range": 3}]})", "lights[0].range"},
+      {R"("lights": [{"type": "disk", "position": [0, 2, 0], "direction": [0, -1, 0], "intensity": 100, "radius": 1, "two_sided": 1}]})", "lights[0].two_sided"},
+      {R"("lights": [{"type": "rect", "position": [0, 2, 0], "direction": [0, -1, 0], "intensity": 100, "width": 1, "height": 1, "width_axis": [0, 2, 0]}]})", "lights[0].width_axis"},
+      {R"("lights": [{"type": "tube", "position": [0, 2, 0], "direction": [1, 0, 0], "intensity": 100, "radius": 0.1}]})", "lights[0].length"},
+      {R"("lights": [{"type": "tube", "position": [0, 2, 0], "direction": [1, 0, 0], "intensity": 100, "radius": 0.1, "length": 1, "two_sided": true}]})", "lights[0].two_sided"},
+      {R"("lights": [{"type": "rect", "direction": [0, -1, 0], "intensity": 100, "width": 1, "height": 1}]})", "lights[0].position"},
+      {R"("lights": [{"type": "rect", "position": [0, 2, 0], "direction": [0, -1, 0], "intensity": 1e11, "width": 1, "height": 1}]})", "lights[0].intensity"},
+      {R"("lights": [{"type": "point", "position": [0, 2, 0], "intensity": 1, "radius": 1}]})", "lights[0]"},
   };
   for (const auto& c : cases) {
     const std::string e = error(head + c.body);

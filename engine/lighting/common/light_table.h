@@ -17,7 +17,8 @@ inline constexpr const char* kLightTable = "lights.table";
 
 // The power a light is drawn in proportion to (luminance, Twinlight units): 4 pi I for a point
 // light, I times the outer cone's solid angle for a spot, and for a directional light its
-// irradiance over a disc the size of the scene (sceneScale: the scene's diagonal, metres).
+// irradiance over a disc the size of the scene (sceneScale: the scene's diagonal, metres); pi L A
+// for an area light's emitting faces (a tube: its side, 2 pi r length).
 double lightSelectionPower(const scene::Light& light, double sceneScale);
 
 // Lights that emit nothing are left out. Cumulative probabilities end at exactly 1.
