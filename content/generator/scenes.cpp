@@ -37,6 +37,28 @@ void wall(SceneWriter& w, const std::string& name, int material, glm::vec3 cente
   w.node(name, w.mesh(name, box(size, 0.5f), material), center);
 }
 
+// A closed room of width x depth x height metres inside walls of thickness t (the floor's top
+// at y = 0, centred on the origin): floor, ceiling and four walls as boxes.
+void closedRoom(SceneWriter& w, int floorMat, int wallMat, float width, float depth, float h, float t) {
+  wall(w, "floor", floorMat, {0.0f, -t / 2, 0.0f}, {width + 2 * t, t, depth + 2 * t});
+  wall(w, "ceiling", wallMat, {0.0f, h + t / 2, 0.0f}, {width + 2 * t, t, depth + 2 * t});
+  wall(w, "wall_north", wallMat, {0.0f, h / 2, -depth / 2 - t / 2}, {width, h, t});
+  wall(w, "wall_south", wallMat, {0.0f, h / 2, depth / 2 + t / 2}, {width, h, t});
+  wall(w, "wall_west", wallMat, {-width / 2 - t / 2, h / 2, 0.0f}, {t, h, depth});
+  wall(w, "wall_east", wallMat, {width / 2 + t / 2, h / 2, 0.0f}, {t, h, depth});
+}
+
+// A 0.75 m high table: a 6 cm top of topX x topZ centred at (x, z) on four 6 cm legs, each
+// legX / legZ from the centre.
+void table(SceneWriter& w, int material, float x, float z, float topX, float topZ, float legX, float legZ) {
+  wall(w, "table_top", material, {x, 0.75f, z}, {topX, 0.06f, topZ});
+  for (int i = 0; i < 4; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "table_leg_%d", i + 1);
+    wall(w, name, material, {x + ((i & 1) ? legX : -legX), 0.36f, z + ((i & 2) ? legZ : -legZ)}, {0.06f, 0.72f, 0.06f});
+  }
+}
+
 void atrium(const std::filesystem::path& dir) {
   SceneWriter w("atrium");
   int floorMat = w.material({"stone_floor", {0.55f, 0.53f, 0.50f}, 0.0f, 0.85f});
@@ -395,19 +417,8 @@ void lamps(const std::filesystem::path& dir) {
   int blue = w.material({"cabinet_blue", {0.15f, 0.25f, 0.55f}, 0.0f, 0.7f});
   int wood = w.material({"table_wood", {0.55f, 0.38f, 0.22f}, 0.0f, 0.7f});
   int copper = w.material({"copper", {0.95f, 0.64f, 0.54f}, 1.0f, 0.35f});
-  const float t = 0.2f, h = 3.0f;
-  wall(w, "floor", floorMat, {0.0f, -t / 2, 0.0f}, {6.0f + 2 * t, t, 5.0f + 2 * t});
-  wall(w, "ceiling", plaster, {0.0f, h + t / 2, 0.0f}, {6.0f + 2 * t, t, 5.0f + 2 * t});
-  wall(w, "wall_north", plaster, {0.0f, h / 2, -2.5f - t / 2}, {6.0f, h, t});
-  wall(w, "wall_south", plaster, {0.0f, h / 2, 2.5f + t / 2}, {6.0f, h, t});
-  wall(w, "wall_west", plaster, {-3.0f - t / 2, h / 2, 0.0f}, {t, h, 5.0f});
-  wall(w, "wall_east", plaster, {3.0f + t / 2, h / 2, 0.0f}, {t, h, 5.0f});
-  wall(w, "table_top", wood, {-0.8f, 0.75f, -0.6f}, {1.6f, 0.06f, 0.9f});
-  for (int i = 0; i < 4; ++i) {
-    char name[32];
-    std::snprintf(name, sizeof name, "table_leg_%d", i + 1);
-    wall(w, name, wood, {-0.8f + ((i & 1) ? 0.7f : -0.7f), 0.36f, -0.6f + ((i & 2) ? 0.38f : -0.38f)}, {0.06f, 0.72f, 0.06f});
-  }
+  closedRoom(w, floorMat, plaster, 6.0f, 5.0f, 3.0f, 0.2f);
+  table(w, wood, -0.8f, -0.6f, 1.6f, 0.9f, 0.7f, 0.38f);
   wall(w, "cabinet", blue, {2.3f, 0.9f, -1.9f}, {1.0f, 1.8f, 0.6f});
   w.node("copper_sphere", w.mesh("sphere", sphere(0.4f, 48, 24), copper), {1.2f, 0.4f, 0.6f});
   w.pointLight("bulb_table", {-0.8f, 1.6f, -0.6f}, 80.0f, {1.0f, 0.78f, 0.55f});
@@ -429,19 +440,8 @@ void areaRoom(const std::filesystem::path& dir) {
   int floorMat = w.material({"floor_grey", {0.50f, 0.50f, 0.50f}, 0.0f, 0.4f});
   int wood = w.material({"table_wood", {0.55f, 0.38f, 0.22f}, 0.0f, 0.7f});
   int copper = w.material({"copper", {0.95f, 0.64f, 0.54f}, 1.0f, 0.25f});
-  const float t = 0.2f, h = 3.0f;
-  wall(w, "floor", floorMat, {0.0f, -t / 2, 0.0f}, {5.0f + 2 * t, t, 4.0f + 2 * t});
-  wall(w, "ceiling", plaster, {0.0f, h + t / 2, 0.0f}, {5.0f + 2 * t, t, 4.0f + 2 * t});
-  wall(w, "wall_north", plaster, {0.0f, h / 2, -2.0f - t / 2}, {5.0f, h, t});
-  wall(w, "wall_south", plaster, {0.0f, h / 2, 2.0f + t / 2}, {5.0f, h, t});
-  wall(w, "wall_west", plaster, {-2.5f - t / 2, h / 2, 0.0f}, {t, h, 4.0f});
-  wall(w, "wall_east", plaster, {2.5f + t / 2, h / 2, 0.0f}, {t, h, 4.0f});
-  wall(w, "table_top", wood, {-0.5f, 0.75f, -0.4f}, {1.4f, 0.06f, 0.8f});
-  for (int i = 0; i < 4; ++i) {
-    char name[32];
-    std::snprintf(name, sizeof name, "table_leg_%d", i + 1);
-    wall(w, name, wood, {-0.5f + ((i & 1) ? 0.62f : -0.62f), 0.36f, -0.4f + ((i & 2) ? 0.33f : -0.33f)}, {0.06f, 0.72f, 0.06f});
-  }
+  closedRoom(w, floorMat, plaster, 5.0f, 4.0f, 3.0f, 0.2f);
+  table(w, wood, -0.5f, -0.4f, 1.4f, 0.8f, 0.62f, 0.33f);
   w.node("copper_sphere", w.mesh("sphere", sphere(0.35f, 48, 24), copper), {1.3f, 0.35f, 0.5f});
   w.camera("room_view", {2.2f, 1.7f, 1.8f}, {-0.6f, 0.7f, -0.8f}, 60.0f);
   w.sky({0.0f, 0.0f, 0.0f});
@@ -465,6 +465,7 @@ void areaRoom(const std::filesystem::path& dir) {
   ]
 }
 )";
+  sidecar.close();  // a failed flush shows only after close
   if (!sidecar) throw std::runtime_error("cannot write area_room.lighting.json");
 }
 

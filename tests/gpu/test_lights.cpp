@@ -9,6 +9,7 @@
 //     direct and legacy, shadow rays in rt and the reference);
 //   - content/lamps.gltf: each path's mean radiance against the reference's.
 #include "gpu_fixture.h"
+#include "../common/form_factors.h"
 #include "../common/test_scenes.h"
 
 #include "lighting/common/composite_pass.h"
@@ -315,19 +316,9 @@ TEST_F(LightsTest, EachPathLightsARoomOfLampsCloseToTheReference) {
 // points on the light, the reference samples the light and the BRDF (multiple importance
 // sampling). Lights are not seen by the camera and block nothing: the camera 4 m up sees the
 // plane through them.
-double diskFormFactor(double radius, double h, double a) {
-  if (a < 1e-9) return radius * radius / (radius * radius + h * h);
-  const double H = h / a, R = radius / a, Z = 1.0 + H * H + R * R;
-  return 0.5 * (1.0 - (Z - 2.0 * R * R) / std::sqrt(Z * Z - 4.0 * R * R));
-}
-double cornerFormFactor(double x, double y, double h) {
-  const double X = x / h, Y = y / h, sx = std::sqrt(1.0 + X * X), sy = std::sqrt(1.0 + Y * Y);
-  return (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy)) / (2.0 * shared::kPi);
-}
 // The rectangle [-w/2, w/2] x [-d/2, d/2] over the point (x, 0).
-double rectFormFactor(double w, double d, double h, double x) {
-  const double x0 = -w / 2 - x, x1 = w / 2 - x, z0 = -d / 2, z1 = d / 2;
-  return cornerFormFactor(x1, z1, h) - cornerFormFactor(x0, z1, h) - cornerFormFactor(x1, z0, h) + cornerFormFactor(x0, z0, h);
+double centredRectFormFactor(double w, double d, double h, double x) {
+  return rectFormFactor(-w / 2 - x, w / 2 - x, -d / 2, d / 2, h);
 }
 
 scene::Light areaLight(scene::LightType type, double h) {
@@ -362,7 +353,7 @@ TEST_F(LightsTest, AreaLightsOverAPlaneGiveTheirFormFactorsInEveryPath) {
     const RowError d = rowError(diskImg, kSize / 2, [&](double r) { return rho * diskFormFactor(0.5, 2.0, r); });
     // The rectangle's long side runs along the image's x (the camera's right is +x).
     const auto rectImg = renderPlane(p.path, {rect}, p.frames);
-    const RowError q = rowError(rectImg, kSize / 2, [&](double r) { return rho * rectFormFactor(1.2, 0.6, 2.0, r); });
+    const RowError q = rowError(rectImg, kSize / 2, [&](double r) { return rho * centredRectFormFactor(1.2, 0.6, 2.0, r); });
     const double centre = red(diskImg, kSize / 2, kSize / 2) / (rho * diskFormFactor(0.5, 2.0, planeRadius(kSize / 2, kSize / 2)));
     std::printf("%s: disk worst relative error %.4f at x = %u (centre ratio %.4f); rectangle %.4f at x = %u\n", p.path, d.worst,
                 d.at, centre, q.worst, q.at);

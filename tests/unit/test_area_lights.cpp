@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../common/form_factors.h"
+
 #include <cmath>
 
 namespace tl::lighting {
@@ -58,23 +60,9 @@ double sampledIrradiance(const GpuLight& g, glm::vec3 p, glm::vec3 n = {0, 1, 0}
   return sum / double(side * side);
 }
 
-// Form factor from a point to a parallel disk of radius r at height h, the point a from its axis.
-double diskFormFactor(double r, double h, double a) {
-  if (a < 1e-9) return r * r / (r * r + h * h);
-  const double H = h / a, R = r / a, Z = 1.0 + H * H + R * R;
-  return 0.5 * (1.0 - (Z - 2.0 * R * R) / std::sqrt(Z * Z - 4.0 * R * R));
-}
-
-// Form factor from a point to a parallel rectangle at height h whose corner is straight above it,
-// sides x and y (signed: the function is odd in both).
-double cornerFormFactor(double x, double y, double h) {
-  const double X = x / h, Y = y / h, sx = std::sqrt(1.0 + X * X), sy = std::sqrt(1.0 + Y * Y);
-  return (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy)) / (2.0 * kPi);
-}
-// ... and to a rectangle [x0, x1] x [z0, z1] (relative to the point), by the corners' signs.
-double rectFormFactor(double x0, double x1, double z0, double z1, double h) {
-  return cornerFormFactor(x1, z1, h) - cornerFormFactor(x0, z1, h) - cornerFormFactor(x1, z0, h) + cornerFormFactor(x0, z0, h);
-}
+using test::cornerFormFactor;
+using test::diskFormFactor;
+using test::rectFormFactor;
 
 TEST(AreaLights, DiskOnItsAxisGivesPiLRSquaredOverRSquaredPlusHSquared) {
   for (double h : {0.1, 0.5, 1.0, 2.0, 10.0}) {
