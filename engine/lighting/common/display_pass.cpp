@@ -64,9 +64,9 @@ void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w
   const bool ids = push.mode == shared::kDisplayModeId;
   ComputePass pass(device, ids ? "display.uint" : volume ? "display.float3d" : "display.float",
                    ids ? "common/display_uint.comp" : volume ? "common/display_float3d.comp" : "common/display_float.comp");
-  if (ids)  // the integer view has no companions
-    pass.reads(companions[0], graph::Usage::Sampled).reads(companions[1], graph::Usage::Sampled);
-  else
+  // Only the 2D float view declares the companions; the integer and the volume views have none
+  // (the builder refuses a binding the shader does not declare).
+  if (!ids && !volume)
     pass.sampled(shared::kDisplayCompanionA, companions[0]).sampled(shared::kDisplayCompanionB, companions[1]);
   pass.sampled(shared::kDisplaySource, source)
       .sampled(shared::kDisplayInstanceId, kGbufferChannels[5].name)
