@@ -1,4 +1,5 @@
 #include "gpu/device.h"
+#include "gpu/keep_libraries_loaded.h"
 #include "gpu/pipeline.h"
 #include "gpu/renderdoc.h"
 
@@ -205,6 +206,9 @@ void Device::createInstance(const DeviceOptions& options) {
   if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
     throw Error("no Vulkan 1.3 driver found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)");
   TL_VK(r);
+#ifdef TWINLIGHT_SANITIZE
+  keepLoadedLibrariesLoaded();  // the driver and layers stay mapped until LeakSanitizer reports
+#endif
 
   if (validation_ && debugUtils_) {
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
