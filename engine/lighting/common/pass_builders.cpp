@@ -112,6 +112,13 @@ ComputePass& ComputePass::optionalSampled(uint32_t binding, std::string_view ima
   return *this;
 }
 
+ComputePass& ComputePass::optionalStorageInOut(uint32_t binding, std::string_view image, bool present) {
+  storageInOut(binding, image);
+  entries_.back().optional = true;
+  entries_.back().present = present;
+  return *this;
+}
+
 bool ComputePass::present(uint32_t binding) const {
   for (const Entry& e : entries_)
     if (e.binding == binding) return e.present;

@@ -76,6 +76,9 @@ class ComputePass {
   // The same where the pass knows whether the input exists (a path's optional output).
   ComputePass& optionalSampled(uint32_t binding, std::string_view image, bool present,
                                const gpu::SamplerDesc& sampler = samplers::point);
+  // A storage image read and written in place that the pass may leave unbound (an accumulation
+  // the frame does not keep): absent, no access and no descriptor, as for optionalSampled.
+  ComputePass& optionalStorageInOut(uint32_t binding, std::string_view image, bool present);
   bool historyValid() const { return historyValid_; }
   bool present(uint32_t binding) const;
 
