@@ -23,6 +23,15 @@ void addPathInputs(ComputePass& pass, const LightingOutputs& path, uint32_t flag
       .optionalSampled(shared::kCompositeFarAo, path.farAo, far);
 }
 
+void addCompositeGbuffer(ComputePass& pass) {
+  pass.uniform(shared::kBindingFrame, kFrameConstants)
+      .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
+      .sampled(shared::kCompositeBaseColor, "gbuffer.baseColor")
+      .sampled(shared::kCompositeNormal, "gbuffer.normal")
+      .sampled(shared::kCompositeMaterial, "gbuffer.material")
+      .sampled(shared::kCompositeDepth, kGbufferDepth);
+}
+
 void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path) {
   const uint32_t w = in.settings.width, h = in.settings.height;
   const auto hdrDesc =
@@ -77,13 +86,8 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
     return;
   }
   ComputePass pass(in.device, "composite", "common/composite.comp");
-  pass.uniform(shared::kBindingFrame, kFrameConstants)
-      .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
-      .sampled(shared::kCompositeBaseColor, "gbuffer.baseColor")
-      .sampled(shared::kCompositeNormal, "gbuffer.normal")
-      .sampled(shared::kCompositeMaterial, "gbuffer.material")
-      .sampled(shared::kCompositeEmissive, "gbuffer.emissive")
-      .sampled(shared::kCompositeDepth, kGbufferDepth)
+  addCompositeGbuffer(pass);
+  pass.sampled(shared::kCompositeEmissive, "gbuffer.emissive")
       .optionalSampled(shared::kCompositeShadow, kShadowSunDepth, sun, samplers::sunShadowCompare)
       .optionalSampled(shared::kCompositeShadowDepth, kShadowSunDepth, sun)
       .optionalSampled(shared::kCompositeLights, path.lightsRadiance, !path.lightsRadiance.empty())
@@ -97,13 +101,8 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
                               const LightingOutputs& path) {
   const uint32_t w = in.settings.width, h = in.settings.height;
   ComputePass pass(in.device, "composite.stages", "common/composite_stages.comp");
-  pass.uniform(shared::kBindingFrame, kFrameConstants)
-      .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
-      .sampled(shared::kCompositeBaseColor, "gbuffer.baseColor")
-      .sampled(shared::kCompositeNormal, "gbuffer.normal")
-      .sampled(shared::kCompositeMaterial, "gbuffer.material")
-      .sampled(shared::kCompositeDepth, kGbufferDepth)
-      .storageOut(shared::kCompositeStageAo, kCompositeAo,
+  addCompositeGbuffer(pass);
+  pass.storageOut(shared::kCompositeStageAo, kCompositeAo,
                   graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "the AO the composite applied (0: sky)").decodedAs("ao"))
       .storageOut(shared::kCompositeStageIrradiance, kCompositeIrradiance,
                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,

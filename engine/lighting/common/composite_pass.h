@@ -29,6 +29,10 @@ inline constexpr const char* kCompositeIrradiance = "composite.irradiance";  // 
 // composite, its stages, redeferred shading's ibuffer.light and redeferred.material): optional
 // inputs, bound where the path made them; `flags` (CompositePush::flags) tell the shader which.
 void addPathInputs(ComputePass& pass, const LightingOutputs& path, uint32_t flags);
+// The frame, the BRDF tables and the G-buffer's base colour, normal, material and depth at the
+// composite's bindings (shared/gbuffer.h kComposite*), as the composite, its stages and
+// redeferred.material read them (the emission, where a pass reads it, is its own line).
+void addCompositeGbuffer(ComputePass& pass);
 
 class CompositePass {
  public:

@@ -47,13 +47,8 @@ void RedeferredPass::add(graph::RenderGraph& graph, FrameInputs& in, const share
   }
   addLightOnly(graph, in);
   ComputePass pass(in.device, "redeferred.material", "common/redeferred_material.comp");
-  pass.uniform(shared::kBindingFrame, kFrameConstants)
-      .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
-      .sampled(shared::kCompositeBaseColor, "gbuffer.baseColor")
-      .sampled(shared::kCompositeNormal, "gbuffer.normal")
-      .sampled(shared::kCompositeMaterial, "gbuffer.material")
-      .sampled(shared::kCompositeEmissive, "gbuffer.emissive")
-      .sampled(shared::kCompositeDepth, kGbufferDepth)
+  addCompositeGbuffer(pass);
+  pass.sampled(shared::kCompositeEmissive, "gbuffer.emissive")
       .storageOut(shared::kCompositeOutput, output, outputDesc);
   for (size_t q = 0; q < kIbuffer.size(); ++q) pass.sampled(kSampledBinding[q], kIbuffer[q]);
   addPathInputs(pass, path, push.flags);
