@@ -96,6 +96,26 @@ TEST_F(GpuTest, PassBuilderBindingOfAnotherTypeNamesBoth) {
   EXPECT_NE(e.find("`source` as a sampled image"), std::string::npos) << e;
 }
 
+// An absent optional storage image and a constant made outside the graph are bound (or not)
+// without any graph access; a present optional storage image is one write.
+TEST_F(GpuTest, PassBuilderOptionalStorageAndConstantsDeclareNoAccess) {
+  gpu::Device& d = session().device();
+  const gpu::Image constant(d, {VK_FORMAT_R32_SFLOAT, {8, 8, 1}, 1, VK_IMAGE_USAGE_SAMPLED_BIT}, "test.constant");
+  for (const bool present : {false, true}) {
+    graph::RenderGraph g;
+    ComputePass pass(d, "optional.storage", kShader);
+    pass.constantSampled(shared::kOptionalInputSource, constant, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+        .optionalStorageInOut(shared::kOptionalInputResult, "accum", present)
+        .push(shared::OptionalInputPush{1u, 0.0f})
+        .add(g);
+    ASSERT_EQ(g.passes().size(), 1u);
+    const graph::PassDecl& p = g.passes()[0];
+    EXPECT_TRUE(p.readNames.empty()) << p.readNames.front();
+    EXPECT_EQ(p.writeNames, present ? std::vector<std::string>{"accum"} : std::vector<std::string>{});
+    for (const gpu::Binding& b : pass.layout()) EXPECT_EQ(b.optional, b.binding == shared::kOptionalInputResult);
+  }
+}
+
 TEST_F(GpuTest, PassBuilderSharesSamplersAcrossPasses) {
   gpu::Device& d = session().device();
   EXPECT_EQ(d.sampler(lighting::samplers::point), d.sampler(lighting::samplers::point));

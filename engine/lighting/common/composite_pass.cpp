@@ -7,15 +7,12 @@
 #include "lighting/common/shadow_pass.h"
 #include "shared/brdf_lut.h"
 
-#include <set>
 
 namespace tl::lighting {
 
 using graph::Usage;
 
-namespace {
-// The path's optional images, bound where the path made them (the push flags tell the shader
-// which): no stand-in fills an absent one.
+// No stand-in fills an absent image: the flags tell the shader which are bound.
 void addPathInputs(ComputePass& pass, const LightingOutputs& path, uint32_t flags) {
   const bool gi = (flags & shared::kCompositeHasGi) != 0, far = (flags & shared::kCompositeHasFarGi) != 0;
   pass.optionalSampled(shared::kCompositeAo, path.ambientOcclusion, (flags & shared::kCompositeHasAo) != 0)
@@ -25,7 +22,15 @@ void addPathInputs(ComputePass& pass, const LightingOutputs& path, uint32_t flag
       .optionalSampled(shared::kCompositeFarCoCg, path.farCoCg, far)
       .optionalSampled(shared::kCompositeFarAo, path.farAo, far);
 }
-}  // namespace
+
+void addCompositeGbuffer(ComputePass& pass) {
+  pass.uniform(shared::kBindingFrame, kFrameConstants)
+      .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
+      .sampled(shared::kCompositeBaseColor, "gbuffer.baseColor")
+      .sampled(shared::kCompositeNormal, "gbuffer.normal")
+      .sampled(shared::kCompositeMaterial, "gbuffer.material")
+      .sampled(shared::kCompositeDepth, kGbufferDepth);
+}
 
 void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path) {
   const uint32_t w = in.settings.width, h = in.settings.height;
@@ -69,15 +74,6 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   push.openSkyDirectionality = path.openSkyDirectionality;
   push.farOpenSkyDirectionality = path.farOpenSkyDirectionality;
   push.giBlendWidth = kGiBlendWidthFraction * path.giBlendDistance;
-  // Redeferred's passes still bind a stand-in for an absent output (the base colour, unread).
-  const std::string standIn = "gbuffer.baseColor";
-  const bool gi = (push.flags & shared::kCompositeHasGi) != 0;
-  const CompositePathInputs inputs{path.ambientOcclusion.empty() ? standIn : path.ambientOcclusion,
-                          gi ? path.diffuseShY : standIn,
-                          gi ? path.diffuseCoCg : standIn,
-                          far ? path.farShY : standIn,
-                          far ? path.farCoCg : standIn,
-                          far ? path.farAo : standIn};
   // With TAA the composite is this frame's jittered image; the TAA pass resolves it into
   // composite.hdr (lighting/common/taa_pass.h).
   const char* output = in.temporalAntialiasing ? kCompositeUnresolved : kCompositeHdr;
@@ -85,19 +81,13 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
                                                            "scene-linear radiance before exposure, jittered (TAA input)");
   // Redeferred shading (lighting/common/redeferred_pass.h): the same image from the I-buffer.
   if (in.settings.redeferred) {
-    redeferred_.add(graph, in, push, inputs, output, in.temporalAntialiasing ? unresolvedDesc : hdrDesc,
-                    in.device.sampler(samplers::point), in.device.sampler(samplers::sunShadowCompare));
+    redeferred_.add(graph, in, push, path, output, in.temporalAntialiasing ? unresolvedDesc : hdrDesc);
     addStages(graph, in, push, path);
     return;
   }
   ComputePass pass(in.device, "composite", "common/composite.comp");
-  pass.uniform(shared::kBindingFrame, kFrameConstants)
-      .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
-      .sampled(shared::kCompositeBaseColor, "gbuffer.baseColor")
-      .sampled(shared::kCompositeNormal, "gbuffer.normal")
-      .sampled(shared::kCompositeMaterial, "gbuffer.material")
-      .sampled(shared::kCompositeEmissive, "gbuffer.emissive")
-      .sampled(shared::kCompositeDepth, kGbufferDepth)
+  addCompositeGbuffer(pass);
+  pass.sampled(shared::kCompositeEmissive, "gbuffer.emissive")
       .optionalSampled(shared::kCompositeShadow, kShadowSunDepth, sun, samplers::sunShadowCompare)
       .optionalSampled(shared::kCompositeShadowDepth, kShadowSunDepth, sun)
       .optionalSampled(shared::kCompositeLights, path.lightsRadiance, !path.lightsRadiance.empty())
@@ -107,41 +97,12 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   addStages(graph, in, push, path);
 }
 
-std::vector<gpu::Binding> CompositePathInputs::bindings() {
-  const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  return {{shared::kCompositeAo, sampled},     {shared::kCompositeShY, sampled},
-          {shared::kCompositeCoCg, sampled},   {shared::kCompositeFarShY, sampled},
-          {shared::kCompositeFarCoCg, sampled}, {shared::kCompositeFarAo, sampled}};
-}
-
-void CompositePathInputs::declareReads(graph::PassBuilder& b, const std::string& alreadyRead) const {
-  // The stand-in may fill several bindings: a set reads it once.
-  for (const std::string& n : std::set<std::string>{ao, shY, coCg, farShY, farCoCg, farAo})
-    if (n != alreadyRead) b.read(n, Usage::Sampled);
-}
-
-void CompositePathInputs::bind(graph::PassContext& ctx, VkSampler sampler) const {
-  const VkImageLayout ro = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
-  ctx.descriptors()
-      .sampledImage(shared::kCompositeAo, ctx.image(ao).view(), sampler, ro)
-      .sampledImage(shared::kCompositeShY, ctx.image(shY).view(), sampler, ro)
-      .sampledImage(shared::kCompositeCoCg, ctx.image(coCg).view(), sampler, ro)
-      .sampledImage(shared::kCompositeFarShY, ctx.image(farShY).view(), sampler, ro)
-      .sampledImage(shared::kCompositeFarCoCg, ctx.image(farCoCg).view(), sampler, ro)
-      .sampledImage(shared::kCompositeFarAo, ctx.image(farAo).view(), sampler, ro);
-}
-
 void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push,
                               const LightingOutputs& path) {
   const uint32_t w = in.settings.width, h = in.settings.height;
   ComputePass pass(in.device, "composite.stages", "common/composite_stages.comp");
-  pass.uniform(shared::kBindingFrame, kFrameConstants)
-      .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
-      .sampled(shared::kCompositeBaseColor, "gbuffer.baseColor")
-      .sampled(shared::kCompositeNormal, "gbuffer.normal")
-      .sampled(shared::kCompositeMaterial, "gbuffer.material")
-      .sampled(shared::kCompositeDepth, kGbufferDepth)
-      .storageOut(shared::kCompositeStageAo, kCompositeAo,
+  addCompositeGbuffer(pass);
+  pass.storageOut(shared::kCompositeStageAo, kCompositeAo,
                   graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "the AO the composite applied (0: sky)").decodedAs("ao"))
       .storageOut(shared::kCompositeStageIrradiance, kCompositeIrradiance,
                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,

@@ -6,6 +6,7 @@
 #include "gpu/pipeline.h"
 #include "graph/graph.h"
 #include "lighting/common/frame_inputs.h"
+#include "lighting/common/pass_builders.h"
 #include "lighting/common/redeferred_pass.h"
 #include "lighting/lighting_path.h"
 #include "shared/gbuffer.h"
@@ -25,15 +26,13 @@ inline constexpr const char* kCompositeAo = "composite.ao";                  // 
 inline constexpr const char* kCompositeIrradiance = "composite.irradiance";  // RGBA16F, sky + bounce, no sun
 
 // The path's images every pass that includes shaders/common/path_indirect.glsl samples (the
-// composite and its stages bind them as optional inputs (pass_builders.h); redeferred shading's
-// two passes still bind an absent one to a stand-in the shader never reads.
-struct CompositePathInputs {
-  std::string ao, shY, coCg, farShY, farCoCg, farAo;
-  static std::vector<gpu::Binding> bindings();
-  // Each image once; `alreadyRead` (read by the pass for another binding) is left out.
-  void declareReads(graph::PassBuilder& b, const std::string& alreadyRead = {}) const;
-  void bind(graph::PassContext& ctx, VkSampler sampler) const;
-};
+// composite, its stages, redeferred shading's ibuffer.light and redeferred.material): optional
+// inputs, bound where the path made them; `flags` (CompositePush::flags) tell the shader which.
+void addPathInputs(ComputePass& pass, const LightingOutputs& path, uint32_t flags);
+// The frame, the BRDF tables and the G-buffer's base colour, normal, material and depth at the
+// composite's bindings (shared/gbuffer.h kComposite*), as the composite, its stages and
+// redeferred.material read them (the emission, where a pass reads it, is its own line).
+void addCompositeGbuffer(ComputePass& pass);
 
 class CompositePass {
  public:

@@ -48,8 +48,6 @@ class LightsPass {
   std::string addIbuffer(graph::RenderGraph& graph, FrameInputs& in, const std::vector<std::string>& structures,
                          VkAccelerationStructureKHR tlasHandle, uint32_t stage);
 
-  gpu::Pipeline unshadowed_, shadowed_, traced_, ibufferUnshadowed_, ibufferShadowed_, ibufferTraced_;
-  gpu::Sampler point_, shadowCompare_;
   shared::LightsPush ibufferPush_{};  // this frame's pattern run's: the refining run continues its sums
   std::map<std::string, HistoryKeeper, std::less<>> accumulation_;  // per lighting path
 };

@@ -112,6 +112,13 @@ ComputePass& ComputePass::optionalSampled(uint32_t binding, std::string_view ima
   return *this;
 }
 
+ComputePass& ComputePass::optionalStorageInOut(uint32_t binding, std::string_view image, bool present) {
+  storageInOut(binding, image);
+  entries_.back().optional = true;
+  entries_.back().present = present;
+  return *this;
+}
+
 bool ComputePass::present(uint32_t binding) const {
   for (const Entry& e : entries_)
     if (e.binding == binding) return e.present;
@@ -123,6 +130,22 @@ ComputePass& ComputePass::accelerationStructure(uint32_t binding, VkAcceleration
   entry(binding, Kind::Tlas, structures.empty() ? std::string() : structures.front());
   entries_.back().tlas = tlas;
   for (const std::string& s : structures) reads(s, Usage::AccelerationStructureRead);
+  return *this;
+}
+
+ComputePass& ComputePass::constantSampled(uint32_t binding, const gpu::Image& image, VkImageLayout layout,
+                                          const gpu::SamplerDesc& sampler) {
+  sampled(binding, image.name(), sampler);
+  entries_.back().constant = true;
+  entries_.back().view = image.view();
+  entries_.back().layout = layout;
+  return *this;
+}
+
+ComputePass& ComputePass::constantBuffer(uint32_t binding, VkBuffer buffer) {
+  bufferIn(binding, "(constant buffer)");
+  entries_.back().constant = true;
+  entries_.back().buffer = buffer;
   return *this;
 }
 
@@ -198,11 +221,16 @@ graph::PassId ComputePass::add(graph::RenderGraph& graph) {
     std::string resource;
     VkSampler sampler;
     VkAccelerationStructureKHR tlas;
+    bool constant;
+    VkImageView view;
+    VkImageLayout layout;
+    VkBuffer buffer;
   };
   std::vector<Write> writes;
   for (const Entry& e : entries_)
     if (e.present)
-      writes.push_back({e.binding, e.kind, e.resource, e.kind == Kind::Sampled ? device_.sampler(e.sampler) : VK_NULL_HANDLE, e.tlas});
+      writes.push_back({e.binding, e.kind, e.resource, e.kind == Kind::Sampled ? device_.sampler(e.sampler) : VK_NULL_HANDLE,
+                        e.tlas, e.constant, e.view, e.layout, e.buffer});
 
   const std::vector<Entry> entries = entries_;
   const auto extraReads = extraReads_;
@@ -210,7 +238,7 @@ graph::PassId ComputePass::add(graph::RenderGraph& graph) {
     // One access per resource: a resource bound at two bindings the same way is one read.
     std::set<std::pair<std::string, Usage>> declared;
     for (const Entry& e : entries) {
-      if (!e.present || e.kind == Kind::Tlas) continue;  // its structures are reads()
+      if (!e.present || e.constant || e.kind == Kind::Tlas) continue;  // a Tlas's structures are reads()
       const Usage u = usageOf(e.kind);
       if (!declared.emplace(e.resource, u).second) continue;
       if (e.create)
@@ -230,6 +258,13 @@ graph::PassId ComputePass::add(graph::RenderGraph& graph) {
     if (!push.empty()) ctx.pushConstantBytes(push.data(), uint32_t(push.size()));
     gpu::DescriptorWriter& d = ctx.descriptors();
     for (const Write& w : writes) {
+      if (w.constant) {
+        if (w.kind == Kind::Sampled)
+          d.sampledImage(w.binding, w.view, w.sampler, w.layout);
+        else
+          d.storageBuffer(w.binding, w.buffer);
+        continue;
+      }
       switch (w.kind) {
         case Kind::Uniform: d.uniformBuffer(w.binding, ctx.buffer(w.resource).handle()); break;
         case Kind::BufferIn:

@@ -19,6 +19,7 @@
 #pragma once
 
 #include "gpu/pipeline.h"
+#include "gpu/resources.h"
 #include "gpu/spirv_reflect.h"
 #include "graph/graph.h"
 #include "lighting/common/frame_inputs.h"
@@ -76,6 +77,9 @@ class ComputePass {
   // The same where the pass knows whether the input exists (a path's optional output).
   ComputePass& optionalSampled(uint32_t binding, std::string_view image, bool present,
                                const gpu::SamplerDesc& sampler = samplers::point);
+  // A storage image read and written in place that the pass may leave unbound (an accumulation
+  // the frame does not keep): absent, no access and no descriptor, as for optionalSampled.
+  ComputePass& optionalStorageInOut(uint32_t binding, std::string_view image, bool present);
   bool historyValid() const { return historyValid_; }
   bool present(uint32_t binding) const;
 
@@ -83,6 +87,11 @@ class ComputePass {
   // (read as acceleration structures: the top level and the bottom levels it refers to).
   ComputePass& accelerationStructure(uint32_t binding, VkAccelerationStructureKHR tlas,
                                      const std::vector<std::string>& structures);
+  // Made outside the frame and never written in it (the rt path's blue noise, uploaded once;
+  // the scene's instance data, written at load): bound as they are, with no graph access.
+  ComputePass& constantSampled(uint32_t binding, const gpu::Image& image, VkImageLayout layout,
+                               const gpu::SamplerDesc& sampler = samplers::point);
+  ComputePass& constantBuffer(uint32_t binding, VkBuffer buffer);
   // A resource the pass reads or writes without a set-0 binding (e.g. through another set).
   ComputePass& reads(std::string_view name, graph::Usage usage);
 
@@ -109,6 +118,10 @@ class ComputePass {
     gpu::SamplerDesc sampler{};
     VkAccelerationStructureKHR tlas = VK_NULL_HANDLE;
     bool optional = false, present = true;
+    bool constant = false;  // outside the graph: `view` (with `layout`) or `buffer`
+    VkImageView view = VK_NULL_HANDLE;
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkBuffer buffer = VK_NULL_HANDLE;
   };
   // The layout the list yields (what the pipeline is built with), for tests and the docs.
   std::vector<gpu::Binding> layout() const;

@@ -18,7 +18,7 @@
 
 namespace tl::lighting {
 
-struct CompositePathInputs;
+struct LightingOutputs;
 
 // The I-buffer, RGBA32F each (rgb: the sum; 0 on the sky): ibuffer.Ldg the diffuse layer's
 // share of the light, ibuffer.Lsg1 the single-scattering lobe with F = 1, ibuffer.Lsg2 the same
@@ -48,19 +48,17 @@ std::string ibufferDecoder(size_t quantity);
 class RedeferredPass {
  public:
   // Adds ibuffer.light and redeferred.material; the material pass creates `output` (the
-  // composite's image, `outputDesc`). `push` and `inputs` are the composite's.
-  void add(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push,
-           const CompositePathInputs& inputs, const std::string& output, const graph::ResourceDesc& outputDesc,
-           VkSampler point, VkSampler shadowCompare);
+  // composite's image, `outputDesc`). `push` is the composite's; the path's images are bound
+  // as the composite binds them (addPathInputs, composite_pass.h).
+  void add(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push, const LightingOutputs& path,
+           const std::string& output, const graph::ResourceDesc& outputDesc);
 
  private:
   // `stage`: shared::kIbufferStage* (every pixel, the pattern's, the refined ones).
-  void addLight(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push,
-                const CompositePathInputs& inputs, VkSampler point, VkSampler shadowCompare, uint32_t stage);
-  void addUpsample(graph::RenderGraph& graph, FrameInputs& in, uint32_t pattern, VkSampler point);
-  void addLightOnly(graph::RenderGraph& graph, FrameInputs& in, VkSampler point);
-
-  gpu::Pipeline light_, material_, lightOnly_, upsample_;
+  void addLight(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push, const LightingOutputs& path,
+                uint32_t stage);
+  void addUpsample(graph::RenderGraph& graph, FrameInputs& in, uint32_t pattern);
+  void addLightOnly(graph::RenderGraph& graph, FrameInputs& in);
 };
 
 }  // namespace tl::lighting

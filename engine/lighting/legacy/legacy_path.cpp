@@ -16,6 +16,7 @@
 #include "lighting/common/light_table.h"
 #include "lighting/common/light_shadows.h"
 #include "lighting/common/lights_pass.h"
+#include "lighting/common/pass_builders.h"
 #include "shared/scene.h"
 
 #include <fmt/format.h>
@@ -106,21 +107,13 @@ class LegacyPath final : public LightingPath {
     const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
     const char* shadow = sun ? kShadowSunDepth : kGbufferDepth;  // unread without a sun, but bound
 
-    graph.addPass(
-        "legacy.ssao", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          b.create(kLegacyAoRaw,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, aw, ah, "GTAO visibility (r) and view depth (g), 1/aoDivisor")
-                       .decodedAs("ao"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push, aw, ah](graph::PassContext& ctx) {
-          ctx.bind(ssao_);
-          ctx.pushConstants(push);
-          writeCommon(ctx, in).storageImage(shared::kLegacyBindingAoRaw, ctx.image(kLegacyAoRaw).view());
-          ctx.dispatch(aw, ah);
-        });
+    withCommon(ComputePass(in.device, "legacy.ssao", "legacy/ssao.comp"))
+        .storageOut(shared::kLegacyBindingAoRaw, kLegacyAoRaw,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, aw, ah, "GTAO visibility (r) and view depth (g), 1/aoDivisor")
+                        .decodedAs("ao"))
+        .push(push)
+        .dispatch(aw, ah)
+        .add(graph);
 
     // The voxels persist: they are rebuilt only when what they hold changes (where the levels
     // sit in the world, the sun, the settings), so a still camera pays nothing for them; when
@@ -157,28 +150,17 @@ class LegacyPath final : public LightingPath {
     const bool aoHistory = s.legacyAoFrames > 1 && screenKept && ex.historyValid(kLegacyHistSsao, ssaoDesc);
     push.aoHistory = aoHistory ? s.legacyAoFrames : 0u;
 
-    graph.addPass(
-        "legacy.ssao.temporal", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          for (const char* n : {kLegacyAoRaw, kLegacyHistSsao, "gbuffer.motion"}) b.read(n, Usage::Sampled);
-          b.create(kLegacySsao,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, aw, ah,
-                                                "GTAO accumulated over frames (r), view depth (g), frames (b), 1/aoDivisor")
-                       .decodedAs("ao"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push, aw, ah](graph::PassContext& ctx) {
-          VkSampler p = point_.handle();
-          ctx.bind(ssaoTemporal_);
-          ctx.pushConstants(push);
-          writeCommon(ctx, in)
-              .sampledImage(shared::kLegacyBindingAoRaw, ctx.image(kLegacyAoRaw).view(), p, kReadOnly)
-              .sampledImage(shared::kLegacyBindingAoHistory, ctx.image(kLegacyHistSsao).view(), p, kReadOnly)
-              .sampledImage(shared::kLegacyBindingMotion, ctx.image("gbuffer.motion").view(), p, kReadOnly)
-              .storageImage(shared::kLegacyBindingSsaoOut, ctx.image(kLegacySsao).view());
-          ctx.dispatch(aw, ah);
-        });
+    withCommon(ComputePass(in.device, "legacy.ssao.temporal", "legacy/ssao_temporal.comp"))
+        .sampled(shared::kLegacyBindingAoRaw, kLegacyAoRaw)
+        .sampled(shared::kLegacyBindingAoHistory, kLegacyHistSsao)
+        .sampled(shared::kLegacyBindingMotion, "gbuffer.motion")
+        .storageOut(shared::kLegacyBindingSsaoOut, kLegacySsao,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, aw, ah,
+                                                 "GTAO accumulated over frames (r), view depth (g), frames (b), 1/aoDivisor")
+                        .decodedAs("ao"))
+        .push(push)
+        .dispatch(aw, ah)
+        .add(graph);
     const bool historyOk = feedback && screenKept && ex.historyValid(kLegacyHistRadiance, radianceDesc) &&
                            ex.historyValid(kLegacyHistDepth, depthDesc);
     const bool voxelsKept = ex.historyValid(kVoxelRadiance, voxelDesc) && ex.historyValid(kVoxelRadianceMips, voxelMipsDesc);
@@ -195,57 +177,33 @@ class LegacyPath final : public LightingPath {
     lastWork_ = {work->kind, work->instancesDrawn, work->regionVoxels, uint32_t(work->regionCount())};
     if (work->kind != VoxelWork::Kind::Keep) addVoxelPasses(graph, in, fit, work, shadow, feedback, push.screenRadiance);
 
-    graph.addPass(
-        "legacy.cones", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          for (const char* n : {kVoxelRadiance, kVoxelRadianceMips}) b.read(n, Usage::Sampled);
-          b.create(kConeShY,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced irradiance, SH luma")
-                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kConeCoCgAo)),
-                   Usage::StorageWrite);
-          b.create(kConeCoCgAo,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced chroma (xy), voxel AO (z), view depth (w)"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push, cw, ch](graph::PassContext& ctx) {
-          VkSampler lin = linear_.handle();
-          ctx.bind(cones_);
-          ctx.pushConstants(push);
-          writeCommon(ctx, in)
-              .sampledImage(shared::kLegacyBindingRadiance, ctx.image(kVoxelRadiance).view(), lin, kReadOnly)
-              .sampledImage(shared::kLegacyBindingRadianceMips, ctx.image(kVoxelRadianceMips).view(), lin, kReadOnly)
-              .storageImage(shared::kLegacyBindingConeShY, ctx.image(kConeShY).view())
-              .storageImage(shared::kLegacyBindingConeCoCgAo, ctx.image(kConeCoCgAo).view());
-          ctx.dispatch(cw, ch);
-        });
+    withCommon(ComputePass(in.device, "legacy.cones", "legacy/cones.comp"))
+        .sampled(shared::kLegacyBindingRadiance, kVoxelRadiance, samplers::linear)
+        .sampled(shared::kLegacyBindingRadianceMips, kVoxelRadianceMips, samplers::linear)
+        .storageOut(shared::kLegacyBindingConeShY, kConeShY,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced irradiance, SH luma")
+                        .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kConeCoCgAo)))
+        .storageOut(shared::kLegacyBindingConeCoCgAo, kConeCoCgAo,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch,
+                                                 "cone-traced chroma (xy), voxel AO (z), view depth (w)"))
+        .push(push)
+        .dispatch(cw, ch)
+        .add(graph);
 
-    graph.addPass(
-        "legacy.upsample", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          for (const char* n : {kLegacySsao, kConeShY, kConeCoCgAo}) b.read(n, Usage::Sampled);
-          b.create(kLegacyAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO").decodedAs("ao"), Usage::StorageWrite);
-          b.create(kLegacyShY,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "diffuse irradiance, SH luma")
-                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kLegacyCoCg)),
-                   Usage::StorageWrite);
-          b.create(kLegacyCoCg, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "diffuse irradiance, chroma"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push](graph::PassContext& ctx) {
-          VkSampler lin = linear_.handle();
-          ctx.bind(upsample_);
-          ctx.pushConstants(push);
-          writeCommon(ctx, in)
-              .sampledImage(shared::kLegacyBindingSsaoOut, ctx.image(kLegacySsao).view(), lin, kReadOnly)
-              .sampledImage(shared::kLegacyBindingConeShY, ctx.image(kConeShY).view(), lin, kReadOnly)
-              .sampledImage(shared::kLegacyBindingConeCoCgAo, ctx.image(kConeCoCgAo).view(), lin, kReadOnly)
-              .storageImage(shared::kLegacyBindingOutAo, ctx.image(kLegacyAo).view())
-              .storageImage(shared::kLegacyBindingOutShY, ctx.image(kLegacyShY).view())
-              .storageImage(shared::kLegacyBindingOutCoCg, ctx.image(kLegacyCoCg).view());
-          ctx.dispatch(in.settings.width, in.settings.height);
-        });
+    withCommon(ComputePass(in.device, "legacy.upsample", "legacy/upsample.comp"))
+        .sampled(shared::kLegacyBindingSsaoOut, kLegacySsao, samplers::linear)
+        .sampled(shared::kLegacyBindingConeShY, kConeShY, samplers::linear)
+        .sampled(shared::kLegacyBindingConeCoCgAo, kConeCoCgAo, samplers::linear)
+        .storageOut(shared::kLegacyBindingOutAo, kLegacyAo,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO").decodedAs("ao"))
+        .storageOut(shared::kLegacyBindingOutShY, kLegacyShY,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "diffuse irradiance, SH luma")
+                        .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kLegacyCoCg)))
+        .storageOut(shared::kLegacyBindingOutCoCg, kLegacyCoCg,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "diffuse irradiance, chroma"))
+        .push(push)
+        .dispatch(w, h)
+        .add(graph);
 
     std::vector<ImageCopy> history = {{kLegacySsao, kLegacyHistSsao}};
     if (feedback) {
@@ -325,7 +283,7 @@ class LegacyPath final : public LightingPath {
             ctx.bind(voxelize_);
             ctx.descriptors()
                 .uniformBuffer(shared::kLegacyBindingFrame, in.constantsBuffer.handle())
-                .sampledImage(shared::kLegacyBindingShadow, ctx.image(shadow).view(), shadowSampler_.handle(), kReadOnly)
+                .sampledImage(shared::kLegacyBindingShadow, ctx.image(shadow).view(), in.device.sampler(samplers::sunShadowCompare), kReadOnly)
                 .storageImage(shared::kLegacyBindingRadiance, radiance.view())
                 .storageBuffer(shared::kLegacyBindingVertices, in.scene.vertexBuffer().handle())
                 .storageBuffer(shared::kLegacyBindingIndices, in.scene.indexBuffer().handle())
@@ -335,12 +293,12 @@ class LegacyPath final : public LightingPath {
                                                                                           : in.scene.indexBuffer().handle())
                 .sampledImage(shared::kBindingLightShadowAtlas,
                               ctx.image(in.lightShadowViews > 0 ? std::string(kLightShadowAtlas) : std::string(shadow)).view(),
-                              shadowSampler_.handle(), kReadOnly)
+                              in.device.sampler(samplers::sunShadowCompare), kReadOnly)
                 // Without feedback the bindings still need images: the G-buffer depth stands in, unread.
                 .sampledImage(shared::kLegacyBindingPrevRadiance, ctx.image(feedback ? kLegacyHistRadiance : kGbufferDepth).view(),
-                              point_.handle(), kReadOnly)
+                              in.device.sampler(samplers::point), kReadOnly)
                 .sampledImage(shared::kLegacyBindingPrevDepth, ctx.image(feedback ? kLegacyHistDepth : kGbufferDepth).view(),
-                              point_.handle(), kReadOnly);
+                              in.device.sampler(samplers::point), kReadOnly);
             ctx.flushDescriptors();
             in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, voxelize_.layout(), shared::kSceneSet);
             vpush.voxelRound = round.mode;
@@ -541,16 +499,12 @@ class LegacyPath final : public LightingPath {
                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
   }
 
-  static void readCommon(graph::PassBuilder& b) {
-    b.read(kFrameConstants, Usage::StorageRead);
-    b.read(kGbufferDepth, Usage::Sampled);
-    b.read("gbuffer.normal", Usage::Sampled);
-  }
-  gpu::DescriptorWriter& writeCommon(graph::PassContext& ctx, FrameInputs& in) {
-    return ctx.descriptors()
-        .uniformBuffer(shared::kLegacyBindingFrame, in.constantsBuffer.handle())
-        .sampledImage(shared::kLegacyBindingDepth, ctx.image(kGbufferDepth).view(), point_.handle(), kReadOnly)
-        .sampledImage(shared::kLegacyBindingNormal, ctx.image("gbuffer.normal").view(), point_.handle(), kReadOnly);
+  // What the screen-space passes' shaders declare in legacy/legacy_common.glsl.
+  static ComputePass withCommon(ComputePass pass) {
+    pass.uniform(shared::kLegacyBindingFrame, kFrameConstants)
+        .sampled(shared::kLegacyBindingDepth, kGbufferDepth)
+        .sampled(shared::kLegacyBindingNormal, "gbuffer.normal");
+    return pass;
   }
   // A rebuild starts from empty voxels. The clear runs at the transfer stage inside a raster
   // pass that declares it (the graph orders it after everything before the pass); the
@@ -562,7 +516,7 @@ class LegacyPath final : public LightingPath {
   }
 
   void prepare(FrameInputs& in) {
-    if (ssao_ && sceneId_ == in.scene.id()) return;
+    if (voxelize_ && sceneId_ == in.scene.id()) return;
     sceneId_ = in.scene.id();
     plainInstances_.clear();
     emissiveInstances_.clear();
@@ -576,41 +530,21 @@ class LegacyPath final : public LightingPath {
       allInstances_.push_back(i);
       emissive_.push_back(emits ? 1 : 0);
     }
-    point_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "legacy.point");
-    linear_ = gpu::Sampler(in.device, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "legacy.linear");
-    shadowSampler_ = gpu::Sampler(in.device, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER,
-                                  "legacy.shadowCompare", true);
     using B = gpu::Binding;
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    auto compute = [&](const char* name, const char* shader, std::vector<B> extra, bool common = true,
-                       uint32_t pushBytes = sizeof(LegacyPush)) {
+    // The voxel passes bind mip views and run inside or beside the raster voxelization:
+    // still their own layouts (the screen-space passes are ComputePass lists).
+    auto compute = [&](const char* name, const char* shader, std::vector<B> bindings) {
       gpu::ComputePipelineDesc d;
       d.name = name;
       d.shader = shader;
-      if (common)
-        d.layout.bindings = {{shared::kLegacyBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                             {shared::kLegacyBindingDepth, sampled},
-                             {shared::kLegacyBindingNormal, sampled}};
-      d.layout.bindings.insert(d.layout.bindings.end(), extra.begin(), extra.end());
-      d.layout.pushConstantBytes = pushBytes;
+      d.layout.bindings = std::move(bindings);
+      d.layout.pushConstantBytes = sizeof(LegacyVoxelPush);
       return gpu::createComputePipeline(in.device, d);
     };
-    ssao_ = compute("legacy.ssao", "legacy/ssao.comp", {{shared::kLegacyBindingAoRaw, storage}});
     mip_ = compute("legacy.voxel.mips", "legacy/voxel_mip.comp",
-                   {{shared::kLegacyBindingMipSrcRadiance, storage}, {shared::kLegacyBindingRadianceMips, storage}},
-                   false, sizeof(LegacyVoxelPush));
-    clear_ = compute("legacy.voxel.clear", "legacy/voxel_clear.comp", {{shared::kLegacyBindingRadiance, storage}}, false,
-                     sizeof(LegacyVoxelPush));
-    cones_ = compute("legacy.cones", "legacy/cones.comp",
-                     {{shared::kLegacyBindingRadiance, sampled}, {shared::kLegacyBindingRadianceMips, sampled},
-                      {shared::kLegacyBindingConeShY, storage}, {shared::kLegacyBindingConeCoCgAo, storage}});
-    ssaoTemporal_ = compute("legacy.ssao.temporal", "legacy/ssao_temporal.comp",
-                            {{shared::kLegacyBindingAoRaw, sampled}, {shared::kLegacyBindingAoHistory, sampled},
-                             {shared::kLegacyBindingMotion, sampled}, {shared::kLegacyBindingSsaoOut, storage}});
-    upsample_ = compute("legacy.upsample", "legacy/upsample.comp",
-                        {{shared::kLegacyBindingSsaoOut, sampled}, {shared::kLegacyBindingConeShY, sampled},
-                         {shared::kLegacyBindingConeCoCgAo, sampled}, {shared::kLegacyBindingOutAo, storage},
-                         {shared::kLegacyBindingOutShY, storage}, {shared::kLegacyBindingOutCoCg, storage}});
+                   {{shared::kLegacyBindingMipSrcRadiance, storage}, {shared::kLegacyBindingRadianceMips, storage}});
+    clear_ = compute("legacy.voxel.clear", "legacy/voxel_clear.comp", {{shared::kLegacyBindingRadiance, storage}});
     gpu::GraphicsPipelineDesc d;
     d.name = "legacy.voxelize";
     d.vertexShader = "legacy/voxelize.vert";
@@ -656,8 +590,7 @@ class LegacyPath final : public LightingPath {
   std::vector<uint8_t> emissive_;  // per instance
   std::vector<Seen> seen_;         // per instance
   WorkFigures lastWork_;
-  gpu::Sampler point_, linear_, shadowSampler_;
-  gpu::Pipeline ssao_, ssaoTemporal_, voxelize_, clear_, mip_, cones_, upsample_;
+  gpu::Pipeline voxelize_, clear_, mip_;
 };
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/light_table.h"
 #include "lighting/common/lights_pass.h"
+#include "lighting/common/pass_builders.h"
 #include "lighting/lighting_path.h"
 #include "lighting/rt/blue_noise.h"
 #include "lighting/rt/radiance_cache.h"
@@ -120,46 +121,32 @@ class RtPath final : public LightingPath {
     addCacheUpdate(graph, in, push, screenRadiance);
     cache_.addPasses(graph, in);
 
-    graph.addPass(
-        "rt.temporal", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          b.read("gbuffer.motion", Usage::Sampled);
-          for (const char* n : {raw->shY, raw->coCg, raw->ao, kHistShY, kHistCoCgAo, kHistDepth, kHistLumaMoment})
-            b.read(n, Usage::Sampled);
-          b.create(kShY,
-                   image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated irradiance: L1 SH of luma")
-                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kCoCgAo)),
-                   Usage::StorageWrite);
-          b.create(kCoCgAo, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated chroma (xy), AO (z), frames (w)"),
-                   Usage::StorageWrite);
-          b.create(kViewDepth, image(VK_FORMAT_R32_SFLOAT, "view depth (w) for the next frame's disocclusion test"),
-                   Usage::StorageWrite);
-          b.create(kLumaMoment,
-                   image(VK_FORMAT_R32_SFLOAT, "mean squared sample luma (the firefly ceiling's scale)"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push, raw](graph::PassContext& ctx) mutable {
+    withCommon(ComputePass(in.device, "rt.temporal", "rt/temporal.comp"))
+        .sampled(shared::kRtBindingMotion, "gbuffer.motion")
+        .sampled(shared::kRtBindingShY, raw->shY)
+        .sampled(shared::kRtBindingCoCg, raw->coCg)
+        .sampled(shared::kRtBindingAo, raw->ao)
+        .sampled(shared::kRtBindingHistShY, kHistShY)
+        .sampled(shared::kRtBindingHistCoCgAo, kHistCoCgAo)
+        .sampled(shared::kRtBindingHistDepth, kHistDepth)
+        .sampled(shared::kRtBindingHistMoment, kHistLumaMoment)
+        .storageOut(shared::kRtBindingOutShY, kShY,
+                    image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated irradiance: L1 SH of luma")
+                        .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kCoCgAo)))
+        .storageOut(shared::kRtBindingOutCoCgAo, kCoCgAo, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated chroma (xy), AO (z), frames (w)"))
+        .storageOut(shared::kRtBindingOutDepth, kViewDepth,
+                    image(VK_FORMAT_R32_SFLOAT, "view depth (w) for the next frame's disocclusion test"))
+        .storageOut(shared::kRtBindingOutMoment, kLumaMoment,
+                    image(VK_FORMAT_R32_SFLOAT, "mean squared sample luma (the firefly ceiling's scale)"))
+        .push(push)
+        // Whether the histories hold anything is known when the frame runs (their "stored" flags).
+        .record([this, push, w, h](graph::PassContext& ctx) mutable {
           push.historyValid = !restart_ && ctx.historyValid(kHistShY) && ctx.historyValid(kHistCoCgAo) &&
                               ctx.historyValid(kHistDepth) && ctx.historyValid(kHistLumaMoment);
-          VkSampler p = point_.handle();
-          ctx.bind(temporal_);
           ctx.pushConstants(push);
-          writeCommon(ctx, in)
-              .sampledImage(shared::kRtBindingMotion, ctx.image("gbuffer.motion").view(), p, kReadOnly)
-              .sampledImage(shared::kRtBindingShY, ctx.image(raw->shY).view(), p, kReadOnly)
-              .sampledImage(shared::kRtBindingCoCg, ctx.image(raw->coCg).view(), p, kReadOnly)
-              .sampledImage(shared::kRtBindingAo, ctx.image(raw->ao).view(), p, kReadOnly)
-              .sampledImage(shared::kRtBindingHistShY, ctx.image(kHistShY).view(), p, kReadOnly)
-              .sampledImage(shared::kRtBindingHistCoCgAo, ctx.image(kHistCoCgAo).view(), p, kReadOnly)
-              .sampledImage(shared::kRtBindingHistDepth, ctx.image(kHistDepth).view(), p, kReadOnly)
-              .sampledImage(shared::kRtBindingHistMoment, ctx.image(kHistLumaMoment).view(), p, kReadOnly)
-              .storageImage(shared::kRtBindingOutMoment, ctx.image(kLumaMoment).view())
-              .storageImage(shared::kRtBindingOutShY, ctx.image(kShY).view())
-              .storageImage(shared::kRtBindingOutCoCgAo, ctx.image(kCoCgAo).view())
-              .storageImage(shared::kRtBindingOutDepth, ctx.image(kViewDepth).view());
-          ctx.dispatch(in.settings.width, in.settings.height);
-        });
+          ctx.dispatch(w, h);
+        })
+        .add(graph);
 
     // What the history, the AO filter and the denoiser take: the accumulation, with the
     // disocclusion rays filled into its fresh pixels when they are on.
@@ -174,23 +161,13 @@ class RtPath final : public LightingPath {
     addCopyPass(graph, "rt.history",
                 {{accShY, kHistShY}, {accCoCgAo, kHistCoCgAo}, {kViewDepth, kHistDepth}, {kLumaMoment, kHistLumaMoment}});
 
-    graph.addPass(
-        "rt.ao.filter", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          b.read(accCoCgAo, Usage::Sampled);
-          b.read(kViewDepth, Usage::Sampled);
-          b.create(kAo, image(VK_FORMAT_R16_SFLOAT, "filtered ambient occlusion").decodedAs("ao"), Usage::StorageWrite);
-        },
-        [this, &in, push, accCoCgAo](graph::PassContext& ctx) {
-          ctx.bind(aoFilter_);
-          ctx.pushConstants(push);
-          writeCommon(ctx, in)
-              .sampledImage(shared::kRtBindingCoCg, ctx.image(accCoCgAo).view(), point_.handle(), kReadOnly)
-              .sampledImage(shared::kRtBindingHistDepth, ctx.image(kViewDepth).view(), point_.handle(), kReadOnly)
-              .storageImage(shared::kRtBindingAo, ctx.image(kAo).view());
-          ctx.dispatch(in.settings.width, in.settings.height);
-        });
+    withCommon(ComputePass(in.device, "rt.ao.filter", "rt/ao_filter.comp"))
+        .sampled(shared::kRtBindingCoCg, accCoCgAo)
+        .sampled(shared::kRtBindingHistDepth, kViewDepth)
+        .storageOut(shared::kRtBindingAo, kAo, image(VK_FORMAT_R16_SFLOAT, "filtered ambient occlusion").decodedAs("ao"))
+        .push(push)
+        .dispatch(w, h)
+        .add(graph);
 
     if (s.rtRawRayProbe) {
       // The benchmark's trivial kernel, twice: every pixel's ray, and only the rays rt.trace
@@ -231,46 +208,28 @@ class RtPath final : public LightingPath {
       const uint32_t frameIndex = in.constants.frameIndex;
       auto denoise = [&](const char* name, const char* inShY, const char* inCoCg, const char* outShY, const char* outCoCg,
                          float radius, uint32_t normalWeight) {
-        graph.addPass(
-            name, graph::PassKind::Compute,
-            [&](graph::PassBuilder& b) {
-              b.read(kFrameConstants, Usage::StorageRead);
-              b.read(kGbufferDepth, Usage::Sampled);
-              b.read("gbuffer.normal", Usage::Sampled);
-              b.read(inShY, Usage::Sampled);
-              b.read(inCoCg, Usage::Sampled);
-              b.read(kLumaMoment, Usage::Sampled);
-              b.read("gbuffer.baseColor", Usage::Sampled);
-              b.read("gbuffer.material", Usage::Sampled);
-              b.create(outShY,
-                       image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised irradiance, SH luma")
-                           .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", outCoCg)),
-                       Usage::StorageWrite);
-              b.create(outCoCg, image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised chroma (xy), AO and frames as input"),
-                       Usage::StorageWrite);
-            },
-            [this, &in, inShY, inCoCg, outShY, outCoCg, radius, normalWeight, frameIndex](graph::PassContext& ctx) {
-              shared::RtDenoisePush dp{};
-              dp.baseRadius = radius;
-              dp.normalWeight = normalWeight;
-              dp.rotation = float(frameIndex % 1024u) * 2.3999632f;  // golden angle per frame
-              dp.planeDistance = 0.02f;
-              VkSampler pt = point_.handle();
-              ctx.bind(denoise_);
-              ctx.pushConstants(dp);
-              ctx.descriptors()
-                  .uniformBuffer(shared::kRtBindingFrame, in.constantsBuffer.handle())
-                  .sampledImage(shared::kRtBindingDepth, ctx.image(kGbufferDepth).view(), pt, kReadOnly)
-                  .sampledImage(shared::kRtBindingNormal, ctx.image("gbuffer.normal").view(), pt, kReadOnly)
-                  .sampledImage(shared::kRtBindingShY, ctx.image(inShY).view(), pt, kReadOnly)
-                  .sampledImage(shared::kRtBindingCoCg, ctx.image(inCoCg).view(), pt, kReadOnly)
-                  .sampledImage(shared::kRtBindingDenoiseMoment, ctx.image(kLumaMoment).view(), pt, kReadOnly)
-                  .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), pt, kReadOnly)
-                  .sampledImage(shared::kRtBindingMaterial, ctx.image("gbuffer.material").view(), pt, kReadOnly)
-                  .storageImage(shared::kRtBindingDenoiseShY, ctx.image(outShY).view())
-                  .storageImage(shared::kRtBindingDenoiseCoCgAo, ctx.image(outCoCg).view());
-              ctx.dispatch(in.settings.width, in.settings.height);
-            });
+        shared::RtDenoisePush dp{};
+        dp.baseRadius = radius;
+        dp.normalWeight = normalWeight;
+        dp.rotation = float(frameIndex % 1024u) * 2.3999632f;  // golden angle per frame
+        dp.planeDistance = 0.02f;
+        ComputePass(in.device, name, "rt/denoise.comp")
+            .uniform(shared::kRtBindingFrame, kFrameConstants)
+            .sampled(shared::kRtBindingDepth, kGbufferDepth)
+            .sampled(shared::kRtBindingNormal, "gbuffer.normal")
+            .sampled(shared::kRtBindingShY, inShY)
+            .sampled(shared::kRtBindingCoCg, inCoCg)
+            .sampled(shared::kRtBindingDenoiseMoment, kLumaMoment)
+            .sampled(shared::kRtBindingBaseColor, "gbuffer.baseColor")
+            .sampled(shared::kRtBindingMaterial, "gbuffer.material")
+            .storageOut(shared::kRtBindingDenoiseShY, outShY,
+                        image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised irradiance, SH luma")
+                            .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", outCoCg)))
+            .storageOut(shared::kRtBindingDenoiseCoCgAo, outCoCg,
+                        image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised chroma (xy), AO and frames as input"))
+            .push(dp)
+            .dispatch(w, h)
+            .add(graph);
       };
       denoise("rt.denoise1", accShY, accCoCgAo, kDenoise1ShY, kDenoise1CoCgAo, base, 0);
       denoise("rt.denoise2", kDenoise1ShY, kDenoise1CoCgAo, kDenoisedShY, kDenoisedCoCgAo, 0.5f * base, 1);
@@ -332,30 +291,19 @@ class RtPath final : public LightingPath {
       return graph::ResourceDesc::image2D(f, in.settings.width, in.settings.height, std::move(what));
     };
     const char* rays = first ? "the mean of two rays" : "one ray";
-    graph.addPass(
-        r.pretracePass, graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive", "gbuffer.instanceId"})
-            b.read(n, Usage::Sampled);
-          b.create(r.pretraceHits, image(VK_FORMAT_R32_UINT, "pre-trace hit records: distance + G-buffer albedo, or pending").decodedAs("rt-hit-record"),
-                   Usage::StorageWrite);
-          b.create(r.pretraceSurface, image(VK_FORMAT_R32G32_UINT, "pre-trace hit normal (oct) + emission (rgb9e5)").decodedAs("rt-hit-surface"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push, &r](graph::PassContext& ctx) {
-          ctx.bind(pretrace_);
-          ctx.pushConstants(push);
-          writeCommon(ctx, in)
-              .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), point_.handle(), kReadOnly)
-              .sampledImage(shared::kRtBindingMaterial, ctx.image("gbuffer.material").view(), point_.handle(), kReadOnly)
-              .sampledImage(shared::kRtBindingEmissive, ctx.image("gbuffer.emissive").view(), point_.handle(), kReadOnly)
-              .sampledImage(shared::kRtBindingInstanceId, ctx.image("gbuffer.instanceId").view(), point_.handle(), kReadOnly)
-              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
-              .storageImage(shared::kRtBindingHitsOut, ctx.image(r.pretraceHits).view())
-              .storageImage(shared::kRtBindingSurfaceOut, ctx.image(r.pretraceSurface).view());
-          ctx.dispatch(tracedWidth(in), tracedHeight(in));
-        });
+    withCommon(ComputePass(in.device, r.pretracePass, "rt/pretrace.comp"))
+        .sampled(shared::kRtBindingBaseColor, "gbuffer.baseColor")
+        .sampled(shared::kRtBindingMaterial, "gbuffer.material")
+        .sampled(shared::kRtBindingEmissive, "gbuffer.emissive")
+        .sampled(shared::kRtBindingInstanceId, "gbuffer.instanceId")
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
+        .storageOut(shared::kRtBindingHitsOut, r.pretraceHits,
+                    image(VK_FORMAT_R32_UINT, "pre-trace hit records: distance + G-buffer albedo, or pending").decodedAs("rt-hit-record"))
+        .storageOut(shared::kRtBindingSurfaceOut, r.pretraceSurface,
+                    image(VK_FORMAT_R32G32_UINT, "pre-trace hit normal (oct) + emission (rgb9e5)").decodedAs("rt-hit-surface"))
+        .push(push)
+        .dispatch(tracedWidth(in), tracedHeight(in))
+        .add(graph);
 
     graph.addPass(
         r.tracePass, graph::PassKind::RayTracing,
@@ -482,35 +430,22 @@ class RtPath final : public LightingPath {
           traceRays(ctx, disocclusion_, cw, ch, &in.scene);
         });
     const uint32_t w = in.settings.width, h = in.settings.height;
-    graph.addPass(
-        "rt.disocclusion.blend", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          for (const char* n : {kShY, kCoCgAo, kCellShY, kCellCoCgAo, kCellOrigin}) b.read(n, Usage::Sampled);
-          b.create(kFilledShY,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
-                                                "accumulated irradiance, fresh pixels filled from the disocclusion rays")
-                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kFilledCoCgAo)),
-                   Usage::StorageWrite);
-          b.create(kFilledCoCgAo,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
-                                                "accumulated chroma (xy), AO (z), frames (w), fresh pixels filled"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push](graph::PassContext& ctx) {
-          VkSampler pt = point_.handle();
-          ctx.bind(disocclusionBlend_);
-          ctx.pushConstants(push);
-          writeCommon(ctx, in)
-              .sampledImage(shared::kRtBindingShY, ctx.image(kShY).view(), pt, kReadOnly)
-              .sampledImage(shared::kRtBindingCoCg, ctx.image(kCoCgAo).view(), pt, kReadOnly)
-              .sampledImage(shared::kRtBindingCellShY, ctx.image(kCellShY).view(), pt, kReadOnly)
-              .sampledImage(shared::kRtBindingCellCoCgAo, ctx.image(kCellCoCgAo).view(), pt, kReadOnly)
-              .sampledImage(shared::kRtBindingCellPosition, ctx.image(kCellOrigin).view(), pt, kReadOnly)
-              .storageImage(shared::kRtBindingOutShY, ctx.image(kFilledShY).view())
-              .storageImage(shared::kRtBindingOutCoCgAo, ctx.image(kFilledCoCgAo).view());
-          ctx.dispatch(in.settings.width, in.settings.height);
-        });
+    withCommon(ComputePass(in.device, "rt.disocclusion.blend", "rt/disocclusion_blend.comp"))
+        .sampled(shared::kRtBindingShY, kShY)
+        .sampled(shared::kRtBindingCoCg, kCoCgAo)
+        .sampled(shared::kRtBindingCellShY, kCellShY)
+        .sampled(shared::kRtBindingCellCoCgAo, kCellCoCgAo)
+        .sampled(shared::kRtBindingCellPosition, kCellOrigin)
+        .storageOut(shared::kRtBindingOutShY, kFilledShY,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
+                                                 "accumulated irradiance, fresh pixels filled from the disocclusion rays")
+                        .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kFilledCoCgAo)))
+        .storageOut(shared::kRtBindingOutCoCgAo, kFilledCoCgAo,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
+                                                 "accumulated chroma (xy), AO (z), frames (w), fresh pixels filled"))
+        .push(push)
+        .dispatch(w, h)
+        .add(graph);
   }
   static uint32_t cellsAcross(uint32_t pixels) {
     return (pixels + shared::kRtDisocclusionCell - 1) / shared::kRtDisocclusionCell;
@@ -610,6 +545,14 @@ class RtPath final : public LightingPath {
     b.read(kFrameConstants, Usage::StorageRead);
     b.read(kGbufferDepth, Usage::Sampled);
     b.read("gbuffer.normal", Usage::Sampled);
+  }
+  // What the compute passes' shaders declare in rt/rt_common.glsl, on a ComputePass list.
+  ComputePass withCommon(ComputePass pass) const {
+    pass.uniform(shared::kRtBindingFrame, kFrameConstants)
+        .constantSampled(shared::kRtBindingBlueNoise, blueNoise_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+        .sampled(shared::kRtBindingDepth, kGbufferDepth)
+        .sampled(shared::kRtBindingNormal, "gbuffer.normal");
+    return pass;
   }
   gpu::DescriptorWriter& writeCommon(graph::PassContext& ctx, FrameInputs& in) {
     return ctx.descriptors()
@@ -748,7 +691,7 @@ class RtPath final : public LightingPath {
       albedoVersion_ = in.instanceAlbedoVersion;
       materials_ = materials;
     }
-    if (pretrace_) return;
+    if (rawRays_) return;
     point_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "rt.point");
     // Two independent masks, one per uniform of the ray's direction.
     static const std::vector<uint16_t> maskU = voidAndClusterRanks(shared::kRtBlueNoiseSize, 1);
@@ -778,50 +721,6 @@ class RtPath final : public LightingPath {
       l.pushConstantBytes = sizeof(RtPush);
       return l;
     };
-    auto compute = [&](const char* name, const char* shader, std::vector<B> extra) {
-      gpu::ComputePipelineDesc d;
-      d.name = name;
-      d.shader = shader;
-      d.layout = with(std::move(extra));
-      return gpu::createComputePipeline(in.device, d);
-    };
-    pretrace_ = compute("rt.pretrace", "rt/pretrace.comp",
-                        {{shared::kRtBindingBaseColor, sampled}, {shared::kRtBindingMaterial, sampled},
-                         {shared::kRtBindingEmissive, sampled}, {shared::kRtBindingHitsOut, storage},
-                         {shared::kRtBindingSurfaceOut, storage}, {shared::kRtBindingInstanceId, sampled},
-                         {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
-    temporal_ = compute("rt.temporal", "rt/temporal.comp",
-                        {{shared::kRtBindingMotion, sampled}, {shared::kRtBindingShY, sampled},
-                         {shared::kRtBindingCoCg, sampled}, {shared::kRtBindingAo, sampled},
-                         {shared::kRtBindingHistShY, sampled}, {shared::kRtBindingHistCoCgAo, sampled},
-                         {shared::kRtBindingHistDepth, sampled}, {shared::kRtBindingHistMoment, sampled},
-                         {shared::kRtBindingOutShY, storage}, {shared::kRtBindingOutCoCgAo, storage},
-                         {shared::kRtBindingOutDepth, storage}, {shared::kRtBindingOutMoment, storage}});
-    {
-      gpu::ComputePipelineDesc d;
-      d.name = "rt.denoise";
-      d.shader = "rt/denoise.comp";
-      d.layout.bindings = {{shared::kRtBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                           {shared::kRtBindingDepth, sampled},
-                           {shared::kRtBindingNormal, sampled},
-                           {shared::kRtBindingShY, sampled},
-                           {shared::kRtBindingCoCg, sampled},
-                           {shared::kRtBindingDenoiseMoment, sampled},
-                           {shared::kRtBindingBaseColor, sampled},
-                           {shared::kRtBindingMaterial, sampled},
-                           {shared::kRtBindingDenoiseShY, storage},
-                           {shared::kRtBindingDenoiseCoCgAo, storage}};
-      d.layout.pushConstantBytes = sizeof(shared::RtDenoisePush);
-      denoise_ = gpu::createComputePipeline(in.device, d);
-    }
-    aoFilter_ = compute("rt.ao.filter", "rt/ao_filter.comp",
-                        {{shared::kRtBindingCoCg, sampled}, {shared::kRtBindingHistDepth, sampled},
-                         {shared::kRtBindingAo, storage}});
-    disocclusionBlend_ = compute("rt.disocclusion.blend", "rt/disocclusion_blend.comp",
-                                 {{shared::kRtBindingShY, sampled}, {shared::kRtBindingCoCg, sampled},
-                                  {shared::kRtBindingCellShY, sampled}, {shared::kRtBindingCellCoCgAo, sampled},
-                                  {shared::kRtBindingCellPosition, sampled}, {shared::kRtBindingOutShY, storage},
-                                  {shared::kRtBindingOutCoCgAo, storage}});
     {
       gpu::RayTracingPipelineDesc d;
       d.name = "rt.rawRays";
@@ -848,7 +747,7 @@ class RtPath final : public LightingPath {
   RtResolvedParams params_;
   gpu::Image blueNoise_;
   gpu::Sampler point_;
-  gpu::Pipeline pretrace_, trace_, lighting_, temporal_, aoFilter_, rawRays_, denoise_, disocclusion_, disocclusionBlend_;
+  gpu::Pipeline trace_, lighting_, rawRays_, disocclusion_;
   gpu::Pipeline cacheUpdate_;
   RtRadianceCache cache_;
 };
