@@ -26,6 +26,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -33,6 +34,12 @@ namespace tl::lighting {
 
 inline constexpr const char* kDepthShareDecoder = "depth-share";
 inline constexpr const char* kIbufferDecoderPrefix = "ibuffer-";  // + dg, sg1, sg2, ms
+
+// The spec of an L1 SH luma image whose chroma is in `coCg`, read in the G-buffer's normal
+// direction (both the rt and the legacy path write such pairs).
+inline std::string shIrradianceDecoder(std::string_view coCg) {
+  return "sh-irradiance coCg=" + std::string(coCg) + " normal=gbuffer.normal";
+}
 
 struct DecoderSpec {
   std::string name;

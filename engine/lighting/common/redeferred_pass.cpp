@@ -30,6 +30,20 @@ constexpr const char* kDescription[4] = {
 
 std::string ibufferDecoder(size_t quantity) { return std::string(kIbufferDecoderPrefix) + kQuantityName[quantity]; }
 
+namespace {
+
+// The bindings every I-buffer pass shares: frame constants, BRDF tables and the G-buffer
+// surface (normal, material, depth) it shades or fills.
+void addIbufferSurface(ComputePass& pass) {
+  pass.uniform(shared::kBindingFrame, kFrameConstants)
+      .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
+      .sampled(shared::kIbufferNormal, "gbuffer.normal")
+      .sampled(shared::kIbufferMaterial, "gbuffer.material")
+      .sampled(shared::kIbufferDepth, kGbufferDepth);
+}
+
+}  // namespace
+
 void RedeferredPass::add(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push,
                          const LightingOutputs& path, const std::string& output, const graph::ResourceDesc& outputDesc) {
   // Below full rate: the pattern's pixels, the rest filled, then the edges shaded after all.
@@ -70,12 +84,8 @@ void RedeferredPass::addLight(graph::RenderGraph& graph, FrameInputs& in, const 
   const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
   const bool lights = (push.flags & shared::kCompositeHasLights) != 0;
   ComputePass pass(in.device, refine ? "ibuffer.light.refine" : "ibuffer.light", "common/ibuffer_light.comp");
-  pass.uniform(shared::kBindingFrame, kFrameConstants)
-      .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
-      .sampled(shared::kIbufferNormal, "gbuffer.normal")
-      .sampled(shared::kIbufferMaterial, "gbuffer.material")
-      .sampled(shared::kIbufferDepth, kGbufferDepth)
-      .optionalSampled(shared::kIbufferShadow, kShadowSunDepth, sun, samplers::sunShadowCompare)
+  addIbufferSurface(pass);
+  pass.optionalSampled(shared::kIbufferShadow, kShadowSunDepth, sun, samplers::sunShadowCompare)
       .optionalSampled(shared::kIbufferShadowDepth, kShadowSunDepth, sun)
       .optionalSampled(shared::kIbufferRefineMaskSampled, kIbufferRefine, refine);
   for (size_t q = 0; q < kIbuffer.size(); ++q)
@@ -101,12 +111,8 @@ void RedeferredPass::addUpsample(graph::RenderGraph& graph, FrameInputs& in, uin
   shared::IbufferUpsamplePush push{};
   push.pattern = pattern;
   ComputePass pass(in.device, "ibuffer.upsample", "common/ibuffer_upsample.comp");
-  pass.uniform(shared::kBindingFrame, kFrameConstants)
-      .bufferIn(shared::kBindingBrdfTables, kBrdfTables)  // declared by the shader (the old layout left it out)
-      .sampled(shared::kIbufferNormal, "gbuffer.normal")
-      .sampled(shared::kIbufferMaterial, "gbuffer.material")
-      .sampled(shared::kIbufferDepth, kGbufferDepth)
-      .storageOut(shared::kIbufferRefineMask, kIbufferRefine,
+  addIbufferSurface(pass);  // the BRDF table there: ibuffer_upsample.comp declares it (the old layout left it out)
+  pass.storageOut(shared::kIbufferRefineMask, kIbufferRefine,
                   graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
                                                "how each pixel's I-buffer was made: 0 shaded (pattern, sky), 1 filled, 2 shaded as an edge"));
   for (size_t q = 0; q < kIbufferFilled.size(); ++q)
@@ -121,12 +127,8 @@ void RedeferredPass::addUpsample(graph::RenderGraph& graph, FrameInputs& in, uin
 void RedeferredPass::addLightOnly(graph::RenderGraph& graph, FrameInputs& in) {
   const uint32_t w = in.settings.width, h = in.settings.height;
   ComputePass pass(in.device, "ibuffer.lightOnly", "common/ibuffer_light_only.comp");
-  pass.uniform(shared::kBindingFrame, kFrameConstants)
-      .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
-      .sampled(shared::kIbufferNormal, "gbuffer.normal")
-      .sampled(shared::kIbufferMaterial, "gbuffer.material")
-      .sampled(shared::kIbufferDepth, kGbufferDepth)
-      .storageOut(shared::kIbufferOutDg, kIbufferLightOnly,
+  addIbufferSurface(pass);
+  pass.storageOut(shared::kIbufferOutDg, kIbufferLightOnly,
                   graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                                "light only: the I-buffer resolved against white (no materials)"));
   for (size_t q = 0; q < kIbuffer.size(); ++q) pass.sampled(kSampledBinding[q], kIbuffer[q]);

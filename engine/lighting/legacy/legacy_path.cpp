@@ -8,6 +8,7 @@
 #include "graph/executor.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/copy_pass.h"
+#include "lighting/common/decoders.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/shadow_pass.h"
 #include "lighting/legacy/legacy_path.h"
@@ -182,7 +183,7 @@ class LegacyPath final : public LightingPath {
         .sampled(shared::kLegacyBindingRadianceMips, kVoxelRadianceMips, samplers::linear)
         .storageOut(shared::kLegacyBindingConeShY, kConeShY,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced irradiance, SH luma")
-                        .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kConeCoCgAo)))
+                        .decodedAs(shIrradianceDecoder(kConeCoCgAo)))
         .storageOut(shared::kLegacyBindingConeCoCgAo, kConeCoCgAo,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch,
                                                  "cone-traced chroma (xy), voxel AO (z), view depth (w)"))
@@ -198,7 +199,7 @@ class LegacyPath final : public LightingPath {
                     graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO").decodedAs("ao"))
         .storageOut(shared::kLegacyBindingOutShY, kLegacyShY,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "diffuse irradiance, SH luma")
-                        .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kLegacyCoCg)))
+                        .decodedAs(shIrradianceDecoder(kLegacyCoCg)))
         .storageOut(shared::kLegacyBindingOutCoCg, kLegacyCoCg,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "diffuse irradiance, chroma"))
         .push(push)

@@ -5,6 +5,7 @@
 #include "graph/executor.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/copy_pass.h"
+#include "lighting/common/decoders.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/light_table.h"
 #include "lighting/common/lights_pass.h"
@@ -132,7 +133,7 @@ class RtPath final : public LightingPath {
         .sampled(shared::kRtBindingHistMoment, kHistLumaMoment)
         .storageOut(shared::kRtBindingOutShY, kShY,
                     image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated irradiance: L1 SH of luma")
-                        .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kCoCgAo)))
+                        .decodedAs(shIrradianceDecoder(kCoCgAo)))
         .storageOut(shared::kRtBindingOutCoCgAo, kCoCgAo, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated chroma (xy), AO (z), frames (w)"))
         .storageOut(shared::kRtBindingOutDepth, kViewDepth,
                     image(VK_FORMAT_R32_SFLOAT, "view depth (w) for the next frame's disocclusion test"))
@@ -224,7 +225,7 @@ class RtPath final : public LightingPath {
             .sampled(shared::kRtBindingMaterial, "gbuffer.material")
             .storageOut(shared::kRtBindingDenoiseShY, outShY,
                         image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised irradiance, SH luma")
-                            .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", outCoCg)))
+                            .decodedAs(shIrradianceDecoder(outCoCg)))
             .storageOut(shared::kRtBindingDenoiseCoCgAo, outCoCg,
                         image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised chroma (xy), AO and frames as input"))
             .push(dp)
@@ -341,7 +342,7 @@ class RtPath final : public LightingPath {
             for (const char* n : {first->shY, first->coCg, first->ao}) b.read(n, Usage::Sampled);
           b.create(r.shY,
                    image(VK_FORMAT_R16G16B16A16_SFLOAT, fmt::format("{} irradiance: L1 SH of luma", rays))
-                       .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", r.coCg)),
+                       .decodedAs(shIrradianceDecoder(r.coCg)),
                    Usage::StorageWrite);
           b.create(r.coCg, image(VK_FORMAT_R16G16_SFLOAT, fmt::format("{} irradiance: chroma", rays)),
                    Usage::StorageWrite);
@@ -439,7 +440,7 @@ class RtPath final : public LightingPath {
         .storageOut(shared::kRtBindingOutShY, kFilledShY,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
                                                  "accumulated irradiance, fresh pixels filled from the disocclusion rays")
-                        .decodedAs(fmt::format("sh-irradiance coCg={} normal=gbuffer.normal", kFilledCoCgAo)))
+                        .decodedAs(shIrradianceDecoder(kFilledCoCgAo)))
         .storageOut(shared::kRtBindingOutCoCgAo, kFilledCoCgAo,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
                                                  "accumulated chroma (xy), AO (z), frames (w), fresh pixels filled"))
