@@ -719,6 +719,24 @@ void cutout(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// Contact shadows (hybrid ray-traced shadows, T11): a 1 m white cube standing on a 0.8 grey
+// floor, under a sun of E = 10 travelling (0.6, -0.8, 0) (53 degrees high) and a sky of 1.
+// With the real sun's 0.27 degree radius every penumbra is under 1.3 cm, so the floor's
+// visibility is a closed form: 0 in the cube's shadow (x from its foot at -0.5 to +0.25,
+// z within its sides), 1 elsewhere. A shadow map lifts the shadow off the contact and blurs
+// its edges by its filter; a ray does not. Camera 0 looks down on the shadow.
+void contactShadows(const std::filesystem::path& dir) {
+  SceneWriter w("contact_shadows");
+  int grey = w.material({"floor_grey", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  int white = w.material({"white", {0.8f, 0.8f, 0.8f}, 0.0f, 0.8f});
+  w.node("floor", w.mesh("floor", quad(12.0f, 12.0f), grey), {0.0f, 0.0f, 0.0f});
+  w.node("cube", w.mesh("cube", box({1.0f, 1.0f, 1.0f}), white), {-1.0f, 0.5f, -1.0f});
+  w.camera("above", {-0.6f, 4.0f, 0.4f}, {-0.6f, 0.0f, -1.0f}, 50.0f);
+  w.sun({0.6f, -0.8f, 0.0f}, 10.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
 // Scale: `instances` boxes on a 2 km square of ground, each one of `keys` distinct mesh and
 // material combinations (albedo keys): 40 box shapes x as many materials as the keys need.
 // The positions are a jittered grid, the shapes and materials and yaw a fixed hash of the
@@ -821,6 +839,7 @@ int main(int argc, char** argv) {
     tl::content::samplerProbe(dir);
     tl::content::texcoord1Probe(dir);
     tl::content::color0Probe(dir);
+    tl::content::contactShadows(dir);
     tl::content::writeHardScenes(dir / "hard");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());

@@ -18,6 +18,7 @@ layout(set = 0, binding = kCompositeDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kCompositeShadow) uniform sampler2DShadow sunShadow;
 layout(set = 0, binding = kCompositeOutput, rgba32f) uniform writeonly image2D outRadiance;  // kCompositeHdrFormat
 layout(set = 0, binding = kCompositeLights) uniform sampler2D lightsRadiance;
+layout(set = 0, binding = kCompositeSunVisibility) uniform sampler2D sunVisibilityHybrid;
 layout(push_constant) uniform Push { CompositePush push; };
 
 #include "common/camera.glsl"
@@ -48,7 +49,10 @@ void main() {
   vec3 radiance = texelFetch(gEmissive, p, 0).rgb;
   float nl = dot(n, frame.sunToLight.xyz);
   if (nl > 0.0) {
-    vec3 sun = frame.sunIrradiance.rgb * (nl * sunVisibilitySoft(position, n, p));
+    // Hybrid ray-traced shadows (shadow.sun.hybrid) where the path traced them, else PCSS.
+    float visibility = (push.flags & kCompositeHasSunVisibility) != 0u ? texelFetch(sunVisibilityHybrid, p, 0).r
+                                                                        : sunVisibilitySoft(position, n, p);
+    vec3 sun = frame.sunIrradiance.rgb * (nl * visibility);
     radiance += sun * tlBrdf(s, n, v, frame.sunToLight.xyz);
   }
   // Point, spot and further directional lights (lights.direct), when the scene has any.

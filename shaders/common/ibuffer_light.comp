@@ -31,6 +31,7 @@ layout(set = 0, binding = kIbufferFilledDg) uniform sampler2D filledDg;  // the 
 layout(set = 0, binding = kIbufferFilledSg1) uniform sampler2D filledSg1;
 layout(set = 0, binding = kIbufferFilledSg2) uniform sampler2D filledSg2;
 layout(set = 0, binding = kIbufferFilledMs) uniform sampler2D filledMs;
+layout(set = 0, binding = kIbufferSunVisibility) uniform sampler2D sunVisibilityHybrid;
 layout(push_constant) uniform Push { CompositePush push; };
 
 #include "common/camera.glsl"
@@ -80,7 +81,12 @@ void main() {
   IbufferSums sums = tlIbufferZero();
   vec3 l = frame.sunToLight.xyz;
   float nl = dot(n, l);
-  if (nl > 0.0) sums = tlIbufferAddLight(sums, g, n, v, l, frame.sunIrradiance.rgb * (nl * sunVisibilitySoft(position, n, p)));
+  if (nl > 0.0) {
+    // Hybrid ray-traced shadows (shadow.sun.hybrid) where the path traced them, else PCSS.
+    float visibility = (push.flags & kCompositeHasSunVisibility) != 0u ? texelFetch(sunVisibilityHybrid, p, 0).r
+                                                                        : sunVisibilitySoft(position, n, p);
+    sums = tlIbufferAddLight(sums, g, n, v, l, frame.sunIrradiance.rgb * (nl * visibility));
+  }
   if ((push.flags & kCompositeHasLights) != 0u) {
     sums.dg += texelFetch(lightsDg, p, 0).rgb;
     sums.sg1 += texelFetch(lightsSg1, p, 0).rgb;

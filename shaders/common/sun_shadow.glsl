@@ -36,24 +36,33 @@ const vec2 kPoisson16[16] = vec2[16](
     vec2(-0.24188840, 0.99706507), vec2(-0.81409955, 0.91437590), vec2(0.19984126, 0.78641367),
     vec2(0.14383161, -0.14100790));
 
-float sunVisibilitySoft(vec3 position, vec3 normal, ivec2 pixel) {
-  if ((frame.flags & kFrameFlagSunShadows) == 0u) return 1.0;
+// What the PCSS estimate found: the visibility, and the receiver's distance to the blockers'
+// mean depth along the sun in metres (-1: no blocker in the search region; 0: the penumbra is
+// below a texel, so the plain PCF answered). HRTS blends by that distance.
+struct SunShadowEstimate {
+  float visibility;
+  float blockerDistance;
+};
+
+SunShadowEstimate sunShadowSoft(vec3 position, vec3 normal, ivec2 pixel) {
+  if ((frame.flags & kFrameFlagSunShadows) == 0u) return SunShadowEstimate(1.0, -1.0);
   float texel = frame.shadowParams.x, size = frame.shadowParams.w;
   float tanSun = tan(frame.sunToLight.w);
   float metres = frame.shadowSoftness.x;
   float maxRadius = frame.shadowSoftness.y;
-  if (frame.shadowSoftness.z == 0.0) return sunVisibility(position, normal);
+  if (frame.shadowSoftness.z == 0.0) return SunShadowEstimate(sunVisibility(position, normal), 0.0);
   vec3 l = frame.sunToLight.xyz;
   float slope = sqrt(max(1.0 - dot(normal, l) * dot(normal, l), 0.0));
   vec3 offset = normal * (frame.shadowParams.z * texel * max(slope, 0.2)) + l * frame.shadowParams.y;
   vec4 clip = frame.sunViewProj * vec4(position + offset, 1.0);
   vec3 s = clip.xyz / clip.w;
-  if (s.z >= 1.0) return 1.0;
+  if (s.z >= 1.0) return SunShadowEstimate(1.0, -1.0);
   vec2 uv = s.xy * 0.5 + 0.5;
   // Any blocker that can hide part of the sun lies within tan(theta) * (its height) of the
   // receiver: search that far (at most the largest filter).
   float searchTexels = clamp(tanSun * s.z * metres / texel, 1.0, maxRadius);
-  if (searchTexels <= 1.5) return sunVisibility(position, normal);  // penumbra below a texel: plain PCF
+  // Penumbra below a texel: plain PCF.
+  if (searchTexels <= 1.5) return SunShadowEstimate(sunVisibility(position, normal), 0.0);
   float angle = 6.2831853 * fract(52.9829189 * fract(dot(vec2(pixel), vec2(0.06711056, 0.00583715))));
   mat2 rotation = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
   float blockerSum = 0.0, blockers = 0.0;
@@ -61,10 +70,13 @@ float sunVisibilitySoft(vec3 position, vec3 normal, ivec2 pixel) {
     float d = textureLod(sunShadowDepth, uv + rotation * kPoisson16[i] * (searchTexels / size), 0.0).r;
     if (d < s.z) blockerSum += d, blockers += 1.0;
   }
-  if (blockers == 0.0) return 1.0;
-  float penumbraTexels = clamp(tanSun * (s.z - blockerSum / blockers) * metres / texel, 1.0, maxRadius);
+  if (blockers == 0.0) return SunShadowEstimate(1.0, -1.0);
+  float blockerDistance = (s.z - blockerSum / blockers) * metres;
+  float penumbraTexels = clamp(tanSun * blockerDistance / texel, 1.0, maxRadius);
   float sum = 0.0;
   for (int i = 0; i < 16; ++i) sum += texture(sunShadow, vec3(uv + rotation * kPoisson16[i] * (penumbraTexels / size), s.z));
-  return sum / 16.0;
+  return SunShadowEstimate(sum / 16.0, blockerDistance);
 }
+
+float sunVisibilitySoft(vec3 position, vec3 normal, ivec2 pixel) { return sunShadowSoft(position, normal, pixel).visibility; }
 #endif

@@ -70,6 +70,7 @@ TL_CONST uint kIbufferFilledDg = 34u;
 TL_CONST uint kIbufferFilledSg1 = 35u;
 TL_CONST uint kIbufferFilledSg2 = 36u;
 TL_CONST uint kIbufferFilledMs = 37u;
+TL_CONST uint kIbufferSunVisibility = 38u;  // r16f: shadow.sun.visibility (HRTS), with kCompositeHasSunVisibility
 
 // ibuffer.upsample's edges: a shaded neighbour off this pixel's tangent plane by more than
 // this share of the pixel's distance, at a normal's cosine below, or a roughness further than

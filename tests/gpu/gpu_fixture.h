@@ -17,7 +17,8 @@ namespace tl::test {
 inline std::filesystem::path contentFile(const char* name) { return std::filesystem::path(TWINLIGHT_CONTENT_DIR) / name; }
 
 // The state every GPU test starts from and is returned to afterwards: content/cornell.gltf
-// loaded (its camera and its light, no history, no albedo edits, animation at 0), the direct
+// loaded (its camera and its light, the default sun size and no environment map, no history, no
+// albedo edits, animation at 0), the direct
 // path, default settings (and size), no display request, compare view, reopened capture or
 // albedo database, the animation still, frame index 0. Everything a test can change through
 // the Session is on this list.
@@ -29,7 +30,10 @@ inline void restoreBaseline(session::Session& s) {
   s.settings() = lighting::RenderSettings{};
   s.setPath("direct");
   s.setAnimationStep(0.0);
-  s.loadScene(contentFile("cornell.gltf"));  // also resets lighting, view, history, albedo edits, animation time
+  // What a scene load keeps (the sun's angular size, an environment map, its rotation and
+  // intensity) back to the defaults; the load sets the rest from the file.
+  s.setLighting(session::Lighting{});
+  s.loadScene(contentFile("cornell.gltf"));  // also resets the scene's lighting, view, history, albedo edits, animation time
   s.setFrameIndex(0);
 }
 

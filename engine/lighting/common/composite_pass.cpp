@@ -3,6 +3,7 @@
 
 #include "graph/executor.h"
 #include "lighting/common/gbuffer_pass.h"
+#include "lighting/common/hybrid_shadow_pass.h"
 #include "lighting/common/pass_builders.h"
 #include "lighting/common/shadow_pass.h"
 #include "shared/brdf_lut.h"
@@ -70,6 +71,12 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   if (in.settings.specularGi) push.flags |= shared::kCompositeSpecularGi;
   // The light table's radiance (lights.direct), where the path made it.
   if (!path.lightsRadiance.empty()) push.flags |= shared::kCompositeHasLights;
+  // The sun's shadow from hybrid ray-traced shadows where the path has a top level.
+  const bool hybrid = hybridSunShadows(in, path);
+  if (hybrid) {
+    addHybridSunShadow(graph, in, path);
+    push.flags |= shared::kCompositeHasSunVisibility;
+  }
   push.giBlendDistance = path.giBlendDistance;
   push.openSkyDirectionality = path.openSkyDirectionality;
   push.farOpenSkyDirectionality = path.farOpenSkyDirectionality;
@@ -88,8 +95,9 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   ComputePass pass(in.device, "composite", "common/composite.comp");
   addCompositeGbuffer(pass);
   pass.sampled(shared::kCompositeEmissive, "gbuffer.emissive")
-      .optionalSampled(shared::kCompositeShadow, kShadowSunDepth, sun, samplers::sunShadowCompare)
-      .optionalSampled(shared::kCompositeShadowDepth, kShadowSunDepth, sun)
+      .optionalSampled(shared::kCompositeShadow, kShadowSunDepth, sun && !hybrid, samplers::sunShadowCompare)
+      .optionalSampled(shared::kCompositeShadowDepth, kShadowSunDepth, sun && !hybrid)
+      .optionalSampled(shared::kCompositeSunVisibility, kShadowSunVisibility, hybrid)
       .optionalSampled(shared::kCompositeLights, path.lightsRadiance, !path.lightsRadiance.empty())
       .storageOut(shared::kCompositeOutput, output, in.temporalAntialiasing ? unresolvedDesc : hdrDesc);
   addPathInputs(pass, path, push.flags);

@@ -4,6 +4,7 @@
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/decoders.h"
 #include "lighting/common/gbuffer_pass.h"
+#include "lighting/common/hybrid_shadow_pass.h"
 #include "lighting/common/pass_builders.h"
 #include "lighting/common/shadow_pass.h"
 #include "shared/brdf_lut.h"
@@ -83,10 +84,12 @@ void RedeferredPass::addLight(graph::RenderGraph& graph, FrameInputs& in, const 
   // only with kCompositeHasLights, the mask and the filled sums only in the refining run.
   const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
   const bool lights = (push.flags & shared::kCompositeHasLights) != 0;
+  const bool hybrid = (push.flags & shared::kCompositeHasSunVisibility) != 0;
   ComputePass pass(in.device, refine ? "ibuffer.light.refine" : "ibuffer.light", "common/ibuffer_light.comp");
   addIbufferSurface(pass);
-  pass.optionalSampled(shared::kIbufferShadow, kShadowSunDepth, sun, samplers::sunShadowCompare)
-      .optionalSampled(shared::kIbufferShadowDepth, kShadowSunDepth, sun)
+  pass.optionalSampled(shared::kIbufferShadow, kShadowSunDepth, sun && !hybrid, samplers::sunShadowCompare)
+      .optionalSampled(shared::kIbufferShadowDepth, kShadowSunDepth, sun && !hybrid)
+      .optionalSampled(shared::kIbufferSunVisibility, kShadowSunVisibility, hybrid)
       .optionalSampled(shared::kIbufferRefineMaskSampled, kIbufferRefine, refine);
   for (size_t q = 0; q < kIbuffer.size(); ++q)
     pass.storageOut(kOutBinding[q], outputs[q],

@@ -104,6 +104,8 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(uint32_t, rtRefitTop, 16, 0, 65536, "meshes", "rt", "", kSettingPlain, "deforming meshes whose BLAS is refitted each frame: the highest priorities (Metro: 16)") \
   X(uint32_t, rtRefitRandom, 4, 0, 65536, "meshes", "rt", "", kSettingPlain, "plus this many others drawn at random, so none waits forever (Metro: 4)") \
   X(uint32_t, rtRefitVertexBudget, 1u << 20, 0, 1u << 30, "vertices", "rt", "", kSettingPlain, "vertices refitted per frame at most (the first pick always goes)") \
+  X(bool, hybridShadows, false, 0, 1, "", "rt", "", kSettingPlain, "hybrid ray-traced sun shadows (GameWorks HRTS): a ray's hard shadow near contacts, PCSS further away, blended by blocker distance (shadow.sun.visibility)") \
+  X(float, hybridShadowHardTexels, 4.0f, 0.5f, 64.0f, "texels", "rt", "", kSettingPlain, "HRTS: penumbrae narrower than this many shadow-map texels take the ray's hard shadow; linear blend up to it") \
   X(bool, rtRawRayProbe, false, 0, 1, "", "rt", "", kSettingNoPanel, "benchmark: also trace the same rays with a trivial kernel (rt.rawRays; bench --rays)") \
   X(uint32_t, bentSkyRays, 4, 1, 64, "rays", "bentsky", "bentsky", kSettingPlain, "bentsky plugin: sky-visibility rays per pixel and frame (cosine-distributed, as long as rtRayLength)") \
   X(uint32_t, bentSkyMaxFrames, 32, 1, 1024, "frames", "bentsky", "", kSettingPlain, "bentsky plugin: accumulation window while the view holds still") \

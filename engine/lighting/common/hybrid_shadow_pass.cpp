@@ -1,0 +1,40 @@
+#include "lighting/common/hybrid_shadow_pass.h"
+
+#include "lighting/common/gbuffer_pass.h"
+#include "lighting/common/pass_builders.h"
+#include "lighting/common/shadow_pass.h"
+#include "shared/frame.h"
+#include "shared/hybrid_shadow.h"
+
+namespace tl::lighting {
+
+bool hybridSunShadows(const FrameInputs& in, const LightingOutputs& path) {
+  // The pass's ray query treats every triangle as opaque (it has no material tables to test a
+  // cut-out's alpha, as the rt path's any-hit shader does): a scene with alpha MASK keeps the
+  // map, which cuts them out, rather than get a card's full shadow.
+  return in.settings.hybridShadows && (in.constants.flags & shared::kFrameFlagSunShadows) != 0 &&
+         path.shadowTlasHandle != VK_NULL_HANDLE && !path.shadowStructures.empty() &&
+         in.scene.alphaTestedInstances().empty();
+}
+
+void addHybridSunShadow(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path) {
+  if (!hybridSunShadows(in, path)) return;
+  const uint32_t w = in.settings.width, h = in.settings.height;
+  shared::HybridShadowPush push{};
+  push.hardPenumbraTexels = in.settings.hybridShadowHardTexels;
+  ComputePass(in.device, "shadow.sun.hybrid", "common/sun_shadow_hybrid.comp")
+      .uniform(shared::kBindingFrame, kFrameConstants)
+      .sampled(shared::kHybridShadowNormal, "gbuffer.normal")
+      .sampled(shared::kHybridShadowDepth, kGbufferDepth)
+      .sampled(shared::kHybridShadowMap, kShadowSunDepth, samplers::sunShadowCompare)
+      .sampled(shared::kHybridShadowMapDepth, kShadowSunDepth)
+      .accelerationStructure(shared::kHybridShadowTlas, path.shadowTlasHandle, path.shadowStructures)
+      .storageOut(shared::kHybridShadowOutput, kShadowSunVisibility,
+                  graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h,
+                                               "the sun's visibility: HRTS, ray near contacts, PCSS further (0: facing away)"))
+      .push(push)
+      .dispatch(w, h)
+      .add(graph);
+}
+
+}  // namespace tl::lighting
