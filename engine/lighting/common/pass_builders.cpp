@@ -57,12 +57,35 @@ Usage usageOf(BindingList::Kind kind) {
 
 // ---- BindingList: the list and what it yields ----------------------------------------
 
-void BindingList::entry(uint32_t binding, Kind kind, std::string_view resource) {
+void BindingList::entry(uint32_t binding, Kind kind, std::string_view resource, EntryOptions options) {
   Entry e;
   e.binding = binding;
   e.kind = kind;
   e.resource = std::string(resource);
+  e.create = std::move(options.create);
+  e.sampler = options.sampler;
+  e.optional = options.optional;
+  e.present = options.present;
   entries_.push_back(std::move(e));
+}
+
+void BindingList::tlasEntry(uint32_t binding, VkAccelerationStructureKHR tlas, const std::vector<std::string>& structures) {
+  entry(binding, Kind::Tlas, structures.empty() ? std::string() : structures.front());
+  entries_.back().tlas = tlas;
+  for (const std::string& s : structures) extraReads_.emplace_back(s, Usage::AccelerationStructureRead);
+}
+
+void BindingList::constantEntry(uint32_t binding, const gpu::Image* image, VkImageLayout layout, const gpu::SamplerDesc& sampler,
+                                VkBuffer buffer) {
+  if (image)
+    entry(binding, Kind::Sampled, image->name(), {.sampler = sampler});
+  else
+    entry(binding, Kind::BufferIn, "(constant buffer)");
+  Entry& e = entries_.back();
+  e.constant = true;
+  e.view = image ? image->view() : VK_NULL_HANDLE;
+  e.layout = layout;
+  e.buffer = buffer;
 }
 
 void BindingList::declareHistory(std::string_view name, const graph::ResourceDesc& desc, graph::RenderGraph& graph,
@@ -189,123 +212,6 @@ std::function<void(graph::PassContext&)> BindingList::bindAndWrite(const gpu::Pi
     }
   };
 }
-
-// ---- BindingPass: the fluent list -------------------------------------------------------
-
-template <class Self>
-Self& BindingPass<Self>::uniform(uint32_t binding, std::string_view buffer) {
-  entry(binding, Kind::Uniform, buffer);
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::bufferIn(uint32_t binding, std::string_view buffer) {
-  entry(binding, Kind::BufferIn, buffer);
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::bufferOut(uint32_t binding, std::string_view buffer) {
-  entry(binding, Kind::BufferOut, buffer);
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::bufferOut(uint32_t binding, std::string_view buffer, const graph::ResourceDesc& create) {
-  entry(binding, Kind::BufferOut, buffer);
-  last().create = create;
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::optionalBufferIn(uint32_t binding, std::string_view buffer, bool present) {
-  entry(binding, Kind::BufferIn, buffer);
-  last().optional = true;
-  last().present = present;
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::storageIn(uint32_t binding, std::string_view image) {
-  entry(binding, Kind::StorageIn, image);
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::storageOut(uint32_t binding, std::string_view image) {
-  entry(binding, Kind::StorageOut, image);
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::storageOut(uint32_t binding, std::string_view image, const graph::ResourceDesc& create) {
-  entry(binding, Kind::StorageOut, image);
-  last().create = create;
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::storageInOut(uint32_t binding, std::string_view image) {
-  entry(binding, Kind::StorageInOut, image);
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::sampled(uint32_t binding, std::string_view image, const gpu::SamplerDesc& sampler) {
-  entry(binding, Kind::Sampled, image);
-  last().sampler = sampler;
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::optionalSampled(uint32_t binding, std::string_view image, const graph::RenderGraph& graph,
-                                         const gpu::SamplerDesc& sampler) {
-  return optionalSampled(binding, image, graph.find(image).has_value(), sampler);
-}
-template <class Self>
-Self& BindingPass<Self>::optionalSampled(uint32_t binding, std::string_view image, bool present,
-                                         const gpu::SamplerDesc& sampler) {
-  sampled(binding, image, sampler);
-  last().optional = true;
-  last().present = present;
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::history(uint32_t binding, std::string_view name, const graph::ResourceDesc& desc,
-                                 graph::RenderGraph& graph, FrameInputs& in, HistoryKeeper& keeper,
-                                 const HistoryPolicy& policy, const gpu::SamplerDesc& sampler) {
-  declareHistory(name, desc, graph, in, keeper, policy);
-  return sampled(binding, name, sampler);
-}
-template <class Self>
-Self& BindingPass<Self>::optionalStorageInOut(uint32_t binding, std::string_view image, bool present) {
-  storageInOut(binding, image);
-  last().optional = true;
-  last().present = present;
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::accelerationStructure(uint32_t binding, VkAccelerationStructureKHR tlas,
-                                               const std::vector<std::string>& structures) {
-  entry(binding, Kind::Tlas, structures.empty() ? std::string() : structures.front());
-  last().tlas = tlas;
-  for (const std::string& s : structures) reads(s, Usage::AccelerationStructureRead);
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::constantSampled(uint32_t binding, const gpu::Image& image, VkImageLayout layout,
-                                         const gpu::SamplerDesc& sampler) {
-  sampled(binding, image.name(), sampler);
-  last().constant = true;
-  last().view = image.view();
-  last().layout = layout;
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::constantBuffer(uint32_t binding, VkBuffer buffer) {
-  bufferIn(binding, "(constant buffer)");
-  last().constant = true;
-  last().buffer = buffer;
-  return self();
-}
-template <class Self>
-Self& BindingPass<Self>::reads(std::string_view name, Usage usage) {
-  extraReads_.emplace_back(std::string(name), usage);
-  return self();
-}
-
-template class BindingPass<ComputePass>;
-template class BindingPass<RayTracingPass>;
 
 // ---- ComputePass ------------------------------------------------------------------------
 

@@ -53,6 +53,14 @@ struct PassBuilderError : gpu::Error {
   using gpu::Error::Error;
 };
 
+// How a binding-list entry differs from the plain kind (outside BindingList: a default
+// argument there needs the complete type).
+struct EntryOptions {
+  std::optional<graph::ResourceDesc> create;  // the pass creates the resource
+  gpu::SamplerDesc sampler{};
+  bool optional = false, present = true;
+};
+
 // What every pass builder shares: the set-0 binding list and what it yields (the graph
 // accesses, the push-descriptor layout, its check against the shaders, the descriptor writes)
 // and the push constants. ComputePass and RayTracingPass add their pipeline and their work.
@@ -87,8 +95,11 @@ class BindingList {
   BindingList(gpu::Device& device, std::string name, std::string shaders)
       : device_(device), name_(std::move(name)), shaderNames_(std::move(shaders)) {}
 
-  void entry(uint32_t binding, Kind kind, std::string_view resource);
-  Entry& last() { return entries_.back(); }
+  void entry(uint32_t binding, Kind kind, std::string_view resource, EntryOptions options = {});
+  void tlasEntry(uint32_t binding, VkAccelerationStructureKHR tlas, const std::vector<std::string>& structures);
+  // Outside the graph: a sampled `image` in `layout`, or (image null) a storage `buffer`.
+  void constantEntry(uint32_t binding, const gpu::Image* image, VkImageLayout layout, const gpu::SamplerDesc& sampler,
+                     VkBuffer buffer);
   void declareHistory(std::string_view name, const graph::ResourceDesc& desc, graph::RenderGraph& graph, FrameInputs& in,
                       HistoryKeeper& keeper, const HistoryPolicy& policy);
   void setPush(const void* bytes, size_t size);
@@ -115,47 +126,76 @@ class BindingPass : public BindingList {
  public:
   // Buffers: a uniform block (the frame constants), storage read, storage written (an existing
   // buffer, or one this pass creates with `create`).
-  Self& uniform(uint32_t binding, std::string_view buffer);
-  Self& bufferIn(uint32_t binding, std::string_view buffer);
-  Self& bufferOut(uint32_t binding, std::string_view buffer);
-  Self& bufferOut(uint32_t binding, std::string_view buffer, const graph::ResourceDesc& create);
+  Self& uniform(uint32_t binding, std::string_view buffer) { return listed(binding, Kind::Uniform, buffer); }
+  Self& bufferIn(uint32_t binding, std::string_view buffer) { return listed(binding, Kind::BufferIn, buffer); }
+  Self& bufferOut(uint32_t binding, std::string_view buffer) { return listed(binding, Kind::BufferOut, buffer); }
+  Self& bufferOut(uint32_t binding, std::string_view buffer, const graph::ResourceDesc& create) {
+    return listed(binding, Kind::BufferOut, buffer, {.create = create});
+  }
   // A storage buffer read that the frame may lack (the light table in a scene without lights):
   // absent, no access and no descriptor (partially bound; the shader is told, e.g. by a count).
-  Self& optionalBufferIn(uint32_t binding, std::string_view buffer, bool present);
+  Self& optionalBufferIn(uint32_t binding, std::string_view buffer, bool present) {
+    return listed(binding, Kind::BufferIn, buffer, {.optional = true, .present = present});
+  }
   // Images: sampled, storage read, storage written (an existing resource, or one this pass
   // creates with `create`), storage read and written in place.
-  Self& sampled(uint32_t binding, std::string_view image, const gpu::SamplerDesc& sampler = samplers::point);
-  Self& storageIn(uint32_t binding, std::string_view image);
-  Self& storageOut(uint32_t binding, std::string_view image);
-  Self& storageOut(uint32_t binding, std::string_view image, const graph::ResourceDesc& create);
-  Self& storageInOut(uint32_t binding, std::string_view image);
+  Self& sampled(uint32_t binding, std::string_view image, const gpu::SamplerDesc& sampler = samplers::point) {
+    return listed(binding, Kind::Sampled, image, {.sampler = sampler});
+  }
+  Self& storageIn(uint32_t binding, std::string_view image) { return listed(binding, Kind::StorageIn, image); }
+  Self& storageOut(uint32_t binding, std::string_view image) { return listed(binding, Kind::StorageOut, image); }
+  Self& storageOut(uint32_t binding, std::string_view image, const graph::ResourceDesc& create) {
+    return listed(binding, Kind::StorageOut, image, {.create = create});
+  }
+  Self& storageInOut(uint32_t binding, std::string_view image) { return listed(binding, Kind::StorageInOut, image); }
   // A sampled input that may be absent from this frame's graph (nobody wrote it): then there
   // is no access and no descriptor (the binding is partially bound, no stand-in resource);
   // present() says which, for the push constant that tells the shader.
   Self& optionalSampled(uint32_t binding, std::string_view image, const graph::RenderGraph& graph,
-                        const gpu::SamplerDesc& sampler = samplers::point);
+                        const gpu::SamplerDesc& sampler = samplers::point) {
+    return optionalSampled(binding, image, graph.find(image).has_value(), sampler);
+  }
   // The same where the pass knows whether the input exists (a path's optional output).
   Self& optionalSampled(uint32_t binding, std::string_view image, bool present,
-                        const gpu::SamplerDesc& sampler = samplers::point);
+                        const gpu::SamplerDesc& sampler = samplers::point) {
+    return listed(binding, Kind::Sampled, image, {.sampler = sampler, .optional = true, .present = present});
+  }
   // Last frame's `name` (declared persistent here) sampled at `binding`. Whether it holds
   // anything is the history's decision from the frame key (T9, frame_key.h): historyValid().
   Self& history(uint32_t binding, std::string_view name, const graph::ResourceDesc& desc, graph::RenderGraph& graph,
                 FrameInputs& in, HistoryKeeper& keeper, const HistoryPolicy& policy,
-                const gpu::SamplerDesc& sampler = samplers::linear);
+                const gpu::SamplerDesc& sampler = samplers::linear) {
+    declareHistory(name, desc, graph, in, keeper, policy);
+    return sampled(binding, name, sampler);
+  }
   // A storage image read and written in place that the pass may leave unbound (an accumulation
   // the frame does not keep): absent, no access and no descriptor, as for optionalSampled.
-  Self& optionalStorageInOut(uint32_t binding, std::string_view image, bool present);
+  Self& optionalStorageInOut(uint32_t binding, std::string_view image, bool present) {
+    return listed(binding, Kind::StorageInOut, image, {.optional = true, .present = present});
+  }
 
   // A top level traced by ray queries or rays: its handle, and the graph structures it stands
   // for (read as acceleration structures: the top level and the bottom levels it refers to).
-  Self& accelerationStructure(uint32_t binding, VkAccelerationStructureKHR tlas, const std::vector<std::string>& structures);
+  Self& accelerationStructure(uint32_t binding, VkAccelerationStructureKHR tlas, const std::vector<std::string>& structures) {
+    tlasEntry(binding, tlas, structures);
+    return self();
+  }
   // Made outside the frame and never written in it (the rt path's blue noise, uploaded once;
   // the scene's instance data, written at load): bound as they are, with no graph access.
   Self& constantSampled(uint32_t binding, const gpu::Image& image, VkImageLayout layout,
-                        const gpu::SamplerDesc& sampler = samplers::point);
-  Self& constantBuffer(uint32_t binding, VkBuffer buffer);
+                        const gpu::SamplerDesc& sampler = samplers::point) {
+    constantEntry(binding, &image, layout, sampler, VK_NULL_HANDLE);
+    return self();
+  }
+  Self& constantBuffer(uint32_t binding, VkBuffer buffer) {
+    constantEntry(binding, nullptr, VK_IMAGE_LAYOUT_UNDEFINED, {}, buffer);
+    return self();
+  }
   // A resource the pass reads or writes without a set-0 binding (e.g. through another set).
-  Self& reads(std::string_view name, graph::Usage usage);
+  Self& reads(std::string_view name, graph::Usage usage) {
+    extraReads_.emplace_back(std::string(name), usage);
+    return self();
+  }
 
   template <class T>
   Self& push(const T& constants) {
@@ -179,6 +219,10 @@ class BindingPass : public BindingList {
  protected:
   using BindingList::BindingList;
   Self& self() { return static_cast<Self&>(*this); }
+  Self& listed(uint32_t binding, Kind kind, std::string_view resource, EntryOptions options = {}) {
+    entry(binding, kind, resource, std::move(options));
+    return self();
+  }
 };
 
 class ComputePass final : public BindingPass<ComputePass> {
@@ -197,8 +241,6 @@ class ComputePass final : public BindingPass<ComputePass> {
   uint32_t size_[6] = {1, 1, 1, 8, 8, 1};
   std::function<void(graph::PassContext&)> record_;
 };
-
-extern template class BindingPass<ComputePass>;
 
 // A ray-tracing pipeline's shaders: gpu::RayTracingPipelineDesc less its layout, which the
 // binding list gives. `name` names the pipeline: passes that trace the same shaders with the
@@ -249,7 +291,5 @@ class RayTracingPass final : public BindingPass<RayTracingPass> {
   const gpu::DescriptorTable* sceneTable_ = nullptr;
   uint32_t size_[3] = {1, 1, 1};
 };
-
-extern template class BindingPass<RayTracingPass>;
 
 }  // namespace tl::lighting
