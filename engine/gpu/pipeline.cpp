@@ -308,17 +308,37 @@ Pipeline createRayTracingPipeline(Device& device, const RayTracingPipelineDesc& 
 
 // ---- DescriptorWriter ------------------------------------------------------------------
 
-std::string PipelineCache::key(const ComputePipelineDesc& desc) {
-  std::string key = fmt::format("{}|{}|{}", desc.name, desc.shader, desc.layout.pushConstantBytes);
-  for (const Binding& b : desc.layout.bindings) key += fmt::format("|{}:{}:{}:{}", b.binding, int(b.type), b.count, b.optional);
-  for (VkDescriptorSetLayout s : desc.layout.extraSets) key += fmt::format("|set{}", uint64_t(s));
+namespace {
+std::string layoutKey(const PipelineLayoutDesc& layout) {
+  std::string key = fmt::format("|{}", layout.pushConstantBytes);
+  for (const Binding& b : layout.bindings) key += fmt::format("|{}:{}:{}:{}", b.binding, int(b.type), b.count, b.optional);
+  for (VkDescriptorSetLayout s : layout.extraSets) key += fmt::format("|set{}", uint64_t(s));
   return key;
+}
+}  // namespace
+
+std::string PipelineCache::key(const ComputePipelineDesc& desc) {
+  return fmt::format("compute|{}|{}", desc.name, desc.shader) + layoutKey(desc.layout);
+}
+
+std::string PipelineCache::key(const RayTracingPipelineDesc& desc) {
+  std::string key = fmt::format("rt|{}|{}|{}", desc.name, desc.raygen, desc.maxRecursion);
+  for (const std::string& m : desc.misses) key += "|miss:" + m;
+  for (const auto& h : desc.hitGroups) key += fmt::format("|hit:{}+{}", h.closestHit, h.anyHit);
+  return key + layoutKey(desc.layout);
 }
 
 const Pipeline& PipelineCache::compute(Device& device, const ComputePipelineDesc& desc) {
   const std::string k = key(desc);
   auto it = pipelines_.find(k);
   if (it == pipelines_.end()) it = pipelines_.emplace(k, createComputePipeline(device, desc)).first;
+  return it->second;
+}
+
+const Pipeline& PipelineCache::rayTracing(Device& device, const RayTracingPipelineDesc& desc) {
+  const std::string k = key(desc);
+  auto it = pipelines_.find(k);
+  if (it == pipelines_.end()) it = pipelines_.emplace(k, createRayTracingPipeline(device, desc)).first;
   return it->second;
 }
 

@@ -1,12 +1,17 @@
-// The compute pass builder (lighting/common/pass_builders.h) on the device: one list of
-// bindings drives the graph, the layout and the writes; an optional input that is absent
-// needs no stand-in; a list that disagrees with itself or with its shader is one error
-// naming both sides.
+// The pass builders (lighting/common/pass_builders.h) on the device: one list of bindings
+// drives the graph, the layout and the writes; an optional input that is absent needs no
+// stand-in; a list that disagrees with itself or with its shader (for a ray-tracing pass, any
+// of its stages) is one error naming both sides.
 #include "gpu_fixture.h"
 
+#include "gpu/acceleration_structure.h"
 #include "graph/executor.h"
 #include "lighting/common/pass_builders.h"
 #include "shared/pass_builder_test.h"
+#include "shared/reference.h"
+#include "shared/selftest.h"
+
+#include <algorithm>
 
 namespace tl::test {
 namespace {
@@ -120,6 +125,125 @@ TEST_F(GpuTest, PassBuilderSharesSamplersAcrossPasses) {
   gpu::Device& d = session().device();
   EXPECT_EQ(d.sampler(lighting::samplers::point), d.sampler(lighting::samplers::point));
   EXPECT_NE(d.sampler(lighting::samplers::point), d.sampler(lighting::samplers::linear));
+}
+
+// ---- RayTracingPass ---------------------------------------------------------------------
+
+const lighting::RayShaders kSelfTestShaders{"builder.selftest", "selftest/trace.rgen", {"selftest/trace.rmiss"},
+                                            {{"selftest/trace.rchit", ""}}};
+const auto kSelfTestDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, shared::kSelfTestSize, shared::kSelfTestSize,
+                                                        "hit distance");
+
+// The ray-tracing self-test's scene (gpu/self_test.cpp: one triangle) traced through the
+// builder: the pass's list alone gives the layout, the graph's access and the descriptors.
+class RayTracingPassTest : public RayTracingTest {
+ protected:
+  void SetUp() override {
+    RayTracingTest::SetUp();
+    if (IsSkipped()) return;
+    gpu::Device& d = session().device();
+    const float vertices[9] = {-1.0f, -1.0f, 0.0f, 1.01f, -1.0f, 0.0f, -1.0f, 1.01f, 0.0f};
+    const uint32_t indices[3] = {0, 1, 2};
+    const VkBufferUsageFlags input = VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
+    vb_ = gpu::Buffer(d, sizeof vertices, input, gpu::MemoryUsage::Upload, "test.vertices");
+    ib_ = gpu::Buffer(d, sizeof indices, input, gpu::MemoryUsage::Upload, "test.indices");
+    vb_.write(vertices, sizeof vertices);
+    ib_.write(indices, sizeof indices);
+    blas_ = gpu::buildBottomLevel(d, {vb_.address(), 12, 3, ib_.address(), 1, true}, "test.blas");
+    tlas_ = gpu::buildTopLevel(d, {{glm::mat4(1.0f), 0, 0xFF, blas_.address()}}, "test.tlas");
+  }
+  gpu::Buffer vb_, ib_;
+  gpu::AccelerationStructure blas_, tlas_;
+};
+
+TEST_F(RayTracingPassTest, TracesFromItsBindingList) {
+  gpu::Device& d = session().device();
+  graph::Executor ex(d);
+  graph::RenderGraph g;
+  lighting::RayTracingPass(d, "builder.trace", kSelfTestShaders)
+      .accelerationStructure(shared::kSelfTestBindingScene, tlas_.handle(), {})
+      .storageOut(shared::kSelfTestBindingOutput, "result", kSelfTestDesc)
+      .trace(shared::kSelfTestSize, shared::kSelfTestSize)
+      .add(g);
+  ASSERT_EQ(g.passes().size(), 1u);
+  EXPECT_EQ(g.passes()[0].kind, PassKind::RayTracing);
+  EXPECT_EQ(g.passes()[0].writeNames, std::vector<std::string>{"result"});
+  g.markOutput("result");
+  auto compiled = g.compile(ex.entryStates(g));
+  ex.requestReadback("result");
+  ex.execute(g, compiled);
+  const std::vector<float> got = ex.readback("result").texels();
+  ASSERT_EQ(got.size(), size_t(shared::kSelfTestSize * shared::kSelfTestSize));
+  size_t hits = 0;
+  for (uint32_t y = 0; y < shared::kSelfTestSize; ++y)
+    for (uint32_t x = 0; x < shared::kSelfTestSize; ++x) {
+      const shared::vec2 xy = shared::tlSelfTestRayXY(x, y);
+      const float want = xy.x + xy.y < 0.01f ? 1.0f : shared::kSelfTestMiss;
+      EXPECT_NEAR(got[y * shared::kSelfTestSize + x], want, 1e-4f) << x << "," << y;
+      hits += want > 0.0f;
+    }
+  EXPECT_GT(hits, 0u);  // the scene is hit somewhere, missed elsewhere
+  EXPECT_LT(hits, got.size());
+}
+
+// The same shaders and list in two passes are one pipeline of the device's cache.
+TEST_F(RayTracingPassTest, PassesOfTheSameShadersShareOnePipeline) {
+  gpu::Device& d = session().device();
+  graph::RenderGraph g;
+  auto add = [&](const char* name, const char* output) {
+    lighting::RayTracingPass(d, name, kSelfTestShaders)
+        .accelerationStructure(shared::kSelfTestBindingScene, tlas_.handle(), {})
+        .storageOut(shared::kSelfTestBindingOutput, output, kSelfTestDesc)
+        .trace(shared::kSelfTestSize, shared::kSelfTestSize)
+        .add(g);
+  };
+  add("builder.first", "first");
+  const size_t pipelines = d.pipelines().size();
+  add("builder.second", "second");
+  EXPECT_EQ(d.pipelines().size(), pipelines);
+  EXPECT_EQ(g.passes().size(), 2u);
+}
+
+// Misuse: the raygen shader's output is missing from the list. One error, before any pipeline
+// is made, names the pass, the shader that declares the binding and its variable there.
+TEST_F(RayTracingPassTest, MissingBindingNamesTheStage) {
+  gpu::Device& d = session().device();
+  graph::RenderGraph g;
+  const size_t pipelines = d.pipelines().size();
+  const std::string e = errorOf([&] {
+    lighting::RayTracingPass(d, "builder.missing", {"builder.missing", "selftest/trace.rgen", {"selftest/trace.rmiss"},
+                                                    {{"selftest/trace.rchit", ""}}})
+        .accelerationStructure(shared::kSelfTestBindingScene, tlas_.handle(), {})
+        .trace(shared::kSelfTestSize, shared::kSelfTestSize)
+        .add(g);
+  });
+  EXPECT_NE(e.find("`builder.missing`"), std::string::npos) << e;
+  EXPECT_NE(e.find("selftest/trace.rgen"), std::string::npos) << e;
+  EXPECT_NE(e.find("`result`"), std::string::npos) << e;  // the shader's name for the binding
+  EXPECT_TRUE(g.passes().empty());
+  EXPECT_EQ(d.pipelines().size(), pipelines);
+}
+
+// A binding only a hit shader declares (the reference's hit geometry) is part of what the
+// pipeline's list is checked against: the union of its stages, each binding once.
+TEST_F(GpuTest, ReflectStagesIsTheUnionOfTheStages) {
+  const std::vector<std::string> stages = {"reference/trace.rgen", "reference/trace.rmiss", "reference/shadow.rmiss",
+                                           "reference/trace.rchit", "reference/alpha.rahit"};
+  auto has = [](const std::vector<gpu::ReflectedBinding>& v, uint32_t binding) {
+    return std::any_of(v.begin(), v.end(), [&](const gpu::ReflectedBinding& r) { return r.binding == binding; });
+  };
+  EXPECT_FALSE(has(gpu::reflectSet0(gpu::loadSpirv(stages[0])), shared::kRefBindingGeometry));
+  std::vector<std::string> from;
+  const std::vector<gpu::ReflectedBinding> all = lighting::reflectStages(stages, &from);
+  ASSERT_EQ(all.size(), from.size());
+  for (size_t i = 0; i < all.size(); ++i) {
+    for (size_t j = i + 1; j < all.size(); ++j) EXPECT_NE(all[i].binding, all[j].binding);
+    if (all[i].binding == shared::kRefBindingGeometry) {
+      EXPECT_EQ(from[i], "reference/trace.rchit");
+    }
+  }
+  EXPECT_TRUE(has(all, shared::kRefBindingGeometry));
+  EXPECT_TRUE(has(all, shared::kRefBindingAccum));
 }
 
 }  // namespace tl::test

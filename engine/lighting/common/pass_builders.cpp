@@ -1,6 +1,7 @@
 #include "lighting/common/pass_builders.h"
 
 #include "graph/executor.h"
+#include "shared/scene.h"
 
 #include <fmt/format.h>
 
@@ -16,13 +17,13 @@ using graph::Usage;
 
 namespace {
 
-VkDescriptorType descriptorType(ComputePass::Kind kind) {
+VkDescriptorType descriptorType(BindingList::Kind kind) {
   switch (kind) {
-    case ComputePass::Kind::Uniform: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    case ComputePass::Kind::BufferIn:
-    case ComputePass::Kind::BufferOut: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    case ComputePass::Kind::Sampled: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    case ComputePass::Kind::Tlas: return VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
+    case BindingList::Kind::Uniform: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case BindingList::Kind::BufferIn:
+    case BindingList::Kind::BufferOut: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    case BindingList::Kind::Sampled: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    case BindingList::Kind::Tlas: return VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
     default: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
   }
 }
@@ -42,131 +43,71 @@ const char* typeName(VkDescriptorType t) {
 
 // The graph usage each kind of binding stands for; uniform blocks are host-written buffers
 // the graph tracks as storage reads (barriers.h).
-Usage usageOf(ComputePass::Kind kind) {
+Usage usageOf(BindingList::Kind kind) {
   switch (kind) {
-    case ComputePass::Kind::Uniform:
-    case ComputePass::Kind::BufferIn:
-    case ComputePass::Kind::StorageIn: return Usage::StorageRead;
-    case ComputePass::Kind::Sampled: return Usage::Sampled;
+    case BindingList::Kind::Uniform:
+    case BindingList::Kind::BufferIn:
+    case BindingList::Kind::StorageIn: return Usage::StorageRead;
+    case BindingList::Kind::Sampled: return Usage::Sampled;
     default: return Usage::StorageWrite;
   }
 }
 
 }  // namespace
 
-ComputePass::ComputePass(gpu::Device& device, std::string name, std::string shader)
-    : device_(device), name_(std::move(name)), shader_(std::move(shader)) {}
+// ---- BindingList: the list and what it yields ----------------------------------------
 
-ComputePass& ComputePass::entry(uint32_t binding, Kind kind, std::string_view resource) {
+void BindingList::entry(uint32_t binding, Kind kind, std::string_view resource, EntryOptions options) {
   Entry e;
   e.binding = binding;
   e.kind = kind;
   e.resource = std::string(resource);
+  e.create = std::move(options.create);
+  e.sampler = options.sampler;
+  e.optional = options.optional;
+  e.present = options.present;
   entries_.push_back(std::move(e));
-  return *this;
 }
 
-ComputePass& ComputePass::uniform(uint32_t binding, std::string_view buffer) { return entry(binding, Kind::Uniform, buffer); }
-ComputePass& ComputePass::bufferIn(uint32_t binding, std::string_view buffer) { return entry(binding, Kind::BufferIn, buffer); }
-ComputePass& ComputePass::bufferOut(uint32_t binding, std::string_view buffer) { return entry(binding, Kind::BufferOut, buffer); }
-ComputePass& ComputePass::storageIn(uint32_t binding, std::string_view image) { return entry(binding, Kind::StorageIn, image); }
-ComputePass& ComputePass::storageOut(uint32_t binding, std::string_view image) { return entry(binding, Kind::StorageOut, image); }
-ComputePass& ComputePass::storageInOut(uint32_t binding, std::string_view image) {
-  return entry(binding, Kind::StorageInOut, image);
+void BindingList::tlasEntry(uint32_t binding, VkAccelerationStructureKHR tlas, const std::vector<std::string>& structures) {
+  entry(binding, Kind::Tlas, structures.empty() ? std::string() : structures.front());
+  entries_.back().tlas = tlas;
+  for (const std::string& s : structures) extraReads_.emplace_back(s, Usage::AccelerationStructureRead);
 }
 
-ComputePass& ComputePass::storageOut(uint32_t binding, std::string_view image, const graph::ResourceDesc& create) {
-  entry(binding, Kind::StorageOut, image);
-  entries_.back().create = create;
-  return *this;
+void BindingList::constantEntry(uint32_t binding, const gpu::Image* image, VkImageLayout layout, const gpu::SamplerDesc& sampler,
+                                VkBuffer buffer) {
+  if (image)
+    entry(binding, Kind::Sampled, image->name(), {.sampler = sampler});
+  else
+    entry(binding, Kind::BufferIn, "(constant buffer)");
+  Entry& e = entries_.back();
+  e.constant = true;
+  e.view = image ? image->view() : VK_NULL_HANDLE;
+  e.layout = layout;
+  e.buffer = buffer;
 }
 
-ComputePass& ComputePass::sampled(uint32_t binding, std::string_view image, const gpu::SamplerDesc& sampler) {
-  entry(binding, Kind::Sampled, image);
-  entries_.back().sampler = sampler;
-  return *this;
-}
-
-ComputePass& ComputePass::optionalSampled(uint32_t binding, std::string_view image, const graph::RenderGraph& graph,
-                                          const gpu::SamplerDesc& sampler) {
-  sampled(binding, image, sampler);
-  entries_.back().optional = true;
-  entries_.back().present = graph.find(image).has_value();
-  return *this;
-}
-
-ComputePass& ComputePass::history(uint32_t binding, std::string_view name, const graph::ResourceDesc& desc,
-                                  graph::RenderGraph& graph, FrameInputs& in, HistoryKeeper& keeper,
-                                  const HistoryPolicy& policy, const gpu::SamplerDesc& sampler) {
+void BindingList::declareHistory(std::string_view name, const graph::ResourceDesc& desc, graph::RenderGraph& graph,
+                                 FrameInputs& in, HistoryKeeper& keeper, const HistoryPolicy& policy) {
   const bool stored = in.executor.historyValid(name, desc);
   historyValid_ = keeper.advance(policy, in.key, in.pathName, in.historyLog, {stored}).action != HistoryAction::Restart;
   graph.declarePersistent(name, desc);
-  return sampled(binding, name, sampler);
 }
 
-ComputePass& ComputePass::optionalSampled(uint32_t binding, std::string_view image, bool present,
-                                          const gpu::SamplerDesc& sampler) {
-  sampled(binding, image, sampler);
-  entries_.back().optional = true;
-  entries_.back().present = present;
-  return *this;
+void BindingList::setPush(const void* bytes, size_t size) {
+  pushBytes_.resize(size);
+  std::memcpy(pushBytes_.data(), bytes, size);
+  finishPush_ = nullptr;
 }
 
-ComputePass& ComputePass::optionalStorageInOut(uint32_t binding, std::string_view image, bool present) {
-  storageInOut(binding, image);
-  entries_.back().optional = true;
-  entries_.back().present = present;
-  return *this;
-}
-
-bool ComputePass::present(uint32_t binding) const {
+bool BindingList::present(uint32_t binding) const {
   for (const Entry& e : entries_)
     if (e.binding == binding) return e.present;
   return false;
 }
 
-ComputePass& ComputePass::accelerationStructure(uint32_t binding, VkAccelerationStructureKHR tlas,
-                                                const std::vector<std::string>& structures) {
-  entry(binding, Kind::Tlas, structures.empty() ? std::string() : structures.front());
-  entries_.back().tlas = tlas;
-  for (const std::string& s : structures) reads(s, Usage::AccelerationStructureRead);
-  return *this;
-}
-
-ComputePass& ComputePass::constantSampled(uint32_t binding, const gpu::Image& image, VkImageLayout layout,
-                                          const gpu::SamplerDesc& sampler) {
-  sampled(binding, image.name(), sampler);
-  entries_.back().constant = true;
-  entries_.back().view = image.view();
-  entries_.back().layout = layout;
-  return *this;
-}
-
-ComputePass& ComputePass::constantBuffer(uint32_t binding, VkBuffer buffer) {
-  bufferIn(binding, "(constant buffer)");
-  entries_.back().constant = true;
-  entries_.back().buffer = buffer;
-  return *this;
-}
-
-ComputePass& ComputePass::reads(std::string_view name, Usage usage) {
-  extraReads_.emplace_back(std::string(name), usage);
-  return *this;
-}
-
-ComputePass& ComputePass::dispatch(uint32_t width, uint32_t height, uint32_t depth, uint32_t localX, uint32_t localY,
-                                   uint32_t localZ) {
-  const uint32_t s[6] = {width, height, depth, localX, localY, localZ};
-  std::copy(std::begin(s), std::end(s), size_);
-  return *this;
-}
-
-ComputePass& ComputePass::record(std::function<void(graph::PassContext&)> fn) {
-  record_ = std::move(fn);
-  return *this;
-}
-
-std::vector<gpu::Binding> ComputePass::layout() const {
+std::vector<gpu::Binding> BindingList::layout() const {
   std::map<uint32_t, const Entry*> seen;
   std::vector<gpu::Binding> out;
   for (const Entry& e : entries_) {
@@ -182,59 +123,33 @@ std::vector<gpu::Binding> ComputePass::layout() const {
   return out;
 }
 
-void ComputePass::check(const std::vector<gpu::ReflectedBinding>& shader) const {
+void BindingList::check(const std::vector<gpu::ReflectedBinding>& shader, const std::vector<std::string>& stages) const {
   const std::vector<gpu::Binding> mine = layout();
-  for (const gpu::ReflectedBinding& r : shader) {
+  for (size_t i = 0; i < shader.size(); ++i) {
+    const gpu::ReflectedBinding& r = shader[i];
+    const std::string& where = i < stages.size() ? stages[i] : shaderNames_;
     const gpu::Binding* b = nullptr;
     for (const gpu::Binding& x : mine) b = x.binding == r.binding ? &x : b;
     const Entry* e = nullptr;
     for (const Entry& x : entries_) e = x.binding == r.binding ? &x : e;
     if (!b)
       throw PassBuilderError(fmt::format("pass `{}`: shader {} has binding {} (`{}`, {}) which the pass does not declare",
-                                         name_, shader_, r.binding, r.name, typeName(r.type)));
+                                         name_, where, r.binding, r.name, typeName(r.type)));
     if (b->type != r.type)
       throw PassBuilderError(fmt::format("pass `{}`: binding {} is `{}` as a {} in the pass but `{}` as a {} in shader {}",
-                                         name_, r.binding, e->resource, typeName(b->type), r.name, typeName(r.type), shader_));
+                                         name_, r.binding, e->resource, typeName(b->type), r.name, typeName(r.type), where));
   }
   for (const Entry& e : entries_) {
     bool inShader = false;
     for (const gpu::ReflectedBinding& r : shader) inShader |= r.binding == e.binding;
     if (!inShader)
-      throw PassBuilderError(fmt::format("pass `{}`: binding {} (`{}`) is not in shader {}", name_, e.binding, e.resource, shader_));
+      throw PassBuilderError(
+          fmt::format("pass `{}`: binding {} (`{}`) is not in shader {}", name_, e.binding, e.resource, shaderNames_));
   }
 }
 
-graph::PassId ComputePass::add(graph::RenderGraph& graph) {
-  gpu::ComputePipelineDesc d;
-  d.name = name_;
-  d.shader = shader_;
-  d.layout.bindings = layout();
-  d.layout.pushConstantBytes = uint32_t(pushBytes_.size());
-  gpu::PipelineCache& cache = device_.pipelines();
-  // A new pipeline's list is checked against its shader once, before the pipeline is made.
-  if (!cache.contains(d)) check(gpu::reflectSet0(gpu::loadSpirv(shader_)));
-  const gpu::Pipeline& pipeline = cache.compute(device_, d);
-
-  struct Write {
-    uint32_t binding;
-    Kind kind;
-    std::string resource;
-    VkSampler sampler;
-    VkAccelerationStructureKHR tlas;
-    bool constant;
-    VkImageView view;
-    VkImageLayout layout;
-    VkBuffer buffer;
-  };
-  std::vector<Write> writes;
-  for (const Entry& e : entries_)
-    if (e.present)
-      writes.push_back({e.binding, e.kind, e.resource, e.kind == Kind::Sampled ? device_.sampler(e.sampler) : VK_NULL_HANDLE,
-                        e.tlas, e.constant, e.view, e.layout, e.buffer});
-
-  const std::vector<Entry> entries = entries_;
-  const auto extraReads = extraReads_;
-  auto setup = [&entries, &extraReads](graph::PassBuilder& b) {
+std::function<void(graph::PassBuilder&)> BindingList::setup() const {
+  return [entries = entries_, extraReads = extraReads_](graph::PassBuilder& b) {
     // One access per resource: a resource bound at two bindings the same way is one read.
     std::set<std::pair<std::string, Usage>> declared;
     for (const Entry& e : entries) {
@@ -251,11 +166,32 @@ graph::PassId ComputePass::add(graph::RenderGraph& graph) {
     for (const auto& [name, usage] : extraReads)
       if (declared.emplace(name, usage).second) b.read(name, usage);
   };
-  std::vector<uint8_t> push = pushBytes_;
-  std::array<uint32_t, 6> size{size_[0], size_[1], size_[2], size_[3], size_[4], size_[5]};
-  auto execute = [&pipeline, writes = std::move(writes), push = std::move(push), size, record = record_](graph::PassContext& ctx) {
+}
+
+std::function<void(graph::PassContext&)> BindingList::bindAndWrite(const gpu::Pipeline& pipeline) const {
+  struct Write {
+    uint32_t binding;
+    Kind kind;
+    std::string resource;
+    VkSampler sampler;
+    VkAccelerationStructureKHR tlas;
+    bool constant;
+    VkImageView view;
+    VkImageLayout layout;
+    VkBuffer buffer;
+  };
+  std::vector<Write> writes;
+  for (const Entry& e : entries_)
+    if (e.present)
+      writes.push_back({e.binding, e.kind, e.resource, e.kind == Kind::Sampled ? device_.sampler(e.sampler) : VK_NULL_HANDLE,
+                        e.tlas, e.constant, e.view, e.layout, e.buffer});
+  return [&pipeline, writes = std::move(writes), push = pushBytes_, finish = finishPush_](graph::PassContext& ctx) {
     ctx.bind(pipeline);
-    if (!push.empty()) ctx.pushConstantBytes(push.data(), uint32_t(push.size()));
+    if (!push.empty()) {
+      std::vector<uint8_t> bytes = push;
+      if (finish) finish(ctx, bytes);
+      ctx.pushConstantBytes(bytes.data(), uint32_t(bytes.size()));
+    }
     gpu::DescriptorWriter& d = ctx.descriptors();
     for (const Write& w : writes) {
       if (w.constant) {
@@ -274,12 +210,126 @@ graph::PassId ComputePass::add(graph::RenderGraph& graph) {
         default: d.storageImage(w.binding, ctx.image(w.resource).view()); break;
       }
     }
+  };
+}
+
+// ---- ComputePass ------------------------------------------------------------------------
+
+ComputePass::ComputePass(gpu::Device& device, std::string name, std::string shader)
+    : BindingPass(device, std::move(name), std::move(shader)) {}
+
+ComputePass& ComputePass::dispatch(uint32_t width, uint32_t height, uint32_t depth, uint32_t localX, uint32_t localY,
+                                   uint32_t localZ) {
+  const uint32_t s[6] = {width, height, depth, localX, localY, localZ};
+  std::copy(std::begin(s), std::end(s), size_);
+  return *this;
+}
+
+ComputePass& ComputePass::record(std::function<void(graph::PassContext&)> fn) {
+  record_ = std::move(fn);
+  return *this;
+}
+
+graph::PassId ComputePass::add(graph::RenderGraph& graph) {
+  gpu::ComputePipelineDesc d;
+  d.name = name_;
+  d.shader = shaderNames_;
+  d.layout.bindings = layout();
+  d.layout.pushConstantBytes = uint32_t(pushBytes_.size());
+  gpu::PipelineCache& cache = device_.pipelines();
+  // A new pipeline's list is checked against its shader once, before the pipeline is made.
+  if (!cache.contains(d)) check(gpu::reflectSet0(gpu::loadSpirv(shaderNames_)));
+  const gpu::Pipeline& pipeline = cache.compute(device_, d);
+  std::array<uint32_t, 6> size{size_[0], size_[1], size_[2], size_[3], size_[4], size_[5]};
+  auto execute = [prologue = bindAndWrite(pipeline), size, record = record_](graph::PassContext& ctx) {
+    prologue(ctx);
     if (record)
       record(ctx);
     else
       ctx.dispatch(size[0], size[1], size[2], size[3], size[4], size[5]);
   };
-  return graph.addPass(name_, graph::PassKind::Compute, setup, std::move(execute));
+  return graph.addPass(name_, graph::PassKind::Compute, setup(), std::move(execute));
+}
+
+// ---- RayTracingPass ---------------------------------------------------------------------
+
+std::vector<std::string> RayShaders::stages() const {
+  std::vector<std::string> all{raygen};
+  auto add = [&](const std::string& s) {
+    if (!s.empty() && std::find(all.begin(), all.end(), s) == all.end()) all.push_back(s);
+  };
+  for (const std::string& m : misses) add(m);
+  for (const auto& h : hitGroups) add(h.closestHit), add(h.anyHit);
+  return all;
+}
+
+std::vector<gpu::ReflectedBinding> reflectStages(const std::vector<std::string>& stages, std::vector<std::string>* from) {
+  std::vector<gpu::ReflectedBinding> all;
+  std::vector<std::string> where;
+  for (const std::string& stage : stages)
+    for (gpu::ReflectedBinding& r : gpu::reflectSet0(gpu::loadSpirv(stage))) {
+      auto same = std::find_if(all.begin(), all.end(), [&](const gpu::ReflectedBinding& x) { return x.binding == r.binding; });
+      if (same == all.end()) {
+        all.push_back(std::move(r));
+        where.push_back(stage);
+      } else if (same->type != r.type) {
+        throw PassBuilderError(fmt::format("binding {} is `{}` as a {} in shader {} but `{}` as a {} in shader {}", r.binding,
+                                           same->name, typeName(same->type), where[size_t(same - all.begin())], r.name,
+                                           typeName(r.type), stage));
+      }
+    }
+  if (from) *from = std::move(where);
+  return all;
+}
+
+namespace {
+std::string joined(const std::vector<std::string>& stages) {
+  std::string s;
+  for (const std::string& x : stages) s += (s.empty() ? "" : ", ") + x;
+  return s;
+}
+}  // namespace
+
+RayTracingPass::RayTracingPass(gpu::Device& device, std::string name, RayShaders shaders)
+    : BindingPass(device, std::move(name), joined(shaders.stages())), rayShaders_(std::move(shaders)) {}
+
+RayTracingPass& RayTracingPass::sceneTable(const gpu::DescriptorTable& table) {
+  sceneTable_ = &table;
+  return *this;
+}
+
+RayTracingPass& RayTracingPass::trace(uint32_t width, uint32_t height, uint32_t depth) {
+  size_[0] = width, size_[1] = height, size_[2] = depth;
+  return *this;
+}
+
+graph::PassId RayTracingPass::add(graph::RenderGraph& graph) {
+  gpu::RayTracingPipelineDesc d;
+  d.name = rayShaders_.name;
+  d.raygen = rayShaders_.raygen;
+  d.misses = rayShaders_.misses;
+  d.hitGroups = rayShaders_.hitGroups;
+  d.layout.bindings = layout();
+  d.layout.pushConstantBytes = uint32_t(pushBytes_.size());
+  if (sceneTable_) d.layout.extraSets = {sceneTable_->layout()};
+  gpu::PipelineCache& cache = device_.pipelines();
+  // As for compute: a new pipeline's list is checked once, against all its stages together.
+  if (!cache.contains(d)) {
+    std::vector<std::string> from;
+    const std::vector<gpu::ReflectedBinding> shader = reflectStages(rayShaders_.stages(), &from);
+    check(shader, from);
+  }
+  const gpu::Pipeline& pipeline = cache.rayTracing(device_, d);
+  auto execute = [prologue = bindAndWrite(pipeline), &pipeline, table = sceneTable_, size = std::array{size_[0], size_[1], size_[2]}](
+                     graph::PassContext& ctx) {
+    prologue(ctx);
+    ctx.flushDescriptors();
+    if (table) table->bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline.layout(), shared::kSceneSet);
+    // The regions after the bind: a shader reload rebuilds the pipeline (and its table) there.
+    ctx.device.ext().cmdTraceRays(ctx.cmd, &pipeline.raygenRegion, &pipeline.missRegion, &pipeline.hitRegion,
+                                  &pipeline.callableRegion, size[0], size[1], size[2]);
+  };
+  return graph.addPass(name_, graph::PassKind::RayTracing, setup(), std::move(execute));
 }
 
 }  // namespace tl::lighting

@@ -15,9 +15,12 @@
 //       .add(graph);
 //
 // Misuse (a binding declared twice, a binding the shader has and the list lacks or types
-// differently) is one error naming the pass, the binding and both sides.
+// differently) is one error naming the pass, the binding and both sides. RayTracingPass is the
+// same list over a ray-tracing pipeline (checked against the union of its stages' bindings),
+// with the scene table as set 1 and a trace instead of the dispatch (see below).
 #pragma once
 
+#include "gpu/descriptor_table.h"
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
 #include "gpu/spirv_reflect.h"
@@ -29,6 +32,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace tl::lighting {
@@ -49,66 +53,19 @@ struct PassBuilderError : gpu::Error {
   using gpu::Error::Error;
 };
 
-class ComputePass {
+// How a binding-list entry differs from the plain kind (outside BindingList: a default
+// argument there needs the complete type).
+struct EntryOptions {
+  std::optional<graph::ResourceDesc> create;  // the pass creates the resource
+  gpu::SamplerDesc sampler{};
+  bool optional = false, present = true;
+};
+
+// What every pass builder shares: the set-0 binding list and what it yields (the graph
+// accesses, the push-descriptor layout, its check against the shaders, the descriptor writes)
+// and the push constants. ComputePass and RayTracingPass add their pipeline and their work.
+class BindingList {
  public:
-  ComputePass(gpu::Device& device, std::string name, std::string shader);
-
-  // Buffers: a uniform block (the frame constants), storage read, storage written.
-  ComputePass& uniform(uint32_t binding, std::string_view buffer);
-  ComputePass& bufferIn(uint32_t binding, std::string_view buffer);
-  ComputePass& bufferOut(uint32_t binding, std::string_view buffer);
-  // Images: sampled, storage read, storage written (an existing resource, or one this pass
-  // creates with `create`), storage read and written in place.
-  ComputePass& sampled(uint32_t binding, std::string_view image, const gpu::SamplerDesc& sampler = samplers::point);
-  ComputePass& storageIn(uint32_t binding, std::string_view image);
-  ComputePass& storageOut(uint32_t binding, std::string_view image);
-  ComputePass& storageOut(uint32_t binding, std::string_view image, const graph::ResourceDesc& create);
-  ComputePass& storageInOut(uint32_t binding, std::string_view image);
-  // A sampled input that may be absent from this frame's graph (nobody wrote it): then there
-  // is no access and no descriptor (the binding is partially bound, no stand-in resource);
-  // present() says which, for the push constant that tells the shader.
-  ComputePass& optionalSampled(uint32_t binding, std::string_view image, const graph::RenderGraph& graph,
-                               const gpu::SamplerDesc& sampler = samplers::point);
-  // Last frame's `name` (declared persistent here) sampled at `binding`. Whether it holds
-  // anything is the history's decision from the frame key (T9, frame_key.h): historyValid().
-  ComputePass& history(uint32_t binding, std::string_view name, const graph::ResourceDesc& desc, graph::RenderGraph& graph,
-                       FrameInputs& in, HistoryKeeper& keeper, const HistoryPolicy& policy,
-                       const gpu::SamplerDesc& sampler = samplers::linear);
-  // The same where the pass knows whether the input exists (a path's optional output).
-  ComputePass& optionalSampled(uint32_t binding, std::string_view image, bool present,
-                               const gpu::SamplerDesc& sampler = samplers::point);
-  // A storage image read and written in place that the pass may leave unbound (an accumulation
-  // the frame does not keep): absent, no access and no descriptor, as for optionalSampled.
-  ComputePass& optionalStorageInOut(uint32_t binding, std::string_view image, bool present);
-  bool historyValid() const { return historyValid_; }
-  bool present(uint32_t binding) const;
-
-  // A top level traced by ray queries: its handle, and the graph structures it stands for
-  // (read as acceleration structures: the top level and the bottom levels it refers to).
-  ComputePass& accelerationStructure(uint32_t binding, VkAccelerationStructureKHR tlas,
-                                     const std::vector<std::string>& structures);
-  // Made outside the frame and never written in it (the rt path's blue noise, uploaded once;
-  // the scene's instance data, written at load): bound as they are, with no graph access.
-  ComputePass& constantSampled(uint32_t binding, const gpu::Image& image, VkImageLayout layout,
-                               const gpu::SamplerDesc& sampler = samplers::point);
-  ComputePass& constantBuffer(uint32_t binding, VkBuffer buffer);
-  // A resource the pass reads or writes without a set-0 binding (e.g. through another set).
-  ComputePass& reads(std::string_view name, graph::Usage usage);
-
-  template <class T>
-  ComputePass& push(const T& constants) {
-    pushBytes_.resize(sizeof(T));
-    std::memcpy(pushBytes_.data(), &constants, sizeof(T));
-    return *this;
-  }
-  ComputePass& dispatch(uint32_t width, uint32_t height, uint32_t depth = 1, uint32_t localX = 8, uint32_t localY = 8,
-                        uint32_t localZ = 1);
-  // Instead of one dispatch: records with the pipeline bound and the descriptors pending.
-  ComputePass& record(std::function<void(graph::PassContext&)> fn);
-
-  // Checks the list, gets the pipeline and adds the pass. Throws PassBuilderError.
-  graph::PassId add(graph::RenderGraph& graph);
-
   enum class Kind : uint8_t { Uniform, BufferIn, BufferOut, Sampled, StorageIn, StorageOut, StorageInOut, Tlas };
   struct Entry {
     uint32_t binding = 0;
@@ -123,21 +80,216 @@ class ComputePass {
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkBuffer buffer = VK_NULL_HANDLE;
   };
+
+  const std::string& name() const { return name_; }
+  bool historyValid() const { return historyValid_; }
+  bool present(uint32_t binding) const;
   // The layout the list yields (what the pipeline is built with), for tests and the docs.
   std::vector<gpu::Binding> layout() const;
-  // Checks the list against the shader's set-0 bindings (gpu/spirv_reflect.h); throws.
-  void check(const std::vector<gpu::ReflectedBinding>& shader) const;
+  // Checks the list against the set-0 bindings of the pipeline's shaders (gpu/spirv_reflect.h;
+  // for several stages, their union: reflectStages); `stages[i]` names the shader that
+  // declares `shader[i]` (empty: the pass's shader). Throws PassBuilderError.
+  void check(const std::vector<gpu::ReflectedBinding>& shader, const std::vector<std::string>& stages = {}) const;
 
- private:
-  ComputePass& entry(uint32_t binding, Kind kind, std::string_view resource);
+ protected:
+  BindingList(gpu::Device& device, std::string name, std::string shaders)
+      : device_(device), name_(std::move(name)), shaderNames_(std::move(shaders)) {}
+
+  void entry(uint32_t binding, Kind kind, std::string_view resource, EntryOptions options = {});
+  void tlasEntry(uint32_t binding, VkAccelerationStructureKHR tlas, const std::vector<std::string>& structures);
+  // Outside the graph: a sampled `image` in `layout`, or (image null) a storage `buffer`.
+  void constantEntry(uint32_t binding, const gpu::Image* image, VkImageLayout layout, const gpu::SamplerDesc& sampler,
+                     VkBuffer buffer);
+  void declareHistory(std::string_view name, const graph::ResourceDesc& desc, graph::RenderGraph& graph, FrameInputs& in,
+                      HistoryKeeper& keeper, const HistoryPolicy& policy);
+  void setPush(const void* bytes, size_t size);
+
+  // The graph accesses of the list (the setup of graph::RenderGraph::addPass).
+  std::function<void(graph::PassBuilder&)> setup() const;
+  // What execute does before the work: binds `pipeline`, pushes the constants (finished for
+  // this frame) and writes the descriptors; the work's draw, dispatch or trace flushes them.
+  std::function<void(graph::PassContext&)> bindAndWrite(const gpu::Pipeline& pipeline) const;
+
   gpu::Device& device_;
-  std::string name_, shader_;
+  std::string name_;
+  std::string shaderNames_;  // the shader, or the stages, as messages name them
   std::vector<Entry> entries_;
   std::vector<std::pair<std::string, graph::Usage>> extraReads_;
   std::vector<uint8_t> pushBytes_;
+  std::function<void(graph::PassContext&, std::vector<uint8_t>&)> finishPush_;
+  bool historyValid_ = false;
+};
+
+// The fluent list, returning the pass (`Self`) so a declaration reads as one statement.
+template <class Self>
+class BindingPass : public BindingList {
+ public:
+  // Buffers: a uniform block (the frame constants), storage read, storage written (an existing
+  // buffer, or one this pass creates with `create`).
+  Self& uniform(uint32_t binding, std::string_view buffer) { return listed(binding, Kind::Uniform, buffer); }
+  Self& bufferIn(uint32_t binding, std::string_view buffer) { return listed(binding, Kind::BufferIn, buffer); }
+  Self& bufferOut(uint32_t binding, std::string_view buffer) { return listed(binding, Kind::BufferOut, buffer); }
+  Self& bufferOut(uint32_t binding, std::string_view buffer, const graph::ResourceDesc& create) {
+    return listed(binding, Kind::BufferOut, buffer, {.create = create});
+  }
+  // A storage buffer read that the frame may lack (the light table in a scene without lights):
+  // absent, no access and no descriptor (partially bound; the shader is told, e.g. by a count).
+  Self& optionalBufferIn(uint32_t binding, std::string_view buffer, bool present) {
+    return listed(binding, Kind::BufferIn, buffer, {.optional = true, .present = present});
+  }
+  // Images: sampled, storage read, storage written (an existing resource, or one this pass
+  // creates with `create`), storage read and written in place.
+  Self& sampled(uint32_t binding, std::string_view image, const gpu::SamplerDesc& sampler = samplers::point) {
+    return listed(binding, Kind::Sampled, image, {.sampler = sampler});
+  }
+  Self& storageIn(uint32_t binding, std::string_view image) { return listed(binding, Kind::StorageIn, image); }
+  Self& storageOut(uint32_t binding, std::string_view image) { return listed(binding, Kind::StorageOut, image); }
+  Self& storageOut(uint32_t binding, std::string_view image, const graph::ResourceDesc& create) {
+    return listed(binding, Kind::StorageOut, image, {.create = create});
+  }
+  Self& storageInOut(uint32_t binding, std::string_view image) { return listed(binding, Kind::StorageInOut, image); }
+  // A sampled input that may be absent from this frame's graph (nobody wrote it): then there
+  // is no access and no descriptor (the binding is partially bound, no stand-in resource);
+  // present() says which, for the push constant that tells the shader.
+  Self& optionalSampled(uint32_t binding, std::string_view image, const graph::RenderGraph& graph,
+                        const gpu::SamplerDesc& sampler = samplers::point) {
+    return optionalSampled(binding, image, graph.find(image).has_value(), sampler);
+  }
+  // The same where the pass knows whether the input exists (a path's optional output).
+  Self& optionalSampled(uint32_t binding, std::string_view image, bool present,
+                        const gpu::SamplerDesc& sampler = samplers::point) {
+    return listed(binding, Kind::Sampled, image, {.sampler = sampler, .optional = true, .present = present});
+  }
+  // Last frame's `name` (declared persistent here) sampled at `binding`. Whether it holds
+  // anything is the history's decision from the frame key (T9, frame_key.h): historyValid().
+  Self& history(uint32_t binding, std::string_view name, const graph::ResourceDesc& desc, graph::RenderGraph& graph,
+                FrameInputs& in, HistoryKeeper& keeper, const HistoryPolicy& policy,
+                const gpu::SamplerDesc& sampler = samplers::linear) {
+    declareHistory(name, desc, graph, in, keeper, policy);
+    return sampled(binding, name, sampler);
+  }
+  // A storage image read and written in place that the pass may leave unbound (an accumulation
+  // the frame does not keep): absent, no access and no descriptor, as for optionalSampled.
+  Self& optionalStorageInOut(uint32_t binding, std::string_view image, bool present) {
+    return listed(binding, Kind::StorageInOut, image, {.optional = true, .present = present});
+  }
+
+  // A top level traced by ray queries or rays: its handle, and the graph structures it stands
+  // for (read as acceleration structures: the top level and the bottom levels it refers to).
+  Self& accelerationStructure(uint32_t binding, VkAccelerationStructureKHR tlas, const std::vector<std::string>& structures) {
+    tlasEntry(binding, tlas, structures);
+    return self();
+  }
+  // Made outside the frame and never written in it (the rt path's blue noise, uploaded once;
+  // the scene's instance data, written at load): bound as they are, with no graph access.
+  Self& constantSampled(uint32_t binding, const gpu::Image& image, VkImageLayout layout,
+                        const gpu::SamplerDesc& sampler = samplers::point) {
+    constantEntry(binding, &image, layout, sampler, VK_NULL_HANDLE);
+    return self();
+  }
+  Self& constantBuffer(uint32_t binding, VkBuffer buffer) {
+    constantEntry(binding, nullptr, VK_IMAGE_LAYOUT_UNDEFINED, {}, buffer);
+    return self();
+  }
+  // A resource the pass reads or writes without a set-0 binding (e.g. through another set).
+  Self& reads(std::string_view name, graph::Usage usage) {
+    extraReads_.emplace_back(std::string(name), usage);
+    return self();
+  }
+
+  template <class T>
+  Self& push(const T& constants) {
+    setPush(&constants, sizeof(T));
+    return self();
+  }
+  // Constants finished when the pass records, from what only the frame knows then (whether a
+  // history holds anything: PassContext::historyValid); `finish` runs at every record.
+  template <class T>
+  Self& push(const T& constants, std::type_identity_t<std::function<void(graph::PassContext&, T&)>> finish) {
+    push(constants);
+    finishPush_ = [finish = std::move(finish)](graph::PassContext& ctx, std::vector<uint8_t>& bytes) {
+      T t;
+      std::memcpy(&t, bytes.data(), sizeof(T));
+      finish(ctx, t);
+      std::memcpy(bytes.data(), &t, sizeof(T));
+    };
+    return self();
+  }
+
+ protected:
+  using BindingList::BindingList;
+  Self& self() { return static_cast<Self&>(*this); }
+  Self& listed(uint32_t binding, Kind kind, std::string_view resource, EntryOptions options = {}) {
+    entry(binding, kind, resource, std::move(options));
+    return self();
+  }
+};
+
+class ComputePass final : public BindingPass<ComputePass> {
+ public:
+  ComputePass(gpu::Device& device, std::string name, std::string shader);
+
+  ComputePass& dispatch(uint32_t width, uint32_t height, uint32_t depth = 1, uint32_t localX = 8, uint32_t localY = 8,
+                        uint32_t localZ = 1);
+  // Instead of one dispatch: records with the pipeline bound and the descriptors pending.
+  ComputePass& record(std::function<void(graph::PassContext&)> fn);
+
+  // Checks the list, gets the pipeline and adds the pass. Throws PassBuilderError.
+  graph::PassId add(graph::RenderGraph& graph);
+
+ private:
   uint32_t size_[6] = {1, 1, 1, 8, 8, 1};
   std::function<void(graph::PassContext&)> record_;
-  bool historyValid_ = false;
+};
+
+// A ray-tracing pipeline's shaders: gpu::RayTracingPipelineDesc less its layout, which the
+// binding list gives. `name` names the pipeline: passes that trace the same shaders with the
+// same list share one (rt.trace and rt.trace.2, rt.rawRays and rt.rawRays.pending).
+struct RayShaders {
+  std::string name;
+  std::string raygen;
+  std::vector<std::string> misses;
+  std::vector<gpu::RayTracingPipelineDesc::HitGroup> hitGroups;
+  // Every stage's shader, in the pipeline's order (raygen, misses, hit groups), once each.
+  std::vector<std::string> stages() const;
+};
+
+// The set-0 bindings of several stages, each once: what a pipeline of them must be given.
+// `from[i]` is the stage that declares result[i] (the first that does). A binding two stages
+// declare with different types throws PassBuilderError.
+std::vector<gpu::ReflectedBinding> reflectStages(const std::vector<std::string>& stages, std::vector<std::string>* from = nullptr);
+
+// A ray-tracing pass stated as a binding list, like ComputePass, plus its shaders, the scene's
+// descriptor table as set 1 (the any-hit shaders read the materials through it) and the trace
+// size. Its pipeline comes from the device's cache (gpu::PipelineCache), keyed by the shaders
+// and the layout, so a new scene-table layout is a new pipeline and an unchanged one is reused
+// across scenes (seconds to minutes of compilation on lavapipe).
+//
+//   RayTracingPass(in.device, "rt.trace", kTraceShaders)
+//       .uniform(shared::kRtBindingFrame, kFrameConstants)
+//       .accelerationStructure(shared::kRtBindingTlas, tlas, {kRtTlas})
+//       .storageOut(shared::kRtBindingHitsOut, kHits, hitsDesc)
+//       .sceneTable(in.scene.table())
+//       .push(push)
+//       .trace(w, h)
+//       .add(graph);
+class RayTracingPass final : public BindingPass<RayTracingPass> {
+ public:
+  RayTracingPass(gpu::Device& device, std::string name, RayShaders shaders);
+
+  // The scene's descriptor table, bound as set shared::kSceneSet beside the pushed set 0.
+  RayTracingPass& sceneTable(const gpu::DescriptorTable& table);
+  // One ray generation per (x, y, z).
+  RayTracingPass& trace(uint32_t width, uint32_t height, uint32_t depth = 1);
+
+  // Checks the list against every stage, gets the pipeline and adds the pass. Throws
+  // PassBuilderError.
+  graph::PassId add(graph::RenderGraph& graph);
+
+ private:
+  RayShaders rayShaders_;
+  const gpu::DescriptorTable* sceneTable_ = nullptr;
+  uint32_t size_[3] = {1, 1, 1};
 };
 
 }  // namespace tl::lighting

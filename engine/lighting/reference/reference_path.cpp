@@ -9,6 +9,7 @@
 #include "lighting/common/environment_table.h"
 #include "lighting/common/light_table.h"
 #include "lighting/common/lights_pass.h"
+#include "lighting/common/pass_builders.h"
 #include "shared/lights.h"
 #include "lighting/reference/reference_path.h"
 #include "scene/scene.h"
@@ -52,6 +53,11 @@ constexpr const char* kMisses[] = {"reference/trace.rmiss", "reference/shadow.rm
 constexpr const char* kClosestHit = "reference/trace.rchit";
 constexpr const char* kAnyHit = "reference/alpha.rahit";  // alpha MASK: runs on non-opaque geometry only
 
+// The three pipelines: the same paths, misses and hit shaders from three ray generations.
+const RayShaders kTraceShaders{"reference.trace", kRaygen, {std::begin(kMisses), std::end(kMisses)}, {{kClosestHit, kAnyHit}}};
+const RayShaders kIrradianceShaders{"reference.irradiance", kIrradianceRaygen, kTraceShaders.misses, kTraceShaders.hitGroups};
+const RayShaders kDepthShaders{"reference.bounces", kDepthRaygen, kTraceShaders.misses, kTraceShaders.hitGroups};
+
 class ReferencePath final : public LightingPath {
  public:
   std::string name() const override { return "reference"; }
@@ -80,36 +86,25 @@ class ReferencePath final : public LightingPath {
                                                   : sceneScaledAoRadius(std::max(in.constants.sceneScale, 1e-3f));
     push.samplesPerFrame = std::max(1u, in.settings.referenceSamplesPerFrame);
     push.maxBounces = std::max(1u, in.settings.referenceBounces);
-    graph.addPass(
-        "reference.trace", graph::PassKind::RayTracing,
-        [&](graph::PassBuilder& b) {
-          readPathInputs(b, in);
-          b.read(kAccum, graph::Usage::StorageRead);
-          b.write(kAccum, graph::Usage::StorageWrite);
-          b.read(kAoAccum, graph::Usage::StorageRead);
-          b.write(kAoAccum, graph::Usage::StorageWrite);
-          b.create(kAo, graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
-                                                     "ambient occlusion at the AO radius (cosine-weighted), ground truth")
-                       .decodedAs("ao"),
-                   graph::Usage::StorageWrite);
-          b.create(kRadiance, graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "path-traced radiance"),
-                   graph::Usage::StorageWrite);
-        },
-        [this, &in, push](graph::PassContext& ctx) mutable {
-          // History can vanish under us (resize, reset): then the sum starts over.
-          if (!ctx.historyValid(kAccum) || !ctx.historyValid(kAoAccum)) samples_ = 0;
-          push.samplesSoFar = samples_;
-          push.seed = 0;
-          ctx.bind(pipeline_);
-          ctx.pushConstants(push);
-          writePathInputs(ctx, in)
-              .storageImage(shared::kRefBindingAccum, ctx.image(kAccum).view())
-              .storageImage(shared::kRefBindingRadiance, ctx.image(kRadiance).view())
-              .storageImage(shared::kRefBindingAoAccum, ctx.image(kAoAccum).view())
-              .storageImage(shared::kRefBindingAo, ctx.image(kAo).view());
-          traceRays(ctx, in, pipeline_, ctx.extent(kRadiance));
-          samples_ += push.samplesPerFrame;
-        });
+    withPathInputs(RayTracingPass(in.device, "reference.trace", kTraceShaders), in)
+        .storageInOut(shared::kRefBindingAccum, kAccum)
+        .storageInOut(shared::kRefBindingAoAccum, kAoAccum)
+        .storageOut(shared::kRefBindingAo, kAo,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
+                                                 "ambient occlusion at the AO radius (cosine-weighted), ground truth")
+                        .decodedAs("ao"))
+        .storageOut(shared::kRefBindingRadiance, kRadiance,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "path-traced radiance"))
+        .push(push,
+              [this](graph::PassContext& ctx, shared::RefPush& p) {
+                // History can vanish under us (resize, reset): then the sum starts over.
+                if (!ctx.historyValid(kAccum) || !ctx.historyValid(kAoAccum)) samples_ = 0;
+                p.samplesSoFar = samples_;
+                p.seed = 0;
+                samples_ += p.samplesPerFrame;
+              })
+        .trace(w, h)
+        .add(graph);
     addIrradiancePass(graph, in, push);
     addDepthSplitPass(graph, in, push);
     LightingOutputs out;
@@ -133,30 +128,21 @@ class ReferencePath final : public LightingPath {
     graph.declareOnDemandHistory(kIrradianceAccum,
                                  graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                                               "sum of irradiance samples (rgb) and their count (a)"));
-    graph.addPass(
-        "reference.irradiance", graph::PassKind::RayTracing,
-        [&](graph::PassBuilder& b) {
-          readPathInputs(b, in);
-          b.read(kIrradianceAccum, graph::Usage::StorageRead);
-          b.write(kIrradianceAccum, graph::Usage::StorageWrite);
-          b.create(kIrradiance,
-                   graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                "diffuse irradiance at the primary hit: sky + bounce light, no sun "
-                                                "(0: sky), ground truth"),
-                   graph::Usage::StorageWrite);
-        },
-        [this, &in, push](graph::PassContext& ctx) mutable {
-          if (!ctx.historyValid(kIrradianceAccum)) irradianceSamples_ = 0;
-          push.samplesSoFar = irradianceSamples_;
-          push.seed = 1;  // independent of the radiance samples
-          ctx.bind(irradiancePipeline_);
-          ctx.pushConstants(push);
-          writePathInputs(ctx, in)
-              .storageImage(shared::kRefBindingIrradianceAccum, ctx.image(kIrradianceAccum).view())
-              .storageImage(shared::kRefBindingIrradiance, ctx.image(kIrradiance).view());
-          traceRays(ctx, in, irradiancePipeline_, ctx.extent(kIrradiance));
-          irradianceSamples_ += push.samplesPerFrame;
-        });
+    withPathInputs(RayTracingPass(in.device, "reference.irradiance", kIrradianceShaders), in)
+        .storageInOut(shared::kRefBindingIrradianceAccum, kIrradianceAccum)
+        .storageOut(shared::kRefBindingIrradiance, kIrradiance,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                                 "diffuse irradiance at the primary hit: sky + bounce light, no sun "
+                                                 "(0: sky), ground truth"))
+        .push(push,
+              [this](graph::PassContext& ctx, shared::RefPush& p) {
+                if (!ctx.historyValid(kIrradianceAccum)) irradianceSamples_ = 0;
+                p.samplesSoFar = irradianceSamples_;
+                p.seed = 1;  // independent of the radiance samples
+                irradianceSamples_ += p.samplesPerFrame;
+              })
+        .trace(w, h)
+        .add(graph);
   }
 
   // The radiance split by path depth (referenceBounceBuffers()), each group its own progressive
@@ -175,36 +161,29 @@ class ReferencePath final : public LightingPath {
                                   "the first bounce (2 scattering events)", "the second bounce (3 scattering events)",
                                   "the third bounce and more (4 or more scattering events)"};
     const uint32_t base = samples_;  // the trace pass's samples before this frame: the same paths
-    graph.addPass(
-        "reference.bounces", graph::PassKind::RayTracing,
-        [&](graph::PassBuilder& b) {
-          readPathInputs(b, in);
-          b.read(kDepthAccum, graph::Usage::StorageRead);
-          b.write(kDepthAccum, graph::Usage::StorageWrite);
-          for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
-            b.create(names[g],
-                     graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                  fmt::format("path-traced radiance of {}", kWhat[g]))
-                         .decodedAs(fmt::format("{} whole={}", kDepthShareDecoder, kRadiance)),
-                     graph::Usage::StorageWrite);
-        },
-        [this, &in, push, base, names](graph::PassContext& ctx) mutable {
-          push.sampleBase = ctx.historyValid(kAccum) ? base : 0;  // as the trace pass decides
-          if (!ctx.historyValid(kDepthAccum) || push.sampleBase == 0) depthSamples_ = 0;
-          push.samplesSoFar = depthSamples_;
-          push.seed = 0;  // the trace pass's seed
-          ctx.bind(depthPipeline_);
-          ctx.pushConstants(push);
-          auto& d = writePathInputs(ctx, in).storageImage(shared::kRefBindingDepthAccum, ctx.image(kDepthAccum).view());
-          for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
-            d.storageImage(shared::kRefBindingDepth0 + g, ctx.image(names[g]).view());
-          traceRays(ctx, in, depthPipeline_, ctx.extent(names[0]));
-          depthSamples_ += push.samplesPerFrame;
-        });
+    RayTracingPass pass = withPathInputs(RayTracingPass(in.device, "reference.bounces", kDepthShaders), in);
+    pass.storageInOut(shared::kRefBindingDepthAccum, kDepthAccum);
+    for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
+      pass.storageOut(shared::kRefBindingDepth0 + g, names[g],
+                      graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                                   fmt::format("path-traced radiance of {}", kWhat[g]))
+                          .decodedAs(fmt::format("{} whole={}", kDepthShareDecoder, kRadiance)));
+    pass.push(push,
+              [this, base](graph::PassContext& ctx, shared::RefPush& p) {
+                p.sampleBase = ctx.historyValid(kAccum) ? base : 0;  // as the trace pass decides
+                if (!ctx.historyValid(kDepthAccum) || p.sampleBase == 0) depthSamples_ = 0;
+                p.samplesSoFar = depthSamples_;
+                p.seed = 0;  // the trace pass's seed
+                depthSamples_ += p.samplesPerFrame;
+              })
+        .trace(w, h)
+        .add(graph);
   }
 
   // Bottom-level structures (one per mesh, full resolution: the reference does not
-  // simplify), the per-instance geometry table and the pipeline, once per scene. Deforming
+  // simplify) and the per-instance geometry table, once per scene (the pipelines are the
+  // device's, RayTracingPass: built once, not with each scene, as on lavapipe each takes tens of
+  // seconds to compile; and again only if the scene table's layout changes). Deforming
   // meshes' bottom levels sit side by side in one buffer the graph knows by name, rebuilt
   // in place by a graph pass when their vertices move.
   void prepareScene(FrameInputs& in) {
@@ -260,36 +239,6 @@ class ReferencePath final : public LightingPath {
     geometry_ = gpu::Buffer(in.device, table.size() * sizeof(table[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                             gpu::MemoryUsage::Upload, "reference.instanceGeometry");
     geometry_.write(table.data(), table.size() * sizeof(table[0]));
-    // The pipelines' layouts name the scene table's layout, which is the device's and the same
-    // for every scene (gpu::Device::sharedSetLayout): built once, not with each scene (on
-    // lavapipe each takes tens of seconds to compile), and again only if that layout changes.
-    if (pipelinesSceneLayout_ != in.scene.table().layout()) {
-      pipelinesSceneLayout_ = in.scene.table().layout();
-      gpu::RayTracingPipelineDesc d;
-      d.name = "reference.trace";
-      d.raygen = kRaygen;
-      d.misses.assign(std::begin(kMisses), std::end(kMisses));
-      d.hitGroups = {{kClosestHit, kAnyHit}};
-      d.layout.bindings = pathInputBindings({shared::kRefBindingAccum, shared::kRefBindingRadiance,
-                                             shared::kRefBindingAoAccum, shared::kRefBindingAo});
-      d.layout.extraSets = {in.scene.table().layout()};
-      d.layout.pushConstantBytes = sizeof(shared::RefPush);
-      pipeline_ = gpu::createRayTracingPipeline(in.device, d);
-
-      // The irradiance pass: the same paths, misses and hit shader from another ray generation.
-      d.name = "reference.irradiance";
-      d.raygen = kIrradianceRaygen;
-      d.layout.bindings = pathInputBindings({shared::kRefBindingIrradianceAccum, shared::kRefBindingIrradiance});
-      irradiancePipeline_ = gpu::createRayTracingPipeline(in.device, d);
-
-      // The depth split: the trace pass's paths again, their light summed by depth.
-      d.name = "reference.bounces";
-      d.raygen = kDepthRaygen;
-      std::vector<uint32_t> depthImages{shared::kRefBindingDepthAccum};
-      for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g) depthImages.push_back(shared::kRefBindingDepth0 + g);
-      d.layout.bindings = pathInputBindings(depthImages);
-      depthPipeline_ = gpu::createRayTracingPipeline(in.device, d);
-    }
   }
 
   // Mesh m's full triangles in the scene's shared buffers (the reference does not simplify).
@@ -362,58 +311,33 @@ class ReferencePath final : public LightingPath {
           [this](graph::PassContext& ctx) { tlas_.record(ctx.cmd, ctx.buffer(kTlasScratch)); });
     }
   }
-  // A trace reads the top level and, through it, the bottom levels a frame may rebuild.
-  void readStructures(graph::PassBuilder& b) const {
-    b.read(kTlas, graph::Usage::AccelerationStructureRead);
-    if (deformingStorage_) b.read(kBlasDeforming, graph::Usage::AccelerationStructureRead);
+  // What a trace reads: the top level and, through it, the bottom levels a frame may rebuild.
+  std::vector<std::string> structures() const {
+    std::vector<std::string> names{kTlas};
+    if (deformingStorage_) names.push_back(kBlasDeforming);
+    return names;
   }
 
-  // What every path-tracing pass (trace, irradiance, bounces) reads: the scene, the structures,
-  // the BRDF tables, and the light and environment tables where the scene has them.
-  void readPathInputs(graph::PassBuilder& b, const FrameInputs& in) const {
-    readSceneInputs(b, graph::Usage::StorageRead);
-    readStructures(b);
-    b.read(kBrdfTables, graph::Usage::StorageRead);
-    if (in.constants.lightCount > 0) b.read(kLightTable, graph::Usage::StorageRead);
-    if (hasEnvironmentMap(in)) b.read(kEnvironmentTable, graph::Usage::StorageRead);
-  }
-  // Their layouts: those inputs' bindings, then the pass's own storage images.
-  static std::vector<gpu::Binding> pathInputBindings(const std::vector<uint32_t>& storageImages) {
-    std::vector<gpu::Binding> bindings = {{shared::kRefBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                                          {shared::kRefBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-                                          {shared::kRefBindingGeometry, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                          {shared::kRefBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                          {shared::kRefBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                          {shared::kBindingBrdfTables, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                          {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                          {shared::kBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-    for (uint32_t binding : storageImages) bindings.push_back({binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
-    return bindings;
-  }
-  // And their descriptors; the caller adds its images. A scene without lights or an
-  // environment map binds a stand-in the shaders never read.
-  gpu::DescriptorWriter& writePathInputs(graph::PassContext& ctx, const FrameInputs& in) const {
-    const VkBuffer standIn = ctx.buffer(kBrdfTables).handle();
-    return ctx.descriptors()
-        .uniformBuffer(shared::kRefBindingFrame, in.constantsBuffer.handle())
-        .accelerationStructure(shared::kRefBindingTlas, tlas_.structure().handle())
-        .storageBuffer(shared::kRefBindingGeometry, geometry_.handle())
-        .storageBuffer(shared::kRefBindingVertices, ctx.buffer(kSceneVertices).handle())
-        .storageBuffer(shared::kRefBindingIndices, ctx.buffer(kSceneIndices).handle())
-        .storageBuffer(shared::kBindingBrdfTables, ctx.buffer(kBrdfTables).handle())
-        .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, standIn))
-        .storageBuffer(shared::kBindingEnvironment, environmentTableOrStandIn(ctx, in, standIn));
-  }
-  // One path per pixel of `extent`, with the scene's descriptor table beside the pass's set.
-  static void traceRays(graph::PassContext& ctx, const FrameInputs& in, const gpu::Pipeline& p, VkExtent3D extent) {
-    ctx.flushDescriptors();
-    in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, p.layout(), shared::kSceneSet);
-    ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion,
-                                  extent.width, extent.height, 1);
+  // What every path-tracing pass (trace, irradiance, bounces) binds: the frame, the structures,
+  // the hits' geometry, the BRDF tables, the light and environment tables where the scene has
+  // them (path.glsl reads them only for frame.lightCount > 0 and with the environment flag),
+  // and the scene table (set 1: the materials and textures the hits shade with).
+  RayTracingPass withPathInputs(RayTracingPass pass, const FrameInputs& in) const {
+    pass.uniform(shared::kRefBindingFrame, kFrameConstants)
+        .accelerationStructure(shared::kRefBindingTlas, tlas_.structure().handle(), structures())
+        .constantBuffer(shared::kRefBindingGeometry, geometry_.handle())
+        .bufferIn(shared::kRefBindingVertices, kSceneVertices)
+        .bufferIn(shared::kRefBindingIndices, kSceneIndices)
+        .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
+        .optionalBufferIn(shared::kBindingLights, kLightTable, in.constants.lightCount > 0)
+        .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, hasEnvironmentMap(in))
+        .reads(kSceneInstances, graph::Usage::StorageRead)
+        .reads(kSceneMaterials, graph::Usage::StorageRead)
+        .sceneTable(in.scene.table());
+    return pass;
   }
 
   uint64_t sceneId_ = 0;
-  VkDescriptorSetLayout pipelinesSceneLayout_ = VK_NULL_HANDLE;  // the scene-table layout the pipelines were built on
   std::vector<gpu::AccelerationStructure> blas_;
   std::vector<uint64_t> blasVersion_;  // per mesh: the vertex version its bottom level holds
   gpu::Buffer deformingStorage_;       // the deforming meshes' bottom levels, side by side
@@ -423,9 +347,6 @@ class ReferencePath final : public LightingPath {
   gpu::TopLevelBuilder tlas_;
   std::vector<glm::mat4> tlasTransforms_;
   gpu::Buffer geometry_;
-  gpu::Pipeline pipeline_;
-  gpu::Pipeline irradiancePipeline_;
-  gpu::Pipeline depthPipeline_;
   HistoryKeeper accumulation_;
   uint32_t samples_ = 0;
   uint32_t irradianceSamples_ = 0;

@@ -25,10 +25,21 @@ namespace {
 using graph::Usage;
 using shared::RtPush;
 
-constexpr VkImageLayout kReadOnly = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
 // Alpha MASK for every ray that meets the scene: invoked only on geometry built without
 // VK_GEOMETRY_OPAQUE_BIT (meshes whose material cuts itself out), so opaque scenes never pay.
 constexpr const char* kAnyHit = "rt/alpha.rahit";
+
+// The ray-tracing pipelines' shaders. Those that trace the scene have the any-hit shader, which
+// reads the materials through the scene table (set 1). hit_lighting.glsl: the shadow miss is 0.
+const RayShaders kTraceShaders{"rt.trace", "rt/trace.rgen", {"rt/trace.rmiss"}, {{"rt/trace.rchit", kAnyHit}}};
+// Shadow rays skip closest hits; cut-outs still let them through.
+const RayShaders kLightingShaders{"rt.lighting", "rt/lighting.rgen", {"rt/shadow.rmiss"}, {{"", kAnyHit}}};
+const RayShaders kDisocclusionShaders{"rt.disocclusion", "rt/disocclusion.rgen",
+                                      {"rt/shadow.rmiss", "rt/disocclusion.rmiss"}, {{"rt/disocclusion.rchit", kAnyHit}}};
+// The whole hit in the payload, as the disocclusion rays have it.
+const RayShaders kCacheUpdateShaders{"rt.cache.update", "rt/cache_update.rgen",
+                                     {"rt/shadow.rmiss", "rt/disocclusion.rmiss"}, {{"rt/disocclusion.rchit", kAnyHit}}};
+const RayShaders kRawShaders{"rt.rawRays", "rt/raw.rgen", {"rt/raw.rmiss"}, {{"rt/raw.rchit", ""}}};
 
 // The temporal accumulation (SH, chroma, AO, depth, luma moment) and last frame's radiance
 // that hits on screen reuse. Camera motion is reprojected, except a cut; a new scene or a
@@ -141,12 +152,12 @@ class RtPath final : public LightingPath {
                     image(VK_FORMAT_R32_SFLOAT, "mean squared sample luma (the firefly ceiling's scale)"))
         .push(push)
         // Whether the histories hold anything is known when the frame runs (their "stored" flags).
-        .record([this, push, w, h](graph::PassContext& ctx) mutable {
-          push.historyValid = !restart_ && ctx.historyValid(kHistShY) && ctx.historyValid(kHistCoCgAo) &&
-                              ctx.historyValid(kHistDepth) && ctx.historyValid(kHistLumaMoment);
-          ctx.pushConstants(push);
-          ctx.dispatch(w, h);
-        })
+        .push(push,
+              [this](graph::PassContext& ctx, RtPush& p) {
+                p.historyValid = !restart_ && ctx.historyValid(kHistShY) && ctx.historyValid(kHistCoCgAo) &&
+                                 ctx.historyValid(kHistDepth) && ctx.historyValid(kHistLumaMoment);
+              })
+        .dispatch(w, h)
         .add(graph);
 
     // What the history, the AO filter and the denoiser take: the accumulation, with the
@@ -176,24 +187,14 @@ class RtPath final : public LightingPath {
       auto rawProbe = [&](const char* pass, const char* output, uint32_t pendingOnly) {
         RtPush probe = push;
         probe.rawPendingOnly = pendingOnly;
-        graph.addPass(
-            pass, graph::PassKind::RayTracing,
-            [&](graph::PassBuilder& b) {
-              readCommon(b);
-              readStructures(b);
-              b.read(kPretraceHits, Usage::StorageRead);
-              b.create(output, image(VK_FORMAT_R32_SFLOAT, "benchmark: hit distance of the trivial trace kernel"),
-                       Usage::StorageWrite);
-            },
-            [this, &in, probe, output](graph::PassContext& ctx) {
-              ctx.bind(rawRays_);
-              ctx.pushConstants(probe);
-              writeCommon(ctx, in)
-                  .accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
-                  .storageImage(shared::kRtBindingHitsIn, ctx.image(kPretraceHits).view())
-                  .storageImage(shared::kRtBindingAo, ctx.image(output).view());
-              traceRays(ctx, rawRays_, in);
-            });
+        withCommon(RayTracingPass(in.device, pass, kRawShaders))
+            .accelerationStructure(shared::kRtBindingTlas, tlas(), structures())
+            .storageIn(shared::kRtBindingHitsIn, kPretraceHits)
+            .storageOut(shared::kRtBindingAo, output,
+                        image(VK_FORMAT_R32_SFLOAT, "benchmark: hit distance of the trivial trace kernel"))
+            .push(probe)
+            .trace(tracedWidth(in), tracedHeight(in))
+            .add(graph);
         graph.markOutput(output);
       };
       rawProbe("rt.rawRays", kRawRays, 0);
@@ -244,9 +245,8 @@ class RtPath final : public LightingPath {
     out.diffuseCoCg = giCoCg;
     out.giBlendDistance = params_.blendDistance;
     // The light table at the pixels: shadow rays against this top level (lights.direct).
-    out.shadowStructures = {kRtTlas};
-    if (scene_->hasDeforming()) out.shadowStructures.push_back(kRtBlasDeforming);
-    out.shadowTlasHandle = scene_->topLevel().structure().handle();
+    out.shadowStructures = structures();
+    out.shadowTlasHandle = tlas();
     // Metro: beyond the blend distance, the legacy pipeline's GI. Its passes join the frame
     // only when some of the scene lies that far away; otherwise nobody pays for them.
     farLegacy_ = s.rtFarLegacy && farthestSceneDistance(in) > (1.0f - kGiBlendWidthFraction) * params_.blendDistance;
@@ -306,94 +306,49 @@ class RtPath final : public LightingPath {
         .dispatch(tracedWidth(in), tracedHeight(in))
         .add(graph);
 
-    graph.addPass(
-        r.tracePass, graph::PassKind::RayTracing,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          readStructures(b);
-          b.read(r.pretraceHits, Usage::StorageRead);
-          b.read(r.pretraceSurface, Usage::StorageRead);
-          b.create(r.hits, image(VK_FORMAT_R32_UINT, "hit records: distance (half) + albedo (565), miss code").decodedAs("rt-hit-record"),
-                   Usage::StorageWrite);
-          b.create(r.hitSurface, image(VK_FORMAT_R32G32_UINT, "hit normal (oct) + emission (rgb9e5)").decodedAs("rt-hit-surface"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push, &r](graph::PassContext& ctx) {
-          ctx.bind(trace_);
-          ctx.pushConstants(push);
-          writeCommon(ctx, in)
-              .accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
-              .storageImage(shared::kRtBindingHitsIn, ctx.image(r.pretraceHits).view())
-              .storageImage(shared::kRtBindingSurfaceIn, ctx.image(r.pretraceSurface).view())
-              .storageImage(shared::kRtBindingHitsOut, ctx.image(r.hits).view())
-              .storageImage(shared::kRtBindingSurfaceOut, ctx.image(r.hitSurface).view())
-              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle());
-          traceRays(ctx, trace_, in, &in.scene);
-        });
+    withCommon(RayTracingPass(in.device, r.tracePass, kTraceShaders))
+        .accelerationStructure(shared::kRtBindingTlas, tlas(), structures())
+        .storageIn(shared::kRtBindingHitsIn, r.pretraceHits)
+        .storageIn(shared::kRtBindingSurfaceIn, r.pretraceSurface)
+        .storageOut(shared::kRtBindingHitsOut, r.hits,
+                    image(VK_FORMAT_R32_UINT, "hit records: distance (half) + albedo (565), miss code").decodedAs("rt-hit-record"))
+        .storageOut(shared::kRtBindingSurfaceOut, r.hitSurface,
+                    image(VK_FORMAT_R32G32_UINT, "hit normal (oct) + emission (rgb9e5)").decodedAs("rt-hit-surface"))
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
+        .sceneTable(in.scene.table())
+        .push(push)
+        .trace(tracedWidth(in), tracedHeight(in))
+        .add(graph);
 
-    graph.addPass(
-        r.lightingPass, graph::PassKind::RayTracing,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          b.read(r.hits, Usage::StorageRead);
-          b.read(r.hitSurface, Usage::StorageRead);
-          readHitLighting(b, screenRadiance, in);
-          if (first)
-            for (const char* n : {first->shY, first->coCg, first->ao}) b.read(n, Usage::Sampled);
-          b.create(r.shY,
-                   image(VK_FORMAT_R16G16B16A16_SFLOAT, fmt::format("{} irradiance: L1 SH of luma", rays))
-                       .decodedAs(shIrradianceDecoder(r.coCg)),
-                   Usage::StorageWrite);
-          b.create(r.coCg, image(VK_FORMAT_R16G16_SFLOAT, fmt::format("{} irradiance: chroma", rays)),
-                   Usage::StorageWrite);
-          b.create(r.ao, image(VK_FORMAT_R16_SFLOAT, fmt::format("{} ambient occlusion (hit closer than the AO radius)", rays)),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push, screenRadiance, &r, first](graph::PassContext& ctx) {
-          RtPush p = push;
-          p.screenRadiance = useScreenRadiance(ctx, push, screenRadiance && !restart_);
-          // The first ray's bindings are read by the second ray only: for the first ray itself the
-          // G-buffer's normal (read-only here) stands in, unread.
-          auto firstRay = [&](const char* name) { return ctx.image(first ? name : "gbuffer.normal").view(); };
-          VkSampler pt = point_.handle();
-          ctx.bind(lighting_);
-          ctx.pushConstants(p);
-          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance, in)
-              .storageImage(shared::kRtBindingHitsIn, ctx.image(r.hits).view())
-              .storageImage(shared::kRtBindingSurfaceIn, ctx.image(r.hitSurface).view())
-              .storageImage(shared::kRtBindingShY, ctx.image(r.shY).view())
-              .storageImage(shared::kRtBindingCoCg, ctx.image(r.coCg).view())
-              .storageImage(shared::kRtBindingAo, ctx.image(r.ao).view())
-              .sampledImage(shared::kRtBindingFirstShY, firstRay(first ? first->shY : nullptr), pt, kReadOnly)
-              .sampledImage(shared::kRtBindingFirstCoCg, firstRay(first ? first->coCg : nullptr), pt, kReadOnly)
-              .sampledImage(shared::kRtBindingFirstAo, firstRay(first ? first->ao : nullptr), pt, kReadOnly)
-              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle());
-          traceRays(ctx, lighting_, in, &in.scene);
-        });
+    withHitLighting(withCommon(RayTracingPass(in.device, r.lightingPass, kLightingShaders)), screenRadiance, in)
+        .storageIn(shared::kRtBindingHitsIn, r.hits)
+        .storageIn(shared::kRtBindingSurfaceIn, r.hitSurface)
+        .storageOut(shared::kRtBindingShY, r.shY,
+                    image(VK_FORMAT_R16G16B16A16_SFLOAT, fmt::format("{} irradiance: L1 SH of luma", rays))
+                        .decodedAs(shIrradianceDecoder(r.coCg)))
+        .storageOut(shared::kRtBindingCoCg, r.coCg, image(VK_FORMAT_R16G16_SFLOAT, fmt::format("{} irradiance: chroma", rays)))
+        .storageOut(shared::kRtBindingAo, r.ao,
+                    image(VK_FORMAT_R16_SFLOAT, fmt::format("{} ambient occlusion (hit closer than the AO radius)", rays)))
+        // The first ray's results, read by the second ray only (lighting.rgen: RtPush::sampleIndex 1).
+        .optionalSampled(shared::kRtBindingFirstShY, kFirstRay.shY, first != nullptr)
+        .optionalSampled(shared::kRtBindingFirstCoCg, kFirstRay.coCg, first != nullptr)
+        .optionalSampled(shared::kRtBindingFirstAo, kFirstRay.ao, first != nullptr)
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
+        .push(push, screenRadianceAtRecord(screenRadiance))
+        .trace(tracedWidth(in), tracedHeight(in))
+        .add(graph);
   }
 
   // The radiance cache's update paths (rt/cache_update.rgen): every frame, also while the
   // cache is off (then a few one-ray probes), since their outcomes decide whether it runs.
   void addCacheUpdate(graph::RenderGraph& graph, FrameInputs& in, const RtPush& push, bool screenRadiance) {
-    graph.addPass(
-        "rt.cache.update", graph::PassKind::RayTracing,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          readHitLighting(b, screenRadiance, in);
-          b.create(kRtCacheSamples, cache_.samplesDesc(in), Usage::StorageWrite);
-          b.create(kRtCacheOutcomes, cache_.outcomesDesc(in), Usage::StorageWrite);
-        },
-        [this, &in, push, screenRadiance](graph::PassContext& ctx) {
-          RtPush p = push;
-          p.screenRadiance = useScreenRadiance(ctx, push, screenRadiance && !restart_);
-          ctx.bind(cacheUpdate_);
-          ctx.pushConstants(p);
-          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance, in)
-              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
-              .storageBuffer(shared::kRtBindingCacheSamples, ctx.buffer(kRtCacheSamples).handle())
-              .storageBuffer(shared::kRtBindingCacheOutcomes, ctx.buffer(kRtCacheOutcomes).handle());
-          traceRays(ctx, cacheUpdate_, cache_.tilesX(in), cache_.tilesY(in), &in.scene);
-        });
+    withHitLighting(withCommon(RayTracingPass(in.device, "rt.cache.update", kCacheUpdateShaders)), screenRadiance, in)
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
+        .bufferOut(shared::kRtBindingCacheSamples, kRtCacheSamples, cache_.samplesDesc(in))
+        .bufferOut(shared::kRtBindingCacheOutcomes, kRtCacheOutcomes, cache_.outcomesDesc(in))
+        .push(push, screenRadianceAtRecord(screenRadiance))
+        .trace(cache_.tilesX(in), cache_.tilesY(in))
+        .add(graph);
     graph.markOutput(kRtCacheOutcomes);
   }
 
@@ -404,32 +359,18 @@ class RtPath final : public LightingPath {
   void addDisocclusionPasses(graph::RenderGraph& graph, FrameInputs& in, const RtPush& push, bool screenRadiance) {
     const uint32_t cw = cellsAcross(in.settings.width), ch = cellsAcross(in.settings.height);
     auto cells = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, cw, ch, what); };
-    graph.addPass(
-        "rt.disocclusion", graph::PassKind::RayTracing,
-        [&](graph::PassBuilder& b) {
-          readCommon(b);
-          b.read(kCoCgAo, Usage::Sampled);
-          readHitLighting(b, screenRadiance, in);
-          b.create(kCellShY, cells(VK_FORMAT_R16G16B16A16_SFLOAT, "disocclusion rays per 8x8 cell: mean SH luma"),
-                   Usage::StorageWrite);
-          b.create(kCellCoCgAo, cells(VK_FORMAT_R16G16B16A16_SFLOAT, "disocclusion rays: mean chroma (xy), AO (z)"),
-                   Usage::StorageWrite);
-          b.create(kCellOrigin, cells(VK_FORMAT_R32G32B32A32_SFLOAT, "disocclusion rays: world origin (xyz), 1 if traced (w)"),
-                   Usage::StorageWrite);
-        },
-        [this, &in, push, screenRadiance, cw, ch](graph::PassContext& ctx) {
-          RtPush rays = push;
-          rays.screenRadiance = useScreenRadiance(ctx, push, screenRadiance && !restart_);
-          ctx.bind(disocclusion_);
-          ctx.pushConstants(rays);
-          writeHitLighting(writeCommon(ctx, in), ctx, screenRadiance, in)
-              .sampledImage(shared::kRtBindingCoCg, ctx.image(kCoCgAo).view(), point_.handle(), kReadOnly)
-              .storageBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
-              .storageImage(shared::kRtBindingCellShY, ctx.image(kCellShY).view())
-              .storageImage(shared::kRtBindingCellCoCgAo, ctx.image(kCellCoCgAo).view())
-              .storageImage(shared::kRtBindingCellPosition, ctx.image(kCellOrigin).view());
-          traceRays(ctx, disocclusion_, cw, ch, &in.scene);
-        });
+    withHitLighting(withCommon(RayTracingPass(in.device, "rt.disocclusion", kDisocclusionShaders)), screenRadiance, in)
+        .sampled(shared::kRtBindingCoCg, kCoCgAo)
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
+        .storageOut(shared::kRtBindingCellShY, kCellShY,
+                    cells(VK_FORMAT_R16G16B16A16_SFLOAT, "disocclusion rays per 8x8 cell: mean SH luma"))
+        .storageOut(shared::kRtBindingCellCoCgAo, kCellCoCgAo,
+                    cells(VK_FORMAT_R16G16B16A16_SFLOAT, "disocclusion rays: mean chroma (xy), AO (z)"))
+        .storageOut(shared::kRtBindingCellPosition, kCellOrigin,
+                    cells(VK_FORMAT_R32G32B32A32_SFLOAT, "disocclusion rays: world origin (xyz), 1 if traced (w)"))
+        .push(push, screenRadianceAtRecord(screenRadiance))
+        .trace(cw, ch)
+        .add(graph);
     const uint32_t w = in.settings.width, h = in.settings.height;
     withCommon(ComputePass(in.device, "rt.disocclusion.blend", "rt/disocclusion_blend.comp"))
         .sampled(shared::kRtBindingShY, kShY)
@@ -492,38 +433,31 @@ class RtPath final : public LightingPath {
         },
         [this](graph::PassContext& ctx) { scene_->topLevel().record(ctx.cmd, ctx.buffer(kRtTlasScratch)); });
   }
-  // A trace reads the top level and, through it, the bottom levels a frame may rewrite.
-  void readStructures(graph::PassBuilder& b) const {
-    b.read(kRtTlas, Usage::AccelerationStructureRead);
-    if (scene_->hasDeforming()) b.read(kRtBlasDeforming, Usage::AccelerationStructureRead);
+  // What a trace reads: the top level and, through it, the bottom levels a frame may rewrite.
+  std::vector<std::string> structures() const {
+    std::vector<std::string> names{kRtTlas};
+    if (scene_->hasDeforming()) names.push_back(kRtBlasDeforming);
+    return names;
   }
+  VkAccelerationStructureKHR tlas() const { return scene_->topLevel().structure().handle(); }
 
   // What shading a hit reads (rt/hit_lighting.glsl): the top level, last frame's image and
-  // depth for hits seen on screen, and the G-buffer's material there.
-  void readHitLighting(graph::PassBuilder& b, bool screenRadiance, const FrameInputs& in) const {
-    readStructures(b);
-    if (in.constants.lightCount > 0) b.read(kLightTable, Usage::StorageRead);
-    b.read(kHistDepth, Usage::Sampled);
-    if (screenRadiance) b.read(kHistRadiance, Usage::Sampled);
-    if (cache_.active()) b.read(kRtCacheEntries, Usage::StorageRead);
-    for (const char* n : {"gbuffer.baseColor", "gbuffer.material", "gbuffer.emissive"}) b.read(n, Usage::Sampled);
-  }
-  gpu::DescriptorWriter& writeHitLighting(gpu::DescriptorWriter& w, graph::PassContext& ctx, bool screenRadiance,
-                                          const FrameInputs& in) {
-    // Without history the binding still needs an image: the depth history stands in, unread.
-    const gpu::Image& radiance = ctx.image(screenRadiance ? kHistRadiance : kHistDepth);
-    VkSampler pt = point_.handle();
-    return w.accelerationStructure(shared::kRtBindingTlas, scene_->topLevel().structure().handle())
-        .storageBuffer(shared::kRtBindingEmitters, scene_->emitterData().handle())
-        // Without the cache its binding still needs a buffer: the emitters stand in, unread.
-        .storageBuffer(shared::kRtBindingCacheEntries,
-                       cache_.active() ? ctx.buffer(kRtCacheEntries).handle() : scene_->emitterData().handle())
-        .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, scene_->emitterData().handle()))
-        .sampledImage(shared::kRtBindingHistRadiance, radiance.view(), pt, kReadOnly)
-        .sampledImage(shared::kRtBindingHistDepth, ctx.image(kHistDepth).view(), pt, kReadOnly)
-        .sampledImage(shared::kRtBindingBaseColor, ctx.image("gbuffer.baseColor").view(), pt, kReadOnly)
-        .sampledImage(shared::kRtBindingMaterial, ctx.image("gbuffer.material").view(), pt, kReadOnly)
-        .sampledImage(shared::kRtBindingEmissive, ctx.image("gbuffer.emissive").view(), pt, kReadOnly);
+  // depth for hits seen on screen, the G-buffer's material there, the emitters, the light
+  // table and the radiance cache. Those the frame may lack are optional: the shader reads last
+  // frame's image only with RtPush::screenRadiance (0 without it), the cache only with
+  // RtPush::cacheLookup (0 while it is off), the light table only for frame.lightCount > 0.
+  RayTracingPass withHitLighting(RayTracingPass pass, bool screenRadiance, const FrameInputs& in) const {
+    pass.accelerationStructure(shared::kRtBindingTlas, tlas(), structures())
+        .constantBuffer(shared::kRtBindingEmitters, scene_->emitterData().handle())
+        .optionalBufferIn(shared::kRtBindingCacheEntries, kRtCacheEntries, cache_.active())
+        .optionalBufferIn(shared::kBindingLights, kLightTable, in.constants.lightCount > 0)
+        .optionalSampled(shared::kRtBindingHistRadiance, kHistRadiance, screenRadiance)
+        .sampled(shared::kRtBindingHistDepth, kHistDepth)
+        .sampled(shared::kRtBindingBaseColor, "gbuffer.baseColor")
+        .sampled(shared::kRtBindingMaterial, "gbuffer.material")
+        .sampled(shared::kRtBindingEmissive, "gbuffer.emissive")
+        .sceneTable(in.scene.table());
+    return pass;
   }
   // Last frame's image shows the old light: when the light changed, hits are lit afresh (else
   // the luminance rejection would clip the history to samples of the old light).
@@ -531,6 +465,12 @@ class RtPath final : public LightingPath {
     return screenRadiance && push.lightChanged == 0u && ctx.historyValid(kHistRadiance) && ctx.historyValid(kHistDepth)
                ? 1u
                : 0u;
+  }
+  // The same as the pass records (when the histories' "stored" flags are known).
+  std::function<void(graph::PassContext&, RtPush&)> screenRadianceAtRecord(bool screenRadiance) {
+    return [this, screenRadiance](graph::PassContext& ctx, RtPush& p) {
+      p.screenRadiance = useScreenRadiance(ctx, p, screenRadiance && !restart_);
+    };
   }
 
   // From the camera to the farthest corner of the scene's bounds.
@@ -542,26 +482,14 @@ class RtPath final : public LightingPath {
     return farthest;
   }
 
-  static void readCommon(graph::PassBuilder& b) {
-    b.read(kFrameConstants, Usage::StorageRead);
-    b.read(kGbufferDepth, Usage::Sampled);
-    b.read("gbuffer.normal", Usage::Sampled);
-  }
-  // What the compute passes' shaders declare in rt/rt_common.glsl, on a ComputePass list.
-  ComputePass withCommon(ComputePass pass) const {
+  // What the shaders declare in rt/rt_common.glsl, on a compute or ray-tracing pass's list.
+  template <class Pass>
+  Pass withCommon(Pass pass) const {
     pass.uniform(shared::kRtBindingFrame, kFrameConstants)
         .constantSampled(shared::kRtBindingBlueNoise, blueNoise_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
         .sampled(shared::kRtBindingDepth, kGbufferDepth)
         .sampled(shared::kRtBindingNormal, "gbuffer.normal");
     return pass;
-  }
-  gpu::DescriptorWriter& writeCommon(graph::PassContext& ctx, FrameInputs& in) {
-    return ctx.descriptors()
-        .uniformBuffer(shared::kRtBindingFrame, in.constantsBuffer.handle())
-        .sampledImage(shared::kRtBindingBlueNoise, blueNoise_.view(), point_.handle(),
-                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-        .sampledImage(shared::kRtBindingDepth, ctx.image(kGbufferDepth).view(), point_.handle(), kReadOnly)
-        .sampledImage(shared::kRtBindingNormal, ctx.image("gbuffer.normal").view(), point_.handle(), kReadOnly);
   }
   // Invocations per row of the passes that trace: half with 0.5 rays per pixel.
   static uint32_t tracedWidth(const FrameInputs& in) {
@@ -570,113 +498,9 @@ class RtPath final : public LightingPath {
   static uint32_t tracedHeight(const FrameInputs& in) {
     return rtRayPattern(in.settings) == shared::kRtRaysHalfResolution ? (in.settings.height + 1) / 2 : in.settings.height;
   }
-  static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, FrameInputs& in,
-                        const scene::GpuScene* sceneTable = nullptr) {
-    traceRays(ctx, p, tracedWidth(in), tracedHeight(in), sceneTable);
-  }
-  // `sceneTable`: bind the scene's descriptor table for pipelines with an any-hit shader.
-  static void traceRays(graph::PassContext& ctx, const gpu::Pipeline& p, uint32_t width, uint32_t height,
-                        const scene::GpuScene* sceneTable = nullptr) {
-    ctx.flushDescriptors();
-    if (sceneTable) sceneTable->table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, p.layout(), shared::kSceneSet);
-    ctx.device.ext().cmdTraceRays(ctx.cmd, &p.raygenRegion, &p.missRegion, &p.hitRegion, &p.callableRegion, width,
-                                  height, 1);
-  }
 
-  // The pipelines that trace the scene: their any-hit shader (alpha MASK) reads the scene's
-  // materials and textures, so their layouts name the scene table's layout. That layout is the
-  // device's, the same for every scene (gpu::Device::sharedSetLayout): they are built once, not
-  // with each scene (a minute of compilation on lavapipe), and again only if it changes.
-  void createRayPipelines(FrameInputs& in) {
-    if (rayPipelinesSceneLayout_ == in.scene.table().layout()) return;
-    rayPipelinesSceneLayout_ = in.scene.table().layout();
-    using B = gpu::Binding;
-    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    const std::vector<B> common = {{shared::kRtBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                                   {shared::kRtBindingBlueNoise, sampled},
-                                   {shared::kRtBindingDepth, sampled},
-                                   {shared::kRtBindingNormal, sampled}};
-    auto with = [&](std::vector<B> extra) {
-      gpu::PipelineLayoutDesc l;
-      l.bindings = common;
-      l.bindings.insert(l.bindings.end(), extra.begin(), extra.end());
-      l.pushConstantBytes = sizeof(RtPush);
-      l.extraSets = {in.scene.table().layout()};
-      return l;
-    };
-    {
-      gpu::RayTracingPipelineDesc d;
-      d.name = "rt.trace";
-      d.raygen = "rt/trace.rgen";
-      d.misses = {"rt/trace.rmiss"};
-      d.hitGroups = {{"rt/trace.rchit", kAnyHit}};
-      d.layout = with({{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-                       {shared::kRtBindingHitsIn, storage},
-                       {shared::kRtBindingSurfaceIn, storage},
-                       {shared::kRtBindingHitsOut, storage},
-                       {shared::kRtBindingSurfaceOut, storage},
-                       {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
-      trace_ = gpu::createRayTracingPipeline(in.device, d);
-    }
-    const std::vector<B> hitLighting = {{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-                                        {shared::kRtBindingEmitters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                        {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                        {shared::kRtBindingHistRadiance, sampled},
-                                        {shared::kRtBindingHistDepth, sampled},
-                                        {shared::kRtBindingBaseColor, sampled},
-                                        {shared::kRtBindingMaterial, sampled},
-                                        {shared::kRtBindingEmissive, sampled},
-                                        {shared::kRtBindingCacheEntries, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-    {
-      gpu::RayTracingPipelineDesc d;
-      d.name = "rt.lighting";
-      d.raygen = "rt/lighting.rgen";
-      d.misses = {"rt/shadow.rmiss"};
-      d.hitGroups = {{"", kAnyHit}};  // shadow rays skip closest hits; cut-outs still let them through
-      std::vector<B> extra = hitLighting;
-      extra.insert(extra.end(), {{shared::kRtBindingHitsIn, storage},
-                                 {shared::kRtBindingSurfaceIn, storage},
-                                 {shared::kRtBindingShY, storage},
-                                 {shared::kRtBindingCoCg, storage},
-                                 {shared::kRtBindingAo, storage},
-                                 {shared::kRtBindingFirstShY, sampled},
-                                 {shared::kRtBindingFirstCoCg, sampled},
-                                 {shared::kRtBindingFirstAo, sampled},
-                                 {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
-      d.layout = with(extra);
-      lighting_ = gpu::createRayTracingPipeline(in.device, d);
-    }
-    {
-      gpu::RayTracingPipelineDesc d;
-      d.name = "rt.disocclusion";
-      d.raygen = "rt/disocclusion.rgen";
-      d.misses = {"rt/shadow.rmiss", "rt/disocclusion.rmiss"};  // hit_lighting.glsl: the shadow miss is 0
-      d.hitGroups = {{"rt/disocclusion.rchit", kAnyHit}};
-      std::vector<B> extra = hitLighting;
-      extra.insert(extra.end(), {{shared::kRtBindingCoCg, sampled},
-                                 {shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                 {shared::kRtBindingCellShY, storage},
-                                 {shared::kRtBindingCellCoCgAo, storage},
-                                 {shared::kRtBindingCellPosition, storage}});
-      d.layout = with(extra);
-      disocclusion_ = gpu::createRayTracingPipeline(in.device, d);
-    }
-    {
-      gpu::RayTracingPipelineDesc d;
-      d.name = "rt.cache.update";
-      d.raygen = "rt/cache_update.rgen";
-      d.misses = {"rt/shadow.rmiss", "rt/disocclusion.rmiss"};  // hit_lighting.glsl: the shadow miss is 0
-      d.hitGroups = {{"rt/disocclusion.rchit", kAnyHit}};         // the whole hit in the payload
-      std::vector<B> extra = hitLighting;
-      extra.insert(extra.end(), {{shared::kRtBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                 {shared::kRtBindingCacheSamples, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                 {shared::kRtBindingCacheOutcomes, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
-      d.layout = with(extra);
-      cacheUpdate_ = gpu::createRayTracingPipeline(in.device, d);
-    }
-  }
-
-  // Scene geometry, blue noise and pipelines: once per scene (and RT mesh ratio).
+  // Scene geometry and blue noise: once per scene (and RT mesh ratio). The pipelines are the
+  // device's (RayTracingPass), built at their first frame and kept across scenes.
   void prepare(FrameInputs& in) {
     if (!scene_ || sceneId_ != in.scene.id() || scene_->simplifyRatio() != std::clamp(in.settings.rtSimplifyRatio, 0.01f, 1.0f)) {
       in.device.waitIdle();
@@ -684,7 +508,6 @@ class RtPath final : public LightingPath {
                                          in.settings.rtSimplifyError);
       sceneId_ = in.scene.id();
       albedoVersion_ = ~0ull;
-      createRayPipelines(in);
     }
     const uint32_t materials = uint32_t(in.settings.materials);
     if (albedoVersion_ != in.instanceAlbedoVersion || materials_ != materials) {
@@ -692,8 +515,7 @@ class RtPath final : public LightingPath {
       albedoVersion_ = in.instanceAlbedoVersion;
       materials_ = materials;
     }
-    if (rawRays_) return;
-    point_ = gpu::Sampler(in.device, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, "rt.point");
+    if (blueNoise_) return;
     // Two independent masks, one per uniform of the ray's direction.
     static const std::vector<uint16_t> maskU = voidAndClusterRanks(shared::kRtBlueNoiseSize, 1);
     static const std::vector<uint16_t> maskV = voidAndClusterRanks(shared::kRtBlueNoiseSize, 2);
@@ -709,37 +531,12 @@ class RtPath final : public LightingPath {
                             "rt.blueNoise");
     gpu::uploadImage2D(in.device, blueNoise_, texels.data(), texels.size() * sizeof(uint16_t));
 
-    using B = gpu::Binding;
-    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    const std::vector<B> common = {{shared::kRtBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                                   {shared::kRtBindingBlueNoise, sampled},
-                                   {shared::kRtBindingDepth, sampled},
-                                   {shared::kRtBindingNormal, sampled}};
-    auto with = [&](std::vector<B> extra) {
-      gpu::PipelineLayoutDesc l;
-      l.bindings = common;
-      l.bindings.insert(l.bindings.end(), extra.begin(), extra.end());
-      l.pushConstantBytes = sizeof(RtPush);
-      return l;
-    };
-    {
-      gpu::RayTracingPipelineDesc d;
-      d.name = "rt.rawRays";
-      d.raygen = "rt/raw.rgen";
-      d.misses = {"rt/raw.rmiss"};
-      d.hitGroups = {{"rt/raw.rchit", ""}};
-      d.layout = with({{shared::kRtBindingTlas, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-                      {shared::kRtBindingAo, storage},
-                      {shared::kRtBindingHitsIn, storage}});
-      rawRays_ = gpu::createRayTracingPipeline(in.device, d);
-    }
   }
 
   std::unique_ptr<RtScene> scene_;
   std::unique_ptr<LightingPath> farField_;  // the legacy path, for GI beyond the blend distance
   bool farLegacy_ = false;
   uint64_t sceneId_ = 0;
-  VkDescriptorSetLayout rayPipelinesSceneLayout_ = VK_NULL_HANDLE;  // the scene-table layout the ray pipelines were built on
   uint64_t albedoVersion_ = ~0ull;
   uint32_t materials_ = 0;  // the material override mode the instance albedos were set for
   uint32_t sceneInstances_ = 0;
@@ -747,9 +544,6 @@ class RtPath final : public LightingPath {
   bool restart_ = false;  // this frame drops the temporal history (a cut, a new scene, a setting)
   RtResolvedParams params_;
   gpu::Image blueNoise_;
-  gpu::Sampler point_;
-  gpu::Pipeline trace_, lighting_, rawRays_, disocclusion_;
-  gpu::Pipeline cacheUpdate_;
   RtRadianceCache cache_;
 };
 
