@@ -328,6 +328,24 @@ std::string PipelineCache::key(const RayTracingPipelineDesc& desc) {
   return key + layoutKey(desc.layout);
 }
 
+std::string PipelineCache::key(const GraphicsPipelineDesc& desc) {
+  std::string key = fmt::format("graphics|{}|{}|{}|{}|{}|{}|{}{}{}{}", desc.name, desc.vertexShader, desc.fragmentShader,
+                                int(desc.depthFormat), desc.cullMode, int(desc.depthCompare), desc.depthTest,
+                                desc.depthWrite, desc.depthBias, desc.depthClamp);
+  for (VkFormat f : desc.colorFormats) key += fmt::format("|color:{}", int(f));
+  for (const auto& b : desc.vertexBindings) key += fmt::format("|vb:{}:{}:{}", b.binding, b.stride, int(b.inputRate));
+  for (const auto& a : desc.vertexAttributes)
+    key += fmt::format("|va:{}:{}:{}:{}", a.location, a.binding, int(a.format), a.offset);
+  return key + layoutKey(desc.layout);
+}
+
+const Pipeline& PipelineCache::graphics(Device& device, const GraphicsPipelineDesc& desc) {
+  const std::string k = key(desc);
+  auto it = pipelines_.find(k);
+  if (it == pipelines_.end()) it = pipelines_.emplace(k, createGraphicsPipeline(device, desc)).first;
+  return it->second;
+}
+
 const Pipeline& PipelineCache::compute(Device& device, const ComputePipelineDesc& desc) {
   const std::string k = key(desc);
   auto it = pipelines_.find(k);

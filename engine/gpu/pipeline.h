@@ -115,20 +115,23 @@ class Pipeline {
 
 Pipeline createComputePipeline(Device& device, const ComputePipelineDesc& desc);
 
-// Compute and ray-tracing pipelines by description, one per distinct (name, shaders, layout),
+// Compute, ray-tracing and graphics pipelines by description, one per distinct (name, shaders, layout),
 // kept for the device's life (Device::pipelines()): what pass builders bind, so a pass holds
 // no pipeline. A layout naming another set layout (a new scene table's) is another pipeline.
 class PipelineCache {
  public:
   const Pipeline& compute(Device& device, const ComputePipelineDesc& desc);
   const Pipeline& rayTracing(Device& device, const RayTracingPipelineDesc& desc);
+  const Pipeline& graphics(Device& device, const GraphicsPipelineDesc& desc);
   bool contains(const ComputePipelineDesc& desc) const { return pipelines_.count(key(desc)) != 0; }
+  bool contains(const GraphicsPipelineDesc& desc) const { return pipelines_.count(key(desc)) != 0; }
   bool contains(const RayTracingPipelineDesc& desc) const { return pipelines_.count(key(desc)) != 0; }
   size_t size() const { return pipelines_.size(); }
 
  private:
   static std::string key(const ComputePipelineDesc& desc);
   static std::string key(const RayTracingPipelineDesc& desc);
+  static std::string key(const GraphicsPipelineDesc& desc);
   std::map<std::string, Pipeline> pipelines_;
 };
 Pipeline createGraphicsPipeline(Device& device, const GraphicsPipelineDesc& desc);

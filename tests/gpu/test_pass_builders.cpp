@@ -7,6 +7,8 @@
 #include "gpu/acceleration_structure.h"
 #include "graph/executor.h"
 #include "lighting/common/pass_builders.h"
+#include "shared/frame.h"
+#include "shared/lights.h"
 #include "shared/pass_builder_test.h"
 #include "shared/reference.h"
 #include "shared/selftest.h"
@@ -244,6 +246,58 @@ TEST_F(GpuTest, ReflectStagesIsTheUnionOfTheStages) {
   }
   EXPECT_TRUE(has(all, shared::kRefBindingGeometry));
   EXPECT_TRUE(has(all, shared::kRefBindingAccum));
+}
+
+// ---- RasterPass -------------------------------------------------------------------------
+
+// The G-buffer's shaders: the frame's block is declared by both stages, nothing else in set 0.
+gpu::GraphicsPipelineDesc gbufferShaders(const char* name) {
+  gpu::GraphicsPipelineDesc d;
+  d.name = name;
+  d.vertexShader = "common/gbuffer.vert";
+  d.fragmentShader = "common/gbuffer.frag";
+  return d;
+}
+
+const auto kDepthDesc = graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, 8, 8, "test depth");
+
+// A raster pass's list is checked against the union of its vertex and fragment bindings.
+TEST_F(GpuTest, RasterPassListMatchesBothStages) {
+  lighting::RasterPass pass(session().device(), "raster.ok", gbufferShaders("raster.ok"));
+  pass.uniform(shared::kBindingFrame, lighting::kFrameConstants);
+  EXPECT_NO_THROW(pass.check(lighting::reflectStages({"common/gbuffer.vert", "common/gbuffer.frag"})));
+}
+
+// Misuse: the frame's block missing from the list. One error, before any pipeline is made,
+// names the pass and the first stage that declares the binding; no pass is added.
+TEST_F(GpuTest, RasterPassMissingBindingFailsBeforeThePipeline) {
+  gpu::Device& d = session().device();
+  graph::RenderGraph g;
+  const size_t pipelines = d.pipelines().size();
+  const std::string e = errorOf([&] {
+    lighting::RasterPass(d, "raster.missing", gbufferShaders("raster.missing")).depthOut("depth", kDepthDesc, 0.0f).add(g);
+  });
+  EXPECT_NE(e.find("`raster.missing`"), std::string::npos) << e;
+  EXPECT_NE(e.find("common/gbuffer.vert"), std::string::npos) << e;
+  EXPECT_NE(e.find("which the pass does not declare"), std::string::npos) << e;
+  EXPECT_TRUE(g.passes().empty());
+  EXPECT_EQ(d.pipelines().size(), pipelines);
+}
+
+// Misuse: a binding neither stage declares (the lights' shadow views, which the G-buffer
+// does not read) names both stages.
+TEST_F(GpuTest, RasterPassExtraBindingNamesBothStages) {
+  graph::RenderGraph g;
+  const std::string e = errorOf([&] {
+    lighting::RasterPass(session().device(), "raster.extra", gbufferShaders("raster.extra"))
+        .uniform(shared::kBindingFrame, lighting::kFrameConstants)
+        .bufferIn(shared::kBindingLightShadowViews, "views")
+        .depthOut("depth", kDepthDesc, 0.0f)
+        .add(g);
+  });
+  EXPECT_NE(e.find("`views`"), std::string::npos) << e;
+  EXPECT_NE(e.find("common/gbuffer.vert, common/gbuffer.frag"), std::string::npos) << e;
+  EXPECT_TRUE(g.passes().empty());
 }
 
 }  // namespace tl::test

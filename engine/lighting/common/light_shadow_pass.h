@@ -14,10 +14,6 @@ namespace tl::lighting {
 class LightShadowPass {
  public:
   void add(graph::RenderGraph& graph, FrameInputs& in, const LightShadowPlan& plan);
-
- private:
-  gpu::Pipeline pipeline_;
-  gpu::Pipeline maskedPipeline_;  // alpha MASK casters: discards where the texture cuts them out
 };
 
 }  // namespace tl::lighting

@@ -333,3 +333,121 @@ graph::PassId RayTracingPass::add(graph::RenderGraph& graph) {
 }
 
 }  // namespace tl::lighting
+
+// ---- RasterPass -------------------------------------------------------------------------
+
+namespace tl::lighting {
+
+RasterPass::RasterPass(gpu::Device& device, std::string name, gpu::GraphicsPipelineDesc pipeline)
+    : BindingPass(device, std::move(name), pipeline.vertexShader + (pipeline.fragmentShader.empty() ? "" : ", " + pipeline.fragmentShader)) {
+  pipelines_.push_back(std::move(pipeline));
+}
+
+RasterPass& RasterPass::variant(gpu::GraphicsPipelineDesc pipeline) {
+  pipelines_.push_back(std::move(pipeline));
+  return *this;
+}
+
+RasterPass& RasterPass::colorOut(std::string_view image, const graph::ResourceDesc& create, std::optional<glm::vec4> clear) {
+  colors_.push_back({std::string(image), create, clear, std::nullopt});
+  return *this;
+}
+
+RasterPass& RasterPass::depthOut(std::string_view image, const graph::ResourceDesc& create, std::optional<float> clear) {
+  depth_ = Target{std::string(image), create, std::nullopt, clear};
+  return *this;
+}
+
+RasterPass& RasterPass::area(uint32_t width, uint32_t height) {
+  area_ = VkExtent2D{width, height};
+  return *this;
+}
+
+RasterPass& RasterPass::drawsScene(const gpu::DescriptorTable& table, bool materials, Usage geometry) {
+  sceneTable_ = &table;
+  // What readSceneInputs reads (frame_inputs.h), as extra reads: the frame constants' read is
+  // one access with a uniform binding of them.
+  reads(kFrameConstants, Usage::StorageRead);
+  reads(kSceneVertices, geometry);
+  reads(kSceneIndices, geometry);
+  reads(kSceneInstances, Usage::StorageRead);
+  if (materials) reads(kSceneMaterials, Usage::StorageRead);
+  return *this;
+}
+
+RasterPass& RasterPass::draw(Draw fn) {
+  draw_ = std::move(fn);
+  return *this;
+}
+
+RasterPass& RasterPass::record(std::function<void(graph::PassContext&, const Recording&)> fn) {
+  record_ = std::move(fn);
+  return *this;
+}
+
+RasterPass& RasterPass::alsoAccesses(std::function<void(graph::PassBuilder&)> fn) {
+  alsoAccesses_ = std::move(fn);
+  return *this;
+}
+
+graph::PassId RasterPass::add(graph::RenderGraph& graph) {
+  gpu::PipelineCache& cache = device_.pipelines();
+  std::vector<std::function<void(graph::PassContext&)>> prologues;
+  std::vector<const gpu::Pipeline*> pipelines;
+  for (gpu::GraphicsPipelineDesc d : pipelines_) {
+    d.layout.bindings = layout();
+    d.layout.pushConstantBytes = uint32_t(pushBytes_.size());
+    d.layout.extraSets.clear();
+    if (sceneTable_) d.layout.extraSets = {sceneTable_->layout()};
+    d.colorFormats.clear();
+    for (const Target& c : colors_) d.colorFormats.push_back(c.create.format);
+    d.depthFormat = depth_ ? depth_->create.format : VK_FORMAT_UNDEFINED;
+    // As for compute: a new pipeline's list is checked once, against both stages together.
+    if (!cache.contains(d)) {
+      std::vector<std::string> stages{d.vertexShader};
+      if (!d.fragmentShader.empty()) stages.push_back(d.fragmentShader);
+      std::vector<std::string> from;
+      const std::vector<gpu::ReflectedBinding> shader = reflectStages(stages, &from);
+      check(shader, from);
+    }
+    pipelines.push_back(&cache.graphics(device_, d));
+    prologues.push_back(bindAndWrite(*pipelines.back()));
+  }
+
+  auto setupList = setup();
+  auto setupAll = [setupList, colors = colors_, depth = depth_, also = alsoAccesses_](graph::PassBuilder& b) {
+    setupList(b);
+    if (also) also(b);
+    for (const Target& c : colors) b.create(c.name, c.create, Usage::ColorAttachment);
+    if (depth) b.create(depth->name, depth->create, Usage::DepthAttachment);
+  };
+  auto execute = [prologues = std::move(prologues), pipelines = std::move(pipelines), table = sceneTable_, colors = colors_,
+                  depth = depth_, area = area_, draw = draw_, record = record_](graph::PassContext& ctx) {
+    std::vector<graph::Attachment> colorAttachments;
+    for (const Target& c : colors) colorAttachments.push_back({c.name, c.clearColor, {}});
+    std::optional<graph::Attachment> depthAttachment;
+    if (depth) depthAttachment = graph::Attachment{depth->name, {}, depth->clearDepth};
+    const Use use = [&](size_t i) {
+      prologues[i](ctx);
+      ctx.flushDescriptors();
+      if (table) table->bind(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines[i]->layout(), shared::kSceneSet);
+    };
+    Recording r;
+    r.begin = [&] {
+      ctx.beginRendering(colorAttachments, depthAttachment, area);
+      use(0);
+    };
+    r.end = [&] { ctx.endRendering(); };
+    r.use = use;
+    if (record) {
+      record(ctx, r);
+      return;
+    }
+    r.begin();
+    if (draw) draw(ctx, use);
+    r.end();
+  };
+  return graph.addPass(name_, graph::PassKind::Raster, std::move(setupAll), std::move(execute));
+}
+
+}  // namespace tl::lighting

@@ -292,4 +292,75 @@ class RayTracingPass final : public BindingPass<RayTracingPass> {
   uint32_t size_[3] = {1, 1, 1};
 };
 
+// A raster pass stated as a binding list, like ComputePass: its pipeline (shaders, vertex
+// input, raster state: a gpu::GraphicsPipelineDesc whose layout and attachment formats the
+// pass fills in), its attachments as graph resources it creates with their clear values, the
+// scene's descriptor table as set 1 where it draws the scene (which also reads the scene's
+// buffers), and a draw callback that records the draws with the pipeline bound, the constants
+// pushed and the descriptors and the scene table bound. A pass that draws with several
+// pipelines over one list (opaque and alpha-masked casters) names the others with variant();
+// the callback's `use(i)` binds variant i the same way (0 is bound before the callback runs).
+// Each variant's list is checked against the union of its vertex and fragment bindings.
+//
+//   RasterPass(in.device, "gbuffer", gbufferPipeline)
+//       .uniform(shared::kBindingFrame, kFrameConstants)
+//       .colorOut(kGbufferNormal, normalDesc, glm::vec4(0.0f))
+//       .depthOut(kGbufferDepth, depthDesc, 0.0f)
+//       .drawsScene(in.scene.table())
+//       .draw([&in](graph::PassContext& ctx, const RasterPass::Use&) { in.scene.drawAll(ctx.cmd); })
+//       .add(graph);
+class RasterPass final : public BindingPass<RasterPass> {
+ public:
+  using Use = std::function<void(size_t variant)>;
+  using Draw = std::function<void(graph::PassContext&, const Use&)>;
+
+  // `pipeline`'s layout and attachment formats are ignored: the list and the attachments give them.
+  RasterPass(gpu::Device& device, std::string name, gpu::GraphicsPipelineDesc pipeline);
+
+  // Another pipeline drawn with the same list (its layout and formats, too, come from the pass).
+  RasterPass& variant(gpu::GraphicsPipelineDesc pipeline);
+  // A colour or depth attachment the pass creates (`create`), cleared to `clear` (none: loaded).
+  RasterPass& colorOut(std::string_view image, const graph::ResourceDesc& create, std::optional<glm::vec4> clear);
+  RasterPass& depthOut(std::string_view image, const graph::ResourceDesc& create, std::optional<float> clear);
+  // The rendering area of a pass without attachments (one that writes storage images only).
+  RasterPass& area(uint32_t width, uint32_t height);
+  // The scene's descriptor table as set shared::kSceneSet, and the scene's buffers the draws
+  // read (frame_inputs.h readSceneInputs; `materials`: the material table too; `geometry`: how
+  // the vertices and indices are read, as vertex input or, fetched by the shader, as storage).
+  RasterPass& drawsScene(const gpu::DescriptorTable& table, bool materials = true,
+                         graph::Usage geometry = graph::Usage::VertexOrIndex);
+  RasterPass& draw(Draw fn);
+  // Instead of draw(): the pass records around its renderings too (a clear before, barriers
+  // between rounds); `begin()` starts rendering to the attachments (or the area) with variant 0
+  // bound, `use(i)` binds another, `end()` ends it.
+  struct Recording {
+    std::function<void()> begin, end;
+    Use use;
+  };
+  RasterPass& record(std::function<void(graph::PassContext&, const Recording&)> fn);
+  // Accesses the list cannot state (a resource written by a transfer or compute stage inside
+  // the pass): added to the list's setup.
+  RasterPass& alsoAccesses(std::function<void(graph::PassBuilder&)> fn);
+
+  // Checks each pipeline's list against its stages, gets the pipelines and adds the pass.
+  // Throws PassBuilderError.
+  graph::PassId add(graph::RenderGraph& graph);
+
+ private:
+  struct Target {
+    std::string name;
+    graph::ResourceDesc create;
+    std::optional<glm::vec4> clearColor;
+    std::optional<float> clearDepth;
+  };
+  std::vector<gpu::GraphicsPipelineDesc> pipelines_;
+  std::vector<Target> colors_;
+  std::optional<Target> depth_;
+  std::optional<VkExtent2D> area_;
+  const gpu::DescriptorTable* sceneTable_ = nullptr;
+  Draw draw_;
+  std::function<void(graph::PassContext&, const Recording&)> record_;
+  std::function<void(graph::PassBuilder&)> alsoAccesses_;
+};
+
 }  // namespace tl::lighting

@@ -6,6 +6,9 @@
 #include "graph/graph.h"
 #include "lighting/common/frame_inputs.h"
 
+#include <array>
+#include <string>
+
 namespace tl::lighting {
 
 inline constexpr const char* kShadowSunDepth = "shadow.sunDepth";  // D32F, standard Z (0 near the sun)
@@ -15,19 +18,14 @@ inline constexpr const char* kShadowSunDepth = "shadow.sunDepth";  // D32F, stan
 // warning of the validation layers), alpha MASK casters with a fragment stage that discards
 // where the texture cuts them out, so opaque casters keep the depth-only path. Both draw
 // double-sided (thin and single-sided casters cast from both sides), with depth bias, and clamp
-// casters nearer than the near plane to it instead of losing them. `layout` holds the pass's own
-// bindings and push constants; the scene table is added.
-void createCasterPipelines(FrameInputs& in, gpu::PipelineLayoutDesc layout, const std::string& name,
-                           const char* vertexShader, const char* maskedVertexShader, gpu::Pipeline& opaque,
-                           gpu::Pipeline& masked);
+// casters nearer than the near plane to it instead of losing them. The pass builder (RasterPass)
+// gives them their layout and depth format; the second is a variant() of the first's pass.
+std::array<gpu::GraphicsPipelineDesc, 2> casterPipelines(const std::string& name, const char* vertexShader,
+                                                          const char* maskedVertexShader);
 
 class ShadowPass {
  public:
   void add(graph::RenderGraph& graph, FrameInputs& in);
-
- private:
-  gpu::Pipeline pipeline_;
-  gpu::Pipeline maskedPipeline_;  // alpha MASK casters: discards where the texture cuts them out
 };
 
 }  // namespace tl::lighting
