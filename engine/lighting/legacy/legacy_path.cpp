@@ -33,8 +33,6 @@ using graph::Usage;
 using shared::LegacyPush;
 using shared::LegacyVoxelPush;
 
-constexpr VkImageLayout kReadOnly = VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL;
-
 // What the voxels get this frame: nothing, a rebuild, or a partial update of some regions.
 // Per level, the regions to redo (a rebuild's is the whole level) and, per region, the
 // instances that can write into it, in scene order (the full rebuild's draw order).
@@ -105,8 +103,6 @@ class LegacyPath final : public LightingPath {
     const uint32_t aw = (w + push.aoDivisor - 1) / push.aoDivisor, ah = (h + push.aoDivisor - 1) / push.aoDivisor;
     const uint32_t cw = (w + push.coneDivisor - 1) / push.coneDivisor, ch = (h + push.coneDivisor - 1) / push.coneDivisor;
     const uint32_t R = fit.clipmap.resolution, N = fit.clipmap.levels, mips = fit.clipmap.mipCount;
-    const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
-    const char* shadow = sun ? kShadowSunDepth : kGbufferDepth;  // unread without a sun, but bound
 
     withCommon(ComputePass(in.device, "legacy.ssao", "legacy/ssao.comp"))
         .storageOut(shared::kLegacyBindingAoRaw, kLegacyAoRaw,
@@ -176,7 +172,7 @@ class LegacyPath final : public LightingPath {
     push.screenRadiance = historyOk ? 1u : 0u;
     const auto work = std::make_shared<VoxelWork>(planVoxelUpdate(in, fit, changes, placed, historyOk));
     lastWork_ = {work->kind, work->instancesDrawn, work->regionVoxels, uint32_t(work->regionCount())};
-    if (work->kind != VoxelWork::Kind::Keep) addVoxelPasses(graph, in, fit, work, shadow, feedback, push.screenRadiance);
+    if (work->kind != VoxelWork::Kind::Keep) addVoxelPasses(graph, in, fit, work, feedback, push.screenRadiance);
 
     withCommon(ComputePass(in.device, "legacy.cones", "legacy/cones.comp"))
         .sampled(shared::kLegacyBindingRadiance, kVoxelRadiance, samplers::linear)
@@ -225,36 +221,40 @@ class LegacyPath final : public LightingPath {
  private:
   // legacy.voxelize and legacy.voxel.mips over the work's regions (whole levels for a rebuild).
   void addVoxelPasses(graph::RenderGraph& graph, FrameInputs& in, const LegacyClipmapFit& fit,
-                      std::shared_ptr<const VoxelWork> work, const char* shadow, bool feedback, uint32_t screenRadiance) {
+                      std::shared_ptr<const VoxelWork> work, bool feedback, uint32_t screenRadiance) {
     const uint32_t R = fit.clipmap.resolution, mips = fit.clipmap.mipCount;
     LegacyVoxelPush vpush{};
     vpush.clipmap = fit.clipmap;
     vpush.screenRadiance = screenRadiance;
-    graph.addPass(
-        "legacy.voxelize", graph::PassKind::Raster,
-        [&](graph::PassBuilder& b) {
-          readSceneInputs(b, Usage::StorageRead);  // voxelize.vert fetches whole triangles
-          b.read(shadow, Usage::Sampled);
-          if (in.constants.lightCount > 0) b.read(kLightTable, Usage::StorageRead);
-          if (in.lightShadowViews > 0) {
-            b.read(kLightShadowViews, Usage::StorageRead);
-            b.read(kLightShadowAtlas, Usage::Sampled);
-          }
-          if (feedback) {
-            b.read(kLegacyHistRadiance, Usage::Sampled);
-            b.read(kLegacyHistDepth, Usage::Sampled);
-          } else if (std::string(shadow) != kGbufferDepth) {
-            b.read(kGbufferDepth, Usage::Sampled);  // stands in for the history, unread
-          }
-          b.write(kVoxelRadiance, Usage::StorageWrite);
-          // Emptied first, by a transfer clear (a rebuild) or a compute dispatch over the
-          // regions (an update): the graph's barrier before the pass covers those stages too.
-          if (work->kind == VoxelWork::Kind::Full)
+    // Every binding but the frame, the voxels and the geometry is read only where the shader
+    // is told it is there: the sun's map under kFrameFlagSunShadows, the light table when
+    // lightCount > 0, the lights' maps through a light's shadowView, last frame's image when
+    // screenRadiance (only with feedback). Absent, they are unbound: no stand-ins.
+    const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
+    const bool mapped = in.lightShadowViews > 0;
+    RasterPass(in.device, "legacy.voxelize", voxelizePipeline())
+        .uniform(shared::kLegacyBindingFrame, kFrameConstants)
+        .optionalSampled(shared::kLegacyBindingShadow, kShadowSunDepth, sun, samplers::sunShadowCompare)
+        .storageInOut(shared::kLegacyBindingRadiance, kVoxelRadiance)
+        .bufferIn(shared::kLegacyBindingVertices, kSceneVertices)  // voxelize.vert fetches whole triangles
+        .bufferIn(shared::kLegacyBindingIndices, kSceneIndices)
+        .optionalBufferIn(shared::kBindingLights, kLightTable, in.constants.lightCount > 0)
+        .optionalBufferIn(shared::kBindingLightShadowViews, kLightShadowViews, mapped)
+        .optionalSampled(shared::kBindingLightShadowAtlas, kLightShadowAtlas, mapped, samplers::sunShadowCompare)
+        .optionalSampled(shared::kLegacyBindingPrevRadiance, kLegacyHistRadiance, feedback)
+        .optionalSampled(shared::kLegacyBindingPrevDepth, kLegacyHistDepth, feedback)
+        .drawsScene(in.scene.table(), true, Usage::StorageRead)
+        .area(R, R)
+        .push(vpush)
+        // Emptied first, by a transfer clear (a rebuild) or a compute dispatch over the regions
+        // (an update): the graph's barrier before the pass covers those stages too.
+        .alsoAccesses([full = work->kind == VoxelWork::Kind::Full](graph::PassBuilder& b) {
+          if (full)
             b.write(kVoxelRadiance, Usage::TransferDst);
           else
             b.write(kVoxelRadiance, Usage::StorageWrite, graph::PassKind::Compute);
-        },
-        [this, &in, vpush, shadow, R, feedback, work](graph::PassContext& ctx) mutable {
+        })
+        .record([this, &in, vpush, work](graph::PassContext& ctx, const RasterPass::Recording& rendering) mutable {
           const gpu::Image& radiance = ctx.image(kVoxelRadiance);
           if (work->kind == VoxelWork::Kind::Full)
             clearStorage(ctx.cmd, {&radiance});
@@ -280,28 +280,7 @@ class LegacyPath final : public LightingPath {
                                  VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                                  VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
             first = false;
-            ctx.beginRendering({}, std::nullopt, VkExtent2D{R, R});
-            ctx.bind(voxelize_);
-            ctx.descriptors()
-                .uniformBuffer(shared::kLegacyBindingFrame, in.constantsBuffer.handle())
-                .sampledImage(shared::kLegacyBindingShadow, ctx.image(shadow).view(), in.device.sampler(samplers::sunShadowCompare), kReadOnly)
-                .storageImage(shared::kLegacyBindingRadiance, radiance.view())
-                .storageBuffer(shared::kLegacyBindingVertices, in.scene.vertexBuffer().handle())
-                .storageBuffer(shared::kLegacyBindingIndices, in.scene.indexBuffer().handle())
-                .storageBuffer(shared::kBindingLights, lightTableOrStandIn(ctx, in, in.scene.indexBuffer().handle()))
-                // Without light shadow maps, stand-ins no light points to: the index buffer, the sun's map.
-                .storageBuffer(shared::kBindingLightShadowViews, in.lightShadowViews > 0 ? ctx.buffer(kLightShadowViews).handle()
-                                                                                          : in.scene.indexBuffer().handle())
-                .sampledImage(shared::kBindingLightShadowAtlas,
-                              ctx.image(in.lightShadowViews > 0 ? std::string(kLightShadowAtlas) : std::string(shadow)).view(),
-                              in.device.sampler(samplers::sunShadowCompare), kReadOnly)
-                // Without feedback the bindings still need images: the G-buffer depth stands in, unread.
-                .sampledImage(shared::kLegacyBindingPrevRadiance, ctx.image(feedback ? kLegacyHistRadiance : kGbufferDepth).view(),
-                              in.device.sampler(samplers::point), kReadOnly)
-                .sampledImage(shared::kLegacyBindingPrevDepth, ctx.image(feedback ? kLegacyHistDepth : kGbufferDepth).view(),
-                              in.device.sampler(samplers::point), kReadOnly);
-            ctx.flushDescriptors();
-            in.scene.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, voxelize_.layout(), shared::kSceneSet);
+            rendering.begin();
             vpush.voxelRound = round.mode;
             for (uint32_t level = 0; level < work->regions.size(); ++level)
               for (size_t r = 0; r < work->regions[level].size(); ++r) {
@@ -317,9 +296,10 @@ class LegacyPath final : public LightingPath {
                   in.scene.drawInstancesUnindexed(ctx.cmd, draw);
                 }
               }
-            ctx.endRendering();
+            rendering.end();
           }
-        });
+        })
+        .add(graph);
 
     graph.addPass(
         "legacy.voxel.mips", graph::PassKind::Compute,
@@ -517,7 +497,7 @@ class LegacyPath final : public LightingPath {
   }
 
   void prepare(FrameInputs& in) {
-    if (voxelize_ && sceneId_ == in.scene.id()) return;
+    if (mip_ && sceneId_ == in.scene.id()) return;
     sceneId_ = in.scene.id();
     plainInstances_.clear();
     emissiveInstances_.clear();
@@ -532,7 +512,7 @@ class LegacyPath final : public LightingPath {
       emissive_.push_back(emits ? 1 : 0);
     }
     using B = gpu::Binding;
-    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    const auto storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     // The voxel passes bind mip views and run inside or beside the raster voxelization:
     // still their own layouts (the screen-space passes are ComputePass lists).
     auto compute = [&](const char* name, const char* shader, std::vector<B> bindings) {
@@ -546,27 +526,19 @@ class LegacyPath final : public LightingPath {
     mip_ = compute("legacy.voxel.mips", "legacy/voxel_mip.comp",
                    {{shared::kLegacyBindingMipSrcRadiance, storage}, {shared::kLegacyBindingRadianceMips, storage}});
     clear_ = compute("legacy.voxel.clear", "legacy/voxel_clear.comp", {{shared::kLegacyBindingRadiance, storage}});
+  }
+
+  // The voxelizing raster's shaders and state; its layout is the pass's list (RasterPass).
+  static gpu::GraphicsPipelineDesc voxelizePipeline() {
     gpu::GraphicsPipelineDesc d;
     d.name = "legacy.voxelize";
     d.vertexShader = "legacy/voxelize.vert";
     d.fragmentShader = "legacy/voxelize.frag";
-    d.layout.bindings = {{shared::kLegacyBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                         {shared::kLegacyBindingShadow, sampled},
-                         {shared::kLegacyBindingRadiance, storage},
-                         {shared::kLegacyBindingPrevRadiance, sampled},
-                         {shared::kLegacyBindingPrevDepth, sampled},
-                         {shared::kLegacyBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                         {shared::kLegacyBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                         {shared::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                         {shared::kBindingLightShadowViews, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                         {shared::kBindingLightShadowAtlas, sampled}};
-    d.layout.extraSets = {in.scene.table().layout()};
-    d.layout.pushConstantBytes = sizeof(LegacyVoxelPush);
     // No vertex input: voxelize.vert fetches the vertices itself.
     d.cullMode = VK_CULL_MODE_NONE;
     d.depthTest = false;
     d.depthWrite = false;
-    voxelize_ = gpu::createGraphicsPipeline(in.device, d);
+    return d;
   }
 
   // What the voxels last saw of each instance.
@@ -591,7 +563,7 @@ class LegacyPath final : public LightingPath {
   std::vector<uint8_t> emissive_;  // per instance
   std::vector<Seen> seen_;         // per instance
   WorkFigures lastWork_;
-  gpu::Pipeline voxelize_, clear_, mip_;
+  gpu::Pipeline clear_, mip_;
 };
 
 }  // namespace
