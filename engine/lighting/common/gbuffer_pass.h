@@ -34,9 +34,6 @@ inline constexpr const char* kGbufferDepth = "gbuffer.depth";  // D32F, reversed
 class GbufferPass {
  public:
   void add(graph::RenderGraph& graph, FrameInputs& in);
-
- private:
-  gpu::Pipeline pipeline_;
 };
 
 }  // namespace tl::lighting
