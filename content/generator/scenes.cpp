@@ -737,6 +737,30 @@ void contactShadows(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// The occlusion texture (glTF: it darkens indirect light only): three 1 m quads of the same
+// grey dielectric side by side, under a sky of 1 and a sun of E = 10 straight overhead. The
+// west one has an occlusion texture of 0.25 at strength 1, the middle one the same texture at
+// strength 0.5, the east one none: their sky light stands 0.25 : 0.625 : 1 (the texel is
+// 64/255, linear), their sunlight 1 : 1 : 1.
+void occlusionProbe(const std::filesystem::path& dir) {
+  SceneWriter w("occlusion_probe");
+  const std::vector<float> quarter(4 * 4, 0.25f);
+  const int occlusion = w.embeddedTexture("occlusion_quarter", encodeImage("png", 4, 4, 1, quarter, 8), "image/png");
+  MaterialSpec full{"occluded", {0.8f, 0.8f, 0.8f}, 0.0f, 0.8f};
+  full.occlusionTextureIndex = occlusion;
+  MaterialSpec half = full;
+  half.name = "half_occluded";
+  half.occlusionStrength = 0.5f;
+  const int plain = w.material({"plain", {0.8f, 0.8f, 0.8f}, 0.0f, 0.8f});
+  w.node("occluded", w.mesh("occluded", quad(1.0f, 1.0f), w.material(full)), {-1.5f, 0.0f, 0.0f});
+  w.node("half_occluded", w.mesh("half_occluded", quad(1.0f, 1.0f), w.material(half)), {0.0f, 0.0f, 0.0f});
+  w.node("plain", w.mesh("plain", quad(1.0f, 1.0f), plain), {1.5f, 0.0f, 0.0f});
+  w.camera("above", {0.0f, 4.0f, 0.01f}, {0.0f, 0.0f, 0.0f}, 50.0f);
+  w.sun({0.0f, -1.0f, 0.0f}, 10.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
 // Scale: `instances` boxes on a 2 km square of ground, each one of `keys` distinct mesh and
 // material combinations (albedo keys): 40 box shapes x as many materials as the keys need.
 // The positions are a jittered grid, the shapes and materials and yaw a fixed hash of the
@@ -840,6 +864,7 @@ int main(int argc, char** argv) {
     tl::content::texcoord1Probe(dir);
     tl::content::color0Probe(dir);
     tl::content::contactShadows(dir);
+    tl::content::occlusionProbe(dir);
     tl::content::writeHardScenes(dir / "hard");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());

@@ -428,8 +428,6 @@ void scanIgnored(const tinygltf::Model& model, IgnoredFeatures& ignored) {
       if (auto it = extensions.find("KHR_texture_transform"); it != extensions.end() && it->second.Has("texCoord") &&
                                                                it->second.Get("texCoord").IsInt())
         texCoord = it->second.Get("texCoord").GetNumberAsInt();
-      if (std::string(slot) == "occlusionTexture")
-        ignored.add("occlusionTexture", "not applied (ambient occlusion comes from the lighting path)");
       if (texCoord > 1) ignored.add(fmt::format("TEXCOORD_{} in a {}", texCoord, slot), "sampled with TEXCOORD_0");
     });
   }

@@ -59,10 +59,13 @@ void main() {
   if ((push.flags & kCompositeHasLights) != 0u) radiance += texelFetch(lightsRadiance, p, 0).rgb;
   // Indirect diffuse: the diffuse layer's albedo under uniform light from the irradiance's
   // directions (shared/shading.h; exact for a uniform sky), radiance = albedo / pi * E.
+  // The material's own occlusion (glTF occlusionTexture, gbuffer.material.a) darkens both
+  // indirect terms, never the sun, the lights or emission.
   float ao = pathAmbientOcclusion(p);
+  float occlusion = material.w;
   vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), tlSkyIrradiance(frame, n));
-  radiance += tlEnvironmentDiffuse(s, dot(n, v)) * kInvPi * irradiance;
+  radiance += tlEnvironmentDiffuse(s, dot(n, v)) * kInvPi * (occlusion * irradiance);
   // Indirect specular: from the path's SH where it has one, else the sky's (times AO).
-  radiance += pathSpecular(p, n, v, position, ao, s, tlSkyRadiance(frame, reflect(-v, n)));
+  radiance += occlusion * pathSpecular(p, n, v, position, ao, s, tlSkyRadiance(frame, reflect(-v, n)));
   imageStore(outRadiance, p, vec4(radiance, 1.0));
 }

@@ -39,5 +39,6 @@ void main() {
   vec4 material = texelFetch(gMaterial, p, 0);
   SurfaceParams s = tlMaterialSurface(texelFetch(gBaseColor, p, 0).rgb, material.x, material.y, tlFrameMaterials(frame.flags));
   vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), tlSkyIrradiance(frame, n));
-  imageStore(outIrradiance, p, vec4(irradiance, 1.0));
+  // As the composite applies it: times the material's occlusion (gbuffer.material.a).
+  imageStore(outIrradiance, p, vec4(material.w * irradiance, 1.0));
 }

@@ -95,7 +95,9 @@ void main() {
   }
   // The diffuse irradiance with AO as a black surface sees it: the occluders' light that
   // multi-bounce AO puts back depends on the surface's albedo, so the material pass adds it.
+  // Times the material's occlusion (gbuffer.material.a), as the composite applies it.
   float ao = pathAmbientOcclusion(p);
-  sums = tlIbufferAddIrradiance(sums, g, pathDiffuseIrradiance(p, n, position, ao, vec3(0.0), tlSkyIrradiance(frame, n)));
+  float occlusion = texelFetch(gMaterial, p, 0).w;
+  sums = tlIbufferAddIrradiance(sums, g, occlusion * pathDiffuseIrradiance(p, n, position, ao, vec3(0.0), tlSkyIrradiance(frame, n)));
   store(p, sums);
 }

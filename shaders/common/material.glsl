@@ -27,6 +27,12 @@ vec2 materialRoughnessMetallic(GpuMaterial m, vec2 uv0, vec2 uv1) {
   return rm;
 }
 
+// glTF's occlusion: 1 + strength (texel.r - 1); 1 without a texture.
+float materialOcclusion(GpuMaterial m, vec2 uv0, vec2 uv1) {
+  if (m.occlusionTexture.texture == kNoTexture) return 1.0;
+  return 1.0 + m.occlusionStrength * (sampleSlot(m.occlusionTexture, uv0, uv1).r - 1.0);
+}
+
 vec3 materialEmission(GpuMaterial m, vec2 uv0, vec2 uv1) {
   vec3 e = m.emissive.rgb;
   if (m.emissiveTexture.texture != kNoTexture) e *= sampleSlot(m.emissiveTexture, uv0, uv1).rgb;

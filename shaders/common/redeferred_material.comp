@@ -58,7 +58,9 @@ void main() {
   vec3 skyIrradiance = tlSkyIrradiance(frame, n);
   vec3 putBack = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), skyIrradiance) -
                  pathDiffuseIrradiance(p, n, position, ao, vec3(0.0), skyIrradiance);
-  radiance += tlEnvironmentDiffuse(s, dot(n, v)) * kInvPi * putBack;
-  radiance += pathSpecular(p, n, v, position, ao, s, tlSkyRadiance(frame, reflect(-v, n)));
+  // The material's occlusion (gbuffer.material.a) on both indirect terms, as in the composite
+  // (ibuffer.light applied it to the black surface's share).
+  radiance += tlEnvironmentDiffuse(s, dot(n, v)) * kInvPi * (material.w * putBack);
+  radiance += material.w * pathSpecular(p, n, v, position, ao, s, tlSkyRadiance(frame, reflect(-v, n)));
   imageStore(outRadiance, p, vec4(radiance, 1.0));
 }

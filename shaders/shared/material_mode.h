@@ -26,5 +26,9 @@ TL_FN vec3 tlMaterialBaseColor(vec3 authored, uint materials) {
 TL_FN float tlMaterialMetallic(float authored, uint materials) { return materials == kMaterialsAuthored ? authored : 0.0f; }
 TL_FN float tlMaterialRoughness(float authored, uint materials) { return materials == kMaterialsAuthored ? authored : 1.0f; }
 TL_FN bool tlMaterialNormalMaps(uint materials) { return materials == kMaterialsAuthored; }
+// glTF's occlusion texture darkens the indirect light of the authored material only: the
+// Lambertian modes are for matching other renderers' diffuse images, which ignore it (as the
+// reference does: a path tracer finds the occlusion itself).
+TL_FN float tlMaterialOcclusion(float authored, uint materials) { return materials == kMaterialsAuthored ? authored : 1.0f; }
 TL_END
 #endif

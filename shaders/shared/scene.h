@@ -52,7 +52,7 @@ struct GpuMaterial {
   float roughness;
   float normalScale;
   float alphaCutoff;        // 0 = opaque (tlMaterialCutout)
-  float occlusionStrength;  // glTF occlusionTexture.strength (read; the occlusion texture is not applied yet)
+  float occlusionStrength;  // glTF occlusionTexture.strength: occlusion = 1 + strength (texel.r - 1)
   uint pad0;
   uint pad1;
   uint pad2;

@@ -264,3 +264,67 @@ TEST_F(GltfProbeRayTest, ReferenceHitsMultiplyTheVertexColour) {
 
 }  // namespace
 }  // namespace tl::test
+
+namespace tl::test {
+namespace {
+
+// Mean linear radiance (luminance) of composite.hdr over each named instance's pixels.
+std::map<std::string, double> radianceByInstance(session::Session& s) {
+  s.requestBuffer("gbuffer.instanceId");
+  s.renderFrames(1);
+  const auto hdr = s.buffer("composite.hdr").texels();
+  const auto ids = s.buffer("gbuffer.instanceId");
+  const auto* id = reinterpret_cast<const uint32_t*>(ids.bytes.data());
+  std::map<std::string, double> sum, count;
+  for (size_t i = 0; i < hdr.size() / 4; ++i) {
+    if (id[i] == 0) continue;
+    const std::string& name = s.scene().instances.at(id[i] - 1).name;
+    sum[name] += shared::tlLuminance(glm::vec3(hdr[4 * i], hdr[4 * i + 1], hdr[4 * i + 2]));
+    count[name] += 1.0;
+  }
+  for (auto& [name, v] : sum) v /= count[name];
+  return sum;
+}
+
+}  // namespace
+
+// occlusion_probe: glTF's occlusion texture darkens indirect light only. Sky alone, the three
+// quads stand 0.251 : 0.6255 : 1 (texel 64/255 at strength 1 and 0.5, none); the sun's share,
+// the difference with the sun on, is the same on all three. Deferred and redeferred alike; the
+// Lambertian modes leave the texture out.
+TEST_F(GltfProbeTest, OcclusionTextureDarkensIndirectLightOnly) {
+  auto& s = session();
+  s.loadScene(contentFile("occlusion_probe.gltf"));
+  EXPECT_TRUE(s.scene().warnings.empty()) << s.scene().warnings.front();
+  s.setSize(160, 90);
+  const double texel = 64.0 / 255.0;
+  for (bool redeferred : {false, true}) {
+    SCOPED_TRACE(redeferred ? "redeferred" : "deferred");
+    s.settings().redeferred = redeferred;
+    const session::Lighting withSun = s.lighting();
+    session::Lighting skyOnly = withSun;
+    skyOnly.sunIrradiance = glm::vec3(0.0f);
+    skyOnly.exposureEv = 0.0f;
+    s.setLighting(skyOnly);
+    auto sky = radianceByInstance(s);
+    session::Lighting sun = withSun;
+    sun.exposureEv = 0.0f;
+    s.setLighting(sun);
+    auto lit = radianceByInstance(s);
+    s.setLighting(withSun);
+    ASSERT_EQ(sky.size(), 3u);
+    ASSERT_GT(sky["plain"], 0.1);
+    EXPECT_NEAR(sky["occluded"] / sky["plain"], texel, 0.005);
+    EXPECT_NEAR(sky["half_occluded"] / sky["plain"], 1.0 + 0.5 * (texel - 1.0), 0.005);
+    const double sunPlain = lit["plain"] - sky["plain"];
+    ASSERT_GT(sunPlain, sky["plain"]);
+    EXPECT_NEAR((lit["occluded"] - sky["occluded"]) / sunPlain, 1.0, 0.005) << "the sun is not occluded";
+    EXPECT_NEAR((lit["half_occluded"] - sky["half_occluded"]) / sunPlain, 1.0, 0.005);
+  }
+  s.settings().redeferred = false;
+  s.settings().materials = lighting::MaterialMode::Diffuse;
+  const auto diffuse = radianceByInstance(s);
+  EXPECT_NEAR(diffuse.at("occluded") / diffuse.at("plain"), 1.0, 0.005) << "--materials diffuse leaves occlusion out";
+}
+
+}  // namespace tl::test

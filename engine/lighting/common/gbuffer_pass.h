@@ -21,7 +21,7 @@ struct GbufferChannel {
 inline constexpr GbufferChannel kGbufferChannels[] = {
     {"gbuffer.baseColor", VK_FORMAT_R8G8B8A8_SRGB, shared::kGbufferBaseColor, "base colour, linear once sampled; a coverage"},
     {"gbuffer.normal", VK_FORMAT_R16G16_SNORM, shared::kGbufferNormal, "world shading normal, octahedral", "oct-normal"},
-    {"gbuffer.material", VK_FORMAT_R8G8B8A8_UNORM, shared::kGbufferMaterial, "r roughness, g metalness, a coverage", "",
+    {"gbuffer.material", VK_FORMAT_R8G8B8A8_UNORM, shared::kGbufferMaterial, "r roughness, g metalness, a the material's occlusion (glTF occlusionTexture; 1: none)", "",
      "roughness metalness B A"},
     {"gbuffer.emissive", VK_FORMAT_R16G16B16A16_SFLOAT, shared::kGbufferEmissive, "emitted radiance; a coverage"},
     {"gbuffer.motion", VK_FORMAT_R16G16_SFLOAT, shared::kGbufferMotion, "screen motion in UV, current - previous", "",
