@@ -25,6 +25,7 @@ layout(push_constant) uniform Push { CompositePush push; };
 #include "common/path_indirect.glsl"
 
 #define TL_SUN_SHADOW_PCSS
+#define TL_SUN_VISIBILITY_HYBRID
 layout(set = 0, binding = kCompositeShadowDepth) uniform sampler2D sunShadowDepth;
 #include "common/sun_shadow.glsl"
 
@@ -49,10 +50,7 @@ void main() {
   vec3 radiance = texelFetch(gEmissive, p, 0).rgb;
   float nl = dot(n, frame.sunToLight.xyz);
   if (nl > 0.0) {
-    // Hybrid ray-traced shadows (shadow.sun.hybrid) where the path traced them, else PCSS.
-    float visibility = (push.flags & kCompositeHasSunVisibility) != 0u ? texelFetch(sunVisibilityHybrid, p, 0).r
-                                                                        : sunVisibilitySoft(position, n, p);
-    vec3 sun = frame.sunIrradiance.rgb * (nl * visibility);
+    vec3 sun = frame.sunIrradiance.rgb * (nl * sunVisibilityShading(position, n, p));
     radiance += sun * tlBrdf(s, n, v, frame.sunToLight.xyz);
   }
   // Point, spot and further directional lights (lights.direct), when the scene has any.

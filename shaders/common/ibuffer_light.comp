@@ -39,6 +39,7 @@ layout(push_constant) uniform Push { CompositePush push; };
 #include "common/path_indirect.glsl"
 
 #define TL_SUN_SHADOW_PCSS
+#define TL_SUN_VISIBILITY_HYBRID
 layout(set = 0, binding = kIbufferShadowDepth) uniform sampler2D sunShadowDepth;
 #include "common/sun_shadow.glsl"
 
@@ -76,17 +77,13 @@ void main() {
   vec3 n = tlOctDecode(texelFetch(gNormal, p, 0).xy);
   vec3 v = normalize(-position);
   uint materials = tlFrameMaterials(frame.flags);
-  SurfaceParams g = tlIbufferSurface(tlMaterialRoughness(texelFetch(gMaterial, p, 0).x, materials), materials);
+  vec4 material = texelFetch(gMaterial, p, 0);
+  SurfaceParams g = tlIbufferSurface(tlMaterialRoughness(material.x, materials), materials);
 
   IbufferSums sums = tlIbufferZero();
   vec3 l = frame.sunToLight.xyz;
   float nl = dot(n, l);
-  if (nl > 0.0) {
-    // Hybrid ray-traced shadows (shadow.sun.hybrid) where the path traced them, else PCSS.
-    float visibility = (push.flags & kCompositeHasSunVisibility) != 0u ? texelFetch(sunVisibilityHybrid, p, 0).r
-                                                                        : sunVisibilitySoft(position, n, p);
-    sums = tlIbufferAddLight(sums, g, n, v, l, frame.sunIrradiance.rgb * (nl * visibility));
-  }
+  if (nl > 0.0) sums = tlIbufferAddLight(sums, g, n, v, l, frame.sunIrradiance.rgb * (nl * sunVisibilityShading(position, n, p)));
   if ((push.flags & kCompositeHasLights) != 0u) {
     sums.dg += texelFetch(lightsDg, p, 0).rgb;
     sums.sg1 += texelFetch(lightsSg1, p, 0).rgb;
@@ -97,7 +94,6 @@ void main() {
   // multi-bounce AO puts back depends on the surface's albedo, so the material pass adds it.
   // Times the material's occlusion (gbuffer.material.a), as the composite applies it.
   float ao = pathAmbientOcclusion(p);
-  float occlusion = texelFetch(gMaterial, p, 0).w;
-  sums = tlIbufferAddIrradiance(sums, g, occlusion * pathDiffuseIrradiance(p, n, position, ao, vec3(0.0), tlSkyIrradiance(frame, n)));
+  sums = tlIbufferAddIrradiance(sums, g, material.w * pathDiffuseIrradiance(p, n, position, ao, vec3(0.0), tlSkyIrradiance(frame, n)));
   store(p, sums);
 }

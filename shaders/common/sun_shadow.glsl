@@ -79,4 +79,14 @@ SunShadowEstimate sunShadowSoft(vec3 position, vec3 normal, ivec2 pixel) {
 }
 
 float sunVisibilitySoft(vec3 position, vec3 normal, ivec2 pixel) { return sunShadowSoft(position, normal, pixel).visibility; }
+
+#ifdef TL_SUN_VISIBILITY_HYBRID
+// The shading passes' sun visibility (the composite, ibuffer.light): shadow.sun.hybrid's buffer
+// where the path traced it (CompositePush kCompositeHasSunVisibility; the includer declares
+// `push` and `sunVisibilityHybrid`), else PCSS.
+float sunVisibilityShading(vec3 position, vec3 normal, ivec2 pixel) {
+  return (push.flags & kCompositeHasSunVisibility) != 0u ? texelFetch(sunVisibilityHybrid, pixel, 0).r
+                                                          : sunVisibilitySoft(position, normal, pixel);
+}
+#endif
 #endif

@@ -72,11 +72,8 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   // The light table's radiance (lights.direct), where the path made it.
   if (!path.lightsRadiance.empty()) push.flags |= shared::kCompositeHasLights;
   // The sun's shadow from hybrid ray-traced shadows where the path has a top level.
-  const bool hybrid = hybridSunShadows(in, path);
-  if (hybrid) {
-    addHybridSunShadow(graph, in, path);
-    push.flags |= shared::kCompositeHasSunVisibility;
-  }
+  const bool hybrid = addHybridSunShadow(graph, in, path);
+  if (hybrid) push.flags |= shared::kCompositeHasSunVisibility;
   push.giBlendDistance = path.giBlendDistance;
   push.openSkyDirectionality = path.openSkyDirectionality;
   push.farOpenSkyDirectionality = path.farOpenSkyDirectionality;

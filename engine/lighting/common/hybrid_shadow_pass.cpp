@@ -8,17 +8,14 @@
 
 namespace tl::lighting {
 
-bool hybridSunShadows(const FrameInputs& in, const LightingOutputs& path) {
+bool addHybridSunShadow(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path) {
   // The pass's ray query treats every triangle as opaque (it has no material tables to test a
   // cut-out's alpha, as the rt path's any-hit shader does): a scene with alpha MASK keeps the
   // map, which cuts them out, rather than get a card's full shadow.
-  return in.settings.hybridShadows && (in.constants.flags & shared::kFrameFlagSunShadows) != 0 &&
-         path.shadowTlasHandle != VK_NULL_HANDLE && !path.shadowStructures.empty() &&
-         in.scene.alphaTestedInstances().empty();
-}
-
-void addHybridSunShadow(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path) {
-  if (!hybridSunShadows(in, path)) return;
+  const bool hybrid = in.settings.hybridShadows && (in.constants.flags & shared::kFrameFlagSunShadows) != 0 &&
+                      path.shadowTlasHandle != VK_NULL_HANDLE && !path.shadowStructures.empty() &&
+                      in.scene.alphaTestedInstances().empty();
+  if (!hybrid) return false;
   const uint32_t w = in.settings.width, h = in.settings.height;
   shared::HybridShadowPush push{};
   push.hardPenumbraTexels = in.settings.hybridShadowHardTexels;
@@ -35,6 +32,7 @@ void addHybridSunShadow(graph::RenderGraph& graph, FrameInputs& in, const Lighti
       .push(push)
       .dispatch(w, h)
       .add(graph);
+  return true;
 }
 
 }  // namespace tl::lighting

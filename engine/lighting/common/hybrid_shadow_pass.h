@@ -14,12 +14,10 @@ namespace tl::lighting {
 
 inline constexpr const char* kShadowSunVisibility = "shadow.sun.visibility";  // R16F, 0..1
 
-// Whether this frame's sun shadow is hybrid: the setting on, a sun that casts shadows, a top
-// level from the path to trace against, and no alpha cut-out in the scene (the ray cannot test
-// alpha yet: such a scene keeps the map).
-bool hybridSunShadows(const FrameInputs& in, const LightingOutputs& path);
-
-// Adds shadow.sun.hybrid (creating kShadowSunVisibility) when hybridSunShadows() holds.
-void addHybridSunShadow(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path);
+// Adds shadow.sun.hybrid (creating kShadowSunVisibility) where this frame's sun shadow is
+// hybrid: the setting on, a sun that casts shadows, a top level from the path to trace
+// against, and no alpha cut-out in the scene (the ray cannot test alpha yet: such a scene
+// keeps the map). Returns whether it did: then the shading passes read kShadowSunVisibility.
+bool addHybridSunShadow(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path);
 
 }  // namespace tl::lighting
