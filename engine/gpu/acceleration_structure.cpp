@@ -288,17 +288,17 @@ AccelerationStructure buildTopLevel(Device& device, const std::vector<TlasInstan
   return as;
 }
 
-void TopLevelBuilder::prepare(const std::vector<TlasInstance>& instances) {
+void TopLevelBuilder::prepare(const std::vector<TlasInstance>& instances, uint64_t frame) {
   Device& device = *device_;
   TL_CHECK(device.rayTracing().pipeline, "acceleration structure `{}` needs ray tracing: {}", name_,
            device.rayTracing().unavailableReason);
   count_ = uint32_t(instances.size());
   if (count_ > capacity_ || !structure_) {
     capacity_ = std::max({count_, 2 * capacity_, 64u});
-    instances_ = Buffer(device, capacity_ * sizeof(VkAccelerationStructureInstanceKHR),
-                        VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR, MemoryUsage::Upload,
-                        fmt::format("{}.instances", name_));
-    VkAccelerationStructureGeometryKHR geometry = instancesGeometry(instances_.address());
+    instances_ = UploadRing(device, capacity_ * sizeof(VkAccelerationStructureInstanceKHR),
+                            VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR,
+                            fmt::format("{}.instances", name_));
+    VkAccelerationStructureGeometryKHR geometry = instancesGeometry(instances_.forFrame(frame).address());
     VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, geometry, false);
     VkAccelerationStructureBuildSizesInfoKHR sizes = buildSizes(device, info, capacity_);
     structure_.reset();
@@ -309,13 +309,14 @@ void TopLevelBuilder::prepare(const std::vector<TlasInstance>& instances) {
     scratchBytes_ = sizes.buildScratchSize + scratchAlignment(device);
   }
   std::vector<VkAccelerationStructureInstanceKHR> raw = rawInstances(instances);
-  if (!raw.empty()) instances_.write(raw.data(), raw.size() * sizeof(raw[0]));
+  frame_ = frame;
+  if (!raw.empty()) instances_.write(frame, raw.data(), raw.size() * sizeof(raw[0]));
 }
 
 void TopLevelBuilder::record(VkCommandBuffer cmd, const Buffer& scratch) {
   TL_CHECK(scratch.size() >= scratchBytes_, "`{}` needs {} bytes of build scratch, `{}` has {}", name_, scratchBytes_,
            scratch.name(), scratch.size());
-  VkAccelerationStructureGeometryKHR geometry = instancesGeometry(instances_.address());
+  VkAccelerationStructureGeometryKHR geometry = instancesGeometry(instances_.forFrame(frame_).address());
   VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, geometry, false);
   info.dstAccelerationStructure = structure_.handle_;
   info.scratchData.deviceAddress = alignedScratch(*device_, scratch);

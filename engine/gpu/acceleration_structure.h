@@ -5,6 +5,7 @@
 #pragma once
 
 #include "gpu/resources.h"
+#include "gpu/upload_ring.h"
 
 #include <glm/glm.hpp>
 
@@ -86,8 +87,8 @@ AccelerationStructure buildTopLevel(Device& device, const std::vector<TlasInstan
 
 // A top level rebuilt from scratch inside a command buffer (Metro: "TLAS = rebuild only from
 // scratch"): storage and the instance upload buffer grow to the largest instance count seen
-// and are reused. The caller waits for the frame before the next prepare() (the upload buffer
-// is rewritten) and records the build inside a render-graph pass of kind
+// and are reused; each frame in flight has its own instance upload (prepare() takes the
+// executor's frame). The caller records the build inside a render-graph pass of kind
 // AccelerationStructureBuild, which derives its barriers: the pass reads instances() as
 // BuildInput (and any bottom levels it writes in the frame), writes storage() and a transient
 // scratch buffer of scratchBytes().
@@ -95,13 +96,14 @@ class TopLevelBuilder {
  public:
   TopLevelBuilder() = default;
   TopLevelBuilder(Device& device, std::string name) : device_(&device), name_(std::move(name)) {}
-  // Sizes everything for `instances.size()` and uploads the instances (host side).
-  void prepare(const std::vector<TlasInstance>& instances);
+  // Sizes everything for `instances.size()` and uploads the instances (host side) into
+  // frame `frame`'s copy, which instances() and record() then use.
+  void prepare(const std::vector<TlasInstance>& instances, uint64_t frame);
   // Records the build, with `scratch` (at least scratchBytes()); no barriers.
   void record(VkCommandBuffer cmd, const Buffer& scratch);
   const AccelerationStructure& structure() const { return structure_; }
   Buffer& storage() { return structure_.buffer_; }
-  Buffer& instances() { return instances_; }
+  Buffer& instances() { return instances_.forFrame(frame_); }
   VkDeviceSize scratchBytes() const { return scratchBytes_; }
   uint32_t instanceCount() const { return count_; }
   explicit operator bool() const { return bool(structure_); }
@@ -110,7 +112,8 @@ class TopLevelBuilder {
   Device* device_ = nullptr;
   std::string name_;
   AccelerationStructure structure_;
-  Buffer instances_;
+  UploadRing instances_;
+  uint64_t frame_ = 0;
   VkDeviceSize scratchBytes_ = 0;
   uint32_t capacity_ = 0, count_ = 0;
 };

@@ -35,6 +35,9 @@ struct DeviceOptions {
 // Exit status of a process the watchdog stopped.
 inline constexpr int kExitDeviceHung = 4;
 
+// Frames the host may have submitted before it waits for the oldest (see UploadRing).
+inline constexpr uint32_t kMaxFramesInFlight = 2;
+
 // A sampler by what it does; the device keeps one VkSampler per distinct description
 // (Device::sampler), named after it, so passes share them instead of each making its own.
 struct SamplerDesc {
@@ -107,6 +110,8 @@ class Device {
   VkDeviceSize maxAllocationSize() const { return maxAllocationSize_; }
 
   // Submission timeline. Every submit signals the next value of one timeline semaphore.
+  // At most kMaxFramesInFlight frames are submitted and not yet finished (graph::Executor):
+  // the host records one while the GPU runs the one before.
   VkCommandBuffer beginCommands();
   uint64_t submit(VkCommandBuffer cmd, const std::vector<VkSemaphoreSubmitInfo>& waits = {},
                   const std::vector<VkSemaphoreSubmitInfo>& signals = {});

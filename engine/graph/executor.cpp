@@ -205,11 +205,13 @@ std::vector<float> Readback::texels() const { return gpu::decodeTexels(format, b
 
 // ---- Executor --------------------------------------------------------------------------
 
-Executor::Executor(gpu::Device& device) : device_(device), timestamps_(device, 256) {}
+Executor::Executor(gpu::Device& device) : device_(device) {
+  for (auto& slot : slots_) slot.timestamps = std::make_unique<gpu::TimestampPool>(device, 256);
+}
 
 Executor::~Executor() {
   try {
-    finish();
+    finishAll();
   } catch (const std::exception&) {
   }
   device_.waitIdle();
@@ -285,7 +287,6 @@ void Executor::unbindImported() {
 }
 
 void Executor::resetHistory() {
-  finish();  // a frame in flight would mark what it wrote valid afterwards
   // The contents go (the next first use discards them); the accesses stay, to be waited for.
   for (auto& [name, p] : physical_)
     if (p.kind == Physical::Kind::Persistent) p.historyValid = false, p.state.layout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -485,7 +486,15 @@ void Executor::placeBarriers(VkCommandBuffer cmd, const RenderGraph& graph, cons
   batch.record(cmd);
 }
 
-void Executor::copyForReadback(VkCommandBuffer cmd, const std::string& name, Physical& p, const PassAccess* writer) {
+gpu::Buffer& Executor::stagingFor(FrameSlot& slot, const std::string& name, VkDeviceSize bytes) {
+  gpu::Buffer& b = slot.staging[name];
+  if (b.size() != bytes)
+    b = gpu::Buffer(device_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUsage::Readback, "readback." + name);
+  return b;
+}
+
+void Executor::copyForReadback(VkCommandBuffer cmd, FrameSlot& slot, const std::string& name, Physical& p,
+                               const PassAccess* writer) {
   ResourceState& state = p.state;
   if (writer) state = ResourceState{writer->layout, PastAccess{writer->scope, kNone}, {}};
   PassAccess copy{kNone, kTransferRead, p.image ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED, false};
@@ -506,21 +515,18 @@ void Executor::copyForReadback(VkCommandBuffer cmd, const std::string& name, Phy
     if (fi.bytes == 0) return;
     VkExtent3D e = img.extent();
     VkDeviceSize bytes = VkDeviceSize(e.width) * e.height * e.depth * fi.bytes;
-    PendingReadback r{name, img.format(), e,
-                      gpu::Buffer(device_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUsage::Readback,
-                                  "readback." + name)};
+    PendingReadback r{name, img.format(), e, &stagingFor(slot, name, bytes)};
     VkBufferImageCopy region{};
     region.imageSubresource = {img.aspect(), 0, 0, 1};
     region.imageExtent = e;
-    vkCmdCopyImageToBuffer(cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r.staging.handle(), 1, &region);
-    pending_.push_back(std::move(r));
+    vkCmdCopyImageToBuffer(cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r.staging->handle(), 1, &region);
+    slot.pending.push_back(std::move(r));
   } else if (p.buffer) {
     PendingReadback r{name, VK_FORMAT_UNDEFINED, {uint32_t(p.buffer->size()), 1, 1},
-                      gpu::Buffer(device_, p.buffer->size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUsage::Readback,
-                                  "readback." + name)};
+                      &stagingFor(slot, name, p.buffer->size())};
     VkBufferCopy region{0, 0, p.buffer->size()};
-    vkCmdCopyBuffer(cmd, p.buffer->handle(), r.staging.handle(), 1, &region);
-    pending_.push_back(std::move(r));
+    vkCmdCopyBuffer(cmd, p.buffer->handle(), r.staging->handle(), 1, &region);
+    slot.pending.push_back(std::move(r));
   }
   // Host reads of the staging buffers are ordered by the wait for the frame.
 
@@ -565,31 +571,40 @@ void Executor::execute(const RenderGraph& graph, const CompiledGraph& compiled) 
 }
 
 void Executor::submit(const RenderGraph& graph, const CompiledGraph& compiled) {
-  TL_CHECK(!inFlight_, "a frame is already in flight: finish() it before submitting another");
+  TL_CHECK(framesInFlight() < gpu::kMaxFramesInFlight,
+           "{} frames are already in flight: finish() the oldest before submitting another", framesInFlight());
   realise(graph, compiled);
   checkEntry(graph, compiled);
+  FrameSlot& slot = slotOf(submitted_);
   VkCommandBuffer cmd = device_.beginCommands();
-  timestamps_.reset(cmd);
-  pending_.clear();
+  slot.timestamps->reset(cmd);
+  slot.pending.clear();
+  // The frame before may still run. Its transients share this frame's memory, and each
+  // transient's first barrier here waits only for this frame's earlier users of its bytes:
+  // so this frame starts after the one before has finished with everything (persistent and
+  // imported resources carry their own accesses across; this orders the rest).
+  if (device_.completedValue() < device_.lastSubmittedValue())
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
 
   const auto& decls = graph.resources();
   for (const CompiledPass& cp : compiled.order) {
     const PassDecl& decl = graph.passes()[cp.pass];
     device_.beginLabel(cmd, decl.name);
-    timestamps_.begin(cmd, decl.name);
+    slot.timestamps->begin(cmd, decl.name);
     placeBarriers(cmd, graph, cp);
     PassContext ctx(device_, *this, graph, decl, cp);
     ctx.cmd = cmd;
-    ctx.frameIndex = frame_;
+    ctx.frameIndex = submitted_;
     if (decl.execute) decl.execute(ctx);
-    timestamps_.end(cmd);
+    slot.timestamps->end(cmd);
     device_.endLabel(cmd);
     // A resource has one writer, so its contents are final right after it: read back
     // there, before aliasing can reuse the memory. Imports belong to their owners.
     for (const PassAccess& a : cp.accesses) {
       const auto& name = decls[a.resource].name;
       if (!a.writes || decls[a.resource].imported || !(readbackAll_ || readbackNames_.count(name))) continue;
-      copyForReadback(cmd, name, find(name), &a);
+      copyForReadback(cmd, slot, name, find(name), &a);
     }
   }
   // Every resource now stands where the frame left it.
@@ -602,41 +617,47 @@ void Executor::submit(const RenderGraph& graph, const CompiledGraph& compiled) {
     if (p.image && p.state.layout == VK_IMAGE_LAYOUT_UNDEFINED) continue;
     if (!readbackAll_ && !readbackNames_.count(name)) continue;
     const std::string& resource = name;  // clang 14 cannot capture a structured binding
-    if (std::any_of(pending_.begin(), pending_.end(), [&](const PendingReadback& r) { return r.name == resource; })) continue;
-    copyForReadback(cmd, name, p, nullptr);
+    if (std::any_of(slot.pending.begin(), slot.pending.end(), [&](const PendingReadback& r) { return r.name == resource; }))
+      continue;
+    copyForReadback(cmd, slot, name, p, nullptr);
   }
   handBackImports(cmd, graph);
-
-  // A persistent resource holds something for the next frame only if a pass of this frame
-  // wrote it; one nobody wrote keeps what it had (nothing, after a reset or a resize).
-  writtenPersistent_.clear();
-  for (const auto& cp : compiled.order)
-    for (const auto& a : cp.writes)
-      if (decls[a.resource].persistent) writtenPersistent_.push_back(decls[a.resource].name);
   readbackNames_.clear();  // requests made from now on are the next frame's
   readbackAll_ = false;
-  inFlight_ = device_.submit(cmd);
+  slot.timelineValue = device_.submit(cmd);
+  ++submitted_;
+  // A persistent resource holds something for the frames after this one only if a pass of
+  // this frame wrote it; one nobody wrote keeps what it had (nothing, after a reset or a
+  // resize). The GPU runs frames in order, so the next frame may read it already.
+  for (const auto& cp : compiled.order)
+    for (const auto& a : cp.writes)
+      if (decls[a.resource].persistent) find(decls[a.resource].name).historyValid = true;
 }
 
-bool Executor::frameDone() const { return !inFlight_ || device_.completedValue() >= inFlight_; }
+bool Executor::frameDone() const {
+  return !inFlight() || device_.completedValue() >= slots_[finished_ % gpu::kMaxFramesInFlight].timelineValue;
+}
 
 void Executor::finish() {
-  if (!inFlight_) return;
-  device_.wait(inFlight_);
-  inFlight_ = 0;
-  for (const std::string& name : writtenPersistent_)
-    if (auto it = physical_.find(name); it != physical_.end()) it->second.historyValid = true;
-  writtenPersistent_.clear();
+  if (!inFlight()) return;
+  FrameSlot& slot = slotOf(finished_);
+  device_.wait(slot.timelineValue);
+  ++finished_;
   timings_.clear();
-  for (auto& s : timestamps_.read()) timings_.push_back({s.name, s.milliseconds});
+  for (auto& s : slot.timestamps->read()) timings_.push_back({s.name, s.milliseconds});
   readbacks_.clear();
-  for (auto& r : pending_) {
-    Readback out{r.name, r.format, r.extent, std::vector<uint8_t>(r.staging.size())};
-    std::memcpy(out.bytes.data(), r.staging.mapped(), out.bytes.size());
+  for (const auto& r : slot.pending) {
+    Readback out{r.name, r.format, r.extent, std::vector<uint8_t>(r.staging->size())};
+    std::memcpy(out.bytes.data(), r.staging->mapped(), out.bytes.size());
     readbacks_[r.name] = std::move(out);
   }
-  pending_.clear();
-  ++frame_;
+  // Staging for what this frame did not read back goes (a capture's read-back of every
+  // buffer is not kept for the frames after it); the rest serves the slot's next frame.
+  for (auto it = slot.staging.begin(); it != slot.staging.end();) {
+    const bool used = std::any_of(slot.pending.begin(), slot.pending.end(), [&](const PendingReadback& r) { return r.name == it->first; });
+    it = used ? std::next(it) : slot.staging.erase(it);
+  }
+  slot.pending.clear();
 }
 
 }  // namespace tl::graph

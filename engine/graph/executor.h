@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -129,14 +130,26 @@ class Executor {
   // Records and submits the frame, waits for it, then collects timings and read-backs.
   // `compiled` must come from entryStates() of this executor (checked).
   void execute(const RenderGraph& graph, const CompiledGraph& compiled);
-  // The same in two halves, so a caller (the editor) can go on while the GPU works:
-  // submit() records and submits without waiting; finish() waits for that frame (if the GPU
-  // is not done yet) and collects its timings and read-backs. Until finish(), timings() and
-  // readbacks() describe the frame before, resources() already this one. One frame at a time.
+  // The same in two halves, so a caller can record the next frame while the GPU works:
+  // submit() records and submits without waiting; finish() waits for the oldest frame in
+  // flight (if the GPU is not done yet) and collects its timings and read-backs. Up to
+  // gpu::kMaxFramesInFlight frames may be in flight: submit() refuses one more. Until a
+  // frame is finished, timings() and readbacks() describe the last finished one, resources()
+  // already the last submitted. Frames run on the GPU in submission order: the next frame
+  // waits for the one before at its start (the transients share memory) and persistent and
+  // imported resources carry their accesses across, so what a frame writes is history for
+  // the next frame as soon as it is submitted.
   void submit(const RenderGraph& graph, const CompiledGraph& compiled);
-  bool inFlight() const { return inFlight_ != 0; }
+  bool inFlight() const { return submitted_ > finished_; }
+  uint32_t framesInFlight() const { return uint32_t(submitted_ - finished_); }
   bool frameDone() const;  // true when finish() would not wait
   void finish();
+  void finishAll() {
+    while (inFlight()) finish();
+  }
+  // Frames submitted so far: the index of the frame recorded next. Host-written buffers
+  // that frames in flight share take their copy by it (gpu::UploadRing::forFrame).
+  uint64_t nextFrame() const { return submitted_; }
 
   const std::vector<PassTiming>& timings() const { return timings_; }
   const std::vector<PhysicalInfo>& resources() const { return physicalInfo_; }
@@ -152,7 +165,6 @@ class Executor {
   // The same, asked while building a graph: also false when this frame declares it with
   // another description (a resize), which recreates it with undefined contents.
   bool historyValid(std::string_view name, const ResourceDesc& declared) const;
-  uint64_t frameIndex() const { return frame_; }
   // Layout an imported image was left in by the frame: the one it was bound with.
   VkImageLayout importedLayout(std::string_view name) const;
   // Drops persistent history (e.g. a camera cut or a scene change).
@@ -160,6 +172,7 @@ class Executor {
 
  private:
   friend class PassContext;
+  struct FrameSlot;
   struct Physical {
     ResourceDesc desc;
     gpu::Image ownedImage;
@@ -181,11 +194,10 @@ class Executor {
   // Copies a resource into a read-back buffer. Mid-frame, right after its writer (`writer`
   // set): the resource is returned to the state the compiled barriers expect. Otherwise the
   // copy is one more access in its carried state.
-  void copyForReadback(VkCommandBuffer cmd, const std::string& name, Physical& p, const PassAccess* writer);
+  void copyForReadback(VkCommandBuffer cmd, FrameSlot& slot, const std::string& name, Physical& p, const PassAccess* writer);
   void handBackImports(VkCommandBuffer cmd, const RenderGraph& graph);
 
   gpu::Device& device_;
-  gpu::TimestampPool timestamps_;
   // By resource name. Transients are rebuilt when the graph's shape changes; persistent
   // entries survive frames; imported entries point at objects owned elsewhere, for the frame
   // that bound them.
@@ -207,13 +219,23 @@ class Executor {
     std::string name;
     VkFormat format;
     VkExtent3D extent;
-    gpu::Buffer staging;
+    gpu::Buffer* staging = nullptr;  // in its frame slot's staging, kept for later frames
   };
-  std::vector<PendingReadback> pending_;
+  // What one frame in flight holds until it is finished: its timestamps and read-backs.
+  // Frame f uses slot f % kMaxFramesInFlight; the staging buffers stay from frame to frame
+  // (by resource name, remade only when the size changes).
+  struct FrameSlot {
+    std::unique_ptr<gpu::TimestampPool> timestamps;
+    uint64_t timelineValue = 0;
+    std::vector<PendingReadback> pending;
+    std::map<std::string, gpu::Buffer, std::less<>> staging;
+  };
+  FrameSlot& slotOf(uint64_t frame) { return slots_[frame % gpu::kMaxFramesInFlight]; }
+  gpu::Buffer& stagingFor(FrameSlot& slot, const std::string& name, VkDeviceSize bytes);
+  std::array<FrameSlot, gpu::kMaxFramesInFlight> slots_;
   std::map<std::string, Readback> readbacks_;
-  uint64_t inFlight_ = 0;                     // timeline value of the frame submitted, 0 when none
-  std::vector<std::string> writtenPersistent_;  // persistent resources it writes
-  uint64_t frame_ = 0;
+  uint64_t submitted_ = 0;  // frames submitted
+  uint64_t finished_ = 0;   // frames finished (collected); frames [finished_, submitted_) are in flight
 };
 
 }  // namespace tl::graph

@@ -166,8 +166,10 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
     meshAlphaTested_[m] = scene.materials[scene.meshes[m].material].alphaMode == AlphaMode::Mask;
   for (uint32_t i = 0; i < drawMesh_.size(); ++i)
     (meshAlphaTested_[drawMesh_[i]] ? alphaTested_ : opaque_).push_back(i);
-  instances_ = gpu::Buffer(device, std::max<size_t>(1, drawMesh_.size()) * sizeof(GpuInstance),
-                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload, "scene.instances");
+  const VkDeviceSize instanceBytes = std::max<size_t>(1, drawMesh_.size()) * sizeof(GpuInstance);
+  instances_ = gpu::Buffer(device, instanceBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                           gpu::MemoryUsage::GpuOnly, "scene.instances");
+  instanceUploads_ = gpu::UploadRing(device, instanceBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, kSceneInstanceUpload);
 
   table_ = gpu::DescriptorTable(device,
                                 {{shared::kSceneBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
@@ -181,7 +183,8 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
   table_.writeImages(shared::kSceneBindingTextures, views, textureSamplers);
 }
 
-void GpuScene::updateInstances(const Scene& scene, const glm::dvec3& camera, const glm::dvec3& previousCamera) {
+void GpuScene::updateInstances(const Scene& scene, const glm::dvec3& camera, const glm::dvec3& previousCamera,
+                               uint64_t frame) {
   std::vector<GpuInstance> out(scene.instances.size());
   relative_.resize(scene.instances.size());
   if (!havePrevious_ || previousTransforms_.size() != scene.instances.size()) {
@@ -208,7 +211,8 @@ void GpuScene::updateInstances(const Scene& scene, const glm::dvec3& camera, con
   }
   (void)previousCamera;  // the previous camera enters through FrameConstants::prevViewProj
   havePrevious_ = true;
-  if (!out.empty()) instances_.write(out.data(), out.size() * sizeof(GpuInstance));
+  if (!out.empty()) instanceUploads_.write(frame, out.data(), out.size() * sizeof(GpuInstance));
+  uploadFrame_ = frame;
 }
 
 void GpuScene::importBuffers(graph::RenderGraph& graph, graph::Executor& executor) {
@@ -220,6 +224,19 @@ void GpuScene::importBuffers(graph::RenderGraph& graph, graph::Executor& executo
   imported(kSceneIndices, indices_, "all meshes' indices");
   imported(kSceneInstances, instances_, "camera-relative instance table");
   imported(kSceneMaterials, materials_, "material table");
+  if (uploadFrame_ != executor.nextFrame()) return;
+  imported(kSceneInstanceUpload, instanceUploads_.forFrame(*uploadFrame_), "this frame's instance table, host-written");
+  graph.addPass(
+      "scene.instances.upload", graph::PassKind::Transfer,
+      [](graph::PassBuilder& b) {
+        b.read(kSceneInstanceUpload, graph::Usage::TransferSrc);
+        b.write(kSceneInstances, graph::Usage::TransferDst);
+      },
+      [](graph::PassContext& ctx) {
+        const gpu::Buffer& from = ctx.buffer(kSceneInstanceUpload);
+        const VkBufferCopy region{0, 0, from.size()};
+        vkCmdCopyBuffer(ctx.cmd, from.handle(), ctx.buffer(kSceneInstances).handle(), 1, &region);
+      });
 }
 
 void GpuScene::bindGeometry(VkCommandBuffer cmd) const {

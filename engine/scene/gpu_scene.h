@@ -5,10 +5,12 @@
 
 #include "gpu/descriptor_table.h"
 #include "gpu/resources.h"
+#include "gpu/upload_ring.h"
 #include "graph/executor.h"
 #include "graph/graph.h"
 #include "scene/scene.h"
 
+#include <optional>
 #include <vector>
 
 namespace tl::scene {
@@ -18,6 +20,8 @@ inline constexpr const char* kSceneVertices = "scene.vertices";
 inline constexpr const char* kSceneIndices = "scene.indices";
 inline constexpr const char* kSceneInstances = "scene.instances";
 inline constexpr const char* kSceneMaterials = "scene.materials";
+// This frame's instance table as the host wrote it; a transfer pass copies it into kSceneInstances.
+inline constexpr const char* kSceneInstanceUpload = "scene.instances.upload";
 
 // The Vulkan format a texture is uploaded in: its TexelFormat, sRGB-decoded by the sampler
 // where an 8-bit texture holds colour.
@@ -31,9 +35,12 @@ class GpuScene {
   static std::vector<VkVertexInputBindingDescription> vertexBindings();
   static std::vector<VkVertexInputAttributeDescription> vertexAttributes();
 
-  // Rewrites the instance table relative to `camera` (double precision on the CPU).
-  // `previousCamera` and the previous transforms make the motion vectors.
-  void updateInstances(const Scene& scene, const glm::dvec3& camera, const glm::dvec3& previousCamera);
+  // Rewrites the instance table relative to `camera` (double precision on the CPU) for the
+  // executor's frame `frame`: into an upload copy of that frame, which importBuffers() has
+  // the frame copy into the table the passes read (frames in flight read their own copies,
+  // and the table's descriptor never changes). `previousCamera` and the previous transforms
+  // make the motion vectors.
+  void updateInstances(const Scene& scene, const glm::dvec3& camera, const glm::dvec3& previousCamera, uint64_t frame);
 
   // Replaces the vertices of deforming meshes (morph targets) in one upload, between frames.
   // `vertices[i]` must have mesh `meshes[i]`'s vertex count.
@@ -42,7 +49,8 @@ class GpuScene {
   uint64_t meshVersion(uint32_t mesh) const { return meshVersions_[mesh]; }
   uint64_t geometryVersion() const { return geometryVersion_; }
 
-  // Declares the four buffers above in `graph` and binds them in `executor`.
+  // Declares the four buffers above in `graph` and binds them in `executor`; after an
+  // updateInstances() for the executor's next frame, also the pass that uploads the instances.
   void importBuffers(graph::RenderGraph& graph, graph::Executor& executor);
 
   // Binds the geometry and draws every instance (instance index via firstInstance).
@@ -92,6 +100,8 @@ class GpuScene {
   gpu::Device& device_;
   uint64_t id_ = 0;
   gpu::Buffer vertices_, indices_, materials_, instances_;
+  gpu::UploadRing instanceUploads_;
+  std::optional<uint64_t> uploadFrame_;  // the frame the last updateInstances() wrote for
   std::vector<gpu::Image> textures_;
   std::vector<SamplerMode> samplerModes_;  // distinct modes, one Vulkan sampler each
   std::vector<gpu::Sampler> samplers_;

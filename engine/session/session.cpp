@@ -38,14 +38,6 @@ struct Session::Passes {
   lighting::CompareViewPass compareView;
 };
 
-// What finishing a submitted frame needs to know about it.
-struct Session::InFlight {
-  lighting::LightingPath* path = nullptr;
-  std::string compared;         // the compare view's side it renders ("" outside a compare)
-  uint64_t compareGeneration = 0;
-  lighting::FrameKey key;
-  float exposure = 1.0f;
-};
 
 Session::Session(const gpu::DeviceOptions& options)
     : device_(std::make_unique<gpu::Device>(options)),
@@ -54,8 +46,8 @@ Session::Session(const gpu::DeviceOptions& options)
   for (lighting::LightingPathFactory make : lighting::lightingPathRegistry()) paths_.push_back(make());
   path_ = paths_.front().get();
   pathName_ = path_->name();
-  constants_ = gpu::Buffer(*device_, sizeof(shared::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                           gpu::MemoryUsage::Upload, lighting::kFrameConstants);
+  constants_ = gpu::UploadRing(*device_, sizeof(shared::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                               lighting::kFrameConstants);
   brdfTables_ = gpu::Buffer(*device_, sizeof(shared::BrdfTables), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                             gpu::MemoryUsage::Upload, lighting::kBrdfTables);
   brdfTables_.write(&shared::kBrdfTables, sizeof(shared::BrdfTables));
@@ -65,7 +57,9 @@ Session::~Session() {
   if (device_) device_->waitIdle();
 }
 
-void Session::settle() { finishOne(); }
+void Session::settle() {
+  while (!inFlight_.empty()) finishOne();
+}
 
 const scene::Scene& Session::scene() const {
   if (!scene_) throw SessionError("no scene is loaded");
@@ -371,12 +365,18 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
   }
 }
 
-void Session::renderOne(bool readback) {
-  beginOne(readback);
-  finishOne();
+void Session::setFramesInFlight(uint32_t frames) {
+  if (frames < 1 || frames > gpu::kMaxFramesInFlight)
+    throw SessionError(fmt::format("frames in flight must be 1 to {}, not {}", gpu::kMaxFramesInFlight, frames));
+  settle();
+  framesInFlight_ = frames;
 }
 
 void Session::beginOne(bool readback) {
+  // The oldest frame is collected first when the limit is reached: what the host writes for
+  // this frame goes into buffers that frame (two frames back) used.
+  while (inFlight_.size() >= framesInFlight_) finishOne();
+  const uint64_t frame = executor_->nextFrame();
   // The Compare panel renders its sides and the reference in turn; each path sees its own
   // previous frame as "previous" (its history and motion vectors refer to it).
   lighting::LightingPath* path = path_;
@@ -396,15 +396,15 @@ void Session::beginOne(bool readback) {
   const uint32_t frameNumber = compare_ ? uint32_t(compareFrames_[compared]++) : uint32_t(frameIndex_);
   shared::FrameConstants fc{};
   buildFrameConstants(fc, frameNumber, taa);
-  constants_.write(&fc, sizeof(fc));
-  gpuScene_->updateInstances(*scene_, view_.position, previousView_.value_or(view_).position);
+  constants_.write(frame, &fc, sizeof(fc));
+  gpuScene_->updateInstances(*scene_, view_.position, previousView_.value_or(view_).position, frame);
   applyMorphs();
   historyLog_.clear();
 
   graph::RenderGraph graph;
   graph.declareImported(lighting::kFrameConstants,
                         graph::ResourceDesc::buffer(constants_.size(), "per-frame constants (shared/frame.h)"));
-  executor_->bindImportedBuffer(lighting::kFrameConstants, constants_);
+  executor_->bindImportedBuffer(lighting::kFrameConstants, constants_.forFrame(frame));
   graph.declareImported(lighting::kBrdfTables,
                         graph::ResourceDesc::buffer(brdfTables_.size(), "the shared BRDF's tables (shared/brdf_lut.h)"));
   executor_->bindImportedBuffer(lighting::kBrdfTables, brdfTables_);
@@ -420,24 +420,22 @@ void Session::beginOne(bool readback) {
   if (!shadowPlan.views.empty()) {
     const VkDeviceSize bytes = shadowPlan.views.size() * sizeof(shared::GpuShadowView);
     if (lightShadowViews_.size() < bytes)
-      lightShadowViews_ = gpu::Buffer(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
-                                      lighting::kLightShadowViews);
-    lightShadowViews_.write(shadowPlan.views.data(), bytes);
+      lightShadowViews_ = gpu::UploadRing(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, lighting::kLightShadowViews);
+    lightShadowViews_.write(frame, shadowPlan.views.data(), bytes);
     graph.declareImported(lighting::kLightShadowViews,
                           graph::ResourceDesc::buffer(lightShadowViews_.size(), "point and spot light shadow views (shared/lights.h GpuShadowView[])"));
-    executor_->bindImportedBuffer(lighting::kLightShadowViews, lightShadowViews_);
+    executor_->bindImportedBuffer(lighting::kLightShadowViews, lightShadowViews_.forFrame(frame));
   }
   if (!lights.empty()) {
     const VkDeviceSize bytes = lights.size() * sizeof(shared::GpuLight);
     if (lightTable_.size() < bytes)
-      lightTable_ = gpu::Buffer(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
-                                lighting::kLightTable);
-    lightTable_.write(lights.data(), bytes);
+      lightTable_ = gpu::UploadRing(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, lighting::kLightTable);
+    lightTable_.write(frame, lights.data(), bytes);
     fc.lightCount = uint32_t(lights.size());
-    constants_.write(&fc, sizeof(fc));
+    constants_.write(frame, &fc, sizeof(fc));
     graph.declareImported(lighting::kLightTable,
                           graph::ResourceDesc::buffer(lightTable_.size(), "lights other than the sun (shared/lights.h GpuLight[])"));
-    executor_->bindImportedBuffer(lighting::kLightTable, lightTable_);
+    executor_->bindImportedBuffer(lighting::kLightTable, lightTable_.forFrame(frame));
   }
   // The environment map's table exists only in frames with a map (the reference samples it).
   if (const auto& map = lighting_.environmentMap) {
@@ -455,7 +453,7 @@ void Session::beginOne(bool readback) {
     executor_->bindImportedBuffer(lighting::kEnvironmentTable, environmentTable_);
   }
 
-  lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, constants_, *executor_, view_.position};
+  lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, *executor_, view_.position};
   in.instanceAlbedo = &albedo_->instanceAlbedo();
   in.instanceAlbedoVersion = albedo_->version();
   in.temporalAntialiasing = taa;
@@ -512,7 +510,12 @@ void Session::beginOne(bool readback) {
   executor_->submit(graph, compiled);
   graphDump_ = graph.dump(compiled);
   if (readback) graphDot_ = graph.dot(compiled);
-  inFlight_ = std::make_unique<InFlight>(InFlight{path, compared, compareGeneration_, in.key, fc.exposure});
+  InFlight begun{path, compared, compareGeneration_, in.key, fc.exposure};
+  for (auto& [name, value] : path->figures())
+    if (name == "reference.samples") begun.referenceSamples = uint32_t(value);
+  for (const auto& d : historyLog_)
+    if (d.history == "reference.accumulation") begun.accumulation = d;
+  inFlight_.push_back(std::move(begun));
   if (compare_) comparePrevious_[compared] = view_;
   previousView_ = view_;
   ++frameIndex_;
@@ -520,10 +523,10 @@ void Session::beginOne(bool readback) {
 }
 
 void Session::finishOne() {
-  if (!inFlight_) return;
-  const std::unique_ptr<InFlight> done = std::move(inFlight_);
+  if (inFlight_.empty()) return;
+  const InFlight done = std::move(inFlight_.front());
+  inFlight_.pop_front();
   executor_->finish();
-  lighting::LightingPath* path = done->path;
   double total = 0.0;
   for (const auto& t : executor_->timings()) {
     total += t.gpuMs;
@@ -533,15 +536,9 @@ void Session::finishOne() {
   }
   frameGpuMs_.push_back(total);
   // The compare view it was rendered for may have been closed or replaced since.
-  if (compare_ && !done->compared.empty() && done->compareGeneration == compareGeneration_) {
-    double samples = 0.0;
-    for (auto& [name, value] : path->figures())
-      if (name == "reference.samples") samples = value;
-    std::optional<lighting::HistoryDecision> accumulation;
-    for (const auto& d : historyLog_)
-      if (d.history == "reference.accumulation") accumulation = d;
-    compare_->frameDone(done->compared, executor_->readback(lighting::compareImageName(done->compared)), total, done->key,
-                        uint32_t(samples), done->exposure, accumulation);
+  if (compare_ && !done.compared.empty() && done.compareGeneration == compareGeneration_) {
+    compare_->frameDone(done.compared, executor_->readback(lighting::compareImageName(done.compared)), total, done.key,
+                        done.referenceSamples, done.exposure, done.accumulation);
   }
 }
 
@@ -562,6 +559,8 @@ void Session::applyMorphs() {
     scene::deformVertices(scene_->meshes[m], weights[m], vertices.back());
     appliedWeights_[m] = weights[m];
   }
+  // The upload replaces vertices the frames in flight read: they finish first.
+  if (!meshes.empty()) settle();
   gpuScene_->updateMeshVertices(meshes, vertices);
   deformedLastFrame_ = meshes.size();
 }
@@ -579,7 +578,7 @@ void Session::beginFrame() {
   requestAll_ = false;
 }
 
-bool Session::frameDone() const { return !inFlight_ || executor_->frameDone(); }
+bool Session::frameDone() const { return inFlight_.empty() || executor_->frameDone(); }
 
 void Session::finishFrame() { finishOne(); }
 
@@ -605,10 +604,12 @@ void Session::renderFrames(uint32_t n, const std::function<void(uint32_t done)>&
   if (!scene_) throw SessionError("no scene is loaded");
   frameGpuMs_.clear();
   passGpuMs_.clear();
+  // Frame i+1 is recorded while the GPU runs frame i (up to framesInFlight_ at once).
   for (uint32_t i = 0; i < n; ++i) {
-    renderOne(i + 1 == n);
+    beginOne(i + 1 == n);
     if (afterEach) afterEach(i + 1);
   }
+  settle();
   requested_.clear();
   requestAll_ = false;
 }

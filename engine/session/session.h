@@ -6,6 +6,7 @@
 #include "albedo/albedo_library.h"
 #include "albedo/bake_job.h"
 #include "gpu/device.h"
+#include "gpu/upload_ring.h"
 #include "graph/executor.h"
 #include "lighting/common/display_pass.h"
 #include "lighting/common/frame_inputs.h"
@@ -16,6 +17,7 @@
 #include "session/live_compare.h"
 
 #include <array>
+#include <deque>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -170,9 +172,14 @@ class Session {
   const std::vector<lighting::HistoryDecision>& historyDecisions() const { return historyLog_; }
 
   // Renders n frames; the last one reads back the final images and the requested buffers.
-  // `afterEach` (optional) is called with the count of frames done after each one: progress
-  // for long renders (a reference image is many frames).
+  // `afterEach` (optional) is called with the count of frames submitted after each one:
+  // progress for long renders (a reference image is many frames). The host records a frame
+  // while the GPU runs the one before (framesInFlight()); all are finished on return.
   void renderFrames(uint32_t n, const std::function<void(uint32_t done)>& afterEach = {});
+  // How many frames may be in flight at once: 1 waits for each frame before recording the
+  // next (the behaviour before frames in flight; a comparison for bench), 2 the default.
+  void setFramesInFlight(uint32_t frames);
+  uint32_t framesInFlight() const { return framesInFlight_; }
   // One frame in two halves (the editor, whose interface must not wait for the GPU):
   // beginFrame() records and submits a frame with read-backs, without waiting; frameDone()
   // says whether the GPU has finished it; finishFrame() waits if it has not, then collects
@@ -180,8 +187,11 @@ class Session {
   // the figures describe the frame before. Changes of the camera, light, settings, path,
   // albedo or display made meanwhile apply to the next frame. Everything that replaces what
   // a frame uses (a scene, a capture, renderFrames, resetHistory) finishes it first.
+  // Up to framesInFlight() frames are in flight at once: beginFrame() with that many in
+  // flight finishes the oldest first, and finishFrame() finishes the oldest.
   void beginFrame();
-  bool frameInFlight() const { return inFlight_ != nullptr; }
+  bool frameInFlight() const { return !inFlight_.empty(); }
+  uint32_t framesInFlightNow() const { return uint32_t(inFlight_.size()); }
   bool frameDone() const;
   void finishFrame();
 
@@ -223,12 +233,23 @@ class Session {
 
  private:
   void buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumber, bool jitter) const;
-  void renderOne(bool readback);
   void beginOne(bool readback);
   void finishOne();
   void settle();  // finishes a frame in flight
-  struct InFlight;
-  std::unique_ptr<InFlight> inFlight_;
+  // What finishing a submitted frame needs to know about it.
+  struct InFlight {
+    lighting::LightingPath* path = nullptr;
+    std::string compared;         // the compare view's side it renders ("" outside a compare)
+    uint64_t compareGeneration = 0;
+    lighting::FrameKey key;
+    float exposure = 1.0f;
+    // What the frame's path said when it was built (a later frame may be built before this one
+    // is finished): the reference's sample count and the accumulation's history decision.
+    uint32_t referenceSamples = 0;
+    std::optional<lighting::HistoryDecision> accumulation;
+  };
+  std::deque<InFlight> inFlight_;  // oldest first
+  uint32_t framesInFlight_ = gpu::kMaxFramesInFlight;
   uint64_t compareGeneration_ = 0;  // counts compare views, so a frame finds the one it was for
 
   std::unique_ptr<gpu::Device> device_;
@@ -244,7 +265,7 @@ class Session {
   std::string pathName_;
   struct Passes;
   std::unique_ptr<Passes> passes_;
-  gpu::Buffer constants_;
+  gpu::UploadRing constants_;
   gpu::Buffer brdfTables_;  // shared/brdf_lut.h BrdfTables, written once
   // The environment map's table (shared/environment.h), uploaded when the map changes; exists
   // only once a map was set. Its SH projection is recomputed when the map, its rotation or its
@@ -252,8 +273,8 @@ class Session {
   gpu::Buffer environmentTable_;
   uint64_t environmentTableHash_ = 0;
   std::array<glm::vec4, 9> environmentSh_{};
-  gpu::Buffer lightTable_;  // shared/lights.h GpuLight[], rewritten each frame; grows, exists once a scene has lights
-  gpu::Buffer lightShadowViews_;  // shared/lights.h GpuShadowView[] of point and spot light shadow maps, rewritten each frame
+  gpu::UploadRing lightTable_;  // shared/lights.h GpuLight[], rewritten each frame; grows, exists once a scene has lights
+  gpu::UploadRing lightShadowViews_;  // shared/lights.h GpuShadowView[] of point and spot light shadow maps, rewritten each frame
   lighting::RenderSettings settings_;
   View view_;
   std::optional<View> previousView_;

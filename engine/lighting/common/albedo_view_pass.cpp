@@ -11,22 +11,22 @@ namespace tl::lighting {
 void AlbedoViewPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   if (!in.instanceAlbedo) return;
   const uint32_t w = in.settings.width, h = in.settings.height;
-  // The resolved table, uploaded when it changed (the executor waits for each frame).
+  // The resolved table, uploaded when it changed (a copy per frame in flight).
   const std::vector<glm::vec4>& table = *in.instanceAlbedo;
   const VkDeviceSize bytes = std::max<size_t>(1, table.size()) * sizeof(glm::vec4);
+  const uint64_t frame = in.executor.nextFrame();
   if (!perInstance_ || perInstance_.size() < bytes || uploadedVersion_ != in.instanceAlbedoVersion ||
       sceneId_ != in.scene.id()) {
     if (!perInstance_ || perInstance_.size() < bytes)
-      perInstance_ = gpu::Buffer(in.device, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Upload,
-                                 kAlbedoPerInstance);
-    if (!table.empty()) perInstance_.write(table.data(), table.size() * sizeof(glm::vec4));
+      perInstance_ = gpu::UploadRing(in.device, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, kAlbedoPerInstance);
+    if (!table.empty()) perInstance_.write(frame, table.data(), table.size() * sizeof(glm::vec4));
     uploadedVersion_ = in.instanceAlbedoVersion;
     if (sceneId_ != in.scene.id()) haveBaseline_ = false;
     sceneId_ = in.scene.id();
   }
   graph.declareImported(kAlbedoPerInstance,
                         graph::ResourceDesc::buffer(perInstance_.size(), "per instance: resolved albedo (rgb), source (w)"));
-  in.executor.bindImportedBuffer(kAlbedoPerInstance, perInstance_);
+  in.executor.bindImportedBuffer(kAlbedoPerInstance, perInstance_.forFrame(frame));
 
   ComputePass(in.device, "albedo.view", "common/albedo_view.comp")
       .sampled(shared::kAlbedoViewBindingInstanceId, "gbuffer.instanceId")

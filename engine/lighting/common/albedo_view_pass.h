@@ -8,6 +8,7 @@
 #pragma once
 
 #include "gpu/pipeline.h"
+#include "gpu/upload_ring.h"
 #include "graph/graph.h"
 #include "lighting/common/frame_inputs.h"
 
@@ -27,7 +28,7 @@ class AlbedoViewPass {
   bool hasBaseline() const { return haveBaseline_; }
 
  private:
-  gpu::Buffer perInstance_;
+  gpu::UploadRing perInstance_;
   uint64_t uploadedVersion_ = ~0ull;
   uint64_t sceneId_ = 0;
   bool captureBaseline_ = false, haveBaseline_ = false;

@@ -49,7 +49,6 @@ struct FrameInputs {
   const scene::Scene& sceneData;  // the CPU side: materials, textures, meshes (RT albedo, BLAS)
   const RenderSettings& settings;
   const shared::FrameConstants& constants;
-  gpu::Buffer& constantsBuffer;
   graph::Executor& executor;  // where a path binds buffers it owns and imports into the graph
   glm::dvec3 cameraWorld{0.0};  // the camera's world position (camera-relative space is centred on it)
   // Per-instance hit albedo resolved by the session (T7: override > baked > texture average;

@@ -266,7 +266,7 @@ class ReferencePath final : public LightingPath {
       std::vector<gpu::TlasInstance> instances;
       for (size_t i = 0; i < transforms.size(); ++i)
         instances.push_back({transforms[i], uint32_t(i), 0xFF, blas_[in.scene.instanceMesh(i)].address()});
-      tlas_.prepare(instances);
+      tlas_.prepare(instances, in.executor.nextFrame());
       tlasTransforms_ = transforms;
     }
     graph.declareImported(kTlas, graph::ResourceDesc::buffer(tlas_.storage().size(), "the reference's top level"));

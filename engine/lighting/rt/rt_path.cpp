@@ -77,7 +77,7 @@ class RtPath final : public LightingPath {
     refits.top = s.rtRefitTop;
     refits.random = s.rtRefitRandom;
     refits.vertexBudget = s.rtRefitVertexBudget;
-    scene_->prepareTopLevel(in.scene, culling, refits);
+    scene_->prepareTopLevel(in.scene, culling, in.executor.nextFrame(), refits);
     sceneInstances_ = uint32_t(in.scene.instanceCount());
 
     RtPush push{};
@@ -297,7 +297,7 @@ class RtPath final : public LightingPath {
         .sampled(shared::kRtBindingMaterial, "gbuffer.material")
         .sampled(shared::kRtBindingEmissive, "gbuffer.emissive")
         .sampled(shared::kRtBindingInstanceId, "gbuffer.instanceId")
-        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.executor.nextFrame()).handle())
         .storageOut(shared::kRtBindingHitsOut, r.pretraceHits,
                     image(VK_FORMAT_R32_UINT, "pre-trace hit records: distance + G-buffer albedo, or pending").decodedAs("rt-hit-record"))
         .storageOut(shared::kRtBindingSurfaceOut, r.pretraceSurface,
@@ -314,7 +314,7 @@ class RtPath final : public LightingPath {
                     image(VK_FORMAT_R32_UINT, "hit records: distance (half) + albedo (565), miss code").decodedAs("rt-hit-record"))
         .storageOut(shared::kRtBindingSurfaceOut, r.hitSurface,
                     image(VK_FORMAT_R32G32_UINT, "hit normal (oct) + emission (rgb9e5)").decodedAs("rt-hit-surface"))
-        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.executor.nextFrame()).handle())
         .sceneTable(in.scene.table())
         .push(push)
         .trace(tracedWidth(in), tracedHeight(in))
@@ -333,7 +333,7 @@ class RtPath final : public LightingPath {
         .optionalSampled(shared::kRtBindingFirstShY, kFirstRay.shY, first != nullptr)
         .optionalSampled(shared::kRtBindingFirstCoCg, kFirstRay.coCg, first != nullptr)
         .optionalSampled(shared::kRtBindingFirstAo, kFirstRay.ao, first != nullptr)
-        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.executor.nextFrame()).handle())
         .push(push, screenRadianceAtRecord(screenRadiance))
         .trace(tracedWidth(in), tracedHeight(in))
         .add(graph);
@@ -343,7 +343,7 @@ class RtPath final : public LightingPath {
   // cache is off (then a few one-ray probes), since their outcomes decide whether it runs.
   void addCacheUpdate(graph::RenderGraph& graph, FrameInputs& in, const RtPush& push, bool screenRadiance) {
     withHitLighting(withCommon(RayTracingPass(in.device, "rt.cache.update", kCacheUpdateShaders)), screenRadiance, in)
-        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.executor.nextFrame()).handle())
         .bufferOut(shared::kRtBindingCacheSamples, kRtCacheSamples, cache_.samplesDesc(in))
         .bufferOut(shared::kRtBindingCacheOutcomes, kRtCacheOutcomes, cache_.outcomesDesc(in))
         .push(push, screenRadianceAtRecord(screenRadiance))
@@ -361,7 +361,7 @@ class RtPath final : public LightingPath {
     auto cells = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, cw, ch, what); };
     withHitLighting(withCommon(RayTracingPass(in.device, "rt.disocclusion", kDisocclusionShaders)), screenRadiance, in)
         .sampled(shared::kRtBindingCoCg, kCoCgAo)
-        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData().handle())
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.executor.nextFrame()).handle())
         .storageOut(shared::kRtBindingCellShY, kCellShY,
                     cells(VK_FORMAT_R16G16B16A16_SFLOAT, "disocclusion rays per 8x8 cell: mean SH luma"))
         .storageOut(shared::kRtBindingCellCoCgAo, kCellCoCgAo,
@@ -511,7 +511,7 @@ class RtPath final : public LightingPath {
     }
     const uint32_t materials = uint32_t(in.settings.materials);
     if (albedoVersion_ != in.instanceAlbedoVersion || materials_ != materials) {
-      scene_->setInstanceAlbedo(in.instanceAlbedo, materials);  // an override shows in the next frame's bounce
+      scene_->setInstanceAlbedo(in.instanceAlbedo, materials, in.executor.nextFrame());  // an override shows in the next frame's bounce
       albedoVersion_ = in.instanceAlbedoVersion;
       materials_ = materials;
     }

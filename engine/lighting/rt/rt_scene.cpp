@@ -190,9 +190,8 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
   for (uint32_t mode = 0; mode < 3; ++mode)
     for (size_t i = 0; i < scene.instances.size(); ++i)
       fallbackAlbedo_[mode].push_back(modeAlbedo[mode][scene.meshes[scene.instances[i].mesh].material]);
-  instanceData_ = gpu::Buffer(device, data.size() * sizeof(data[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                              gpu::MemoryUsage::Upload, "rt.instanceData");
-  instanceData_.write(data.data(), data.size() * sizeof(data[0]));
+  instanceData_ = gpu::UploadRing(device, data.size() * sizeof(data[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "rt.instanceData");
+  instanceData_.write(0, data.data(), data.size() * sizeof(data[0]));  // new copies: no frame uses them yet
 
   std::vector<glm::vec3> instanceEmission;
   for (size_t i = 0; i < scene.instances.size(); ++i) instanceEmission.push_back(glm::vec3(data[i].emission));
@@ -206,8 +205,7 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
   emitterData_.write(emitters.data(), emitters.size() * sizeof(emitters[0]));
 }
 
-void RtScene::setInstanceAlbedo(const std::vector<glm::vec4>* resolved, uint32_t materials) {
-  // The executor waits for each frame, so the upload-heap table is not in flight here.
+void RtScene::setInstanceAlbedo(const std::vector<glm::vec4>* resolved, uint32_t materials, uint64_t frame) {
   const std::vector<glm::vec3>& fallback = fallbackAlbedo_[std::min(materials, 2u)];
   for (size_t i = 0; i < fallback.size(); ++i) {
     const bool authored = materials == shared::kMaterialsAuthored && resolved && i < resolved->size();
@@ -217,10 +215,11 @@ void RtScene::setInstanceAlbedo(const std::vector<glm::vec4>* resolved, uint32_t
     // database entry re-colours them.
     instances_[i].albedoScale = glm::vec4(albedo / glm::max(fallback[i], glm::vec3(1e-4f)), 0.0f);
   }
-  instanceData_.write(instances_.data(), instances_.size() * sizeof(instances_[0]));
+  instanceData_.write(frame, instances_.data(), instances_.size() * sizeof(instances_[0]));
 }
 
-void RtScene::prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling, const RefitPolicy& refits) {
+void RtScene::prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling, uint64_t frame,
+                               const RefitPolicy& refits) {
   const auto& transforms = gpuScene.relativeTransforms();
   std::vector<glm::vec3> centres(transforms.size());
   std::vector<float> radii(transforms.size());
@@ -234,7 +233,7 @@ void RtScene::prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& 
   std::vector<gpu::TlasInstance> instances;
   const std::vector<uint32_t> kept = cullInstances(centres, radii, culling);
   for (uint32_t i : kept) instances.push_back({transforms[i], i, 0xFF, blas_[gpuScene.instanceMesh(i)].address()});
-  topLevel_.prepare(instances);
+  topLevel_.prepare(instances, frame);
 
   // Deforming meshes whose vertices moved since their last refit: the throttle picks some.
   pendingRefits_.clear();

@@ -58,7 +58,7 @@ class RtScene {
   // Chooses this frame's instances and uploads them, and which deforming meshes to refit;
   // recordRefits() then topLevel().record() build them, each in a graph pass of kind
   // AccelerationStructureBuild (the graph places the barriers).
-  void prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling, const RefitPolicy& refits = {});
+  void prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& culling, uint64_t frame, const RefitPolicy& refits = {});
   bool refitsPending() const { return !pendingRefits_.empty(); }
   // Scratch for every deforming mesh refitted at once: what the refit pass creates.
   VkDeviceSize refitScratchBytes() const { return refitScratchBytes_; }
@@ -69,7 +69,8 @@ class RtScene {
   // All deforming meshes' bottom levels, side by side: the graph's rt.blas.deforming.
   gpu::Buffer& deformingStorage() { return deformingStorage_; }
   gpu::TopLevelBuilder& topLevel() { return topLevel_; }
-  gpu::Buffer& instanceData() { return instanceData_; }
+  // Frame `frame`'s copy of the instance table (gpu::UploadRing: albedo edits while frames are in flight).
+  gpu::Buffer& instanceData(uint64_t frame) { return instanceData_.forFrame(frame); }
   // The emissive triangles (lighting/rt/emitters.h): at least one entry, emitterCount() valid.
   gpu::Buffer& emitterData() { return emitterData_; }
   uint32_t emitterCount() const { return emitterCount_; }
@@ -79,7 +80,7 @@ class RtScene {
   // averages); in the Lambertian modes what the mode reflects (the base colour's texture
   // average, or the clay albedo), which no override or database entry changes. Until called,
   // each instance has its material's authored texture average.
-  void setInstanceAlbedo(const std::vector<glm::vec4>* resolved, uint32_t materials);
+  void setInstanceAlbedo(const std::vector<glm::vec4>* resolved, uint32_t materials, uint64_t frame);
   const RtSceneStats& stats() const { return stats_; }
   uint32_t instancesInTopLevel() const { return topLevel_.instanceCount(); }
   float simplifyRatio() const { return ratio_; }
@@ -92,7 +93,7 @@ class RtScene {
   std::vector<shared::RtInstance> instances_;     // CPU copy of instanceData_
   // Per material override mode, per instance: its material's texture-average albedo.
   std::vector<glm::vec3> fallbackAlbedo_[3];
-  gpu::Buffer instanceData_;                      // RtInstance per scene instance
+  gpu::UploadRing instanceData_;                  // RtInstance per scene instance
   gpu::Buffer emitterData_;                       // RtEmitter per emissive triangle
   uint32_t emitterCount_ = 0;
   float maxEmitterRadiance_ = 0.0f;
