@@ -1,5 +1,6 @@
 #include "albedo/albedo_baker.h"
 
+#include "lighting/common/pass_builders.h"
 #include "shared/albedo.h"
 #include "shared/scene.h"
 
@@ -66,28 +67,21 @@ uint32_t AlbedoBaker::maxBatch() { return shared::kAlbedoAtlasTiles * shared::kA
 
 AlbedoBaker::AlbedoBaker(gpu::Device& device, const scene::Scene& scene, scene::GpuScene& gpuScene,
                          const BakeSettings& settings)
-    : device_(device), scene_(scene), gpuScene_(gpuScene), settings_(settings), executor_(device) {
+    : device_(device), scene_(scene), gpuScene_(gpuScene), settings_(settings), executor_(device) {}
+
+namespace {
+// The bake's raster shaders and state; its layout, formats and scene table come from the pass.
+gpu::GraphicsPipelineDesc bakePipeline() {
   gpu::GraphicsPipelineDesc r;
   r.name = "albedo.bake.raster";
   r.vertexShader = "albedo/bake.vert";
   r.fragmentShader = "albedo/bake.frag";
-  r.layout.extraSets = {gpuScene.table().layout()};
-  r.layout.pushConstantBytes = sizeof(shared::AlbedoBakeDraw);
-  r.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT};
-  r.depthFormat = VK_FORMAT_D32_SFLOAT;
   r.vertexBindings = scene::GpuScene::vertexBindings();
   r.vertexAttributes = scene::GpuScene::vertexAttributes();
   r.cullMode = VK_CULL_MODE_NONE;  // a single-sided sheet still shows its colour from behind
-  raster_ = gpu::createGraphicsPipeline(device, r);
-
-  gpu::ComputePipelineDesc c;
-  c.name = "albedo.bake.reduce";
-  c.shader = "albedo/reduce.comp";
-  c.layout.bindings = {{shared::kAlbedoBindingAtlas, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                       {shared::kAlbedoBindingSums, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-  c.layout.pushConstantBytes = sizeof(shared::AlbedoReduceParams);
-  reduce_ = gpu::createComputePipeline(device, c);
+  return r;
 }
+}  // namespace
 
 std::vector<BakeOutcome> AlbedoBaker::bake(const std::vector<const Combination*>& batch) {
   if (batch.size() > maxBatch()) throw std::invalid_argument(fmt::format("albedo bake batch of {} > {}", batch.size(), maxBatch()));
@@ -117,24 +111,19 @@ std::vector<BakeOutcome> AlbedoBaker::bake(const std::vector<const Combination*>
   graph::RenderGraph graph;
   gpuScene_.importBuffers(graph, executor_);
 
-  graph.addPass(
-      "albedo.bake.raster", graph::PassKind::Raster,
-      [&](graph::PassBuilder& b) {
-        b.read(scene::kSceneVertices, graph::Usage::VertexOrIndex);
-        b.read(scene::kSceneIndices, graph::Usage::VertexOrIndex);
-        b.read(scene::kSceneMaterials, graph::Usage::StorageRead);
-        b.create(kBakeAtlas,
-                 graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, side, side,
-                                              "hit albedo of 6 views per combination, a = covered"),
-                 graph::Usage::ColorAttachment);
-        b.create(kBakeDepth, graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, side, side, "depth, reversed"),
-                 graph::Usage::DepthAttachment);
-      },
-      [&](graph::PassContext& ctx) {
-        ctx.beginRendering({{kBakeAtlas, glm::vec4(0.0f), {}}}, graph::Attachment{kBakeDepth, {}, 0.0f});
-        ctx.bind(raster_);
-        ctx.flushDescriptors();
-        gpuScene_.table().bind(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, raster_.layout(), shared::kSceneSet);
+  // The bake runs outside a frame: the scene's table and buffers, no frame constants.
+  lighting::RasterPass(device_, "albedo.bake.raster", bakePipeline())
+      .colorOut(kBakeAtlas,
+                graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, side, side,
+                                             "hit albedo of 6 views per combination, a = covered"),
+                glm::vec4(0.0f))
+      .depthOut(kBakeDepth, graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, side, side, "depth, reversed"), 0.0f)
+      .sceneTable(gpuScene_.table())
+      .reads(scene::kSceneVertices, graph::Usage::VertexOrIndex)
+      .reads(scene::kSceneIndices, graph::Usage::VertexOrIndex)
+      .reads(scene::kSceneMaterials, graph::Usage::StorageRead)
+      .push(shared::AlbedoBakeDraw{})  // each draw pushes its own
+      .draw([&](graph::PassContext& ctx, const lighting::RasterPass::Use&) {
         gpuScene_.bindGeometry(ctx.cmd);
         for (size_t i = 0; i < draws.size(); ++i) {
           const uint32_t t = drawTile[i];
@@ -142,23 +131,15 @@ std::vector<BakeOutcome> AlbedoBaker::bake(const std::vector<const Combination*>
           ctx.pushConstants(draws[i]);
           gpuScene_.drawMesh(ctx.cmd, drawMesh[i]);
         }
-        ctx.endRendering();
-      });
-  graph.addPass(
-      "albedo.bake.reduce", graph::PassKind::Compute,
-      [&](graph::PassBuilder& b) {
-        b.read(kBakeAtlas, graph::Usage::StorageRead);
-        b.create(kBakeSums, graph::ResourceDesc::buffer(tiles * sizeof(shared::AlbedoTileSum), "per tile: albedo sum, covered pixels"),
-                 graph::Usage::StorageWrite);
-      },
-      [&](graph::PassContext& ctx) {
-        ctx.bind(reduce_);
-        ctx.descriptors()
-            .storageImage(shared::kAlbedoBindingAtlas, ctx.image(kBakeAtlas).view())
-            .storageBuffer(shared::kAlbedoBindingSums, ctx.buffer(kBakeSums).handle());
-        ctx.pushConstants(shared::AlbedoReduceParams{tile, tiles, 0, 0});
-        ctx.dispatch(tiles, 1, 1, 1, 1, 1);
-      });
+      })
+      .add(graph);
+  lighting::ComputePass(device_, "albedo.bake.reduce", "albedo/reduce.comp")
+      .storageIn(shared::kAlbedoBindingAtlas, kBakeAtlas)
+      .bufferOut(shared::kAlbedoBindingSums, kBakeSums,
+                 graph::ResourceDesc::buffer(tiles * sizeof(shared::AlbedoTileSum), "per tile: albedo sum, covered pixels"))
+      .push(shared::AlbedoReduceParams{tile, tiles, 0, 0})
+      .dispatch(tiles, 1, 1, 1, 1, 1)
+      .add(graph);
   graph.markOutput(kBakeSums);
   executor_.requestReadback(kBakeSums);
   if (keepAtlas_) executor_.requestReadback(kBakeAtlas);

@@ -7,7 +7,6 @@
 
 #include "albedo/albedo_database.h"
 #include "albedo/albedo_key.h"
-#include "gpu/pipeline.h"
 #include "graph/executor.h"
 #include "scene/gpu_scene.h"
 
@@ -46,12 +45,11 @@ class AlbedoBaker {
   void keepAtlas(bool keep) { keepAtlas_ = keep; }
 
  private:
-  [[maybe_unused]] gpu::Device& device_;  // unread today; clang warns of it
+  gpu::Device& device_;
   const scene::Scene& scene_;
   scene::GpuScene& gpuScene_;
   BakeSettings settings_;
   graph::Executor executor_;
-  gpu::Pipeline raster_, reduce_;
   bool keepAtlas_ = false;
 };
 

@@ -312,6 +312,15 @@ void copyImage(VkCommandBuffer cmd, const Image& src, const Image& dst) {
                  1, &region);
 }
 
+void blitImage(VkCommandBuffer cmd, const Image& src, const Image& dst) {
+  VkImageBlit blit{};
+  blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.srcOffsets[1] = {int32_t(src.extent().width), int32_t(src.extent().height), int32_t(src.extent().depth)};
+  blit.dstOffsets[1] = {int32_t(dst.extent().width), int32_t(dst.extent().height), int32_t(dst.extent().depth)};
+  vkCmdBlitImage(cmd, src.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                 &blit, VK_FILTER_NEAREST);
+}
+
 void clearImage(VkCommandBuffer cmd, const Image& image, VkImageLayout layout) {
   VkClearColorValue zero{};
   VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};

@@ -148,6 +148,9 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccess
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 // Copies mip 0 of `src` (TRANSFER_SRC_OPTIMAL) into `dst` (TRANSFER_DST_OPTIMAL), same size and aspect.
 void copyImage(VkCommandBuffer cmd, const Image& src, const Image& dst);
+// Blits mip 0 of `src` (TRANSFER_SRC_OPTIMAL) over mip 0 of `dst` (TRANSFER_DST_OPTIMAL), colour
+// images of any formats the blit converts between, nearest texels.
+void blitImage(VkCommandBuffer cmd, const Image& src, const Image& dst);
 // Clears mip 0 of a colour image to zero in `layout` (GENERAL or TRANSFER_DST_OPTIMAL).
 void clearImage(VkCommandBuffer cmd, const Image& image, VkImageLayout layout);
 

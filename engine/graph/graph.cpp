@@ -66,6 +66,12 @@ void PassBuilder::write(std::string_view name, Usage usage, std::optional<PassKi
   p.writeNames.emplace_back(name);
   p.writeUsages.push_back(usage);
   p.writeKinds.push_back(as.value_or(p.kind));
+  p.writeUpdates.push_back(false);
+}
+
+void PassBuilder::update(std::string_view name, Usage usage, std::optional<PassKind> as) {
+  write(name, usage, as);
+  graph_.passes_[pass_].writeUpdates.back() = true;
 }
 
 void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
@@ -163,7 +169,8 @@ std::string passList(const std::vector<PassDecl>& passes, const std::vector<Pass
 CompiledGraph RenderGraph::compile(const EntryStates& entry) const {
   const size_t nPasses = passes_.size(), nRes = resources_.size();
 
-  // 1. Names: unique resources, every access resolved, one writer per resource.
+  // 1. Names: unique resources, every access resolved, one writer per resource (or the
+  //    steps of one write, PassBuilder::update).
   std::map<std::string, ResourceId, std::less<>> byName;
   for (ResourceId i = 0; i < nRes; ++i) {
     auto [it, fresh] = byName.emplace(resources_[i].name, i);
@@ -202,10 +209,15 @@ CompiledGraph RenderGraph::compile(const EntryStates& entry) const {
       ResourceId r = resolve(pass.writeNames[i], pass, "writes");
       writes[p].push_back({r, pass.writeUsages[i], pass.writeKinds[i]});
       auto& info = out.resources[r];
-      if (info.writer != kNone && info.writer != p)
+      if (info.writer == p) continue;
+      if (pass.writeUpdates[i] && info.writer == kNone)
+        throw GraphError(fmt::format("pass `{}` updates `{}`, which no pass declared before it writes", pass.name,
+                                     resources_[r].name));
+      if (!pass.writeUpdates[i] && info.writer != kNone)
         throw GraphError(fmt::format("resource `{}` is written by both `{}` and `{}`", resources_[r].name,
                                      passes_[info.writer].name, pass.name));
       info.writer = p;
+      info.steps.push_back(p);
     }
   }
   for (PassId p = 0; p < nPasses; ++p) {
@@ -257,11 +269,15 @@ CompiledGraph RenderGraph::compile(const EntryStates& entry) const {
   auto edge = [&](PassId from, PassId to) {
     if (from != to && after[from].insert(to).second) ++indegree[to];
   };
+  //    Steps of one write (PassBuilder::update) run in declaration order; readers that are
+  //    not steps see the last (a history's, last frame's contents: before the first).
   for (ResourceId r = 0; r < nRes; ++r) {
     const auto& info = out.resources[r];
     if (info.writer == kNone) continue;
+    for (size_t i = 1; i < info.steps.size(); ++i) edge(info.steps[i - 1], info.steps[i]);
     for (PassId reader : info.readers) {
-      if (resources_[r].persistent && !resources_[r].cache) edge(reader, info.writer);
+      if (std::find(info.steps.begin(), info.steps.end(), reader) != info.steps.end()) continue;
+      if (resources_[r].persistent && !resources_[r].cache) edge(reader, info.steps.front());
       else edge(info.writer, reader);
     }
   }
@@ -304,6 +320,8 @@ CompiledGraph RenderGraph::compile(const EntryStates& entry) const {
     work.pop_back();
     for (auto& a : reads[p])
       if (PassId w = out.resources[a.resource].writer; w != kNone) keepPass(w);
+    for (auto& a : writes[p])  // the steps of one write stand or fall together
+      for (PassId step : out.resources[a.resource].steps) keepPass(step);
   }
 
   // 4. Order, barriers and lifetimes of the surviving passes: each resource's state walks
@@ -436,6 +454,9 @@ std::string RenderGraph::dump(const CompiledGraph& c) const {
   for (auto& info : c.resources) {
     const auto& r = resources_[info.id];
     std::string writer = info.writer != kNone ? passes_[info.writer].name : (r.imported ? "(imported)" : "(none)");
+    std::string earlier;  // the steps before the last (PassBuilder::update)
+    for (size_t i = 0; i + 1 < info.steps.size(); ++i) earlier += (earlier.empty() ? "" : ", ") + passes_[info.steps[i]].name;
+    if (!earlier.empty()) writer += " (after " + earlier + ")";
     std::string readers;
     for (PassId p : info.readers)
       if (std::find(c.culled.begin(), c.culled.end(), p) == c.culled.end())

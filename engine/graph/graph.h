@@ -98,6 +98,7 @@ struct PassDecl {
   std::vector<std::string> writeNames;
   std::vector<Usage> writeUsages;
   std::vector<PassKind> writeKinds;
+  std::vector<bool> writeUpdates;  // PassBuilder::update: a later step of an earlier pass's write
   bool sideEffect = false;  // never culled (e.g. writes to the swapchain or a file)
   ExecuteFn execute;
 };
@@ -122,6 +123,13 @@ class PassBuilder {
   // of that kind the pass records besides its own (a compute clear inside a raster pass).
   void read(std::string_view name, Usage usage, std::optional<PassKind> as = std::nullopt);
   void write(std::string_view name, Usage usage, std::optional<PassKind> as = std::nullopt);
+  // Writes a resource that a pass declared before this one writes: the next step of work
+  // split over passes (the voxels' clear, then each voxelization round; mip m after mip m-1).
+  // The steps run in declaration order with the graph's barriers between them, are kept or
+  // culled together, and the resource's other readers see the last step (a history's
+  // readers, last frame's contents: they run before the first). A second plain write() is
+  // misuse, as before.
+  void update(std::string_view name, Usage usage, std::optional<PassKind> as = std::nullopt);
   void sideEffect();
 
  private:
@@ -139,7 +147,8 @@ struct CompiledPass {
 
 struct ResourceInfo {
   ResourceId id = kNone;
-  PassId writer = kNone;           // the one pass that writes it (kNone: imported, read only)
+  PassId writer = kNone;           // the pass whose result readers see (kNone: imported, read only)
+  std::vector<PassId> steps;       // every pass that writes it, in order: writer is the last
   std::vector<PassId> readers;
   uint32_t firstUse = kNone;       // index into CompiledGraph::order, inclusive
   uint32_t lastUse = kNone;

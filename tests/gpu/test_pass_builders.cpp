@@ -123,6 +123,46 @@ TEST_F(GpuTest, PassBuilderOptionalStorageAndConstantsDeclareNoAccess) {
   }
 }
 
+// Work split over passes (the legacy voxels' clear and rounds, their mips a level per pass):
+// storageUpdate declares the next step of an earlier pass's write, which the graph orders
+// after it with a barrier between; a mip entry binds that level's view. An update with no
+// earlier writer is the graph's error, naming the pass.
+TEST_F(GpuTest, PassBuilderStepsOfOneWriteAreGraphUpdates) {
+  gpu::Device& d = session().device();
+  const gpu::Image constant(d, {VK_FORMAT_R32_SFLOAT, {8, 8, 1}, 1, VK_IMAGE_USAGE_SAMPLED_BIT}, "test.constant");
+  auto step = [&](graph::RenderGraph& g, const char* name, uint32_t mip, bool update) {
+    ComputePass pass(d, name, kShader);
+    pass.constantSampled(shared::kOptionalInputSource, constant, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    if (update)
+      pass.storageUpdate(shared::kOptionalInputResult, "chain", mip);
+    else
+      pass.storageOut(shared::kOptionalInputResult, "chain", mip);
+    pass.pipelineName("optional.chain").push(shared::OptionalInputPush{1u, 0.0f}).add(g);
+  };
+  const auto chainDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, 8, 8, "test chain", 2);
+  graph::RenderGraph g;
+  g.declareCache("chain", chainDesc);
+  step(g, "level0", 0, false);
+  step(g, "level1", 1, true);
+  const graph::CompiledGraph c = g.compile();
+  ASSERT_EQ(c.order.size(), 2u);
+  EXPECT_EQ(g.passes()[c.order[1].pass].name, "level1");
+  EXPECT_EQ(g.passes()[1].writeUpdates, std::vector<bool>{true});
+  ASSERT_EQ(c.order[1].barriers.size(), 1u);
+  EXPECT_EQ(c.order[1].barriers[0].src.access, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+
+  graph::RenderGraph alone;
+  alone.declareCache("chain", chainDesc);
+  step(alone, "level1", 1, true);
+  std::string e;
+  try {
+    alone.compile();
+  } catch (const graph::GraphError& x) {
+    e = x.what();
+  }
+  EXPECT_NE(e.find("pass `level1` updates `chain`, which no pass declared before it writes"), std::string::npos) << e;
+}
+
 TEST_F(GpuTest, PassBuilderSharesSamplersAcrossPasses) {
   gpu::Device& d = session().device();
   EXPECT_EQ(d.sampler(lighting::samplers::point), d.sampler(lighting::samplers::point));

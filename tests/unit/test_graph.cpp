@@ -215,6 +215,70 @@ TEST(Graph, ReadModifyWriteIsOneBarrierWithTheWriteUsage) {
   EXPECT_EQ(c.order[0].barriers[0].dst.access, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
+// Work split over passes (the legacy voxels: a clear, voxelization rounds, then their mips):
+// the steps run as declared, each fenced from the last, and readers see the last step.
+TEST(Graph, StepsOfOneWriteRunInOrderAndReadersSeeTheLast) {
+  RenderGraph g;
+  g.declareCache("voxels", kImage);
+  compute(g, "cones", {"voxels"}, {"gi"});  // declared first, runs after every step
+  g.addPass("clear", PassKind::Compute, [](PassBuilder& b) { b.write("voxels", Usage::StorageWrite); }, nullptr);
+  g.addPass("voxelize", PassKind::Raster, [](PassBuilder& b) {
+    b.read("shadow.map", Usage::Sampled);
+    b.update("voxels", Usage::StorageWrite);
+  }, nullptr);
+  g.addPass("emitters", PassKind::Raster, [](PassBuilder& b) { b.update("voxels", Usage::StorageWrite); }, nullptr);
+  compute(g, "shadow", {}, {"shadow.map"});  // declared last: the emitters still wait for voxelize
+  g.markOutput("gi");
+  auto c = g.compile();
+  ASSERT_EQ(orderNames(g, c), (std::vector<std::string>{"clear", "shadow", "voxelize", "emitters", "cones"}));
+  auto barrier = [&](size_t pass) -> const Barrier* {
+    for (auto& b : c.order[pass].barriers)
+      if (b.resource == *g.find("voxels")) return &b;
+    return nullptr;
+  };
+  const Barrier* afterClear = barrier(2);
+  ASSERT_NE(afterClear, nullptr);
+  EXPECT_EQ(afterClear->src.stages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+  EXPECT_NE(afterClear->dst.stages & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0u);
+  EXPECT_NE(afterClear->dst.access & VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, 0u);
+  const Barrier* betweenRounds = barrier(3);
+  ASSERT_NE(betweenRounds, nullptr);
+  EXPECT_NE(betweenRounds->src.stages & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0u);
+  EXPECT_NE(betweenRounds->dst.stages & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, 0u);
+  const ResourceInfo& info = c.resources[*g.find("voxels")];
+  EXPECT_EQ(g.passes()[info.writer].name, "emitters");
+  EXPECT_NE(g.dump(c).find("written by emitters (after clear, voxelize)"), std::string::npos) << g.dump(c);
+}
+
+TEST(Graph, StepsOfOneWriteAreKeptOrCulledTogether) {
+  for (bool read : {true, false}) {
+    RenderGraph g;
+    compute(g, "make", {}, {"x"});
+    g.addPass("refine", PassKind::Compute, [](PassBuilder& b) {
+      b.read("x", Usage::StorageRead);
+      b.update("x", Usage::StorageWrite);
+    }, nullptr);
+    if (read) {
+      compute(g, "use", {"x"}, {"out"});
+      g.markOutput("out");
+    }
+    auto c = g.compile();
+    if (read)
+      EXPECT_EQ(orderNames(g, c), (std::vector<std::string>{"make", "refine", "use"}));
+    else
+      EXPECT_EQ(c.culled.size(), 2u) << "nobody reads x: both steps go";
+  }
+}
+
+TEST(GraphErrors, UpdateWithoutAnEarlierWriterNamesThePass) {
+  RenderGraph g;
+  g.declareCache("voxels", kImage);
+  g.addPass("voxelize", PassKind::Raster, [](PassBuilder& b) { b.update("voxels", Usage::StorageWrite); }, nullptr);
+  g.addPass("clear", PassKind::Compute, [](PassBuilder& b) { b.write("voxels", Usage::StorageWrite); }, nullptr);
+  std::string e = errorOf(g);
+  EXPECT_NE(e.find("pass `voxelize` updates `voxels`, which no pass declared before it writes"), std::string::npos) << e;
+}
+
 TEST(GraphErrors, ReadOfUnwrittenResourceNamesBoth) {
   // A transient is declared by the pass that creates (writes) it, so the reachable misuse
   // is a read of a name no pass writes.

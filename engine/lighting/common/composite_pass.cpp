@@ -39,23 +39,7 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
       graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, "scene-linear radiance before exposure");
   if (!path.radiance.empty()) {
     // The path computed the whole image: pass it through (32-bit float -> half).
-    const std::string source = path.radiance;
-    graph.addPass(
-        "composite", graph::PassKind::Transfer,
-        [&](graph::PassBuilder& b) {
-          b.read(source, Usage::TransferSrc);
-          b.create(kCompositeHdr, hdrDesc, Usage::TransferDst);
-        },
-        [source](graph::PassContext& ctx) {
-          const gpu::Image& src = ctx.image(source);
-          const gpu::Image& dst = ctx.image(kCompositeHdr);
-          VkImageBlit blit{};
-          blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-          blit.srcOffsets[1] = {int32_t(src.extent().width), int32_t(src.extent().height), 1};
-          blit.dstOffsets[1] = {int32_t(dst.extent().width), int32_t(dst.extent().height), 1};
-          vkCmdBlitImage(ctx.cmd, src.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst.handle(),
-                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
-        });
+    TransferPass("composite").blit(path.radiance, kCompositeHdr, hdrDesc).add(graph);
     return;
   }
   // Without a sun the shadow map is never sampled (the shader tests kFrameFlagSunShadows):

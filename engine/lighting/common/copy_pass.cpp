@@ -1,21 +1,13 @@
 #include "lighting/common/copy_pass.h"
 
-#include "graph/executor.h"
+#include "lighting/common/pass_builders.h"
 
 namespace tl::lighting {
 
 void addCopyPass(graph::RenderGraph& graph, std::string_view name, std::vector<ImageCopy> copies) {
-  graph.addPass(
-      name, graph::PassKind::Transfer,
-      [&](graph::PassBuilder& b) {
-        for (const auto& c : copies) {
-          b.read(c.from, graph::Usage::TransferSrc);
-          b.write(c.to, graph::Usage::TransferDst);
-        }
-      },
-      [copies](graph::PassContext& ctx) {
-        for (const auto& c : copies) gpu::copyImage(ctx.cmd, ctx.image(c.from), ctx.image(c.to));
-      });
+  TransferPass pass{std::string(name)};
+  for (const ImageCopy& c : copies) pass.copy(c.from, c.to);
+  pass.add(graph);
 }
 
 }  // namespace tl::lighting

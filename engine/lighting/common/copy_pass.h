@@ -1,11 +1,11 @@
-// A transfer pass that copies images into others of the same size, declared to the graph:
-// how paths keep this frame's results as next frame's history, and views keep a copy to compare against.
+// A transfer pass of copies alone (TransferPass's common case, pass_builders.h): how paths keep
+// this frame's results as next frame's history, and views keep a copy to compare against.
 #pragma once
 
 #include "graph/graph.h"
 
 #include <string>
-#include <utility>
+#include <string_view>
 #include <vector>
 
 namespace tl::lighting {

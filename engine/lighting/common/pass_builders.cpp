@@ -66,6 +66,8 @@ void BindingList::entry(uint32_t binding, Kind kind, std::string_view resource, 
   e.sampler = options.sampler;
   e.optional = options.optional;
   e.present = options.present;
+  e.mip = options.mip;
+  e.update = options.update;
   entries_.push_back(std::move(e));
 }
 
@@ -158,6 +160,8 @@ std::function<void(graph::PassBuilder&)> BindingList::setup() const {
       if (!declared.emplace(e.resource, u).second) continue;
       if (e.create)
         b.create(e.resource, *e.create, u);
+      else if (e.update)
+        b.update(e.resource, u);
       else if (e.kind == Kind::StorageInOut || graph::isWrite(u))
         b.write(e.resource, u);
       else
@@ -179,12 +183,13 @@ std::function<void(graph::PassContext&)> BindingList::bindAndWrite(const gpu::Pi
     VkImageView view;
     VkImageLayout layout;
     VkBuffer buffer;
+    std::optional<uint32_t> mip;
   };
   std::vector<Write> writes;
   for (const Entry& e : entries_)
     if (e.present)
       writes.push_back({e.binding, e.kind, e.resource, e.kind == Kind::Sampled ? device_.sampler(e.sampler) : VK_NULL_HANDLE,
-                        e.tlas, e.constant, e.view, e.layout, e.buffer});
+                        e.tlas, e.constant, e.view, e.layout, e.buffer, e.mip});
   return [&pipeline, writes = std::move(writes), push = pushBytes_, finish = finishPush_](graph::PassContext& ctx) {
     ctx.bind(pipeline);
     if (!push.empty()) {
@@ -207,7 +212,11 @@ std::function<void(graph::PassContext&)> BindingList::bindAndWrite(const gpu::Pi
         case Kind::BufferOut: d.storageBuffer(w.binding, ctx.buffer(w.resource).handle()); break;
         case Kind::Sampled: d.sampledImage(w.binding, ctx.image(w.resource).view(), w.sampler, ctx.layout(w.resource)); break;
         case Kind::Tlas: d.accelerationStructure(w.binding, w.tlas); break;
-        default: d.storageImage(w.binding, ctx.image(w.resource).view()); break;
+        default: {
+          const gpu::Image& image = ctx.image(w.resource);
+          d.storageImage(w.binding, w.mip ? image.mipView(*w.mip) : image.view());
+          break;
+        }
       }
     }
   };
@@ -230,9 +239,14 @@ ComputePass& ComputePass::record(std::function<void(graph::PassContext&)> fn) {
   return *this;
 }
 
+ComputePass& ComputePass::pipelineName(std::string name) {
+  pipelineName_ = std::move(name);
+  return *this;
+}
+
 graph::PassId ComputePass::add(graph::RenderGraph& graph) {
   gpu::ComputePipelineDesc d;
-  d.name = name_;
+  d.name = pipelineName_.empty() ? name_ : pipelineName_;
   d.shader = shaderNames_;
   d.layout.bindings = layout();
   d.layout.pushConstantBytes = uint32_t(pushBytes_.size());
@@ -363,8 +377,13 @@ RasterPass& RasterPass::area(uint32_t width, uint32_t height) {
   return *this;
 }
 
-RasterPass& RasterPass::drawsScene(const gpu::DescriptorTable& table, bool materials, Usage geometry) {
+RasterPass& RasterPass::sceneTable(const gpu::DescriptorTable& table) {
   sceneTable_ = &table;
+  return *this;
+}
+
+RasterPass& RasterPass::drawsScene(const gpu::DescriptorTable& table, bool materials, Usage geometry) {
+  sceneTable(table);
   // What readSceneInputs reads (frame_inputs.h), as extra reads: the frame constants' read is
   // one access with a uniform binding of them.
   reads(kFrameConstants, Usage::StorageRead);
@@ -377,16 +396,6 @@ RasterPass& RasterPass::drawsScene(const gpu::DescriptorTable& table, bool mater
 
 RasterPass& RasterPass::draw(Draw fn) {
   draw_ = std::move(fn);
-  return *this;
-}
-
-RasterPass& RasterPass::record(std::function<void(graph::PassContext&, const Recording&)> fn) {
-  record_ = std::move(fn);
-  return *this;
-}
-
-RasterPass& RasterPass::alsoAccesses(std::function<void(graph::PassBuilder&)> fn) {
-  alsoAccesses_ = std::move(fn);
   return *this;
 }
 
@@ -415,14 +424,13 @@ graph::PassId RasterPass::add(graph::RenderGraph& graph) {
   }
 
   auto setupList = setup();
-  auto setupAll = [setupList, colors = colors_, depth = depth_, also = alsoAccesses_](graph::PassBuilder& b) {
+  auto setupAll = [setupList, colors = colors_, depth = depth_](graph::PassBuilder& b) {
     setupList(b);
-    if (also) also(b);
     for (const Target& c : colors) b.create(c.name, c.create, Usage::ColorAttachment);
     if (depth) b.create(depth->name, depth->create, Usage::DepthAttachment);
   };
   auto execute = [prologues = std::move(prologues), pipelines = std::move(pipelines), table = sceneTable_, colors = colors_,
-                  depth = depth_, area = area_, draw = draw_, record = record_](graph::PassContext& ctx) {
+                  depth = depth_, area = area_, draw = draw_](graph::PassContext& ctx) {
     std::vector<graph::Attachment> colorAttachments;
     for (const Target& c : colors) colorAttachments.push_back({c.name, c.clearColor, {}});
     std::optional<graph::Attachment> depthAttachment;
@@ -432,22 +440,91 @@ graph::PassId RasterPass::add(graph::RenderGraph& graph) {
       ctx.flushDescriptors();
       if (table) table->bind(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines[i]->layout(), shared::kSceneSet);
     };
-    Recording r;
-    r.begin = [&] {
-      ctx.beginRendering(colorAttachments, depthAttachment, area);
-      use(0);
-    };
-    r.end = [&] { ctx.endRendering(); };
-    r.use = use;
-    if (record) {
-      record(ctx, r);
-      return;
-    }
-    r.begin();
+    ctx.beginRendering(colorAttachments, depthAttachment, area);
+    use(0);
     if (draw) draw(ctx, use);
-    r.end();
+    ctx.endRendering();
   };
   return graph.addPass(name_, graph::PassKind::Raster, std::move(setupAll), std::move(execute));
+}
+
+// ---- TransferPass -----------------------------------------------------------------------
+
+TransferPass& TransferPass::copy(std::string_view from, std::string_view to) {
+  steps_.push_back({Op::Copy, std::string(from), std::string(to), std::nullopt});
+  return *this;
+}
+
+TransferPass& TransferPass::blit(std::string_view from, std::string_view to, std::optional<graph::ResourceDesc> create) {
+  steps_.push_back({Op::Blit, std::string(from), std::string(to), std::move(create)});
+  return *this;
+}
+
+TransferPass& TransferPass::clear(std::string_view image) {
+  steps_.push_back({Op::Clear, {}, std::string(image), std::nullopt});
+  return *this;
+}
+
+graph::PassId TransferPass::add(graph::RenderGraph& graph) const {
+  auto setup = [steps = steps_](graph::PassBuilder& b) {
+    for (const Step& s : steps) {
+      if (s.op != Op::Clear) b.read(s.from, Usage::TransferSrc);
+      if (s.create)
+        b.create(s.to, *s.create, Usage::TransferDst);
+      else
+        b.write(s.to, Usage::TransferDst);
+    }
+  };
+  auto execute = [steps = steps_](graph::PassContext& ctx) {
+    for (const Step& s : steps) {
+      if (s.op == Op::Copy) gpu::copyImage(ctx.cmd, ctx.image(s.from), ctx.image(s.to));
+      if (s.op == Op::Blit) gpu::blitImage(ctx.cmd, ctx.image(s.from), ctx.image(s.to));
+      if (s.op == Op::Clear) gpu::clearImage(ctx.cmd, ctx.image(s.to), ctx.layout(s.to));
+    }
+  };
+  return graph.addPass(name_, graph::PassKind::Transfer, setup, std::move(execute));
+}
+
+// ---- AccelerationStructurePass ----------------------------------------------------------
+
+AccelerationStructurePass& AccelerationStructurePass::input(std::string_view buffer) {
+  accesses_.emplace_back(std::string(buffer), Usage::BuildInput);
+  return *this;
+}
+
+AccelerationStructurePass& AccelerationStructurePass::reads(std::string_view structure) {
+  accesses_.emplace_back(std::string(structure), Usage::AccelerationStructureRead);
+  return *this;
+}
+
+AccelerationStructurePass& AccelerationStructurePass::writes(std::string_view structure) {
+  accesses_.emplace_back(std::string(structure), Usage::AccelerationStructureWrite);
+  return *this;
+}
+
+AccelerationStructurePass& AccelerationStructurePass::scratch(std::string_view name, VkDeviceSize bytes, std::string what) {
+  scratch_ = std::string(name);
+  scratchDesc_ = graph::ResourceDesc::buffer(bytes, std::move(what));
+  return *this;
+}
+
+AccelerationStructurePass& AccelerationStructurePass::record(Record fn) {
+  record_ = std::move(fn);
+  return *this;
+}
+
+graph::PassId AccelerationStructurePass::add(graph::RenderGraph& graph) const {
+  auto setup = [accesses = accesses_, scratch = scratch_, desc = scratchDesc_](graph::PassBuilder& b) {
+    for (const auto& [name, usage] : accesses) {
+      if (graph::isWrite(usage))
+        b.write(name, usage);
+      else
+        b.read(name, usage);
+    }
+    b.create(scratch, desc, Usage::BuildScratch);
+  };
+  auto execute = [record = record_, scratch = scratch_](graph::PassContext& ctx) { record(ctx, ctx.buffer(scratch)); };
+  return graph.addPass(name_, graph::PassKind::AccelerationStructureBuild, setup, std::move(execute));
 }
 
 }  // namespace tl::lighting

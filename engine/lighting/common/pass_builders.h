@@ -17,7 +17,9 @@
 // Misuse (a binding declared twice, a binding the shader has and the list lacks or types
 // differently) is one error naming the pass, the binding and both sides. RayTracingPass is the
 // same list over a ray-tracing pipeline (checked against the union of its stages' bindings),
-// with the scene table as set 1 and a trace instead of the dispatch (see below).
+// with the scene table as set 1 and a trace instead of the dispatch (see below); RasterPass the
+// same over a graphics pipeline. The passes without descriptors are lists too: TransferPass
+// (copies, blits, clears) and AccelerationStructurePass (builds and refits).
 #pragma once
 
 #include "gpu/descriptor_table.h"
@@ -59,6 +61,8 @@ struct EntryOptions {
   std::optional<graph::ResourceDesc> create;  // the pass creates the resource
   gpu::SamplerDesc sampler{};
   bool optional = false, present = true;
+  std::optional<uint32_t> mip;  // a storage image's view of one mip level
+  bool update = false;          // the next step of an earlier pass's write (graph::PassBuilder::update)
 };
 
 // What every pass builder shares: the set-0 binding list and what it yields (the graph
@@ -75,6 +79,8 @@ class BindingList {
     gpu::SamplerDesc sampler{};
     VkAccelerationStructureKHR tlas = VK_NULL_HANDLE;
     bool optional = false, present = true;
+    std::optional<uint32_t> mip;
+    bool update = false;
     bool constant = false;  // outside the graph: `view` (with `layout`) or `buffer`
     VkImageView view = VK_NULL_HANDLE;
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -148,6 +154,24 @@ class BindingPass : public BindingList {
     return listed(binding, Kind::StorageOut, image, {.create = create});
   }
   Self& storageInOut(uint32_t binding, std::string_view image) { return listed(binding, Kind::StorageInOut, image); }
+  // A storage image a pass declared before this one writes, read and written in place as the
+  // next step of that work (graph::PassBuilder::update): the voxels' clear, then each
+  // voxelization round. The graph orders the steps and places the barriers between them.
+  Self& storageUpdate(uint32_t binding, std::string_view image) {
+    return listed(binding, Kind::StorageInOut, image, {.update = true});
+  }
+  // One mip level of a storage image (its view of that level), for a chain that makes a level
+  // per pass from the one before: the first pass writes its level with storageOut, each next
+  // reads the last level with storageIn and writes its own with storageUpdate.
+  Self& storageIn(uint32_t binding, std::string_view image, uint32_t mip) {
+    return listed(binding, Kind::StorageIn, image, {.mip = mip});
+  }
+  Self& storageOut(uint32_t binding, std::string_view image, uint32_t mip) {
+    return listed(binding, Kind::StorageOut, image, {.mip = mip});
+  }
+  Self& storageUpdate(uint32_t binding, std::string_view image, uint32_t mip) {
+    return listed(binding, Kind::StorageInOut, image, {.mip = mip, .update = true});
+  }
   // A sampled input that may be absent from this frame's graph (nobody wrote it): then there
   // is no access and no descriptor (the binding is partially bound, no stand-in resource);
   // present() says which, for the push constant that tells the shader.
@@ -233,6 +257,9 @@ class ComputePass final : public BindingPass<ComputePass> {
                         uint32_t localZ = 1);
   // Instead of one dispatch: records with the pipeline bound and the descriptors pending.
   ComputePass& record(std::function<void(graph::PassContext&)> fn);
+  // Passes that run one shader over one list share a pipeline by this name (the voxel mips, a
+  // pass per level); by default a pass names its own.
+  ComputePass& pipelineName(std::string name);
 
   // Checks the list, gets the pipeline and adds the pass. Throws PassBuilderError.
   graph::PassId add(graph::RenderGraph& graph);
@@ -240,6 +267,7 @@ class ComputePass final : public BindingPass<ComputePass> {
  private:
   uint32_t size_[6] = {1, 1, 1, 8, 8, 1};
   std::function<void(graph::PassContext&)> record_;
+  std::string pipelineName_;
 };
 
 // A ray-tracing pipeline's shaders: gpu::RayTracingPipelineDesc less its layout, which the
@@ -329,18 +357,10 @@ class RasterPass final : public BindingPass<RasterPass> {
   // the vertices and indices are read, as vertex input or, fetched by the shader, as storage).
   RasterPass& drawsScene(const gpu::DescriptorTable& table, bool materials = true,
                          graph::Usage geometry = graph::Usage::VertexOrIndex);
+  // The scene table alone, for a pass outside the frame (the albedo baker: no frame
+  // constants), which states the buffers its draws read with reads().
+  RasterPass& sceneTable(const gpu::DescriptorTable& table);
   RasterPass& draw(Draw fn);
-  // Instead of draw(): the pass records around its renderings too (a clear before, barriers
-  // between rounds); `begin()` starts rendering to the attachments (or the area) with variant 0
-  // bound, `use(i)` binds another, `end()` ends it.
-  struct Recording {
-    std::function<void()> begin, end;
-    Use use;
-  };
-  RasterPass& record(std::function<void(graph::PassContext&, const Recording&)> fn);
-  // Accesses the list cannot state (a resource written by a transfer or compute stage inside
-  // the pass): added to the list's setup.
-  RasterPass& alsoAccesses(std::function<void(graph::PassBuilder&)> fn);
 
   // Checks each pipeline's list against its stages, gets the pipelines and adds the pass.
   // Throws PassBuilderError.
@@ -359,8 +379,64 @@ class RasterPass final : public BindingPass<RasterPass> {
   std::optional<VkExtent2D> area_;
   const gpu::DescriptorTable* sceneTable_ = nullptr;
   Draw draw_;
-  std::function<void(graph::PassContext&, const Recording&)> record_;
-  std::function<void(graph::PassBuilder&)> alsoAccesses_;
+};
+
+// A transfer pass stated as one list: copies (same size and format), blits (converting the
+// format) and clears, from which the graph accesses follow. How paths keep this frame's results
+// as next frame's history (addCopyPass, copy_pass.h), the composite passes a path's whole image
+// through and a rebuilt cache starts empty.
+//
+//   TransferPass("composite").blit(path.radiance, kCompositeHdr, hdrDesc).add(graph);
+class TransferPass {
+ public:
+  explicit TransferPass(std::string name) : name_(std::move(name)) {}
+  TransferPass& copy(std::string_view from, std::string_view to);
+  // Into `to`, which this pass creates with `create` where given.
+  TransferPass& blit(std::string_view from, std::string_view to, std::optional<graph::ResourceDesc> create = std::nullopt);
+  // Mip 0 to zero.
+  TransferPass& clear(std::string_view image);
+  graph::PassId add(graph::RenderGraph& graph) const;
+
+ private:
+  enum class Op : uint8_t { Copy, Blit, Clear };
+  struct Step {
+    Op op;
+    std::string from, to;  // a clear has only `to`
+    std::optional<graph::ResourceDesc> create;
+  };
+  std::string name_;
+  std::vector<Step> steps_;
+};
+
+// An acceleration-structure build or refit stated as one list: the buffers it builds from
+// (vertices and indices, a top level's instances), the structures it reads (the bottom levels
+// a top level refers to; a refit reads what it rewrites), the one it writes, and its scratch,
+// which the pass creates and hands to the recording.
+//
+//   AccelerationStructurePass("rt.tlas")
+//       .input(kRtTlasInstances)
+//       .writes(kRtTlas)
+//       .scratch(kRtTlasScratch, top.scratchBytes(), "scratch of the top-level build")
+//       .record([this](graph::PassContext& ctx, const gpu::Buffer& scratch) { scene_->topLevel().record(ctx.cmd, scratch); })
+//       .add(graph);
+class AccelerationStructurePass {
+ public:
+  using Record = std::function<void(graph::PassContext&, const gpu::Buffer& scratch)>;
+
+  explicit AccelerationStructurePass(std::string name) : name_(std::move(name)) {}
+  AccelerationStructurePass& input(std::string_view buffer);
+  AccelerationStructurePass& reads(std::string_view structure);
+  AccelerationStructurePass& writes(std::string_view structure);
+  AccelerationStructurePass& scratch(std::string_view name, VkDeviceSize bytes, std::string what);
+  AccelerationStructurePass& record(Record fn);
+  graph::PassId add(graph::RenderGraph& graph) const;
+
+ private:
+  std::string name_;
+  std::vector<std::pair<std::string, graph::Usage>> accesses_;  // reads and the write
+  std::string scratch_;
+  graph::ResourceDesc scratchDesc_;
+  Record record_;
 };
 
 }  // namespace tl::lighting

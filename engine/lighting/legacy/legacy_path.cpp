@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 namespace tl::lighting {
 namespace {
@@ -219,72 +220,48 @@ class LegacyPath final : public LightingPath {
   }
 
  private:
-  // legacy.voxelize and legacy.voxel.mips over the work's regions (whole levels for a rebuild).
+  // The voxel work over the work's regions (whole levels for a rebuild), as steps of one
+  // write each of the voxels and their mips, which the graph orders and fences: the regions
+  // emptied, voxelized in up to three rounds, then the mips, a level per pass.
   void addVoxelPasses(graph::RenderGraph& graph, FrameInputs& in, const LegacyClipmapFit& fit,
                       std::shared_ptr<const VoxelWork> work, bool feedback, uint32_t screenRadiance) {
     const uint32_t R = fit.clipmap.resolution, mips = fit.clipmap.mipCount;
     LegacyVoxelPush vpush{};
     vpush.clipmap = fit.clipmap;
     vpush.screenRadiance = screenRadiance;
-    // Every binding but the frame, the voxels and the geometry is read only where the shader
-    // is told it is there: the sun's map under kFrameFlagSunShadows, the light table when
-    // lightCount > 0, the lights' maps through a light's shadowView, last frame's image when
-    // screenRadiance (only with feedback). Absent, they are unbound: no stand-ins.
-    const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
-    const bool mapped = in.lightShadowViews > 0;
-    RasterPass(in.device, "legacy.voxelize", voxelizePipeline())
-        .uniform(shared::kLegacyBindingFrame, kFrameConstants)
-        .optionalSampled(shared::kLegacyBindingShadow, kShadowSunDepth, sun, samplers::sunShadowCompare)
-        .storageInOut(shared::kLegacyBindingRadiance, kVoxelRadiance)
-        .bufferIn(shared::kLegacyBindingVertices, kSceneVertices)  // voxelize.vert fetches whole triangles
-        .bufferIn(shared::kLegacyBindingIndices, kSceneIndices)
-        .optionalBufferIn(shared::kBindingLights, kLightTable, in.constants.lightCount > 0)
-        .optionalBufferIn(shared::kBindingLightShadowViews, kLightShadowViews, mapped)
-        .optionalSampled(shared::kBindingLightShadowAtlas, kLightShadowAtlas, mapped, samplers::sunShadowCompare)
-        .optionalSampled(shared::kLegacyBindingPrevRadiance, kLegacyHistRadiance, feedback)
-        .optionalSampled(shared::kLegacyBindingPrevDepth, kLegacyHistDepth, feedback)
-        .drawsScene(in.scene.table(), true, Usage::StorageRead)
-        .area(R, R)
-        .push(vpush)
-        // Emptied first, by a transfer clear (a rebuild) or a compute dispatch over the regions
-        // (an update): the graph's barrier before the pass covers those stages too.
-        .alsoAccesses([full = work->kind == VoxelWork::Kind::Full](graph::PassBuilder& b) {
-          if (full)
-            b.write(kVoxelRadiance, Usage::TransferDst);
-          else
-            b.write(kVoxelRadiance, Usage::StorageWrite, graph::PassKind::Compute);
-        })
-        .record([this, &in, vpush, work](graph::PassContext& ctx, const RasterPass::Recording& rendering) mutable {
-          const gpu::Image& radiance = ctx.image(kVoxelRadiance);
-          if (work->kind == VoxelWork::Kind::Full)
-            clearStorage(ctx.cmd, {&radiance});
-          else
-            clearRegions(ctx, radiance, vpush, *work);
-          // Round 0 makes every touched voxel opaque on all faces; round 1 writes the faces each
-          // surface looks out of; emitters come last, after a barrier, so where an emitter shares
-          // a voxel with a dark surface (a light panel under a ceiling) the emitter wins.
-          struct Round {
-            uint32_t mode;
-            DrawSet set;
-            const std::vector<uint32_t>* instances;
-          };
-          const Round rounds[] = {{0, DrawSet::All, &allInstances_},
-                                  {1, DrawSet::Plain, &plainInstances_},
-                                  {1, DrawSet::Emissive, &emissiveInstances_}};
-          bool first = true;
-          std::vector<uint32_t> draw;
-          for (const Round& round : rounds) {
-            if (round.instances->empty()) continue;
-            if (!first)
-              gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                                 VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-            first = false;
-            rendering.begin();
-            vpush.voxelRound = round.mode;
+
+    // The voxels start empty: a rebuild's by a transfer clear of the whole image (a compute
+    // clear costs 10 ms more on lavapipe), a patch's in all six face blocks of each region.
+    if (work->kind == VoxelWork::Kind::Full)
+      TransferPass("legacy.voxel.clear").clear(kVoxelRadiance).add(graph);
+    else
+      ComputePass(in.device, "legacy.voxel.clear", "legacy/voxel_clear.comp")
+          .storageOut(shared::kLegacyBindingRadiance, kVoxelRadiance)
+          .push(vpush)
+          .record([vpush, work](graph::PassContext& ctx) { dispatchOverRegions(ctx, vpush, *work, 0); })
+          .add(graph);
+
+    // Round 0 makes every touched voxel opaque on all faces; round 1 writes the faces each
+    // surface looks out of; emitters come last, in a pass of their own, so where an emitter
+    // shares a voxel with a dark surface (a light panel under a ceiling) the emitter wins.
+    struct Round {
+      const char* name;
+      uint32_t mode;
+      DrawSet set;
+      const std::vector<uint32_t>* instances;
+    };
+    const Round rounds[] = {{"legacy.voxelize", 0, DrawSet::All, &allInstances_},
+                            {"legacy.voxelize.faces", 1, DrawSet::Plain, &plainInstances_},
+                            {"legacy.voxelize.emitters", 1, DrawSet::Emissive, &emissiveInstances_}};
+    for (const Round& round : rounds) {
+      if (round.instances->empty()) continue;
+      vpush.voxelRound = round.mode;
+      voxelizePass(in, round.name, vpush, feedback, R)
+          .draw([this, &in, vpush, work, set = round.set](graph::PassContext& ctx, const RasterPass::Use&) mutable {
+            std::vector<uint32_t> draw;
             for (uint32_t level = 0; level < work->regions.size(); ++level)
               for (size_t r = 0; r < work->regions[level].size(); ++r) {
-                selectInstances(work->instances[level][r], round.set, draw);
+                selectInstances(work->instances[level][r], set, draw);
                 if (draw.empty()) continue;
                 const VoxelRegion& region = work->regions[level][r];
                 vpush.regionMin = glm::ivec4(region.min, 0);
@@ -296,36 +273,49 @@ class LegacyPath final : public LightingPath {
                   in.scene.drawInstancesUnindexed(ctx.cmd, draw);
                 }
               }
-            rendering.end();
-          }
-        })
-        .add(graph);
+          })
+          .add(graph);
+    }
 
-    graph.addPass(
-        "legacy.voxel.mips", graph::PassKind::Compute,
-        [&](graph::PassBuilder& b) {
-          b.read(kVoxelRadiance, Usage::StorageRead);
-          b.write(kVoxelRadianceMips, Usage::StorageWrite);
-        },
-        [this, mips, vpush, work](graph::PassContext& ctx) mutable {
-          const gpu::Image& r0 = ctx.image(kVoxelRadiance);
-          const gpu::Image& rm = ctx.image(kVoxelRadianceMips);
-          ctx.bind(mip_);
-          for (uint32_t m = 0; m < mips; ++m) {
-            if (m > 0)  // the next mip reads what the previous dispatches wrote
-              gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-            ctx.descriptors()
-                .storageImage(shared::kLegacyBindingMipSrcRadiance, m == 0 ? r0.view() : rm.mipView(m - 1))
-                .storageImage(shared::kLegacyBindingRadianceMips, rm.mipView(m));
-            ctx.flushDescriptors();
-            // Each region's footprint at this mip; footprints of two regions may share texels
-            // at coarse mips, which they then write with the same value.
-            for (uint32_t level = 0; level < work->regions.size(); ++level)
-              for (const VoxelRegion& region : work->regions[level])
-                dispatchOverRegion(ctx, vpush, level, mipFootprint(region, m + 1));
-          }
-        });
+    // Mip m + 1 of the clipmap from mip m: the voxels for the first, the last mip for each next.
+    for (uint32_t m = 0; m < mips; ++m) {
+      ComputePass pass(in.device, fmt::format("legacy.voxel.mip{}", m + 1), "legacy/voxel_mip.comp");
+      if (m == 0)
+        pass.storageIn(shared::kLegacyBindingMipSrcRadiance, kVoxelRadiance)
+            .storageOut(shared::kLegacyBindingRadianceMips, kVoxelRadianceMips, m);
+      else
+        pass.storageIn(shared::kLegacyBindingMipSrcRadiance, kVoxelRadianceMips, m - 1)
+            .storageUpdate(shared::kLegacyBindingRadianceMips, kVoxelRadianceMips, m);
+      pass.pipelineName("legacy.voxel.mips")
+          .push(vpush)
+          .record([vpush, work, m](graph::PassContext& ctx) { dispatchOverRegions(ctx, vpush, *work, m + 1); })
+          .add(graph);
+    }
+  }
+
+  // One voxelization round's pass: the list every round binds, the voxels as the next step.
+  // Every binding but the frame, the voxels and the geometry is read only where the shader is
+  // told it is there: the sun's map under kFrameFlagSunShadows, the light table when
+  // lightCount > 0, the lights' maps through a light's shadowView, last frame's image when
+  // screenRadiance (only with feedback). Absent, they are unbound: no stand-ins.
+  static RasterPass voxelizePass(FrameInputs& in, const char* name, const LegacyVoxelPush& vpush, bool feedback, uint32_t R) {
+    const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
+    const bool mapped = in.lightShadowViews > 0;
+    RasterPass pass(in.device, name, voxelizePipeline());
+    pass.uniform(shared::kLegacyBindingFrame, kFrameConstants)
+        .optionalSampled(shared::kLegacyBindingShadow, kShadowSunDepth, sun, samplers::sunShadowCompare)
+        .storageUpdate(shared::kLegacyBindingRadiance, kVoxelRadiance)
+        .bufferIn(shared::kLegacyBindingVertices, kSceneVertices)  // voxelize.vert fetches whole triangles
+        .bufferIn(shared::kLegacyBindingIndices, kSceneIndices)
+        .optionalBufferIn(shared::kBindingLights, kLightTable, in.constants.lightCount > 0)
+        .optionalBufferIn(shared::kBindingLightShadowViews, kLightShadowViews, mapped)
+        .optionalSampled(shared::kBindingLightShadowAtlas, kLightShadowAtlas, mapped, samplers::sunShadowCompare)
+        .optionalSampled(shared::kLegacyBindingPrevRadiance, kLegacyHistRadiance, feedback)
+        .optionalSampled(shared::kLegacyBindingPrevDepth, kLegacyHistDepth, feedback)
+        .drawsScene(in.scene.table(), true, Usage::StorageRead)
+        .area(R, R)
+        .push(vpush);
+    return pass;
   }
 
   // Where the levels sit in the world, per level: the corner in whole voxels and the voxel
@@ -455,11 +445,7 @@ class LegacyPath final : public LightingPath {
                    uint32_t(region.max[v] - region.min[v]));
   }
 
-  // Empties a partial update's regions with a compute dispatch inside the raster pass (a
-  // transfer clear empties whole images): the pass declares that compute write, so the graph's
-  // barrier orders it after everything before the pass; the fragment writes wait for it here.
-  // One compute dispatch over a box of one level's voxels, all six face blocks (4^3 groups):
-  // the region clear and the region's mips.
+  // One compute dispatch over a box of one level's voxels, all six face blocks (4^3 groups).
   static void dispatchOverRegion(graph::PassContext& ctx, LegacyVoxelPush push, uint32_t level, const VoxelRegion& region) {
     push.level = level;
     push.regionMin = glm::ivec4(region.min, 0);
@@ -469,15 +455,12 @@ class LegacyPath final : public LightingPath {
     ctx.dispatch(6 * uint32_t(size.x), uint32_t(size.y), uint32_t(size.z), 4, 4, 4);
   }
 
-  void clearRegions(graph::PassContext& ctx, const gpu::Image& radiance, LegacyVoxelPush push, const VoxelWork& work) {
-    ctx.bind(clear_);
-    ctx.descriptors().storageImage(shared::kLegacyBindingRadiance, radiance.view());
-    ctx.flushDescriptors();
+  // The work's regions at clipmap mip `mip` (0: the voxels themselves): a patch's clear and
+  // each mip. Footprints of two regions may share texels at coarse mips, which both write alike.
+  static void dispatchOverRegions(graph::PassContext& ctx, const LegacyVoxelPush& push, const VoxelWork& work, uint32_t mip) {
     for (uint32_t level = 0; level < work.regions.size(); ++level)
-      for (const VoxelRegion& region : work.regions[level]) dispatchOverRegion(ctx, push, level, region);
-    gpu::memoryBarrier(ctx.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+      for (const VoxelRegion& region : work.regions[level])
+        dispatchOverRegion(ctx, push, level, mip == 0 ? region : mipFootprint(region, mip));
   }
 
   // What the screen-space passes' shaders declare in legacy/legacy_common.glsl.
@@ -487,17 +470,8 @@ class LegacyPath final : public LightingPath {
         .sampled(shared::kLegacyBindingNormal, "gbuffer.normal");
     return pass;
   }
-  // A rebuild starts from empty voxels. The clear runs at the transfer stage inside a raster
-  // pass that declares it (the graph orders it after everything before the pass); the
-  // fragment writes wait for it here.
-  static void clearStorage(VkCommandBuffer cmd, std::initializer_list<const gpu::Image*> images) {
-    for (const gpu::Image* image : images) gpu::clearImage(cmd, *image, VK_IMAGE_LAYOUT_GENERAL);
-    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-  }
-
   void prepare(FrameInputs& in) {
-    if (mip_ && sceneId_ == in.scene.id()) return;
+    if (sceneId_ == in.scene.id()) return;
     sceneId_ = in.scene.id();
     plainInstances_.clear();
     emissiveInstances_.clear();
@@ -511,21 +485,6 @@ class LegacyPath final : public LightingPath {
       allInstances_.push_back(i);
       emissive_.push_back(emits ? 1 : 0);
     }
-    using B = gpu::Binding;
-    const auto storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    // The voxel passes bind mip views and run inside or beside the raster voxelization:
-    // still their own layouts (the screen-space passes are ComputePass lists).
-    auto compute = [&](const char* name, const char* shader, std::vector<B> bindings) {
-      gpu::ComputePipelineDesc d;
-      d.name = name;
-      d.shader = shader;
-      d.layout.bindings = std::move(bindings);
-      d.layout.pushConstantBytes = sizeof(LegacyVoxelPush);
-      return gpu::createComputePipeline(in.device, d);
-    };
-    mip_ = compute("legacy.voxel.mips", "legacy/voxel_mip.comp",
-                   {{shared::kLegacyBindingMipSrcRadiance, storage}, {shared::kLegacyBindingRadianceMips, storage}});
-    clear_ = compute("legacy.voxel.clear", "legacy/voxel_clear.comp", {{shared::kLegacyBindingRadiance, storage}});
   }
 
   // The voxelizing raster's shaders and state; its layout is the pass's list (RasterPass).
@@ -555,7 +514,7 @@ class LegacyPath final : public LightingPath {
     uint32_t regions = 0;
   };
 
-  uint64_t sceneId_ = 0;
+  std::optional<uint64_t> sceneId_;  // the scene prepare() last saw
   HistoryKeeper voxels_, screen_;
   std::vector<glm::dvec4> placement_;  // the voxels' placement in the last frame
   uint32_t settle_ = 0;
@@ -563,7 +522,6 @@ class LegacyPath final : public LightingPath {
   std::vector<uint8_t> emissive_;  // per instance
   std::vector<Seen> seen_;         // per instance
   WorkFigures lastWork_;
-  gpu::Pipeline clear_, mip_;
 };
 
 }  // namespace

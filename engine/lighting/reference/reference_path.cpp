@@ -279,36 +279,28 @@ class ReferencePath final : public LightingPath {
                                                                         "bottom levels of the deforming meshes"));
       in.executor.bindImportedBuffer(kBlasDeforming, deformingStorage_);
     }
-    if (!pendingRebuilds_.empty()) {
-      graph.addPass(
-          "reference.blas.rebuild", graph::PassKind::AccelerationStructureBuild,
-          [&](graph::PassBuilder& b) {
-            b.read(scene::kSceneVertices, graph::Usage::BuildInput);
-            b.read(scene::kSceneIndices, graph::Usage::BuildInput);
-            b.write(kBlasDeforming, graph::Usage::AccelerationStructureWrite);
-            b.create(kBlasScratch, graph::ResourceDesc::buffer(rebuildScratchBytes_, "scratch of the rebuilds"),
-                     graph::Usage::BuildScratch);
-          },
-          [this, &in](graph::PassContext& ctx) {
+    if (!pendingRebuilds_.empty())
+      AccelerationStructurePass("reference.blas.rebuild")
+          .input(scene::kSceneVertices)
+          .input(scene::kSceneIndices)
+          .writes(kBlasDeforming)
+          .scratch(kBlasScratch, rebuildScratchBytes_, "scratch of the rebuilds")
+          .record([this, &in](graph::PassContext& ctx, const gpu::Buffer& scratch) {
             for (uint32_t m : pendingRebuilds_) {
-              gpu::recordRebuild(ctx.cmd, ctx.device, blas_[m], meshGeometry(in, m), ctx.buffer(kBlasScratch),
-                                 rebuildScratchOffset_[m]);
+              gpu::recordRebuild(ctx.cmd, ctx.device, blas_[m], meshGeometry(in, m), scratch, rebuildScratchOffset_[m]);
               blasVersion_[m] = in.scene.meshVersion(m);
             }
             pendingRebuilds_.clear();
-          });
-    }
+          })
+          .add(graph);
     if (rebuildTop) {
-      graph.addPass(
-          "reference.tlas", graph::PassKind::AccelerationStructureBuild,
-          [&](graph::PassBuilder& b) {
-            b.read(kTlasInstances, graph::Usage::BuildInput);
-            if (deformingStorage_) b.read(kBlasDeforming, graph::Usage::AccelerationStructureRead);
-            b.write(kTlas, graph::Usage::AccelerationStructureWrite);
-            b.create(kTlasScratch, graph::ResourceDesc::buffer(tlas_.scratchBytes(), "scratch of the top-level build"),
-                     graph::Usage::BuildScratch);
-          },
-          [this](graph::PassContext& ctx) { tlas_.record(ctx.cmd, ctx.buffer(kTlasScratch)); });
+      AccelerationStructurePass top("reference.tlas");
+      top.input(kTlasInstances);
+      if (deformingStorage_) top.reads(kBlasDeforming);
+      top.writes(kTlas)
+          .scratch(kTlasScratch, tlas_.scratchBytes(), "scratch of the top-level build")
+          .record([this](graph::PassContext& ctx, const gpu::Buffer& scratch) { tlas_.record(ctx.cmd, scratch); })
+          .add(graph);
     }
   }
   // What a trace reads: the top level and, through it, the bottom levels a frame may rebuild.

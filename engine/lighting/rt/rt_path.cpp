@@ -410,28 +410,21 @@ class RtPath final : public LightingPath {
                                                         "bottom levels of the deforming meshes (refitted under a throttle)"));
       in.executor.bindImportedBuffer(kRtBlasDeforming, scene_->deformingStorage());
     }
-    if (deforming && scene_->refitsPending()) {
-      graph.addPass(
-          "rt.blas.refit", graph::PassKind::AccelerationStructureBuild,
-          [&](graph::PassBuilder& b) {
-            b.read(scene::kSceneVertices, Usage::BuildInput);
-            b.read(kRtBlasDeforming, Usage::AccelerationStructureRead);  // an update reads the structure it rewrites
-            b.write(kRtBlasDeforming, Usage::AccelerationStructureWrite);
-            b.create(kRtRefitScratch, graph::ResourceDesc::buffer(scene_->refitScratchBytes(), "scratch of the refits"),
-                     Usage::BuildScratch);
-          },
-          [this](graph::PassContext& ctx) { scene_->recordRefits(ctx.cmd, ctx.buffer(kRtRefitScratch)); });
-    }
-    graph.addPass(
-        "rt.tlas", graph::PassKind::AccelerationStructureBuild,
-        [&](graph::PassBuilder& b) {
-          b.read(kRtTlasInstances, Usage::BuildInput);
-          if (deforming) b.read(kRtBlasDeforming, Usage::AccelerationStructureRead);
-          b.write(kRtTlas, Usage::AccelerationStructureWrite);
-          b.create(kRtTlasScratch, graph::ResourceDesc::buffer(top.scratchBytes(), "scratch of the top-level build"),
-                   Usage::BuildScratch);
-        },
-        [this](graph::PassContext& ctx) { scene_->topLevel().record(ctx.cmd, ctx.buffer(kRtTlasScratch)); });
+    if (deforming && scene_->refitsPending())
+      AccelerationStructurePass("rt.blas.refit")
+          .input(scene::kSceneVertices)
+          .reads(kRtBlasDeforming)  // an update reads the structure it rewrites
+          .writes(kRtBlasDeforming)
+          .scratch(kRtRefitScratch, scene_->refitScratchBytes(), "scratch of the refits")
+          .record([this](graph::PassContext& ctx, const gpu::Buffer& scratch) { scene_->recordRefits(ctx.cmd, scratch); })
+          .add(graph);
+    AccelerationStructurePass tlas("rt.tlas");
+    tlas.input(kRtTlasInstances);
+    if (deforming) tlas.reads(kRtBlasDeforming);
+    tlas.writes(kRtTlas)
+        .scratch(kRtTlasScratch, top.scratchBytes(), "scratch of the top-level build")
+        .record([this](graph::PassContext& ctx, const gpu::Buffer& scratch) { scene_->topLevel().record(ctx.cmd, scratch); })
+        .add(graph);
   }
   // What a trace reads: the top level and, through it, the bottom levels a frame may rewrite.
   std::vector<std::string> structures() const {
