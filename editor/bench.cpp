@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 
 namespace {
 
@@ -25,6 +26,31 @@ nlohmann::json stats(const std::vector<double>& ms) {
 }
 
 
+// Wall-clock milliseconds per frame over `frames` frames, the host's recording included.
+double wallMsPerFrame(tl::session::Session& session, uint32_t frames) {
+  const auto start = std::chrono::steady_clock::now();
+  session.renderFrames(frames);
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / double(frames);
+}
+
+// One frame in flight against `inFlight`, in alternating turns (a drift of the machine's
+// load between the two falls on both): the mean of each side's turns and their ratio.
+nlohmann::json inFlightComparison(tl::session::Session& session, uint32_t inFlight, uint32_t frames) {
+  constexpr int kTurns = 2;
+  double one = 0.0, many = 0.0;
+  for (int turn = 0; turn < kTurns; ++turn) {
+    session.setFramesInFlight(1);
+    one += wallMsPerFrame(session, frames) / kTurns;
+    session.setFramesInFlight(inFlight);
+    many += wallMsPerFrame(session, frames) / kTurns;
+  }
+  return {{"framesInFlight", inFlight},
+          {"oneInFlightWallMs", one},
+          {"framesInFlightWallMs", many},
+          {"speedup", many > 0.0 ? one / many : 0.0},
+          {"turns", kTurns}};
+}
+
 }  // namespace
 
 nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o,
@@ -37,6 +63,7 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o,
                double(done) / double(warmup + measured));
   };
   if (o.rays) tl::session::enableRayProbe(session);
+  session.setFramesInFlight(o.framesInFlight);
   session.renderFrames(warmup, report);
   std::vector<double> firstFrame = session.frameGpuMs();
   // The ray figures read the last frame's pre-trace records and depth: requested before each
@@ -45,6 +72,7 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o,
     if (o.rays) tl::session::requestRayFigureBuffers(session);
   };
   std::vector<double> frameMs;
+  double wallMs = 0.0;  // wall-clock per measured frame
   tl::session::PassTimes passMs;
   auto collect = [&] {
     frameMs.insert(frameMs.end(), session.frameGpuMs().begin(), session.frameGpuMs().end());
@@ -60,15 +88,19 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o,
     for (uint32_t i = 0; i < measured; ++i) {
       session.resetHistory();
       requestRayBuffers();
-      session.renderFrames(1);
+      wallMs += wallMsPerFrame(session, 1) / double(measured);
       collect();
       report(warmup + i + 1);
     }
   } else {
     requestRayBuffers();
+    const auto start = std::chrono::steady_clock::now();
     session.renderFrames(measured, [&](uint32_t done) { report(warmup + done); });
+    wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / double(measured);
     collect();
   }
+  const nlohmann::json comparison =
+      o.againstOneInFlight ? inFlightComparison(session, o.framesInFlight, measured) : nlohmann::json();
   const auto& d = session.device();
   nlohmann::json figures = nlohmann::json::object();
   for (const auto& [name, value] : session.pathFigures()) figures[name] = value;
@@ -92,6 +124,9 @@ nlohmann::json runBench(tl::session::Session& session, const BenchOptions& o,
           {"vulkan", fmt::format("{}.{}.{}", VK_API_VERSION_MAJOR(d.apiVersion()), VK_API_VERSION_MINOR(d.apiVersion()),
                                  VK_API_VERSION_PATCH(d.apiVersion()))},
           {"frame", stats(frameMs)},
+          {"framesInFlight", o.framesInFlight},
+          {"wallMsPerFrame", wallMs},
+          {"inFlight", comparison},
           {"passes", passes},
           {"rays", o.rays ? tl::session::rayFigures(session, passMs) : nlohmann::json()},
           {"settings", tl::session::settingsJson(session.settings())},
@@ -110,6 +145,14 @@ std::string benchTable(const nlohmann::json& r) {
   };
   for (const auto& p : r["passes"]) row(p["pass"].get<std::string>(), p);
   row("frame", r["frame"]);
+  if (r.contains("wallMsPerFrame"))
+    s += fmt::format("  wall clock {:.2f} ms per frame with {} frame(s) in flight\n", r["wallMsPerFrame"].get<double>(),
+                     r["framesInFlight"].get<int>());
+  if (r.contains("inFlight") && r["inFlight"].is_object()) {
+    const auto& f = r["inFlight"];
+    s += fmt::format("  in flight: {:.2f} ms per frame with 1, {:.2f} with {}: {:.2f}x\n", f["oneInFlightWallMs"].get<double>(),
+                     f["framesInFlightWallMs"].get<double>(), f["framesInFlight"].get<int>(), f["speedup"].get<double>());
+  }
   if (r.contains("figures") && !r["figures"].empty()) {
     s += "  figures:";
     for (const auto& [name, value] : r["figures"].items()) s += fmt::format(" {}={:g}", name, value.get<double>());

@@ -15,6 +15,11 @@ struct BenchOptions {
   uint32_t warmup = 2;
   bool rays = false;  // rt path: raw ray throughput on the scene's TLAS against the path's traced rays/s
   bool cutEveryFrame = false;  // every measured frame starts without history: a camera cut's cost
+  uint32_t framesInFlight = 2;  // 1: the host waits for each frame before recording the next
+  // The wall-clock time per frame with one frame in flight against framesInFlight, measured
+  // in turns in the same run: what recording a frame while the device runs the one before
+  // gains on this device.
+  bool againstOneInFlight = false;
 };
 
 // `progress` (optional): what is being done and the fraction of the frames rendered.

@@ -172,6 +172,7 @@ class EditorApp {
   void handleCameraInput(float seconds);
   void startEngineFrame();
   void collectEngineFrame();
+  void collectOneEngineFrame();
   void presentIfChanged();
   void refreshShownFigures(double now);
   void finishLoad();
@@ -229,7 +230,9 @@ class EditorApp {
     std::optional<std::filesystem::path> capture;  // every buffer, into this folder
     std::string viewed;            // the viewer's resource when it began
   };
-  std::optional<FrameAsks> inFlight_;
+  // Oldest first: up to the session's frames in flight, collected in the order begun.
+  std::deque<FrameAsks> inFlight_;
+  uint32_t engineFrameLimit() const;
   bool renderDocPending_ = false;
   std::deque<Notice> notices_;
   bool captureInFlight_ = false;

@@ -12,13 +12,26 @@
 #include <imgui.h>
 #include <imgui_impl_vulkan.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
 namespace tl::editor {
 
+// How many engine frames may be in flight now. Ordinary frames overlap (the engine records
+// frame N+1 while the device runs frame N); a frame that must stand alone does not: a capture
+// or a snapshot reads every buffer of its own frame, a RenderDoc frame is bracketed, and a
+// bake steps only between frames.
+uint32_t EditorApp::engineFrameLimit() const {
+  const bool alone = bake_ || frameCapturePath_ || captureRequested_ || renderDocPending_ || session_->hasCapture() ||
+                     std::any_of(inFlight_.begin(), inFlight_.end(), [](const FrameAsks& a) { return a.capture || a.snapshot; });
+  return alone ? 1u : session_->framesInFlight();
+}
+
 void EditorApp::startEngineFrame() {
-  if (session_->frameInFlight() || inFlight_ || !engineActive()) return;
+  if (!engineActive()) return;
+  const uint32_t limit = engineFrameLimit();
+  if (inFlight_.size() >= limit || session_->framesInFlightNow() >= limit) return;
   const bool capture = session_->hasCapture();
   const uint32_t w = std::max(1u, uint32_t(viewportSize_.x * settings_.renderScale));
   const uint32_t h = std::max(1u, uint32_t(viewportSize_.y * settings_.renderScale));
@@ -89,7 +102,7 @@ void EditorApp::startEngineFrame() {
     } else {
       session_->beginFrame();
     }
-    inFlight_ = asks;
+    inFlight_.push_back(asks);
     ++engineFramesBegun_;
     // A resource the frame does not make (the path changed, a capture lacks it): the final
     // image shows, quietly, and the viewer follows.
@@ -110,11 +123,16 @@ void EditorApp::startEngineFrame() {
   }
 }
 
+// Every finished frame is collected, oldest first (a session that settled its frames for a
+// change of size or path has finished them all).
 void EditorApp::collectEngineFrame() {
-  if (!inFlight_ || !session_->frameDone()) return;
-  const FrameAsks asks = *inFlight_;
-  inFlight_.reset();
-  captureInFlight_ = false;
+  while (!inFlight_.empty() && session_->frameDone()) collectOneEngineFrame();
+}
+
+void EditorApp::collectOneEngineFrame() {
+  const FrameAsks asks = inFlight_.front();
+  inFlight_.pop_front();
+  if (asks.capture) captureInFlight_ = false;
   try {
     session_->finishFrame();
   } catch (const std::exception& e) {

@@ -582,6 +582,12 @@ int main(int argc, char** argv) {
                      "rt path: the device's raw ray rate on the scene's TLAS (trivial kernel) against rt.trace's");
   benchCmd->add_flag("--cut-every-frame", bench.cutEveryFrame,
                      "forget the history before every measured frame, as on a camera cut (what rejection costs at worst)");
+  benchCmd->add_option("--frames-in-flight", bench.framesInFlight,
+                       "frames the host may record ahead of the device: 1 waits for each frame, 2 records the next meanwhile")
+      ->check(CLI::Range(1u, tl::gpu::kMaxFramesInFlight))
+      ->capture_default_str();
+  benchCmd->add_flag("--against-one-in-flight", bench.againstOneInFlight,
+                     "also time frames with one in flight against --frames-in-flight, in turns: the wall-clock ratio");
   benchCmd->add_option("--json", benchJson, "write the figures as JSON to FILE (- for stdout)");
   addViewAndLightOptions(*benchCmd, benchRender);
 

@@ -457,6 +457,7 @@ void Device::reserveMemory(uint32_t memoryType, VkDeviceSize bytes, std::string_
                             "a smaller image size fits",
                             name, gib(bytes), gib(inUse), gib(heapSize), name_));
   allocated_[heap] += bytes;
+  ++allocationsMade_;
 }
 
 void Device::releaseMemory(uint32_t memoryType, VkDeviceSize bytes) {

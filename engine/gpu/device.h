@@ -108,6 +108,8 @@ class Device {
   void reserveMemory(uint32_t memoryType, VkDeviceSize bytes, std::string_view name);
   void releaseMemory(uint32_t memoryType, VkDeviceSize bytes);
   VkDeviceSize maxAllocationSize() const { return maxAllocationSize_; }
+  // Allocations made since the device was created: a steady frame makes none (tests).
+  uint64_t allocationsMade() const { return allocationsMade_.load(); }
 
   // Submission timeline. Every submit signals the next value of one timeline semaphore.
   // At most kMaxFramesInFlight frames are submitted and not yet finished (graph::Executor):
@@ -180,6 +182,7 @@ class Device {
   VkPhysicalDeviceMemoryProperties memory_{};
   VkDeviceSize maxAllocationSize_ = 0;
   std::array<std::atomic<VkDeviceSize>, VK_MAX_MEMORY_HEAPS> allocated_{};
+  std::atomic<uint64_t> allocationsMade_{0};
   void waitTimeline(uint64_t value);  // bounded by the watchdog
   double timeoutSeconds_ = 600.0;
   std::deque<CommandSlot> commandSlots_;

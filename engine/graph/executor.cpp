@@ -599,11 +599,13 @@ void Executor::submit(const RenderGraph& graph, const CompiledGraph& compiled) {
     if (decl.execute) decl.execute(ctx);
     slot.timestamps->end(cmd);
     device_.endLabel(cmd);
-    // A resource has one writer, so its contents are final right after it: read back
-    // there, before aliasing can reuse the memory. Imports belong to their owners.
+    // A resource's contents are final after its last writer (the steps that update it run
+    // before): read back there, before aliasing can reuse the memory. Imports belong to
+    // their owners.
     for (const PassAccess& a : cp.accesses) {
       const auto& name = decls[a.resource].name;
       if (!a.writes || decls[a.resource].imported || !(readbackAll_ || readbackNames_.count(name))) continue;
+      if (compiled.resources[a.resource].writer != cp.pass) continue;
       copyForReadback(cmd, slot, name, find(name), &a);
     }
   }

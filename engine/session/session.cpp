@@ -566,13 +566,10 @@ void Session::applyMorphs() {
 }
 
 void Session::beginFrame() {
-  settle();
   if (capture_ || !scene_) {
     renderFrames(1);  // a reopened capture's display is quick: done at once
     return;
   }
-  frameGpuMs_.clear();
-  passGpuMs_.clear();
   beginOne(true);
   requested_.clear();
   requestAll_ = false;
@@ -580,7 +577,13 @@ void Session::beginFrame() {
 
 bool Session::frameDone() const { return inFlight_.empty() || executor_->frameDone(); }
 
-void Session::finishFrame() { finishOne(); }
+// The timings describe the frame collected last.
+void Session::finishFrame() {
+  if (inFlight_.empty()) return;
+  frameGpuMs_.clear();
+  passGpuMs_.clear();
+  finishOne();
+}
 
 const graph::Readback* Session::displayReadback() const {
   auto it = executor_->readbacks().find(lighting::kDisplayLdr);

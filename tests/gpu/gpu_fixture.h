@@ -30,6 +30,7 @@ inline void restoreBaseline(session::Session& s) {
   s.settings() = lighting::RenderSettings{};
   s.setPath("direct");
   s.setAnimationStep(0.0);
+  s.setFramesInFlight(gpu::kMaxFramesInFlight);
   // What a scene load keeps (the sun's angular size, an environment map, its rotation and
   // intensity) back to the defaults; the load sets the rest from the file.
   s.setLighting(session::Lighting{});

@@ -147,3 +147,44 @@ TEST_F(GpuTest, RayTracingPipelineTracesTheSelfTestTriangle) {
 }
 
 }  // namespace tl::test
+
+namespace tl::test {
+
+// Two frames in flight: the executor refuses a third, each frame's read-back is its own
+// (frame 2 reuses frame 1's transient image while frame 1 may still be running), and a
+// steady frame allocates nothing: each slot's staging serves its later frames.
+TEST_F(GpuTest, TwoFramesInFlightKeepTheirOwnReadBacksAndAllocateNothingOnceWarm) {
+  graph::Executor ex(session().device());
+  auto submitFrame = [&](float value) {
+    graph::RenderGraph g;
+    g.addPass("make.value", PassKind::Transfer, [](graph::PassBuilder& b) { b.create("value", kDesc, Usage::TransferDst); },
+              [value](graph::PassContext& ctx) { clear(ctx, "value", value); });
+    g.markOutput("value");
+    auto compiled = g.compile(ex.entryStates(g));
+    ex.requestReadback("value");
+    ex.submit(g, compiled);
+  };
+  submitFrame(1.0f);
+  submitFrame(2.0f);
+  EXPECT_EQ(ex.framesInFlight(), 2u);
+  EXPECT_THROW(submitFrame(3.0f), gpu::Error) << "a third frame in flight would reuse the first one's slot";
+  EXPECT_EQ(ex.framesInFlight(), 2u);
+  ex.finish();
+  EXPECT_EQ(ex.readback("value").texels()[0], 1.0f);
+  ex.finish();
+  EXPECT_EQ(ex.readback("value").texels()[63], 2.0f);
+
+  const uint64_t allocationsBefore = session().device().allocationsMade();
+  for (int frame = 3; frame <= 8; ++frame) {
+    submitFrame(float(frame));
+    if (ex.framesInFlight() == 2) {
+      ex.finish();
+      EXPECT_EQ(ex.readback("value").texels()[0], float(frame - 1)) << "frame " << frame - 1;
+    }
+  }
+  ex.finishAll();
+  EXPECT_EQ(ex.readback("value").texels()[0], 8.0f);
+  EXPECT_EQ(session().device().allocationsMade(), allocationsBefore) << "a steady frame allocated memory";
+}
+
+}  // namespace tl::test
