@@ -563,6 +563,14 @@ void Script::step(EditorApp& app) {
           --next_;  // this line again next frame
           return;
         }
+        if (item->covered) {
+          // Under another window: bring its own to the front first, as a person would (a
+          // click where it is drawn would land on the window over it).
+          if (++scrollFrames_ > 10) return fail(app, fmt::format("control `{}` stays covered by another window", arg));
+          raiseItemWindow(arg);
+          --next_;
+          return;
+        }
         scrollFrames_ = 0;
         const glm::vec2 centre = 0.5f * (item->min + item->max);
         app.input().click(centre);

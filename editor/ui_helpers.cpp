@@ -10,7 +10,22 @@ namespace {
 
 std::map<std::string, ItemRect> items, previousItems;
 std::vector<std::string> clipped, previousClipped;
-std::string scrollRequest;
+std::string scrollRequest, raiseRequest;
+
+// Whether a window in front of `window` (a later root window, shown) contains `point`.
+bool coveredAt(ImGuiWindow* window, ImVec2 point) {
+  ImGuiContext& g = *GImGui;
+  ImGuiWindow* root = window->RootWindow;
+  bool above = false;
+  for (ImGuiWindow* w : g.Windows) {
+    if (w == root) {
+      above = true;
+      continue;
+    }
+    if (above && w == w->RootWindow && w->WasActive && !w->Hidden && w->Rect().Contains(point)) return true;
+  }
+  return false;
+}
 
 // Whether the last item (widget and label) ends inside its window's visible area; an item
 // scrolled out of view or in a collapsed window does not count.
@@ -38,7 +53,12 @@ void trackItem(const std::string& name) {
   ImGuiWindow* window = ImGui::GetCurrentWindow();
   const bool visible = window && !window->SkipItems && a.y >= window->InnerClipRect.Min.y &&
                        b.y <= window->InnerClipRect.Max.y;
-  items[name] = {glm::vec2(a.x, a.y), glm::vec2(b.x, b.y), visible};
+  const bool covered = window && coveredAt(window, ImVec2(0.5f * (a.x + b.x), 0.5f * (a.y + b.y)));
+  items[name] = {glm::vec2(a.x, a.y), glm::vec2(b.x, b.y), visible, covered};
+  if (name == raiseRequest) {
+    ImGui::FocusWindow(window->RootWindow);
+    raiseRequest.clear();
+  }
   if (name == scrollRequest) {
     ImGui::SetScrollHereY(0.5f);
     scrollRequest.clear();
@@ -46,6 +66,8 @@ void trackItem(const std::string& name) {
 }
 
 void scrollToItem(const std::string& name) { scrollRequest = name; }
+
+void raiseItemWindow(const std::string& name) { raiseRequest = name; }
 
 std::optional<ItemRect> trackedItem(const std::string& name) {
   auto it = previousItems.find(name);

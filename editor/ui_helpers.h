@@ -21,11 +21,15 @@ void trackItem(const std::string& name);
 struct ItemRect {
   glm::vec2 min, max;
   bool visible = true;  // whole inside its window's visible area (not scrolled out, not collapsed)
+  bool covered = false;  // another window lies over its centre
 };
 std::optional<ItemRect> trackedItem(const std::string& name);
 // Asks the window that draws `name` next to scroll it to its middle, as a person scrolls to a
 // control before clicking it.
 void scrollToItem(const std::string& name);
+// Asks for the window that draws `name` to come to the front, as a person clicks a window
+// that another covers before clicking a control in it.
+void raiseItemWindow(const std::string& name);
 // Called once a frame before the panels draw: items not drawn again are forgotten.
 void beginTrackedFrame();
 

@@ -109,7 +109,7 @@ std::vector<BakeOutcome> AlbedoBaker::bake(const std::vector<const Combination*>
   }
 
   graph::RenderGraph graph;
-  gpuScene_.importBuffers(graph, executor_);
+  gpuScene_.importBuffers(graph, executor_.nextFrame());
 
   // The bake runs outside a frame: the scene's table and buffers, no frame constants.
   lighting::RasterPass(device_, "albedo.bake.raster", bakePipeline())
@@ -143,7 +143,7 @@ std::vector<BakeOutcome> AlbedoBaker::bake(const std::vector<const Combination*>
   graph.markOutput(kBakeSums);
   executor_.requestReadback(kBakeSums);
   if (keepAtlas_) executor_.requestReadback(kBakeAtlas);
-  executor_.execute(graph, graph.compile(executor_.entryStates(graph)));
+  executor_.execute(graph, executor_.compile(graph));
 
   const graph::Readback& back = executor_.readback(kBakeSums);
   const auto* sums = reinterpret_cast<const shared::AlbedoTileSum*>(back.bytes.data());

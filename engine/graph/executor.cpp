@@ -252,6 +252,16 @@ void Executor::bindImportedBuffer(std::string_view name, gpu::Buffer& buffer) {
                                                                                            : ResourceState{};
 }
 
+CompiledGraph Executor::compile(const RenderGraph& graph) {
+  bindGraphImports(graph);
+  return graph.compile(entryStates(graph));
+}
+
+void Executor::bindGraphImports(const RenderGraph& graph) {
+  for (const auto& decl : graph.resources())
+    if (decl.importedBuffer) bindImportedBuffer(decl.name, *decl.importedBuffer);
+}
+
 EntryStates Executor::entryStates(const RenderGraph& graph) const {
   EntryStates out;
   for (const auto& decl : graph.resources()) {
@@ -427,8 +437,9 @@ void Executor::realise(const RenderGraph& graph, const CompiledGraph& compiled) 
     placed.buffer = placed.ownedBuffer ? &placed.ownedBuffer : nullptr;
   }
 
-  // What the inspector, captures and the dump show.
-  physicalInfo_.clear();
+  // What the inspector, captures and the dump show, once this frame is finished.
+  FrameSlot& slot = slotOf(submitted_);
+  slot.resources.clear();
   for (ResourceId id = 0; id < decls.size(); ++id) {
     const auto& d = decls[id];
     const auto& info = compiled.resources[id];
@@ -450,7 +461,7 @@ void Executor::realise(const RenderGraph& graph, const CompiledGraph& compiled) 
     } else {
       pi.bytes = approximateBytes(d.desc);
     }
-    physicalInfo_.push_back(pi);
+    slot.resources.push_back(pi);
   }
 }
 
@@ -573,6 +584,8 @@ void Executor::execute(const RenderGraph& graph, const CompiledGraph& compiled) 
 void Executor::submit(const RenderGraph& graph, const CompiledGraph& compiled) {
   TL_CHECK(framesInFlight() < gpu::kMaxFramesInFlight,
            "{} frames are already in flight: finish() the oldest before submitting another", framesInFlight());
+  bindGraphImports(graph);  // bound already when compiled here; the same binding keeps its state
+  for (const std::string& name : graph.readbackRequests()) readbackNames_.insert(name);
   realise(graph, compiled);
   checkEntry(graph, compiled);
   FrameSlot& slot = slotOf(submitted_);
@@ -644,12 +657,13 @@ void Executor::finish() {
   if (!inFlight()) return;
   FrameSlot& slot = slotOf(finished_);
   device_.wait(slot.timelineValue);
-  ++finished_;
+  const uint64_t frame = finished_++;
+  physicalInfo_ = std::move(slot.resources);
   timings_.clear();
   for (auto& s : slot.timestamps->read()) timings_.push_back({s.name, s.milliseconds});
   readbacks_.clear();
   for (const auto& r : slot.pending) {
-    Readback out{r.name, r.format, r.extent, std::vector<uint8_t>(r.staging->size())};
+    Readback out{r.name, r.format, r.extent, std::vector<uint8_t>(r.staging->size()), frame};
     std::memcpy(out.bytes.data(), r.staging->mapped(), out.bytes.size());
     readbacks_[r.name] = std::move(out);
   }

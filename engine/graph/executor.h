@@ -99,6 +99,7 @@ struct Readback {
   VkFormat format = VK_FORMAT_UNDEFINED;
   VkExtent3D extent{};
   std::vector<uint8_t> bytes;   // tightly packed texels or buffer bytes
+  uint64_t frame = 0;           // the executor's number of the frame it was read from
   std::vector<float> texels() const;  // decoded, channels per texel from the format
   uint32_t channels() const;
 };
@@ -122,8 +123,12 @@ class Executor {
   // graph.compile(executor.entryStates(graph)). A persistent resource the graph declares with
   // another description is recreated, so it enters fresh.
   EntryStates entryStates(const RenderGraph& graph) const;
+  // Binds the buffers `graph` imports with importBuffer() and compiles it from the states
+  // they and the persistent resources enter the frame in.
+  CompiledGraph compile(const RenderGraph& graph);
 
-  // Read-back requests for the next execute: names, or every resource of the frame.
+  // Read-back requests for the next execute: names, or every resource of the frame (with
+  // those the graph carries, RenderGraph::requestReadback).
   void requestReadback(std::string_view name) { readbackNames_.insert(std::string(name)); }
   void requestReadbackAll() { readbackAll_ = true; }
 
@@ -134,8 +139,8 @@ class Executor {
   // submit() records and submits without waiting; finish() waits for the oldest frame in
   // flight (if the GPU is not done yet) and collects its timings and read-backs. Up to
   // gpu::kMaxFramesInFlight frames may be in flight: submit() refuses one more. Until a
-  // frame is finished, timings() and readbacks() describe the last finished one, resources()
-  // already the last submitted. Frames run on the GPU in submission order: the next frame
+  // frame is finished, timings(), readbacks() and resources() describe the last finished one
+  // (what an interface shows stays with the frame on screen). Frames run on the GPU in submission order: the next frame
   // waits for the one before at its start (the transients share memory) and persistent and
   // imported resources carry their accesses across, so what a frame writes is history for
   // the next frame as soon as it is submitted.
@@ -173,6 +178,7 @@ class Executor {
  private:
   friend class PassContext;
   struct FrameSlot;
+  void bindGraphImports(const RenderGraph& graph);
   struct Physical {
     ResourceDesc desc;
     gpu::Image ownedImage;
@@ -229,6 +235,7 @@ class Executor {
     uint64_t timelineValue = 0;
     std::vector<PendingReadback> pending;
     std::map<std::string, gpu::Buffer, std::less<>> staging;
+    std::vector<PhysicalInfo> resources;  // resources() once the frame is finished
   };
   FrameSlot& slotOf(uint64_t frame) { return slots_[frame % gpu::kMaxFramesInFlight]; }
   gpu::Buffer& stagingFor(FrameSlot& slot, const std::string& name, VkDeviceSize bytes);

@@ -102,6 +102,11 @@ void RenderGraph::declareImported(std::string_view name, const ResourceDesc& des
   resources_.push_back(std::move(r));
 }
 
+void RenderGraph::importBuffer(std::string_view name, const ResourceDesc& desc, gpu::Buffer& buffer) {
+  declareImported(name, desc);
+  resources_.back().importedBuffer = &buffer;
+}
+
 PassId RenderGraph::addPass(std::string_view name, PassKind kind, const std::function<void(PassBuilder&)>& setup,
                             ExecuteFn execute) {
   PassId id = PassId(passes_.size());

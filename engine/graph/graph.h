@@ -24,6 +24,10 @@ inline bool operator==(const VkExtent3D& a, const VkExtent3D& b) {
   return a.width == b.width && a.height == b.height && a.depth == b.depth;
 }
 
+namespace tl::gpu {
+class Buffer;
+}
+
 namespace tl::graph {
 
 enum class ResourceType : uint8_t { Image, Buffer };
@@ -110,6 +114,7 @@ struct ResourceDecl {
   bool cache = false;       // persistent, but a frame that writes it does so before its readers
   bool onDemand = false;    // persistent, but writing it does not keep its writer from culling
   bool imported = false;    // owned outside the graph (e.g. scene buffers, swapchain)
+  gpu::Buffer* importedBuffer = nullptr;  // importBuffer(): what the executor binds for this frame
   PassId creator = kNone;   // the pass that declared it with create()
 };
 
@@ -183,6 +188,12 @@ class RenderGraph {
   void declareOnDemandHistory(std::string_view name, const ResourceDesc& desc);
   // A resource owned outside the graph (scene geometry, the swapchain image).
   void declareImported(std::string_view name, const ResourceDesc& desc);
+  // An imported buffer together with its owner's buffer: the executor binds it for this
+  // frame (a pass or a path imports what it owns through the graph, not the executor).
+  void importBuffer(std::string_view name, const ResourceDesc& desc, gpu::Buffer& buffer);
+  // Asks for `name` to be read back once this frame is finished (Executor::readbacks()).
+  void requestReadback(std::string_view name) { readbackRequests_.emplace_back(name); }
+  const std::vector<std::string>& readbackRequests() const { return readbackRequests_; }
 
   PassId addPass(std::string_view name, PassKind kind,
                  const std::function<void(PassBuilder&)>& setup, ExecuteFn execute);
@@ -215,6 +226,7 @@ class RenderGraph {
   std::vector<PassDecl> passes_;
   std::vector<ResourceDecl> resources_;
   std::vector<std::string> outputs_;
+  std::vector<std::string> readbackRequests_;
 };
 
 // Human-readable size/format helpers shared by the dump, the CLI and the inspector.

@@ -215,16 +215,15 @@ void GpuScene::updateInstances(const Scene& scene, const glm::dvec3& camera, con
   uploadFrame_ = frame;
 }
 
-void GpuScene::importBuffers(graph::RenderGraph& graph, graph::Executor& executor) {
+void GpuScene::importBuffers(graph::RenderGraph& graph, uint64_t frame) {
   auto imported = [&](const char* name, gpu::Buffer& b, const char* what) {
-    graph.declareImported(name, graph::ResourceDesc::buffer(b.size(), what));
-    executor.bindImportedBuffer(name, b);
+    graph.importBuffer(name, graph::ResourceDesc::buffer(b.size(), what), b);
   };
   imported(kSceneVertices, vertices_, "all meshes' vertices");
   imported(kSceneIndices, indices_, "all meshes' indices");
   imported(kSceneInstances, instances_, "camera-relative instance table");
   imported(kSceneMaterials, materials_, "material table");
-  if (uploadFrame_ != executor.nextFrame()) return;
+  if (uploadFrame_ != frame) return;
   imported(kSceneInstanceUpload, instanceUploads_.forFrame(*uploadFrame_), "this frame's instance table, host-written");
   graph.addPass(
       "scene.instances.upload", graph::PassKind::Transfer,

@@ -49,9 +49,9 @@ class GpuScene {
   uint64_t meshVersion(uint32_t mesh) const { return meshVersions_[mesh]; }
   uint64_t geometryVersion() const { return geometryVersion_; }
 
-  // Declares the four buffers above in `graph` and binds them in `executor`; after an
-  // updateInstances() for the executor's next frame, also the pass that uploads the instances.
-  void importBuffers(graph::RenderGraph& graph, graph::Executor& executor);
+  // Imports the four buffers above into `graph`; when updateInstances() wrote for `frame`,
+  // also the pass that uploads the instances.
+  void importBuffers(graph::RenderGraph& graph, uint64_t frame);
 
   // Binds the geometry and draws every instance (instance index via firstInstance).
   void drawAll(VkCommandBuffer cmd) const;

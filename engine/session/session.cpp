@@ -402,13 +402,9 @@ void Session::beginOne(bool readback) {
   historyLog_.clear();
 
   graph::RenderGraph graph;
-  graph.declareImported(lighting::kFrameConstants,
-                        graph::ResourceDesc::buffer(constants_.size(), "per-frame constants (shared/frame.h)"));
-  executor_->bindImportedBuffer(lighting::kFrameConstants, constants_.forFrame(frame));
-  graph.declareImported(lighting::kBrdfTables,
-                        graph::ResourceDesc::buffer(brdfTables_.size(), "the shared BRDF's tables (shared/brdf_lut.h)"));
-  executor_->bindImportedBuffer(lighting::kBrdfTables, brdfTables_);
-  gpuScene_->importBuffers(graph, *executor_);
+  graph.importBuffer(lighting::kFrameConstants, graph::ResourceDesc::buffer(constants_.size(), "per-frame constants (shared/frame.h)"), constants_.forFrame(frame));
+  graph.importBuffer(lighting::kBrdfTables, graph::ResourceDesc::buffer(brdfTables_.size(), "the shared BRDF's tables (shared/brdf_lut.h)"), brdfTables_);
+  gpuScene_->importBuffers(graph, frame);
   // The light table exists only in frames that have lights to shade: without, no pass reads it.
   auto lights = lighting::buildLightTable(lighting_.lights, view_.position, fc.sceneScale);
   // Point and spot lights' shadow maps (direct, legacy): their views exist only with such lights.
@@ -422,9 +418,7 @@ void Session::beginOne(bool readback) {
     if (lightShadowViews_.size() < bytes)
       lightShadowViews_ = gpu::UploadRing(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, lighting::kLightShadowViews);
     lightShadowViews_.write(frame, shadowPlan.views.data(), bytes);
-    graph.declareImported(lighting::kLightShadowViews,
-                          graph::ResourceDesc::buffer(lightShadowViews_.size(), "point and spot light shadow views (shared/lights.h GpuShadowView[])"));
-    executor_->bindImportedBuffer(lighting::kLightShadowViews, lightShadowViews_.forFrame(frame));
+    graph.importBuffer(lighting::kLightShadowViews, graph::ResourceDesc::buffer(lightShadowViews_.size(), "point and spot light shadow views (shared/lights.h GpuShadowView[])"), lightShadowViews_.forFrame(frame));
   }
   if (!lights.empty()) {
     const VkDeviceSize bytes = lights.size() * sizeof(shared::GpuLight);
@@ -433,9 +427,7 @@ void Session::beginOne(bool readback) {
     lightTable_.write(frame, lights.data(), bytes);
     fc.lightCount = uint32_t(lights.size());
     constants_.write(frame, &fc, sizeof(fc));
-    graph.declareImported(lighting::kLightTable,
-                          graph::ResourceDesc::buffer(lightTable_.size(), "lights other than the sun (shared/lights.h GpuLight[])"));
-    executor_->bindImportedBuffer(lighting::kLightTable, lightTable_.forFrame(frame));
+    graph.importBuffer(lighting::kLightTable, graph::ResourceDesc::buffer(lightTable_.size(), "lights other than the sun (shared/lights.h GpuLight[])"), lightTable_.forFrame(frame));
   }
   // The environment map's table exists only in frames with a map (the reference samples it).
   if (const auto& map = lighting_.environmentMap) {
@@ -447,13 +439,18 @@ void Session::beginOne(bool readback) {
       environmentTable_.write(table.data(), table.size() * sizeof(float));
       environmentTableHash_ = map->contentHash;
     }
-    graph.declareImported(lighting::kEnvironmentTable,
-                          graph::ResourceDesc::buffer(environmentTable_.size(),
-                                                      "the environment map's texels and importance table (shared/environment.h)"));
-    executor_->bindImportedBuffer(lighting::kEnvironmentTable, environmentTable_);
+    graph.importBuffer(lighting::kEnvironmentTable, graph::ResourceDesc::buffer(environmentTable_.size(),
+                                                      "the environment map's texels and importance table (shared/environment.h)"), environmentTable_);
   }
 
-  lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, *executor_, view_.position};
+  lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, view_.position, frame};
+  in.historyValid = [this](std::string_view name, const graph::ResourceDesc& desc) {
+    return executor_->historyValid(name, desc);
+  };
+  in.lastReadback = [this](std::string_view name) -> const graph::Readback* {
+    auto it = executor_->readbacks().find(std::string(name));
+    return it == executor_->readbacks().end() ? nullptr : &it->second;
+  };
   in.instanceAlbedo = &albedo_->instanceAlbedo();
   in.instanceAlbedoVersion = albedo_->version();
   in.temporalAntialiasing = taa;
@@ -499,7 +496,7 @@ void Session::beginOne(bool readback) {
         graph.markOutput(r.name);
   }
 
-  graph::CompiledGraph compiled = graph.compile(executor_->entryStates(graph));
+  graph::CompiledGraph compiled = executor_->compile(graph);
   if (readback) {
     if (requestAll_) executor_->requestReadbackAll();
     for (auto& n : requested_) executor_->requestReadback(n);

@@ -48,7 +48,7 @@ class BentSkyPath final : public LightingPath {
 
     const auto historyDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                                           "mean escaping direction (xyz) and visibility (w), last frame");
-    const bool stored = in.executor.historyValid(kHistory, historyDesc);
+    const bool stored = in.historyValid(kHistory, historyDesc);
     const bool restart = history_.advance(kAccumulation, in.key, name(), in.historyLog, {stored}).action == HistoryAction::Restart;
     frames_ = restart ? 1 : std::min(frames_ + 1, std::max(1u, s.bentSkyMaxFrames));
     graph.declarePersistent(kHistory, historyDesc);

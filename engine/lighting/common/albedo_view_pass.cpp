@@ -14,7 +14,7 @@ void AlbedoViewPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   // The resolved table, uploaded when it changed (a copy per frame in flight).
   const std::vector<glm::vec4>& table = *in.instanceAlbedo;
   const VkDeviceSize bytes = std::max<size_t>(1, table.size()) * sizeof(glm::vec4);
-  const uint64_t frame = in.executor.nextFrame();
+  const uint64_t frame = in.frame;
   if (!perInstance_ || perInstance_.size() < bytes || uploadedVersion_ != in.instanceAlbedoVersion ||
       sceneId_ != in.scene.id()) {
     if (!perInstance_ || perInstance_.size() < bytes)
@@ -24,9 +24,7 @@ void AlbedoViewPass::add(graph::RenderGraph& graph, FrameInputs& in) {
     if (sceneId_ != in.scene.id()) haveBaseline_ = false;
     sceneId_ = in.scene.id();
   }
-  graph.declareImported(kAlbedoPerInstance,
-                        graph::ResourceDesc::buffer(perInstance_.size(), "per instance: resolved albedo (rgb), source (w)"));
-  in.executor.bindImportedBuffer(kAlbedoPerInstance, perInstance_.forFrame(frame));
+  graph.importBuffer(kAlbedoPerInstance, graph::ResourceDesc::buffer(perInstance_.size(), "per instance: resolved albedo (rgb), source (w)"), perInstance_.forFrame(frame));
 
   ComputePass(in.device, "albedo.view", "common/albedo_view.comp")
       .sampled(shared::kAlbedoViewBindingInstanceId, "gbuffer.instanceId")

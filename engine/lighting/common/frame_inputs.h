@@ -4,7 +4,7 @@
 #pragma once
 
 #include "gpu/device.h"
-#include "graph/executor.h"
+#include "graph/executor.h"  // graph::Readback
 #include "graph/graph.h"
 #include "lighting/common/frame_key.h"
 #include "lighting/common/render_settings.h"
@@ -49,8 +49,17 @@ struct FrameInputs {
   const scene::Scene& sceneData;  // the CPU side: materials, textures, meshes (RT albedo, BLAS)
   const RenderSettings& settings;
   const shared::FrameConstants& constants;
-  graph::Executor& executor;  // where a path binds buffers it owns and imports into the graph
   glm::dvec3 cameraWorld{0.0};  // the camera's world position (camera-relative space is centred on it)
+  // The frame's number: what the host writes for this frame goes into that frame's copy of a
+  // ring (gpu/upload_ring.h), as the frame before may still be running. A path imports what
+  // it owns through the graph (RenderGraph::importBuffer) and asks for read-backs there too.
+  uint64_t frame = 0;
+  // Whether a persistent resource holds last frame's contents with this description (the
+  // executor's record; false after a reset, a resize or a frame that did not write it).
+  std::function<bool(std::string_view name, const graph::ResourceDesc& desc)> historyValid;
+  // What the last finished frame read back under `name`, or null (a path's own feedback,
+  // e.g. the radiance cache's outcomes; up to a frame or two old with frames in flight).
+  std::function<const graph::Readback*(std::string_view name)> lastReadback;
   // Per-instance hit albedo resolved by the session (T7: override > baked > texture average;
   // w: the source, shared/albedo.h kAlbedoSource*), and a counter that changes whenever any
   // value does; null: texture averages.

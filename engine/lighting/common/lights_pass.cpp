@@ -63,7 +63,7 @@ std::string LightsPass::add(graph::RenderGraph& graph, FrameInputs& in, const st
                                                       "sum of light-table estimates (rgb) and their count (a)");
   if (in.constants.lightCount > shared::kLightsLoopMax) {
     push.accumulate = 1;
-    const bool stored = in.executor.historyValid(accum, accumDesc);
+    const bool stored = in.historyValid(accum, accumDesc);
     push.restart = accumulation_[in.pathName].advance(kLightsAccumulation, in.key, in.pathName, in.historyLog, {stored})
                                .action == HistoryAction::Restart
                        ? 1u
@@ -122,14 +122,14 @@ std::string LightsPass::addIbuffer(graph::RenderGraph& graph, FrameInputs& in, c
     push = ibufferPush_;  // the same sums, restarted or not, as this frame's pattern run
     if (push.accumulate) {
       bool stored = true;
-      for (const auto& a : accum) stored = stored && in.executor.historyValid(a, accumDesc);
+      for (const auto& a : accum) stored = stored && in.historyValid(a, accumDesc);
       if (!stored) push.restart = 1;  // its images are new: nothing to add to
       for (const auto& a : accum) graph.declarePersistent(a, accumDesc);
     }
   } else if (in.constants.lightCount > shared::kLightsLoopMax) {
     push.accumulate = 1;
     bool stored = true;
-    for (const auto& a : accum) stored = stored && in.executor.historyValid(a, accumDesc);
+    for (const auto& a : accum) stored = stored && in.historyValid(a, accumDesc);
     push.restart = accumulation_[keeper].advance(kLightsAccumulation, in.key, in.pathName, in.historyLog, {stored}).action ==
                            HistoryAction::Restart
                        ? 1u

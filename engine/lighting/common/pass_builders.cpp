@@ -92,7 +92,7 @@ void BindingList::constantEntry(uint32_t binding, const gpu::Image* image, VkIma
 
 void BindingList::declareHistory(std::string_view name, const graph::ResourceDesc& desc, graph::RenderGraph& graph,
                                  FrameInputs& in, HistoryKeeper& keeper, const HistoryPolicy& policy) {
-  const bool stored = in.executor.historyValid(name, desc);
+  const bool stored = in.historyValid(name, desc);
   historyValid_ = keeper.advance(policy, in.key, in.pathName, in.historyLog, {stored}).action != HistoryAction::Restart;
   graph.declarePersistent(name, desc);
 }

@@ -141,11 +141,10 @@ class LegacyPath final : public LightingPath {
     graph.declarePersistent(kLegacyHistSsao, ssaoDesc);
     // History counts only if this frame's declaration keeps it: a resize recreates it with
     // undefined contents (NaN on lavapipe's reused memory, once).
-    const auto& ex = in.executor;
+    const bool ssaoStored = in.historyValid(kLegacyHistSsao, ssaoDesc);
     const bool screenKept =
-        screen_.advance(kScreenHistory, in.key, name(), in.historyLog, {ex.historyValid(kLegacyHistSsao, ssaoDesc)}).action !=
-        HistoryAction::Restart;
-    const bool aoHistory = s.legacyAoFrames > 1 && screenKept && ex.historyValid(kLegacyHistSsao, ssaoDesc);
+        screen_.advance(kScreenHistory, in.key, name(), in.historyLog, {ssaoStored}).action != HistoryAction::Restart;
+    const bool aoHistory = s.legacyAoFrames > 1 && screenKept && ssaoStored;
     push.aoHistory = aoHistory ? s.legacyAoFrames : 0u;
 
     withCommon(ComputePass(in.device, "legacy.ssao.temporal", "legacy/ssao_temporal.comp"))
@@ -159,9 +158,9 @@ class LegacyPath final : public LightingPath {
         .push(push)
         .dispatch(aw, ah)
         .add(graph);
-    const bool historyOk = feedback && screenKept && ex.historyValid(kLegacyHistRadiance, radianceDesc) &&
-                           ex.historyValid(kLegacyHistDepth, depthDesc);
-    const bool voxelsKept = ex.historyValid(kVoxelRadiance, voxelDesc) && ex.historyValid(kVoxelRadianceMips, voxelMipsDesc);
+    const bool historyOk = feedback && screenKept && in.historyValid(kLegacyHistRadiance, radianceDesc) &&
+                           in.historyValid(kLegacyHistDepth, depthDesc);
+    const bool voxelsKept = in.historyValid(kVoxelRadiance, voxelDesc) && in.historyValid(kVoxelRadianceMips, voxelMipsDesc);
     // The voxels hold this placement, sun and settings: a change of some instances can be
     // patched into them.
     const std::vector<glm::dvec4> placement = voxelPlacement(in, fit);

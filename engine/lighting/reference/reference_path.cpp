@@ -75,7 +75,7 @@ class ReferencePath final : public LightingPath {
     const auto accumDesc =
         graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "sum of path samples (rgb) and their count (a)");
     const auto aoAccumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h, "sum of AO samples");
-    const bool stored = in.executor.historyValid(kAccum, accumDesc) && in.executor.historyValid(kAoAccum, aoAccumDesc);
+    const bool stored = in.historyValid(kAccum, accumDesc) && in.historyValid(kAoAccum, aoAccumDesc);
     if (accumulation_.advance(kAccumulation, in.key, name(), in.historyLog, {stored}).action == HistoryAction::Restart)
       samples_ = 0, irradianceSamples_ = 0;
 
@@ -266,18 +266,15 @@ class ReferencePath final : public LightingPath {
       std::vector<gpu::TlasInstance> instances;
       for (size_t i = 0; i < transforms.size(); ++i)
         instances.push_back({transforms[i], uint32_t(i), 0xFF, blas_[in.scene.instanceMesh(i)].address()});
-      tlas_.prepare(instances, in.executor.nextFrame());
+      tlas_.prepare(instances, in.frame);
       tlasTransforms_ = transforms;
     }
-    graph.declareImported(kTlas, graph::ResourceDesc::buffer(tlas_.storage().size(), "the reference's top level"));
-    in.executor.bindImportedBuffer(kTlas, tlas_.storage());
-    graph.declareImported(kTlasInstances, graph::ResourceDesc::buffer(tlas_.instances().size(),
-                                                                      "the reference's top-level instances (host-written)"));
-    in.executor.bindImportedBuffer(kTlasInstances, tlas_.instances());
+    graph.importBuffer(kTlas, graph::ResourceDesc::buffer(tlas_.storage().size(), "the reference's top level"), tlas_.storage());
+    graph.importBuffer(kTlasInstances, graph::ResourceDesc::buffer(tlas_.instances().size(),
+                                                                      "the reference's top-level instances (host-written)"), tlas_.instances());
     if (deformingStorage_) {
-      graph.declareImported(kBlasDeforming, graph::ResourceDesc::buffer(deformingStorage_.size(),
-                                                                        "bottom levels of the deforming meshes"));
-      in.executor.bindImportedBuffer(kBlasDeforming, deformingStorage_);
+      graph.importBuffer(kBlasDeforming, graph::ResourceDesc::buffer(deformingStorage_.size(),
+                                                                        "bottom levels of the deforming meshes"), deformingStorage_);
     }
     if (!pendingRebuilds_.empty())
       AccelerationStructurePass("reference.blas.rebuild")

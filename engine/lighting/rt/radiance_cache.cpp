@@ -56,7 +56,7 @@ graph::ResourceDesc RtRadianceCache::outcomesDesc(const FrameInputs& in) const {
                                      "radiance cache: what each update path's first ray found (0 none, 1 sky, 2 on screen, 3 off screen)");
 }
 
-void RtRadianceCache::plan(FrameInputs& in, shared::RtPush& push, float sceneScale, float maxEmitterRadiance) {
+void RtRadianceCache::plan(graph::RenderGraph& graph, FrameInputs& in, shared::RtPush& push, float sceneScale, float maxEmitterRadiance) {
   const RenderSettings& s = in.settings;
   // A new scene starts the switch over (off, measuring): the outcomes still held and the
   // decision they led to are another scene's, and an image must not depend on what was
@@ -65,17 +65,28 @@ void RtRadianceCache::plan(FrameInputs& in, shared::RtPush& push, float sceneSca
   if (scene != switchScene_) {
     switch_ = RtCacheSwitch{};
     measured_ = {};
+    outcomes_.clear();
     switchScene_ = scene;
-  } else if (auto it = in.executor.readbacks().find(kRtCacheOutcomes); it != in.executor.readbacks().end()) {
-    measured_ = countCacheOutcomes(it->second.bytes);
-    switch_.update(measured_, s.rtCacheMinShare);
+    sceneFirstFrame_ = in.frame;
+  } else {
+    // Frame N decides from frame N-2's outcomes, whether one frame is in flight (N-1's are
+    // then at hand too, and wait a frame) or two (N-2's have just been collected): the same
+    // frames decide the same frame, so an image does not depend on the frames in flight.
+    if (const graph::Readback* r = in.lastReadback(kRtCacheOutcomes); r && r->frame >= sceneFirstFrame_)
+      outcomes_.try_emplace(r->frame, countCacheOutcomes(r->bytes));
+    const uint64_t deciding = in.frame - std::min<uint64_t>(in.frame, kOutcomeLag);
+    if (auto it = outcomes_.find(deciding); it != outcomes_.end() && in.frame >= kOutcomeLag) {
+      measured_ = it->second;
+      switch_.update(measured_, s.rtCacheMinShare);
+    }
+    outcomes_.erase(outcomes_.begin(), outcomes_.upper_bound(deciding));
   }
   active_ = s.rtCacheMinShare <= 1.0f && (s.rtCacheMinShare <= 0.0f || switch_.on());
   const uint32_t entries = s.rtCacheEntries;
   restart_ = false;
   if (active_) {
-    const bool stored = wasActive_ && in.executor.historyValid(kRtCacheEntries, entriesDesc(entries)) &&
-                        in.executor.historyValid(kRtCacheAccum, accumDesc(entries));
+    const bool stored = wasActive_ && in.historyValid(kRtCacheEntries, entriesDesc(entries)) &&
+                        in.historyValid(kRtCacheAccum, accumDesc(entries));
     const HistoryPolicy policy{"rt.cache", kRtCacheRestarts, 0u};
     restart_ = history_.advance(policy, in.key, "rt", in.historyLog, {stored}).action != HistoryAction::Keep;
   } else {
@@ -113,7 +124,7 @@ void RtRadianceCache::plan(FrameInputs& in, shared::RtPush& push, float sceneSca
   push_.maxSamples = float(s.rtCacheMaxSamples);
   push_.maxAge = shared::kRtCacheMaxAge;
   push_.historyDecay = 1.0f - 1.0f / shared::kRtCacheHistoryFrames;
-  in.executor.requestReadback(kRtCacheOutcomes);
+  graph.requestReadback(kRtCacheOutcomes);
 }
 
 void RtRadianceCache::addPasses(graph::RenderGraph& graph, FrameInputs& in) {

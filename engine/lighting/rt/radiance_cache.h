@@ -12,6 +12,7 @@
 #include "shared/rt_cache.h"
 
 #include <cstdint>
+#include <map>
 #include <span>
 #include <utility>
 #include <vector>
@@ -56,7 +57,7 @@ class RtRadianceCache {
   // This frame's plan: whether the cache runs (from the last frame's outcomes) or only its
   // probe paths measure, whether it restarts; fills the cache's fields of `push` and
   // requests this frame's outcomes. Call before any pass that reads the cache.
-  void plan(FrameInputs& in, shared::RtPush& push, float sceneScale, float maxEmitterRadiance);
+  void plan(graph::RenderGraph& graph, FrameInputs& in, shared::RtPush& push, float sceneScale, float maxEmitterRadiance);
   bool active() const { return active_; }  // the cache is read and written this frame
   bool restart() const { return restart_; }
   // Frames the cache has run since it last started over (0: this frame starts it).
@@ -86,6 +87,10 @@ class RtRadianceCache {
   uint32_t age_ = 0;
   shared::RtCachePush push_{};
   RtCacheOutcomes measured_;
+  // Outcomes read back, by frame, until the frame kOutcomeLag later decides from them.
+  static constexpr uint64_t kOutcomeLag = gpu::kMaxFramesInFlight;
+  std::map<uint64_t, RtCacheOutcomes> outcomes_;
+  uint64_t sceneFirstFrame_ = 0;
 };
 
 }  // namespace tl::lighting

@@ -77,7 +77,7 @@ class RtPath final : public LightingPath {
     refits.top = s.rtRefitTop;
     refits.random = s.rtRefitRandom;
     refits.vertexBudget = s.rtRefitVertexBudget;
-    scene_->prepareTopLevel(in.scene, culling, in.executor.nextFrame(), refits);
+    scene_->prepareTopLevel(in.scene, culling, in.frame, refits);
     sceneInstances_ = uint32_t(in.scene.instanceCount());
 
     RtPush push{};
@@ -100,7 +100,7 @@ class RtPath final : public LightingPath {
         image(VK_FORMAT_R32_SFLOAT, "view depth, last frame"), image(VK_FORMAT_R32_SFLOAT, "mean squared sample luma, last frame")};
     const char* histNames[] = {kHistShY, kHistCoCgAo, kHistDepth, kHistLumaMoment};
     bool stored = true;
-    for (int i = 0; i < 4; ++i) stored = stored && in.executor.historyValid(histNames[i], histDescs[i]);
+    for (int i = 0; i < 4; ++i) stored = stored && in.historyValid(histNames[i], histDescs[i]);
     // Luminance rejection is triggered by a change of the light (see shared/rt.h).
     const HistoryPolicy temporal{"rt.temporal", kTemporalRestarts, s.rtLumaRejection ? kTemporalRejects : 0u};
     const HistoryAction action = temporalHistory_.advance(temporal, in.key, name(), in.historyLog, {stored}).action;
@@ -110,7 +110,7 @@ class RtPath final : public LightingPath {
     push.hitSky = s.rtHitSky ? 1u : 0u;
     push.emitterCount = s.rtEmitterSampling ? scene_->emitterCount() : 0u;
     push.cameraWorld = glm::vec4(glm::vec3(in.cameraWorld), 0.0f);
-    cache_.plan(in, push, scale, scene_->maxEmitterRadiance());
+    cache_.plan(graph, in, push, scale, scene_->maxEmitterRadiance());
     push.maxAccumFrames = cache_.temporalWindow(push.maxAccumFrames);
 
     for (int i = 0; i < 4; ++i) graph.declarePersistent(histNames[i], histDescs[i]);
@@ -118,7 +118,7 @@ class RtPath final : public LightingPath {
     if (screenRadiance)
       graph.declarePersistent(kHistRadiance, image(kCompositeHdrFormat, "composite radiance, last frame"));
 
-    addStructurePasses(graph, in);
+    addStructurePasses(graph);
 
     // One ray per traced pixel, or two: the second's hit lighting writes the mean of both.
     push.raysPerPixel = s.rtTwoRays ? 2u : 1u;
@@ -297,7 +297,7 @@ class RtPath final : public LightingPath {
         .sampled(shared::kRtBindingMaterial, "gbuffer.material")
         .sampled(shared::kRtBindingEmissive, "gbuffer.emissive")
         .sampled(shared::kRtBindingInstanceId, "gbuffer.instanceId")
-        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.executor.nextFrame()).handle())
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.frame).handle())
         .storageOut(shared::kRtBindingHitsOut, r.pretraceHits,
                     image(VK_FORMAT_R32_UINT, "pre-trace hit records: distance + G-buffer albedo, or pending").decodedAs("rt-hit-record"))
         .storageOut(shared::kRtBindingSurfaceOut, r.pretraceSurface,
@@ -314,7 +314,7 @@ class RtPath final : public LightingPath {
                     image(VK_FORMAT_R32_UINT, "hit records: distance (half) + albedo (565), miss code").decodedAs("rt-hit-record"))
         .storageOut(shared::kRtBindingSurfaceOut, r.hitSurface,
                     image(VK_FORMAT_R32G32_UINT, "hit normal (oct) + emission (rgb9e5)").decodedAs("rt-hit-surface"))
-        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.executor.nextFrame()).handle())
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.frame).handle())
         .sceneTable(in.scene.table())
         .push(push)
         .trace(tracedWidth(in), tracedHeight(in))
@@ -333,7 +333,7 @@ class RtPath final : public LightingPath {
         .optionalSampled(shared::kRtBindingFirstShY, kFirstRay.shY, first != nullptr)
         .optionalSampled(shared::kRtBindingFirstCoCg, kFirstRay.coCg, first != nullptr)
         .optionalSampled(shared::kRtBindingFirstAo, kFirstRay.ao, first != nullptr)
-        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.executor.nextFrame()).handle())
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.frame).handle())
         .push(push, screenRadianceAtRecord(screenRadiance))
         .trace(tracedWidth(in), tracedHeight(in))
         .add(graph);
@@ -343,7 +343,7 @@ class RtPath final : public LightingPath {
   // cache is off (then a few one-ray probes), since their outcomes decide whether it runs.
   void addCacheUpdate(graph::RenderGraph& graph, FrameInputs& in, const RtPush& push, bool screenRadiance) {
     withHitLighting(withCommon(RayTracingPass(in.device, "rt.cache.update", kCacheUpdateShaders)), screenRadiance, in)
-        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.executor.nextFrame()).handle())
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.frame).handle())
         .bufferOut(shared::kRtBindingCacheSamples, kRtCacheSamples, cache_.samplesDesc(in))
         .bufferOut(shared::kRtBindingCacheOutcomes, kRtCacheOutcomes, cache_.outcomesDesc(in))
         .push(push, screenRadianceAtRecord(screenRadiance))
@@ -361,7 +361,7 @@ class RtPath final : public LightingPath {
     auto cells = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, cw, ch, what); };
     withHitLighting(withCommon(RayTracingPass(in.device, "rt.disocclusion", kDisocclusionShaders)), screenRadiance, in)
         .sampled(shared::kRtBindingCoCg, kCoCgAo)
-        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.executor.nextFrame()).handle())
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.frame).handle())
         .storageOut(shared::kRtBindingCellShY, kCellShY,
                     cells(VK_FORMAT_R16G16B16A16_SFLOAT, "disocclusion rays per 8x8 cell: mean SH luma"))
         .storageOut(shared::kRtBindingCellCoCgAo, kCellCoCgAo,
@@ -395,20 +395,16 @@ class RtPath final : public LightingPath {
 
   // Deforming meshes: the throttle's refits, then the top level over all bottom levels, each
   // an acceleration-structure build pass whose barriers the graph derives.
-  void addStructurePasses(graph::RenderGraph& graph, FrameInputs& in) {
+  void addStructurePasses(graph::RenderGraph& graph) {
     gpu::TopLevelBuilder& top = scene_->topLevel();
-    graph.declareImported(kRtTlas, graph::ResourceDesc::buffer(top.storage().size(),
-                                                               "top-level acceleration structure (culled instances)"));
-    in.executor.bindImportedBuffer(kRtTlas, top.storage());
-    graph.declareImported(kRtTlasInstances, graph::ResourceDesc::buffer(top.instances().size(),
-                                                                        "the top level's instances (host-written)"));
-    in.executor.bindImportedBuffer(kRtTlasInstances, top.instances());
+    graph.importBuffer(kRtTlas, graph::ResourceDesc::buffer(top.storage().size(),
+                                                               "top-level acceleration structure (culled instances)"), top.storage());
+    graph.importBuffer(kRtTlasInstances, graph::ResourceDesc::buffer(top.instances().size(),
+                                                                        "the top level's instances (host-written)"), top.instances());
     const bool deforming = scene_->hasDeforming();
     if (deforming) {
-      graph.declareImported(kRtBlasDeforming,
-                            graph::ResourceDesc::buffer(scene_->deformingStorage().size(),
-                                                        "bottom levels of the deforming meshes (refitted under a throttle)"));
-      in.executor.bindImportedBuffer(kRtBlasDeforming, scene_->deformingStorage());
+      graph.importBuffer(kRtBlasDeforming, graph::ResourceDesc::buffer(scene_->deformingStorage().size(),
+                                                        "bottom levels of the deforming meshes (refitted under a throttle)"), scene_->deformingStorage());
     }
     if (deforming && scene_->refitsPending())
       AccelerationStructurePass("rt.blas.refit")
@@ -504,7 +500,7 @@ class RtPath final : public LightingPath {
     }
     const uint32_t materials = uint32_t(in.settings.materials);
     if (albedoVersion_ != in.instanceAlbedoVersion || materials_ != materials) {
-      scene_->setInstanceAlbedo(in.instanceAlbedo, materials, in.executor.nextFrame());  // an override shows in the next frame's bounce
+      scene_->setInstanceAlbedo(in.instanceAlbedo, materials, in.frame);  // an override shows in the next frame's bounce
       albedoVersion_ = in.instanceAlbedoVersion;
       materials_ = materials;
     }
