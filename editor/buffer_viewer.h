@@ -6,8 +6,7 @@
 #pragma once
 
 #include "graph/executor.h"
-#include "lighting/common/decoders.h"
-#include "lighting/common/display_pass.h"
+#include "session/inspection.h"
 
 #include <glm/glm.hpp>
 

@@ -6,7 +6,7 @@
 #include "editor_app.h"
 #include "key_help.h"
 #include "ui_helpers.h"
-#include "lighting/common/redeferred_pass.h"
+#include "session/inspection.h"
 #include "session/captured_frame.h"
 #include "gpu/install_paths.h"
 #include "gpu/renderdoc.h"
@@ -77,9 +77,9 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
     ImGui::MenuItem("Compare", "F3", &app.compareOpen());
     // Redeferred shading's I-buffer resolved against white: the light without the materials.
     const bool redeferred = app.session().settings().redeferred;
-    const bool lightOnly = app.pinnedPreview() == lighting::kIbufferLightOnly;
+    const bool lightOnly = app.pinnedPreview() == session::kIbufferLightOnly;
     if (ImGui::MenuItem("Light only", nullptr, lightOnly, redeferred))
-      app.pinPreview(lightOnly ? "" : lighting::kIbufferLightOnly);
+      app.pinPreview(lightOnly ? "" : session::kIbufferLightOnly);
     if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
       ImGui::SetTooltip(redeferred ? "the light arriving at each pixel, on a white world (the I-buffer without materials)"
                                    : "needs redeferred shading: Lighting panel, `redeferred`");
