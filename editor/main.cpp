@@ -133,7 +133,7 @@ void addViewAndLightOptions(CLI::App& cmd, RenderOptions& o) {
       ->check(CLI::IsMember({1.0f, 0.5f, 0.25f}));
   cmd.add_option("--pretrace", o.rtPretrace, "rt path: screen-space pre-trace before real rays (true/false)");
   cmd.add_option("--denoise", o.rtDenoise, "rt path: two-pass spatial denoiser after accumulation (true/false)");
-  cmd.add_option("--time", o.time, "animation time in seconds (morph targets) of the first frame")->capture_default_str();
+  cmd.add_option("--time", o.time, "animation time in seconds (morph targets, node animation) of the first frame")->capture_default_str();
   cmd.add_option("--animate", o.animateFps, "play the animations: each frame advances 1/FPS seconds")
       ->check(CLI::Range(1.0, 1000.0));
 }

@@ -404,7 +404,34 @@ void SceneWriter::weightsChannel(const std::string& animation, int node, const s
   it->channels.push_back(channel);
 }
 
-int SceneWriter::node(const std::string& name, int mesh, glm::vec3 t, glm::vec3 euler, glm::vec3 scale) {
+void SceneWriter::nodeChannel(const std::string& animation, int node, const std::string& path,
+                              const std::vector<float>& times, const std::vector<glm::vec4>& values,
+                              const std::string& interpolation) {
+  auto it = std::find_if(model_.animations.begin(), model_.animations.end(), [&](auto& a) { return a.name == animation; });
+  if (it == model_.animations.end()) {
+    model_.animations.emplace_back();
+    model_.animations.back().name = animation;
+    it = std::prev(model_.animations.end());
+  }
+  const bool rotation = path == "rotation";
+  std::vector<float> packed;
+  for (const glm::vec4& v : values)
+    for (int c = 0; c < (rotation ? 4 : 3); ++c) packed.push_back(v[c]);
+  tinygltf::AnimationSampler sampler;
+  sampler.input = accessor(times.data(), times.size() * 4, times.size(), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, 0,
+                           {times.front()}, {times.back()});
+  sampler.output = accessor(packed.data(), packed.size() * 4, values.size(), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                            rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, 0);
+  sampler.interpolation = interpolation;
+  it->samplers.push_back(sampler);
+  tinygltf::AnimationChannel channel;
+  channel.sampler = int(it->samplers.size() - 1);
+  channel.target_node = node;
+  channel.target_path = path;
+  it->channels.push_back(channel);
+}
+
+int SceneWriter::node(const std::string& name, int mesh, glm::vec3 t, glm::vec3 euler, glm::vec3 scale, int parent) {
   tinygltf::Node n;
   n.name = name;
   n.mesh = mesh;
@@ -415,8 +442,12 @@ int SceneWriter::node(const std::string& name, int mesh, glm::vec3 t, glm::vec3 
   }
   if (scale != glm::vec3(1.0f)) n.scale = {scale.x, scale.y, scale.z};
   model_.nodes.push_back(n);
-  roots_.push_back(int(model_.nodes.size() - 1));
-  return roots_.back();
+  const int index = int(model_.nodes.size() - 1);
+  if (parent >= 0)
+    model_.nodes[size_t(parent)].children.push_back(index);
+  else
+    roots_.push_back(index);
+  return index;
 }
 
 void SceneWriter::camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees) {

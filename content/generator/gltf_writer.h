@@ -98,9 +98,14 @@ class SceneWriter {
   // (created on first use): per key, one weight per target.
   void weightsChannel(const std::string& animation, int node, const std::vector<float>& times,
                       const std::vector<float>& weights);
-  // Returns the node's index.
+  // Returns the node's index. A root of the scene, or a child of node `parent` (>= 0), whose
+  // transform it then follows. `mesh` -1: a node without a mesh (a hinge, a pivot).
   int node(const std::string& name, int mesh, glm::vec3 translation, glm::vec3 eulerDegrees = glm::vec3(0.0f),
-            glm::vec3 scale = glm::vec3(1.0f));
+            glm::vec3 scale = glm::vec3(1.0f), int parent = -1);
+  // A channel of `node`'s "translation", "rotation" (values: quaternions x, y, z, w) or
+  // "scale" (x, y, z; w unused) in the animation called `animation`, LINEAR or STEP.
+  void nodeChannel(const std::string& animation, int node, const std::string& path, const std::vector<float>& times,
+                   const std::vector<glm::vec4>& values, const std::string& interpolation = "LINEAR");
   void camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees);
   // The sun's irradiance on Twinlight's scale (white Lambertian facing it: E / pi), written as
   // glTF's lux: E x 683 lm/W (shaders/shared/lights.h).

@@ -6,6 +6,7 @@
 #include "hard_scenes.h"
 
 #include <OpenImageIO/imageio.h>
+#include <glm/gtc/quaternion.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -257,6 +258,48 @@ void twinRooms(const std::filesystem::path& dir) {
   w.camera("lit_room", {west + 0.5f, 1.6f, -0.6f}, {-half, 1.2f, z + 0.5f}, 60.0f);
   w.camera("closed_room", {east - 0.5f, 1.6f, -0.6f}, {half, 1.3f, z + 1.0f}, 60.0f);
   w.sun({0.45f, -0.6f, -0.65f}, 20.0f);
+  w.sky({0.6f, 0.75f, 1.0f});
+  w.write(dir);
+}
+
+// Node animation (T10): a white room (base colour 0.8), 4 x 3 x 4 m inside 0.25 m walls, with a
+// 1.2 x 2.2 m doorway in its south wall and a wooden door hinged on the doorway's west jamb.
+// The door is the child of a hinge node whose rotation about +Y the animation drives (4 s
+// loop): closed until 1 s, swinging inwards to 90 degrees by 2 s, open until 3 s, closed again
+// at 4 s. Outside, a crate slides along x from -3 m to +3 m and back (the same 4 s). The sun
+// (E = 20) comes through the doorway onto the floor inside when the door is open; while it is
+// closed the room is shut and its true image is black. Camera 0 looks at the front from outside,
+// camera 1 at the sunlit floor patch from inside.
+void movingDoor(const std::filesystem::path& dir) {
+  SceneWriter w("moving_door");
+  const int white = w.material({"plaster_white", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  const int wood = w.material({"door_oak", {0.45f, 0.30f, 0.18f}, 0.0f, 0.7f});
+  const int crateWood = w.material({"crate_pine", {0.75f, 0.6f, 0.35f}, 0.0f, 0.8f});
+  const float t = 0.25f, h = 3.0f, x = 2.0f, z = -4.0f, door = 0.6f, doorTop = 2.2f;
+  slab(w, "ground", white, {-8.0f, -t, z - t}, {8.0f, 0.0f, 8.0f});
+  slab(w, "roof", white, {-x - t, h, z - t}, {x + t, h + t, t});
+  slab(w, "wall_west", white, {-x - t, 0.0f, z - t}, {-x, h, t});
+  slab(w, "wall_east", white, {x, 0.0f, z - t}, {x + t, h, t});
+  slab(w, "wall_north", white, {-x, 0.0f, z - t}, {x, h, z});
+  slab(w, "wall_south_west", white, {-x, 0.0f, 0.0f}, {-door, h, t});
+  slab(w, "wall_south_east", white, {door, 0.0f, 0.0f}, {x, h, t});
+  slab(w, "door_lintel", white, {-door, doorTop, 0.0f}, {door, h, t});
+  // The hinge sits on the west jamb at mid-wall; the door hangs from it filling the doorway
+  // (5 mm short of each jamb and of the lintel, so it swings free).
+  const int hinge = w.node("door_hinge", -1, {-door, 0.0f, t / 2});
+  const float leaf = 2.0f * door - 0.01f, leafHeight = doorTop - 0.005f, thick = 0.06f;
+  w.node("door", w.mesh("door", box({leaf, leafHeight, thick}), wood), {door, leafHeight / 2, 0.0f}, glm::vec3(0.0f),
+         glm::vec3(1.0f), hinge);
+  const glm::quat shut(1.0f, 0.0f, 0.0f, 0.0f), open = glm::angleAxis(glm::radians(90.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+  auto q = [](glm::quat r) { return glm::vec4(r.x, r.y, r.z, r.w); };
+  w.nodeChannel("door_and_crate", hinge, "rotation", {0.0f, 1.0f, 2.0f, 3.0f, 4.0f},
+                {q(shut), q(shut), q(open), q(open), q(shut)});
+  const int crate = w.node("crate", w.mesh("crate", box({0.6f, 0.6f, 0.6f}), crateWood), {-3.0f, 0.3f, 2.5f});
+  w.nodeChannel("door_and_crate", crate, "translation", {0.0f, 2.0f, 4.0f},
+                {{-3.0f, 0.3f, 2.5f, 0.0f}, {3.0f, 0.3f, 2.5f, 0.0f}, {-3.0f, 0.3f, 2.5f, 0.0f}});
+  w.camera("outside", {0.0f, 1.7f, 7.5f}, {0.0f, 1.0f, 0.0f}, 60.0f);
+  w.camera("inside", {1.5f, 1.6f, -3.5f}, {0.0f, 0.0f, -1.5f}, 60.0f);
+  w.sun({0.15f, -0.6f, -1.0f}, 20.0f);
   w.sky({0.6f, 0.75f, 1.0f});
   w.write(dir);
 }
@@ -853,6 +896,7 @@ int main(int argc, char** argv) {
     tl::content::doorwayRoom(dir);
     tl::content::slitCorridor(dir);
     tl::content::twinRooms(dir);
+    tl::content::movingDoor(dir);
     tl::content::lamps(dir);
     tl::content::lampGrid(dir);
     tl::content::areaRoom(dir);

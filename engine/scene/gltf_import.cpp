@@ -16,6 +16,7 @@
 #include "scene/import_values.h"
 #include "scene/input_limits.h"
 #include "scene/morph.h"
+#include "scene/node_animation.h"
 #include "scene/scene_internal.h"
 
 #include <fmt/format.h>
@@ -280,6 +281,17 @@ glm::dmat4 nodeTransform(const tinygltf::Node& n) {
   return t * r * s;
 }
 
+// The node's local transform as animation needs it: TRS, or the matrix a file gives instead.
+Node localNode(const tinygltf::Node& n, int index) {
+  Node out;
+  out.name = n.name.empty() ? fmt::format("node{}", index) : n.name;
+  if (n.matrix.size() == 16) out.matrix = glm::make_mat4(n.matrix.data());
+  if (n.translation.size() == 3) out.translation = glm::dvec3(n.translation[0], n.translation[1], n.translation[2]);
+  if (n.rotation.size() == 4) out.rotation = glm::normalize(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
+  if (n.scale.size() == 3) out.scale = glm::dvec3(n.scale[0], n.scale[1], n.scale[2]);
+  return out;
+}
+
 // Finite once stored as float, and placing things within InputLimits::kMaxCoordinate.
 bool usableTransform(const glm::dmat4& m) {
   for (int c = 0; c < 4; ++c)
@@ -442,11 +454,127 @@ void scanIgnored(const tinygltf::Model& model, IgnoredFeatures& ignored) {
   if (!model.skins.empty() && model.meshes.empty()) ignored.add("skins", "not applied");
   for (const auto& a : model.animations)
     for (const auto& ch : a.channels)
-      if (ch.target_path != "weights")
-        ignored.add(fmt::format("node {} animation", ch.target_path), "not played (only morph weights are)");
+      if (ch.target_path != "weights" && ch.target_path != "translation" && ch.target_path != "rotation" &&
+          ch.target_path != "scale")
+        ignored.add(fmt::format("node {} animation", ch.target_path), "not played (morph weights and node TRS are)");
   for (const auto& c : model.cameras)
     if (c.type == "orthographic") ignored.add("orthographic camera", "dropped (not in --camera's list)");
   if (model.scenes.size() > 1) ignored.add("scenes besides the default", "not loaded");
+}
+
+// An animation sampler's keyframe times: finite and never decreasing, else one error.
+std::vector<float> keyTimes(const Reader& rd, const tinygltf::AnimationSampler& sampler, size_t animation) {
+  std::vector<float> times;
+  for (const auto& t : rd.floats<1>(sampler.input, "animation input")) {
+    if (!std::isfinite(t.x) || (!times.empty() && t.x < times.back()))
+      rd.fail(fmt::format("animation {} has keyframe times that are not finite and increasing", animation));
+    times.push_back(t.x);
+  }
+  return times;
+}
+
+// Whether node `root` or a node below it holds a camera or a light (KHR_lights_punctual).
+bool holdsCameraOrLight(const tinygltf::Model& model, int root) {
+  std::vector<bool> seen(model.nodes.size(), false);
+  std::vector<int> open{root};
+  while (!open.empty()) {
+    const int n = open.back();
+    open.pop_back();
+    if (n < 0 || size_t(n) >= model.nodes.size() || seen[size_t(n)]) continue;
+    seen[size_t(n)] = true;
+    const auto& node = model.nodes[size_t(n)];
+    if (node.camera >= 0 || node.extensions.count("KHR_lights_punctual")) return true;
+    open.insert(open.end(), node.children.begin(), node.children.end());
+  }
+  return false;
+}
+
+// Channels of node translation, rotation and scale (glTF 2.0 section 3.11). Each value is
+// checked as the double it is stored in: finite, translations and scales within
+// InputLimits::kMaxCoordinate, rotations of non-zero length. Scene::bounds grows to hold the
+// instances at every key (and halfway between keys, where a rotation swings furthest from both).
+void readNodeAnimations(const tinygltf::Model& model, const Reader& rd, ImportValues& values, IgnoredFeatures& ignored,
+                        Scene& scene) {
+  for (size_t ai = 0; ai < model.animations.size(); ++ai) {
+    const auto& anim = model.animations[ai];
+    for (const auto& ch : anim.channels) {
+      const bool rotation = ch.target_path == "rotation";
+      if (ch.target_path != "translation" && !rotation && ch.target_path != "scale") continue;
+      if (ch.sampler < 0 || size_t(ch.sampler) >= anim.samplers.size())
+        rd.fail(fmt::format("animation {} has a channel with sampler {}, which does not exist", ai, ch.sampler));
+      if (ch.target_node < 0) continue;  // glTF: a channel without a node belongs to an extension
+      if (size_t(ch.target_node) >= model.nodes.size())
+        rd.fail(fmt::format("animation {} drives node {}, which does not exist", ai, ch.target_node));
+      const Node& node = scene.nodes[size_t(ch.target_node)];
+      if (node.matrix) {
+        ignored.add("animation of a node given as a matrix", "not played (glTF animates only nodes given as TRS)");
+        continue;
+      }
+      if (holdsCameraOrLight(model, ch.target_node))
+        ignored.add("animation of a camera's or a light's node", "the camera or light stays where the file places it");
+      const auto& sampler = anim.samplers[size_t(ch.sampler)];
+      NodeAnimation a;
+      a.node = uint32_t(ch.target_node);
+      a.property = rotation ? NodeProperty::Rotation : ch.target_path == "scale" ? NodeProperty::Scale : NodeProperty::Translation;
+      a.interpolation = sampler.interpolation == "STEP"          ? Interpolation::Step
+                        : sampler.interpolation == "CUBICSPLINE" ? Interpolation::CubicSpline
+                                                                 : Interpolation::Linear;
+      a.times = keyTimes(rd, sampler, ai);
+      const size_t perKey = a.interpolation == Interpolation::CubicSpline ? 3 : 1;
+      if (rotation) {
+        for (const auto& q : rd.floats<4>(sampler.output, "animation output")) a.values.emplace_back(q);
+      } else {
+        for (const auto& v : rd.floats<3>(sampler.output, "animation output")) a.values.emplace_back(v, 0.0f);
+      }
+      const std::string what = fmt::format("animation {} {} of node `{}`", ai, ch.target_path, node.name);
+      if (a.values.size() != a.times.size() * perKey)
+        rd.fail(fmt::format("{} has {} values for {} keys ({} expected)", what, a.values.size(), a.times.size(),
+                            a.times.size() * perKey));
+      for (size_t k = 0; k < a.values.size(); ++k) {
+        const glm::dvec4& v = a.values[k];
+        for (int c = 0; c < 4; ++c) values.finite(v[c], what);
+        const bool tangent = perKey == 3 && k % 3 != 1;
+        if (!rotation && glm::length(glm::dvec3(v)) > InputLimits::kMaxCoordinate)
+          rd.fail(fmt::format("{} has a value beyond {:g}", what, InputLimits::kMaxCoordinate));
+        if (rotation && !tangent && !(glm::length(v) > 1e-6))
+          rd.fail(fmt::format("{} has a rotation of zero length (not a quaternion)", what));
+      }
+      if (!a.times.empty()) scene.animationSeconds = std::max(scene.animationSeconds, double(a.times.back()));
+      scene.nodeAnimations.push_back(std::move(a));
+    }
+  }
+  if (scene.nodeAnimations.empty()) return;
+
+  std::vector<bool> animated(scene.nodes.size(), false);
+  for (const auto& a : scene.nodeAnimations) animated[a.node] = true;
+  for (const auto& inst : scene.instances) {
+    bool moves = false;
+    for (int32_t n = int32_t(inst.node); n >= 0 && !moves; n = scene.nodes[size_t(n)].parent) moves = animated[size_t(n)];
+    const Material& m = scene.materials[scene.meshes[inst.mesh].material];
+    if (moves && (m.emissiveTexture || glm::any(glm::greaterThan(m.emissiveFactor, glm::vec3(0.0f)))))
+      ignored.add("an animated emissive mesh", "the rt path samples its light where it rests (the reference and the other paths see it move)");
+  }
+
+  std::vector<double> times;
+  for (const auto& a : scene.nodeAnimations) times.insert(times.end(), a.times.begin(), a.times.end());
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+  constexpr size_t kMaxPoses = 512;  // bounds a file with many keys to a bounded import cost
+  std::vector<double> poses;
+  const size_t stride = (times.size() + kMaxPoses - 1) / kMaxPoses;
+  for (size_t k = 0; k < times.size(); k += stride) {
+    poses.push_back(times[k]);
+    if (k + stride < times.size()) poses.push_back(0.5 * (times[k] + times[k + stride]));
+  }
+  for (double t : poses) {
+    const std::vector<glm::dmat4> world = nodeWorldTransformsAt(scene, t);
+    for (const auto& inst : scene.instances) {
+      const Bounds b = transformBounds(scene.meshes[inst.mesh].bounds, world[inst.node]);
+      if (!withinWorld(b))
+        rd.fail(fmt::format("an animation moves `{}` beyond {:g} m from the origin", inst.name, InputLimits::kMaxCoordinate));
+      scene.bounds.extend(b);
+    }
+  }
 }
 
 }  // namespace
@@ -689,10 +817,14 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
   std::vector<std::vector<float>> meshDefaultWeights;
   for (const auto& m : scene.meshes) meshDefaultWeights.push_back(m.morphWeights);
   std::vector<bool> visited(model.nodes.size(), false);
-  std::function<void(int, const glm::dmat4&, int)> visit = [&](int ni, const glm::dmat4& parent, int depth) {
+  scene.nodes.resize(model.nodes.size());
+  for (size_t ni = 0; ni < model.nodes.size(); ++ni) scene.nodes[ni] = localNode(model.nodes[ni], int(ni));
+  std::function<void(int, int, const glm::dmat4&, int)> visit = [&](int ni, int parentIndex, const glm::dmat4& parent,
+                                                                    int depth) {
     if (ni < 0 || size_t(ni) >= model.nodes.size()) rd.fail(fmt::format("a node refers to node {}, which does not exist", ni));
     if (visited[size_t(ni)] || depth > 1000) rd.fail(fmt::format("node {} appears twice in the hierarchy (a cycle)", ni));
     visited[size_t(ni)] = true;
+    scene.nodes[size_t(ni)].parent = parentIndex;
     const auto& node = model.nodes[size_t(ni)];
     glm::dmat4 world = parent * nodeTransform(node);
     if (!usableTransform(world))
@@ -768,7 +900,7 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
         values.fail(fmt::format("node `{}` refers to light {}, which does not exist", nodeName, index));
       if (auto l = readLight(model.lights[size_t(index)], nodeName, position, orientation, values)) scene.lights.push_back(*l);
     }
-    for (int child : node.children) visit(child, world, depth + 1);
+    for (int child : node.children) visit(child, ni, world, depth + 1);
   };
   std::vector<int> roots;
   const size_t sceneIndex =
@@ -783,10 +915,10 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
     for (size_t i = 0; i < model.nodes.size(); ++i)
       if (!isChild[i]) roots.push_back(int(i));
   }
-  for (int r : roots) visit(r, glm::dmat4(1.0), 0);
+  for (int r : roots) visit(r, -1, glm::dmat4(1.0), 0);
 
-  // Animations: channels of morph weights drive the meshes of their node's instances. Node
-  // transforms are not animated (IgnoredFeatures says so).
+  // Animations: channels of morph weights drive the meshes of their node's instances; channels
+  // of translation, rotation and scale move nodes (readNodeAnimations).
   for (size_t ai = 0; ai < model.animations.size(); ++ai) {
     const auto& anim = model.animations[ai];
     for (const auto& ch : anim.channels) {
@@ -794,11 +926,8 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
       if (ch.sampler < 0 || size_t(ch.sampler) >= anim.samplers.size())
         rd.fail(fmt::format("animation {} has a channel with sampler {}, which does not exist", ai, ch.sampler));
       const auto& sampler = anim.samplers[size_t(ch.sampler)];
-      auto times = rd.floats<1>(sampler.input, "animation input");
+      const std::vector<float> times = keyTimes(rd, sampler, ai);
       auto outputs = rd.floats<1>(sampler.output, "animation output");
-      for (size_t k = 0; k < times.size(); ++k)
-        if (!std::isfinite(times[k].x) || (k > 0 && times[k].x < times[k - 1].x))
-          rd.fail(fmt::format("animation {} has keyframe times that are not finite and increasing", ai));
       const bool cubic = sampler.interpolation == "CUBICSPLINE";
       for (const auto& inst : scene.instances) {
         if (int(inst.node) != ch.target_node || !scene.meshes[inst.mesh].deforms()) continue;
@@ -810,7 +939,7 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
         MorphAnimation a;
         a.mesh = inst.mesh;
         a.step = sampler.interpolation == "STEP";
-        for (const auto& t : times) a.times.push_back(t.x);
+        a.times = times;
         // A cubic spline's keys hold in-tangents, values and out-tangents: its values, linearly.
         for (size_t k = 0; k < times.size(); ++k)
           for (size_t j = 0; j < targets; ++j) 
@@ -821,6 +950,8 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
       }
     }
   }
+
+  readNodeAnimations(model, rd, values, ignored, scene);
 
   // Environment: the first directional light is the sun; the others are shaded from the light table.
   for (size_t i = 0; i < scene.lights.size(); ++i) {

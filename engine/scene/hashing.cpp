@@ -80,6 +80,14 @@ uint64_t hashScene(const Scene& s) {
     h.add(i.mesh);
     h.add(i.transform);
   }
+  // What plays: a scene whose door swings otherwise is another scene.
+  for (const auto& a : s.nodeAnimations) {
+    h.add(a.node);
+    h.add(a.property);
+    h.add(a.interpolation);
+    for (float t : a.times) h.add(t);
+    for (const auto& v : a.values) h.add(v);
+  }
   h.add(s.environment.sunDirection);
   h.add(s.environment.sunIrradiance);
   h.add(s.environment.skyRadiance);

@@ -1,5 +1,7 @@
 #include "scene/morph.h"
 
+#include "scene/node_animation.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -9,11 +11,7 @@ std::vector<std::vector<float>> morphWeightsAt(const Scene& scene, double second
   std::vector<std::vector<float>> weights(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); ++m)
     if (scene.meshes[m].deforms()) weights[m] = scene.meshes[m].morphWeights;
-  double t = seconds;
-  if (scene.animationSeconds > 0.0) {
-    t = std::fmod(seconds, scene.animationSeconds);
-    if (t < 0.0) t += scene.animationSeconds;
-  }
+  const double t = loopedAnimationTime(scene, seconds);
   for (const MorphAnimation& a : scene.morphAnimations) {
     if (a.mesh >= scene.meshes.size() || a.times.empty()) continue;
     const size_t targets = scene.meshes[a.mesh].morphTargets.size();

@@ -151,11 +151,35 @@ struct MorphAnimation {
   bool step = false;           // STEP interpolation (else LINEAR)
 };
 
+// A glTF node as animation needs it: its parent and its local transform, as TRS (the pose
+// without animation) or as the matrix the file gives (glTF never animates a matrix node).
+struct Node {
+  std::string name;
+  int32_t parent = -1;  // index into Scene::nodes; -1: a root
+  glm::dvec3 translation{0.0};
+  glm::dquat rotation{1.0, 0.0, 0.0, 0.0};
+  glm::dvec3 scale{1.0};
+  std::optional<glm::dmat4> matrix;
+};
+
+// A glTF animation channel of a node's translation, rotation or scale: keyframe times
+// (seconds, increasing) and per key the value (xyz, or a rotation's quaternion as x, y, z, w).
+// CUBICSPLINE keys hold three values each: in-tangent, value, out-tangent.
+enum class NodeProperty : uint8_t { Translation, Rotation, Scale };
+enum class Interpolation : uint8_t { Linear, Step, CubicSpline };
+struct NodeAnimation {
+  uint32_t node = 0;  // index into Scene::nodes
+  NodeProperty property = NodeProperty::Translation;
+  Interpolation interpolation = Interpolation::Linear;
+  std::vector<float> times;
+  std::vector<glm::dvec4> values;  // times.size() values, or 3 x that for CUBICSPLINE
+};
+
 struct Instance {
   std::string name;       // the node's name (or "node<i>")
   uint32_t mesh = 0;      // index into Scene::meshes
-  uint32_t node = 0;      // glTF node index
-  glm::dmat4 transform{1.0};  // object -> world
+  uint32_t node = 0;      // glTF node index (= index into Scene::nodes)
+  glm::dmat4 transform{1.0};  // object -> world (at the animation time the session last posed)
   Bounds worldBounds;
 };
 
@@ -222,8 +246,10 @@ struct Scene {
   std::vector<Light> lights;        // every KHR_lights_punctual light, the sun (Environment::sunLight) included
   Environment environment;
   std::vector<MorphAnimation> morphAnimations;
+  std::vector<Node> nodes;                   // every glTF node, in the file's order
+  std::vector<NodeAnimation> nodeAnimations;  // TRS channels of nodes that place instances
   double animationSeconds = 0.0;    // the longest channel: animations loop over it
-  Bounds bounds;                    // world bounds of all instances
+  Bounds bounds;                    // world bounds of all instances (every animated pose's keys included)
   std::vector<std::string> warnings;  // e.g. missing texture (placeholder used), an ignored feature
   // Every feature of the file Twinlight ignores or approximates, one line each ("feature: what
   // happens instead"); each also gave one warning. Empty when everything the file uses renders.

@@ -69,7 +69,8 @@ std::vector<std::string> sceneReport(const Scene& s) {
                                                    : "area");
   lines.push_back(fmt::format("lights: {}{}", s.lights.size(), lights.empty() ? "" : " (" + counts(lights) + ")"));
   lines.push_back(fmt::format("cameras: {} perspective", s.cameras.size()));
-  lines.push_back(fmt::format("animations: {} morph-weight channels, {:.3g} s", s.morphAnimations.size(), s.animationSeconds));
+  lines.push_back(fmt::format("animations: {} morph-weight channels, {} node channels (translation, rotation, scale), {:.3g} s",
+                              s.morphAnimations.size(), s.nodeAnimations.size(), s.animationSeconds));
   std::string extensions;
   for (const auto& e : s.extensionsUsed) extensions += (extensions.empty() ? "" : ", ") + e;
   lines.push_back(fmt::format("extensions: {}", extensions.empty() ? "none" : extensions));

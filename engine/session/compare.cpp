@@ -59,7 +59,7 @@ std::string referenceKey(const Session& s, const CompareOptions& o) {
                                  key.hash(FramePart::CameraPosition), key.hash(FramePart::CameraOrientation),
                                  key.hash(FramePart::Projection), key.hash(FramePart::Sun), key.hash(FramePart::Sky),
                                  key.settingsOf("reference"), s.scene().contentHash, referenceSpirvHash(), o.referenceSpp);
-  if (s.animated()) text += fmt::format("|t{}", s.animationTime());  // the pose of deforming meshes
+  if (s.animated()) text += fmt::format("|t{}", s.animationTime());  // the pose of deforming meshes and moving nodes
   return fmt::format("{:016x}", scene::hashBytes(text.data(), text.size()));
 }
 

@@ -11,6 +11,7 @@
 #include "lighting/common/shadow_pass.h"
 #include "lighting/common/taa_pass.h"
 #include "scene/morph.h"
+#include "scene/node_animation.h"
 #include "session/captured_frame.h"
 #include "session/image_io.h"
 #include "session/view_math.h"
@@ -397,6 +398,9 @@ void Session::beginOne(bool readback) {
   shared::FrameConstants fc{};
   buildFrameConstants(fc, frameNumber, taa);
   constants_.write(frame, &fc, sizeof(fc));
+  // Animated nodes move their instances first: the instance table, the top level, the voxel
+  // regions and the frame key all see this frame's pose.
+  movedLastFrame_ = scene::poseInstances(*scene_, animationTime_);
   gpuScene_->updateInstances(*scene_, view_.position, previousView_.value_or(view_).position, frame);
   applyMorphs();
   historyLog_.clear();

@@ -118,17 +118,20 @@ class Session {
   const Lighting& lighting() const { return lighting_; }
   float exposureEv() const;  // the EV in use (explicit or automatic)
 
-  // Morph animations: the time (seconds, looping over the scene's animations) the next frame
-  // shows; deforming meshes take that pose before it renders. The editor advances it while
-  // playing; headless renders pick one (--time).
+  // Animations (morph weights, node translation/rotation/scale): the time (seconds, looping
+  // over the scene's animations) the next frame shows; deforming meshes and moving instances
+  // take that pose before it renders. The editor advances it while playing; headless renders
+  // pick one (--time).
   void setAnimationTime(double seconds) { animationTime_ = seconds; }
   double animationTime() const { return animationTime_; }
   // Seconds each rendered frame advances the animation time afterwards (0: it stays).
   void setAnimationStep(double seconds) { animationStep_ = seconds; }
   double animationStep() const { return animationStep_; }
-  bool animated() const { return scene_ && !scene_->morphAnimations.empty(); }
+  bool animated() const { return scene_ && (!scene_->morphAnimations.empty() || !scene_->nodeAnimations.empty()); }
   // Deforming meshes whose vertices the last frame uploaded (0 when none changed).
   size_t meshesDeformedLastFrame() const { return deformedLastFrame_; }
+  // Instances the last frame moved (node animation; 0 when none moved).
+  size_t instancesMovedLastFrame() const { return movedLastFrame_; }
 
   void setSize(uint32_t width, uint32_t height);
   lighting::RenderSettings& settings() { return settings_; }
@@ -294,7 +297,7 @@ class Session {
   uint64_t frameIndex_ = 0;
   double animationTime_ = 0.0, animationStep_ = 0.0;
   std::vector<std::vector<float>> appliedWeights_;  // per mesh: the pose its vertices hold
-  size_t deformedLastFrame_ = 0;
+  size_t deformedLastFrame_ = 0, movedLastFrame_ = 0;
   void applyMorphs();
   float brightestEmission_ = 0.0f;  // luminance of the scene's brightest emissive material
 };
