@@ -21,7 +21,15 @@ void Shape::append(const Shape& o) {
   normals.insert(normals.end(), o.normals.begin(), o.normals.end());
   uvs.insert(uvs.end(), o.uvs.begin(), o.uvs.end());
   tangents.insert(tangents.end(), o.tangents.begin(), o.tangents.end());
+  joints.insert(joints.end(), o.joints.begin(), o.joints.end());
+  weights.insert(weights.end(), o.weights.begin(), o.weights.end());
   for (uint32_t i : o.indices) indices.push_back(base + i);
+}
+
+Shape& Shape::boundTo(uint32_t joint) {
+  joints.assign(positions.size(), glm::uvec4(joint, 0, 0, 0));
+  weights.assign(positions.size(), glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
+  return *this;
 }
 
 namespace {
@@ -317,6 +325,15 @@ int SceneWriter::mesh(const std::string& name, const Shape& shape, int material)
   if (!shape.tangents.empty())
     prim.attributes["TANGENT"] = accessor(shape.tangents.data(), shape.tangents.size() * 16, shape.tangents.size(),
                                           TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, TINYGLTF_TARGET_ARRAY_BUFFER);
+  if (!shape.joints.empty()) {
+    std::vector<uint8_t> j;
+    for (const auto& v : shape.joints)
+      for (int k = 0; k < 4; ++k) j.push_back(uint8_t(v[k]));
+    prim.attributes["JOINTS_0"] = accessor(j.data(), j.size(), shape.joints.size(), TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                           TINYGLTF_TYPE_VEC4, TINYGLTF_TARGET_ARRAY_BUFFER);
+    prim.attributes["WEIGHTS_0"] = accessor(shape.weights.data(), shape.weights.size() * 16, shape.weights.size(),
+                                            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, TINYGLTF_TARGET_ARRAY_BUFFER);
+  }
   if (!shape.uvs1.empty())
     prim.attributes["TEXCOORD_1"] = accessor(shape.uvs1.data(), shape.uvs1.size() * 8, shape.uvs1.size(),
                                              TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, TINYGLTF_TARGET_ARRAY_BUFFER);
@@ -430,6 +447,18 @@ void SceneWriter::nodeChannel(const std::string& animation, int node, const std:
   channel.target_path = path;
   it->channels.push_back(channel);
 }
+
+int SceneWriter::skin(const std::string& name, const std::vector<int>& joints, const std::vector<glm::mat4>& inverseBind) {
+  tinygltf::Skin skin;
+  skin.name = name;
+  skin.joints = joints;
+  skin.inverseBindMatrices = accessor(inverseBind.data(), inverseBind.size() * 64, inverseBind.size(),
+                                      TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, 0);
+  model_.skins.push_back(skin);
+  return int(model_.skins.size() - 1);
+}
+
+void SceneWriter::skinNode(int node, int skin) { model_.nodes[size_t(node)].skin = skin; }
 
 int SceneWriter::node(const std::string& name, int mesh, glm::vec3 t, glm::vec3 euler, glm::vec3 scale, int parent) {
   tinygltf::Node n;

@@ -27,8 +27,14 @@ struct Shape {
   // COLOR_0's accessor: FLOAT VEC3 (alpha dropped), FLOAT VEC4, or normalized UNSIGNED_BYTE /
   // UNSIGNED_SHORT VEC4, the forms glTF allows.
   enum class ColorType { FloatVec3, FloatVec4, UnormByteVec4, UnormShortVec4 } colorType = ColorType::FloatVec4;
+  // Optional skinning: per vertex four joints (indices into the skin's joint list) and their
+  // weights, written as JOINTS_0 (unsigned byte) and WEIGHTS_0 (float).
+  std::vector<glm::uvec4> joints;
+  std::vector<glm::vec4> weights;
   std::vector<uint32_t> indices;
   void append(const Shape& other);
+  // Binds every vertex to one joint with weight 1.
+  Shape& boundTo(uint32_t joint);
 };
 
 // Shapes in metres, centred as documented per function.
@@ -98,6 +104,10 @@ class SceneWriter {
   // (created on first use): per key, one weight per target.
   void weightsChannel(const std::string& animation, int node, const std::vector<float>& times,
                       const std::vector<float>& weights);
+  // A skin over `joints` (node indices) with their inverse bind matrices; returns its index.
+  int skin(const std::string& name, const std::vector<int>& joints, const std::vector<glm::mat4>& inverseBind);
+  // Gives node `node`, which holds a mesh with joints, the skin `skin`.
+  void skinNode(int node, int skin);
   // Returns the node's index. A root of the scene, or a child of node `parent` (>= 0), whose
   // transform it then follows. `mesh` -1: a node without a mesh (a hinge, a pivot).
   int node(const std::string& name, int mesh, glm::vec3 translation, glm::vec3 eulerDegrees = glm::vec3(0.0f),

@@ -6,6 +6,7 @@
 #include "hard_scenes.h"
 
 #include <OpenImageIO/imageio.h>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include <cmath>
@@ -300,6 +301,76 @@ void movingDoor(const std::filesystem::path& dir) {
   w.camera("outside", {0.0f, 1.7f, 7.5f}, {0.0f, 1.0f, 0.0f}, 60.0f);
   w.camera("inside", {1.5f, 1.6f, -3.5f}, {0.0f, 0.0f, -1.5f}, 60.0f);
   w.sun({0.15f, -0.6f, -1.0f}, 20.0f);
+  w.sky({0.6f, 0.75f, 1.0f});
+  w.write(dir);
+}
+
+// Skinning (T10): a box figure 1.83 m tall walking along +x. One mesh (torso, head, legs and
+// arms, 120 vertices) skinned to five joints: hips, two legs, two arms; each part follows its
+// joint with weight 1 except the legs' top vertices, shared half and half with the hips. The
+// legs swing +-30 degrees about z once a second in opposition, the arms +-20 degrees against
+// them, and the figure's root walks from x = -2 m to +2 m in 4 s (the loop). Camera 0 looks
+// at it from the side.
+void walker(const std::filesystem::path& dir) {
+  SceneWriter w("walker");
+  const int ground = w.material({"ground", {0.7f, 0.7f, 0.7f}, 0.0f, 0.9f});
+  const int cloth = w.material({"walker_cloth", {0.2f, 0.35f, 0.7f}, 0.0f, 0.8f});
+  w.node("ground", w.mesh("ground", quad(12.0f, 12.0f, 2.0f), ground), {0.0f, 0.0f, 0.0f});
+  // The skeleton in its bind pose (the root at the origin): joint positions in metres.
+  const glm::vec3 hipsAt(0.0f, 0.95f, 0.0f), legAt(0.0f, 0.0f, 0.1f), armAt(0.0f, 0.6f, 0.25f);
+  const int root = w.node("walker", -1, glm::vec3(0.0f));
+  const int hips = w.node("hips", -1, hipsAt, glm::vec3(0.0f), glm::vec3(1.0f), root);
+  const int legLeft = w.node("leg_left", -1, legAt, glm::vec3(0.0f), glm::vec3(1.0f), hips);
+  const int legRight = w.node("leg_right", -1, -legAt, glm::vec3(0.0f), glm::vec3(1.0f), hips);
+  const int armLeft = w.node("arm_left", -1, armAt, glm::vec3(0.0f), glm::vec3(1.0f), hips);
+  const int armRight = w.node("arm_right", -1, armAt * glm::vec3(1.0f, 1.0f, -1.0f), glm::vec3(0.0f), glm::vec3(1.0f), hips);
+  // Joint order in the skin: 0 hips, 1 left leg, 2 right leg, 3 left arm, 4 right arm.
+  const std::vector<glm::vec3> bindPositions = {hipsAt, hipsAt + legAt, hipsAt - legAt, hipsAt + armAt,
+                                                hipsAt + armAt * glm::vec3(1.0f, 1.0f, -1.0f)};
+  std::vector<glm::mat4> inverseBind;
+  for (const glm::vec3& p : bindPositions) inverseBind.push_back(glm::translate(glm::mat4(1.0f), -p));
+  auto part = [](glm::vec3 size, glm::vec3 centre, uint32_t joint) {
+    Shape s = transformed(box(size), glm::translate(glm::mat4(1.0f), centre));
+    return s.boundTo(joint);
+  };
+  Shape body = part({0.3f, 0.6f, 0.4f}, {0.0f, 1.25f, 0.0f}, 0);
+  body.append(part({0.22f, 0.22f, 0.22f}, {0.0f, 1.72f, 0.0f}, 0));
+  for (uint32_t side = 0; side < 2; ++side) {
+    const float z = side == 0 ? 0.1f : -0.1f;
+    Shape leg = part({0.14f, 0.95f, 0.14f}, {0.0f, 0.475f, z}, 1 + side);
+    // The hip end bends with the hips as much as with the leg.
+    for (size_t v = 0; v < leg.positions.size(); ++v)
+      if (leg.positions[v].y > 0.9f) {
+        leg.joints[v] = glm::uvec4(1 + side, 0, 0, 0);
+        leg.weights[v] = glm::vec4(0.5f, 0.5f, 0.0f, 0.0f);
+      }
+    body.append(leg);
+    body.append(part({0.1f, 0.65f, 0.1f}, {0.0f, 1.25f, side == 0 ? 0.25f : -0.25f}, 3 + side));
+  }
+  const int bodyNode = w.node("walker_body", w.mesh("walker_body", body, cloth), glm::vec3(0.0f), glm::vec3(0.0f),
+                              glm::vec3(1.0f), root);
+  w.skinNode(bodyNode, w.skin("walker_skin", {hips, legLeft, legRight, armLeft, armRight}, inverseBind));
+  std::vector<float> times;
+  std::vector<glm::vec4> legL, legR, armL, armR;
+  auto aboutZ = [](float degrees) {
+    const glm::quat q = glm::angleAxis(glm::radians(degrees), glm::vec3(0.0f, 0.0f, 1.0f));
+    return glm::vec4(q.x, q.y, q.z, q.w);
+  };
+  for (int k = 0; k <= 32; ++k) {
+    const float t = 0.125f * float(k), swing = std::sin(6.2831853f * t);
+    times.push_back(t);
+    legL.push_back(aboutZ(30.0f * swing));
+    legR.push_back(aboutZ(-30.0f * swing));
+    armL.push_back(aboutZ(-20.0f * swing));
+    armR.push_back(aboutZ(20.0f * swing));
+  }
+  w.nodeChannel("walk", legLeft, "rotation", times, legL);
+  w.nodeChannel("walk", legRight, "rotation", times, legR);
+  w.nodeChannel("walk", armLeft, "rotation", times, armL);
+  w.nodeChannel("walk", armRight, "rotation", times, armR);
+  w.nodeChannel("walk", root, "translation", {0.0f, 4.0f}, {{-2.0f, 0.0f, 0.0f, 0.0f}, {2.0f, 0.0f, 0.0f, 0.0f}});
+  w.camera("side", {0.0f, 1.2f, 6.0f}, {0.0f, 0.9f, 0.0f}, 50.0f);
+  w.sun({0.3f, -0.8f, -0.5f}, 10.0f);
   w.sky({0.6f, 0.75f, 1.0f});
   w.write(dir);
 }
@@ -897,6 +968,7 @@ int main(int argc, char** argv) {
     tl::content::slitCorridor(dir);
     tl::content::twinRooms(dir);
     tl::content::movingDoor(dir);
+    tl::content::walker(dir);
     tl::content::lamps(dir);
     tl::content::lampGrid(dir);
     tl::content::areaRoom(dir);

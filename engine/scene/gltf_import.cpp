@@ -17,6 +17,7 @@
 #include "scene/input_limits.h"
 #include "scene/morph.h"
 #include "scene/node_animation.h"
+#include "scene/skinning.h"
 #include "scene/scene_internal.h"
 
 #include <fmt/format.h>
@@ -191,6 +192,19 @@ class Reader {
       for (int c = 0; c < N; ++c) out[i][c] = component(v, i, c);
     applySparse(index, what, [&](size_t target, const View& values, size_t k) {
       for (int c = 0; c < N; ++c) out[target][c] = component(values, k, c);
+    });
+    return out;
+  }
+
+  // MAT4 elements, column-major as glTF stores them.
+  std::vector<glm::dmat4> matrices(int index, const char* what) const {
+    View v = accessor(index, what);
+    if (v.type != TINYGLTF_TYPE_MAT4) fail(fmt::format("accessor {} ({}) is not MAT4", index, what));
+    std::vector<glm::dmat4> out(v.count);
+    for (size_t i = 0; i < v.count; ++i)
+      for (int c = 0; c < 16; ++c) out[i][c / 4][c % 4] = component(v, i, c);
+    applySparse(index, what, [&](size_t target, const View& values, size_t k) {
+      for (int c = 0; c < 16; ++c) out[target][c / 4][c % 4] = component(values, k, c);
     });
     return out;
   }
@@ -446,12 +460,13 @@ void scanIgnored(const tinygltf::Model& model, IgnoredFeatures& ignored) {
   for (const auto& mesh : model.meshes)
     for (const auto& p : mesh.primitives) {
       if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) ignored.add("points, lines and strips", "primitives skipped");
-      if (p.attributes.count("JOINTS_0") || p.attributes.count("WEIGHTS_0"))
-        ignored.add("skinning (JOINTS_0/WEIGHTS_0)", "meshes drawn in their bind pose");
+      if (p.attributes.count("JOINTS_1") || p.attributes.count("WEIGHTS_1"))
+        ignored.add("more than four joints per vertex (JOINTS_1/WEIGHTS_1)", "the first four are used, their weights renormalised");
+      if (p.attributes.count("JOINTS_0") != p.attributes.count("WEIGHTS_0"))
+        ignored.add("JOINTS_0 without WEIGHTS_0 (or the other way)", "drawn as stored");
       for (const auto& target : p.targets)
         if (target.count("TANGENT")) ignored.add("morph target TANGENT deltas", "tangents keep their rest pose");
     }
-  if (!model.skins.empty() && model.meshes.empty()) ignored.add("skins", "not applied");
   for (const auto& a : model.animations)
     for (const auto& ch : a.channels)
       if (ch.target_path != "weights" && ch.target_path != "translation" && ch.target_path != "rotation" &&
@@ -487,6 +502,33 @@ bool holdsCameraOrLight(const tinygltf::Model& model, int root) {
     open.insert(open.end(), node.children.begin(), node.children.end());
   }
   return false;
+}
+
+// The file's skins: joints (existing nodes) and inverse bind matrices (finite; identity where
+// the file gives none, as glTF says).
+void readSkins(const tinygltf::Model& model, const Reader& rd, Scene& scene) {
+  for (size_t si = 0; si < model.skins.size(); ++si) {
+    const auto& gs = model.skins[si];
+    Skin skin;
+    skin.name = gs.name.empty() ? fmt::format("skin{}", si) : gs.name;
+    for (int j : gs.joints) {
+      if (j < 0 || size_t(j) >= model.nodes.size())
+        rd.fail(fmt::format("skin `{}` has joint node {}, which does not exist", skin.name, j));
+      skin.joints.push_back(uint32_t(j));
+    }
+    skin.inverseBind.assign(skin.joints.size(), glm::dmat4(1.0));
+    if (gs.inverseBindMatrices >= 0) {
+      const auto matrices = rd.matrices(gs.inverseBindMatrices, "inverseBindMatrices");
+      if (matrices.size() < skin.joints.size())
+        rd.fail(fmt::format("skin `{}` has {} inverse bind matrices for {} joints", skin.name, matrices.size(), skin.joints.size()));
+      for (size_t j = 0; j < skin.joints.size(); ++j) {
+        if (!usableTransform(matrices[j]))
+          rd.fail(fmt::format("skin `{}` has a non-finite or out-of-range inverse bind matrix (joint {})", skin.name, j));
+        skin.inverseBind[j] = matrices[j];
+      }
+    }
+    scene.skins.push_back(std::move(skin));
+  }
 }
 
 // Channels of node translation, rotation and scale (glTF 2.0 section 3.11). Each value is
@@ -543,8 +585,6 @@ void readNodeAnimations(const tinygltf::Model& model, const Reader& rd, ImportVa
       scene.nodeAnimations.push_back(std::move(a));
     }
   }
-  if (scene.nodeAnimations.empty()) return;
-
   std::vector<bool> animated(scene.nodes.size(), false);
   for (const auto& a : scene.nodeAnimations) animated[a.node] = true;
   for (const auto& inst : scene.instances) {
@@ -554,19 +594,67 @@ void readNodeAnimations(const tinygltf::Model& model, const Reader& rd, ImportVa
     if (moves && (m.emissiveTexture || glm::any(glm::greaterThan(m.emissiveFactor, glm::vec3(0.0f)))))
       ignored.add("an animated emissive mesh", "the rt path samples its light where it rests (the reference and the other paths see it move)");
   }
+}
 
-  std::vector<double> times;
+// Bounds that hold every pose the animations make: a skinned mesh's own bounds (object space)
+// grow to hold it skinned at each pose, and Scene::bounds to hold every instance at each pose.
+// The poses: time 0 and every key of the node channels with the points halfway between (where
+// a rotation swings furthest from both), at most kMaxPoses (skinned meshes: kMaxSkinnedPoses,
+// each skins every vertex), so a file with many keys costs a bounded import.
+void boundAnimatedPoses(const Reader& rd, Scene& scene) {
+  bool skinned = false;
+  for (const auto& m : scene.meshes) skinned |= m.skinned();
+  if (scene.nodeAnimations.empty() && !skinned) return;
+  std::vector<double> times{0.0};
   for (const auto& a : scene.nodeAnimations) times.insert(times.end(), a.times.begin(), a.times.end());
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());
-  constexpr size_t kMaxPoses = 512;  // bounds a file with many keys to a bounded import cost
-  std::vector<double> poses;
-  const size_t stride = (times.size() + kMaxPoses - 1) / kMaxPoses;
-  for (size_t k = 0; k < times.size(); k += stride) {
-    poses.push_back(times[k]);
-    if (k + stride < times.size()) poses.push_back(0.5 * (times[k] + times[k + stride]));
+  auto posesOf = [&](size_t most) {
+    std::vector<double> poses;
+    const size_t stride = (times.size() + most - 1) / most;
+    for (size_t k = 0; k < times.size(); k += stride) {
+      poses.push_back(times[k]);
+      if (k + stride < times.size()) poses.push_back(0.5 * (times[k] + times[k + stride]));
+    }
+    return poses;
+  };
+  constexpr size_t kMaxPoses = 512, kMaxSkinnedPoses = 64;
+  if (skinned) {
+    std::vector<Vertex> posed;
+    for (double t : posesOf(kMaxSkinnedPoses)) {
+      const std::vector<glm::dmat4> world = nodeWorldTransformsAt(scene, t);
+      for (const auto& inst : scene.instances) {
+        Mesh& mesh = scene.meshes[inst.mesh];
+        if (!mesh.skinned()) continue;
+        posed = mesh.vertices;
+        skinVertices(mesh, jointMatrices(scene.skins[size_t(mesh.skin)], world[inst.node], world), posed);
+        // Morph targets move vertices before skinning: pad by the most any vertex can move.
+        double pad = 0.0;
+        for (size_t v = 0; v < mesh.vertices.size() && !mesh.morphTargets.empty(); ++v) {
+          double reach = 0.0;
+          for (const MorphTarget& target : mesh.morphTargets) reach += glm::length(glm::dvec3(target.positions[v]));
+          pad = std::max(pad, reach);  // weights in [-1, 1], as morphBounds assumes
+        }
+        for (const Vertex& v : posed) {
+          mesh.bounds.extend(glm::dvec3(v.position) - pad);
+          mesh.bounds.extend(glm::dvec3(v.position) + pad);
+        }
+        if (!withinWorld(mesh.bounds))
+          rd.fail(fmt::format("skin `{}` moves mesh `{}` beyond {:g} m", scene.skins[size_t(mesh.skin)].name, mesh.name,
+                              InputLimits::kMaxCoordinate));
+      }
+    }
+    // Between the sampled poses a bone swings on an arc that can reach a little past them:
+    // 2% of the mesh's size covers the sag of a 16-degree step (1 - cos 8 degrees ~ 1%).
+    for (auto& m : scene.meshes)
+      if (m.skinned()) {
+        const glm::dvec3 margin(0.02 * std::max({m.bounds.size().x, m.bounds.size().y, m.bounds.size().z}));
+        m.bounds.min -= margin;
+        m.bounds.max += margin;
+      }
+    for (auto& inst : scene.instances) inst.worldBounds = transformBounds(scene.meshes[inst.mesh].bounds, inst.transform);
   }
-  for (double t : poses) {
+  for (double t : posesOf(kMaxPoses)) {
     const std::vector<glm::dmat4> world = nodeWorldTransformsAt(scene, t);
     for (const auto& inst : scene.instances) {
       const Bounds b = transformBounds(scene.meshes[inst.mesh].bounds, world[inst.node]);
@@ -783,6 +871,26 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
         }
         mesh.morphTargets.push_back(std::move(target));
       }
+      // Skinning: four joints and weights per vertex; the node's skin says whose joints they are.
+      const auto jointsAttribute = prim.attributes.find("JOINTS_0"), weightsAttribute = prim.attributes.find("WEIGHTS_0");
+      if (jointsAttribute != prim.attributes.end() && weightsAttribute != prim.attributes.end()) {
+        const auto joints = rd.floats<4>(jointsAttribute->second, "JOINTS_0");
+        const auto weights = rd.floats<4>(weightsAttribute->second, "WEIGHTS_0");
+        if (joints.size() != fileVertices || weights.size() != fileVertices)
+          rd.fail(fmt::format("mesh `{}` has {} JOINTS_0 and {} WEIGHTS_0 for {} vertices", name, joints.size(),
+                              weights.size(), fileVertices));
+        for (size_t k = 0; k < mesh.vertices.size(); ++k) {
+          const size_t v = vertexSource[k];
+          glm::vec4 w = weights[v];
+          for (int c = 0; c < 4; ++c)
+            if (!(w[c] >= 0.0f) || !std::isfinite(w[c]) || !(joints[v][c] >= 0.0f && joints[v][c] <= 65535.0f))
+              rd.fail(fmt::format("mesh `{}` vertex {} has a joint or weight that is negative or not finite", name, v));
+          const float sum = w.x + w.y + w.z + w.w;
+          if (!(sum > 0.0f)) rd.fail(fmt::format("mesh `{}` vertex {} has weights that sum to 0", name, v));
+          mesh.joints.push_back(glm::u16vec4(joints[v]));
+          mesh.weights.push_back(w / sum);  // glTF asks for a sum of 1; exporters round
+        }
+      }
       if (!withinWorld(mesh.bounds))
         rd.fail(fmt::format("mesh `{}` has positions beyond {:g} m from its origin", name, InputLimits::kMaxCoordinate));
       if (!mesh.morphTargets.empty()) {
@@ -816,6 +924,7 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
   std::vector<bool> meshInstanced(scene.meshes.size(), false);
   std::vector<std::vector<float>> meshDefaultWeights;
   for (const auto& m : scene.meshes) meshDefaultWeights.push_back(m.morphWeights);
+  readSkins(model, rd, scene);
   std::vector<bool> visited(model.nodes.size(), false);
   scene.nodes.resize(model.nodes.size());
   for (size_t ni = 0; ni < model.nodes.size(); ++ni) scene.nodes[ni] = localNode(model.nodes[ni], int(ni));
@@ -840,8 +949,11 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
         Instance inst;
         inst.name = prims.size() > 1 ? fmt::format("{}#{}", nodeName, k) : nodeName;
         inst.mesh = prims[k];
-        if (scene.meshes[inst.mesh].deforms()) {
-          // A deforming mesh follows its node's weights: every further node gets its own copy.
+        const bool withJoints = !scene.meshes[inst.mesh].joints.empty();
+        if (withJoints && node.skin < 0)
+          ignored.add("JOINTS_0/WEIGHTS_0 on a node without a skin", "drawn as stored (glTF skins a mesh through its node)");
+        if (scene.meshes[inst.mesh].deforms() || (withJoints && node.skin >= 0)) {
+          // A deforming mesh follows its node's weights and skin: every further node gets its own copy.
           if (meshInstanced[inst.mesh]) {
             Mesh copy = scene.meshes[inst.mesh];
             copy.name += "@" + nodeName;
@@ -849,8 +961,17 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
             scene.meshes.push_back(std::move(copy));
             meshInstanced.push_back(false);
           }
-          // The glTF mesh's own weights, then the node's (an earlier node's never carry over).
           Mesh& mesh = scene.meshes[inst.mesh];
+          mesh.skin = withJoints ? node.skin : -1;
+          if (mesh.skinned()) {
+            if (size_t(node.skin) >= scene.skins.size())
+              rd.fail(fmt::format("node `{}` refers to skin {}, which does not exist", nodeName, node.skin));
+            for (const auto& j : mesh.joints)
+              if (std::max({j.x, j.y, j.z, j.w}) >= scene.skins[size_t(node.skin)].joints.size())
+                rd.fail(fmt::format("mesh `{}` names joint {} of skin {}, which has {}", mesh.name,
+                                    std::max({j.x, j.y, j.z, j.w}), node.skin, scene.skins[size_t(node.skin)].joints.size()));
+          }
+          // The glTF mesh's own weights, then the node's (an earlier node's never carry over).
           mesh.morphWeights = meshDefaultWeights[prims[k]];
           for (size_t w = 0; w < node.weights.size() && w < mesh.morphWeights.size(); ++w)
             mesh.morphWeights[w] = values.morphWeight(node.weights[w], fmt::format("node `{}` weight {}", nodeName, w));
@@ -930,7 +1051,7 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
       auto outputs = rd.floats<1>(sampler.output, "animation output");
       const bool cubic = sampler.interpolation == "CUBICSPLINE";
       for (const auto& inst : scene.instances) {
-        if (int(inst.node) != ch.target_node || !scene.meshes[inst.mesh].deforms()) continue;
+        if (int(inst.node) != ch.target_node || scene.meshes[inst.mesh].morphTargets.empty()) continue;
         const size_t targets = scene.meshes[inst.mesh].morphTargets.size();
         const size_t perKey = cubic ? 3 * targets : targets;
         if (outputs.size() != times.size() * perKey)
@@ -952,6 +1073,7 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
   }
 
   readNodeAnimations(model, rd, values, ignored, scene);
+  boundAnimatedPoses(rd, scene);
 
   // Environment: the first directional light is the sun; the others are shaded from the light table.
   for (size_t i = 0; i < scene.lights.size(); ++i) {

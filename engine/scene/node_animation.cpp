@@ -120,7 +120,10 @@ std::vector<glm::dmat4> nodeWorldTransformsAt(const Scene& scene, double seconds
 
 size_t poseInstances(Scene& scene, double seconds) {
   if (scene.nodeAnimations.empty()) return 0;
-  const std::vector<glm::dmat4> world = nodeWorldTransformsAt(scene, seconds);
+  return poseInstances(scene, nodeWorldTransformsAt(scene, seconds));
+}
+
+size_t poseInstances(Scene& scene, const std::vector<glm::dmat4>& world) {
   size_t moved = 0;
   for (Instance& inst : scene.instances) {
     if (inst.node >= world.size() || world[inst.node] == inst.transform) continue;

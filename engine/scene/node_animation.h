@@ -24,5 +24,7 @@ std::vector<glm::dmat4> nodeWorldTransformsAt(const Scene& scene, double seconds
 // bounds; returns how many instances changed transform. Scene::bounds is left as the importer
 // made it (every key's pose included), so the scene's size does not change while it plays.
 size_t poseInstances(Scene& scene, double seconds);
+// The same with the nodes' world transforms already known (nodeWorldTransformsAt).
+size_t poseInstances(Scene& scene, const std::vector<glm::dmat4>& nodeWorld);
 
 }  // namespace tl::scene

@@ -139,7 +139,22 @@ struct Mesh {
   uint64_t contentHash = 0;       // xxHash64 of vertices + indices
   std::vector<MorphTarget> morphTargets;
   std::vector<float> morphWeights;  // the pose without animation (node weights, else the mesh's)
-  bool deforms() const { return !morphTargets.empty(); }
+  // Skinning (JOINTS_0 / WEIGHTS_0): per vertex four joints (indices into the skin's list) and
+  // their weights (summing to 1); `skin` the node's skin (Scene::skins), -1 for a mesh drawn as
+  // stored. Like a morphing mesh, a skinned one has exactly one instance.
+  std::vector<glm::u16vec4> joints;
+  std::vector<glm::vec4> weights;
+  int32_t skin = -1;
+  bool skinned() const { return skin >= 0; }
+  bool deforms() const { return !morphTargets.empty() || skinned(); }
+};
+
+// A glTF skin: the nodes that are its joints, and per joint the inverse bind matrix that takes
+// the mesh's bind-pose space to the joint's (identity where the file gives none).
+struct Skin {
+  std::string name;
+  std::vector<uint32_t> joints;  // indices into Scene::nodes
+  std::vector<glm::dmat4> inverseBind;
 };
 
 // A glTF animation channel of morph weights, resolved to the mesh it deforms: keyframe times
@@ -247,6 +262,7 @@ struct Scene {
   Environment environment;
   std::vector<MorphAnimation> morphAnimations;
   std::vector<Node> nodes;                   // every glTF node, in the file's order
+  std::vector<Skin> skins;
   std::vector<NodeAnimation> nodeAnimations;  // TRS channels of nodes that place instances
   double animationSeconds = 0.0;    // the longest channel: animations loop over it
   Bounds bounds;                    // world bounds of all instances (every animated pose's keys included)

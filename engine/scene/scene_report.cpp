@@ -71,6 +71,10 @@ std::vector<std::string> sceneReport(const Scene& s) {
   lines.push_back(fmt::format("cameras: {} perspective", s.cameras.size()));
   lines.push_back(fmt::format("animations: {} morph-weight channels, {} node channels (translation, rotation, scale), {:.3g} s",
                               s.morphAnimations.size(), s.nodeAnimations.size(), s.animationSeconds));
+  size_t joints = 0, skinnedMeshes = 0;
+  for (const auto& skin : s.skins) joints += skin.joints.size();
+  for (const auto& m : s.meshes) skinnedMeshes += m.skinned();
+  lines.push_back(fmt::format("skins: {} ({} joints, {} skinned meshes)", s.skins.size(), joints, skinnedMeshes));
   std::string extensions;
   for (const auto& e : s.extensionsUsed) extensions += (extensions.empty() ? "" : ", ") + e;
   lines.push_back(fmt::format("extensions: {}", extensions.empty() ? "none" : extensions));

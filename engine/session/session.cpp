@@ -12,6 +12,7 @@
 #include "lighting/common/taa_pass.h"
 #include "scene/morph.h"
 #include "scene/node_animation.h"
+#include "scene/skinning.h"
 #include "session/captured_frame.h"
 #include "session/image_io.h"
 #include "session/view_math.h"
@@ -104,6 +105,7 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   animationTime_ = 0.0;
   // The upload holds every mesh at rest (all weights 0).
   appliedWeights_.assign(scene_->meshes.size(), {});
+  appliedJoints_.assign(scene_->meshes.size(), {});  // the upload holds skinned meshes in their bind pose
   for (size_t m = 0; m < scene_->meshes.size(); ++m) appliedWeights_[m].assign(scene_->meshes[m].morphTargets.size(), 0.0f);
 
   const auto& env = scene_->environment;
@@ -400,9 +402,12 @@ void Session::beginOne(bool readback) {
   constants_.write(frame, &fc, sizeof(fc));
   // Animated nodes move their instances first: the instance table, the top level, the voxel
   // regions and the frame key all see this frame's pose.
-  movedLastFrame_ = scene::poseInstances(*scene_, animationTime_);
+  std::vector<glm::dmat4> nodeWorld;
+  if (!scene_->nodeAnimations.empty() || !scene_->skins.empty())
+    nodeWorld = scene::nodeWorldTransformsAt(*scene_, animationTime_);
+  movedLastFrame_ = scene_->nodeAnimations.empty() ? 0 : scene::poseInstances(*scene_, nodeWorld);
   gpuScene_->updateInstances(*scene_, view_.position, previousView_.value_or(view_).position, frame);
-  applyMorphs();
+  applyDeformation(nodeWorld);
   historyLog_.clear();
 
   graph::RenderGraph graph;
@@ -459,7 +464,7 @@ void Session::beginOne(bool readback) {
   in.instanceAlbedoVersion = albedo_->version();
   in.temporalAntialiasing = taa;
   in.pathName = path->name();
-  in.key = frameKey(frameNumber);  // after applyMorphs: the geometry this frame shows
+  in.key = frameKey(frameNumber);  // after applyDeformation: the geometry this frame shows
   in.historyLog = &historyLog_;
   passes_->gbuffer.add(graph, in);
   passes_->shadow.add(graph, in);
@@ -543,8 +548,10 @@ void Session::finishOne() {
   }
 }
 
-// Deforming meshes take this frame's pose: only those whose weights changed are uploaded.
-void Session::applyMorphs() {
+// Deforming meshes take this frame's pose, morph weights first, then the skin's joints (glTF's
+// order): only those whose weights or joint matrices changed are uploaded. `nodeWorld`: every
+// node's world transform at this frame's time (empty when the scene has no skins).
+void Session::applyDeformation(const std::vector<glm::dmat4>& nodeWorld) {
   deformedLastFrame_ = 0;
   if (!scene_ || appliedWeights_.empty()) return;
   bool any = false;
@@ -553,12 +560,20 @@ void Session::applyMorphs() {
   const auto weights = scene::morphWeightsAt(*scene_, animationTime_);
   std::vector<uint32_t> meshes;
   std::vector<std::vector<scene::Vertex>> vertices;
-  for (uint32_t m = 0; m < scene_->meshes.size(); ++m) {
-    if (!scene_->meshes[m].deforms() || weights[m] == appliedWeights_[m]) continue;
+  for (const scene::Instance& instance : scene_->instances) {
+    const uint32_t m = instance.mesh;
+    const scene::Mesh& mesh = scene_->meshes[m];
+    if (!mesh.deforms()) continue;
+    std::vector<glm::mat4> joints;
+    if (mesh.skinned() && instance.node < nodeWorld.size())
+      joints = scene::jointMatrices(scene_->skins[size_t(mesh.skin)], nodeWorld[instance.node], nodeWorld);
+    if (weights[m] == appliedWeights_[m] && joints == appliedJoints_[m]) continue;
     meshes.push_back(m);
     vertices.emplace_back();
-    scene::deformVertices(scene_->meshes[m], weights[m], vertices.back());
+    scene::deformVertices(mesh, weights[m], vertices.back());
+    if (!joints.empty()) scene::skinVertices(mesh, joints, vertices.back());
     appliedWeights_[m] = weights[m];
+    appliedJoints_[m] = std::move(joints);
   }
   // The upload replaces vertices the frames in flight read: they finish first.
   if (!meshes.empty()) settle();

@@ -297,8 +297,9 @@ class Session {
   uint64_t frameIndex_ = 0;
   double animationTime_ = 0.0, animationStep_ = 0.0;
   std::vector<std::vector<float>> appliedWeights_;  // per mesh: the pose its vertices hold
+  std::vector<std::vector<glm::mat4>> appliedJoints_;  // per skinned mesh: the joint matrices its vertices hold
   size_t deformedLastFrame_ = 0, movedLastFrame_ = 0;
-  void applyMorphs();
+  void applyDeformation(const std::vector<glm::dmat4>& nodeWorld);
   float brightestEmission_ = 0.0f;  // luminance of the scene's brightest emissive material
 };
 
