@@ -1,5 +1,7 @@
 #include "scene/gpu_scene.h"
 
+#include <algorithm>
+
 #include "gpu/check.h"
 #include "gpu/formats.h"
 #include "shared/scene.h"
@@ -112,6 +114,24 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
   gpu::uploadBuffer(device, vertices_, vertices.data(), vertices.size() * sizeof(Vertex));
   gpu::uploadBuffer(device, indices_, indices.data(), indices.size() * sizeof(uint32_t));
 
+  // Deforming meshes' last-frame positions for the motion vectors, starting at rest (no motion);
+  // a scene that does not deform has none.
+  previousOffset_.assign(scene.meshes.size(), shared::kNoPreviousPositions);
+  uploadedPositions_.resize(scene.meshes.size());
+  std::vector<glm::vec4> previous;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (!scene.meshes[m].deforms()) continue;
+    previousOffset_[m] = uint32_t(previous.size());
+    for (const Vertex& v : scene.meshes[m].vertices) uploadedPositions_[m].emplace_back(v.position, 1.0f);
+    previous.insert(previous.end(), uploadedPositions_[m].begin(), uploadedPositions_[m].end());
+  }
+  if (!previous.empty()) {
+    previousPositions_ = gpu::Buffer(device, previous.size() * sizeof(glm::vec4),
+                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                     gpu::MemoryUsage::GpuOnly, kScenePreviousPositions);
+    gpu::uploadBuffer(device, previousPositions_, previous.data(), previous.size() * sizeof(glm::vec4));
+  }
+
   // Textures with full mip chains in the precision they were stored in (scene.h TexelFormat);
   // 8-bit sRGB-ness comes from how the material uses them.
   for (const Texture& t : scene.textures) {
@@ -206,6 +226,7 @@ void GpuScene::updateInstances(const Scene& scene, const glm::dvec3& camera, con
     g.material = scene.meshes[inst.mesh].material;
     g.instanceId = uint32_t(i + 1);
     g.vertexOffset = uint32_t(meshes_[drawMesh_[i]].vertexOffset);
+    g.previousPositionOffset = previousOffset_[drawMesh_[i]];
     out[i] = g;
     previousTransforms_[i] = inst.transform;
   }
@@ -223,6 +244,7 @@ void GpuScene::importBuffers(graph::RenderGraph& graph, uint64_t frame) {
   imported(kSceneIndices, indices_, "all meshes' indices");
   imported(kSceneInstances, instances_, "camera-relative instance table");
   imported(kSceneMaterials, materials_, "material table");
+  if (deforms()) imported(kScenePreviousPositions, previousPositions_, "deforming meshes' last-frame positions (motion vectors)");
   if (uploadFrame_ != frame) return;
   imported(kSceneInstanceUpload, instanceUploads_.forFrame(*uploadFrame_), "this frame's instance table, host-written");
   graph.addPass(
@@ -278,25 +300,44 @@ void GpuScene::drawInstancesUnindexed(VkCommandBuffer cmd, const std::vector<uin
 void GpuScene::updateMeshVertices(const std::vector<uint32_t>& meshes, const std::vector<std::vector<Vertex>>& vertices) {
   VkDeviceSize total = 0;
   for (size_t i = 0; i < meshes.size(); ++i) {
-    TL_CHECK(meshes[i] < meshes_.size() && vertices[i].size() == meshes_[meshes[i]].vertexCount,
-             "vertex update of mesh {} does not match its vertex count", meshes[i]);
+    TL_CHECK(meshes[i] < meshes_.size() && vertices[i].size() == meshes_[meshes[i]].vertexCount &&
+                 previousOffset_[meshes[i]] != shared::kNoPreviousPositions,
+             "vertex update of mesh {} does not match its vertex count or it does not deform", meshes[i]);
     total += vertices[i].size() * sizeof(Vertex);
   }
+  // Last frame's positions for the motion vectors: those the updated meshes had, and for meshes
+  // that moved last time but not now their present ones (they stand still again).
+  std::vector<uint32_t> previousOf = meshes;
+  for (uint32_t m : movedLastUpdate_)
+    if (std::find(meshes.begin(), meshes.end(), m) == meshes.end()) previousOf.push_back(m);
+  for (uint32_t m : previousOf) total += uploadedPositions_[m].size() * sizeof(glm::vec4);
+  movedLastUpdate_ = meshes;
   if (total == 0) return;
   gpu::Buffer staging(device_, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryUsage::Upload, "scene.vertexUpdate");
-  std::vector<VkBufferCopy> regions;
+  std::vector<VkBufferCopy> previousRegions;
   VkDeviceSize at = 0;
+  for (uint32_t m : previousOf) {
+    const VkDeviceSize bytes = uploadedPositions_[m].size() * sizeof(glm::vec4);
+    staging.write(uploadedPositions_[m].data(), bytes, at);
+    previousRegions.push_back({at, VkDeviceSize(previousOffset_[m]) * sizeof(glm::vec4), bytes});
+    at += bytes;
+  }
+  std::vector<VkBufferCopy> regions;
   for (size_t i = 0; i < meshes.size(); ++i) {
     const VkDeviceSize bytes = vertices[i].size() * sizeof(Vertex);
     staging.write(vertices[i].data(), bytes, at);
     regions.push_back({at, VkDeviceSize(meshes_[meshes[i]].vertexOffset) * sizeof(Vertex), bytes});
     at += bytes;
     ++meshVersions_[meshes[i]];
+    auto& uploaded = uploadedPositions_[meshes[i]];
+    for (size_t v = 0; v < uploaded.size(); ++v) uploaded[v] = glm::vec4(vertices[i][v].position, 1.0f);
   }
   device_.immediate([&](VkCommandBuffer cmd) {
-    vkCmdCopyBuffer(cmd, staging.handle(), vertices_.handle(), uint32_t(regions.size()), regions.data());
+    if (!previousRegions.empty())
+      vkCmdCopyBuffer(cmd, staging.handle(), previousPositions_.handle(), uint32_t(previousRegions.size()), previousRegions.data());
+    if (!regions.empty()) vkCmdCopyBuffer(cmd, staging.handle(), vertices_.handle(), uint32_t(regions.size()), regions.data());
   });
-  ++geometryVersion_;
+  if (!meshes.empty()) ++geometryVersion_;
 }
 
 VkDeviceSize GpuScene::bytes() const {

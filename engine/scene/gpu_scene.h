@@ -20,6 +20,9 @@ inline constexpr const char* kSceneVertices = "scene.vertices";
 inline constexpr const char* kSceneIndices = "scene.indices";
 inline constexpr const char* kSceneInstances = "scene.instances";
 inline constexpr const char* kSceneMaterials = "scene.materials";
+// Deforming meshes' positions of the last frame (vec4 each), for the motion vectors; only in
+// scenes that deform.
+inline constexpr const char* kScenePreviousPositions = "scene.vertices.previous";
 // This frame's instance table as the host wrote it; a transfer pass copies it into kSceneInstances.
 inline constexpr const char* kSceneInstanceUpload = "scene.instances.upload";
 
@@ -42,9 +45,16 @@ class GpuScene {
   // make the motion vectors.
   void updateInstances(const Scene& scene, const glm::dvec3& camera, const glm::dvec3& previousCamera, uint64_t frame);
 
-  // Replaces the vertices of deforming meshes (morph targets) in one upload, between frames.
-  // `vertices[i]` must have mesh `meshes[i]`'s vertex count.
+  // Replaces the vertices of deforming meshes (morph targets, skins) in one upload, between
+  // frames, keeping the positions they replace as kScenePreviousPositions (the motion vectors'
+  // last frame). Call it every frame of a deforming scene, with no meshes when none changed: a
+  // mesh that stops moving then gets previous = present. `vertices[i]` must have mesh
+  // `meshes[i]`'s vertex count. No frame may be in flight when it writes (writesPending()).
   void updateMeshVertices(const std::vector<uint32_t>& meshes, const std::vector<std::vector<Vertex>>& vertices);
+  // Whether updateMeshVertices() with no meshes would still write (meshes stop moving).
+  bool writesPending() const { return !movedLastUpdate_.empty(); }
+  // The scene has deforming meshes (and the buffer kScenePreviousPositions).
+  bool deforms() const { return previousPositions_.handle() != VK_NULL_HANDLE; }
   // Counts vertex updates: per mesh, and of the whole scene (0 until something deforms).
   uint64_t meshVersion(uint32_t mesh) const { return meshVersions_[mesh]; }
   uint64_t geometryVersion() const { return geometryVersion_; }
@@ -114,6 +124,10 @@ class GpuScene {
   std::vector<glm::mat4> relative_;             // per instance, camera-relative
   bool havePrevious_ = false;
   std::vector<uint64_t> meshVersions_;
+  gpu::Buffer previousPositions_;                       // only in scenes that deform
+  std::vector<uint32_t> previousOffset_;                // per mesh, or shared::kNoPreviousPositions
+  std::vector<std::vector<glm::vec4>> uploadedPositions_;  // per deforming mesh: what the vertex buffer holds
+  std::vector<uint32_t> movedLastUpdate_;               // meshes the last update moved
   uint64_t geometryVersion_ = 0;
 };
 

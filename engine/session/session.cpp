@@ -575,8 +575,9 @@ void Session::applyDeformation(const std::vector<glm::dmat4>& nodeWorld) {
     appliedWeights_[m] = weights[m];
     appliedJoints_[m] = std::move(joints);
   }
-  // The upload replaces vertices the frames in flight read: they finish first.
-  if (!meshes.empty()) settle();
+  // The upload replaces vertices (and last frame's positions) the frames in flight read: they
+  // finish first.
+  if (!meshes.empty() || gpuScene_->writesPending()) settle();
   gpuScene_->updateMeshVertices(meshes, vertices);
   deformedLastFrame_ = meshes.size();
 }

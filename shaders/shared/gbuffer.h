@@ -14,6 +14,9 @@ TL_CONST uint kGbufferEmissive = 3;    // RGBA16F: emitted radiance
 TL_CONST uint kGbufferMotion = 4;      // RG16F: screen motion in UV, current - previous
 TL_CONST uint kGbufferInstanceId = 5;  // R32UI: instance index + 1 (0: nothing)
 TL_CONST uint kGbufferColorCount = 6;
+// The G-buffer pass's set-0 buffer of deforming meshes' previous positions (vec4 each,
+// GpuInstance::previousPositionOffset; bound only in scenes that deform).
+TL_CONST uint kGbufferPreviousPositions = 1;
 
 // Push constants of the G-buffer and shadow passes: no per-draw data is needed (the
 // instance index arrives as gl_InstanceIndex through firstInstance).

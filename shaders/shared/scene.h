@@ -79,8 +79,11 @@ struct GpuInstance {
   uint material;
   uint instanceId;          // written to the G-buffer's instance id (0 is "nothing")
   uint vertexOffset;        // where its mesh's vertices start in the vertex buffer (for shaders that fetch them)
-  uint pad1;
+  uint previousPositionOffset;  // a deforming mesh's: where its last frame's positions start in
+                                // scene.vertices.previous; kNoPreviousPositions for a rigid one
 };
+// A rigid mesh's vertices were where they are: its motion is its instance's.
+TL_CONST uint kNoPreviousPositions = 0xFFFFFFFFu;
 
 // Alpha MASK: true where a surface of this cutoff is cut away at this alpha. One predicate for
 // every stage that sees a surface (G-buffer, shadow map, voxelizer, any-hit shaders).

@@ -2,6 +2,7 @@
 
 #include "graph/executor.h"
 #include "lighting/common/pass_builders.h"
+#include "shared/gbuffer.h"
 #include "shared/scene.h"
 
 namespace tl::lighting {
@@ -20,6 +21,7 @@ void GbufferPass::add(graph::RenderGraph& graph, FrameInputs& in) {
 
   RasterPass pass(in.device, "gbuffer", d);
   pass.uniform(shared::kBindingFrame, kFrameConstants);
+  pass.optionalBufferIn(shared::kGbufferPreviousPositions, scene::kScenePreviousPositions, in.scene.deforms());
   for (auto& c : kGbufferChannels)
     pass.colorOut(c.name, graph::ResourceDesc::image2D(c.format, w, h, c.description).decodedAs(c.decoder).named(c.channels),
                   glm::vec4(0.0f));
