@@ -4,6 +4,8 @@
 // of its stages) is one error naming both sides.
 #include "gpu_fixture.h"
 
+#include "shared/gbuffer.h"
+
 #include "gpu/acceleration_structure.h"
 #include "graph/executor.h"
 #include "lighting/common/pass_builders.h"
@@ -290,7 +292,8 @@ TEST_F(GpuTest, ReflectStagesIsTheUnionOfTheStages) {
 
 // ---- RasterPass -------------------------------------------------------------------------
 
-// The G-buffer's shaders: the frame's block is declared by both stages, nothing else in set 0.
+// The G-buffer's shaders: the frame's block is declared by both stages; the vertex stage also
+// reads deforming meshes' previous positions (an optional binding), nothing else in set 0.
 gpu::GraphicsPipelineDesc gbufferShaders(const char* name) {
   gpu::GraphicsPipelineDesc d;
   d.name = name;
@@ -305,6 +308,7 @@ const auto kDepthDesc = graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, 8, 8,
 TEST_F(GpuTest, RasterPassListMatchesBothStages) {
   lighting::RasterPass pass(session().device(), "raster.ok", gbufferShaders("raster.ok"));
   pass.uniform(shared::kBindingFrame, lighting::kFrameConstants);
+  pass.optionalBufferIn(shared::kGbufferPreviousPositions, "previous", false);
   EXPECT_NO_THROW(pass.check(lighting::reflectStages({"common/gbuffer.vert", "common/gbuffer.frag"})));
 }
 
@@ -331,6 +335,7 @@ TEST_F(GpuTest, RasterPassExtraBindingNamesBothStages) {
   const std::string e = errorOf([&] {
     lighting::RasterPass(session().device(), "raster.extra", gbufferShaders("raster.extra"))
         .uniform(shared::kBindingFrame, lighting::kFrameConstants)
+        .optionalBufferIn(shared::kGbufferPreviousPositions, "previous", false)
         .bufferIn(shared::kBindingLightShadowViews, "views")
         .depthOut("depth", kDepthDesc, 0.0f)
         .add(g);
