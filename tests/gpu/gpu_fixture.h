@@ -8,9 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <vector>
 
 namespace tl::test {
 
@@ -36,6 +38,14 @@ inline void restoreBaseline(session::Session& s) {
   s.setLighting(session::Lighting{});
   s.loadScene(contentFile("cornell.gltf"));  // also resets the scene's lighting, view, history, albedo edits, animation time
   s.setFrameIndex(0);
+}
+
+// Sum of |a - b| over sum of |b|, over the RGB of two RGBA images: how far image a is from b.
+inline double relativeDifferenceRgb(const std::vector<float>& a, const std::vector<float>& b) {
+  double diff = 0.0, sum = 0.0;
+  for (size_t i = 0; i + 3 < a.size() && i + 3 < b.size(); i += 4)
+    for (int c = 0; c < 3; ++c) diff += std::abs(a[i + c] - b[i + c]), sum += std::abs(b[i + c]);
+  return diff / std::max(sum, 1e-12);
 }
 
 class GpuTest : public ::testing::Test {

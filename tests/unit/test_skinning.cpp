@@ -2,7 +2,7 @@
 // 90 degrees), the skinned mesh's node transform ignored as glTF says, the walker as imported
 // (one skin, five joints, the left foot where the swung leg puts it, bounds holding every
 // pose) and bad skins refused with one clear line.
-#include "../common/temp_dir.h"
+#include "../common/edited_content.h"
 #include "scene/node_animation.h"
 #include "scene/skinning.h"
 
@@ -151,52 +151,28 @@ TEST(Skinning, WalkerBoundsHoldEveryPose) {
   }
 }
 
-std::string importEdited(const std::function<void(nlohmann::json&)>& edit) {
-  tl::test::TempDir dir("twinlight-skinning-bad");
-  auto j = nlohmann::json::parse(std::ifstream(contentFile("walker.gltf")));
-  edit(j);
-  std::ofstream(dir.path / "walker.gltf") << j.dump();
-  fs::copy_file(contentFile("walker.bin"), dir.path / "walker.bin");
-  try {
-    loadGltf(dir.path / "walker.gltf");
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(Skinning, BadSkinsAreOneClearError) {
-  struct Case {
-    const char* what;
-    std::function<void(nlohmann::json&)> edit;
-    const char* expected;
-  };
-  const std::vector<Case> cases = {
-      {"a joint that is not a node", [](auto& j) { j["skins"][0]["joints"][0] = 999; }, "has joint node 999, which does not exist"},
-      {"fewer joints than the mesh names",
-       [](auto& j) {
-         j["skins"][0]["joints"].erase(j["skins"][0]["joints"].size() - 1);
-       },
-       "names joint 4 of skin 0, which has 4"},
-      {"fewer inverse bind matrices than joints",
-       [](auto& j) {
-         int a = j["skins"][0]["inverseBindMatrices"];
-         j["accessors"][a]["count"] = 3;
-       },
-       "has 3 inverse bind matrices for 5 joints"},
-      {"a skin that does not exist",
-       [](auto& j) {
-         for (auto& n : j["nodes"])
-           if (n.contains("skin")) n["skin"] = 7;
-       },
-       "refers to skin 7, which does not exist"},
-  };
-  for (const auto& c : cases) {
-    const std::string error = importEdited(c.edit);
-    EXPECT_NE(error.find(c.expected), std::string::npos) << c.what << ": " << error;
-    EXPECT_NE(error.find("walker.gltf"), std::string::npos) << c.what << ": " << error;
-    EXPECT_EQ(error.find('\n'), std::string::npos) << c.what;
-  }
+  tl::test::expectEachEditIsOneClearError(
+      "walker",
+      {
+          {"a joint that is not a node", [](auto& j) { j["skins"][0]["joints"][0] = 999; },
+           "has joint node 999, which does not exist"},
+          {"fewer joints than the mesh names",
+           [](auto& j) { j["skins"][0]["joints"].erase(j["skins"][0]["joints"].size() - 1); },
+           "names joint 4 of skin 0, which has 4"},
+          {"fewer inverse bind matrices than joints",
+           [](auto& j) {
+             int a = j["skins"][0]["inverseBindMatrices"];
+             j["accessors"][a]["count"] = 3;
+           },
+           "has 3 inverse bind matrices for 5 joints"},
+          {"a skin that does not exist",
+           [](auto& j) {
+             for (auto& n : j["nodes"])
+               if (n.contains("skin")) n["skin"] = 7;
+           },
+           "refers to skin 7, which does not exist"},
+      });
 }
 
 }  // namespace
