@@ -284,17 +284,6 @@ class Reader {
   mutable std::vector<std::vector<uint8_t>> zeros_;  // base values of sparse accessors without a bufferView
 };
 
-glm::dmat4 nodeTransform(const tinygltf::Node& n) {
-  if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
-  glm::dmat4 t(1.0);
-  if (n.translation.size() == 3) t[3] = glm::dvec4(n.translation[0], n.translation[1], n.translation[2], 1.0);
-  glm::dmat4 r(1.0);
-  if (n.rotation.size() == 4) r = glm::mat4_cast(glm::normalize(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2])));
-  glm::dmat4 s(1.0);
-  if (n.scale.size() == 3) s = glm::scale(glm::dmat4(1.0), glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
-  return t * r * s;
-}
-
 // The node's local transform as animation needs it: TRS, or the matrix a file gives instead.
 Node localNode(const tinygltf::Node& n, int index) {
   Node out;
@@ -620,6 +609,15 @@ void boundAnimatedPoses(const Reader& rd, Scene& scene) {
   };
   constexpr size_t kMaxPoses = 512, kMaxSkinnedPoses = 64;
   if (skinned) {
+    // Morph targets move vertices before skinning: pad each mesh by the most any vertex can move
+    // (weights in [-1, 1], as morphBounds assumes).
+    std::vector<double> morphReach(scene.meshes.size(), 0.0);
+    for (size_t m = 0; m < scene.meshes.size(); ++m)
+      for (size_t v = 0; v < scene.meshes[m].vertices.size() && scene.meshes[m].skinned(); ++v) {
+        double reach = 0.0;
+        for (const MorphTarget& target : scene.meshes[m].morphTargets) reach += glm::length(glm::dvec3(target.positions[v]));
+        morphReach[m] = std::max(morphReach[m], reach);
+      }
     std::vector<Vertex> posed;
     for (double t : posesOf(kMaxSkinnedPoses)) {
       const std::vector<glm::dmat4> world = nodeWorldTransformsAt(scene, t);
@@ -628,13 +626,7 @@ void boundAnimatedPoses(const Reader& rd, Scene& scene) {
         if (!mesh.skinned()) continue;
         posed = mesh.vertices;
         skinVertices(mesh, jointMatrices(scene.skins[size_t(mesh.skin)], world[inst.node], world), posed);
-        // Morph targets move vertices before skinning: pad by the most any vertex can move.
-        double pad = 0.0;
-        for (size_t v = 0; v < mesh.vertices.size() && !mesh.morphTargets.empty(); ++v) {
-          double reach = 0.0;
-          for (const MorphTarget& target : mesh.morphTargets) reach += glm::length(glm::dvec3(target.positions[v]));
-          pad = std::max(pad, reach);  // weights in [-1, 1], as morphBounds assumes
-        }
+        const double pad = morphReach[inst.mesh];
         for (const Vertex& v : posed) {
           mesh.bounds.extend(glm::dvec3(v.position) - pad);
           mesh.bounds.extend(glm::dvec3(v.position) + pad);
@@ -935,7 +927,7 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
     visited[size_t(ni)] = true;
     scene.nodes[size_t(ni)].parent = parentIndex;
     const auto& node = model.nodes[size_t(ni)];
-    glm::dmat4 world = parent * nodeTransform(node);
+    glm::dmat4 world = parent * nodeRestTransform(scene.nodes[size_t(ni)]);
     if (!usableTransform(world))
       rd.fail(fmt::format("node {} has a non-finite transform or one placing it beyond {:g} m", ni, InputLimits::kMaxCoordinate));
     std::string nodeName = node.name.empty() ? fmt::format("node{}", ni) : node.name;

@@ -19,12 +19,9 @@ std::vector<std::vector<float>> morphWeightsAt(const Scene& scene, double second
     std::vector<float>& w = weights[a.mesh];
     w.resize(targets, 0.0f);
     // The key at or before t, and how far t is towards the next (clamped at both ends).
-    const auto next = std::upper_bound(a.times.begin(), a.times.end(), float(t));
-    const size_t hi = size_t(std::min<ptrdiff_t>(next - a.times.begin(), ptrdiff_t(a.times.size()) - 1));
-    const size_t lo = next == a.times.begin() ? 0 : size_t(next - a.times.begin()) - 1;
-    float f = 0.0f;
-    if (hi > lo && !a.step) f = float((t - a.times[lo]) / std::max(1e-9, double(a.times[hi] - a.times[lo])));
-    f = std::clamp(f, 0.0f, 1.0f);
+    const KeySpan span = keySpan(a.times, t);
+    const size_t lo = span.lo, hi = span.hi;
+    const float f = a.step ? 0.0f : float(span.f);
     for (size_t k = 0; k < targets; ++k)
       w[k] = a.weights[lo * targets + k] + f * (a.weights[hi * targets + k] - a.weights[lo * targets + k]);
   }

@@ -10,25 +10,6 @@
 namespace tl::scene {
 namespace {
 
-// The keys around `t`: lo at or before it, hi after it (both the end key outside the range),
-// and how far t lies from lo towards hi in [0, 1].
-struct KeySpan {
-  size_t lo = 0, hi = 0;
-  double f = 0.0, dt = 0.0;
-};
-
-KeySpan keySpan(const std::vector<float>& times, double t) {
-  KeySpan s;
-  const auto next = std::upper_bound(times.begin(), times.end(), float(t));
-  s.hi = size_t(std::min<ptrdiff_t>(next - times.begin(), ptrdiff_t(times.size()) - 1));
-  s.lo = next == times.begin() ? 0 : size_t(next - times.begin()) - 1;
-  if (s.hi > s.lo) {
-    s.dt = double(times[s.hi]) - double(times[s.lo]);
-    s.f = std::clamp((t - double(times[s.lo])) / std::max(1e-9, s.dt), 0.0, 1.0);
-  }
-  return s;
-}
-
 glm::dquat asQuat(const glm::dvec4& v) { return glm::dquat(v.w, v.x, v.y, v.z); }
 
 // The channel's value at t (xyz, or a quaternion as xyzw), normalised for rotations.
@@ -60,6 +41,18 @@ glm::dvec4 channelValue(const NodeAnimation& a, double t) {
 
 }  // namespace
 
+KeySpan keySpan(const std::vector<float>& times, double t) {
+  KeySpan s;
+  const auto next = std::upper_bound(times.begin(), times.end(), float(t));
+  s.hi = size_t(std::min<ptrdiff_t>(next - times.begin(), ptrdiff_t(times.size()) - 1));
+  s.lo = next == times.begin() ? 0 : size_t(next - times.begin()) - 1;
+  if (s.hi > s.lo) {
+    s.dt = double(times[s.hi]) - double(times[s.lo]);
+    s.f = std::clamp((t - double(times[s.lo])) / std::max(1e-9, s.dt), 0.0, 1.0);
+  }
+  return s;
+}
+
 double loopedAnimationTime(const Scene& scene, double seconds) {
   if (!(scene.animationSeconds > 0.0)) return seconds;
   double t = std::fmod(seconds, scene.animationSeconds);
@@ -67,6 +60,10 @@ double loopedAnimationTime(const Scene& scene, double seconds) {
 }
 
 namespace {
+
+glm::dmat4 trs(const glm::dvec3& translation, const glm::dquat& rotation, const glm::dvec3& scale) {
+  return glm::translate(glm::dmat4(1.0), translation) * glm::mat4_cast(rotation) * glm::scale(glm::dmat4(1.0), scale);
+}
 
 // The node's local transform at looped time t under `channels` (its own).
 glm::dmat4 localTransform(const Node& n, const std::vector<const NodeAnimation*>& channels, double t) {
@@ -82,7 +79,7 @@ glm::dmat4 localTransform(const Node& n, const std::vector<const NodeAnimation*>
       case NodeProperty::Scale: scale = glm::dvec3(v); break;
     }
   }
-  return glm::translate(glm::dmat4(1.0), translation) * glm::mat4_cast(rotation) * glm::scale(glm::dmat4(1.0), scale);
+  return trs(translation, rotation, scale);
 }
 
 std::vector<std::vector<const NodeAnimation*>> channelsByNode(const Scene& scene) {
@@ -93,6 +90,8 @@ std::vector<std::vector<const NodeAnimation*>> channelsByNode(const Scene& scene
 }
 
 }  // namespace
+
+glm::dmat4 nodeRestTransform(const Node& node) { return node.matrix ? *node.matrix : trs(node.translation, node.rotation, node.scale); }
 
 glm::dmat4 nodeLocalTransformAt(const Scene& scene, uint32_t node, double seconds) {
   return localTransform(scene.nodes.at(node), channelsByNode(scene).at(node), loopedAnimationTime(scene, seconds));

@@ -4,10 +4,23 @@
 #include "scene/scene.h"
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace tl::test {
+
+// The instance called `name` (the node's name); throws when there is none.
+inline const scene::Instance& instanceNamed(const scene::Scene& s, const std::string& name) {
+  for (const auto& i : s.instances)
+    if (i.name == name) return i;
+  throw std::runtime_error("no instance " + name);
+}
+
+// Its id in the G-buffer (gbuffer.instanceId: index + 1).
+inline uint32_t instanceIdOf(const scene::Scene& s, const std::string& name) {
+  return uint32_t(&instanceNamed(s, name) - s.instances.data()) + 1;
+}
 
 // An axis-aligned cube of side `size` centred at `centre`, every face UV-mapped 0..1, one
 // instance, with material `material`.

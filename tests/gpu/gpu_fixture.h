@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace tl::test {
@@ -38,6 +39,14 @@ inline void restoreBaseline(session::Session& s) {
   s.setLighting(session::Lighting{});
   s.loadScene(contentFile("cornell.gltf"));  // also resets the scene's lighting, view, history, albedo edits, animation time
   s.setFrameIndex(0);
+}
+
+// The named figure of the last frame's path (Session::pathFigures); a missing one fails the test.
+inline double pathFigure(const session::Session& s, const std::string& name) {
+  for (const auto& [n, v] : s.pathFigures())
+    if (n == name) return v;
+  ADD_FAILURE() << "no figure " << name;
+  return -1.0;
 }
 
 // Sum of |a - b| over sum of |b|, over the RGB of two RGBA images: how far image a is from b.

@@ -25,12 +25,7 @@ class FrameKeyTest : public RayTracingTest {
     session().setAnimationTime(0.0);
     RayTracingTest::TearDown();
   }
-  double figure(const std::string& name) {
-    for (const auto& [n, v] : session().pathFigures())
-      if (n == name) return v;
-    ADD_FAILURE() << "no figure " << name;
-    return -1.0;
-  }
+  double figure(const std::string& name) { return pathFigure(session(), name); }
   // The last frame's decision of `history`, or nothing when it did not run.
   std::optional<lighting::HistoryDecision> decision(const std::string& history) {
     for (const auto& d : session().historyDecisions())

@@ -26,12 +26,7 @@ class LegacyTest : public GpuTest {
     for (auto& n : names) s.requestBuffer(n);
     s.renderFrames(frames);
   }
-  double figure(const std::string& name) {
-    for (const auto& [n, v] : session().pathFigures())
-      if (n == name) return v;
-    ADD_FAILURE() << "no figure " << name;
-    return -1.0;
-  }
+  double figure(const std::string& name) { return pathFigure(session(), name); }
 };
 
 constexpr double kVoxelsKept = 0.0, kVoxelsPatched = 1.0, kVoxelsRebuilt = 2.0;  // figure voxelUpdate
@@ -67,10 +62,7 @@ TEST_F(LegacyTest, PlaneUnderUniformSkyHasNoOcclusionAndIrradiancePiL) {
 TEST_F(LegacyTest, AoDarkensACornerOfTheCornellBox) {
   auto& s = session();
   s.loadScene(contentFile("cornell.gltf"));
-  uint32_t backWall = 0;
-  for (size_t i = 0; i < s.scene().instances.size(); ++i)
-    if (s.scene().instances[i].name == "back_wall") backWall = uint32_t(i) + 1;
-  ASSERT_NE(backWall, 0u);
+  const uint32_t backWall = instanceIdOf(s.scene(), "back_wall");
   const uint32_t w = 96, h = 96;
   render("legacy", w, h, 1, {kLegacyAo, "gbuffer.instanceId"});
   auto ao = s.buffer(kLegacyAo).texels();

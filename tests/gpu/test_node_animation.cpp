@@ -3,6 +3,7 @@
 // open, it is sunlit, the same in direct, legacy, rt and the reference. The crate: a path that
 // accumulates (rt's history, TAA) must follow it through the motion vectors, not leave a trail.
 #include "gpu_fixture.h"
+#include "../common/test_scenes.h"
 
 #include "lighting/common/composite_pass.h"
 #include "shared/color.h"
@@ -154,10 +155,7 @@ TEST_F(NodeAnimationTest, ObjectMotionVectorsFollowTheCrate) {
   s.requestBuffer("gbuffer.instanceId");
   s.renderFrames(2);
   s.setAnimationStep(0.0);
-  uint32_t crate = 0;
-  for (size_t i = 0; i < s.scene().instances.size(); ++i)
-    if (s.scene().instances[i].name == "crate") crate = uint32_t(i + 1);
-  ASSERT_NE(crate, 0u);
+  const uint32_t crate = instanceIdOf(s.scene(), "crate");
   // The centre of the crate's face towards the camera at the two frames' times (x = -3 + 3 t m,
   // y = 0.3, z = 2.5 + 0.3), projected; most of its pixels are on that face.
   const session::View v = s.view();

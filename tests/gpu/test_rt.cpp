@@ -322,11 +322,7 @@ double bannerAgreement(session::Session& s, uint32_t frameIndex) {
 // refits off they still see the first pose, and disagree with the pre-trace.
 TEST_F(RtTest, RefittedBottomLevelsFollowTheDeformedMeshes) {
   auto& s = session();
-  auto figure = [&](const char* name) {
-    for (auto& [n, v] : s.pathFigures())
-      if (n == name) return v;
-    return -1.0;
-  };
+  auto figure = [&](const char* name) { return pathFigure(s, name); };
   auto agreementAfterAMove = [&](uint32_t top, uint32_t random) {
     s.loadScene(contentFile("banners.gltf"));
     s.settings().rtRefitTop = top;
@@ -356,11 +352,7 @@ TEST_F(RtTest, TopLevelDistanceCullingFollowsTheBlendDistance) {
   auto& s = session();
   s.loadScene(contentFile("grove.gltf"));
   s.useSceneCamera(1);  // the overview: the grid from 40 m up, 60 to 280 m away
-  auto figure = [&](const char* name) {
-    for (const auto& [n, v] : s.pathFigures())
-      if (n == name) return v;
-    return -1.0;
-  };
+  auto figure = [&](const char* name) { return pathFigure(s, name); };
   auto frame = [&](float blend, float margin, float angle) {
     s.settings().rtBlendDistance = blend;
     s.settings().rtCullMargin = margin;
@@ -452,11 +444,7 @@ TEST_F(RtTest, AtriumStaysFiniteAndItsIntermediatesAreNamed) {
 TEST_F(RtTest, TopLevelCullingKeepsFewInstancesAndChangesNothing) {
   auto& s = session();
   s.loadScene(contentFile("grove.gltf"));
-  auto figure = [&](const char* name) {
-    for (const auto& [n, v] : s.pathFigures())
-      if (n == name) return v;
-    return -1.0;
-  };
+  auto figure = [&](const char* name) { return pathFigure(s, name); };
   s.setFrameIndex(3);
   render(64, 36, 1, {"composite.hdr"});
   const double kept = figure("tlasInstances"), total = figure("sceneInstances");

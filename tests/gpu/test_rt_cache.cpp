@@ -17,12 +17,7 @@ using namespace lighting;
 
 class RtCacheTest : public RayTracingTest {
  protected:
-  double figure(const char* name) {
-    for (auto& [n, v] : session().pathFigures())
-      if (n == name) return v;
-    ADD_FAILURE() << "no figure " << name;
-    return -1.0;
-  }
+  double figure(const char* name) { return pathFigure(session(), name); }
   // Mean luminance of composite.hdr over surface pixels after `frames` more frames.
   double meanRadiance(uint32_t frames) {
     auto& s = session();

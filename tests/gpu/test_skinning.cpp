@@ -2,6 +2,7 @@
 // swing on five joints while it walks. The rasterizing paths draw the skinned vertices; the
 // reference traces them (its bottom level rebuilt exactly); the rt path refits its bottom level.
 #include "gpu_fixture.h"
+#include "../common/test_scenes.h"
 
 #include "lighting/common/composite_pass.h"
 
@@ -54,10 +55,7 @@ TEST_F(SkinningTest, EveryPathShowsTheWalkersPose) {
   s.loadScene(contentFile("walker.gltf"));
   constexpr uint32_t kWidth = 128, kHeight = 96;
   s.setSize(kWidth, kHeight);
-  uint32_t body = 0;
-  for (size_t i = 0; i < s.scene().instances.size(); ++i)
-    if (s.scene().instances[i].name == "walker_body") body = uint32_t(i + 1);
-  ASSERT_NE(body, 0u);
+  const uint32_t body = instanceIdOf(s.scene(), "walker_body");
   const double times[2] = {0.25, 0.5};
   std::vector<uint8_t> silhouette[2];
   for (int pose = 0; pose < 2; ++pose) {
@@ -97,11 +95,7 @@ TEST_F(SkinningTest, EveryPathShowsTheWalkersPose) {
 // throttle), and the reference's image after animating to a time equals a fresh load's at it.
 TEST_F(SkinningTest, RayTracedLevelsFollowTheSkinnedPose) {
   auto& s = session();
-  auto figure = [&](const char* name) {
-    for (auto& [n, v] : s.pathFigures())
-      if (n == name) return v;
-    return -1.0;
-  };
+  auto figure = [&](const char* name) { return pathFigure(s, name); };
   s.loadScene(contentFile("walker.gltf"));
   s.setSize(48, 36);
   lookAtWalker(s, 0.25);

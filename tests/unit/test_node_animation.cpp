@@ -3,6 +3,7 @@
 // imported (hinge and crate at known times, bounds holding every pose, nothing ignored), and
 // bad channels refused with one clear line.
 #include "../common/edited_content.h"
+#include "../common/test_scenes.h"
 #include "scene/node_animation.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -17,7 +18,7 @@ namespace tl::scene {
 namespace {
 
 using tl::test::contentFile;
-namespace fs = std::filesystem;
+using tl::test::instanceNamed;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -120,12 +121,6 @@ TEST(NodeAnimation, AMatrixNodeIsNeverAnimatedAndPosingMovesOnlyAnimatedInstance
 const Scene& movingDoor() {
   static const Scene scene = loadGltf(contentFile("moving_door.gltf"));
   return scene;
-}
-
-const Instance& instanceNamed(const Scene& s, const std::string& name) {
-  for (const auto& i : s.instances)
-    if (i.name == name) return i;
-  throw std::runtime_error("no instance " + name);
 }
 
 TEST(NodeAnimation, MovingDoorImportsTheHingeAndTheCrateWithNothingIgnored) {

@@ -3,6 +3,7 @@
 // (one skin, five joints, the left foot where the swung leg puts it, bounds holding every
 // pose) and bad skins refused with one clear line.
 #include "../common/edited_content.h"
+#include "../common/test_scenes.h"
 #include "scene/node_animation.h"
 #include "scene/skinning.h"
 
@@ -18,7 +19,7 @@ namespace tl::scene {
 namespace {
 
 using tl::test::contentFile;
-namespace fs = std::filesystem;
+using tl::test::instanceNamed;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -87,12 +88,6 @@ TEST(Skinning, TheMeshNodesOwnTransformIsIgnored) {
 const Scene& walker() {
   static const Scene scene = loadGltf(contentFile("walker.gltf"));
   return scene;
-}
-
-const Instance& instanceNamed(const Scene& s, const std::string& name) {
-  for (const auto& i : s.instances)
-    if (i.name == name) return i;
-  throw std::runtime_error("no instance " + name);
 }
 
 // The walker's vertices in world space at `seconds`, as the session poses them.
