@@ -203,7 +203,7 @@ int SceneWriter::accessor(const void* data, size_t bytes, size_t count, int comp
 int SceneWriter::material(const MaterialSpec& spec) {
   tinygltf::Material m;
   m.name = spec.name;
-  m.pbrMetallicRoughness.baseColorFactor = {spec.baseColor.r, spec.baseColor.g, spec.baseColor.b, 1.0};
+  m.pbrMetallicRoughness.baseColorFactor = {spec.baseColor.r, spec.baseColor.g, spec.baseColor.b, spec.alpha};
   m.pbrMetallicRoughness.metallicFactor = spec.metallic;
   m.pbrMetallicRoughness.roughnessFactor = spec.roughness;
   if (glm::length(spec.emissive) > 0.0f) {

@@ -74,6 +74,7 @@ struct MaterialSpec {
   std::string alphaMode;         // "" (OPAQUE), "MASK" or "BLEND"
   float alphaCutoff = 0.5f;
   bool doubleSided = false;
+  float alpha = 1.0f;            // baseColorFactor's alpha (coverage under MASK and BLEND)
 };
 
 // An image file's bytes encoded in memory by OpenImageIO (`extension`: "png", "exr", ...):

@@ -833,6 +833,33 @@ void cutout(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// Alpha BLEND (stochastic transparency): a 2 m pane of smoked glass (base colour black, alpha
+// 0.5 in its baseColorFactor, double-sided) 1 m above a 0.8 grey floor, under a sun of E = 10
+// travelling (1, -1, 0) (45 degrees high) and no sky. The pane's shadow falls on x in [0, 2],
+// z in [-1, 1]; it reflects nothing, so the floor there receives exactly half the sun: radiance
+// 0.8 / pi * 10 cos 45 / 2 = 0.900 against the open floor's 1.801. Camera 0 looks down the
+// line x = 1 from the +x side: its centre row is that line, its centre the shadow's, and no
+// ray to that row crosses the pane. Camera 1 looks down through the pane; camera 2, from under
+// its edge, at the floor under its centre, which with the sky alone (L = 1, the sun
+// off) has the radiance 0.8 (1 - 0.5 F): F = 0.5541, the share of the sky's cosine-weighted
+// light the pane hides there (a 2 m square 1 m up), so 0.5784 against the open floor's 0.8.
+void translucentPane(const std::filesystem::path& dir) {
+  SceneWriter w("translucent_pane");
+  MaterialSpec glass{"smoked_glass", {0.0f, 0.0f, 0.0f}};
+  glass.alpha = 0.5f;
+  glass.alphaMode = "BLEND";
+  glass.doubleSided = true;
+  int grey = w.material({"floor_grey", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  w.node("floor", w.mesh("floor", quad(20.0f, 20.0f), grey), {0.0f, 0.0f, 0.0f});
+  w.node("pane", w.mesh("pane", quad(2.0f, 2.0f), w.material(glass)), {0.0f, 1.0f, 0.0f});
+  w.camera("shadow", {5.0f, 4.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, 50.0f);
+  w.camera("through_pane", {0.0f, 4.0f, 1.5f}, {0.0f, 0.0f, 0.0f}, 50.0f);
+  w.camera("under_pane", {1.5f, 0.6f, 0.0f}, {0.0f, 0.0f, 0.0f}, 50.0f);
+  w.sun({1.0f, -1.0f, 0.0f}, 10.0f);
+  w.sky({0.0f, 0.0f, 0.0f});
+  w.write(dir);
+}
+
 // Contact shadows (hybrid ray-traced shadows, T11): a 1 m white cube standing on a 0.8 grey
 // floor, under a sun of E = 10 travelling (0.6, -0.8, 0) (53 degrees high) and a sky of 1.
 // With the real sun's 0.27 degree radius every penumbra is under 1.3 cm, so the floor's
@@ -975,6 +1002,7 @@ int main(int argc, char** argv) {
     tl::content::embeddedTextures(dir);
     tl::content::normalProbe(dir);
     tl::content::cutout(dir);
+    tl::content::translucentPane(dir);
     tl::content::textureTransformProbe(dir);
     tl::content::samplerProbe(dir);
     tl::content::texcoord1Probe(dir);

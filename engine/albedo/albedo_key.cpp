@@ -98,9 +98,9 @@ AlbedoKey albedoKey(const scene::Scene& scene, uint32_t meshIndex, const BakeSet
   h.f32(m.metallic);
   h.texture(scene, m.baseColorTexture);
   h.texture(scene, m.metallicRoughnessTexture);
-  const bool masked = m.alphaMode == scene::AlphaMode::Mask;
-  h.u32(masked ? 1 : 0);
-  if (masked) h.f32(m.alphaCutoff);
+  // Coverage: MASK cuts below its cutoff; BLEND covers wherever alpha is above 0.
+  h.u32(uint32_t(m.alphaMode));
+  if (m.alphaMode == scene::AlphaMode::Mask) h.f32(m.alphaCutoff);
   return h.digest();
 }
 

@@ -437,7 +437,6 @@ void scanIgnored(const tinygltf::Model& model, IgnoredFeatures& ignored) {
   for (const auto& e : model.extensionsUsed)
     if (!applied.count(e)) ignored.add("extension " + e, "not applied (the file renders as if it were absent)");
   for (const auto& m : model.materials) {
-    if (m.alphaMode == "BLEND") ignored.add("alpha BLEND", "drawn opaque (translucency is not rendered)");
     forEachTextureSlot(m, [&](const char* slot, int index, int texCoord, const tinygltf::ExtensionMap& extensions) {
       if (index < 0) return;
       if (auto it = extensions.find("KHR_texture_transform"); it != extensions.end() && it->second.Has("texCoord") &&

@@ -73,6 +73,15 @@ VkSamplerCreateInfo samplerInfo(gpu::Device& device, const SamplerMode& m) {
   return ci;
 }
 
+uint32_t alphaModeOnGpu(AlphaMode mode) {
+  switch (mode) {
+    case AlphaMode::Mask: return shared::kAlphaMask;
+    case AlphaMode::Blend: return shared::kAlphaBlend;
+    case AlphaMode::Opaque: break;
+  }
+  return shared::kAlphaOpaque;
+}
+
 shared::GpuTextureSlot textureSlot(const std::optional<TextureRef>& r) {
   shared::GpuTextureSlot s{};
   s.linear = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
@@ -167,7 +176,8 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
     g.metallic = m.metallic;
     g.roughness = m.roughness;
     g.normalScale = m.normalScale;
-    g.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : 0.0f;
+    g.alphaCutoff = m.alphaCutoff;
+    g.alphaMode = alphaModeOnGpu(m.alphaMode);
     g.occlusionStrength = m.occlusionStrength;
     g.baseColorTexture = textureSlot(m.baseColorTexture);
     g.normalTexture = textureSlot(m.normalTexture);
@@ -183,7 +193,7 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
   for (const Instance& inst : scene.instances) drawMesh_.push_back(inst.mesh);
   meshAlphaTested_.assign(scene.meshes.size(), 0);
   for (size_t m = 0; m < scene.meshes.size(); ++m)
-    meshAlphaTested_[m] = scene.materials[scene.meshes[m].material].alphaMode == AlphaMode::Mask;
+    meshAlphaTested_[m] = scene.materials[scene.meshes[m].material].alphaMode != AlphaMode::Opaque;
   for (uint32_t i = 0; i < drawMesh_.size(); ++i)
     (meshAlphaTested_[drawMesh_[i]] ? alphaTested_ : opaque_).push_back(i);
   const VkDeviceSize instanceBytes = std::max<size_t>(1, drawMesh_.size()) * sizeof(GpuInstance);

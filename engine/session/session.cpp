@@ -356,6 +356,7 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
   fc.frameIndex = frameNumber;
   fc.flags = glm::length(lighting_.sunIrradiance) > 0.0f ? shared::kFrameFlagSunShadows : 0u;
   fc.flags |= uint32_t(settings_.materials) << shared::kFrameMaterialsShift;
+  if (jitter) fc.flags |= shared::kFrameFlagFramesAveraged;
   fc.sceneScale = float(scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0);
   fc.lightCount = 0;  // renderOne writes the light table and its count
   if (const auto& map = lighting_.environmentMap) {

@@ -4,6 +4,7 @@
 #include "shared/scene.h"
 #include "shared/gbuffer.h"
 #include "shared/packing.h"
+#include "shared/sampling.h"
 #include "common/material.glsl"
 
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; };
@@ -30,10 +31,12 @@ void main() {
   GpuMaterial m = materials[inst.material];
 
   // The material override mode (shared/material_mode.h) decides what reaches the G-buffer; a
-  // cut-out keeps its texture's alpha in every mode.
+  // cut-out or a translucent surface keeps its texture's alpha in every mode.
   uint materials = tlFrameMaterials(frame.flags);
   vec4 base = materialBaseColor(m, inUv, inUv1, inColor);
-  if (materialCutout(m, base.a)) discard;
+  bool framesAveraged = (frame.flags & kFrameFlagFramesAveraged) != 0u;
+  float xi = tlAlphaDither(uint(gl_FragCoord.x), uint(gl_FragCoord.y), frame.frameIndex, framesAveraged);
+  if (materialCutout(m, base.a, xi)) discard;
 
   // Geometric normal faces the viewer: single-sided walls seen from behind shade as their
   // back side instead of going black.

@@ -36,6 +36,9 @@ vec3 materialEmissionLod0(GpuMaterial m, vec2 uv0, vec2 uv1) {
   return e;
 }
 
-// Alpha testing: true where the surface is cut away.
-bool materialCutout(GpuMaterial m, float alpha) { return tlMaterialCutout(m.alphaCutoff, alpha); }
+// Alpha testing: true where the surface is cut away (MASK below its cutoff; BLEND where alpha
+// does not exceed xi, the stage's stochastic-transparency number in [0, 1)).
+bool materialCutout(GpuMaterial m, float alpha, float xi) {
+  return tlMaterialCutout(m.alphaMode, m.alphaCutoff, alpha, xi);
+}
 #endif

@@ -1,6 +1,9 @@
 #version 460
-// Alpha test for the sun shadow map: the same cut-out as the G-buffer (material.glsl).
+// Alpha test for the shadow maps (the sun's and the lights'): the same cut-out as the G-buffer
+// (material.glsl). A translucent (BLEND) caster covers alpha of every 4x4 block of texels with
+// a still ordered dither: the shadow filter's footprint averages it to a transmission of 1 - alpha.
 #extension GL_GOOGLE_include_directive : require
+#include "shared/sampling.h"
 #include "shared/scene.h"
 #include "common/material.glsl"
 
@@ -13,5 +16,6 @@ layout(location = 3) in float inAlpha;
 
 void main() {
   GpuMaterial m = materials[instances[inInstance].material];
-  if (materialCutout(m, materialBaseColor(m, inUv, inUv1, vec4(1.0, 1.0, 1.0, inAlpha)).a)) discard;
+  float alpha = materialBaseColor(m, inUv, inUv1, vec4(1.0, 1.0, 1.0, inAlpha)).a;
+  if (materialCutout(m, alpha, tlOrderedDither4(uint(gl_FragCoord.x), uint(gl_FragCoord.y)))) discard;
 }

@@ -8,6 +8,7 @@
 #include "shared/lights.h"
 #include "shared/legacy.h"
 #include "shared/rt.h"
+#include "shared/sampling.h"
 #include "shared/scene.h"
 
 layout(set = 0, binding = kLegacyBindingFrame) uniform Frame { FrameConstants frame; };
@@ -71,7 +72,10 @@ void main() {
   if (any(lessThan(v, push.regionMin.xyz)) || any(greaterThanEqual(v, push.regionMax.xyz))) return;
   GpuMaterial m = materials[instances[inInstance].material];
   vec4 base = materialBaseColor(m, inUv, inUv1, inColor);
-  if (materialCutout(m, base.a)) return;
+  // A translucent (BLEND) surface fills alpha of its voxels: an ordered dither over the voxel
+  // grid (the (x + y, z + 3y) mix keeps every 4x4 block of an axis-aligned wall exact); the
+  // cone tracer's mips average it to an opacity of alpha. Both rounds decide alike.
+  if (materialCutout(m, base.a, tlOrderedDither4(uint(v.x + v.y), uint(v.z + 3 * v.y)))) return;
   vec3 emission = materialEmission(m, inUv, inUv1);
   vec3 albedo = tlMaterialHitAlbedo(clamp(base.rgb, 0.0, 1.0), m.metallic, tlFrameMaterials(frame.flags));
   vec3 n = normalize(inNormal);

@@ -127,5 +127,20 @@ TL_FN vec2 tlRandom2(uvec3 seed) {
   uvec3 h = tlPcg3d(seed);
   return vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y));
 }
+
+// A 4x4 ordered (Bayer) dither in (0, 1): the 16 cells of any aligned 4x4 block take the values
+// (k + 0.5) / 16 once each, so a threshold test keeps the same fraction of every block.
+TL_FN uint tlBayer2(uint x, uint y) { return (((x ^ y) & 1u) << 1u) | (y & 1u); }
+TL_FN float tlOrderedDither4(uint x, uint y) {
+  return (float(4u * tlBayer2(x, y) + tlBayer2(x >> 1u, y >> 1u)) + 0.5f) * (1.0f / 16.0f);
+}
+
+// Stochastic transparency's number for a rasterized sample at pixel (x, y): the ordered dither,
+// shifted by the golden ratio each frame when frames are averaged (TAA), so every pixel cycles
+// through the thresholds; a still dither otherwise (no flicker where nothing averages it).
+TL_FN float tlAlphaDither(uint x, uint y, uint frameIndex, bool framesAveraged) {
+  float d = tlOrderedDither4(x, y);
+  return framesAveraged ? fract(d + 0.6180340f * float(frameIndex & 1023u)) : d;
+}
 TL_END
 #endif

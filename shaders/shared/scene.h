@@ -51,9 +51,9 @@ struct GpuMaterial {
   float metallic;
   float roughness;
   float normalScale;
-  float alphaCutoff;        // 0 = opaque (tlMaterialCutout)
+  float alphaCutoff;        // alpha MASK's cutoff (tlMaterialCutout)
   float occlusionStrength;  // glTF occlusionTexture.strength: occlusion = 1 + strength (texel.r - 1)
-  uint pad0;
+  uint alphaMode;           // kAlphaOpaque, kAlphaMask or kAlphaBlend
   uint pad1;
   uint pad2;
   GpuTextureSlot baseColorTexture;
@@ -85,9 +85,22 @@ struct GpuInstance {
 // A rigid mesh's vertices were where they are: its motion is its instance's.
 TL_CONST uint kNoPreviousPositions = 0xFFFFFFFFu;
 
-// Alpha MASK: true where a surface of this cutoff is cut away at this alpha. One predicate for
-// every stage that sees a surface (G-buffer, shadow map, voxelizer, any-hit shaders).
-TL_FN bool tlMaterialCutout(float alphaCutoff, float alpha) { return alphaCutoff > 0.0f && alpha < alphaCutoff; }
+// glTF's alpha modes. BLEND is stochastic transparency: a surface of alpha a is there for a
+// fraction a of the samples a stage takes (pixels, shadow-map texels, voxels, rays, frames) and
+// absent for the rest, so it stops a of the light and shows a of its own colour once those
+// samples are averaged (by a filter, TAA, temporal accumulation or the reference's mean).
+TL_CONST uint kAlphaOpaque = 0u;
+TL_CONST uint kAlphaMask = 1u;
+TL_CONST uint kAlphaBlend = 2u;
+
+// True where a surface is cut away at this alpha: MASK below its cutoff, BLEND where alpha
+// does not exceed xi, the stage's uniform number in [0, 1) for this sample. One predicate for
+// every stage that sees a surface (G-buffer, shadow maps, voxelizer, any-hit shaders).
+TL_FN bool tlMaterialCutout(uint alphaMode, float alphaCutoff, float alpha, float xi) {
+  if (alphaMode == kAlphaMask) return alpha < alphaCutoff;
+  if (alphaMode == kAlphaBlend) return alpha <= xi;
+  return false;
+}
 TL_END
 
 #ifdef __cplusplus

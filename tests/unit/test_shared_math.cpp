@@ -2,6 +2,7 @@
 #include "shared/color.h"
 #include "shared/packing.h"
 #include "shared/sampling.h"
+#include "shared/scene.h"
 #include "shared/sh.h"
 #include "shared/rt.h"
 #include "shared/sh_specular.h"
@@ -655,6 +656,40 @@ TEST(ShSpecular, MixedLightIsBoundedAndMetalsReflect) {
     EXPECT_GT(e.x, 0.0f) << "a metal reflects indirect light";
   }
   EXPECT_EQ(tlShSpecular(tlShZero(), metal, n, n, kShOpenSkyDirectionality).x, 0.0f);
+}
+
+// Stochastic transparency's thresholds: every aligned 4x4 block holds (k + 0.5) / 16 once each,
+// so BLEND keeps round(16 alpha) of every block's 16 pixels, and MASK and OPAQUE ignore xi.
+TEST(AlphaModes, OrderedDitherKeepsAlphaOfEveryFourByFourBlock) {
+  for (uint32_t bx = 0; bx < 3; ++bx)
+    for (uint32_t by = 0; by < 3; ++by) {
+      std::vector<float> values;
+      for (uint32_t y = 0; y < 4; ++y)
+        for (uint32_t x = 0; x < 4; ++x) values.push_back(tlOrderedDither4(4 * bx + x, 4 * by + y));
+      std::sort(values.begin(), values.end());
+      for (int k = 0; k < 16; ++k) EXPECT_FLOAT_EQ(values[size_t(k)], (float(k) + 0.5f) / 16.0f) << bx << "," << by;
+    }
+  for (float alpha : {0.0f, 0.25f, 0.5f, 0.8125f, 1.0f}) {
+    int kept = 0;
+    for (uint32_t y = 0; y < 4; ++y)
+      for (uint32_t x = 0; x < 4; ++x) kept += !tlMaterialCutout(kAlphaBlend, 0.5f, alpha, tlOrderedDither4(x + 8, y + 4));
+    EXPECT_EQ(kept, int(std::lround(16.0f * alpha))) << "alpha " << alpha;
+  }
+  // Neighbours in a 2x2 block are far apart (a checkerboard at alpha 1/2), not a ramp.
+  EXPECT_NEAR(std::fabs(tlOrderedDither4(0, 0) - tlOrderedDither4(1, 0)), 0.5f, 0.01f);
+  EXPECT_TRUE(tlMaterialCutout(kAlphaMask, 0.5f, 0.49f, 0.99f));
+  EXPECT_FALSE(tlMaterialCutout(kAlphaMask, 0.5f, 0.5f, 0.0f));
+  EXPECT_FALSE(tlMaterialCutout(kAlphaOpaque, 0.5f, 0.0f, 0.9f));
+  // The moving dither stays in (0, 1) and takes 8 different values at a pixel over 8 frames.
+  std::vector<float> frames;
+  for (uint32_t f = 0; f < 8; ++f) {
+    frames.push_back(tlAlphaDither(3, 1, f, true));
+    EXPECT_GT(frames.back(), 0.0f);
+    EXPECT_LT(frames.back(), 1.0f);
+    EXPECT_EQ(tlAlphaDither(3, 1, f, false), tlOrderedDither4(3, 1));
+  }
+  std::sort(frames.begin(), frames.end());
+  EXPECT_EQ(std::adjacent_find(frames.begin(), frames.end()), frames.end());
 }
 
 }  // namespace

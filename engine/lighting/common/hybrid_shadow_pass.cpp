@@ -10,8 +10,8 @@ namespace tl::lighting {
 
 bool addHybridSunShadow(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path) {
   // The pass's ray query treats every triangle as opaque (it has no material tables to test a
-  // cut-out's alpha, as the rt path's any-hit shader does): a scene with alpha MASK keeps the
-  // map, which cuts them out, rather than get a card's full shadow.
+  // cut-out's alpha, as the rt path's any-hit shader does): a scene with alpha MASK or BLEND keeps the
+  // map, which tests them, rather than get a card's or a pane's full shadow.
   const bool hybrid = in.settings.hybridShadows && (in.constants.flags & shared::kFrameFlagSunShadows) != 0 &&
                       path.shadowTlasHandle != VK_NULL_HANDLE && !path.shadowStructures.empty() &&
                       in.scene.alphaTestedInstances().empty();

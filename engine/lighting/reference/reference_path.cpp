@@ -51,7 +51,7 @@ constexpr const char* kIrradianceRaygen = "reference/irradiance.rgen";
 constexpr const char* kDepthRaygen = "reference/bounces.rgen";
 constexpr const char* kMisses[] = {"reference/trace.rmiss", "reference/shadow.rmiss"};
 constexpr const char* kClosestHit = "reference/trace.rchit";
-constexpr const char* kAnyHit = "reference/alpha.rahit";  // alpha MASK: runs on non-opaque geometry only
+constexpr const char* kAnyHit = "reference/alpha.rahit";  // alpha MASK and BLEND: runs on non-opaque geometry only
 
 // The three pipelines: the same paths, misses and hit shaders from three ray generations.
 const RayShaders kTraceShaders{"reference.trace", kRaygen, {std::begin(kMisses), std::end(kMisses)}, {{kClosestHit, kAnyHit}}};

@@ -130,7 +130,7 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
     g.vertexCount = ranges[i].vertexCount;
     g.indices = ib.address();
     g.triangleCount = uint32_t(indices.size() / 3);
-    g.opaque = !alphaTested;  // only cut-outs run the any-hit shader
+    g.opaque = !alphaTested;  // only alpha-tested (MASK, BLEND) geometry runs the any-hit shader
     geometry_.push_back(g);
     if (deforms) {
       // Built below, into the shared storage, once its size is known.
