@@ -42,18 +42,8 @@ void main() {
   // back side instead of going black.
   vec3 n = normalize(inNormal);
   if (!gl_FrontFacing) n = -n;
-  if (m.normalTexture.texture != kNoTexture && tlMaterialNormalMaps(materials)) {
-    vec3 t = inTangent.xyz - n * dot(n, inTangent.xyz);
-    float tl = length(t);
-    if (tl > 1e-6) {
-      t /= tl;
-      vec3 b = cross(n, t) * (inTangent.w < 0.0 ? -1.0 : 1.0);
-      vec3 tn = sampleSlot(m.normalTexture, inUv, inUv1).xyz * 2.0 - 1.0;
-      tn.xy *= m.normalScale;
-      vec3 mapped = t * tn.x + b * tn.y + n * tn.z;
-      if (dot(mapped, mapped) > 1e-12) n = normalize(mapped);
-    }
-  }
+  if (m.normalTexture.texture != kNoTexture && tlMaterialNormalMaps(materials))
+    n = normalMapped(n, inTangent, sampleSlot(m.normalTexture, inUv, inUv1).xyz, m.normalScale);
 
   vec2 rm = materialRoughnessMetallic(m, inUv, inUv1);
   float roughness = tlMaterialRoughness(rm.x, materials);

@@ -36,6 +36,22 @@ vec3 materialEmissionLod0(GpuMaterial m, vec2 uv0, vec2 uv1) {
   return e;
 }
 
+// A normal map's tangent-space texel (as stored, [0, 1]) applied to the unit normal n facing the
+// viewer or the ray: the tangent is made orthogonal to n, the bitangent is n x t times the
+// handedness (glTF, MikkTSpace), and the texel's xy are scaled by normalTexture.scale. A
+// degenerate tangent or a zero result keeps n. Shared by the G-buffer and the reference's hits.
+vec3 normalMapped(vec3 n, vec4 tangent, vec3 texel, float scale) {
+  vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
+  float tl = length(t);
+  if (tl <= 1e-6) return n;
+  t /= tl;
+  vec3 b = cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
+  vec3 tn = texel * 2.0 - 1.0;
+  tn.xy *= scale;
+  vec3 mapped = t * tn.x + b * tn.y + n * tn.z;
+  return dot(mapped, mapped) > 1e-12 ? normalize(mapped) : n;
+}
+
 // Alpha testing: true where the surface is cut away (MASK below its cutoff; BLEND where alpha
 // does not exceed xi, the stage's stochastic-transparency number in [0, 1)).
 bool materialCutout(GpuMaterial m, float alpha, float xi) {

@@ -2,10 +2,12 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_ray_tracing : require
 #extension GL_EXT_nonuniform_qualifier : require
+#include "shared/frame.h"
 #include "shared/reference.h"
 #include "shared/scene.h"
 #include "reference/hit_vertices.glsl"
 
+layout(set = 0, binding = kRefBindingFrame) uniform Frame { FrameConstants frame; };
 layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
 
 layout(location = 0) rayPayloadInEXT RefHit hit;
@@ -24,6 +26,12 @@ void main() {
   // Surfaces are two-sided: both normals face the incoming ray.
   if (dot(geometric, gl_WorldRayDirectionEXT) > 0.0) geometric = -geometric;
   if (dot(shading, geometric) < 0.0) shading = -shading;
+  // The normal map as the G-buffer applies it (material_data.glsl), on the side the ray sees;
+  // the tangent is a surface direction: the model matrix carries it, not the normal matrix.
+  if (m.normalTexture.texture != kNoTexture && tlMaterialNormalMaps(tlFrameMaterials(frame.flags))) {
+    vec4 tangent = vec4(mat3(inst.modelRelative) * h.tangent.xyz, h.tangent.w);
+    shading = normalMapped(shading, tangent, slotTexelLod0(m.normalTexture, h.uv0, h.uv1).xyz, m.normalScale);
+  }
 
   vec4 baseColor = materialBaseColorLod0(m, h.uv0, h.uv1, h.color);
   vec2 rm = materialRoughnessMetallicLod0(m, h.uv0, h.uv1);
