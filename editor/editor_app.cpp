@@ -546,9 +546,10 @@ void EditorApp::openAlbedoDatabase(const std::filesystem::path& file) {
 
 void EditorApp::announceScene() {
   const scene::Scene& s = session_->scene();
-  showSceneWarnings_ = !s.warnings.empty();
+  showScenePanel_ = !s.warnings.empty();
+  sceneReport_ = scene::sceneReport(s);
   if (!s.warnings.empty())
-    notify(fmt::format("{} import warning{}: View > Scene warnings", s.warnings.size(), s.warnings.size() == 1 ? "" : "s"));
+    notify(fmt::format("{} import warning{}: View > Scene", s.warnings.size(), s.warnings.size() == 1 ? "" : "s"));
   // A file with no light (no sun, no punctual light, nothing emissive) would show only the
   // uniform sky: flat. The editor (not a headless render, whose light is the file's) lights it
   // with the default sun.

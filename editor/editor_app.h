@@ -126,7 +126,9 @@ class EditorApp {
   // The Compare panel: while compareView() holds a value the viewport is split between two
   // paths (applied to the session each frame; an unavailable side is refused with its reason).
   bool& compareOpen() { return showCompare_; }
-  bool& sceneWarningsOpen() { return showSceneWarnings_; }  // opens itself for a scene with warnings
+  bool& scenePanelOpen() { return showScenePanel_; }  // opens itself for a scene with warnings
+  // The loaded scene's report (scene::sceneReport), made once per scene for the Scene panel.
+  const std::vector<std::string>& sceneReport() const { return sceneReport_; }
   // Morph animations advance with the wall clock while playing (on by default).
   bool& playing() { return playing_; }
   std::optional<session::CompareView>& compareView() { return compareView_; }
@@ -209,7 +211,8 @@ class EditorApp {
   ViewerState viewer_;         // what is shown otherwise, and how (the Buffers panel)
   bool showBuffers_ = false;
   bool showCompare_ = false;
-  bool showSceneWarnings_ = false;
+  bool showScenePanel_ = false;
+  std::vector<std::string> sceneReport_;
   void announceScene();  // warnings and the default light of a scene just loaded
   bool playing_ = true;
   std::optional<session::CompareView> compareView_;

@@ -84,7 +84,11 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
       ImGui::SetTooltip(redeferred ? "the light arriving at each pixel, on a white world (the I-buffer without materials)"
                                    : "needs redeferred shading: Lighting panel, `redeferred`");
     const size_t warnings = app.session().hasScene() ? app.session().scene().warnings.size() : 0;
-    ImGui::MenuItem(fmt::format("Scene warnings ({})", warnings).c_str(), nullptr, &app.sceneWarningsOpen(), warnings > 0);
+    ImGui::MenuItem(fmt::format("Scene ({} warning{})", warnings, warnings == 1 ? "" : "s").c_str(), nullptr,
+                    &app.scenePanelOpen(), app.session().hasScene());
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip("what the file uses (meshes, materials, textures by format, lights, animations, extensions),\n"
+                        "what Twinlight ignores or approximates, and the importer's warnings");
     ImGui::EndMenu();
   }
   ImGui::EndMainMenuBar();
@@ -496,30 +500,33 @@ void errorPopup(std::string& error) {
 
 }  // namespace
 
-// What the importer said about the scene (Scene::warnings; the ignored features among them):
-// the missing texture, the extension not applied, where the terminal is not in view.
-void sceneWarningsPanel(EditorApp& app) {
-  if (!app.sceneWarningsOpen() || !app.session().hasScene()) return;
+// The scene report (scene::sceneReport, what `twinlight info --scene` prints: what the file uses,
+// counted, and each feature ignored or approximated) and what the importer said about the scene
+// (Scene::warnings: the missing texture, the extension not applied), where the terminal is not
+// in view.
+void scenePanel(EditorApp& app) {
+  if (!app.scenePanelOpen() || !app.session().hasScene()) return;
   const scene::Scene& s = app.session().scene();
   ImGui::SetNextWindowPos(ImVec2(320, 80), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(520, 220), ImGuiCond_FirstUseEver);
-  if (!ImGui::Begin("Scene warnings", &app.sceneWarningsOpen())) {
+  ImGui::SetNextWindowSize(ImVec2(560, 320), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Scene", &app.scenePanelOpen())) {
     ImGui::End();
     return;
   }
-  ImGui::TextWrapped("%s: %zu warning%s from the importer (also on the terminal and in `twinlight info --scene`)",
-                     s.path.filename().string().c_str(), s.warnings.size(), s.warnings.size() == 1 ? "" : "s");
-  if (!s.ignored.empty()) {
-    ImGui::Separator();
-    ImGui::TextUnformatted("ignored or approximated: renders differently from the file");
-    for (const std::string& line : s.ignored) {
-      ImGui::Bullet();
-      ImGui::SameLine();
-      ImGui::TextWrapped("%s", line.c_str());
-    }
-  }
+  ImGui::TextUnformatted(s.path.filename().string().c_str());
   ImGui::Separator();
-  ImGui::TextUnformatted("every warning");
+  // The report's "ignored:" lines are where the image differs from the file.
+  for (const std::string& line : app.sceneReport()) ImGui::TextWrapped("%s", line.c_str());
+  ImGui::Separator();
+  // Each ignored feature is also a warning: the list opens by itself only for other warnings
+  // (a missing texture, a value clamped).
+  const ImGuiTreeNodeFlags open = s.warnings.size() > s.ignored.size() ? ImGuiTreeNodeFlags_DefaultOpen : 0;
+  const std::string header = fmt::format("{} warning{} from the importer (also on the terminal)###warnings", s.warnings.size(),
+                                         s.warnings.size() == 1 ? "" : "s");
+  if (!ImGui::CollapsingHeader(header.c_str(), open)) {
+    ImGui::End();
+    return;
+  }
   for (const std::string& line : s.warnings) {
     ImGui::Bullet();
     ImGui::SameLine();
@@ -540,7 +547,7 @@ void drawPanels(EditorApp& app) {
   comparePanel(app);
   compareViewportOverlay(app);
   buffersPanel(app, app.buffersOpen());
-  sceneWarningsPanel(app);
+  scenePanel(app);
   statusBar(app);
   shaderErrorWindow(app);
   helpWindow(app.showHelp_);

@@ -291,9 +291,16 @@ void Script::step(EditorApp& app) {
         const auto& warnings = app.session().scene().warnings;
         if (std::to_string(warnings.size()) != arg)
           return fail(app, fmt::format("expected {} scene warning(s), but there are {}", arg, warnings.size()));
-        if (!warnings.empty() && !app.sceneWarningsOpen()) return fail(app, "the Scene warnings panel is not open");
+        if (!warnings.empty() && !app.scenePanelOpen()) return fail(app, "the Scene panel is not open");
         fmt::print("script: {} scene warning(s)\n", warnings.size());
         for (const auto& w : warnings) fmt::print("script: warning: {}\n", w);
+      } else if (cmd == "expect-scene-report") {
+        // A line of the Scene panel's report (what `twinlight info --scene` prints) holds `arg`.
+        if (!app.scenePanelOpen()) return fail(app, "the Scene panel is not open");
+        const auto& report = app.sceneReport();
+        const auto line = std::find_if(report.begin(), report.end(), [&](const std::string& l) { return l.find(arg) != std::string::npos; });
+        if (line == report.end()) return fail(app, fmt::format("no line of the scene report holds `{}`", arg));
+        fmt::print("script: scene report: {}\n", *line);
       } else if (cmd == "expect-orphans") {
         const auto& lib = app.session().albedo();
         if (std::to_string(lib.orphanCount()) != arg)

@@ -25,7 +25,8 @@
 //   albedo-bake            bake the scene into it (one batch a frame) and wait until done
 //   albedo-override R G B  override the selected instance's albedo (linear RGB)
 //   albedo-undo, albedo-redo, albedo-save
-//   expect-scene-warnings N  fail unless the scene has N import warnings (and their panel is open); lists them
+//   expect-scene-warnings N  fail unless the scene has N import warnings (and the Scene panel is open); lists them
+//   expect-scene-report TEXT  fail unless the Scene panel is open and a line of its report holds TEXT
 //   expect-orphans N       fail unless N overrides are orphaned (their mesh + material is gone); lists them
 //   orphan-reapply I [selected]  re-apply orphan I (0 = first listed) to its new key, or to the selection
 //   orphan-delete I        delete orphan I (removed from the database on albedo-save)
