@@ -238,6 +238,8 @@ int SceneWriter::material(const MaterialSpec& spec) {
     m.occlusionTexture.strength = spec.occlusionStrength;
   }
   if (spec.emissiveTextureIndex >= 0) m.emissiveTexture.index = spec.emissiveTextureIndex;
+  if (spec.metallicRoughnessTextureIndex >= 0)
+    m.pbrMetallicRoughness.metallicRoughnessTexture.index = spec.metallicRoughnessTextureIndex;
   if (spec.normalTextureIndex >= 0) m.normalTexture.index = spec.normalTextureIndex;
   if (!spec.alphaMode.empty()) {
     m.alphaMode = spec.alphaMode;

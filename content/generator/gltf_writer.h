@@ -69,6 +69,7 @@ struct MaterialSpec {
   int emissiveTextureIndex = -1;
   int normalTextureIndex = -1;
   int occlusionTextureIndex = -1;
+  int metallicRoughnessTextureIndex = -1;
   float occlusionStrength = 1.0f;
   TextureUse baseColorUse;       // the base-colour texture's UV set and transform
   std::string alphaMode;         // "" (OPAQUE), "MASK" or "BLEND"

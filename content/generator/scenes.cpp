@@ -860,6 +860,76 @@ void translucentPane(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// A helmet-like asset as a PBR export carries it: one .glb with every texture inside (8-bit
+// PNGs, 128 x 64 over the sphere's u and v): an sRGB base colour (olive paint with a white band
+// and dark seams), metallic-roughness (the band bare metal, roughness 0.3; paint dielectric,
+// 0.6), a normal map of raised panels with rounded seams and rivets and no TANGENT attribute
+// (generated on import, MikkTSpace), an occlusion texture darkening the seams, and an emissive
+// visor strip (strength 4). A 0.5 m shell (a sphere stretched 1.1 x tall) on a rim (a torus),
+// standing on a grey ground, under a sun of E = 12 and a blue sky. Every path must render it
+// as the reference does (T10's "helmet-like asset").
+void helmet(const std::filesystem::path& dir) {
+  SceneWriter w("helmet");
+  w.binary();
+  const int width = 128, height = 64;
+  const float pi = 3.14159265359f;
+  // Panels: 8 across u, 4 down v; seams where a panel's coordinate is near an edge.
+  const auto seam = [&](float u, float v) {
+    const float pu = std::fmod(u * 8.0f, 1.0f), pv = std::fmod(v * 4.0f, 1.0f);
+    const float d = std::min(std::min(pu, 1.0f - pu) * 2.0f, std::min(pv, 1.0f - pv));  // 0 at a seam
+    return std::clamp(d / 0.08f, 0.0f, 1.0f);
+  };
+  const auto band = [](float v) { return v > 0.30f && v < 0.38f; };
+  const auto visor = [](float u, float v) { return v > 0.42f && v < 0.5f && u > 0.72f && u < 0.94f; };  // facing the camera
+  // The height field whose slopes the normal map holds: panels raised by their seams, a rivet
+  // at each panel's corner.
+  const auto heightAt = [&](float u, float v) {
+    float h = 0.6f * seam(u, v);
+    const float ru = std::fmod(u * 8.0f + 0.5f, 1.0f) - 0.5f, rv = std::fmod(v * 4.0f + 0.5f, 1.0f) - 0.5f;
+    h += 0.5f * std::exp(-(ru * ru + rv * rv) / 0.004f);
+    return h;
+  };
+  std::vector<float> base, metalRough, normal, occlusion, emissive;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const float u = (float(x) + 0.5f) / float(width), v = (float(y) + 0.5f) / float(height);
+      const float s = seam(u, v);
+      glm::vec3 paint = band(v) ? glm::vec3(0.85f, 0.85f, 0.82f) : glm::vec3(0.33f, 0.36f, 0.18f);
+      paint *= 0.35f + 0.65f * s;
+      base.insert(base.end(), {paint.r, paint.g, paint.b});
+      metalRough.insert(metalRough.end(), {0.0f, band(v) ? 0.3f : 0.6f, band(v) ? 1.0f : 0.0f});
+      // Slopes per texel (the map's green is the image's top: +y towards decreasing v).
+      const float du = 1.0f / float(width), dv = 1.0f / float(height), k = 0.04f;
+      const float dhdu = (heightAt(u + du, v) - heightAt(u - du, v)) / (2.0f * du * 2.0f * pi * 0.5f) * k;
+      const float dhdv = (heightAt(u, v + dv) - heightAt(u, v - dv)) / (2.0f * dv * pi * 0.55f) * k;
+      const glm::vec3 n = glm::normalize(glm::vec3(-dhdu, dhdv, 1.0f));
+      normal.insert(normal.end(), {n.x * 0.5f + 0.5f, n.y * 0.5f + 0.5f, n.z * 0.5f + 0.5f});
+      const float ao = 0.45f + 0.55f * s;
+      occlusion.insert(occlusion.end(), {ao, ao, ao});
+      const float glow = visor(u, v) ? 1.0f : 0.0f;
+      emissive.insert(emissive.end(), {glow * 1.0f, glow * 0.45f, glow * 0.1f});
+    }
+  MaterialSpec shell{"helmet_paint", {1.0f, 1.0f, 1.0f}, 1.0f, 1.0f, {1.0f, 1.0f, 1.0f}, 4.0f};
+  shell.baseColorTextureIndex = w.embeddedTexture("helmet_base_color", encodeImage("png", width, height, 3, base, 8), "image/png");
+  shell.metallicRoughnessTextureIndex =
+      w.embeddedTexture("helmet_metallic_roughness", encodeImage("png", width, height, 3, metalRough, 8), "image/png");
+  shell.normalTextureIndex = w.embeddedTexture("helmet_normal", encodeImage("png", width, height, 3, normal, 8), "image/png");
+  shell.occlusionTextureIndex =
+      w.embeddedTexture("helmet_occlusion", encodeImage("png", width, height, 3, occlusion, 8), "image/png");
+  shell.emissiveTextureIndex = w.embeddedTexture("helmet_emissive", encodeImage("png", width, height, 3, emissive, 8), "image/png");
+  const int paint = w.material(shell);
+  const int rubber = w.material({"rim_rubber", {0.05f, 0.05f, 0.05f}, 0.0f, 0.7f});
+  const int ground = w.material({"ground_grey", {0.5f, 0.5f, 0.5f}, 0.0f, 0.9f});
+  w.node("ground", w.mesh("ground", quad(12.0f, 12.0f), ground), {0.0f, 0.0f, 0.0f});
+  w.node("shell", w.mesh("shell", sphere(0.5f, 64, 32), paint), {0.0f, 0.62f, 0.0f}, {0.0f, 0.0f, 0.0f},
+         {1.0f, 1.1f, 1.0f});
+  w.node("rim", w.mesh("rim", torus(0.45f, 0.07f, 48, 12), rubber), {0.0f, 0.12f, 0.0f});
+  w.camera("front", {1.1f, 1.0f, 1.9f}, {0.0f, 0.55f, 0.0f}, 45.0f);
+  w.sun({-0.5f, -0.7f, -0.5f}, 12.0f);
+  w.sky({0.45f, 0.6f, 0.9f});
+  w.write(dir);
+}
+
 // Contact shadows (hybrid ray-traced shadows, T11): a 1 m white cube standing on a 0.8 grey
 // floor, under a sun of E = 10 travelling (0.6, -0.8, 0) (53 degrees high) and a sky of 1.
 // With the real sun's 0.27 degree radius every penumbra is under 1.3 cm, so the floor's
@@ -1003,6 +1073,7 @@ int main(int argc, char** argv) {
     tl::content::normalProbe(dir);
     tl::content::cutout(dir);
     tl::content::translucentPane(dir);
+    tl::content::helmet(dir);
     tl::content::textureTransformProbe(dir);
     tl::content::samplerProbe(dir);
     tl::content::texcoord1Probe(dir);
