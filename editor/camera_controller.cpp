@@ -18,6 +18,9 @@ void CameraController::reset(const session::View& v, double sceneSize) {
   distance_ = sceneSize_ * 0.3;
   fov_ = v.yfovRadians;
   znear_ = v.znear;
+  orthographic_ = v.orthographic;
+  orthoHalfHeight_ = v.orthoHalfHeight;
+  zfar_ = v.zfar;
 }
 
 void CameraController::update(const CameraInput& in) {
@@ -40,7 +43,11 @@ void CameraController::update(const CameraInput& in) {
     double perPixel = distance_ * 0.0015;
     position_ += (-right * double(in.panDelta.x) + up * double(in.panDelta.y)) * perPixel;
   }
-  if (in.dolly != 0.0f) {
+  if (in.dolly != 0.0f && orthographic_) {
+    // Moving along the axis changes nothing an orthographic view sees: zoom its height.
+    const double zoomed = double(orthoHalfHeight_) * std::pow(0.85, double(in.dolly));
+    orthoHalfHeight_ = float(std::clamp(zoomed, sceneSize_ * 1e-3, sceneSize_ * 10.0));
+  } else if (in.dolly != 0.0f) {
     double step = std::max(distance_ * 0.15, sceneSize_ * 0.005) * in.dolly;
     position_ += f * step;
     distance_ = std::max(distance_ - step, sceneSize_ * 0.01);
@@ -73,6 +80,9 @@ session::View CameraController::view() const {
   v.up = {0, 1, 0};
   v.yfovRadians = fov_;
   v.znear = znear_;
+  v.orthographic = orthographic_;
+  v.orthoHalfHeight = orthoHalfHeight_;
+  v.zfar = zfar_;
   return v;
 }
 

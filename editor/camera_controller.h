@@ -39,6 +39,9 @@ class CameraController {
   double distance_ = 5.0;           // to the orbit pivot, along forward
   double sceneSize_ = 10.0;
   float fov_ = 0.9f, znear_ = 0.05f;
+  // An orthographic view (a glTF orthographic camera) stays one: the dolly scales its height.
+  bool orthographic_ = false;
+  float orthoHalfHeight_ = 1.0f, zfar_ = 0.0f;
 };
 
 }  // namespace tl::editor

@@ -488,6 +488,23 @@ void SceneWriter::camera(const std::string& name, glm::vec3 from, glm::vec3 to, 
   c.perspective.yfov = glm::radians(yfovDegrees);
   c.perspective.znear = 0.05;
   c.perspective.aspectRatio = 16.0 / 9.0;
+  addCamera(c, from, to);
+}
+
+void SceneWriter::orthographicCamera(const std::string& name, glm::vec3 from, glm::vec3 to, float xmag, float ymag,
+                                     float znear, float zfar) {
+  tinygltf::Camera c;
+  c.name = name;
+  c.type = "orthographic";
+  c.orthographic.xmag = xmag;
+  c.orthographic.ymag = ymag;
+  c.orthographic.znear = znear;
+  c.orthographic.zfar = zfar;
+  addCamera(c, from, to);
+}
+
+void SceneWriter::addCamera(const tinygltf::Camera& c, glm::vec3 from, glm::vec3 to) {
+  const std::string name = c.name;
   model_.cameras.push_back(c);
   // glTF cameras look down -Z with +Y up.
   glm::mat4 view = glm::lookAt(from, to, glm::vec3(0, 1, 0));

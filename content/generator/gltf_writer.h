@@ -119,6 +119,9 @@ class SceneWriter {
   void nodeChannel(const std::string& animation, int node, const std::string& path, const std::vector<float>& times,
                    const std::vector<glm::vec4>& values, const std::string& interpolation = "LINEAR");
   void camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees);
+  // glTF's orthographic camera: xmag and ymag are half the view's width and height in metres.
+  void orthographicCamera(const std::string& name, glm::vec3 from, glm::vec3 to, float xmag, float ymag, float znear,
+                          float zfar);
   // The sun's irradiance on Twinlight's scale (white Lambertian facing it: E / pi), written as
   // glTF's lux: E x 683 lm/W (shaders/shared/lights.h).
   void sun(glm::vec3 travelDirection, float irradiance, glm::vec3 color = glm::vec3(1.0f));
@@ -132,6 +135,8 @@ class SceneWriter {
   void write(const std::filesystem::path& dir);
 
  private:
+  // Adds the camera and a root node holding it at `from`, looking at `to` (+Y up).
+  void addCamera(const tinygltf::Camera& camera, glm::vec3 from, glm::vec3 to);
   // Adds the light and a root node holding it, turned so its -Z is `direction`.
   void light(tinygltf::Light l, glm::vec3 position, glm::vec3 direction);
   int accessor(const void* data, size_t bytes, size_t count, int componentType, int type, int target,

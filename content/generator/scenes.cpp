@@ -930,6 +930,27 @@ void helmet(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// An orthographic camera (glTF's xmag, ymag): three 0.5 m white cubes on a 0.8 grey ground at
+// 1.06 m steps along the view, seen 45 degrees from above by camera 0, orthographic (xmag 2.4,
+// ymag 1.8, near 0.1, far 30), and camera 1, a perspective one from the same place. Through the
+// orthographic camera the three are the same size on screen (a perspective shrinks the far
+// one); the view is lit by a sun of E = 10 travelling (0, -1, 0) and a sky of 1, so the open
+// ground has 0.8 / pi (E + pi L) = 3.346 in every path, whichever way the rays leave the camera.
+void orthographicProbe(const std::filesystem::path& dir) {
+  SceneWriter w("orthographic_probe");
+  int grey = w.material({"ground_grey", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  int white = w.material({"white", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  w.node("ground", w.mesh("ground", quad(30.0f, 30.0f), grey), {0.0f, 0.0f, 0.0f});
+  const char* names[] = {"cube_far", "cube_middle", "cube_near"};
+  for (int i = 0; i < 3; ++i)
+    w.node(names[i], w.mesh(names[i], box({0.5f, 0.5f, 0.5f}), white), {1.2f * float(i - 1), 0.25f, 1.5f * float(i - 1)});
+  w.orthographicCamera("orthographic", {0.0f, 6.0f, 6.0f}, {0.0f, 0.0f, 0.0f}, 2.4f, 1.8f, 0.1f, 30.0f);
+  w.camera("perspective", {0.0f, 6.0f, 6.0f}, {0.0f, 0.0f, 0.0f}, 40.0f);
+  w.sun({0.0f, -1.0f, 0.0f}, 10.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
 // Contact shadows (hybrid ray-traced shadows, T11): a 1 m white cube standing on a 0.8 grey
 // floor, under a sun of E = 10 travelling (0.6, -0.8, 0) (53 degrees high) and a sky of 1.
 // With the real sun's 0.27 degree radius every penumbra is under 1.3 cm, so the floor's
@@ -1074,6 +1095,7 @@ int main(int argc, char** argv) {
     tl::content::cutout(dir);
     tl::content::translucentPane(dir);
     tl::content::helmet(dir);
+    tl::content::orthographicProbe(dir);
     tl::content::textureTransformProbe(dir);
     tl::content::samplerProbe(dir);
     tl::content::texcoord1Probe(dir);

@@ -460,8 +460,6 @@ void scanIgnored(const tinygltf::Model& model, IgnoredFeatures& ignored) {
       if (ch.target_path != "weights" && ch.target_path != "translation" && ch.target_path != "rotation" &&
           ch.target_path != "scale")
         ignored.add(fmt::format("node {} animation", ch.target_path), "not played (morph weights and node TRS are)");
-  for (const auto& c : model.cameras)
-    if (c.type == "orthographic") ignored.add("orthographic camera", "dropped (not in --camera's list)");
   if (model.scenes.size() > 1) ignored.add("scenes besides the default", "not loaded");
 }
 
@@ -1003,6 +1001,31 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
         if (p.zfar > 0) c.zfar = float(p.zfar);
         if (p.aspectRatio > 0) c.aspectRatio = float(p.aspectRatio);
         scene.cameras.push_back(c);
+      } else if (gc.type == "orthographic") {
+        // glTF: xmag and ymag must not be zero (and should not be negative: their size is
+        // taken), 0 <= znear < zfar, zfar required.
+        const auto& o = gc.orthographic;
+        const float xmag = std::abs(float(o.xmag)), ymag = std::abs(float(o.ymag));
+        const float znear = float(o.znear), zfar = float(o.zfar);
+        const bool orthoUsable = xmag > 0.0f && ymag > 0.0f && std::isfinite(xmag) && std::isfinite(ymag) &&
+                                 znear >= 0.0f && std::isfinite(zfar) && zfar > znear &&
+                                 allFinite(glm::dvec4(orientation.x, orientation.y, orientation.z, orientation.w));
+        if (!orthoUsable) {
+          values.warn(fmt::format("orthographic camera `{}` has a magnification or clip planes out of range; it is ignored",
+                                  cameraName));
+        } else {
+          Camera c;
+          c.name = cameraName;
+          c.position = position;
+          c.orientation = orientation;
+          c.orthographic = true;
+          c.xmag = xmag;
+          c.ymag = ymag;
+          c.znear = znear;
+          c.zfar = zfar;
+          c.aspectRatio = xmag / ymag;
+          scene.cameras.push_back(c);
+        }
       }
     }
     if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end()) {

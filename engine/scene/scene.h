@@ -204,8 +204,11 @@ struct Camera {
   glm::dquat orientation{1.0, 0.0, 0.0, 0.0};  // glTF: looks down -Z, +Y up
   float yfovRadians = 0.8f;
   float znear = 0.05f;
-  std::optional<float> zfar;
+  std::optional<float> zfar;  // an orthographic camera always has one
   std::optional<float> aspectRatio;
+  // glTF's orthographic camera: half the view's width and height in metres (xmag, ymag).
+  bool orthographic = false;
+  float xmag = 1.0f, ymag = 1.0f;
 };
 
 // Rect, Disk and Tube are area lights: glTF has none (KHR_lights_punctual), so they come only

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <map>
 
 namespace tl::scene {
@@ -68,7 +69,8 @@ std::vector<std::string> sceneReport(const Scene& s) {
                   : l.type == LightType::Point     ? "point"
                                                    : "area");
   lines.push_back(fmt::format("lights: {}{}", s.lights.size(), lights.empty() ? "" : " (" + counts(lights) + ")"));
-  lines.push_back(fmt::format("cameras: {} perspective", s.cameras.size()));
+  const auto orthographic = std::count_if(s.cameras.begin(), s.cameras.end(), [](const Camera& c) { return c.orthographic; });
+  lines.push_back(fmt::format("cameras: {} perspective, {} orthographic", s.cameras.size() - size_t(orthographic), orthographic));
   lines.push_back(fmt::format("animations: {} morph-weight channels, {} node channels (translation, rotation, scale), {:.3g} s",
                               s.morphAnimations.size(), s.nodeAnimations.size(), s.animationSeconds));
   size_t joints = 0, skinnedMeshes = 0;

@@ -90,6 +90,10 @@ nlohmann::json writeCapture(Session& session, const std::filesystem::path& dir) 
                         {"up", {v.up.x, v.up.y, v.up.z}},
                         {"yfovRadians", v.yfovRadians},
                         {"znear", v.znear}};
+  if (v.orthographic) {
+    manifest["camera"]["orthographicHalfHeight"] = v.orthoHalfHeight;
+    manifest["camera"]["zfar"] = v.zfar;
+  }
   const auto& l = session.lighting();
   manifest["lighting"] = {{"sunDirection", {l.sunDirection.x, l.sunDirection.y, l.sunDirection.z}},
                           {"sunIrradiance", {l.sunIrradiance.r, l.sunIrradiance.g, l.sunIrradiance.b}},

@@ -221,7 +221,10 @@ lighting::FrameKey Session::frameKey(uint64_t frame) const {
   key.hash(FramePart::CameraPosition) = KeyHasher().add(view_.position).done();
   key.hash(FramePart::CameraOrientation) = KeyHasher().all(view_.forward, view_.up).done();
   key.hash(FramePart::Projection) =
-      KeyHasher().all(double(view_.yfovRadians), double(view_.znear), double(settings_.width), double(settings_.height)).done();
+      KeyHasher()
+          .all(double(view_.yfovRadians), double(view_.znear), double(settings_.width), double(settings_.height),
+               double(view_.orthographic), double(view_.orthoHalfHeight), double(view_.zfar))
+          .done();
   KeyHasher light;
   light.all(glm::normalize(lighting_.sunDirection), lighting_.sunIrradiance, double(lighting_.sunAngularRadius));
   key.hash(FramePart::Sun) = addLights(light, lighting_.lights).done();
@@ -255,6 +258,9 @@ void Session::setView(const View& view) {
   if (!(len > 1e-12) || !std::isfinite(len)) throw SessionError("the view direction is zero or not finite");
   v.forward /= len;
   if (!(v.yfovRadians > 0.0f && v.yfovRadians < 3.1f)) throw SessionError("the field of view must be between 0 and 178 degrees");
+  if (v.orthographic && !(v.orthoHalfHeight > 0.0f && std::isfinite(v.orthoHalfHeight) && v.znear >= 0.0f &&
+                          std::isfinite(v.zfar) && v.zfar > v.znear))
+    throw SessionError("an orthographic view needs a positive, finite height and 0 <= near < far");
   if (glm::length(glm::cross(v.forward, v.up)) < 1e-6) v.up = std::abs(v.forward.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
   view_ = v;
 }
@@ -270,6 +276,12 @@ void Session::useSceneCamera(size_t index) {
   v.up = c.orientation * glm::dvec3(0.0, 1.0, 0.0);
   v.yfovRadians = c.yfovRadians;
   v.znear = std::max(1e-4f, c.znear);
+  if (c.orthographic) {
+    v.orthographic = true;
+    v.orthoHalfHeight = c.ymag;
+    v.znear = std::max(0.0f, c.znear);
+    v.zfar = c.zfar.value_or(v.znear + 1000.0f);
+  }
   setView(v);
 }
 
@@ -354,6 +366,7 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
   fc.shadowSoftness = glm::vec4(float(fit.depthRange), settings_.pcssMaxRadiusTexels, settings_.softShadows ? 1.0f : 0.0f, 0.0f);
   fc.exposure = std::exp2(-exposureEv());
   fc.frameIndex = frameNumber;
+  fc.cameraAxis = glm::vec4(glm::vec3(view_.forward), view_.orthographic ? 1.0f : 0.0f);
   fc.flags = glm::length(lighting_.sunIrradiance) > 0.0f ? shared::kFrameFlagSunShadows : 0u;
   fc.flags |= uint32_t(settings_.materials) << shared::kFrameMaterialsShift;
   if (jitter) fc.flags |= shared::kFrameFlagFramesAveraged;

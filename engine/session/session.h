@@ -37,8 +37,13 @@ struct View {
   glm::dvec3 position{0.0, 1.0, 5.0};
   glm::dvec3 forward{0.0, 0.0, -1.0};
   glm::dvec3 up{0.0, 1.0, 0.0};
-  float yfovRadians = 0.9f;  // vertical field of view
+  float yfovRadians = 0.9f;  // vertical field of view (perspective)
   float znear = 0.05f;
+  // An orthographic view (glTF's orthographic camera): half its height in metres (ymag; the width
+  // follows the image's aspect), between the near and the far plane.
+  bool orthographic = false;
+  float orthoHalfHeight = 1.0f;
+  float zfar = 0.0f;  // orthographic only
 };
 
 struct Lighting {

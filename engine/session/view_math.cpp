@@ -13,8 +13,20 @@ namespace tl::session {
 CameraMatrices cameraMatrices(const View& v, double aspect) {
   CameraMatrices m;
   m.view = glm::lookAtRH(glm::dvec3(0.0), v.forward, v.up);
-  const double f = 1.0 / std::tan(0.5 * double(v.yfovRadians));
   m.proj = glm::dmat4(0.0);
+  if (v.orthographic) {
+    // Reversed Z as for the perspective: z_ndc = (far - d) / (far - near) at distance d along
+    // the view axis, 1 at the near plane and 0 at the far one; w = 1.
+    const double h = double(v.orthoHalfHeight), n = double(v.znear), far = double(v.zfar);
+    m.proj[0][0] = 1.0 / (h * aspect);
+    m.proj[1][1] = -1.0 / h;  // Vulkan: clip y points down
+    m.proj[2][2] = 1.0 / (far - n);
+    m.proj[3][2] = far / (far - n);
+    m.proj[3][3] = 1.0;
+    m.viewProj = m.proj * m.view;
+    return m;
+  }
+  const double f = 1.0 / std::tan(0.5 * double(v.yfovRadians));
   m.proj[0][0] = f / aspect;
   m.proj[1][1] = -f;               // Vulkan: clip y points down
   m.proj[2][3] = -1.0;             // w = -z_view
@@ -43,9 +55,13 @@ SunShadowFit fitSunShadow(const View& view, double aspect, const scene::Bounds& 
   const glm::dvec3 u = glm::cross(r, f);
   std::array<glm::dvec3, 8> corners;
   int k = 0;
-  for (double dist : {double(view.znear), farDist})
+  // An orthographic view is a box: the same half-size at every distance.
+  const double halfY = double(view.orthoHalfHeight), halfX = halfY * aspect;
+  for (double dist : {double(view.znear), view.orthographic ? std::min(farDist, double(view.zfar)) : farDist})
     for (double sx : {-1.0, 1.0})
-      for (double sy : {-1.0, 1.0}) corners[k++] = f * dist + r * (sx * tx * dist) + u * (sy * ty * dist);
+      for (double sy : {-1.0, 1.0})
+        corners[k++] = view.orthographic ? f * dist + r * (sx * halfX) + u * (sy * halfY)
+                                         : f * dist + r * (sx * tx * dist) + u * (sy * ty * dist);
   glm::dvec3 frustumCenter(0.0);
   for (auto& c : corners) frustumCenter += c / 8.0;
   double frustumRadius = 0.0;

@@ -35,14 +35,13 @@ void main() {
   float depth = texelFetch(gDepth, p, 0).r;
   if (depth <= 0.0) {  // reversed Z: nothing drawn, the sky is visible
     vec2 ndc = (vec2(p) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
-    vec4 onNear = frame.invViewProj * vec4(ndc, 1.0, 1.0);  // reversed Z: 1 is the near plane
-    imageStore(outRadiance, p, vec4(tlSkyRadiance(frame, normalize(onNear.xyz / onNear.w)), 1.0));
+    imageStore(outRadiance, p, vec4(tlSkyRadiance(frame, cameraRay(ndc).direction), 1.0));
     return;
   }
   vec2 uv = (vec2(p) + 0.5) * frame.viewport.zw;
   vec3 position = cameraRelativePosition(uv, depth);
   vec3 n = tlOctDecode(texelFetch(gNormal, p, 0).xy);
-  vec3 v = normalize(-position);
+  vec3 v = towardsViewer(position);
   vec3 baseColor = texelFetch(gBaseColor, p, 0).rgb;
   vec4 material = texelFetch(gMaterial, p, 0);
   SurfaceParams s = tlMaterialSurface(baseColor, material.x, material.y, tlFrameMaterials(frame.flags));

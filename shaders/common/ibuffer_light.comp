@@ -75,7 +75,7 @@ void main() {
   vec2 uv = (vec2(p) + 0.5) * frame.viewport.zw;
   vec3 position = cameraRelativePosition(uv, depth);
   vec3 n = tlOctDecode(texelFetch(gNormal, p, 0).xy);
-  vec3 v = normalize(-position);
+  vec3 v = towardsViewer(position);
   uint materials = tlFrameMaterials(frame.flags);
   vec4 material = texelFetch(gMaterial, p, 0);
   SurfaceParams g = tlIbufferSurface(tlMaterialRoughness(material.x, materials), materials);

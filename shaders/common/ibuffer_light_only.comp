@@ -27,12 +27,11 @@ void main() {
   float depth = texelFetch(gDepth, p, 0).r;
   vec2 uv = (vec2(p) + 0.5) * frame.viewport.zw;
   if (depth <= 0.0) {  // reversed Z: nothing drawn, the sky is visible
-    vec4 onNear = frame.invViewProj * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
-    imageStore(outLight, p, vec4(tlSkyRadiance(frame, normalize(onNear.xyz / onNear.w)), 1.0));
+    imageStore(outLight, p, vec4(tlSkyRadiance(frame, cameraRay(uv * 2.0 - 1.0).direction), 1.0));
     return;
   }
   vec3 n = tlOctDecode(texelFetch(gNormal, p, 0).xy);
-  vec3 v = normalize(-cameraRelativePosition(uv, depth));
+  vec3 v = towardsViewer(cameraRelativePosition(uv, depth));
   uint materials = tlFrameMaterials(frame.flags);
   IbufferSums sums;
   sums.dg = texelFetch(iDg, p, 0).rgb;

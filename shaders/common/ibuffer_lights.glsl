@@ -74,7 +74,7 @@ void main() {
     vec3 position = cameraRelativePosition((vec2(p) + 0.5) * frame.viewport.zw, depth);
     gPosition = position;
     gNormalHere = tlOctDecode(texelFetch(gNormal, p, 0).xy);
-    gView = normalize(-position);
+    gView = towardsViewer(position);
     float roughness = tlMaterialRoughness(texelFetch(gMaterial, p, 0).x, tlFrameMaterials(frame.flags));
     gGeometry = tlIbufferSurface(roughness, tlFrameMaterials(frame.flags));
     gShadowOrigin = tlOffsetRayOrigin(position, gNormalHere);

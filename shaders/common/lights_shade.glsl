@@ -35,7 +35,7 @@ void main() {
   vec3 position = cameraRelativePosition((vec2(p) + 0.5) * frame.viewport.zw, depth);
   gPosition = position;
   gNormalHere = tlOctDecode(texelFetch(gNormal, p, 0).xy);
-  gView = normalize(-position);
+  gView = towardsViewer(position);
   vec4 material = texelFetch(gMaterial, p, 0);
   gSurface = tlMaterialSurface(texelFetch(gBaseColor, p, 0).rgb, material.x, material.y, tlFrameMaterials(frame.flags));
   gShadowOrigin = tlOffsetRayOrigin(position, gNormalHere);

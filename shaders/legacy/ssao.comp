@@ -24,7 +24,7 @@ void main() {
   }
   vec3 P = pixelPosition(p, depth);
   vec3 n = pixelNormal(p);
-  vec3 V = normalize(-P);
+  vec3 V = towardsViewer(P);
   float w = viewW(P);
   // Radius in pixels at this distance; at least a few pixels, at most a fifth of the screen.
   float radiusPixels = clamp(push.aoRadius / pixelFootprint(w), 2.0, 0.2 * frame.viewport.y);

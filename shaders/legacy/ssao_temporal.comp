@@ -34,7 +34,8 @@ void main() {
       vec2 previousPixel = previousUv * frame.viewport.xy - 0.5;
       ivec2 h = clamp(ivec2(round(previousPixel / float(push.aoDivisor))), ivec2(0), reduced - 1);
       vec3 history = texelFetch(aoHistory, h, 0).rgb;
-      if (history.g > 0.0 && abs(history.g - previousClip.w) <= 0.03 * previousClip.w && history.b >= 1.0) {
+      float previousW = viewWOfClip(previousClip);
+      if (history.g > 0.0 && abs(history.g - previousW) <= 0.03 * previousW && history.b >= 1.0) {
         frames = min(history.b + 1.0, float(push.aoHistory));
         ao = mix(history.r, ao, 1.0 / frames);
       }

@@ -27,7 +27,7 @@ layout(push_constant) uniform Push { LegacyVoxelPush push; };
 // the voxels makes the GI multi-bounce over frames (the RT path does the same at its hits).
 bool screenRadiance(vec3 position, vec3 normal, out vec3 radiance) {
   radiance = vec3(0.0);
-  if (push.screenRadiance == 0u || dot(normal, -position) <= 0.0) return false;
+  if (push.screenRadiance == 0u || dot(normal, towardsViewer(position)) <= 0.0) return false;
   vec4 clip = frame.prevViewProj * vec4(position, 1.0);
   if (clip.w <= 0.0) return false;
   vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
@@ -35,7 +35,8 @@ bool screenRadiance(vec3 position, vec3 normal, out vec3 radiance) {
   float depth = textureLod(previousDepth, uv, 0.0).r;
   if (depth <= 0.0) return false;
   float seenW = depthToViewW(depth);
-  if (abs(seenW - clip.w) > 0.03 * clip.w + 2.0 * push.clipmap.levelMin[push.axis / 3u].w) return false;
+  float pointW = viewWOfClip(clip);
+  if (abs(seenW - pointW) > 0.03 * pointW + 2.0 * push.clipmap.levelMin[push.axis / 3u].w) return false;
   radiance = textureLod(previousRadiance, uv, 0.0).rgb;
   return true;
 }

@@ -42,6 +42,7 @@ float lightMisWeight(vec3 toLight, float lightPdf) {
 #define TL_LIGHTS_AREA_MIS
 #include "common/lights.glsl"
 #include "common/environment.glsl"
+#include "common/camera.glsl"
 
 // The area lights a BRDF-drawn ray from `origin` meets before `tMax`, weighted against their
 // next-event samples (directionPdf: the BRDF's density of dir; 0: nothing else drew it, weight
@@ -185,10 +186,8 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
   return radiance;
 }
 
-// The camera ray through a jittered point of pixel p, camera-relative.
-vec3 cameraRayDirection(ivec2 p) {
+// The camera ray through a jittered point of pixel p, camera-relative (common/camera.glsl).
+CameraRay jitteredCameraRay(ivec2 p) {
   vec2 jitter = next2();
-  vec2 ndc = (vec2(p) + jitter) * frame.viewport.zw * 2.0 - 1.0;
-  vec4 onNear = frame.invViewProj * vec4(ndc, 1.0, 1.0);  // reversed Z: 1 is the near plane
-  return normalize(onNear.xyz / onNear.w);
+  return cameraRay((vec2(p) + jitter) * frame.viewport.zw * 2.0 - 1.0);
 }

@@ -46,7 +46,8 @@ bool screenRadianceAt(vec3 hitPosition, uint hit, out vec3 radiance) {
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return false;
   ivec2 q = ivec2(uv * frame.viewport.xy);
   float w = texelFetch(previousViewDepth, q, 0).r;
-  if (w <= 0.0 || abs(w - clip.w) > 0.03 * clip.w) return false;
+  float hitW = viewWOfClip(clip);
+  if (w <= 0.0 || abs(w - hitW) > 0.03 * hitW) return false;
   // This frame's G-buffer at last frame's pixel: the albedo it was shaded with.
   vec3 screenAlbedo = tlMaterialHitAlbedo(texelFetch(gBaseColor, q, 0).rgb, texelFetch(gMaterial, q, 0).g,
                                           tlFrameMaterials(frame.flags));

@@ -50,7 +50,7 @@ void main() {
       if (sceneDepth <= 0.0) continue;
       vec3 scenePosition = pixelPosition(s, sceneDepth);
       float sceneW = viewW(scenePosition);
-      float behind = clip.w - sceneW;
+      float behind = viewWOfClip(clip) - sceneW;
       if (behind > 0.0) {
         // Behind a surface thicker than `thickness` of its distance: hidden, not hit.
         if (behind > push.thickness * sceneW + (t - previousT)) break;

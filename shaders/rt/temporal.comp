@@ -177,7 +177,8 @@ void main() {
       // The history texel's centre lies up to a pixel from this surface point (sub-pixel
       // motion, TAA's jitter): on a grazing surface that alone moves the depth by its
       // gradient, so the tolerance grows with this pixel's depth step to its neighbours.
-      bool sameSurface = historyW > 0.0 && abs(historyW - previousClip.w) <= 0.03 * previousClip.w + depthStep(p, w, size);
+      float previousW = viewWOfClip(previousClip);
+      bool sameSurface = historyW > 0.0 && abs(historyW - previousW) <= 0.03 * previousW + depthStep(p, w, size);
       hasHistory = sameSurface && history.w >= 1.0;
       if (hasHistory) {
         historySh = texelFetch(historyShY, q, 0);

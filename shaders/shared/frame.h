@@ -10,7 +10,7 @@
 TL_BEGIN
 struct FrameConstants {
   mat4 view;             // rotation only: camera-relative world -> view
-  mat4 proj;             // infinite reversed-Z perspective, Vulkan clip space (y down)
+  mat4 proj;             // infinite reversed-Z perspective or reversed-Z orthographic (cameraAxis.w), Vulkan clip space (y down)
   mat4 viewProj;
   mat4 invViewProj;      // clip -> camera-relative world
   mat4 prevViewProj;     // previous frame's, applied to this frame's camera-relative space
@@ -33,6 +33,7 @@ struct FrameConstants {
   uint envPad0;
   vec4 envParams;        // x, y: cosine and sine of the map's rotation about +Y; z: its intensity
   vec4 envSh[9];         // rgb: the map's radiance on the SH basis (rotation and intensity applied)
+  vec4 cameraAxis;       // xyz: the unit view direction (camera-relative world); w: 1 orthographic, 0 perspective
 };
 
 TL_CONST uint kFrameFlagSunShadows = 1u;

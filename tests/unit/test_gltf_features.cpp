@@ -265,12 +265,12 @@ TEST(GltfIgnored, EachIgnoredFeatureIsOneLineAndOneWarning) {
   j["meshes"][0]["primitives"][0]["material"] = 0;
   j["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = 1;  // read (no line)
   j["cameras"] = {{{"type", "orthographic"}, {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 10}}}}};
-  j["nodes"].push_back({{"camera", 0}});
+  j["nodes"].push_back({{"camera", 0}});  // read (no line)
   j["scenes"][0]["nodes"].push_back(1);
   std::ofstream(tmp.path / "features.gltf") << j.dump();
   Scene s = loadGltf(tmp.path / "features.gltf");
   const std::vector<std::string> expected = {
-      "extension KHR_materials_clearcoat (1x)", "TEXCOORD_2 in a baseColorTexture (1x)", "orthographic camera (1x)"};
+      "extension KHR_materials_clearcoat (1x)", "TEXCOORD_2 in a baseColorTexture (1x)"};
   ASSERT_EQ(s.ignored.size(), expected.size());
   for (const auto& e : expected) {
     bool found = false;
@@ -286,6 +286,37 @@ TEST(GltfIgnored, EachIgnoredFeatureIsOneLineAndOneWarning) {
   Scene plain = loadGltf(contentFile("cutout.gltf"));
   EXPECT_TRUE(plain.ignored.empty());
   EXPECT_EQ(sceneReport(plain).back(), "ignored: nothing");
+}
+
+// Orthographic cameras take their place among the file's cameras (--camera counts them) with
+// their half-sizes; one out of glTF's ranges is one warning and left out.
+TEST(GltfCameras, OrthographicCamerasAreReadWithTheirMagnification) {
+  TempDir tmp;
+  writeBin(tmp.path / "t.bin");
+  auto j = baseTriangle(60);
+  j["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}},
+                  {{"type", "orthographic"}, {"orthographic", {{"xmag", 2.0}, {"ymag", 1.5}, {"znear", 0.0}, {"zfar", 20.0}}}},
+                  {{"type", "orthographic"}, {"orthographic", {{"xmag", 0.0}, {"ymag", 1.0}, {"znear", 0.0}, {"zfar", 20.0}}}},
+                  {{"type", "orthographic"}, {"orthographic", {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", 5.0}, {"zfar", 5.0}}}}};
+  for (int c = 0; c < 4; ++c) {
+    j["nodes"].push_back({{"camera", c}, {"translation", {0.0, 1.0, double(c)}}});
+    j["scenes"][0]["nodes"].push_back(c + 1);
+  }
+  std::ofstream(tmp.path / "cameras.gltf") << j.dump();
+  Scene s = loadGltf(tmp.path / "cameras.gltf");
+  ASSERT_EQ(s.cameras.size(), 2u);
+  EXPECT_FALSE(s.cameras[0].orthographic);
+  EXPECT_TRUE(s.cameras[1].orthographic);
+  EXPECT_FLOAT_EQ(s.cameras[1].xmag, 2.0f);
+  EXPECT_FLOAT_EQ(s.cameras[1].ymag, 1.5f);
+  EXPECT_FLOAT_EQ(s.cameras[1].znear, 0.0f);
+  EXPECT_FLOAT_EQ(s.cameras[1].zfar.value_or(0.0f), 20.0f);
+  EXPECT_DOUBLE_EQ(s.cameras[1].position.z, 1.0);
+  EXPECT_TRUE(s.ignored.empty());
+  ASSERT_EQ(s.warnings.size(), 2u);
+  for (const auto& w : s.warnings) EXPECT_NE(w.find("orthographic camera"), std::string::npos) << w;
+  const auto report = sceneReport(s);
+  EXPECT_NE(std::find(report.begin(), report.end(), "cameras: 1 perspective, 1 orthographic"), report.end());
 }
 
 // Sparse accessors: substitutions over a base bufferView, and over zeros without one.
