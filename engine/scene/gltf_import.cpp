@@ -984,6 +984,13 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
       const auto& gc = model.cameras[size_t(node.camera)];
       const auto& p = gc.perspective;
       const std::string cameraName = gc.name.empty() ? nodeName : gc.name;
+      const auto placed = [&] {  // either kind: the name and where the node puts it
+        Camera c;
+        c.name = cameraName;
+        c.position = position;
+        c.orientation = orientation;
+        return c;
+      };
       // The glTF ranges: 0 < yfov (the session takes up to 178 degrees), 0 < znear < zfar.
       const bool usable = float(p.yfov) > 0.0f && float(p.yfov) < 3.1f && float(p.znear) > 0.0f &&
                           std::isfinite(float(p.znear)) && std::isfinite(float(p.zfar)) &&
@@ -992,10 +999,7 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
       if (gc.type == "perspective" && !usable) {
         values.warn(fmt::format("camera `{}` has a field of view, clip planes or orientation out of range; it is ignored", cameraName));
       } else if (gc.type == "perspective") {
-        Camera c;
-        c.name = cameraName;
-        c.position = position;
-        c.orientation = orientation;
+        Camera c = placed();
         c.yfovRadians = float(p.yfov);
         c.znear = float(p.znear);
         if (p.zfar > 0) c.zfar = float(p.zfar);
@@ -1014,10 +1018,7 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
           values.warn(fmt::format("orthographic camera `{}` has a magnification or clip planes out of range; it is ignored",
                                   cameraName));
         } else {
-          Camera c;
-          c.name = cameraName;
-          c.position = position;
-          c.orientation = orientation;
+          Camera c = placed();
           c.orthographic = true;
           c.xmag = xmag;
           c.ymag = ymag;

@@ -4,6 +4,7 @@
 // tests pass in any order in one process (`tl_gpu_tests --gtest_shuffle`).
 #pragma once
 
+#include "lighting/common/composite_pass.h"
 #include "session/session.h"
 
 #include <gtest/gtest.h>
@@ -47,6 +48,25 @@ inline double pathFigure(const session::Session& s, const std::string& name) {
     if (n == name) return v;
   ADD_FAILURE() << "no figure " << name;
   return -1.0;
+}
+
+// The buffer a path's final HDR image is in: the reference's own estimate, else the composite.
+inline const char* finalImageOf(const std::string& path) {
+  return path == "reference" ? "reference.radiance" : lighting::kCompositeHdr;
+}
+
+// Renders `frames` frames of `path` at width x height from a fresh history (frame index 0) and
+// reads the final image and `buffers` back from the last one.
+inline void renderFresh(session::Session& s, const std::string& path, uint32_t width, uint32_t height, uint32_t frames,
+                        std::initializer_list<const char*> buffers = {}) {
+  s.setPath(path);
+  s.setSize(width, height);
+  s.setFrameIndex(0);
+  s.resetHistory();
+  s.renderFrames(frames - 1);
+  s.requestBuffer(finalImageOf(path));
+  for (const char* b : buffers) s.requestBuffer(b);
+  s.renderFrames(1);
 }
 
 // Sum of |a - b| over sum of |b|, over the RGB of two RGBA images: how far image a is from b.

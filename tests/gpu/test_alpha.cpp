@@ -10,10 +10,8 @@
 #include "gpu_fixture.h"
 
 #include "../common/test_scenes.h"
-#include "lighting/common/composite_pass.h"
 
 #include <algorithm>
-
 #include <cstdio>
 
 namespace tl::test {
@@ -21,15 +19,13 @@ namespace {
 
 using AlphaTest = RayTracingTest;
 
-const char* finalImage(const std::string& path) { return path == "reference" ? "reference.radiance" : lighting::kCompositeHdr; }
-
-// Mean RGB of the 4x4 pixels around (x, y) of an RGBA image `size` wide.
-glm::dvec3 patch(const std::vector<float>& rgba, uint32_t size, uint32_t x, uint32_t y) {
+// Mean RGB of the (2r)^2 pixels around (x, y) of an RGBA image `size` wide.
+glm::dvec3 patch(const std::vector<float>& rgba, uint32_t size, uint32_t x, uint32_t y, uint32_t r) {
   glm::dvec3 sum(0.0);
-  for (uint32_t j = y - 2; j < y + 2; ++j)
-    for (uint32_t i = x - 2; i < x + 2; ++i)
+  for (uint32_t j = y - r; j < y + r; ++j)
+    for (uint32_t i = x - r; i < x + r; ++i)
       for (int c = 0; c < 3; ++c) sum[c] += rgba[(size_t(j) * size + i) * 4 + size_t(c)];
-  return sum / 16.0;
+  return sum / double(4 * r * r);
 }
 
 TEST_F(AlphaTest, FloorUnderACutOutQuadIsLitLikeTheOpenFloorInEveryPath) {
@@ -40,20 +36,13 @@ TEST_F(AlphaTest, FloorUnderACutOutQuadIsLitLikeTheOpenFloorInEveryPath) {
     SCOPED_TRACE(path);
     s.loadScene(contentFile("cutout.gltf"));
     ASSERT_TRUE(s.scene().warnings.empty()) << s.scene().warnings.front();
-    s.setPath(path);
-    s.setSize(size, size);
     s.settings().referenceSamplesPerFrame = 4;
-    s.setFrameIndex(0);
-    s.resetHistory();
-    const uint32_t frames = std::string(path) == "direct" ? 1 : 8;
-    s.renderFrames(frames - 1);
-    s.requestBuffer(finalImage(path));
-    s.renderFrames(1);
-    const auto image = s.buffer(finalImage(path)).texels();
+    renderFresh(s, path, size, size, std::string(path) == "direct" ? 1 : 8);
+    const auto image = s.buffer(finalImageOf(path)).texels();
     // The image centre looks at the floor under the quad's centre; 1/8 of the width in from
     // the left edge sees open floor 2.1 m from it.
-    const glm::dvec3 under = patch(image, size, size / 2, size / 2);
-    const glm::dvec3 open = patch(image, size, size / 8, size / 2);
+    const glm::dvec3 under = patch(image, size, size / 2, size / 2, 2);
+    const glm::dvec3 open = patch(image, size, size / 8, size / 2, 2);
     std::printf("[ alpha    ] %-9s under %.4f %.4f %.4f  open %.4f %.4f %.4f  closed form %.4f\n", path, under.r, under.g,
                 under.b, open.r, open.g, open.b, closedForm);
     for (int c = 0; c < 3; ++c) {
@@ -64,14 +53,6 @@ TEST_F(AlphaTest, FloorUnderACutOutQuadIsLitLikeTheOpenFloorInEveryPath) {
   }
 }
 
-// Mean RGB of the (2r)^2 pixels around (x, y).
-glm::dvec3 patch(const std::vector<float>& rgba, uint32_t size, uint32_t x, uint32_t y, uint32_t r) {
-  glm::dvec3 sum(0.0);
-  for (uint32_t j = y - r; j < y + r; ++j)
-    for (uint32_t i = x - r; i < x + r; ++i)
-      for (int c = 0; c < 3; ++c) sum[c] += rgba[(size_t(j) * size + i) * 4 + size_t(c)];
-  return sum / double(4 * r * r);
-}
 
 // The floor in the pane's shadow against the open floor beside it, on the line x = 1 that
 // camera 0's centre row sees: exactly half, and the open floor at its closed form.
@@ -83,17 +64,10 @@ TEST_F(AlphaTest, AHalfTranslucentPaneLetsHalfTheSunThroughInEveryPath) {
     SCOPED_TRACE(path);
     s.loadScene(contentFile("translucent_pane.gltf"));
     ASSERT_TRUE(s.scene().ignored.empty()) << s.scene().ignored.front();
-    s.setPath(path);
-    s.setSize(size, size);
     s.settings().referenceSamplesPerFrame = 16;
-    s.setFrameIndex(0);
-    s.resetHistory();
     const bool reference = std::string(path) == "reference";
-    const uint32_t frames = reference ? 16 : std::string(path) == "direct" ? 1 : 8;
-    s.renderFrames(frames - 1);
-    s.requestBuffer(finalImage(path));
-    s.renderFrames(1);
-    const auto image = s.buffer(finalImage(path)).texels();
+    renderFresh(s, path, size, size, reference ? 16 : std::string(path) == "direct" ? 1 : 8);
+    const auto image = s.buffer(finalImageOf(path)).texels();
     // The shadow spans z in [-1, 1] on the centre row, the image's middle third or so; the
     // open floor is beyond it on both sides (1/8 of the width from each edge: z = -/+2.0).
     const glm::dvec3 shadow = patch(image, size, size / 2, size / 2, 6);
@@ -133,16 +107,9 @@ TEST_F(AlphaTest, RaysCrossAHalfTranslucentPaneHalfTheTime) {
     s.useSceneCamera(2);
     s.settings().materials = lighting::MaterialMode::Diffuse;
     s.settings().referenceSamplesPerFrame = 16;
-    s.setPath(path);
-    s.setSize(size, size);
-    s.setFrameIndex(0);
-    s.resetHistory();
-    const bool reference = std::string(path) == "reference";
-    s.renderFrames(reference ? 15 : 31);
-    s.requestBuffer(finalImage(path));
-    s.renderFrames(1);
+    renderFresh(s, path, size, size, std::string(path) == "reference" ? 16 : 32);
     s.settings().materials = lighting::MaterialMode::Authored;
-    return patch(s.buffer(finalImage(path)).texels(), size, size / 2, size / 2, 2);
+    return patch(s.buffer(finalImageOf(path)).texels(), size, size / 2, size / 2, 2);
   };
   for (const char* path : {"legacy", "rt", "reference"}) {
     SCOPED_TRACE(path);
@@ -179,7 +146,7 @@ TEST_F(AlphaTest, AHalfTranslucentPaneCoversHalfItsPixelsInTheGbuffer) {
     s.setSize(size, size);
     s.setFrameIndex(frameIndex);
     s.requestBuffer("gbuffer.instanceId");
-    s.renderFrames(1);
+    s.renderFrames(1);  // not renderFresh: the frame index is the test's
     const auto ids = s.buffer("gbuffer.instanceId");
     std::vector<uint8_t> covered(size_t(size) * size);
     const auto* id = reinterpret_cast<const uint32_t*>(ids.bytes.data());

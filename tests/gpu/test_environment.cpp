@@ -20,10 +20,6 @@ namespace {
 
 constexpr uint32_t kSize = 32;
 
-const char* finalImage(const std::string& path) {
-  return path == "reference" ? "reference.radiance" : lighting::kCompositeHdr;
-}
-
 std::shared_ptr<const scene::EnvironmentMap> uniformMap(float radiance) {
   return std::make_shared<const scene::EnvironmentMap>(
       scene::makeEnvironmentMap(64, 32, std::vector<glm::vec3>(64 * 32, glm::vec3(radiance))));
@@ -65,10 +61,10 @@ class EnvironmentTest : public RayTracingTest {
     s.settings().referenceSamplesPerFrame = 16;
     s.setPath(path);
     s.resetHistory();
-    s.requestBuffer(finalImage(path));
+    s.requestBuffer(finalImageOf(path));
     s.renderFrames(frames);
-    const auto t = s.buffer(finalImage(path)).texels();
-    const uint32_t c = s.buffer(finalImage(path)).channels();
+    const auto t = s.buffer(finalImageOf(path)).texels();
+    const uint32_t c = s.buffer(finalImageOf(path)).channels();
     double sum = 0.0;
     size_t n = 0;
     for (uint32_t y = kSize / 4; y < 3 * kSize / 4; ++y)

@@ -12,7 +12,6 @@
 //   - normal_probe again: the reference's hits lean their normals as the G-buffer does.
 #include "gpu_fixture.h"
 
-#include "lighting/common/composite_pass.h"
 #include "shared/color.h"
 #include "shared/packing.h"
 
@@ -350,18 +349,9 @@ TEST_F(GltfProbeRayTest, ReferenceHitsLeanWithTheNormalMapAsTheGbufferDoes) {
     sunOnly.sunIrradiance = glm::vec3(10.0f);
     sunOnly.skyRadiance = glm::vec3(0.0f);
     s.setLighting(sunOnly);
-    s.setPath(path);
-    s.setSize(width, height);
     s.settings().referenceSamplesPerFrame = 8;
-    s.setFrameIndex(0);
-    s.resetHistory();
-    const bool reference = std::string(path) == "reference";
-    const char* image = reference ? "reference.radiance" : lighting::kCompositeHdr;
-    s.renderFrames(reference ? 3 : 0);
-    s.requestBuffer(image);
-    s.requestBuffer("gbuffer.instanceId");
-    s.renderFrames(1);
-    const auto radiance = s.buffer(image).texels();
+    renderFresh(s, path, width, height, std::string(path) == "reference" ? 4 : 1, {"gbuffer.instanceId"});
+    const auto radiance = s.buffer(finalImageOf(path)).texels();
     const auto quads = quadsOnScreen(s.scene(), s.buffer("gbuffer.instanceId").texels(), width);
     ASSERT_EQ(quads.size(), 4u) << path;
     for (const auto& [name, q] : quads) {

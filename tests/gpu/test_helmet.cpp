@@ -8,7 +8,6 @@
 #include "gpu_fixture.h"
 
 #include "../common/test_scenes.h"
-#include "lighting/common/composite_pass.h"
 
 #include <cmath>
 #include <cstdio>
@@ -54,19 +53,10 @@ TEST_F(HelmetTest, EveryPathRendersTheHelmetAsTheReferenceDoes) {
     s.loadScene(contentFile("helmet.glb"));
     ASSERT_TRUE(s.scene().ignored.empty()) << s.scene().ignored.front();
     ASSERT_TRUE(s.scene().warnings.empty()) << s.scene().warnings.front();
-    s.setPath(path);
-    s.setSize(width, height);
     s.settings().referenceSamplesPerFrame = 16;
-    s.setFrameIndex(0);
-    s.resetHistory();
-    const bool reference = std::string(path) == "reference";
-    const char* image = reference ? "reference.radiance" : lighting::kCompositeHdr;
-    s.renderFrames(reference ? 15 : std::string(path) == "direct" ? 0 : 23);
-    s.requestBuffer(image);
-    s.requestBuffer("gbuffer.instanceId");
-    s.requestBuffer("gbuffer.emissive");
-    s.renderFrames(1);
-    const auto radiance = s.buffer(image).texels();
+    const uint32_t frames = std::string(path) == "reference" ? 16 : std::string(path) == "direct" ? 1 : 24;
+    renderFresh(s, path, width, height, frames, {"gbuffer.instanceId", "gbuffer.emissive"});
+    const auto radiance = s.buffer(finalImageOf(path)).texels();
     if (shellMask.empty()) {  // 1: surface, 2: visor; from the first path's G-buffer, for all
       const auto ids = s.buffer("gbuffer.instanceId").texels();
       const auto glow = s.buffer("gbuffer.emissive").texels();

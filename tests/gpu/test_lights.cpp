@@ -23,10 +23,6 @@
 namespace tl::test {
 namespace {
 
-const char* finalImage(const std::string& path) {
-  return path == "reference" ? "reference.radiance" : lighting::kCompositeHdr;
-}
-
 constexpr uint32_t kSize = 64;
 constexpr double kHeight = 4.0;                 // the camera, looking straight down at the origin
 constexpr double kTanHalfFov = 0.57735026919;   // 60 degrees vertical
@@ -62,9 +58,9 @@ class LightsTest : public RayTracingTest {
     s.settings().materials = lighting::MaterialMode::Diffuse;
     s.settings().referenceSamplesPerFrame = 16;
     s.setPath(path);
-    s.requestBuffer(finalImage(path));
+    s.requestBuffer(finalImageOf(path));
     s.renderFrames(frames);
-    return s.buffer(finalImage(path)).texels();
+    return s.buffer(finalImageOf(path)).texels();
   }
   // The plane's albedo as the path sees it: the G-buffer holds it as 8-bit sRGB; the reference
   // reads the material.
@@ -269,9 +265,9 @@ double lampsMean(session::Session& s, const std::string& path, uint32_t frames, 
   s.settings().rtScreenRadiance = feedback;
   s.settings().legacyScreenRadiance = feedback;
   s.setFrameIndex(0);
-  s.requestBuffer(finalImage(path));
+  s.requestBuffer(finalImageOf(path));
   s.renderFrames(frames);
-  const auto img = s.buffer(finalImage(path)).texels();
+  const auto img = s.buffer(finalImageOf(path)).texels();
   double sum = 0.0;
   for (size_t i = 0; i + 3 < img.size(); i += 4) sum += shared::tlLuminance(glm::vec3(img[i], img[i + 1], img[i + 2]));
   return sum / double(img.size() / 4);

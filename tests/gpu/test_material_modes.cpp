@@ -25,10 +25,6 @@ namespace fs = std::filesystem;
 
 const char* kPaths[] = {"direct", "legacy", "rt", "reference"};
 
-const char* finalImage(const std::string& path) {
-  return path == "reference" ? "reference.radiance" : lighting::kCompositeHdr;
-}
-
 // A copy of a content scene with its JSON edited, in a temporary folder.
 fs::path editedScene(const char* name, const std::function<void(nlohmann::json&)>& edit) {
   const fs::path dir = fs::temp_directory_path() / (std::string("twinlight-materials-") + name);
@@ -58,9 +54,9 @@ class MaterialModeTest : public RayTracingTest {
     s.settings().referenceSamplesPerFrame = 16;
     s.resetHistory();
     s.renderFrames(frames - 1);
-    s.requestBuffer(finalImage(path));
+    s.requestBuffer(finalImageOf(path));
     s.renderFrames(1);
-    return s.buffer(finalImage(path)).texels();
+    return s.buffer(finalImageOf(path)).texels();
   }
 };
 

@@ -6,7 +6,6 @@
 #include "gpu_fixture.h"
 
 #include "../common/test_scenes.h"
-#include "lighting/common/composite_pass.h"
 
 #include <cstdio>
 #include <map>
@@ -90,18 +89,10 @@ TEST_F(OrthographicTest, EveryPathRendersThroughTheOrthographicCamera) {
     s.useSceneCamera(0);
     s.settings().materials = lighting::MaterialMode::Diffuse;  // Lambert 0.8: the closed form
     s.settings().referenceSamplesPerFrame = 8;
-    s.setPath(path);
-    s.setSize(width, height);
-    s.setFrameIndex(0);
-    s.resetHistory();
-    const bool reference = std::string(path) == "reference";
-    const char* image = reference ? "reference.radiance" : lighting::kCompositeHdr;
-    s.renderFrames(reference ? 7 : std::string(path) == "direct" ? 0 : 15);
-    s.requestBuffer(image);
-    s.requestBuffer("gbuffer.instanceId");
-    s.renderFrames(1);
+    const uint32_t frames = std::string(path) == "reference" ? 8 : std::string(path) == "direct" ? 1 : 16;
+    renderFresh(s, path, width, height, frames, {"gbuffer.instanceId"});
     s.settings().materials = lighting::MaterialMode::Authored;
-    const auto radiance = s.buffer(image).texels();
+    const auto radiance = s.buffer(finalImageOf(path)).texels();
     if (cubes.empty()) cubes = cubesOnScreen(s.scene(), s.buffer("gbuffer.instanceId").texels(), width, height);
     // Open ground in the lower left corner, away from every cube.
     double ground = 0.0;
