@@ -298,7 +298,8 @@ void Script::step(EditorApp& app) {
         // A line of the Scene panel's report (what `twinlight info --scene` prints) holds `arg`.
         if (!app.scenePanelOpen()) return fail(app, "the Scene panel is not open");
         const auto& report = app.sceneReport();
-        const auto line = std::find_if(report.begin(), report.end(), [&](const std::string& l) { return l.find(arg) != std::string::npos; });
+        const auto line =
+            std::find_if(report.begin(), report.end(), [&](const std::string& l) { return l.find(arg) != std::string::npos; });
         if (line == report.end()) return fail(app, fmt::format("no line of the scene report holds `{}`", arg));
         fmt::print("script: scene report: {}\n", *line);
       } else if (cmd == "expect-orphans") {

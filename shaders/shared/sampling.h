@@ -135,6 +135,15 @@ TL_FN float tlOrderedDither4(uint x, uint y) {
   return (float(4u * tlBayer2(x, y) + tlBayer2(x >> 1u, y >> 1u)) + 0.5f) * (1.0f / 16.0f);
 }
 
+// Stochastic transparency's number for a ray crossing a surface (the any-hit shaders): a hash of
+// the launch, the primitive, the hit distance, the ray's sample and the instance, so every ray
+// and crossing draws afresh and a second any-hit call for the same crossing decides alike.
+TL_FN float tlAlphaRayDither(uvec2 launch, uint primitive, float hitT, uint rayIndex, uint instance) {
+  uvec3 h = tlPcg3d(uvec3(launch.x ^ (primitive * 0x9E3779B9u), launch.y ^ floatBitsToUint(hitT),
+                          rayIndex ^ (instance << 16u)));
+  return tlUintToUnitFloat(h.x);
+}
+
 // Stochastic transparency's number for a rasterized sample at pixel (x, y): the ordered dither,
 // shifted by the golden ratio each frame when frames are averaged (TAA), so every pixel cycles
 // through the thresholds; a still dither otherwise (no flicker where nothing averages it).
