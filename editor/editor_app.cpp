@@ -49,7 +49,8 @@ void checkVk(VkResult r) {
 }  // namespace
 
 EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<std::filesystem::path> script,
-                     lighting::MaterialMode materials) {
+                     lighting::MaterialMode materials, std::optional<std::filesystem::path> lighting)
+    : lightingFile_(std::move(lighting)) {
   settings_ = loadSettings();
   savedSettings_ = toJson(settings_);
   browserDir_ = std::filesystem::current_path();
@@ -278,8 +279,15 @@ void EditorApp::frame() {
   drawPanels(*this);
   // Whatever changed a setting or the light this frame (a widget, Paste JSON, a script) is
   // one undo step; a drag under way folds into the step it began.
-  if (session_->hasScene() && !load_.valid())
-    history_.observe(session_->settings(), session_->lighting(), ImGui::IsAnyItemActive());
+  if (session_->hasScene() && !load_.valid()) {
+    // Only a change after the first of the same press folds into its step: the first change of
+    // a new drag starts one of its own (else it would join the edit before it).
+    const bool active = ImGui::IsAnyItemActive() || gizmoDrag_;
+    if (active && !interactionActive_) interactionChanged_ = false;
+    const bool changed = history_.observe(session_->settings(), session_->lighting(), active && interactionChanged_);
+    interactionChanged_ = interactionChanged_ || (active && changed);
+    interactionActive_ = active;
+  }
   handleCameraInput(seconds);
   if (playing_ && session_->animated() && !load_.valid())
     session_->setAnimationTime(std::fmod(session_->animationTime() + seconds, std::max(session_->scene().animationSeconds, 1e-3)));
@@ -356,6 +364,11 @@ void EditorApp::handleCameraInput(float seconds) {
       compareView_->wipe = std::clamp((mouse.x - viewportMin_.x) / viewportSize_.x, 0.0f, 1.0f);
     else
       draggingWipe_ = false;
+    camera_.update(in);
+    return;
+  }
+  // Light icons and gizmo handles take a press before the camera and the instance pick do.
+  if (handleLightOverlayInput(mouse)) {
     camera_.update(in);
     return;
   }
@@ -516,8 +529,11 @@ void EditorApp::finishLoad() {
     if (!keptAcrossReload_) {
       camera_.reset(session_->view(), glm::length(session_->scene().bounds.size()));
       selected_.reset();
+      selectedLight_.reset();
+      gizmoDrag_.reset();
       preview_.clear();
       announceScene();
+      applySavedLighting();
     }
     watchScene();
     settings_.addRecent(std::filesystem::absolute(loadingPath_).string());

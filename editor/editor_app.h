@@ -11,6 +11,7 @@
 #include "frame_profile.h"
 #include "camera_controller.h"
 #include "input_queue.h"
+#include "light_gizmo.h"
 #include "scene_watcher.h"
 #include "settings.h"
 #include "window_presenter.h"
@@ -27,6 +28,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 struct GLFWwindow;
 
@@ -37,8 +39,10 @@ class Script;
 class EditorApp {
  public:
   // `materials`: the material override mode the session starts with (`--materials`).
+  // `lighting`: a lighting file (`--lighting`) for the first scene, in place of its sidecar.
   EditorApp(std::optional<std::filesystem::path> scene, std::optional<std::filesystem::path> script,
-            lighting::MaterialMode materials = lighting::MaterialMode::Authored);
+            lighting::MaterialMode materials = lighting::MaterialMode::Authored,
+            std::optional<std::filesystem::path> lighting = std::nullopt);
   ~EditorApp();
   int run();  // exit code
 
@@ -61,7 +65,17 @@ class EditorApp {
   std::filesystem::path defaultImagePath(const char* extension) const;
   void cancelLoad();
   void setPath(const std::string& name);
-  void select(std::optional<uint32_t> instance) { selected_ = instance; }
+  // An instance or a light is selected, not both.
+  void select(std::optional<uint32_t> instance) {
+    selected_ = instance;
+    if (instance) selectedLight_.reset();
+  }
+  void selectLight(std::optional<size_t> light) {
+    selectedLight_ = light;
+    if (light) selected_.reset(), lightsTabRequest_ = true;
+  }
+  // Whether the outliner should bring its Lights tab forward (once, after a light was selected elsewhere).
+  bool takeLightsTabRequest() { return std::exchange(lightsTabRequest_, false); }
   std::optional<uint32_t> selected() const { return selected_; }
   void clickViewport(glm::vec2 windowPos);    // picks the instance under the cursor
   void requestScreenshot(const std::filesystem::path& file) { screenshotPath_ = file; }
@@ -100,6 +114,34 @@ class EditorApp {
   std::string undo();
   std::string redo();
   session::EditHistory& editHistory() { return history_; }
+  // Lights (the Lights panel, the viewport's icons and gizmo). Each edit is a lighting edit of
+  // the session (undoable). New lights stand in front of the camera.
+  std::optional<size_t> selectedLight() const { return selectedLight_; }
+  void addLight(scene::LightType type);
+  void duplicateSelectedLight();
+  void deleteSelectedLight();
+  // Hides every light but the selected one; when it already shows alone, shows them all.
+  void soloSelectedLight();
+  // File > Save lighting: the lights into the scene's glTF (KHR_lights_punctual) and everything
+  // into SCENE.lighting.json beside it (session/lighting_file.h saveSceneLighting). Returns what
+  // was written; errors go to the status bar.
+  std::string saveLighting();
+  void loadEnvironmentMap(const std::string& file);
+  std::string& environmentField() { return environmentField_; }
+  // The editor camera's view on the viewport panel, for the light overlay.
+  ViewportProjection viewportProjection() const;
+  // Whether the viewport shows the final image unzoomed, where the light overlay belongs.
+  bool overlayShown() const;
+  bool& lightOverlayOpen() { return showLightOverlay_; }
+  GizmoHandle activeGizmoHandle() const { return gizmoDrag_ ? gizmoDrag_->handle : GizmoHandle::None; }
+  // The last finished gizmo drag (scripts check that the light followed the mouse).
+  struct FinishedGizmoDrag {
+    GizmoDrag drag;
+    glm::vec2 endMouse{0.0f};
+    scene::Light end;
+    ViewportProjection projection;
+  };
+  const std::optional<FinishedGizmoDrag>& lastGizmoDrag() const { return lastGizmoDrag_; }
   void focusSelection();
   // Moves the editor camera by metres along its right, up and forward axes.
   void moveCamera(const glm::dvec3& rightUpForward) { camera_.translate(rightUpForward); }
@@ -255,6 +297,19 @@ class EditorApp {
   glm::vec2 lastMouse_{0.0f};
   glm::vec2 pressPos_{0.0f};
   bool dragged_ = false;
+  std::optional<size_t> selectedLight_;
+  std::optional<GizmoDrag> gizmoDrag_;
+  std::optional<FinishedGizmoDrag> lastGizmoDrag_;
+  bool overlayPress_ = false;  // the left button went down on a light icon or gizmo handle
+  bool showLightOverlay_ = true;
+  bool lightsTabRequest_ = false;
+  bool interactionActive_ = false;   // a widget or handle was held last frame
+  bool interactionChanged_ = false;  // and the hold has made an edit step already
+  std::string environmentField_;
+  bool handleLightOverlayInput(glm::vec2 mouse);  // true: the overlay took the mouse
+  // The lighting file given with --lighting, applied to the first scene loaded in place of its sidecar.
+  std::optional<std::filesystem::path> lightingFile_;
+  void applySavedLighting();
 
   friend void drawPanels(EditorApp& app);
   friend class Script;

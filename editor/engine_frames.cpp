@@ -163,7 +163,7 @@ void EditorApp::collectOneEngineFrame() {
     const uint32_t y = std::min(uint32_t(uv.y * float(pickExtent_.height)), pickExtent_.height - 1);
     uint32_t id = 0;
     std::memcpy(&id, &pickIds_[(size_t(y) * pickExtent_.width + x) * 4], 4);
-    selected_ = id == 0 || id > session_->scene().instances.size() ? std::nullopt : std::optional<uint32_t>(id - 1);
+    select(id == 0 || id > session_->scene().instances.size() ? std::nullopt : std::optional<uint32_t>(id - 1));
     pendingClick_.reset();
   } else if (capture) {
     pendingClick_.reset();

@@ -35,7 +35,10 @@ void InputQueue::attach(GLFWwindow* window) {
 }
 
 void InputQueue::click(glm::vec2 position) {
+  // The pointer arrives a frame before it presses, as a person's does: Dear ImGui lets an item
+  // that may overlap others (a tab) take a press only when it was hovered the frame before.
   push({InputEvent::Kind::Move, position});
+  push({InputEvent::Kind::Frame});
   push({InputEvent::Kind::Button, {}, 0, true});
   push({InputEvent::Kind::Button, {}, 0, false});
 }
@@ -45,6 +48,10 @@ void InputQueue::feed(ImGuiIO& io) {
   bool buttonChanged = false;
   while (!events_.empty()) {
     const InputEvent& e = events_.front();
+    if (e.kind == InputEvent::Kind::Frame) {
+      events_.pop_front();
+      break;
+    }
     if (e.kind == InputEvent::Kind::Button) {
       if (e.code < 0 || e.code >= int(buttons_.size())) {
         events_.pop_front();

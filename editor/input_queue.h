@@ -18,7 +18,8 @@ struct ImGuiIO;
 namespace tl::editor {
 
 struct InputEvent {
-  enum class Kind { Move, Button, Key, Char, Wheel } kind = Kind::Move;
+  // Frame: what follows waits for the next frame (a script's drag moves across frames).
+  enum class Kind { Move, Button, Key, Char, Wheel, Frame } kind = Kind::Move;
   glm::vec2 position{0.0f};  // Move
   int code = 0;              // Button (0 left, 1 right, 2 middle), Key (GLFW key), Char (code point)
   bool down = false;         // Button, Key

@@ -545,6 +545,9 @@ int main(int argc, char** argv) {
   app.add_option("scene", sceneArg, "glTF scene to open (default: content/atrium.gltf)");
   app.add_option("--materials", materialsArg, kMaterialsHelp)->capture_default_str();
   app.add_option("--script", scriptArg, "run editor actions from FILE (see editor/script.h), then quit");
+  std::string lightingArg;
+  app.add_option("--lighting", lightingArg,
+                 "lighting file (SCENE.lighting.json) for the scene, in place of the one File > Save lighting left beside it");
   app.add_flag("--headless", headless, "render the scene to out/ instead of opening the editor");
 
   RenderOptions render;
@@ -918,12 +921,15 @@ int main(int argc, char** argv) {
       std::optional<std::filesystem::path> scene, script;
       if (!sceneArg.empty()) scene = sceneArg;
       if (!scriptArg.empty()) script = scriptArg;
-      tl::editor::EditorApp editor(scene, script, materials);
+      std::optional<std::filesystem::path> lighting;
+      if (!lightingArg.empty()) lighting = lightingArg;
+      tl::editor::EditorApp editor(scene, script, materials, lighting);
       return editor.run();
     }
     RenderOptions o;
     o.scene = sceneArg;
     o.materials = materialsArg;
+    o.light.lighting = lightingArg;
     std::filesystem::path stem = sceneArg.empty() ? defaultScene().stem() : std::filesystem::path(sceneArg).stem();
     o.outputs = {(std::filesystem::path("out") / (stem.string() + ".png")).string(),
                  (std::filesystem::path("out") / (stem.string() + ".exr")).string()};

@@ -4,6 +4,7 @@
 #include "compare_panel.h"
 #include "settings_panel.h"
 #include "editor_app.h"
+#include "lights_panel.h"
 #include "key_help.h"
 #include "ui_helpers.h"
 #include "session/inspection.h"
@@ -44,6 +45,10 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
     if (ImGui::MenuItem("Reload scene", nullptr, false, app.session().hasScene() && !app.loading())) app.reloadScene();
     tooltip("Loads the scene's file again, keeping the camera, the selection and the albedo overrides.\n"
             "Happens by itself when the file changes on disk (a re-export).");
+    if (ImGui::MenuItem("Save lighting", nullptr, false, app.session().hasScene())) app.saveLighting();
+    tooltip("The sun and the lights into the scene's glTF (KHR_lights_punctual, for other tools), and all the lighting\n"
+            "(area and hidden lights, sky, environment map, exposure) into SCENE.lighting.json beside it,\n"
+            "which the editor reads when it opens the scene and `twinlight render --lighting FILE` renders");
     ImGui::Separator();
     for (const char* ext : {".png", ".exr"}) {
       if (ImGui::MenuItem(ext[1] == 'p' ? "Save image (PNG)" : "Save image (EXR)", nullptr, false,
@@ -75,6 +80,7 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
     ImGui::MenuItem("Help", "F1", &showHelp);
     ImGui::MenuItem("Buffers", "F2", &app.buffersOpen());
     ImGui::MenuItem("Compare", "F3", &app.compareOpen());
+    ImGui::MenuItem("Light icons and gizmo", nullptr, &app.lightOverlayOpen());
     // Redeferred shading's I-buffer resolved against white: the light without the materials.
     const bool redeferred = app.session().settings().redeferred;
     const bool lightOnly = app.pinnedPreview() == session::kIbufferLightOnly;
@@ -111,6 +117,9 @@ void viewportPanel(EditorApp& app, glm::vec2& min, glm::vec2& size, bool& hovere
   ImGui::InvisibleButton("viewport.area", ImVec2(std::max(avail.x, 1.0f), std::max(avail.y, 1.0f)),
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight | ImGuiButtonFlags_MouseButtonMiddle);
   hovered = ImGui::IsItemHovered() || ImGui::IsItemActive();
+  if (app.overlayShown())
+    drawLightOverlay(ImGui::GetWindowDrawList(), app.viewportProjection(), app.session().lighting().lights,
+                     app.selectedLight(), app.activeGizmoHandle());
   if (!app.session().hasScene()) {
     ImGui::SetCursorScreenPos(ImVec2(pos.x + 20, pos.y + 20));
     ImGui::TextUnformatted("No scene. File > Open, or drop a .gltf/.glb on the window.");
@@ -123,6 +132,19 @@ void outlinerPanel(EditorApp& app) {
   ImGui::SetNextWindowPos(ImVec2(0, 20), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(300, 420), ImGuiCond_FirstUseEver);
   ImGui::Begin("Outliner");
+  if (!ImGui::BeginTabBar("outliner tabs")) return ImGui::End();
+  const bool instancesTab = ImGui::BeginTabItem("Instances");
+  trackItem("outliner.instances");
+  if (instancesTab) ImGui::EndTabItem();
+  const bool lightsTab = ImGui::BeginTabItem("Lights", nullptr, app.takeLightsTabRequest() ? ImGuiTabItemFlags_SetSelected : 0);
+  trackItem("outliner.lights");
+  tooltip("The scene's lights but the sun (the Lighting panel has the sun, sky and environment)");
+  if (lightsTab) {
+    lightsOutlinerTab(app);
+    ImGui::EndTabItem();
+  }
+  ImGui::EndTabBar();
+  if (!instancesTab) return ImGui::End();
   static char filter[128] = "";
   ImGui::SetNextItemWidth(-1);
   ImGui::InputTextWithHint("##search", "search instances, meshes, materials", filter, sizeof filter);
@@ -150,8 +172,9 @@ void inspectorPanel(EditorApp& app) {
   ImGui::SetNextWindowPos(ImVec2(0, 440), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(300, 436), ImGuiCond_FirstUseEver);
   ImGui::Begin("Inspector");
+  if (lightInspector(app)) return ImGui::End();
   if (!app.session().hasScene() || !app.selected() || *app.selected() >= app.session().scene().instances.size()) {
-    ImGui::TextDisabled("Click an instance in the viewport or the outliner.");
+    ImGui::TextDisabled("Click an instance or a light in the viewport or the outliner.");
     ImGui::End();
     return;
   }
@@ -258,6 +281,7 @@ void lightingPanel(EditorApp& app) {
     l.skyRadiance = skyColor * skyL;
     session.setLighting(l);
   }
+  environmentSection(app);
   if (session.animated()) {
     ImGui::Separator();
     ImGui::Checkbox("Play animation", &app.playing());

@@ -20,7 +20,8 @@
 //   screenshot FILE        save the whole window as PNG
 //   capture [DIR]          write every buffer of the next frame (EXR + manifest.json) into DIR
 //   snapshot               remember the viewport image of the next frame
-//   expect-viewport-changed  fail unless the viewport differs from the snapshot
+//   expect-viewport-changed [D]  fail unless the viewport differs from the snapshot by a mean
+//                          absolute difference of at least D (default 0.01; more for a noisy path)
 //   albedo-db PATH         open (or create) the albedo database
 //   albedo-bake            bake the scene into it (one batch a frame) and wait until done
 //   albedo-override R G B  override the selected instance's albedo (linear RGB)
@@ -77,6 +78,15 @@
 //   expect-reload          wait (up to 60 s) until the scene reloaded after the last
 //                          copy-file, and fail unless the camera is where it was then
 //   save-image FILE        File > Save image: the last frame as .png or .exr
+//   drag-ui NAME DX DY     press on a named control or viewport handle (gizmo.move.x, gizmo.aim,
+//                          light.icon.N), move by DX, DY pixels over eight frames, release
+//   expect-lights N        fail unless the scene has N lights besides the sun; lists them
+//   expect-light I TEXT    fail unless light I's line ("name (type) at x y z aim dx dy dz I unit
+//                          [hidden]") holds TEXT
+//   expect-gizmo-followed  fail unless the last gizmo drag moved the light along its arrow alone,
+//                          as far as the mouse went along it (or aimed its knob under the mouse)
+//   expect-selected-light NAME  fail unless the light NAME (or `none`) is selected
+//   save-lighting          File > Save lighting: the lights into the glTF, all into SCENE.lighting.json
 //   quit
 #pragma once
 
@@ -108,6 +118,7 @@ class Script {
   size_t next_ = 0;
   int waitFrames_ = 0;
   uint64_t waitUntil_ = 0;           // engine frames done when a `wait` ends
+  double changedAtLeast_ = 0.01;     // expect-viewport-changed's least mean difference
   bool waitCapture_ = false;
   int captureWaitFrames_ = 0;
   uint64_t measureEngineStart_ = 0;

@@ -65,6 +65,12 @@ void trackItem(const std::string& name) {
   }
 }
 
+void trackRect(const std::string& name, glm::vec2 min, glm::vec2 max) {
+  ImGuiWindow* window = ImGui::GetCurrentWindow();
+  const glm::vec2 c = 0.5f * (min + max);
+  items[name] = {min, max, true, window && coveredAt(window, ImVec2(c.x, c.y))};
+}
+
 void scrollToItem(const std::string& name) { scrollRequest = name; }
 
 void raiseItemWindow(const std::string& name) { raiseRequest = name; }

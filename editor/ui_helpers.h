@@ -24,6 +24,9 @@ struct ItemRect {
   bool covered = false;  // another window lies over its centre
 };
 std::optional<ItemRect> trackedItem(const std::string& name);
+// The same for something drawn without a widget (the viewport's light icons and gizmo handles),
+// from inside the window that draws it.
+void trackRect(const std::string& name, glm::vec2 min, glm::vec2 max);
 // Asks the window that draws `name` next to scroll it to its middle, as a person scrolls to a
 // control before clicking it.
 void scrollToItem(const std::string& name);

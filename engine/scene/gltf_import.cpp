@@ -1034,7 +1034,10 @@ Scene loadGltfBytes(std::vector<uint8_t> bytes, bool binary, const std::filesyst
       int index = li.IsInt() ? li.GetNumberAsInt() : -1;
       if (index < 0 || size_t(index) >= model.lights.size())
         values.fail(fmt::format("node `{}` refers to light {}, which does not exist", nodeName, index));
-      if (auto l = readLight(model.lights[size_t(index)], nodeName, position, orientation, values)) scene.lights.push_back(*l);
+      if (auto l = readLight(model.lights[size_t(index)], nodeName, position, orientation, values)) {
+        l->node = uint32_t(ni);
+        scene.lights.push_back(*l);
+      }
     }
     for (int child : node.children) visit(child, ni, world, depth + 1);
   };

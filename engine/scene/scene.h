@@ -237,6 +237,12 @@ struct Light {
   float width = 1.0f, height = 1.0f, radius = 0.1f, length = 1.0f;
   bool twoSided = false;
   glm::dvec3 widthAxis{1.0, 0.0, 0.0};   // projected perpendicular to direction (any other way if parallel)
+  // Hidden by the artist (the editor's outliner): kept, saved, not shaded. The lighting file
+  // keeps it; a glTF does not hold hidden lights (KHR_lights_punctual has no such flag).
+  bool hidden = false;
+  // The glTF node the light came from (or was last saved to): saving the lights back into the
+  // file moves that node rather than adding one (session/gltf_lights_writer.h).
+  std::optional<uint32_t> node;
   // Irradiance E (directional), intensity I (point, spot) or radiance L (area) on Twinlight's
   // scale, per channel.
   glm::vec3 radiometric() const { return color * float(double(intensity) / kLumensPerWatt); }

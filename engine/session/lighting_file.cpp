@@ -1,5 +1,7 @@
 #include "session/lighting_file.h"
 
+#include "session/gltf_lights_writer.h"
+
 #include "scene/color_temperature.h"
 #include "scene/environment_map.h"
 #include "scene/input_limits.h"
@@ -7,7 +9,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <initializer_list>
 
@@ -170,14 +174,27 @@ void readAreaShape(const Reader& r, const json& j, const std::string& where, sce
   }
 }
 
+// The glTF node a light was saved to (bookkeeping for the next save: gltf_lights_writer.h).
+uint32_t readNode(const Reader& r, const json& v, const std::string& key) {
+  const double n = r.number(v, key, 0.0, double(INT32_MAX));
+  if (n != std::floor(n)) r.fail(key, "expected a node index (a whole number)");
+  return uint32_t(n);
+}
+
 scene::Light readLight(const Reader& r, const json& j, const std::string& where) {
   if (!j.is_object()) r.fail(where, "expected an object");
   r.onlyKeys(j, where, {"name", "type", "position", "direction", "color", "temperature_k", "intensity", "range",
-                        "inner_cone_deg", "outer_cone_deg", "width", "height", "radius", "length", "two_sided", "width_axis"});
+                        "inner_cone_deg", "outer_cone_deg", "width", "height", "radius", "length", "two_sided", "width_axis",
+                        "hidden", "gltf_node"});
   scene::Light l;
   if (j.contains("name")) {
     if (!j.at("name").is_string()) r.fail(where + ".name", "expected a string");
     l.name = j.at("name").get<std::string>();
+  }
+  if (j.contains("gltf_node")) l.node = readNode(r, j.at("gltf_node"), where + ".gltf_node");
+  if (j.contains("hidden")) {
+    if (!j.at("hidden").is_boolean()) r.fail(where + ".hidden", "expected true or false");
+    l.hidden = j.at("hidden").get<bool>();
   }
   r.required(j, where, "type");
   const json& type = j.at("type");
@@ -287,7 +304,8 @@ Lighting readLightingFile(const std::filesystem::path& file, const Lighting& bas
   Lighting l = base;
   if (j.contains("sun")) {
     const json& s = r.object(j, "sun", "sun");
-    r.onlyKeys(s, "sun", {"direction", "irradiance", "color", "temperature_k", "angular_radius_deg"});
+    r.onlyKeys(s, "sun", {"direction", "irradiance", "color", "temperature_k", "angular_radius_deg", "gltf_node"});
+    if (s.contains("gltf_node")) l.sunNode = readNode(r, s.at("gltf_node"), "sun.gltf_node");
     r.required(s, "sun", "direction");
     l.sunDirection = r.direction(s.at("direction"), "sun.direction");
     l.sunIrradiance = readScaledColor(r, s, "sun", "irradiance");
@@ -350,6 +368,7 @@ std::string lightingJson(const Lighting& lighting, const std::filesystem::path& 
   sun["direction"] = vecJson(unit(lighting.sunDirection));
   sun["irradiance"] = colorJson(lighting.sunIrradiance);
   sun["angular_radius_deg"] = double(lighting.sunAngularRadius) * kDegrees;
+  if (lighting.sunNode) sun["gltf_node"] = *lighting.sunNode;
   j["sky"] = ordered::object();
   j["sky"]["radiance"] = colorJson(lighting.skyRadiance);
   j["exposure_ev"] = lighting.exposureEv ? ordered(double(*lighting.exposureEv)) : ordered(nullptr);
@@ -393,6 +412,8 @@ std::string lightingJson(const Lighting& lighting, const std::filesystem::path& 
       o["inner_cone_deg"] = double(l.innerConeAngle) * kDegrees;
       o["outer_cone_deg"] = double(l.outerConeAngle) * kDegrees;
     }
+    if (l.hidden) o["hidden"] = true;  // written only when set: a file without it shows every light
+    if (l.node) o["gltf_node"] = *l.node;
     lights.push_back(std::move(o));
   }
   j["lights"] = std::move(lights);
@@ -420,6 +441,37 @@ void writeLightingFile(const std::filesystem::path& file, const Lighting& lighti
     std::filesystem::remove(tmp, ec);
     throw SessionError(fmt::format("{}: cannot write the lighting file", file.string()));
   }
+}
+
+SavedLighting saveSceneLighting(const std::filesystem::path& scene, Lighting& lighting) {
+  // The glTF's lights: the sun first (the importer takes the first directional light as the
+  // sun), then every punctual light that shows; on glTF's scale (lux, candela).
+  std::vector<scene::Light> punctual;
+  std::vector<scene::Light*> owners;  // the lighting's light each entry came from (null: the sun)
+  const float sunE = std::max({lighting.sunIrradiance.r, lighting.sunIrradiance.g, lighting.sunIrradiance.b});
+  if (sunE > 0.0f) {
+    scene::Light sun;
+    sun.name = lighting.sunName.empty() ? "Sun" : lighting.sunName;
+    sun.type = scene::LightType::Directional;
+    sun.color = lighting.sunIrradiance / sunE;
+    sun.intensity = float(double(sunE) * scene::kLumensPerWatt);
+    sun.direction = lighting.sunDirection;
+    sun.node = lighting.sunNode;
+    punctual.push_back(sun);
+    owners.push_back(nullptr);
+  }
+  for (auto& l : lighting.lights)
+    if (!l.hidden && !scene::isAreaLight(l.type)) punctual.push_back(l), owners.push_back(&l);
+  const std::vector<uint32_t> nodes = writeGltfLights(scene, punctual);
+  for (size_t i = 0; i < nodes.size(); ++i) (owners[i] ? owners[i]->node : lighting.sunNode) = nodes[i];
+  if (sunE <= 0.0f) lighting.sunNode.reset();
+  for (auto& l : lighting.lights)  // not in the glTF: no node of it holds them now
+    if (l.hidden || scene::isAreaLight(l.type)) l.node.reset();
+  SavedLighting saved;
+  saved.sidecar = lightingSidecarPath(scene);
+  saved.gltfLights = punctual.size();
+  writeLightingFile(saved.sidecar, lighting);
+  return saved;
 }
 
 }  // namespace tl::session

@@ -32,4 +32,19 @@ std::string lightingJson(const Lighting& lighting, const std::filesystem::path& 
 // leaves any earlier file intact). Throws SessionError.
 void writeLightingFile(const std::filesystem::path& file, const Lighting& lighting);
 
+// What saveSceneLighting wrote.
+struct SavedLighting {
+  std::filesystem::path sidecar;
+  size_t gltfLights = 0;  // KHR_lights_punctual lights in the glTF, the sun included
+};
+
+// Saves what an artist set up for `scene` (the glTF the session loaded): the sun (the first
+// directional light, so it loads as the sun again) and every shown punctual light into the glTF
+// itself as KHR_lights_punctual, so other tools see them (session/gltf_lights_writer.h), and the
+// whole lighting (area and hidden lights, sky, environment map, exposure too) into the sidecar
+// beside it, which `--lighting` reads. The lights' and the sun's `node` become the nodes they
+// were written to. Throws SessionError; the glTF is written first and a failure leaves both
+// files as they were.
+SavedLighting saveSceneLighting(const std::filesystem::path& scene, Lighting& lighting);
+
 }  // namespace tl::session

@@ -112,6 +112,8 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   lighting_.sunDirection = env.sunDirection;
   lighting_.sunIrradiance = env.sunFromFile ? env.sunIrradiance : glm::vec3(0.0f);
   lighting_.skyRadiance = env.skyRadiance;
+  lighting_.sunName = env.sunLight ? scene_->lights[*env.sunLight].name : std::string();
+  lighting_.sunNode = env.sunLight ? scene_->lights[*env.sunLight].node : std::nullopt;
   lighting_.lights.clear();
   for (size_t i = 0; i < scene_->lights.size(); ++i)
     if (i != env.sunLight) lighting_.lights.push_back(scene_->lights[i]);
@@ -209,7 +211,7 @@ lighting::KeyHasher& addLights(lighting::KeyHasher& h, const std::vector<scene::
   for (const auto& l : lights)
     h.all(double(l.type), l.color, double(l.intensity), double(l.range.value_or(0.0f)), double(l.innerConeAngle),
           double(l.outerConeAngle), l.position, l.direction, double(l.width), double(l.height), double(l.radius),
-          double(l.length), double(l.twoSided), l.widthAxis);
+          double(l.length), double(l.twoSided), l.widthAxis, double(l.hidden));
   return h;
 }
 }  // namespace
@@ -317,6 +319,7 @@ float autoExposureEv(const Lighting& l, float brightestEmission) {
   // A white Lambertian surface facing the sun under the sky has radiance E/pi + L.
   double brightestLight = 0.0;
   for (const auto& light : l.lights) {
+    if (light.hidden) continue;
     const double e = shared::tlLuminance(light.radiometric());
     // An area light's radiance L lights a surface right under it with at most pi L.
     const double seen = light.type == scene::LightType::Directional ? e : scene::isAreaLight(light.type) ? glm::pi<double>() * e : e / 4.0;

@@ -52,6 +52,9 @@ struct Lighting {
   glm::vec3 skyRadiance{1.0f};    // uniform radiance L over the whole sphere
   std::optional<float> exposureEv;  // empty: derived from the light (see autoExposureEv)
   float sunAngularRadius = 0.00465f;  // radians (the real sun)
+  // The glTF light the sun came from (its name and node), so saving writes it back there.
+  std::string sunName;
+  std::optional<uint32_t> sunNode;
   // Every light but the sun: point, spot and further directional lights in glTF's units (lux,
   // candela; shaders/shared/lights.h has the scale they are shaded on). Loaded from the scene.
   std::vector<scene::Light> lights;

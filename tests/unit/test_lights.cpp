@@ -56,6 +56,13 @@ TEST(Lights, TheTableIsCameraRelativeAndDrawsEachLightInProportionToItsPower) {
   EXPECT_NEAR(table[0].direction.w, table[0].intensity.w, 1e-7);
   EXPECT_EQ(table[1].direction.w, 1.0f);
   EXPECT_TRUE(buildLightTable({}, camera, 10.0).empty());
+  // A light the artist hid is left out as if it were not there: the others' shares are as before.
+  scene::Light hidden = pointLight({1000.0, 9.0, -2000.0}, 50.0f * 683.0f);
+  hidden.hidden = true;
+  const auto withHidden = buildLightTable({pointLight({1001.0, 2.0, -2000.0}, 3.0f * 683.0f), hidden, dark, spot}, camera, 10.0);
+  ASSERT_EQ(withHidden.size(), 2u);
+  EXPECT_EQ(withHidden[0].intensity.w, table[0].intensity.w);
+  EXPECT_EQ(withHidden[1].type, shared::kLightSpot);
 }
 
 TEST(Lights, SpotConeFalloffAndRangeWindowFollowKhrLightsPunctual) {

@@ -69,6 +69,7 @@ std::vector<shared::GpuLight> buildLightTable(const std::vector<scene::Light>& l
   std::vector<shared::GpuLight> table;
   std::vector<double> power;
   for (const auto& l : lights) {
+    if (l.hidden) continue;  // hidden in the editor: kept in the lighting, not shaded
     const double p = lightSelectionPower(l, sceneScale);
     if (!(p > 0.0) || !std::isfinite(p)) continue;
     shared::GpuLight g{};

@@ -21,7 +21,7 @@ inline constexpr const char* kLightTable = "lights.table";
 // for an area light's emitting faces (a tube: its side, 2 pi r length).
 double lightSelectionPower(const scene::Light& light, double sceneScale);
 
-// Lights that emit nothing are left out. Cumulative probabilities end at exactly 1.
+// Lights that emit nothing and hidden lights are left out. Cumulative probabilities end at exactly 1.
 std::vector<shared::GpuLight> buildLightTable(const std::vector<scene::Light>& lights, const glm::dvec3& cameraWorld,
                                               double sceneScale);
 

@@ -1,0 +1,198 @@
+// The editor's light edits: adding, duplicating, deleting, hiding and soloing lights, dragging
+// them with the viewport gizmo, the environment map, and saving it all beside the scene. Each
+// edit is a lighting change of the session, which the edit history turns into an undo step.
+#include "editor_app.h"
+
+#include "scene/environment_map.h"
+#include "session/lighting_file.h"
+
+#include <GLFW/glfw3.h>
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include <algorithm>
+
+namespace tl::editor {
+namespace {
+
+// A new light of `type` in glTF's units, bright enough to be seen in a room.
+scene::Light defaultLight(scene::LightType type) {
+  scene::Light l;
+  l.type = type;
+  l.direction = {0.0, -1.0, 0.0};  // ceiling lights shine down
+  switch (type) {
+    case scene::LightType::Point: l.intensity = 150.0f; break;
+    case scene::LightType::Spot:
+      l.intensity = 600.0f;
+      l.innerConeAngle = glm::radians(20.0f);
+      l.outerConeAngle = glm::radians(30.0f);
+      break;
+    case scene::LightType::Directional:
+      l.intensity = 10000.0f;
+      l.direction = glm::normalize(glm::dvec3(0.4, -1.0, -0.3));
+      break;
+    case scene::LightType::Rect:
+      l.intensity = 3000.0f;
+      l.width = l.height = 0.5f;
+      break;
+    case scene::LightType::Disk:
+      l.intensity = 3000.0f;
+      l.radius = 0.25f;
+      break;
+    case scene::LightType::Tube:
+      l.intensity = 3000.0f;
+      l.radius = 0.02f;
+      l.length = 1.0f;
+      l.direction = {1.0, 0.0, 0.0};  // a tube's axis
+      break;
+  }
+  return l;
+}
+
+}  // namespace
+
+void EditorApp::addLight(scene::LightType type) {
+  if (!session_->hasScene()) return;
+  session::Lighting l = session_->lighting();
+  scene::Light light = defaultLight(type);
+  const session::View v = camera_.view();
+  // In front of the camera, a third of the scene's size away (0.5 to 5 m).
+  const double away = std::clamp(0.3 * glm::length(session_->scene().bounds.size()), 0.5, 5.0);
+  light.position = v.position + glm::normalize(v.forward) * away;
+  size_t same = 1;
+  for (const auto& other : l.lights) same += other.type == type;
+  light.name = fmt::format("{} {}", lightTypeLabel(type), same);
+  l.lights.push_back(light);
+  session_->setLighting(l);
+  selectLight(l.lights.size() - 1);
+  notify(fmt::format("added {} (Lights panel; drag its arrows in the viewport to move it)", light.name));
+}
+
+void EditorApp::duplicateSelectedLight() {
+  session::Lighting l = session_->lighting();
+  if (!selectedLight_ || *selectedLight_ >= l.lights.size()) return;
+  scene::Light copy = l.lights[*selectedLight_];
+  copy.node.reset();  // a light of its own when saved
+  copy.name += " copy";
+  copy.position += glm::dvec3(0.25, 0.0, 0.0);
+  l.lights.push_back(copy);
+  session_->setLighting(l);
+  selectLight(l.lights.size() - 1);
+}
+
+void EditorApp::deleteSelectedLight() {
+  session::Lighting l = session_->lighting();
+  if (!selectedLight_ || *selectedLight_ >= l.lights.size()) return;
+  const std::string name = l.lights[*selectedLight_].name;
+  l.lights.erase(l.lights.begin() + std::ptrdiff_t(*selectedLight_));
+  session_->setLighting(l);
+  selectedLight_.reset();
+  notify(fmt::format("deleted {} (Ctrl+Z brings it back)", name));
+}
+
+void EditorApp::soloSelectedLight() {
+  session::Lighting l = session_->lighting();
+  if (!selectedLight_ || *selectedLight_ >= l.lights.size()) return;
+  bool alone = !l.lights[*selectedLight_].hidden;
+  for (size_t i = 0; i < l.lights.size(); ++i)
+    if (i != *selectedLight_) alone = alone && l.lights[i].hidden;
+  for (size_t i = 0; i < l.lights.size(); ++i) l.lights[i].hidden = alone ? false : i != *selectedLight_;
+  session_->setLighting(l);
+}
+
+std::string EditorApp::saveLighting() {
+  if (!session_->hasScene()) return {};
+  try {
+    session::Lighting l = session_->lighting();
+    const auto saved = session::saveSceneLighting(session_->scene().path, l);
+    session_->setLighting(l);  // the nodes the lights now live on (not an edit: the history ignores them)
+    watchScene();              // our own write is not an export to reload
+    const std::string text = fmt::format("saved {} light{} into {} and all the lighting into {}", saved.gltfLights,
+                                         saved.gltfLights == 1 ? "" : "s", session_->scene().path.filename().string(),
+                                         saved.sidecar.filename().string());
+    notify(text);
+    return text;
+  } catch (const std::exception& e) {
+    showError(e.what());
+    return {};
+  }
+}
+
+void EditorApp::loadEnvironmentMap(const std::string& file) {
+  if (file.empty()) return showError("give the environment map's file (.exr or .hdr)");
+  try {
+    session::Lighting l = session_->lighting();
+    l.environmentMap = std::make_shared<const scene::EnvironmentMap>(scene::loadEnvironmentMap(file));
+    session_->setLighting(l);
+    notify(fmt::format("environment map {} ({}x{})", file, l.environmentMap->width, l.environmentMap->height));
+  } catch (const std::exception& e) {
+    showError(e.what());
+  }
+}
+
+void EditorApp::applySavedLighting() {
+  // --lighting for the first scene; else the sidecar an earlier save left beside the scene.
+  std::filesystem::path file = lightingFile_.value_or(session::lightingSidecarPath(session_->scene().path));
+  lightingFile_.reset();
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return;
+  try {
+    session_->setLighting(session::readLightingFile(file, session_->lighting()));
+    notify(fmt::format("lighting from {}", file.filename().string()));
+  } catch (const std::exception& e) {
+    showError(e.what());
+  }
+}
+
+ViewportProjection EditorApp::viewportProjection() const {
+  ViewportProjection p;
+  p.view = camera_.view();
+  p.min = viewportMin_;
+  p.size = viewportSize_;
+  return p;
+}
+
+bool EditorApp::overlayShown() const {
+  return showLightOverlay_ && session_->hasScene() && viewer_.resource.empty() && preview_.empty() && viewer_.zoom <= 1.0f &&
+         !compareView_;
+}
+
+bool EditorApp::handleLightOverlayInput(glm::vec2 mouse) {
+  if (gizmoDrag_) {
+    session::Lighting l = session_->lighting();
+    const ViewportProjection p = viewportProjection();
+    if (gizmoDrag_->light < l.lights.size()) {
+      const scene::Light moved = draggedLight(*gizmoDrag_, p, mouse);
+      l.lights[gizmoDrag_->light] = moved;
+      session_->setLighting(l);
+      if (!ImGui::IsMouseDown(0)) lastGizmoDrag_ = FinishedGizmoDrag{*gizmoDrag_, mouse, moved, p};
+    }
+    if (!ImGui::IsMouseDown(0)) gizmoDrag_.reset(), overlayPress_ = false;
+    return true;
+  }
+  if (overlayPress_) {  // a press on an icon: its release is not a pick
+    if (!ImGui::IsMouseDown(0)) overlayPress_ = false;
+    return true;
+  }
+  if (!overlayShown() || !viewportHovered_ || !ImGui::IsMouseClicked(0)) return false;
+  const ViewportProjection p = viewportProjection();
+  const auto& lights = session_->lighting().lights;
+  if (selectedLight_ && *selectedLight_ < lights.size()) {
+    if (const auto g = gizmoGeometry(p, lights[*selectedLight_])) {
+      const GizmoHandle h = gizmoHandleAt(*g, mouse);
+      if (h != GizmoHandle::None) {
+        gizmoDrag_ = GizmoDrag{h, *selectedLight_, lights[*selectedLight_], p.rayThrough(mouse), mouse, g->armMetres};
+        overlayPress_ = true;
+        return true;
+      }
+    }
+  }
+  if (const auto icon = lightIconAt(p, lights, mouse)) {
+    selectLight(icon);
+    overlayPress_ = true;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace tl::editor

@@ -1,0 +1,132 @@
+#include "script_lights.h"
+
+#include "editor_app.h"
+#include "ui_helpers.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace tl::editor {
+namespace {
+
+std::string describe(const scene::Light& l) {
+  std::string text = fmt::format("{} ({}) at {:.3f} {:.3f} {:.3f}", l.name, lightTypeLabel(l.type), l.position.x,
+                                 l.position.y, l.position.z);
+  if (l.type != scene::LightType::Point) {
+    const glm::dvec3 d = glm::normalize(l.direction);
+    text += fmt::format(" aim {:.3f} {:.3f} {:.3f}", d.x, d.y, d.z);
+  }
+  text += fmt::format(" {:g} {}", l.intensity, lightIntensityUnit(l.type));
+  if (l.hidden) text += " hidden";
+  return text;
+}
+
+// After a drag: the light followed the mouse. An arrow moves the light along its axis alone, as
+// far on screen as the mouse went along the arrow's screen direction; the knob ends under the mouse.
+std::string checkGizmoFollowed(const EditorApp::FinishedGizmoDrag& d) {
+  const ViewportProjection& p = d.projection;
+  const scene::Light& before = d.drag.start;
+  const scene::Light& after = d.end;
+  if (d.drag.handle == GizmoHandle::Aim) {
+    const auto g = gizmoGeometry(p, after);
+    if (!g || !g->aimKnob) return "the aimed light has no knob on screen";
+    const float off = glm::length(*g->aimKnob - d.endMouse);
+    // Beyond the sphere's outline the knob stays on the outline, towards the mouse.
+    const glm::vec2 toKnob = *g->aimKnob - g->centre, toMouse = d.endMouse - g->centre;
+    const bool outside = glm::length(toMouse) > glm::length(toKnob) + 3.0f;
+    if (outside && glm::dot(glm::normalize(toKnob), glm::normalize(toMouse)) < std::cos(glm::radians(2.0f)))
+      return fmt::format("the knob ended off the line from the light to the mouse ({:.1f} px from it)", off);
+    if (!outside && off > 3.0f) return fmt::format("the knob ended {:.1f} px from the mouse", off);
+    if (glm::dot(glm::normalize(before.direction), after.direction) > 1.0 - 1e-6) return "the light's aim did not change";
+    fmt::print("script: the knob ended {:.2f} px from the mouse; aim {:.3f} {:.3f} {:.3f}\n", off, after.direction.x,
+               after.direction.y, after.direction.z);
+    return {};
+  }
+  const int axis = int(d.drag.handle) - int(GizmoHandle::MoveX);
+  for (int c = 0; c < 3; ++c)
+    if (c != axis && after.position[c] != before.position[c])
+      return fmt::format("dragging axis {} changed coordinate {} ({} -> {})", "xyz"[axis], "xyz"[c], before.position[c],
+                         after.position[c]);
+  if (std::abs(after.position[axis] - before.position[axis]) < 1e-4) return "the light did not move";
+  // The point of the arrow the press grabbed moved with the light; on screen it stays under the
+  // mouse along the arrow's line (the mouse's offset across the line moves nothing).
+  const auto grabbed = grabbedPoint(d.drag);
+  if (!grabbed) return "the drag grabbed no point of its arrow";
+  const glm::dvec3 moved = *grabbed + (after.position - before.position);
+  const auto at = p.toWindow(moved), further = p.toWindow(moved + gizmoAxis(d.drag.handle) * (0.1 * d.drag.armMetres));
+  if (!at || !further) return "the grabbed point left the screen";
+  const glm::vec2 along = glm::normalize(*further - *at);
+  const float off = std::abs(glm::dot(d.endMouse - *at, along));
+  if (off > 2.0f) return fmt::format("the grabbed point of the arrow ended {:.1f} px from the mouse along it", off);
+  fmt::print("script: the light moved {:.4f} m along {} and ended {:.2f} px from the drag's point\n",
+             after.position[axis] - before.position[axis], "xyz"[axis], off);
+  return {};
+}
+
+}  // namespace
+
+bool runLightScriptCommand(EditorApp& app, const std::string& cmd, const std::string& arg, std::string& failure) {
+  const auto& lights = app.session().lighting().lights;
+  if (cmd == "drag-ui") {
+    // drag-ui NAME DX DY: press on a tracked control or handle, move by (DX, DY) pixels over
+    // eight frames, release.
+    char name[128];
+    float dx = 0.0f, dy = 0.0f;
+    if (std::sscanf(arg.c_str(), "%127s %f %f", name, &dx, &dy) != 3) return failure = "drag-ui needs NAME DX DY", true;
+    const auto item = trackedItem(name);
+    if (!item) return failure = fmt::format("no control `{}` on screen", name), true;
+    const glm::vec2 from = 0.5f * (item->min + item->max);
+    auto& in = app.input();
+    in.push({InputEvent::Kind::Move, from});
+    in.push({InputEvent::Kind::Frame});
+    in.push({InputEvent::Kind::Button, {}, 0, true});
+    constexpr int kSteps = 8;
+    for (int i = 1; i <= kSteps; ++i) {
+      in.push({InputEvent::Kind::Frame});
+      in.push({InputEvent::Kind::Move, from + glm::vec2(dx, dy) * (float(i) / kSteps)});
+    }
+    in.push({InputEvent::Kind::Frame});
+    in.push({InputEvent::Kind::Button, {}, 0, false});
+    return true;
+  }
+  if (cmd == "expect-lights") {
+    const size_t want = size_t(std::max(0, std::atoi(arg.c_str())));
+    for (size_t i = 0; i < lights.size(); ++i) fmt::print("script: light {}: {}\n", i, describe(lights[i]));
+    if (lights.size() != want) failure = fmt::format("{} lights, expected {}", lights.size(), want);
+    return true;
+  }
+  if (cmd == "expect-light") {
+    // expect-light I TEXT: light I's description holds TEXT.
+    const auto space = arg.find(' ');
+    const size_t i = size_t(std::max(0, std::atoi(arg.substr(0, space).c_str())));
+    const std::string text = space == std::string::npos ? "" : arg.substr(space + 1);
+    if (i >= lights.size()) return failure = fmt::format("no light {} ({} lights)", i, lights.size()), true;
+    const std::string d = describe(lights[i]);
+    if (d.find(text) == std::string::npos) failure = fmt::format("light {} is `{}`, without `{}`", i, d, text);
+    else fmt::print("script: light {}: {}\n", i, d);
+    return true;
+  }
+  if (cmd == "expect-gizmo-followed") {
+    if (!app.lastGizmoDrag()) return failure = "no gizmo drag has finished", true;
+    failure = checkGizmoFollowed(*app.lastGizmoDrag());
+    return true;
+  }
+  if (cmd == "expect-selected-light") {
+    const auto s = app.selectedLight();
+    const std::string have = s && *s < lights.size() ? lights[*s].name : "none";
+    if (have != arg) failure = fmt::format("expected light `{}` to be selected, but `{}` is", arg, have);
+    else fmt::print("script: light `{}` is selected\n", have);
+    return true;
+  }
+  if (cmd == "save-lighting") {
+    const std::string saved = app.saveLighting();
+    if (saved.empty()) failure = "the lighting was not saved";
+    else fmt::print("script: {}\n", saved);
+    return true;
+  }
+  return false;
+}
+
+}  // namespace tl::editor
