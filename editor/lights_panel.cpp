@@ -220,6 +220,13 @@ void environmentSection(EditorApp& app) {
   if (l.environmentMap)
     ImGui::TextDisabled("%s, %ux%u", l.environmentMap->path.filename().string().c_str(), l.environmentMap->width,
                         l.environmentMap->height);
+  if (const auto sun = session.environmentSun()) {
+    const glm::vec3 e = session.shadedLighting().sunIrradiance;
+    ImGui::TextDisabled("its sun (E %.2f, %.1f deg wide) shades as the sun", std::max({e.r, e.g, e.b}),
+                        glm::degrees(2.0 * sun->angularRadius));
+    tooltip("A sun found in the map is taken out of it and shaded as a directional light of its size, with shadows,\n"
+            "in every path (spherical harmonics would spread it over the sky). Turning the sun above on keeps it in the map.");
+  }
   if (changed) session.setLighting(l);
 }
 

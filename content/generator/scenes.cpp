@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -583,6 +584,113 @@ void areaRoom(const std::filesystem::path& dir) {
   if (!sidecar) throw std::runtime_error("cannot write area_room.lighting.json");
 }
 
+// The lamps room with one area light more: a 0.8 x 0.4 m ceiling panel of 2000 nits over the
+// table, beside the file's two bulbs and spot, in lamps_with_panel.lighting.json (`--lighting`;
+// not named lamps.lighting.json, so the editor does not read it for lamps.gltf by itself). The
+// interior of issue T11's content: point, spot and area lights together.
+void lampsWithPanel(const std::filesystem::path& dir) {
+  std::ofstream sidecar(dir / "lamps_with_panel.lighting.json", std::ios::binary | std::ios::trunc);
+  sidecar << R"({
+  "format": "twinlight.lighting",
+  "version": 1,
+  "sun": {"direction": [0.3, -1, 0.2], "irradiance": 0},
+  "sky": {"radiance": 0},
+  "exposure_ev": null,
+  "environment": null,
+  "lights": [
+    {"name": "bulb_table", "type": "point", "position": [-0.8, 1.6, -0.6], "color": [1.0, 0.78, 0.55], "intensity": 80},
+    {"name": "bulb_corner", "type": "point", "position": [-2.4, 2.6, 1.9], "color": [1.0, 0.85, 0.7], "intensity": 80,
+     "range": 10},
+    {"name": "spot_sphere", "type": "spot", "position": [1.2, 2.9, 0.6], "direction": [0, -1, 0], "intensity": 400,
+     "inner_cone_deg": 20, "outer_cone_deg": 30},
+    {"name": "ceiling_panel", "type": "rect", "position": [-0.8, 2.99, -0.6], "direction": [0, -1, 0], "width_axis": [1, 0, 0],
+     "width": 0.8, "height": 0.4, "temperature_k": 4000, "intensity": 2000}
+  ]
+}
+)";
+  sidecar.close();  // a failed flush shows only after close
+  if (!sidecar) throw std::runtime_error("cannot write lamps_with_panel.lighting.json");
+}
+
+// An equirectangular sky for the HDRI-lit exterior (radiance on Twinlight's scale, row 0 at the
+// zenith): a blue zenith fading to a pale horizon, a warm grey ground below it, and a sun disc of
+// 2 degrees radius at 35 degrees elevation whose texels give an irradiance of about 8 on a
+// surface facing it (a real sun's share against its sky: E_sun / (pi L_sky) about 4). 256 x 128
+// float texels, zip-compressed.
+void writeCourtyardSky(const std::filesystem::path& file) {
+  const int w = 256, h = 128;
+  const double pi = 3.14159265358979323846;
+  const glm::dvec3 toSun = glm::normalize(glm::dvec3(std::cos(glm::radians(35.0)) * std::sin(glm::radians(40.0)),
+                                                     std::sin(glm::radians(35.0)),
+                                                     std::cos(glm::radians(35.0)) * std::cos(glm::radians(40.0))));
+  const double sunRadius = glm::radians(2.0), sunSolidAngle = 2.0 * pi * (1.0 - std::cos(sunRadius));
+  const double sunRadiance = 8.0 / sunSolidAngle;
+  std::vector<float> px(size_t(w) * h * 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      // The texel's centre direction as the environment map reads it (shared/environment.h
+      // tlEquirectDirection): theta = pi v from +Y, phi = 2 pi u.
+      const double theta = pi * (y + 0.5) / h, phi = 2.0 * pi * (x + 0.5) / w;
+      const glm::dvec3 d(-std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi));
+      glm::dvec3 L;
+      if (d.y >= 0.0) {
+        const double t = std::pow(1.0 - d.y, 3.0);  // 0 at the zenith, 1 at the horizon
+        L = glm::mix(glm::dvec3(0.18, 0.32, 0.75), glm::dvec3(0.85, 0.9, 1.0), t);
+      } else {
+        L = glm::dvec3(0.22, 0.19, 0.15);
+      }
+      if (std::acos(std::clamp(glm::dot(d, toSun), -1.0, 1.0)) < sunRadius) L = glm::dvec3(1.0, 0.93, 0.82) * sunRadiance;
+      for (int c = 0; c < 3; ++c) px[(size_t(y) * w + x) * 3 + c] = float(L[c]);
+    }
+  std::filesystem::create_directories(file.parent_path());
+  auto out = OIIO::ImageOutput::create(file.string());
+  OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
+  spec.attribute("compression", "zip");
+  // A fixed date: OpenEXR otherwise stamps the time of writing, and the generator's output has to
+  // be the same file every run (cli.content_is_generated).
+  spec.attribute("DateTime", "2026:12:03 00:00:00");
+  if (!out || !out->open(file.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, px.data()) || !out->close())
+    throw std::runtime_error("cannot write " + file.string());
+}
+
+// The HDRI-lit exterior: a 30 m grey paved ground with a white wall, two boxes, a column, an
+// arch and a copper sphere, lit by environments/courtyard_sky.exr alone (no glTF sun; the map's
+// sun disc casts the shadows), set up in courtyard.lighting.json beside it, which the editor reads
+// when it opens the scene and `--lighting` gives the command line.
+void courtyard(const std::filesystem::path& dir) {
+  SceneWriter w("courtyard");
+  int paving = w.material({"paving", {0.45f, 0.43f, 0.40f}, 0.0f, 0.8f});
+  int white = w.material({"limewash", {0.80f, 0.78f, 0.72f}, 0.0f, 0.9f});
+  int red = w.material({"terracotta", {0.62f, 0.24f, 0.14f}, 0.0f, 0.7f});
+  int copper = w.material({"copper", {0.95f, 0.64f, 0.54f}, 1.0f, 0.3f});
+  w.node("ground", w.mesh("ground", quad(30.0f, 30.0f), paving), {0.0f, 0.0f, 0.0f});
+  wall(w, "back_wall", white, {0.0f, 1.5f, -3.0f}, {8.0f, 3.0f, 0.3f});
+  wall(w, "box_large", red, {-2.0f, 0.5f, -0.8f}, {1.0f, 1.0f, 1.0f});
+  wall(w, "box_small", white, {-0.8f, 0.3f, 0.4f}, {0.6f, 0.6f, 0.6f});
+  wall(w, "column", white, {2.2f, 1.25f, -1.2f}, {0.4f, 2.5f, 0.4f});
+  wall(w, "arch_left", white, {0.2f, 1.0f, -1.8f}, {0.3f, 2.0f, 0.3f});
+  wall(w, "arch_right", white, {1.4f, 1.0f, -1.8f}, {0.3f, 2.0f, 0.3f});
+  wall(w, "arch_top", white, {0.8f, 2.15f, -1.8f}, {1.5f, 0.3f, 0.3f});
+  w.node("copper_sphere", w.mesh("sphere", sphere(0.45f, 48, 24), copper), {1.0f, 0.45f, 0.6f});
+  w.camera("court_view", {3.6f, 1.8f, 4.4f}, {-0.2f, 0.7f, -1.0f}, 55.0f);
+  w.sky({0.0f, 0.0f, 0.0f});
+  w.write(dir);
+  writeCourtyardSky(dir / "environments" / "courtyard_sky.exr");
+  std::ofstream sidecar(dir / "courtyard.lighting.json", std::ios::binary | std::ios::trunc);
+  sidecar << R"({
+  "format": "twinlight.lighting",
+  "version": 1,
+  "sun": {"direction": [0.3, -1, 0.2], "irradiance": 0},
+  "sky": {"radiance": 0},
+  "exposure_ev": null,
+  "environment": {"file": "environments/courtyard_sky.exr", "rotation_deg": 0, "intensity": 1},
+  "lights": []
+}
+)";
+  sidecar.close();
+  if (!sidecar) throw std::runtime_error("cannot write courtyard.lighting.json");
+}
+
 // Many lights: 256 point lights (a 16 x 16 grid, 0.5 m apart, 0.8 to 2.3 m up, 8 to 68 cd,
 // four colours) over a 20 m grey ground under a black sky, seen from above at an angle. For the
 // light table's many-light sampling: its noise, its convergence and its cost against the count.
@@ -1090,6 +1198,8 @@ int main(int argc, char** argv) {
     tl::content::lamps(dir);
     tl::content::lampGrid(dir);
     tl::content::areaRoom(dir);
+    tl::content::lampsWithPanel(dir);
+    tl::content::courtyard(dir);
     tl::content::embeddedTextures(dir);
     tl::content::normalProbe(dir);
     tl::content::cutout(dir);

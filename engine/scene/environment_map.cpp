@@ -145,4 +145,54 @@ std::array<glm::vec4, 9> environmentSh9(const EnvironmentMap& map, float rotatio
   return sh;
 }
 
+std::optional<SunAndSky> separateEnvironmentSun(const EnvironmentMap& map) {
+  const uint32_t w = map.width, h = map.height;
+  const double meanLuminance = shared::tlLuminance(map.meanRadiance);
+  size_t brightest = 0;
+  float most = -1.0f;
+  for (size_t i = 0; i < map.radiance.size(); ++i)
+    if (const float l = shared::tlLuminance(map.radiance[i]); l > most) most = l, brightest = i;
+  if (!(meanLuminance > 0.0) || double(most) < kSunContrast * meanLuminance) return std::nullopt;
+  const glm::dvec3 peak(texelDirection(map, uint32_t(brightest % w), uint32_t(brightest / w)));
+  const double cosSearch = std::cos(kSunSearchRadius), cosRing = std::cos(1.5 * kSunSearchRadius);
+  // The sun's texels; the sky around it (a ring out to 1.5 search radii) fills them.
+  std::vector<size_t> texels;
+  glm::dvec3 irradiance(0.0), weighted(0.0), ring(0.0);
+  double solidAngle = 0.0, ringSolidAngle = 0.0, total = 0.0;
+  for (uint32_t r = 0; r < h; ++r) {
+    const double omega = environmentTexelSolidAngle(map, r);
+    for (uint32_t c = 0; c < w; ++c) {
+      const size_t i = size_t(r) * w + c;
+      const double l = shared::tlLuminance(map.radiance[i]);
+      total += l * omega;
+      const glm::dvec3 d(texelDirection(map, c, r));
+      const double cosAngle = glm::dot(d, peak);
+      if (cosAngle >= cosSearch && l > 0.05 * double(most)) {
+        texels.push_back(i);
+        irradiance += glm::dvec3(map.radiance[i]) * omega;
+        weighted += d * (l * omega);
+        solidAngle += omega;
+      } else if (cosAngle >= cosRing) {
+        ring += glm::dvec3(map.radiance[i]) * omega;
+        ringSolidAngle += omega;
+      }
+    }
+  }
+  const double share = shared::tlLuminance(glm::vec3(irradiance)) / total;
+  if (share < kSunShare || glm::length(weighted) <= 0.0) return std::nullopt;
+  const glm::dvec3 around = ringSolidAngle > 0.0 ? ring / ringSolidAngle : glm::dvec3(0.0);
+  SunAndSky out;
+  out.sun.direction = glm::normalize(weighted);
+  // What the sky behind it keeps is not the sun's: the two together hold the map's light exactly.
+  out.sun.irradiance = glm::vec3(glm::max(irradiance - around * solidAngle, glm::dvec3(0.0)));
+  out.sun.angularRadius = std::acos(std::clamp(1.0 - solidAngle / (2.0 * M_PI), -1.0, 1.0));
+  out.sun.texels = uint32_t(texels.size());
+  std::vector<glm::vec3> sky = map.radiance;
+  for (size_t i : texels) sky[i] = glm::vec3(around);
+  EnvironmentMap residual = makeEnvironmentMap(w, h, std::move(sky));
+  residual.path = map.path;
+  out.sky = std::make_shared<const EnvironmentMap>(std::move(residual));
+  return out;
+}
+
 }  // namespace tl::scene

@@ -11,6 +11,8 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <vector>
 
 namespace tl::scene {
@@ -42,5 +44,28 @@ std::vector<float> environmentTable(const EnvironmentMap& map);
 // texel integrated over its exact solid angle (FrameConstants::envSh; shared/environment.h
 // tlEnvShIrradiance and tlEnvShRadiance evaluate them).
 std::array<glm::vec4, 9> environmentSh9(const EnvironmentMap& map, float rotationRadians, float intensity);
+
+// A sun inside an environment map: a small patch of texels far brighter than the rest of the sky.
+struct EnvironmentSun {
+  glm::dvec3 direction{0.0, 1.0, 0.0};  // towards it, in the map's frame (unit)
+  glm::vec3 irradiance{0.0f};           // sum of L x solid angle over its texels (before the map's intensity)
+  double angularRadius = 0.0;           // of a disc of its solid angle, radians
+  uint32_t texels = 0;
+};
+struct SunAndSky {
+  EnvironmentSun sun;
+  std::shared_ptr<const EnvironmentMap> sky;  // the map without the sun: its texels hold the sky around it
+};
+
+// The real-time paths read a map through order-2 spherical harmonics, which spread a sun over
+// the whole sphere (and ring below zero opposite it); a sun separated from its map can be shaded
+// as what it is, a shadowed directional light of its size. Found when the brightest texel is at
+// least kSunContrast times the map's mean luminance and the texels within kSunSearchRadius of it
+// brighter than a twentieth of it carry at least kSunShare of the map's light (by solid angle);
+// the sky keeps everything else. Empty when there is no such sun (an overcast or uniform map).
+inline constexpr double kSunContrast = 50.0;
+inline constexpr double kSunSearchRadius = 0.14;  // radians (8 degrees)
+inline constexpr double kSunShare = 0.2;
+std::optional<SunAndSky> separateEnvironmentSun(const EnvironmentMap& map);
 
 }  // namespace tl::scene

@@ -118,6 +118,7 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   for (size_t i = 0; i < scene_->lights.size(); ++i)
     if (i != env.sunLight) lighting_.lights.push_back(scene_->lights[i]);
   lighting_.exposureEv.reset();
+  updateShadedLighting();
   brightestEmission_ = 0.0f;
   for (const auto& m : scene_->materials)
     brightestEmission_ = std::max(brightestEmission_, shared::tlLuminance(m.emissiveFactor * m.emissiveStrength));
@@ -228,13 +229,13 @@ lighting::FrameKey Session::frameKey(uint64_t frame) const {
                double(view_.orthographic), double(view_.orthoHalfHeight), double(view_.zfar))
           .done();
   KeyHasher light;
-  light.all(glm::normalize(lighting_.sunDirection), lighting_.sunIrradiance, double(lighting_.sunAngularRadius));
-  key.hash(FramePart::Sun) = addLights(light, lighting_.lights).done();
+  light.all(glm::normalize(shaded_.sunDirection), shaded_.sunIrradiance, double(shaded_.sunAngularRadius));
+  key.hash(FramePart::Sun) = addLights(light, shaded_.lights).done();
   KeyHasher sky;
-  sky.add(lighting_.skyRadiance);
-  if (const auto& map = lighting_.environmentMap)
-    sky.all(double(map->contentHash >> 32), double(map->contentHash & 0xFFFFFFFFu), double(lighting_.environmentRotation),
-            double(lighting_.environmentIntensity));
+  sky.add(shaded_.skyRadiance);
+  if (const auto& map = shaded_.environmentMap)
+    sky.all(double(map->contentHash >> 32), double(map->contentHash & 0xFFFFFFFFu), double(shaded_.environmentRotation),
+            double(shaded_.environmentIntensity));
   key.hash(FramePart::Sky) = sky.done();
   key.hash(FramePart::Scene) = gpuScene_ ? gpuScene_->id() : 0;
   if (scene_) {
@@ -306,13 +307,38 @@ void Session::setSize(uint32_t width, uint32_t height) {
 }
 
 void Session::setLighting(const Lighting& lighting) {
-  const bool shChanged = lighting.environmentMap &&
-                         (lighting.environmentMap != lighting_.environmentMap ||
-                          lighting.environmentRotation != lighting_.environmentRotation ||
-                          lighting.environmentIntensity != lighting_.environmentIntensity);
   lighting_ = lighting;
+  updateShadedLighting();
+}
+
+void Session::updateShadedLighting() {
+  const auto& map = lighting_.environmentMap;
+  if (map != separatedFrom_) {
+    separatedSun_ = map ? scene::separateEnvironmentSun(*map) : std::nullopt;
+    separatedFrom_ = map;
+  }
+  const Lighting before = std::move(shaded_);
+  shaded_ = lighting_;
+  const glm::vec3& artistSun = lighting_.sunIrradiance;
+  if (separatedSun_ && !(std::max({artistSun.r, artistSun.g, artistSun.b}) > 0.0f)) {
+    const scene::EnvironmentSun& sun = separatedSun_->sun;
+    const glm::vec2 cs(std::cos(lighting_.environmentRotation), std::sin(lighting_.environmentRotation));
+    shaded_.sunDirection = -glm::dvec3(shared::tlEnvMapToWorld(glm::vec3(sun.direction), cs));
+    shaded_.sunIrradiance = sun.irradiance * lighting_.environmentIntensity;
+    shaded_.sunAngularRadius = float(sun.angularRadius);
+    shaded_.environmentMap = separatedSun_->sky;
+  }
+  const bool shChanged = shaded_.environmentMap &&
+                         (shaded_.environmentMap != before.environmentMap ||
+                          shaded_.environmentRotation != before.environmentRotation ||
+                          shaded_.environmentIntensity != before.environmentIntensity);
   if (shChanged)
-    environmentSh_ = scene::environmentSh9(*lighting_.environmentMap, lighting_.environmentRotation, lighting_.environmentIntensity);
+    environmentSh_ = scene::environmentSh9(*shaded_.environmentMap, shaded_.environmentRotation, shaded_.environmentIntensity);
+}
+
+std::optional<scene::EnvironmentSun> Session::environmentSun() const {
+  if (!separatedSun_ || shaded_.environmentMap != separatedSun_->sky) return std::nullopt;
+  return separatedSun_->sun;
 }
 
 float autoExposureEv(const Lighting& l, float brightestEmission) {
@@ -321,8 +347,16 @@ float autoExposureEv(const Lighting& l, float brightestEmission) {
   for (const auto& light : l.lights) {
     if (light.hidden) continue;
     const double e = shared::tlLuminance(light.radiometric());
-    // An area light's radiance L lights a surface right under it with at most pi L.
-    const double seen = light.type == scene::LightType::Directional ? e : scene::isAreaLight(light.type) ? glm::pi<double>() * e : e / 4.0;
+    // A point or spot light of intensity I lights a surface 2 m away with I / 4; an area light of
+    // radiance L and emitting area A as much as a point of intensity L A (its area seen face on;
+    // a tube's side 2 r x length), and never more than pi L (a surface touching it).
+    double area = 0.0;
+    if (light.type == scene::LightType::Rect) area = double(light.width) * light.height;
+    if (light.type == scene::LightType::Disk) area = glm::pi<double>() * light.radius * light.radius;
+    if (light.type == scene::LightType::Tube) area = 2.0 * light.radius * light.length;
+    const double seen = light.type == scene::LightType::Directional ? e
+                        : scene::isAreaLight(light.type)           ? std::min(glm::pi<double>() * e, e * area / 4.0)
+                                                                   : e / 4.0;
     brightestLight = std::max(brightestLight, seen);
   }
   const glm::vec3 sky = l.environmentMap ? l.environmentMap->meanRadiance * l.environmentIntensity : l.skyRadiance;
@@ -332,7 +366,7 @@ float autoExposureEv(const Lighting& l, float brightestEmission) {
 }
 
 float Session::exposureEv() const {
-  return lighting_.exposureEv.value_or(autoExposureEv(lighting_, brightestEmission_));
+  return shaded_.exposureEv.value_or(autoExposureEv(shaded_, brightestEmission_));
 }
 
 void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumber, bool jitter) const {
@@ -357,12 +391,12 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
   const View& prev = previousView_.value_or(view_);
   fc.prevViewProj = glm::mat4(previousViewProjRelative(prev, view_.position, aspect));
 
-  glm::dvec3 travel = glm::normalize(lighting_.sunDirection);
+  glm::dvec3 travel = glm::normalize(shaded_.sunDirection);
   SunShadowFit fit = fitSunShadow(view_, aspect, scene_->bounds, travel, settings_.shadowMapSize);
   fc.sunViewProj = glm::mat4(fit.viewProj);
-  fc.sunToLight = glm::vec4(glm::vec3(-travel), lighting_.sunAngularRadius);
-  fc.sunIrradiance = glm::vec4(lighting_.sunIrradiance, 0.0f);
-  fc.skyRadiance = glm::vec4(lighting_.skyRadiance, 0.0f);
+  fc.sunToLight = glm::vec4(glm::vec3(-travel), shaded_.sunAngularRadius);
+  fc.sunIrradiance = glm::vec4(shaded_.sunIrradiance, 0.0f);
+  fc.skyRadiance = glm::vec4(shaded_.skyRadiance, 0.0f);
   fc.viewport = glm::vec4(settings_.width, settings_.height, 1.0f / settings_.width, 1.0f / settings_.height);
   fc.shadowParams = glm::vec4(float(fit.texelWorld), float(fit.texelWorld * settings_.shadowDepthBiasTexels),
                               settings_.shadowNormalOffsetTexels, float(settings_.shadowMapSize));
@@ -370,17 +404,17 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
   fc.exposure = std::exp2(-exposureEv());
   fc.frameIndex = frameNumber;
   fc.cameraAxis = glm::vec4(glm::vec3(view_.forward), view_.orthographic ? 1.0f : 0.0f);
-  fc.flags = glm::length(lighting_.sunIrradiance) > 0.0f ? shared::kFrameFlagSunShadows : 0u;
+  fc.flags = glm::length(shaded_.sunIrradiance) > 0.0f ? shared::kFrameFlagSunShadows : 0u;
   fc.flags |= uint32_t(settings_.materials) << shared::kFrameMaterialsShift;
   if (jitter) fc.flags |= shared::kFrameFlagFramesAveraged;
   fc.sceneScale = float(scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0);
   fc.lightCount = 0;  // renderOne writes the light table and its count
-  if (const auto& map = lighting_.environmentMap) {
+  if (const auto& map = shaded_.environmentMap) {
     fc.flags |= shared::kFrameFlagEnvironment;
     fc.envWidth = map->width;
     fc.envHeight = map->height;
-    fc.envParams = glm::vec4(std::cos(lighting_.environmentRotation), std::sin(lighting_.environmentRotation),
-                             lighting_.environmentIntensity, 0.0f);
+    fc.envParams = glm::vec4(std::cos(shaded_.environmentRotation), std::sin(shaded_.environmentRotation),
+                             shaded_.environmentIntensity, 0.0f);
     for (size_t i = 0; i < environmentSh_.size(); ++i) fc.envSh[i] = environmentSh_[i];
   }
 }
@@ -432,7 +466,7 @@ void Session::beginOne(bool readback) {
   graph.importBuffer(lighting::kBrdfTables, graph::ResourceDesc::buffer(brdfTables_.size(), "the shared BRDF's tables (shared/brdf_lut.h)"), brdfTables_);
   gpuScene_->importBuffers(graph, frame);
   // The light table exists only in frames that have lights to shade: without, no pass reads it.
-  auto lights = lighting::buildLightTable(lighting_.lights, view_.position, fc.sceneScale);
+  auto lights = lighting::buildLightTable(shaded_.lights, view_.position, fc.sceneScale);
   // Point and spot lights' shadow maps (direct, legacy): their views exist only with such lights.
   const scene::Bounds& bounds = scene_->bounds;
   const glm::dvec3 relMin = bounds.valid() ? bounds.min - view_.position : glm::dvec3(-1.0);
@@ -456,7 +490,7 @@ void Session::beginOne(bool readback) {
     graph.importBuffer(lighting::kLightTable, graph::ResourceDesc::buffer(lightTable_.size(), "lights other than the sun (shared/lights.h GpuLight[])"), lightTable_.forFrame(frame));
   }
   // The environment map's table exists only in frames with a map (the reference samples it).
-  if (const auto& map = lighting_.environmentMap) {
+  if (const auto& map = shaded_.environmentMap) {
     if (environmentTableHash_ != map->contentHash || environmentTable_.size() == 0) {
       const std::vector<float> table = scene::environmentTable(*map);
       device_->waitIdle();  // an earlier frame may still read the table being replaced

@@ -124,6 +124,12 @@ class Session {
 
   void setLighting(const Lighting& lighting);
   const Lighting& lighting() const { return lighting_; }
+  // The lighting as frames shade it: lighting(), except that a sun found in the environment map
+  // (scene::separateEnvironmentSun) is taken out of the map and shaded as the sun, shadows and
+  // all, when the artist's own sun is off. environmentSun() is that sun (in the map's frame,
+  // before rotation and intensity), empty when none is in use.
+  const Lighting& shadedLighting() const { return shaded_; }
+  std::optional<scene::EnvironmentSun> environmentSun() const;
   float exposureEv() const;  // the EV in use (explicit or automatic)
 
   // Animations (morph weights, node translation/rotation/scale): the time (seconds, looping
@@ -290,6 +296,10 @@ class Session {
   View view_;
   std::optional<View> previousView_;
   Lighting lighting_;
+  Lighting shaded_;  // shadedLighting()
+  std::shared_ptr<const scene::EnvironmentMap> separatedFrom_;  // the map environmentSun_ was looked for in
+  std::optional<scene::SunAndSky> separatedSun_;
+  void updateShadedLighting();
   std::optional<lighting::DisplayRequest> display_;
   std::string displayMissing_;
   std::unique_ptr<LiveCompare> compare_;

@@ -3,8 +3,8 @@
 //     every path, the same image as the uniform sky's, and the white furnace is 1 in the
 //     reference (whose map is sampled by its table and combined with the BRDF's samples by MIS);
 //   - a map black but for one bright texel is a directional light of irradiance E = L x the
-//     texel's solid angle from the texel's direction: the reference's plane matches the one it
-//     renders under a sun of that irradiance.
+//     texel's solid angle from the texel's direction: every path's plane matches the one it
+//     renders under a sun of that irradiance (the map's sun is separated and shaded as the sun).
 #include "gpu_fixture.h"
 
 #include "lighting/common/composite_pass.h"
@@ -126,7 +126,7 @@ TEST_F(EnvironmentTest, WhiteFurnaceUnderAUniformMapIsOneInTheReference) {
   EXPECT_LT(worst, 0.05);
 }
 
-TEST_F(EnvironmentTest, OneBrightTexelIsADirectionalLightInTheReference) {
+TEST_F(EnvironmentTest, OneBrightTexelIsADirectionalLightInEveryPath) {
   // Texel (40, 9) of a 64 x 32 map, radiance 2000: E = 2000 x its solid angle (~0.0037 sr).
   const uint32_t w = 64, h = 32, c = 40, r = 9;
   std::vector<glm::vec3> t(size_t(w) * h, glm::vec3(0.0f));
@@ -134,14 +134,27 @@ TEST_F(EnvironmentTest, OneBrightTexelIsADirectionalLightInTheReference) {
   auto map = std::make_shared<const scene::EnvironmentMap>(scene::makeEnvironmentMap(w, h, t));
   const double e = 2000.0 * scene::environmentTexelSolidAngle(*map, r);
   const glm::vec3 toTexel = shared::tlEquirectDirection(glm::vec2((c + 0.5f) / w, (r + 0.5f) / h));
-  const double fromMap = planeMean("reference", map, 0.0f, 8);
-  const double fromSun = planeMean("reference", nullptr, 0.0f, 8, glm::vec3(float(e)), -glm::dvec3(toTexel));
-  const double want = albedo("reference") / shared::kPi * e * toTexel.y;
-  std::printf("one bright texel (E = %.4f, cos %.4f): plane %.5f, under a sun of that E %.5f, closed form %.5f\n", e, toTexel.y,
-              fromMap, fromSun, want);
-  // The texel spans 5.6 x 5.6 degrees: cos theta over it averages to its centre's within 0.1%.
-  EXPECT_NEAR(fromMap / want, 1.0, 0.01);
-  EXPECT_NEAR(fromMap / fromSun, 1.0, 0.01);
+  // The map's sun is separated from it (scene::separateEnvironmentSun) and shaded as the sun in
+  // every path: before, the real-time paths spread it over order-2 SH.
+  auto& s = session();
+  s.loadScene(contentFile("plane.gltf"));
+  session::Lighting l = s.lighting();
+  l.environmentMap = map;
+  s.setLighting(l);
+  const auto sun = s.environmentSun();
+  ASSERT_TRUE(sun.has_value());
+  EXPECT_NEAR(sun->irradiance.r, e, 1e-3 * e);
+  EXPECT_GT(glm::dot(sun->direction, glm::dvec3(toTexel)), std::cos(glm::radians(0.01)));
+  for (const auto& p : kPaths) {
+    const double fromMap = planeMean(p.path, map, 0.0f, p.frames);
+    const double fromSun = planeMean(p.path, nullptr, 0.0f, p.frames, glm::vec3(float(e)), -glm::dvec3(toTexel));
+    const double want = albedo(p.path) / shared::kPi * e * toTexel.y;
+    std::printf("%-9s one bright texel (E = %.4f, cos %.4f): plane %.5f, under a sun of that E %.5f, closed form %.5f\n",
+                p.path, e, toTexel.y, fromMap, fromSun, want);
+    // The texel spans 5.6 x 5.6 degrees: cos theta over it averages to its centre's within 0.1%.
+    EXPECT_NEAR(fromMap / want, 1.0, 0.01) << p.path;
+    EXPECT_NEAR(fromMap / fromSun, 1.0, 0.01) << p.path;
+  }
 }
 
 }  // namespace

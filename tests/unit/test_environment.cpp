@@ -45,6 +45,51 @@ TEST(EnvironmentMap, DirectionsRoundTripAndTheCentreLooksForward) {
   EXPECT_NEAR(q.x, -1.0f, 1e-6f);
 }
 
+// A map of a uniform sky L = 0.3 and a sun disc of 2 degrees radius, 5000 times brighter, at a
+// known direction (to texel accuracy: the disc is every texel whose centre lies within it).
+TEST(EnvironmentMap, ASunIsSeparatedFromItsSkyWithItsLightDirectionAndSize) {
+  const uint32_t w = 512, h = 256;
+  const glm::dvec3 toSun = glm::normalize(glm::dvec3(0.4, 0.6, -0.5));
+  const double radius = glm::radians(2.0);
+  std::vector<glm::vec3> t(size_t(w) * h, glm::vec3(0.3f));
+  const EnvironmentMap probe = makeEnvironmentMap(w, h, t);
+  double sunOmega = 0.0;
+  glm::dvec3 sunSum(0.0);
+  for (uint32_t r = 0; r < h; ++r)
+    for (uint32_t c = 0; c < w; ++c) {
+      const glm::dvec3 d(shared::tlEquirectDirection(glm::vec2((c + 0.5f) / w, (r + 0.5f) / h)));
+      if (glm::dot(d, toSun) < std::cos(radius)) continue;
+      t[size_t(r) * w + c] = glm::vec3(1500.0f);
+      sunOmega += environmentTexelSolidAngle(probe, r);
+      sunSum += d * environmentTexelSolidAngle(probe, r);
+    }
+  const EnvironmentMap map = makeEnvironmentMap(w, h, t);
+  const auto split = separateEnvironmentSun(map);
+  ASSERT_TRUE(split.has_value());
+  // Its light above the sky behind it: (1500 - 0.3) x its solid angle, exactly (the texels' own).
+  EXPECT_NEAR(split->sun.irradiance.r, (1500.0 - 0.3) * sunOmega, 1e-4 * 1500.0 * sunOmega);
+  EXPECT_GT(glm::dot(split->sun.direction, glm::normalize(sunSum)), std::cos(glm::radians(0.01)));
+  EXPECT_GT(glm::dot(split->sun.direction, toSun), std::cos(glm::radians(0.3)));  // the disc's texel grid
+  EXPECT_NEAR(glm::degrees(split->sun.angularRadius), 2.0, 0.15);
+  // The sky keeps the rest: uniform 0.3 everywhere, and sun plus sky hold the map's light.
+  for (const glm::vec3& texel : split->sky->radiance) ASSERT_NEAR(texel.r, 0.3f, 1e-6f);
+  const double before = 4.0 * M_PI * map.meanRadiance.r, after = 4.0 * M_PI * split->sky->meanRadiance.r + split->sun.irradiance.r;
+  EXPECT_NEAR(after / before, 1.0, 1e-6);
+}
+
+TEST(EnvironmentMap, AnOvercastMapOrADimHighlightHasNoSun) {
+  const uint32_t w = 128, h = 64;
+  std::vector<glm::vec3> t(size_t(w) * h);
+  for (uint32_t r = 0; r < h; ++r)
+    for (uint32_t c = 0; c < w; ++c) t[size_t(r) * w + c] = glm::vec3(0.2f + 0.8f * float(h - r) / float(h));
+  EXPECT_FALSE(separateEnvironmentSun(makeEnvironmentMap(w, h, t)).has_value()) << "an overcast gradient";
+  // One texel 100 times the mean, but holding far less than a fifth of the light.
+  t[size_t(10) * w + 20] = glm::vec3(60.0f);
+  EXPECT_FALSE(separateEnvironmentSun(makeEnvironmentMap(w, h, t)).has_value()) << "a small highlight";
+  EXPECT_FALSE(separateEnvironmentSun(makeEnvironmentMap(w, h, std::vector<glm::vec3>(size_t(w) * h, glm::vec3(0.0f)))))
+      << "a black map";
+}
+
 TEST(EnvironmentMap, TexelSolidAnglesCoverTheSphere) {
   const EnvironmentMap m = uniform(64, 32, glm::vec3(1.0f));
   double sum = 0.0;
