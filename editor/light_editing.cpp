@@ -61,7 +61,7 @@ void EditorApp::addLight(scene::LightType type) {
   light.position = v.position + glm::normalize(v.forward) * away;
   size_t same = 1;
   for (const auto& other : l.lights) same += other.type == type;
-  light.name = fmt::format("{} {}", lightTypeLabel(type), same);
+  light.name = fmt::format("{} {}", scene::lightTypeName(type), same);
   l.lights.push_back(light);
   session_->setLighting(l);
   selectLight(l.lights.size() - 1);

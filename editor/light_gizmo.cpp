@@ -168,18 +168,6 @@ std::optional<size_t> lightIconAt(const ViewportProjection& p, const std::vector
   return best;
 }
 
-const char* lightTypeLabel(scene::LightType t) {
-  switch (t) {
-    case scene::LightType::Directional: return "directional";
-    case scene::LightType::Spot: return "spot";
-    case scene::LightType::Rect: return "rect";
-    case scene::LightType::Disk: return "disk";
-    case scene::LightType::Tube: return "tube";
-    case scene::LightType::Point: break;
-  }
-  return "point";
-}
-
 const char* lightIntensityUnit(scene::LightType t) {
   if (t == scene::LightType::Directional) return "lux";
   return scene::isAreaLight(t) ? "nits" : "cd";
@@ -204,7 +192,7 @@ void drawLightOverlay(ImDrawList* draw, const ViewportProjection& p, const std::
     }
     if (l.hidden) draw->AddCircle(vec(*at), kIconRadius, colour, 16, 1.5f);
     else draw->AddCircleFilled(vec(*at), kIconRadius, IM_COL32(20, 20, 24, 200), 16), draw->AddCircle(vec(*at), kIconRadius, colour, 16, 2.0f);
-    const char letter[2] = {char(std::toupper(lightTypeLabel(l.type)[0])), 0};
+    const char letter[2] = {char(std::toupper(scene::lightTypeName(l.type)[0])), 0};
     const ImVec2 text = ImGui::CalcTextSize(letter);
     draw->AddText(ImVec2(at->x - 0.5f * text.x, at->y - 0.5f * text.y), colour, letter);
     if (isSelected) draw->AddCircle(vec(*at), kIconRadius + 3.0f, IM_COL32(255, 220, 80, 255), 20, 2.0f);

@@ -78,9 +78,7 @@ glm::dvec3 iconPosition(const scene::Light& light);
 void drawLightOverlay(ImDrawList* draw, const ViewportProjection& p, const std::vector<scene::Light>& lights,
                       std::optional<size_t> selected, GizmoHandle active);
 
-// A short name for a light's kind: "point", "spot", "directional", "rect", "disk", "tube".
-const char* lightTypeLabel(scene::LightType t);
-// Its intensity's unit as glTF and the lighting file use it.
+// A light's intensity unit as glTF and the lighting file use it: lux, cd or nits.
 const char* lightIntensityUnit(scene::LightType t);
 
 }  // namespace tl::editor

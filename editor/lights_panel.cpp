@@ -63,7 +63,7 @@ bool lightProperties(scene::Light& l) {
   std::snprintf(name, sizeof name, "%s", l.name.c_str());
   if (ImGui::InputText("Name", name, sizeof name)) l.name = name, changed = true;
   tooltip("Saved as the light's name in the glTF (KHR_lights_punctual) and the lighting file");
-  ImGui::Text("Type      %s", lightTypeLabel(l.type));
+  ImGui::Text("Type      %s", scene::lightTypeName(l.type));
   changed |= ImGui::ColorEdit3("Colour", &l.color.x, ImGuiColorEditFlags_Float);
   tooltip("Linear RGB multiplying the intensity");
   static float kelvin = 6500.0f;
@@ -131,8 +131,8 @@ void lightsOutlinerTab(EditorApp& app) {
   tooltip("Add a light in front of the camera");
   if (ImGui::BeginPopup("add light")) {
     for (LightType t : kAddable) {
-      if (ImGui::MenuItem(lightTypeLabel(t))) app.addLight(t);
-      trackItem(fmt::format("lights.add.{}", lightTypeLabel(t)));
+      if (ImGui::MenuItem(scene::lightTypeName(t))) app.addLight(t);
+      trackItem(fmt::format("lights.add.{}", scene::lightTypeName(t)));
       tooltip(addTooltip(t));
     }
     ImGui::EndPopup();
@@ -164,7 +164,7 @@ void lightsOutlinerTab(EditorApp& app) {
     trackItem(fmt::format("lights.visible.{}", i));
     tooltip("Shown or hidden: a hidden light is kept and saved (in the lighting file), not shaded");
     ImGui::SameLine();
-    const std::string label = fmt::format("{} ({})", light.name.empty() ? "unnamed" : light.name, lightTypeLabel(light.type));
+    const std::string label = fmt::format("{} ({})", light.name.empty() ? "unnamed" : light.name, scene::lightTypeName(light.type));
     if (ImGui::Selectable(label.c_str(), selected && *selected == i)) app.selectLight(i);
     trackItem(fmt::format("lights.row.{}", i));
     ImGui::PopID();

@@ -12,7 +12,7 @@ namespace tl::editor {
 namespace {
 
 std::string describe(const scene::Light& l) {
-  std::string text = fmt::format("{} ({}) at {:.3f} {:.3f} {:.3f}", l.name, lightTypeLabel(l.type), l.position.x,
+  std::string text = fmt::format("{} ({}) at {:.3f} {:.3f} {:.3f}", l.name, scene::lightTypeName(l.type), l.position.x,
                                  l.position.y, l.position.z);
   if (l.type != scene::LightType::Point) {
     const glm::dvec3 d = glm::normalize(l.direction);

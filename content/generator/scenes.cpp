@@ -34,6 +34,14 @@ void writeChecker(const std::filesystem::path& file) {
     throw std::runtime_error("cannot write " + file.string());
 }
 
+// A lighting sidecar (session/lighting_file.h) beside a scene; a failed write is an error.
+void writeLightingSidecar(const std::filesystem::path& file, const char* text) {
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.close();  // a failed flush shows only after close
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
 // A box-shaped wall piece as its own node: boxes have real thickness, so light does not
 // leak through the seams the way it does through single-sided quads.
 void wall(SceneWriter& w, const std::string& name, int material, glm::vec3 center, glm::vec3 size) {
@@ -562,8 +570,7 @@ void areaRoom(const std::filesystem::path& dir) {
   w.sky({0.0f, 0.0f, 0.0f});
   w.write(dir);
   // The sidecar: what `--lighting` reads (session/lighting_file.h), intensities in nits.
-  std::ofstream sidecar(dir / "area_room.lighting.json", std::ios::binary | std::ios::trunc);
-  sidecar << R"({
+  writeLightingSidecar(dir / "area_room.lighting.json", R"({
   "format": "twinlight.lighting",
   "version": 1,
   "sun": {"direction": [0.3, -1, 0.2], "irradiance": 0},
@@ -579,9 +586,7 @@ void areaRoom(const std::filesystem::path& dir) {
      "temperature_k": 2700, "intensity": 20000}
   ]
 }
-)";
-  sidecar.close();  // a failed flush shows only after close
-  if (!sidecar) throw std::runtime_error("cannot write area_room.lighting.json");
+)");
 }
 
 // The lamps room with one area light more: a 0.8 x 0.4 m ceiling panel of 2000 nits over the
@@ -589,8 +594,7 @@ void areaRoom(const std::filesystem::path& dir) {
 // not named lamps.lighting.json, so the editor does not read it for lamps.gltf by itself). The
 // interior of issue T11's content: point, spot and area lights together.
 void lampsWithPanel(const std::filesystem::path& dir) {
-  std::ofstream sidecar(dir / "lamps_with_panel.lighting.json", std::ios::binary | std::ios::trunc);
-  sidecar << R"({
+  writeLightingSidecar(dir / "lamps_with_panel.lighting.json", R"({
   "format": "twinlight.lighting",
   "version": 1,
   "sun": {"direction": [0.3, -1, 0.2], "irradiance": 0},
@@ -607,9 +611,7 @@ void lampsWithPanel(const std::filesystem::path& dir) {
      "width": 0.8, "height": 0.4, "temperature_k": 4000, "intensity": 2000}
   ]
 }
-)";
-  sidecar.close();  // a failed flush shows only after close
-  if (!sidecar) throw std::runtime_error("cannot write lamps_with_panel.lighting.json");
+)");
 }
 
 // An equirectangular sky for the HDRI-lit exterior (radiance on Twinlight's scale, row 0 at the
@@ -676,8 +678,7 @@ void courtyard(const std::filesystem::path& dir) {
   w.sky({0.0f, 0.0f, 0.0f});
   w.write(dir);
   writeCourtyardSky(dir / "environments" / "courtyard_sky.exr");
-  std::ofstream sidecar(dir / "courtyard.lighting.json", std::ios::binary | std::ios::trunc);
-  sidecar << R"({
+  writeLightingSidecar(dir / "courtyard.lighting.json", R"({
   "format": "twinlight.lighting",
   "version": 1,
   "sun": {"direction": [0.3, -1, 0.2], "irradiance": 0},
@@ -686,9 +687,7 @@ void courtyard(const std::filesystem::path& dir) {
   "environment": {"file": "environments/courtyard_sky.exr", "rotation_deg": 0, "intensity": 1},
   "lights": []
 }
-)";
-  sidecar.close();
-  if (!sidecar) throw std::runtime_error("cannot write courtyard.lighting.json");
+)");
 }
 
 // Many lights: 256 point lights (a 16 x 16 grid, 0.5 m apart, 0.8 to 2.3 m up, 8 to 68 cd,

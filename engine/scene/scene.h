@@ -215,6 +215,18 @@ struct Camera {
 // from the lighting sidecar (session/lighting_file.h) and are never written into a glTF.
 enum class LightType : uint8_t { Directional, Point, Spot, Rect, Disk, Tube };
 inline bool isAreaLight(LightType t) { return t == LightType::Rect || t == LightType::Disk || t == LightType::Tube; }
+// The name KHR_lights_punctual and the lighting file give a kind of light (the editor shows it too).
+inline const char* lightTypeName(LightType t) {
+  switch (t) {
+    case LightType::Directional: return "directional";
+    case LightType::Spot: return "spot";
+    case LightType::Rect: return "rect";
+    case LightType::Disk: return "disk";
+    case LightType::Tube: return "tube";
+    case LightType::Point: break;
+  }
+  return "point";
+}
 
 // KHR_lights_punctual, in its units: directional intensity is illuminance in lux, point and spot
 // intensity is luminous intensity in candela. Twinlight shades them on its radiometric scale,

@@ -125,7 +125,7 @@ glm::dmat4 lightWorld(const scene::Light& l) {
 json lightJson(const scene::Light& l) {
   json o = json::object();
   if (!l.name.empty()) o["name"] = l.name;
-  o["type"] = l.type == scene::LightType::Directional ? "directional" : l.type == scene::LightType::Spot ? "spot" : "point";
+  o["type"] = scene::lightTypeName(l.type);  // directional, point or spot: area lights never come here
   o["color"] = json::array({double(l.color.r), double(l.color.g), double(l.color.b)});
   o["intensity"] = double(l.intensity);
   if (l.range && l.type != scene::LightType::Directional) o["range"] = double(*l.range);

@@ -256,18 +256,6 @@ using ordered = nlohmann::ordered_json;
 ordered colorJson(const glm::vec3& c) { return ordered::array({double(c.r), double(c.g), double(c.b)}); }
 ordered vecJson(const glm::dvec3& v) { return ordered::array({v.x, v.y, v.z}); }
 
-const char* lightTypeName(scene::LightType t) {
-  switch (t) {
-    case scene::LightType::Directional: return "directional";
-    case scene::LightType::Spot: return "spot";
-    case scene::LightType::Rect: return "rect";
-    case scene::LightType::Disk: return "disk";
-    case scene::LightType::Tube: return "tube";
-    case scene::LightType::Point: break;
-  }
-  return "point";
-}
-
 }  // namespace
 
 std::filesystem::path lightingSidecarPath(const std::filesystem::path& scene) {
@@ -389,7 +377,7 @@ std::string lightingJson(const Lighting& lighting, const std::filesystem::path& 
   for (const auto& l : lighting.lights) {
     ordered o = ordered::object();
     o["name"] = l.name;
-    o["type"] = lightTypeName(l.type);
+    o["type"] = scene::lightTypeName(l.type);
     if (l.type != scene::LightType::Directional) o["position"] = vecJson(l.position);
     if (l.type != scene::LightType::Point) o["direction"] = vecJson(unit(l.direction));
     o["color"] = colorJson(l.color);
