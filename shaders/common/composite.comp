@@ -7,6 +7,7 @@
 #include "shared/packing.h"
 #include "shared/shading.h"
 #include "shared/sh.h"
+#include "shared/environment.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; };
@@ -22,6 +23,7 @@ layout(set = 0, binding = kCompositeSunVisibility) uniform sampler2D sunVisibili
 layout(push_constant) uniform Push { CompositePush push; };
 
 #include "common/camera.glsl"
+#include "common/environment.glsl"
 #include "common/path_indirect.glsl"
 
 #define TL_SUN_SHADOW_PCSS
@@ -35,7 +37,8 @@ void main() {
   float depth = texelFetch(gDepth, p, 0).r;
   if (depth <= 0.0) {  // reversed Z: nothing drawn, the sky is visible
     vec2 ndc = (vec2(p) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
-    imageStore(outRadiance, p, vec4(tlSkyRadiance(frame, cameraRay(ndc).direction), 1.0));
+    // The background is the map itself (its texels), as the reference's escaping rays see it.
+    imageStore(outRadiance, p, vec4(environmentRadiance(cameraRay(ndc).direction), 1.0));
     return;
   }
   vec2 uv = (vec2(p) + 0.5) * frame.viewport.zw;

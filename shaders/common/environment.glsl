@@ -1,7 +1,7 @@
 // The environment map's texels and their importance table (shared/environment.h), as the
-// reference path samples them. The includer includes shared/frame.h and shared/environment.h
-// and declares `frame`; the table is bound only in frames with kFrameFlagEnvironment (else a
-// stand-in buffer no code reads).
+// reference path samples them and every path's background shows them. The includer includes
+// shared/frame.h and shared/environment.h and declares `frame`; the table is bound only in
+// frames with kFrameFlagEnvironment (an optional binding: no code reads it otherwise).
 layout(std430, set = 0, binding = kBindingEnvironment) readonly buffer EnvironmentTable { float envTable[]; };
 
 bool environmentMapOn() { return (frame.flags & kFrameFlagEnvironment) != 0u; }

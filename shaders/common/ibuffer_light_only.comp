@@ -7,6 +7,7 @@
 #include "shared/packing.h"
 #include "shared/redeferred.h"
 #include "shared/shading.h"
+#include "shared/environment.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; };
@@ -20,6 +21,7 @@ layout(set = 0, binding = kIbufferLightsMs) uniform sampler2D iMs;
 layout(set = 0, binding = kIbufferOutDg, rgba32f) uniform writeonly image2D outLight;
 
 #include "common/camera.glsl"
+#include "common/environment.glsl"
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -27,7 +29,7 @@ void main() {
   float depth = texelFetch(gDepth, p, 0).r;
   vec2 uv = (vec2(p) + 0.5) * frame.viewport.zw;
   if (depth <= 0.0) {  // reversed Z: nothing drawn, the sky is visible
-    imageStore(outLight, p, vec4(tlSkyRadiance(frame, cameraRay(uv * 2.0 - 1.0).direction), 1.0));
+    imageStore(outLight, p, vec4(environmentRadiance(cameraRay(uv * 2.0 - 1.0).direction), 1.0));
     return;
   }
   vec3 n = tlOctDecode(texelFetch(gNormal, p, 0).xy);

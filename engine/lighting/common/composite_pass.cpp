@@ -2,6 +2,7 @@
 #include "lighting/common/taa_pass.h"
 
 #include "graph/executor.h"
+#include "lighting/common/environment_table.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/hybrid_shadow_pass.h"
 #include "lighting/common/pass_builders.h"
@@ -80,6 +81,7 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
       .optionalSampled(shared::kCompositeShadowDepth, kShadowSunDepth, sun && !hybrid)
       .optionalSampled(shared::kCompositeSunVisibility, kShadowSunVisibility, hybrid)
       .optionalSampled(shared::kCompositeLights, path.lightsRadiance, !path.lightsRadiance.empty())
+      .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, hasEnvironmentMap(in))  // the background
       .storageOut(shared::kCompositeOutput, output, in.temporalAntialiasing ? unresolvedDesc : hdrDesc);
   addPathInputs(pass, path, push.flags);
   pass.push(push).dispatch(w, h).add(graph);

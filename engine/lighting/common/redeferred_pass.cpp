@@ -3,6 +3,7 @@
 #include "graph/executor.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/decoders.h"
+#include "lighting/common/environment_table.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/hybrid_shadow_pass.h"
 #include "lighting/common/pass_builders.h"
@@ -64,6 +65,7 @@ void RedeferredPass::add(graph::RenderGraph& graph, FrameInputs& in, const share
   ComputePass pass(in.device, "redeferred.material", "common/redeferred_material.comp");
   addCompositeGbuffer(pass);
   pass.sampled(shared::kCompositeEmissive, "gbuffer.emissive")
+      .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, hasEnvironmentMap(in))  // the background
       .storageOut(shared::kCompositeOutput, output, outputDesc);
   for (size_t q = 0; q < kIbuffer.size(); ++q) pass.sampled(kSampledBinding[q], kIbuffer[q]);
   addPathInputs(pass, path, push.flags);
@@ -131,6 +133,7 @@ void RedeferredPass::addLightOnly(graph::RenderGraph& graph, FrameInputs& in) {
   const uint32_t w = in.settings.width, h = in.settings.height;
   ComputePass pass(in.device, "ibuffer.lightOnly", "common/ibuffer_light_only.comp");
   addIbufferSurface(pass);
+  pass.optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, hasEnvironmentMap(in));  // the background
   pass.storageOut(shared::kIbufferOutDg, kIbufferLightOnly,
                   graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                                "light only: the I-buffer resolved against white (no materials)"));
