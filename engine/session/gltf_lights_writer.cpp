@@ -176,13 +176,8 @@ void listExtension(json& doc, const char* list, bool used) {
   else names = std::move(kept);
 }
 
-}  // namespace
-
-std::vector<uint32_t> writeGltfLights(const std::filesystem::path& file, const std::vector<scene::Light>& lights) {
-  for (const auto& l : lights)
-    if (scene::isAreaLight(l.type)) fail(file, fmt::format("light `{}` is an area light (glTF has none: the lighting sidecar holds it)", l.name));
-  GltfFile g = readGltf(file);
-  json& doc = g.document;
+// Writes `lights` into the document: the lights array, their nodes, the extension lists.
+std::vector<uint32_t> placeLights(json& doc, const std::vector<scene::Light>& lights, const std::filesystem::path& file) {
   if (!doc.contains("nodes")) doc["nodes"] = json::array();
   json& nodes = doc["nodes"];
   if (!nodes.is_array()) fail(file, "`nodes` is not an array");
@@ -301,7 +296,21 @@ std::vector<uint32_t> writeGltfLights(const std::filesystem::path& file, const s
   }
   listExtension(doc, "extensionsUsed", !lights.empty());
   if (lights.empty()) listExtension(doc, "extensionsRequired", false);
+  return placed;
+}
 
+}  // namespace
+
+std::vector<uint32_t> writeGltfLights(const std::filesystem::path& file, const std::vector<scene::Light>& lights) {
+  for (const auto& l : lights)
+    if (scene::isAreaLight(l.type)) fail(file, fmt::format("light `{}` is an area light (glTF has none: the lighting sidecar holds it)", l.name));
+  GltfFile g = readGltf(file);
+  std::vector<uint32_t> placed;
+  try {
+    placed = placeLights(g.document, lights, file);
+  } catch (const json::exception& e) {  // a value of another type than glTF gives it ("extensions": 3)
+    fail(file, fmt::format("its JSON is not shaped as glTF says: {}", e.what()));
+  }
   const std::string bytes = serialise(g);
   writeFileAtomically(file, [&](const std::string& tmp) {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);

@@ -179,6 +179,14 @@ TEST_F(GltfLightsWriterTest, AnAreaLightOrABrokenFileIsOneErrorAndTheFileStaysAs
     EXPECT_NE(std::string(e.what()).find("broken.gltf"), std::string::npos) << e.what();
   }
   EXPECT_EQ(readBytes(broken), "{\"asset\": ");
+  // JSON, but a value of another type than glTF gives it: one error, the file as it was.
+  const fs::path odd = scratch.path / "odd.gltf";
+  const std::string oddText = R"({"asset": {"version": "2.0"}, "extensions": 3, "nodes": []})";
+  std::ofstream(odd) << oddText;
+  Light lamp;
+  lamp.name = "lamp";
+  EXPECT_THROW(writeGltfLights(odd, {lamp}), SessionError);
+  EXPECT_EQ(readBytes(odd), oddText);
 }
 
 // The editor's save: the sun and the shown punctual lights into the glTF, everything into the
