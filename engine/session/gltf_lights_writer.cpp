@@ -179,15 +179,30 @@ void listExtension(json& doc, const char* list, bool used) {
 // Writes `lights` into the document: the lights array, their nodes, the extension lists.
 std::vector<uint32_t> placeLights(json& doc, const std::vector<scene::Light>& lights, const std::filesystem::path& file) {
   if (!doc.contains("nodes")) doc["nodes"] = json::array();
+  if (!doc["nodes"].is_array()) fail(file, "`nodes` is not an array");
+  // Who is whose parent.
+  const size_t nodeCount = doc["nodes"].size();
+  std::vector<int64_t> parent(nodeCount, -1);
+  for (size_t i = 0; i < nodeCount; ++i) {
+    const json& node = doc["nodes"][i];
+    if (node.contains("children") && node["children"].is_array())
+      for (const auto& c : node["children"])
+        if (c.is_number_unsigned() && c.get<uint64_t>() < nodeCount) parent[c.get<size_t>()] = int64_t(i);
+  }
+  // The scene the lights join: the file's default scene. A file without scenes gets one that
+  // holds its roots, as the importer shows them.
+  if (!doc.contains("scenes") || !doc["scenes"].is_array() || doc["scenes"].empty()) {
+    json roots = json::array();
+    for (size_t n = 0; n < nodeCount; ++n)
+      if (parent[n] < 0) roots.push_back(n);
+    doc["scenes"] = json::array({json{{"nodes", std::move(roots)}}});
+    doc["scene"] = 0;
+  }
+  // No key is added to the document's top level from here until the lights table at the end: an
+  // ordered JSON object keeps its members in a vector, so a new key would move `nodes` and
+  // `sceneRoots` away under their references.
   json& nodes = doc["nodes"];
-  if (!nodes.is_array()) fail(file, "`nodes` is not an array");
-
-  // Who is whose parent, and which nodes an animation moves.
-  std::vector<int64_t> parent(nodes.size(), -1);
-  for (size_t i = 0; i < nodes.size(); ++i)
-    if (nodes[i].contains("children") && nodes[i]["children"].is_array())
-      for (const auto& c : nodes[i]["children"])
-        if (c.is_number_unsigned() && c.get<uint64_t>() < nodes.size()) parent[c.get<size_t>()] = int64_t(i);
+  // Which nodes an animation moves.
   std::set<size_t> animated;
   if (doc.contains("animations") && doc["animations"].is_array())
     for (const auto& a : doc["animations"])
@@ -213,15 +228,6 @@ std::vector<uint32_t> placeLights(json& doc, const std::vector<scene::Light>& li
   for (size_t n = 0; n < nodes.size(); ++n) reusable[n] = holdsOnlyALight(n);
   for (auto& node : nodes) eraseExtension(node);
 
-  // The scene the lights join: the file's default scene. A file without scenes gets one that
-  // holds its roots, as the importer shows them.
-  if (!doc.contains("scenes") || !doc["scenes"].is_array() || doc["scenes"].empty()) {
-    json roots = json::array();
-    for (size_t n = 0; n < nodes.size(); ++n)
-      if (parent[n] < 0) roots.push_back(n);
-    doc["scenes"] = json::array({json{{"nodes", std::move(roots)}}});
-    doc["scene"] = 0;
-  }
   size_t sceneIndex = doc.contains("scene") && doc["scene"].is_number_unsigned() ? doc["scene"].get<size_t>() : 0;
   if (sceneIndex >= doc["scenes"].size()) sceneIndex = 0;
   json& scene = doc["scenes"][sceneIndex];
