@@ -163,8 +163,10 @@ bool EditorApp::handleLightOverlayInput(glm::vec2 mouse) {
     const ViewportProjection p = viewportProjection();
     if (gizmoDrag_->light < l.lights.size()) {
       const scene::Light moved = draggedLight(*gizmoDrag_, p, mouse);
-      l.lights[gizmoDrag_->light] = moved;
-      session_->setLighting(l);
+      if (!session::sameLight(moved, l.lights[gizmoDrag_->light])) {  // a held, unmoved mouse changes nothing
+        l.lights[gizmoDrag_->light] = moved;
+        session_->setLighting(l);
+      }
       if (!ImGui::IsMouseDown(0)) lastGizmoDrag_ = FinishedGizmoDrag{*gizmoDrag_, mouse, moved, p};
     }
     if (!ImGui::IsMouseDown(0)) gizmoDrag_.reset(), overlayPress_ = false;

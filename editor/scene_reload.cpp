@@ -10,24 +10,6 @@
 #include <spdlog/spdlog.h>
 
 namespace tl::editor {
-namespace {
-
-// The light installScene gives a scene: an edit away from it is the artist's, and kept.
-bool sceneLighting(const session::Lighting& l, const scene::Scene& s) {
-  const scene::Environment& env = s.environment;
-  session::Lighting fromScene = l;
-  fromScene.sunDirection = env.sunDirection;
-  fromScene.sunIrradiance = env.sunFromFile ? env.sunIrradiance : glm::vec3(0.0f);
-  fromScene.skyRadiance = env.skyRadiance;
-  fromScene.exposureEv.reset();
-  fromScene.lights.clear();
-  for (size_t i = 0; i < s.lights.size(); ++i)
-    if (i != env.sunLight) fromScene.lights.push_back(s.lights[i]);
-  return session::sameLighting(l, fromScene);
-}
-
-}  // namespace
-
 void EditorApp::watchScene() {
   std::vector<std::filesystem::path> files;
   if (session_->hasScene()) {
@@ -51,7 +33,9 @@ void EditorApp::reloadScene() {
   if (selected_ && *selected_ < s.instances.size()) kept.selected = s.instances[*selected_].name;
   for (const auto& e : session_->albedo().entries())
     if (e.override) kept.overrides.push_back({e.combination.key, *e.override, e.combination.label});
-  if (!sceneLighting(session_->lighting(), s)) kept.lighting = session_->lighting();
+  // The lighting the scene brought is reloaded with it; an edit away from it is the artist's, and kept.
+  const session::Lighting& now = session_->lighting();
+  if (!session::sameLighting(now, session::sceneLighting(s, now))) kept.lighting = now;
   kept.animationTime = session_->animationTime();
   keptAcrossReload_ = std::move(kept);
   spdlog::info("{} changed on disk: reloading", s.path.string());

@@ -7,15 +7,12 @@
 
 namespace tl::session {
 
-namespace {
-// Everything an artist edits on a light (the node it is saved to is bookkeeping, not an edit).
 bool sameLight(const scene::Light& a, const scene::Light& b) {
   return a.name == b.name && a.type == b.type && a.color == b.color && a.intensity == b.intensity && a.range == b.range &&
          a.innerConeAngle == b.innerConeAngle && a.outerConeAngle == b.outerConeAngle && a.position == b.position &&
          a.direction == b.direction && a.width == b.width && a.height == b.height && a.radius == b.radius &&
          a.length == b.length && a.twoSided == b.twoSided && a.widthAxis == b.widthAxis && a.hidden == b.hidden;
 }
-}  // namespace
 
 bool sameLighting(const Lighting& a, const Lighting& b) {
   return a.sunDirection == b.sunDirection && a.sunIrradiance == b.sunIrradiance && a.skyRadiance == b.skyRadiance &&

@@ -57,5 +57,7 @@ class EditHistory {
 };
 
 bool sameLighting(const Lighting& a, const Lighting& b);
+// Everything an artist edits on a light (the node it is saved to is bookkeeping, not an edit).
+bool sameLight(const scene::Light& a, const scene::Light& b);
 
 }  // namespace tl::session

@@ -108,22 +108,28 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
   appliedJoints_.assign(scene_->meshes.size(), {});  // the upload holds skinned meshes in their bind pose
   for (size_t m = 0; m < scene_->meshes.size(); ++m) appliedWeights_[m].assign(scene_->meshes[m].morphTargets.size(), 0.0f);
 
-  const auto& env = scene_->environment;
-  lighting_.sunDirection = env.sunDirection;
-  lighting_.sunIrradiance = env.sunFromFile ? env.sunIrradiance : glm::vec3(0.0f);
-  lighting_.skyRadiance = env.skyRadiance;
-  lighting_.sunName = env.sunLight ? scene_->lights[*env.sunLight].name : std::string();
-  lighting_.sunNode = env.sunLight ? scene_->lights[*env.sunLight].node : std::nullopt;
-  lighting_.lights.clear();
-  for (size_t i = 0; i < scene_->lights.size(); ++i)
-    if (i != env.sunLight) lighting_.lights.push_back(scene_->lights[i]);
-  lighting_.exposureEv.reset();
+  lighting_ = sceneLighting(*scene_, std::move(lighting_));
   updateShadedLighting();
   brightestEmission_ = 0.0f;
   for (const auto& m : scene_->materials)
     brightestEmission_ = std::max(brightestEmission_, shared::tlLuminance(m.emissiveFactor * m.emissiveStrength));
   if (!scene_->cameras.empty()) useSceneCamera(0);
   else fitViewToScene();
+}
+
+Lighting sceneLighting(const scene::Scene& s, Lighting kept) {
+  const scene::Environment& env = s.environment;
+  Lighting l = std::move(kept);
+  l.sunDirection = env.sunDirection;
+  l.sunIrradiance = env.sunFromFile ? env.sunIrradiance : glm::vec3(0.0f);
+  l.skyRadiance = env.skyRadiance;
+  l.sunName = env.sunLight ? s.lights[*env.sunLight].name : std::string();
+  l.sunNode = env.sunLight ? s.lights[*env.sunLight].node : std::nullopt;
+  l.lights.clear();
+  for (size_t i = 0; i < s.lights.size(); ++i)
+    if (i != env.sunLight) l.lights.push_back(s.lights[i]);
+  l.exposureEv.reset();
+  return l;
 }
 
 void Session::openAlbedoDatabase(const std::filesystem::path& file, bool create) {
@@ -467,7 +473,7 @@ void Session::beginOne(bool readback) {
   gpuScene_->importBuffers(graph, frame);
   // The light table exists only in frames that have lights to shade: without, no pass reads it.
   auto lights = lighting::buildLightTable(shaded_.lights, view_.position, fc.sceneScale);
-  // Point and spot lights' shadow maps (direct, legacy): their views exist only with such lights.
+  // Point, spot and area lights' shadow maps (direct, legacy): their views exist only with such lights.
   const scene::Bounds& bounds = scene_->bounds;
   const glm::dvec3 relMin = bounds.valid() ? bounds.min - view_.position : glm::dvec3(-1.0);
   const glm::dvec3 relMax = bounds.valid() ? bounds.max - view_.position : glm::dvec3(1.0);
@@ -478,7 +484,7 @@ void Session::beginOne(bool readback) {
     if (lightShadowViews_.size() < bytes)
       lightShadowViews_ = gpu::UploadRing(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, lighting::kLightShadowViews);
     lightShadowViews_.write(frame, shadowPlan.views.data(), bytes);
-    graph.importBuffer(lighting::kLightShadowViews, graph::ResourceDesc::buffer(lightShadowViews_.size(), "point and spot light shadow views (shared/lights.h GpuShadowView[])"), lightShadowViews_.forFrame(frame));
+    graph.importBuffer(lighting::kLightShadowViews, graph::ResourceDesc::buffer(lightShadowViews_.size(), "point, spot and area light shadow views (shared/lights.h GpuShadowView[])"), lightShadowViews_.forFrame(frame));
   }
   if (!lights.empty()) {
     const VkDeviceSize bytes = lights.size() * sizeof(shared::GpuLight);
@@ -520,6 +526,8 @@ void Session::beginOne(bool readback) {
   passes_->gbuffer.add(graph, in);
   passes_->shadow.add(graph, in);
   in.lightShadowViews = uint32_t(shadowPlan.views.size());
+  for (const auto& l : lights)
+    if (shared::tlIsAreaLight(l.type)) ++in.areaLights, in.mappedAreaLights += l.shadowView != shared::kNoLightShadow ? 1u : 0u;
   passes_->lightShadow.add(graph, in, shadowPlan);  // culled in paths that trace their shadows
   lighting::LightingOutputs outputs = path->addPasses(graph, in);
   // A path that computes the whole image (the reference) shades the lights itself.

@@ -67,6 +67,11 @@ struct Lighting {
   float environmentIntensity = 1.0f;
 };
 
+// The lighting a scene brings: its sun (as its glTF light, if it came from one), its sky and
+// every other light; exposure derived from them. The environment map, its rotation and intensity
+// and the sun's angular radius are lighting the scene does not hold: they come from `kept`.
+Lighting sceneLighting(const scene::Scene& s, Lighting kept = {});
+
 struct PathInfo {
   std::string name;
   std::string description;

@@ -34,6 +34,7 @@ layout(set = 0, binding = kBindingLights, std430) readonly buffer LightTable { G
 const uint kAreaShadowRays = 4u;
 
 vec3 gLightsAt;     // the point shadeLights shades
+vec3 gLightsNormal; // its normal
 uvec3 gLightsSeed;  // its seed
 
 // Light `i`'s incidence at `position`; `salt` tells apart the draws at one point.
@@ -51,14 +52,18 @@ LightIncidence lightIncidence(uint i, vec3 position, uint salt) {
 float lightVisibilityOf(uint light, LightIncidence li) {
 #if TL_LIGHTS_AREA == TL_AREA_ANALYTIC_TRACED
   if (tlIsAreaLight(lights[light].type)) {
+    // Each ray weighs the irradiance its point of the shape sends (L cos cos / d^2, the sample's
+    // estimate times the receiver's cosine): the visible share of the light, not of the shape's
+    // area, which a penumbra's near side (more light) and far side (less) would split wrongly.
     float seen = 0.0, drawn = 0.0;
     for (uint k = 0u; k < kAreaShadowRays; ++k) {
       uvec3 h = tlPcg3d(gLightsSeed + uvec3(k * 0x9E3779B9u + 7u, light * 0xC2B2AE35u, 0x165667B1u));
       vec2 u = (vec2(float(k & 1u), float(k >> 1u)) + vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y))) * 0.5;
       LightIncidence s = tlAreaLightSample(lights[light], gLightsAt, u);
-      if (!(s.pdf > 0.0)) continue;
-      seen += lightVisibility(light, s.toLight, s.distance);
-      drawn += 1.0;
+      float weight = (s.irradiance.r + s.irradiance.g + s.irradiance.b) * max(dot(gLightsNormal, s.toLight), 0.0);
+      if (!(s.pdf > 0.0) || !(weight > 0.0)) continue;
+      seen += weight * lightVisibility(light, s.toLight, s.distance);
+      drawn += weight;
     }
     return drawn > 0.0 ? seen / drawn : 1.0;
   }
@@ -108,6 +113,7 @@ uint lightPick(float u) {
 LightSum shadeLights(vec3 position, vec3 n, uvec3 seed) {
   LightSum sum = lightSumZero();
   gLightsAt = position;
+  gLightsNormal = n;
   gLightsSeed = seed;
   if (frame.lightCount <= kLightsLoopMax) {
     for (uint i = 0u; i < frame.lightCount; ++i) sum = lightSumAdd(sum, lightContribution(i, lightIncidence(i, position, 0u)));

@@ -13,6 +13,7 @@ vec3 gShadowOrigin;  // unused: no shadow rays
 float lightVisibility(uint light, vec3 toLight, float distance);
 
 #include "common/lights_shade.glsl"
+#define TL_AREA_SHADOW_PER_FRAME  // lights.direct accumulates sampled area shadows
 #include "common/light_shadow.glsl"
 
 float lightVisibility(uint light, vec3 toLight, float distance) { return lightShadowVisibility(light, gPosition, gNormalHere); }

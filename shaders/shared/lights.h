@@ -74,11 +74,11 @@ struct GpuLight {
   vec4 axisV;      // area: xyz the second half-extent (u x v along the front normal; a tube: 0); w: 1 two-sided
 };
 
-// Shadow maps of point and spot lights (the direct and legacy paths; rt and the reference trace
-// shadow rays). Every shadowed light has perspective views of 90 degrees or less, each one tile
-// of the depth atlas "shadow.lightsDepth" (D32F, standard Z: 0 at the near plane): a spot whose
-// cone fits kLightShadowMaxSpotTan one view along its axis, a point light (or a wider spot) six,
-// a cube's faces in the order +x -x +y -y +z -z. Each view's field of view is widened by
+// Shadow maps of point, spot and area lights (the direct and legacy paths; rt and the reference
+// trace shadow rays). Every shadowed light has perspective views of 90 degrees or less, each one
+// tile of the depth atlas "shadow.lightsDepth" (D32F, standard Z: 0 at the near plane): a spot
+// whose cone fits kLightShadowMaxSpotTan one view along its axis, a point light, a wider spot or
+// an area light (from its centre) six, a cube's faces in the order +x -x +y -y +z -z. Each view's field of view is widened by
 // kLightShadowGuardTexels on every side, so the filter's taps for the directions the view owns
 // never leave its tile. The views are "lights.shadowViews" at kBindingLightShadowViews.
 TL_CONST uint kNoLightShadow = 0xFFFFFFFFu;
@@ -91,6 +91,10 @@ TL_CONST float kLightShadowNormalOffsetTexels = 1.5f;
 TL_CONST float kLightShadowBiasTexels = 2.0f;
 TL_CONST uint kBindingLightShadowViews = 52u;
 TL_CONST uint kBindingLightShadowAtlas = 53u;  // sampler2DShadow over shadow.lightsDepth
+TL_CONST uint kBindingLightShadowDepth = 54u;  // the same atlas, plain: an area light's blocker search
+// An area light's soft shadow (common/light_shadow.glsl) searches for blockers and filters over
+// at most this tangent of the angle seen from the light (about 31 degrees).
+TL_CONST float kAreaShadowMaxTan = 0.6f;
 
 struct GpuShadowView {
   mat4 viewProj;  // camera-relative world -> this view's clip space (Vulkan, z in [0,1])
@@ -110,12 +114,32 @@ TL_FN float tlShadowViewDepth(float nearPlane, float farPlane, float w) {
   return farPlane / (farPlane - nearPlane) * (1.0f - nearPlane / max(w, nearPlane));
 }
 
+// Its inverse: the view depth (metres) of a map depth.
+TL_FN float tlShadowViewW(float nearPlane, float farPlane, float depth) {
+  return nearPlane / max(1.0f - depth * (farPlane - nearPlane) / farPlane, 1e-6f);
+}
+
 // Which of a cube's six views (+x -x +y -y +z -z) sees direction d from the light.
 TL_FN uint tlCubeFace(vec3 d) {
   vec3 a = abs(d);
   if (a.x >= a.y && a.x >= a.z) return d.x >= 0.0f ? 0u : 1u;
   if (a.y >= a.z) return d.y >= 0.0f ? 2u : 3u;
   return d.z >= 0.0f ? 4u : 5u;
+}
+
+// Where direction (or point) d from a cube's centre lands in the view of `face` (its axis the
+// largest of d's): (x, y) / w in that view's camera, before the projection's 1 / tan(fov / 2),
+// and the view depth w. Equal to the face's viewProj (glm::lookAtRH with up +y, or +z for the
+// y faces, as light_shadows.cpp builds it; checked in tests/unit/test_light_shadows.cpp), without
+// a matrix: an area light's soft-shadow taps each take a face of their own.
+TL_FN vec3 tlCubeFaceProject(uint face, vec3 d) {
+  // Per face: the view's right (s) and up (u) axes and its forward f; x = s.d, y = u.d, w = f.d.
+  if (face == 0u) return vec3(d.z / d.x, d.y / d.x, d.x);      // +x: s = +z, u = +y
+  if (face == 1u) return vec3(-d.z / -d.x, d.y / -d.x, -d.x);  // -x: s = -z, u = +y
+  if (face == 2u) return vec3(d.x / d.y, d.z / d.y, d.y);      // +y: s = +x, u = +z
+  if (face == 3u) return vec3(-d.x / -d.y, d.z / -d.y, -d.y);  // -y: s = -x, u = +z
+  if (face == 4u) return vec3(-d.x / d.z, d.y / d.z, d.z);     // +z: s = -x, u = +y
+  return vec3(d.x / -d.z, d.y / -d.z, -d.z);                    // -z: s = +x, u = +y
 }
 
 // What a light sends to a point: the unit direction towards it, its distance (1e30 for a

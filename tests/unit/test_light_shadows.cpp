@@ -1,4 +1,4 @@
-// Point and spot light shadow views (lighting/common/light_shadows.h): which lights get maps,
+// Point, spot and area light shadow views (lighting/common/light_shadows.h): which lights get maps,
 // that every direction from a point light lands inside its face's guarded tile, that a spot's one
 // view covers its cone, and that the depth the lookup compares is the one the raster stores.
 #include "lighting/common/light_shadows.h"
@@ -79,6 +79,25 @@ TEST(LightShadows, EveryDirectionFromAPointLightLandsInsideItsFacesGuardedTile) 
   EXPECT_LT(tightest, guard + 0.01);  // and the guard is not much wider than asked
 }
 
+TEST(LightShadows, TheCubeFacesProjectionWithoutAMatrixIsTheViews) {
+  // tlCubeFaceProject (an area light's soft-shadow taps) against each face's viewProj.
+  auto table = buildLightTable({light(scene::LightType::Point, {1, 2, 3}, 683.0f)}, glm::dvec3(0.0), 10.0);
+  const uint32_t tile = 128;
+  const LightShadowPlan plan = planLightShadows(table, tile, 8, kMin, kMax);
+  ASSERT_EQ(plan.views.size(), 6u);
+  const double tanHalf = double(plan.views[0].params.z) * tile / 2.0;
+  for (int i = 0; i < 500; ++i) {
+    const double z = 1.0 - 2.0 * (i + 0.5) / 500.0, phi = i * 2.399963229728653;
+    const glm::dvec3 d = 2.5 * glm::dvec3(std::sqrt(1.0 - z * z) * std::cos(phi), z, std::sqrt(1.0 - z * z) * std::sin(phi));
+    const uint32_t face = shared::tlCubeFace(glm::vec3(d));
+    const glm::dvec3 uvw = project(plan.views[face], glm::dvec3(1, 2, 3) + d);
+    const glm::vec3 p = shared::tlCubeFaceProject(face, glm::vec3(d));
+    EXPECT_NEAR(p.x / tanHalf * 0.5 + 0.5, uvw.x, 1e-5) << "face " << face;
+    EXPECT_NEAR(p.y / tanHalf * 0.5 + 0.5, uvw.y, 1e-5) << "face " << face;
+    EXPECT_NEAR(p.z, uvw.z, 1e-5) << "face " << face;
+  }
+}
+
 TEST(LightShadows, ASpotsViewCoversItsOuterConeAndTheLookupDepthMatchesTheRaster) {
   auto table = buildLightTable({light(scene::LightType::Spot, {0, 2, 0}, 683.0f)}, glm::dvec3(0.0), 10.0);
   const LightShadowPlan plan = planLightShadows(table, 256, 8, kMin, kMax);
@@ -101,6 +120,31 @@ TEST(LightShadows, ASpotsViewCoversItsOuterConeAndTheLookupDepthMatchesTheRaster
   wide.outerConeAngle = 1.3f;
   auto wideTable = buildLightTable({wide}, glm::dvec3(0.0), 10.0);
   EXPECT_EQ(planLightShadows(wideTable, 256, 8, kMin, kMax).views.size(), 6u);
+}
+
+TEST(LightShadows, AreaLightsGetACubeFromTheirCentreAndTheDepthInvertsToMetres) {
+  scene::Light rect = light(scene::LightType::Rect, {0, 2.5, 1}, 683.0f);
+  rect.width = 0.8f;
+  rect.height = 0.4f;
+  rect.widthAxis = {1.0, 0.0, 0.0};
+  auto table = buildLightTable({light(scene::LightType::Directional, {0, 0, 0}, 1000.0f), rect}, glm::dvec3(0.0), 10.0);
+  const LightShadowPlan plan = planLightShadows(table, 256, 8, kMin, kMax);
+  ASSERT_EQ(plan.views.size(), 6u);
+  EXPECT_EQ(table[0].shadowView, shared::kNoLightShadow);
+  EXPECT_EQ(table[1].shadowView, 0u);
+  EXPECT_EQ(plan.views[0].params.w, 6.0f);
+  // The cube sits at the shape's centre: a point 1.5 m straight below lands in the -y face's
+  // centre at view depth 1.5 m.
+  const glm::dvec3 uvw = project(plan.views[3], {0.0, 1.0, 1.0});
+  EXPECT_NEAR(uvw.x, 0.5, 1e-5);
+  EXPECT_NEAR(uvw.y, 0.5, 1e-5);
+  EXPECT_NEAR(uvw.z, 1.5, 1e-5);
+  // The blocker search reads map depths back as metres (tlShadowViewW inverts tlShadowViewDepth).
+  const auto& v = plan.views[3];
+  for (float w : {0.05f, 0.3f, 1.5f, 7.0f, 20.0f}) {
+    const float depth = shared::tlShadowViewDepth(v.params.x, v.params.y, w);
+    EXPECT_NEAR(shared::tlShadowViewW(v.params.x, v.params.y, depth) / w, 1.0, 1e-3) << w;
+  }
 }
 
 TEST(LightShadows, LightsThatDoNotFitTheAtlasGoUnshadowed) {

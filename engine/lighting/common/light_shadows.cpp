@@ -32,10 +32,10 @@ LightShadowPlan planLightShadows(std::vector<shared::GpuLight>& table, uint32_t 
   for (auto& l : table) l.shadowView = shared::kNoLightShadow;
   if (tileTexels == 0 || maxLights == 0) return plan;
 
-  // Point and spot lights, most powerful first (selection probability is power's share).
+  // Point, spot and area lights, most powerful first (selection probability is power's share).
   std::vector<size_t> order;
   for (size_t i = 0; i < table.size(); ++i)
-    if (table[i].type == shared::kLightPoint || table[i].type == shared::kLightSpot) order.push_back(i);
+    if (table[i].type != shared::kLightDirectional) order.push_back(i);
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t a, size_t b) { return table[a].intensity.w > table[b].intensity.w; });
   if (order.size() > maxLights) order.resize(maxLights);

@@ -1,4 +1,4 @@
-// Shadow maps of point and spot lights for the direct and legacy paths (shared/lights.h
+// Shadow maps of point, spot and area lights for the direct and legacy paths (shared/lights.h
 // GpuShadowView): which lights get them, each view's projection and its tile in the depth atlas.
 // Pure, tested without a GPU; the session uploads the views and LightShadowPass draws them.
 #pragma once
@@ -26,7 +26,7 @@ struct LightShadowPlan {
   uint32_t atlasHeight() const { return rows * tileTexels; }
 };
 
-// Gives the `maxLights` most powerful point and spot lights of `table` (buildLightTable's,
+// Gives the `maxLights` most powerful point, spot and area lights of `table` (buildLightTable's,
 // camera-relative) shadow views of `tileTexels` squared and writes their first view into
 // GpuLight::shadowView (kNoLightShadow for the others). `sceneMin`/`sceneMax` bound every caster
 // and receiver, camera-relative: they place each view's far plane.

@@ -32,7 +32,16 @@ void addTableInputs(ComputePass& pass, const std::vector<std::string>& structure
   if (traced) pass.accelerationStructure(shared::kLightsPassTlas, tlasHandle, structures);
   if (mapped)
     pass.bufferIn(shared::kBindingLightShadowViews, kLightShadowViews)
-        .sampled(shared::kBindingLightShadowAtlas, kLightShadowAtlas, samplers::shadowCompare);
+        .sampled(shared::kBindingLightShadowAtlas, kLightShadowAtlas, samplers::shadowCompare)
+        .sampled(shared::kBindingLightShadowDepth, kLightShadowAtlas, samplers::point);
+}
+
+// The table's light is an estimate that changes from frame to frame, accumulated while nothing
+// it depends on changes: with more lights than the loop evaluates, or with area lights whose
+// shadows are sampled (shadow rays to points of the shape, or their map's taps turned each frame).
+bool sampledEstimate(const FrameInputs& in, bool traced, bool mapped) {
+  return in.constants.lightCount > shared::kLightsLoopMax || (traced && in.areaLights > 0) ||
+         (mapped && in.mappedAreaLights > 0);
 }
 
 // Each form has a shader per kind of shadow: <form>.comp, <form>_shadowed.comp, <form>_traced.comp.
@@ -56,12 +65,12 @@ std::string LightsPass::add(graph::RenderGraph& graph, FrameInputs& in, const st
   const bool traced = !structures.empty() && tlasHandle != VK_NULL_HANDLE;
   const bool mapped = !traced && in.lightShadowViews > 0;
   const uint32_t w = in.settings.width, h = in.settings.height;
-  // Many lights: a noisy estimate, accumulated while nothing it depends on changes.
+  // Many lights or sampled area shadows: a noisy estimate, accumulated while nothing it depends on changes.
   shared::LightsPush push{};
   const std::string accum = "lights.accum." + in.pathName;
   const auto accumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                                       "sum of light-table estimates (rgb) and their count (a)");
-  if (in.constants.lightCount > shared::kLightsLoopMax) {
+  if (sampledEstimate(in, traced, mapped)) {
     push.accumulate = 1;
     const bool stored = in.historyValid(accum, accumDesc);
     push.restart = accumulation_[in.pathName].advance(kLightsAccumulation, in.key, in.pathName, in.historyLog, {stored})
@@ -126,7 +135,7 @@ std::string LightsPass::addIbuffer(graph::RenderGraph& graph, FrameInputs& in, c
       if (!stored) push.restart = 1;  // its images are new: nothing to add to
       for (const auto& a : accum) graph.declarePersistent(a, accumDesc);
     }
-  } else if (in.constants.lightCount > shared::kLightsLoopMax) {
+  } else if (sampledEstimate(in, traced, mapped)) {
     push.accumulate = 1;
     bool stored = true;
     for (const auto& a : accum) stored = stored && in.historyValid(a, accumDesc);

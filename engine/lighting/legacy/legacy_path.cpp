@@ -309,6 +309,7 @@ class LegacyPath final : public LightingPath {
         .optionalBufferIn(shared::kBindingLights, kLightTable, in.constants.lightCount > 0)
         .optionalBufferIn(shared::kBindingLightShadowViews, kLightShadowViews, mapped)
         .optionalSampled(shared::kBindingLightShadowAtlas, kLightShadowAtlas, mapped, samplers::sunShadowCompare)
+        .optionalSampled(shared::kBindingLightShadowDepth, kLightShadowAtlas, mapped, samplers::point)
         .optionalSampled(shared::kLegacyBindingPrevRadiance, kLegacyHistRadiance, feedback)
         .optionalSampled(shared::kLegacyBindingPrevDepth, kLegacyHistDepth, feedback)
         .drawsScene(in.scene.table(), true, Usage::StorageRead)
