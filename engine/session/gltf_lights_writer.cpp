@@ -115,11 +115,12 @@ glm::dmat4 localMatrix(const json& node) {
 }
 
 // The node placing a light at `position` looking along `direction` (lights shine down their -Z).
+// A directional light's position lights nothing; it is where the artist put its icon (the
+// importer reads it back from the node), so it is kept too.
 glm::dmat4 lightWorld(const scene::Light& l) {
   const glm::dvec3 d = glm::normalize(l.direction);
   const glm::dquat q = glm::rotation(glm::dvec3(0.0, 0.0, -1.0), d);
-  const glm::dvec3 p = l.type == scene::LightType::Directional ? glm::dvec3(0.0) : l.position;
-  return glm::translate(glm::dmat4(1.0), p) * glm::mat4_cast(q);
+  return glm::translate(glm::dmat4(1.0), l.position) * glm::mat4_cast(q);
 }
 
 json lightJson(const scene::Light& l) {

@@ -33,9 +33,8 @@ void expectSameLight(const Light& saved, const Light& loaded) {
   EXPECT_EQ(loaded.type, saved.type);
   EXPECT_NEAR(loaded.intensity, saved.intensity, 1e-4 * saved.intensity);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(loaded.color[c], saved.color[c], 1e-6);
-  if (saved.type != LightType::Directional) {
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(loaded.position[c], saved.position[c], 1e-9);
-  }
+  // A directional light's position is its icon's in the editor: kept like the others'.
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(loaded.position[c], saved.position[c], 1e-9);
   if (saved.type != LightType::Point) {
     EXPECT_GT(glm::dot(loaded.direction, glm::normalize(saved.direction)), 1.0 - 1e-12);
   }
@@ -78,14 +77,21 @@ TEST_F(GltfLightsWriterTest, MovedAddedAndDeletedLightsLoadBackAsSavedAndTheRest
   added.color = {0.2f, 0.4f, 1.0f};
   added.range = 7.5f;
   lights.push_back(added);
+  Light fill;  // a directional light whose icon the artist put in a corner of the room
+  fill.name = "fill";
+  fill.type = LightType::Directional;
+  fill.position = {1.5, 2.5, -1.0};
+  fill.direction = glm::normalize(glm::dvec3(0.2, -1.0, 0.4));
+  fill.intensity = 2.0f;
+  lights.push_back(fill);
 
   const std::vector<uint32_t> nodes = writeGltfLights(file, lights);
-  ASSERT_EQ(nodes.size(), 3u);
+  ASSERT_EQ(nodes.size(), 4u);
   EXPECT_EQ(nodes[0], *before.lights[0].node);  // written back into their own nodes
   EXPECT_EQ(nodes[1], *before.lights[2].node);
   const scene::Scene after = scene::loadGltf(file);
-  ASSERT_EQ(after.lights.size(), 3u);
-  for (size_t i = 0; i < 3; ++i) {
+  ASSERT_EQ(after.lights.size(), 4u);
+  for (size_t i = 0; i < 4; ++i) {
     const Light& saved = lights[i];
     const Light* loaded = nullptr;
     for (const auto& l : after.lights)
@@ -99,8 +105,8 @@ TEST_F(GltfLightsWriterTest, MovedAddedAndDeletedLightsLoadBackAsSavedAndTheRest
   EXPECT_EQ(after.bounds.min, before.bounds.min);
   EXPECT_EQ(after.bounds.max, before.bounds.max);
   EXPECT_TRUE(after.warnings.empty()) << after.warnings.front();
-  // One node was added (the new spot); the deleted light's node stays, without its light.
-  EXPECT_EQ(after.nodes.size(), before.nodes.size() + 1);
+  // Two nodes were added (the new spot, the fill); the deleted light's node stays, without its light.
+  EXPECT_EQ(after.nodes.size(), before.nodes.size() + 2);
 
   // Saving the lights as loaded again changes nothing, to the byte, and adds no node.
   const std::string once = readBytes(file);
