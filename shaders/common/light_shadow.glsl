@@ -52,13 +52,7 @@ float punctualShadowVisibility(uint lightIndex, vec3 position, vec3 normal) {
 // receiver's plane where that direction meets it, so a wide filter over a surface the light
 // grazes does not shadow the surface by itself.
 
-const vec2 kAreaShadowDisk[16] = vec2[16](
-    vec2(-0.94201624, -0.39906216), vec2(0.94558609, -0.76890725), vec2(-0.09418410, -0.92938870),
-    vec2(0.34495938, 0.29387760), vec2(-0.91588581, 0.45771432), vec2(-0.81544232, -0.87912464),
-    vec2(-0.38277543, 0.27676845), vec2(0.97484398, 0.75648379), vec2(0.44323325, -0.97511554),
-    vec2(0.53742981, -0.47373420), vec2(-0.26496911, -0.41893023), vec2(0.79197514, 0.19090188),
-    vec2(-0.24188840, 0.99706507), vec2(-0.81409955, 0.91437590), vec2(0.19984126, 0.78641367),
-    vec2(0.14383161, -0.14100790));
+#include "common/poisson_disk.glsl"
 
 // The shape's point (from its centre) for the point p of the unit disk: a disk's own, a
 // rectangle's as the ellipse of its area, a tube's on the ribbon of its diameter that faces the
@@ -158,7 +152,7 @@ float areaShadowVisibility(uint lightIndex, vec3 position, vec3 normal) {
   float searchScale = min(2.0, maxScale);
   float blockerFraction = 0.0, blockers = 0.0;
   for (int i = 0; i < 16; i += 2) {
-    vec3 q = areaShadowShapePoint(l, rotation * kAreaShadowDisk[i], axis);
+    vec3 q = areaShadowShapePoint(l, rotation * kPoissonDisk16[i], axis);
     AreaShadowTap tap = areaShadowTap(cube, lightPosition, centreRay + searchScale * q, shifted, normal, reach);
     float d = textureLod(lightShadowDepth, tap.uv, 0.0).r;
     if (d < tap.depth) {
@@ -180,7 +174,7 @@ float areaShadowVisibility(uint lightIndex, vec3 position, vec3 normal) {
   bool tube = l.type == kLightTube, twoSided = l.axisV.w > 0.5;
   float sum = 0.0, weights = 0.0;
   for (int i = 0; i < 16; ++i) {
-    vec3 q = areaShadowShapePoint(l, rotation * kAreaShadowDisk[i], axis);
+    vec3 q = areaShadowShapePoint(l, rotation * kPoissonDisk16[i], axis);
     vec3 toPoint = lightPosition + q - position;
     float d2 = max(dot(toPoint, toPoint), 1e-8);
     float cosLight = tube ? sqrt(d2) : (twoSided ? abs(dot(l.direction.xyz, toPoint)) : max(-dot(l.direction.xyz, toPoint), 0.0));

@@ -28,13 +28,7 @@ float sunVisibility(vec3 position, vec3 normal) {
 // blockers' mean depth over the region that could hide the sun from the receiver gives the
 // penumbra half-width tan(theta) * (receiver - blocker) in metres, and PCF over that radius.
 // Sixteen Poisson taps per step, rotated per pixel.
-const vec2 kPoisson16[16] = vec2[16](
-    vec2(-0.94201624, -0.39906216), vec2(0.94558609, -0.76890725), vec2(-0.09418410, -0.92938870),
-    vec2(0.34495938, 0.29387760), vec2(-0.91588581, 0.45771432), vec2(-0.81544232, -0.87912464),
-    vec2(-0.38277543, 0.27676845), vec2(0.97484398, 0.75648379), vec2(0.44323325, -0.97511554),
-    vec2(0.53742981, -0.47373420), vec2(-0.26496911, -0.41893023), vec2(0.79197514, 0.19090188),
-    vec2(-0.24188840, 0.99706507), vec2(-0.81409955, 0.91437590), vec2(0.19984126, 0.78641367),
-    vec2(0.14383161, -0.14100790));
+#include "common/poisson_disk.glsl"
 
 // What the PCSS estimate found: the visibility, and the receiver's distance to the blockers'
 // mean depth along the sun in metres (-1: no blocker in the search region; 0: the penumbra is
@@ -67,14 +61,14 @@ SunShadowEstimate sunShadowSoft(vec3 position, vec3 normal, ivec2 pixel) {
   mat2 rotation = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
   float blockerSum = 0.0, blockers = 0.0;
   for (int i = 0; i < 16; ++i) {
-    float d = textureLod(sunShadowDepth, uv + rotation * kPoisson16[i] * (searchTexels / size), 0.0).r;
+    float d = textureLod(sunShadowDepth, uv + rotation * kPoissonDisk16[i] * (searchTexels / size), 0.0).r;
     if (d < s.z) blockerSum += d, blockers += 1.0;
   }
   if (blockers == 0.0) return SunShadowEstimate(1.0, -1.0);
   float blockerDistance = (s.z - blockerSum / blockers) * metres;
   float penumbraTexels = clamp(tanSun * blockerDistance / texel, 1.0, maxRadius);
   float sum = 0.0;
-  for (int i = 0; i < 16; ++i) sum += texture(sunShadow, vec3(uv + rotation * kPoisson16[i] * (penumbraTexels / size), s.z));
+  for (int i = 0; i < 16; ++i) sum += texture(sunShadow, vec3(uv + rotation * kPoissonDisk16[i] * (penumbraTexels / size), s.z));
   return SunShadowEstimate(sum / 16.0, blockerDistance);
 }
 

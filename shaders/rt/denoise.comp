@@ -29,13 +29,7 @@ layout(set = 0, binding = kRtBindingDenoiseShY, rgba16f) uniform writeonly image
 layout(set = 0, binding = kRtBindingDenoiseCoCgAo, rgba16f) uniform writeonly image2D outCoCgAo;
 layout(push_constant) uniform Push { RtDenoisePush push; };
 
-const vec2 kDisk[16] = vec2[16](
-    vec2(-0.94201624, -0.39906216), vec2(0.94558609, -0.76890725), vec2(-0.09418410, -0.92938870),
-    vec2(0.34495938, 0.29387760), vec2(-0.91588581, 0.45771432), vec2(-0.81544232, -0.87912464),
-    vec2(-0.38277543, 0.27676845), vec2(0.97484398, 0.75648379), vec2(0.44323325, -0.97511554),
-    vec2(0.53742981, -0.47373420), vec2(-0.26496911, -0.41893023), vec2(0.79197514, 0.19090188),
-    vec2(-0.24188840, 0.99706507), vec2(-0.81409955, 0.91437590), vec2(0.19984126, 0.78641367),
-    vec2(0.14383161, -0.14100790));
+#include "common/poisson_disk.glsl"
 
 #include "common/camera.glsl"
 
@@ -115,7 +109,7 @@ void main() {
   float coverage = 1.0;
   float plane = push.planeDistance * w0;
   for (int i = 0; i < 16; i += step) {
-    ivec2 q = p + ivec2(round(rotation * kDisk[i] * radius));
+    ivec2 q = p + ivec2(round(rotation * kPoissonDisk16[i] * radius));
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)) || q == p) continue;
     float d = texelFetch(gDepth, q, 0).r;
     if (d <= 0.0) continue;
