@@ -526,8 +526,7 @@ void Session::beginOne(bool readback) {
   passes_->gbuffer.add(graph, in);
   passes_->shadow.add(graph, in);
   in.lightShadowViews = uint32_t(shadowPlan.views.size());
-  for (const auto& l : lights)
-    if (shared::tlIsAreaLight(l.type)) ++in.areaLights, in.mappedAreaLights += l.shadowView != shared::kNoLightShadow ? 1u : 0u;
+  for (const auto& l : lights) in.areaLights += shared::tlIsAreaLight(l.type) ? 1u : 0u;
   passes_->lightShadow.add(graph, in, shadowPlan);  // culled in paths that trace their shadows
   lighting::LightingOutputs outputs = path->addPasses(graph, in);
   // A path that computes the whole image (the reference) shades the lights itself.

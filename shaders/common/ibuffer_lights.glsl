@@ -21,6 +21,7 @@ layout(push_constant) uniform Push { LightsPush push; };
 
 #include "common/camera.glsl"
 #include "common/ibuffer_stage.glsl"
+#include "shared/area_specular.h"
 
 SurfaceParams gGeometry;  // the surface's roughness only (tlIbufferSurface)
 vec3 gPosition, gNormalHere, gView;  // the includer declares gShadowOrigin (where shadow rays start)
@@ -31,17 +32,37 @@ float lightVisibilityOf(uint light, LightIncidence li);  // common/lights.glsl
 IbufferSums lightSumZero() { return tlIbufferZero(); }
 IbufferSums lightSumAdd(IbufferSums a, IbufferSums b) { return tlIbufferAdd(a, b); }
 IbufferSums lightSumScale(IbufferSums a, float k) { return tlIbufferScale(a, k); }
+IbufferSums lightContribution(uint light, LightIncidence li);  // below
+
+#include "common/lights.glsl"
+
+// An area light as lights_shade.glsl shades it: the diffuse layer from the analytic incidence, the
+// lobes from the same two samples of the shape and of the lobe (shared/area_specular.h), added
+// to the specular sums only; the visibility scales both.
+IbufferSums areaLightSums(uint light, LightIncidence li) {
+  if (all(equal(li.irradiance, vec3(0.0)))) return tlIbufferZero();
+  float visibility = lightVisibilityOf(light, li);
+  if (!(visibility > 0.0)) return tlIbufferZero();
+  IbufferSums sums = tlIbufferZero();
+  sums.dg = tlIbufferAddLight(tlIbufferZero(), gGeometry, gNormalHere, gView, li.toLight, li.irradiance * dot(gNormalHere, li.toLight)).dg;
+  vec4 u = areaGlossyDraws(light);
+  AreaSpecularSamples r = tlAreaLightSpecularSamples(lights[light], gGeometry, gNormalHere, gView, gPosition, u.xy, u.zw);
+  IbufferSums lobes = tlIbufferAddLight(tlIbufferZero(), gGeometry, gNormalHere, gView, r.towardsShape, r.shapeWeight);
+  lobes = tlIbufferAddLight(lobes, gGeometry, gNormalHere, gView, r.alongLobe, r.lobeWeight);
+  lobes.dg = vec3(0.0);
+  return tlIbufferScale(tlIbufferAdd(sums, lobes), visibility);
+}
+
 // One light's share, with its visibility; no shadow ray where it cannot contribute (lit from
 // behind, or no irradiance), as in lights_shade.glsl.
 IbufferSums lightContribution(uint light, LightIncidence li) {
+  if (li.pdf == 0.0 && tlIsAreaLight(lights[light].type)) return areaLightSums(light, li);
   if (all(equal(li.irradiance, vec3(0.0))) || !(dot(gNormalHere, li.toLight) > 0.0)) return tlIbufferZero();
   // tlLightIncidence's irradiance is at normal incidence; the I-buffer sums E n.l.
   float nl = dot(gNormalHere, li.toLight);
   float visibility = lightVisibilityOf(light, li);
   return tlIbufferAddLight(tlIbufferZero(), gGeometry, gNormalHere, gView, li.toLight, li.irradiance * (nl * visibility));
 }
-
-#include "common/lights.glsl"
 
 // The running mean of one sum (many lights: each frame's estimate is noisy). A macro: GLSL
 // takes no image of a declared format as a parameter.

@@ -81,6 +81,14 @@ float lightSampleWeight(LightIncidence li) {
   return 1.0;
 }
 
+// The draws of an area light's glossy estimate at the point shadeLights shades (xy: the point on
+// the shape, zw: the lobe's direction; shared/area_specular.h): the same for the deferred and the
+// redeferred forms, so the I-buffer rebuilds the deferred form's radiance.
+vec4 areaGlossyDraws(uint light) {
+  uvec3 h = tlPcg3d(gLightsSeed + uvec3(light * 0x632BE5ABu + 3u, 0x9E3779B9u, 0x7F4A7C15u)), h2 = tlPcg3d(h);
+  return vec4(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y), tlUintToUnitFloat(h2.x), tlUintToUnitFloat(h2.y));
+}
+
 #ifndef TL_LIGHTS_CUSTOM_SUM
 #define LightSum vec3
 vec3 lightSumZero() { return vec3(0.0); }
@@ -91,6 +99,15 @@ vec3 lightSumScale(vec3 a, float k) { return a * k; }
 // cannot contribute).
 vec3 lightContribution(uint light, LightIncidence li) {
   if (all(equal(li.irradiance, vec3(0.0)))) return vec3(0.0);
+#ifdef TL_LIGHTS_AREA_GLOSSY
+  // An area light's analytic incidence (pdf 0): the includer's areaLightReflection gives the
+  // diffuse layer from it and estimates the lobes (shared/area_specular.h).
+  if (li.pdf == 0.0 && tlIsAreaLight(lights[light].type)) {
+    vec3 reflected = areaLightReflection(light, li);
+    if (all(equal(reflected, vec3(0.0)))) return vec3(0.0);
+    return reflected * (lightVisibilityOf(light, li) * lightSampleWeight(li));
+  }
+#endif
   vec3 response = lightResponse(li.toLight);
   if (all(equal(response, vec3(0.0)))) return vec3(0.0);
   return li.irradiance * response * (lightVisibilityOf(light, li) * lightSampleWeight(li));

@@ -12,6 +12,7 @@ layout(set = 0, binding = kLightsPassAccum, rgba32f) uniform image2D accum;
 layout(push_constant) uniform Push { LightsPush push; };
 
 #include "common/camera.glsl"
+#include "shared/area_specular.h"
 
 SurfaceParams gSurface;
 vec3 gPosition, gNormalHere, gView;  // the includer declares gShadowOrigin (where shadow rays start)
@@ -21,7 +22,19 @@ vec3 lightResponse(vec3 toLight) {
   return nl > 0.0 ? tlBrdf(gSurface, gNormalHere, gView, toLight) * nl : vec3(0.0);
 }
 
+// Area lights: the diffuse layer from the analytic term, the glossy lobes estimated by a point of
+// the shape and a direction of the lobe (shared/area_specular.h), accumulated over frames.
+#define TL_LIGHTS_AREA_GLOSSY
+vec3 areaLightReflection(uint light, LightIncidence li);
+
 #include "common/lights.glsl"
+
+vec3 areaLightReflection(uint light, LightIncidence li) {
+  float nl = dot(gNormalHere, li.toLight);
+  vec3 diffuse = nl > 0.0 ? li.irradiance * tlBrdfDiffuse(gSurface, gNormalHere, gView, li.toLight) * nl : vec3(0.0);
+  vec4 u = areaGlossyDraws(light);
+  return diffuse + tlAreaLightSpecular(lights[light], gSurface, gNormalHere, gView, gPosition, u.xy, u.zw);
+}
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);

@@ -18,8 +18,8 @@
 //   tlAreaLightAnalytic  the unshadowed vector irradiance F (Lambert's polygon formula, a disk as
 //                        a 32-gon of the same area): irradiance |F| from direction F/|F|, so a
 //                        Lambertian surface facing any way with the whole light above its horizon
-//                        gets exactly E = n.F; the specular lobe sees the light as a point in
-//                        that direction (the representative direction: docs/accuracy.md)
+//                        gets exactly E = n.F (the rasterising paths' diffuse layer; their
+//                        glossy lobes sample the shape instead: shared/area_specular.h)
 //   tlAreaLightSample    a point drawn uniformly on the shape: irradiance L cos_l A / d^2 from it
 //                        (one-sample estimate of the integral), pdf per steradian d^2 / (cos_l A)
 //   tlAreaLightHit       where a ray meets the shape, and the pdf tlAreaLightSample gives that

@@ -1,5 +1,6 @@
 // Redeferred shading (lighting/common/redeferred_pass.h) at full rate against the deferred
-// composite: the same image within 1e-3 relative, on every content scene and every
+// composite: the same image within 1e-3 relative, on every content scene (with its lighting
+// sidecar where it has one: area_room's area lights, courtyard's environment) and every
 // rasterising path (the reference computes its own image and ignores the setting). Small
 // images and two frames each (the second continues the paths' and the many-lights
 // accumulation), each mode from a reset history and frame 0, so both see the same samples.
@@ -7,6 +8,7 @@
 
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/redeferred_pass.h"
+#include "session/lighting_file.h"
 #include "shared/redeferred.h"
 
 #include <algorithm>
@@ -62,6 +64,9 @@ TEST_F(GpuTest, RedeferredAtFullRateIsTheDeferredImage) {
   for (const auto& file : scenes) {
     s.loadScene(file);
     s.setSize(48, 32);
+    // A scene's lighting sidecar (area lights, an environment) is part of what it shows.
+    const auto sidecar = session::lightingSidecarPath(file);
+    if (std::filesystem::exists(sidecar)) s.setLighting(session::readLightingFile(sidecar, s.lighting()));
     for (const session::PathInfo& info : s.paths()) {
       if (info.capabilities.isReference || !info.capabilities.rasterizes || !info.available) continue;
       const std::string& path = info.name;

@@ -76,10 +76,9 @@ struct FrameInputs {
   // Views of point, spot and area light shadow maps this frame (lighting/common/light_shadows.h):
   // with any, "lights.shadowViews" is imported and "shadow.lightsDepth" can be drawn for who reads it.
   uint32_t lightShadowViews = 0;
-  // The table's area lights, and those of them with a shadow map: their shadows are sampled (shadow
-  // rays to points of the shape, or the map's taps turned each frame), so lights.direct
-  // accumulates its estimate while nothing it depends on changes.
-  uint32_t areaLights = 0, mappedAreaLights = 0;
+  // The table's area lights: their glossy reflection and their shadows are sampled, so
+  // lights.direct accumulates its estimate while nothing it depends on changes.
+  uint32_t areaLights = 0;
   // Redeferred below full rate: adds the light table's refining run (lights.direct.refine, the
   // pixels ibuffer.upsample could not fill), which whoever added lights.direct owns.
   std::function<void(graph::RenderGraph&)> refineLights;

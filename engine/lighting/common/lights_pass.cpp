@@ -37,11 +37,11 @@ void addTableInputs(ComputePass& pass, const std::vector<std::string>& structure
 }
 
 // The table's light is an estimate that changes from frame to frame, accumulated while nothing
-// it depends on changes: with more lights than the loop evaluates, or with area lights whose
-// shadows are sampled (shadow rays to points of the shape, or their map's taps turned each frame).
-bool sampledEstimate(const FrameInputs& in, bool traced, bool mapped) {
-  return in.constants.lightCount > shared::kLightsLoopMax || (traced && in.areaLights > 0) ||
-         (mapped && in.mappedAreaLights > 0);
+// it depends on changes: with more lights than the loop evaluates, or with area lights (their
+// glossy reflection is estimated by samples, shared/area_specular.h; their shadows by shadow rays
+// to points of the shape or by their map's taps turned each frame).
+bool sampledEstimate(const FrameInputs& in) {
+  return in.constants.lightCount > shared::kLightsLoopMax || in.areaLights > 0;
 }
 
 // Each form has a shader per kind of shadow: <form>.comp, <form>_shadowed.comp, <form>_traced.comp.
@@ -70,7 +70,7 @@ std::string LightsPass::add(graph::RenderGraph& graph, FrameInputs& in, const st
   const std::string accum = "lights.accum." + in.pathName;
   const auto accumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                                       "sum of light-table estimates (rgb) and their count (a)");
-  if (sampledEstimate(in, traced, mapped)) {
+  if (sampledEstimate(in)) {
     push.accumulate = 1;
     const bool stored = in.historyValid(accum, accumDesc);
     push.restart = accumulation_[in.pathName].advance(kLightsAccumulation, in.key, in.pathName, in.historyLog, {stored})
@@ -135,7 +135,7 @@ std::string LightsPass::addIbuffer(graph::RenderGraph& graph, FrameInputs& in, c
       if (!stored) push.restart = 1;  // its images are new: nothing to add to
       for (const auto& a : accum) graph.declarePersistent(a, accumDesc);
     }
-  } else if (sampledEstimate(in, traced, mapped)) {
+  } else if (sampledEstimate(in)) {
     push.accumulate = 1;
     bool stored = true;
     for (const auto& a : accum) stored = stored && in.historyValid(a, accumDesc);
