@@ -83,10 +83,12 @@ float lightSampleWeight(LightIncidence li) {
 
 // The draws of an area light's glossy estimate at the point shadeLights shades (xy: the point on
 // the shape, zw: the lobe's direction; shared/area_specular.h): the same for the deferred and the
-// redeferred forms, so the I-buffer rebuilds the deferred form's radiance.
+// redeferred forms, so the I-buffer rebuilds the deferred form's radiance. Successive frames
+// (gLightsSeed.z) walk an R2 sequence from a shift drawn per pixel and light, so the frames a
+// still image accumulates spread over the shape and the lobe rather than clump.
 vec4 areaGlossyDraws(uint light) {
-  uvec3 h = tlPcg3d(gLightsSeed + uvec3(light * 0x632BE5ABu + 3u, 0x9E3779B9u, 0x7F4A7C15u)), h2 = tlPcg3d(h);
-  return vec4(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y), tlUintToUnitFloat(h2.x), tlUintToUnitFloat(h2.y));
+  uvec3 h = tlPcg3d(uvec3(gLightsSeed.xy, light * 0x632BE5ABu + 3u)), h2 = tlPcg3d(h);
+  return vec4(tlR2Point(gLightsSeed.z, h.xy), tlR2Point(gLightsSeed.z, h2.xy));
 }
 
 #ifndef TL_LIGHTS_CUSTOM_SUM

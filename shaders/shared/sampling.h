@@ -123,6 +123,15 @@ TL_FN float tlRadicalInverse2(uint i) {
   return tlUintToUnitFloat(i);
 }
 
+// Point k of the R2 sequence (Roberts 2018: the additive recurrence on the inverse powers of the
+// plastic number) shifted by `offset` (fixed point; a random shift per pixel, Cranley-Patterson
+// rotation): each point alone is uniform in the unit square, and any k consecutive points cover
+// it about as evenly as k stratified ones, so a running mean over frames converges faster than
+// with independent draws. Fixed point: exact for every k (a float k * alpha is not past 2^24).
+TL_FN vec2 tlR2Point(uint k, uvec2 offset) {
+  return vec2(tlUintToUnitFloat(offset.x + k * 0xC13FA9A9u), tlUintToUnitFloat(offset.y + k * 0x91E10DA5u));
+}
+
 TL_FN vec2 tlRandom2(uvec3 seed) {
   uvec3 h = tlPcg3d(seed);
   return vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y));

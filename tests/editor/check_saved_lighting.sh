@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # After editor.lights: the CLI renders what the artist saved. `twinlight render --lighting`
-# with the saved sidecar gives the editor's own image (same camera, path and size) within
+# with the saved sidecar gives the editor's own image (same camera, path, size and the diffuse
+# material mode the editor saved it in: lights.txt says why) within
 # 0.01 on all but 0.1% of the pixels, while the scene without the sidecar does not; the glTF
 # alone holds the four punctual lights (KHR_lights_punctual) that other tools read.
 # Usage: check_saved_lighting.sh TWINLIGHT DIR
@@ -9,8 +10,8 @@ tl=$1
 dir=$2
 size=$(oiiotool --info "$dir/editor.exr" | sed -E 's/.*: *([0-9]+) x +([0-9]+),.*/\1x\2/')
 "$tl" render --scene "$dir/lamps.gltf" --lighting "$dir/lamps.lighting.json" --path direct --size "$size" --frames 4 \
-  --out "$dir/cli.exr"
-"$tl" render --scene "$dir/lamps.gltf" --path direct --size "$size" --frames 4 --out "$dir/cli_gltf_only.exr"
+  --materials diffuse --out "$dir/cli.exr"
+"$tl" render --scene "$dir/lamps.gltf" --path direct --size "$size" --frames 4 --materials diffuse --out "$dir/cli_gltf_only.exr"
 "$tl" info --scene "$dir/lamps.gltf" | grep -q "lights: 4 (2 point, 2 spot)" || { echo "the glTF does not hold the 4 saved lights"; exit 1; }
 if ! oiiotool "$dir/editor.exr" "$dir/cli.exr" --fail 0.01 --failpercent 0.1 --diff; then
   echo "the CLI's render with the saved lighting differs from the editor's image"

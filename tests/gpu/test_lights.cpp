@@ -598,5 +598,27 @@ TEST_F(LightsTest, AGlossyFloorReflectsAPanelAsTheReferenceDoesInEveryPath) {
   }
 }
 
+
+TEST_F(LightsTest, AChangeOfMaterialModeRestartsTheLightTablesAccumulation) {
+  // The glossy floor under the panel for 16 frames in the authored mode, then one frame in the
+  // diffuse mode: lights.direct accumulates while nothing it depends on changes, and the surfaces
+  // it shades are one of those things, so that frame is the white Lambertian floor's form factor
+  // (within the area-light test's 1%), not a running mean that still holds 16 glossy frames.
+  auto& s = session();
+  const lighting::MaterialMode before = s.settings().materials;
+  scene::Light panel = areaLight(scene::LightType::Rect, 2.0);
+  panel.width = 1.0f;
+  panel.height = 1.0f;
+  renderPlane("direct", {panel}, 16, metalPlane(0.25f), "", lighting::MaterialMode::Authored);
+  s.settings().materials = lighting::MaterialMode::Diffuse;
+  s.requestBuffer(finalImageOf("direct"));
+  s.renderFrames(1);
+  const auto img = s.buffer(finalImageOf("direct")).texels();
+  s.settings().materials = before;
+  const RowError e = rowError(img, kSize / 2, [&](double r) { return centredRectFormFactor(1.0, 1.0, 2.0, r); });
+  std::printf("diffuse frame after 16 glossy ones: worst relative error %.4f at x = %u\n", e.worst, e.at);
+  EXPECT_LT(e.worst, 0.01) << "at pixel x = " << e.at;
+}
+
 }  // namespace
 }  // namespace tl::test

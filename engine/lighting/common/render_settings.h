@@ -55,14 +55,14 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
 #define TL_RENDER_SETTINGS(X) \
   X(uint32_t, width, 640, 1, 16384, "px", "common", "", kSettingNoPanel, "image width (--size)") \
   X(uint32_t, height, 360, 1, 16384, "px", "common", "", kSettingNoPanel, "image height (--size)") \
-  X(MaterialMode, materials, MaterialMode::Authored, 0, 2, "", "common", "reference rt legacy", kSettingPlain, "material override, every path and the reference: authored, diffuse (Lambert, authored base colour) or clay (Lambert 0.8 grey); emission stays") \
+  X(MaterialMode, materials, MaterialMode::Authored, 0, 2, "", "common", "reference rt legacy direct bentsky", kSettingPlain, "material override, every path and the reference: authored, diffuse (Lambert, authored base colour) or clay (Lambert 0.8 grey); emission stays") \
   X(uint32_t, shadowMapSize, 2048, 64, 8192, "texels", "common", "", kSettingPlain, "side of the sun's shadow map") \
   X(float, shadowDepthBiasTexels, 1.5f, 0.0f, 16.0f, "texels", "common", "", kSettingPlain, "sun shadow constant depth bias, in shadow-map texels of depth") \
   X(float, shadowNormalOffsetTexels, 1.0f, 0.0f, 16.0f, "texels", "common", "", kSettingPlain, "sun shadow lookup offset along the normal, in shadow-map texels") \
   X(bool, softShadows, true, 0, 1, "", "common", "", kSettingPlain, "PCSS: penumbrae from the sun's angular size (off: 3x3 PCF, --hard-shadows)") \
   X(float, pcssMaxRadiusTexels, 16.0f, 0.0f, 64.0f, "texels", "common", "", kSettingPlain, "widest PCSS filter") \
-  X(uint32_t, lightShadowMapSize, 512, 64, 4096, "texels", "common", "legacy", kSettingPlain, "side of each shadow-map view of a point, spot or area light (a point or area light has six; direct and legacy paths)") \
-  X(uint32_t, lightShadowMaxLights, 8, 0, 32, "", "common", "legacy", kSettingPlain, "the most powerful point, spot and area lights that cast shadows in the direct and legacy paths (0: none; rt and the reference trace every light)") \
+  X(uint32_t, lightShadowMapSize, 512, 64, 4096, "texels", "common", "legacy direct bentsky", kSettingPlain, "side of each shadow-map view of a point, spot or area light (a point or area light has six; direct and legacy paths)") \
+  X(uint32_t, lightShadowMaxLights, 8, 0, 32, "", "common", "legacy direct bentsky", kSettingPlain, "the most powerful point, spot and area lights that cast shadows in the direct and legacy paths (0: none; rt and the reference trace every light)") \
   X(bool, specularGi, true, 0, 1, "", "common", "", kSettingPlain, "indirect specular from the path's SH (dominant direction, GGX; Metro); off: the sky's specular times AO") \
   X(bool, redeferred, false, 0, 1, "", "common", "", kSettingPlain, "redeferred shading (Fools Engine): lights accumulate material-free sums (ibuffer.*), one material pass applies the materials; off: the deferred composite") \
   X(float, redeferredRate, 1.0f, 0.25f, 1.0f, "", "common", "", kSettingPow2, "redeferred: share of pixels the illumination passes shade first (1 all, 0.5 a checkerboard, 0.25 one of each 2x2); the rest filled depth- and normal-aware, edges of geometry and light shaded at full rate") \
