@@ -22,7 +22,8 @@ layout(set = 0, binding = kRtBindingOutShY, rgba16f) uniform writeonly image2D o
 layout(set = 0, binding = kRtBindingOutCoCgAo, rgba16f) uniform writeonly image2D outCoCgAo;
 layout(set = 0, binding = kRtBindingOutDepth, r32f) uniform writeonly image2D outDepth;
 layout(set = 0, binding = kRtBindingHistMoment) uniform sampler2D historyMoment;
-layout(set = 0, binding = kRtBindingOutMoment, r32f) uniform writeonly image2D outMoment;
+// x: the mean squared sample luma; y: the mean inverse hit distance (the denoiser's radius).
+layout(set = 0, binding = kRtBindingOutMoment, rg32f) uniform writeonly image2D outMoment;
 
 // How much the view depth changes over one pixel on this pixel's surface: per axis the
 // smaller step to the two opposite neighbours (the plane's gradient; the larger one may cross
@@ -145,7 +146,13 @@ void main() {
     }
   }
   vec4 shY = noSample ? vec4(0.0) : texelFetch(rawShY, src, 0);
-  vec4 coCgAo = noSample ? vec4(0.0, 0.0, 1.0, 0.0) : vec4(texelFetch(rawCoCg, src, 0).xy, texelFetch(rawAo, src, 0).r, 1.0);
+  vec2 aoHit = noSample ? vec2(1.0, push.hitDistanceCap) : texelFetch(rawAo, src, 0).rg;
+  vec4 coCgAo = noSample ? vec4(0.0, 0.0, 1.0, 0.0) : vec4(texelFetch(rawCoCg, src, 0).xy, aoHit.x, 1.0);
+  // The inverse of the hit distance averages to the harmonic mean: near occluders dominate it,
+  // as they dominate how fast the irradiance changes across the surface. A miss, or a hit beyond
+  // the denoiser's radius, limits nothing (0); a contact closer than a twentieth of it counts
+  // as that twentieth, so one corner sample does not pin the radius to nothing.
+  float inverseHit = aoHit.y < push.hitDistanceCap ? 1.0 / max(aoHit.y, 0.05 * push.hitDistanceCap) : 0.0;
   if (!finite4(shY) || !finite4(coCgAo)) {  // a broken sample never reaches the history
     noSample = true;
     shY = vec4(0.0);
@@ -164,6 +171,7 @@ void main() {
   bool hasHistory = false;
   vec4 historySh = vec4(0.0), history = vec4(0.0);
   float meanSquare = 0.0;  // the history's mean squared sample luma
+  float meanInverseHit = 0.0;  // and its mean inverse hit distance
   if (push.historyValid != 0u) {
     vec2 uv = (vec2(p) + 0.5) * frame.viewport.zw;
     vec2 previousUv = uv - texelFetch(gMotion, p, 0).xy;
@@ -182,7 +190,9 @@ void main() {
       hasHistory = sameSurface && history.w >= 1.0;
       if (hasHistory) {
         historySh = texelFetch(historyShY, q, 0);
-        meanSquare = texelFetch(historyMoment, q, 0).x;
+        vec2 moments = texelFetch(historyMoment, q, 0).xy;
+        meanSquare = moments.x;
+        meanInverseHit = moments.y;
       }
     }
   }
@@ -220,12 +230,14 @@ void main() {
     shY = mix(historySh, shY, a);
     coCgAo = vec4(mix(history.xyz, coCgAo.xyz, a), n);
     meanSquare = mix(meanSquare, shY0 * shY0, a);
+    meanInverseHit = mix(meanInverseHit, inverseHit, a);
   } else {
     meanSquare = shY0 * shY0;
+    meanInverseHit = inverseHit;
   }
   // Rounded here, not by the store: the history must not drift on a device that truncates.
   imageStore(outShY, p, tlRoundToHalf(shY));
   imageStore(outCoCgAo, p, tlRoundToHalf(coCgAo));
   imageStore(outDepth, p, vec4(w));
-  imageStore(outMoment, p, vec4(meanSquare));
+  imageStore(outMoment, p, vec4(meanSquare, meanInverseHit, 0.0, 0.0));
 }

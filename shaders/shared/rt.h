@@ -250,7 +250,7 @@ struct RtPush {
   float cacheCellAngle;  // a cell is at least this many times its distance from the camera
   uint cacheBounces;     // rays of an update path
   uint cacheTile;        // one update path per cacheTile x cacheTile pixels
-  uint pad0;
+  float hitDistanceCap;  // a GI ray's hit distance counts as at most this, a miss as this (the denoiser's base radius, m)
   uint pad1;
 };
 
@@ -260,6 +260,8 @@ struct RtDenoisePush {
   uint normalWeight;     // 0: pass 1 (geometry only), 1: pass 2 (linear normal weight)
   float rotation;        // this frame's rotation of the Poisson disk (radians), the same for every pixel
   float planeDistance;   // a sample counts when within this fraction of the view distance of the tangent plane
+  float hitDistanceCap;  // RtPush::hitDistanceCap: the hit distance at and beyond which the radius is not shrunk
+  uint pad0, pad1, pad2;
 };
 
 // Bindings (set 0) of the RT path's passes; set 1 is the scene (shared/scene.h) where used.
@@ -310,6 +312,6 @@ TL_END
 static_assert(sizeof(tl::shared::RtInstance) == 80);
 static_assert(sizeof(tl::shared::RtPush) == 128);  // the least maxPushConstantsSize a device may have
 static_assert(sizeof(tl::shared::RtEmitter) == 64);
-static_assert(sizeof(tl::shared::RtDenoisePush) == 16);
+static_assert(sizeof(tl::shared::RtDenoisePush) == 32);
 #endif
 #endif

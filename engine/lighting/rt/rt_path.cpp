@@ -92,12 +92,16 @@ class RtPath final : public LightingPath {
     push.maxAccumFrames = s.rtMaxAccumFrames;
     push.aoFilterDepth = 0.02f;
     push.fireflyClamp = std::max(s.rtFireflyClamp, 0.0f);
+    // Metro's denoiser radii are 6 m and 3 m in its world; here a sixth of the scene, at most 6 m.
+    const float denoiseRadius = s.rtDenoiseRadius > 0.0f ? s.rtDenoiseRadius : sceneScaledDenoiseRadius(scale);
+    push.hitDistanceCap = denoiseRadius;
     const uint32_t w = s.width, h = s.height;
     auto image = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, w, h, what); };
     const graph::ResourceDesc histDescs[] = {
         image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated SH luma, last frame"),
         image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated CoCg, AO, frame count, last frame"),
-        image(VK_FORMAT_R32_SFLOAT, "view depth, last frame"), image(VK_FORMAT_R32_SFLOAT, "mean squared sample luma, last frame")};
+        image(VK_FORMAT_R32_SFLOAT, "view depth, last frame"),
+        image(VK_FORMAT_R32G32_SFLOAT, "mean squared sample luma, mean inverse hit distance, last frame")};
     const char* histNames[] = {kHistShY, kHistCoCgAo, kHistDepth, kHistLumaMoment};
     bool stored = true;
     for (int i = 0; i < 4; ++i) stored = stored && in.historyValid(histNames[i], histDescs[i]);
@@ -149,7 +153,8 @@ class RtPath final : public LightingPath {
         .storageOut(shared::kRtBindingOutDepth, kViewDepth,
                     image(VK_FORMAT_R32_SFLOAT, "view depth (w) for the next frame's disocclusion test"))
         .storageOut(shared::kRtBindingOutMoment, kLumaMoment,
-                    image(VK_FORMAT_R32_SFLOAT, "mean squared sample luma (the firefly ceiling's scale)"))
+                    image(VK_FORMAT_R32G32_SFLOAT,
+                          "mean squared sample luma (x: the firefly ceiling's and the denoiser's scale), mean inverse GI hit distance (y: the denoiser's radius)"))
         .push(push)
         // Whether the histories hold anything is known when the frame runs (their "stored" flags).
         .push(push,
@@ -205,8 +210,7 @@ class RtPath final : public LightingPath {
 
     std::string giShY = accShY, giCoCg = accCoCgAo;
     if (s.rtDenoise) {
-      // Metro's radii are 6 m and 3 m in its world; here a sixth of the scene, at most 6 m.
-      const float base = s.rtDenoiseRadius > 0.0f ? s.rtDenoiseRadius : sceneScaledDenoiseRadius(scale);
+      const float base = denoiseRadius;
       const uint32_t frameIndex = in.constants.frameIndex;
       auto denoise = [&](const char* name, const char* inShY, const char* inCoCg, const char* outShY, const char* outCoCg,
                          float radius, uint32_t normalWeight) {
@@ -215,6 +219,7 @@ class RtPath final : public LightingPath {
         dp.normalWeight = normalWeight;
         dp.rotation = float(frameIndex % 1024u) * 2.3999632f;  // golden angle per frame
         dp.planeDistance = 0.02f;
+        dp.hitDistanceCap = denoiseRadius;
         ComputePass(in.device, name, "rt/denoise.comp")
             .uniform(shared::kRtBindingFrame, kFrameConstants)
             .sampled(shared::kRtBindingDepth, kGbufferDepth)
@@ -328,7 +333,8 @@ class RtPath final : public LightingPath {
                         .decodedAs(shIrradianceDecoder(r.coCg)))
         .storageOut(shared::kRtBindingCoCg, r.coCg, image(VK_FORMAT_R16G16_SFLOAT, fmt::format("{} irradiance: chroma", rays)))
         .storageOut(shared::kRtBindingAo, r.ao,
-                    image(VK_FORMAT_R16_SFLOAT, fmt::format("{} ambient occlusion (hit closer than the AO radius)", rays)))
+                    image(VK_FORMAT_R16G16_SFLOAT,
+                          fmt::format("{} ambient occlusion (x: hit closer than the AO radius), hit distance up to the denoiser's radius (y)", rays)))
         // The first ray's results, read by the second ray only (lighting.rgen: RtPush::sampleIndex 1).
         .optionalSampled(shared::kRtBindingFirstShY, kFirstRay.shY, first != nullptr)
         .optionalSampled(shared::kRtBindingFirstCoCg, kFirstRay.coCg, first != nullptr)
