@@ -88,9 +88,10 @@ TEST_F(AlphaTest, AHalfTranslucentPaneLetsHalfTheSunThroughInEveryPath) {
 // pane: an opaque copy hides the share F = 0.5541 of the sky light at the floor under its
 // centre (a 2 m square 1 m up: the point-to-parallel-rectangle form factor), the translucent
 // pane half of that. The reference is held to both closed forms, 0.8 (1 - F) = 0.3567 and
-// 0.8 (1 - F / 2) = 0.5783; legacy and rt to half their own opaque pane's share (each has its
-// own bias under an overhang: rt's denoiser and screen reuse, legacy's voxel cones, which see
-// the dithered voxels). The direct path has no sky occlusion to test.
+// 0.8 (1 - F / 2) = 0.5783, rt to them within 8% and 3%; legacy and rt to half their own
+// opaque pane's share (each has its own bias under an overhang: rt's screen reuse and what is
+// left of its denoiser's, legacy's voxel cones, which see the dithered voxels). The direct path
+// has no sky occlusion to test.
 TEST_F(AlphaTest, RaysCrossAHalfTranslucentPaneHalfTheTime) {
   auto& s = session();
   const uint32_t size = 64;
@@ -119,12 +120,19 @@ TEST_F(AlphaTest, RaysCrossAHalfTranslucentPaneHalfTheTime) {
     std::printf("[ blend    ] %-9s sky under the pane: opaque %.4f (closed form %.4f), alpha 0.5 %.4f (%.4f): "
                 "hides %.4f of the opaque share\n",
                 path, opaque.g, 0.8 * (1.0 - formFactor), blend.g, 0.8 * (1.0 - 0.5 * formFactor), share.g);
+    // rt against the closed forms too: its denoiser's radius follows the rays' hit distances,
+    // so under the opaque pane it no longer averages in the open floor (measured 6.0% and 0.4%
+    // over the closed forms; before, 23% and 6.5%, whose ratio of differences happened to give
+    // 0.510). The share, a ratio of differences from 0.8, carries the opaque image's 6% (0.531).
+    const std::string name = path;
+    const double imageTolerance = name == "reference" ? 0.02 : 0.08, blendTolerance = name == "reference" ? 0.02 : 0.03;
+    const double shareTolerance = name == "legacy" ? 0.05 : name == "rt" ? 0.04 : 0.025;
     for (int c = 0; c < 3; ++c) {
-      if (std::string(path) == "reference") {
-        EXPECT_NEAR(opaque[c] / (0.8 * (1.0 - formFactor)), 1.0, 0.02) << "channel " << c;
-        EXPECT_NEAR(blend[c] / (0.8 * (1.0 - 0.5 * formFactor)), 1.0, 0.02) << "channel " << c;
+      if (name != "legacy") {
+        EXPECT_NEAR(opaque[c] / (0.8 * (1.0 - formFactor)), 1.0, imageTolerance) << "channel " << c;
+        EXPECT_NEAR(blend[c] / (0.8 * (1.0 - 0.5 * formFactor)), 1.0, blendTolerance) << "channel " << c;
       }
-      EXPECT_NEAR(share[c], 0.5, std::string(path) == "legacy" ? 0.05 : 0.025) << "channel " << c;
+      EXPECT_NEAR(share[c], 0.5, shareTolerance) << "channel " << c;
     }
   }
 }
