@@ -526,7 +526,14 @@ void Session::beginOne(bool readback) {
   passes_->gbuffer.add(graph, in);
   passes_->shadow.add(graph, in);
   in.lightShadowViews = uint32_t(shadowPlan.views.size());
-  for (const auto& l : lights) in.areaLights += shared::tlIsAreaLight(l.type) ? 1u : 0u;
+  const float nearLight = 0.05f * std::max(in.constants.sceneScale, 1e-3f);
+  for (const auto& l : lights) {
+    const float strongest = std::max({l.intensity.x, l.intensity.y, l.intensity.z});
+    in.areaLights += shared::tlIsAreaLight(l.type) ? 1u : 0u;
+    in.lightTableRadiance += shared::tlIsAreaLight(l.type)           ? strongest
+                             : l.type == shared::kLightDirectional ? strongest / shared::kPi
+                                                                   : strongest / (shared::kPi * nearLight * nearLight);
+  }
   passes_->lightShadow.add(graph, in, shadowPlan);  // culled in paths that trace their shadows
   lighting::LightingOutputs outputs = path->addPasses(graph, in);
   // A path that computes the whole image (the reference) shades the lights itself.

@@ -79,6 +79,10 @@ struct FrameInputs {
   // The table's area lights: their glossy reflection and their shadows are sampled, so
   // lights.direct accumulates its estimate while nothing it depends on changes.
   uint32_t areaLights = 0;
+  // The most radiance a white Lambertian surface reflects from the whole light table (each
+  // point or spot light taken at a twentieth of the scene's size, an area light's radiance, a
+  // directional light's E / pi): what the RT radiance cache's fixed-point sums must hold.
+  float lightTableRadiance = 0.0f;
   // Redeferred below full rate: adds the light table's refining run (lights.direct.refine, the
   // pixels ibuffer.upsample could not fill), which whoever added lights.direct owns.
   std::function<void(graph::RenderGraph&)> refineLights;

@@ -114,9 +114,11 @@ void RtRadianceCache::plan(graph::RenderGraph& graph, FrameInputs& in, shared::R
   push_.frame = active_ ? ++frame_ : frame_;
   push_.sampleCount = paths(in) * bounces_;
   push_.restart = restart_ ? 1u : 0u;
-  // The brightest light one sample can carry, with room for the emitters' 1/pdf: the sun's
-  // and the sky's light off a white surface, an emitter seen directly.
-  const float light = std::max(largest(in.constants.sunIrradiance) / shared::kPi + largest(in.constants.skyRadiance),
+  // The brightest light one sample can carry, with room for the emitters' 1/pdf: the sun's,
+  // the sky's and the light table's light off a white surface, an emitter seen directly. (Without
+  // the light table a room lit only by lamps had a bound of 1e-3 and its cache held nothing.)
+  const float light = std::max(largest(in.constants.sunIrradiance) / shared::kPi + largest(in.constants.skyRadiance) +
+                                   in.lightTableRadiance,
                                maxEmitterRadiance);
   // Generous: a sample above it is clipped (lost light), and the sum's resolution is the bound
   // over 2^22 with stochastic rounding (no bias, only a little noise).
