@@ -107,10 +107,10 @@ void main() {
   float sigma = sqrt(max(sum2 / 9.0 - mean * mean, 0.0));
   float fVariance = clamp(2.0 * sigma / max(abs(mean), 1e-4), 0.1, 1.0);
   float spatialVariance = sigma * sigma;
-  float error0 = lumaStandardError2(shY0.x, texelFetch(lumaMoment, p, 0).r, coCgAo0.w, spatialVariance);
+  vec2 moments0 = texelFetch(lumaMoment, p, 0).rg;  // mean squared luma, mean inverse hit distance
+  float error0 = lumaStandardError2(shY0.x, moments0.x, coCgAo0.w, spatialVariance);
   float fAo = mix(0.5, 1.0, clamp(coCgAo0.z, 0.0, 1.0));
-  float meanInverseHit = texelFetch(lumaMoment, p, 0).g;
-  float fHit = meanInverseHit > 0.0 ? clamp(kHitRadiusScale / (meanInverseHit * push.hitDistanceCap), 0.0, 1.0) : 1.0;
+  float fHit = moments0.y > 0.0 ? clamp(kHitRadiusScale / (moments0.y * push.hitDistanceCap), 0.0, 1.0) : 1.0;
   float radius = clamp(push.baseRadius * fVariance * fAo * fHit / pixelFootprint(w0), 1.0, 48.0);
   int step = radius < 4.0 ? 4 : (radius < 8.0 ? 2 : 1);
 

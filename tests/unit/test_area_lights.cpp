@@ -224,11 +224,8 @@ TEST(AreaLights, TheGlossyReflectionOfAPanelIsTheIntegralOverIt) {
       double mean = 0.0, square = 0.0;
       const int draws = 4096;
       for (int k = 0; k < draws; ++k) {
-        const glm::uvec3 h = shared::tlPcg3d(glm::uvec3(uint32_t(k), uint32_t(x * 10.0f), uint32_t(roughness * 100.0f)));
-        const glm::uvec3 h2 = shared::tlPcg3d(h);
-        const double e = shared::tlAreaLightSpecular(g, s, n, v, p, glm::vec2(shared::tlUintToUnitFloat(h.x), shared::tlUintToUnitFloat(h.y)),
-                                                     glm::vec2(shared::tlUintToUnitFloat(h2.x), shared::tlUintToUnitFloat(h2.y)))
-                             .x;
+        const glm::uvec3 seed(uint32_t(k), uint32_t(x * 10.0f), uint32_t(roughness * 100.0f));
+        const double e = shared::tlAreaLightSpecular(g, s, n, v, p, shared::tlRandom2(seed), shared::tlRandom2(shared::tlPcg3d(seed))).x;
         mean += e / draws;
         square += e * e / draws;
       }
@@ -255,11 +252,8 @@ TEST(AreaLights, APanelThatFillsTheLobeIsReflectedAsTheRadianceTimesTheAlbedo) {
   double mean = 0.0;
   const int draws = 4096;
   for (int k = 0; k < draws; ++k) {
-    const glm::uvec3 h = shared::tlPcg3d(glm::uvec3(uint32_t(k), 7u, 11u)), h2 = shared::tlPcg3d(h);
-    mean += shared::tlAreaLightSpecular(g, s, n, v, p, glm::vec2(shared::tlUintToUnitFloat(h.x), shared::tlUintToUnitFloat(h.y)),
-                                        glm::vec2(shared::tlUintToUnitFloat(h2.x), shared::tlUintToUnitFloat(h2.y)))
-                .x /
-            draws;
+    const glm::uvec3 seed(uint32_t(k), 7u, 11u);
+    mean += shared::tlAreaLightSpecular(g, s, n, v, p, shared::tlRandom2(seed), shared::tlRandom2(shared::tlPcg3d(seed))).x / draws;
   }
   const LightIncidence li = shared::tlLightIncidence(g, p);
   const double old = double(li.irradiance.x * shared::tlBrdf(s, n, v, li.toLight).x * glm::dot(n, li.toLight));
@@ -291,10 +285,8 @@ TEST(AreaLights, TheGlossyEstimateConvergesFasterOverFramesOnTheR2Sequence) {
         double r2 = 0.0, independent = 0.0;
         for (uint32_t k = 0; k < frames; ++k) {
           r2 += shared::tlAreaLightSpecular(g, s, n, v, p, shared::tlR2Point(k, glm::uvec2(h.x, h.y)), shared::tlR2Point(k, glm::uvec2(h2.x, h2.y))).x;
-          const glm::uvec3 d = shared::tlPcg3d(glm::uvec3(pixel, k, 5u)), d2 = shared::tlPcg3d(d);
-          independent += shared::tlAreaLightSpecular(g, s, n, v, p, glm::vec2(shared::tlUintToUnitFloat(d.x), shared::tlUintToUnitFloat(d.y)),
-                                                     glm::vec2(shared::tlUintToUnitFloat(d2.x), shared::tlUintToUnitFloat(d2.y)))
-                             .x;
+          const glm::uvec3 seed(pixel, k, 5u);
+          independent += shared::tlAreaLightSpecular(g, s, n, v, p, shared::tlRandom2(seed), shared::tlRandom2(shared::tlPcg3d(seed))).x;
         }
         r2 /= frames, independent /= frames;
         meanR2 += r2 / pixels;

@@ -210,7 +210,6 @@ class RtPath final : public LightingPath {
 
     std::string giShY = accShY, giCoCg = accCoCgAo;
     if (s.rtDenoise) {
-      const float base = denoiseRadius;
       const uint32_t frameIndex = in.constants.frameIndex;
       auto denoise = [&](const char* name, const char* inShY, const char* inCoCg, const char* outShY, const char* outCoCg,
                          float radius, uint32_t normalWeight) {
@@ -238,8 +237,8 @@ class RtPath final : public LightingPath {
             .dispatch(w, h)
             .add(graph);
       };
-      denoise("rt.denoise1", accShY, accCoCgAo, kDenoise1ShY, kDenoise1CoCgAo, base, 0);
-      denoise("rt.denoise2", kDenoise1ShY, kDenoise1CoCgAo, kDenoisedShY, kDenoisedCoCgAo, 0.5f * base, 1);
+      denoise("rt.denoise1", accShY, accCoCgAo, kDenoise1ShY, kDenoise1CoCgAo, denoiseRadius, 0);
+      denoise("rt.denoise2", kDenoise1ShY, kDenoise1CoCgAo, kDenoisedShY, kDenoisedCoCgAo, 0.5f * denoiseRadius, 1);
       giShY = kDenoisedShY;
       giCoCg = kDenoisedCoCgAo;
     }
