@@ -13,6 +13,7 @@ layout(set = 0, binding = kLegacyBindingRadiance) uniform sampler3D radiance0;
 layout(set = 0, binding = kLegacyBindingRadianceMips) uniform sampler3D radianceMips;
 layout(set = 0, binding = kLegacyBindingConeShY, rgba16f) uniform writeonly image2D shYOut;
 layout(set = 0, binding = kLegacyBindingConeCoCgAo, rgba16f) uniform writeonly image2D coCgAoOut;
+layout(set = 0, binding = kLegacyBindingReach) uniform usampler3D reach;  // rooms (shared/legacy.h), when roomGate
 
 
 struct VoxelSample {
@@ -65,6 +66,32 @@ VoxelSample sampleClipmap(vec3 position, vec3 dir, float diameter) {
   return s;
 }
 
+// Whether light can reach the air the cones start in: false only where the finest level's
+// flood found that air sealed off from every lit surface and from the sky (shared/legacy.h).
+// The cones start in an empty voxel, or, near a wall or in a corner, in one a surface's voxels
+// hold: then the air around it decides, and light reaches unless all of that air is sealed
+// (pockets inside thick walls are sealed too; the other side of a wall at least one voxel thick
+// lies beyond the 3x3x3 block of a voxel on its near face).
+bool lightReaches(vec3 origin) {
+  LegacyClipmap c = push.clipmap;
+  if (c.roomGate == 0u) return true;
+  ivec3 v = ivec3(floor((origin - c.levelMin[0].xyz) / c.levelMin[0].w));
+  int R = int(c.resolution);
+  if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(R)))) return true;  // outside: the cones decide
+  uint here = texelFetch(reach, v, 0).r;
+  if (here != kLegacyReachSolid) return here == kLegacyReachLit;
+  bool air = false;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        ivec3 u = clamp(v + ivec3(dx, dy, dz), ivec3(0), ivec3(R - 1));
+        uint r = texelFetch(reach, u, 0).r;
+        if (r == kLegacyReachLit) return true;
+        air = air || r == kLegacyReachSealed;
+      }
+  return !air;  // no air around: nothing is known, the cones decide
+}
+
 void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(q, reducedSize(push.coneDivisor)))) return;
@@ -84,6 +111,9 @@ void main() {
   const float wAxis = kLegacyConeAxisWeight, wRing = wAxis * kLegacyConeRingCos;
   ShLumaCoCg sh = tlShZero();
   float ao = 0.0;
+  // Sealed air holds no light: no cone can gather any there (the cones' coarse texels would
+  // otherwise blend in light from beyond its walls).
+  const bool open = lightReaches(origin);
   for (int i = 0; i < 6; ++i) {
     vec3 local = vec3(0.0, 0.0, 1.0);
     if (i > 0) {
@@ -108,7 +138,7 @@ void main() {
       if (t < push.aoRadius) aoOcclusion = occlusion;
       t += stepLength;
     }
-    vec3 radiance = gathered + (1.0 - occlusion) * tlSkyRadiance(frame, dir);
+    vec3 radiance = open ? gathered + (1.0 - occlusion) * tlSkyRadiance(frame, dir) : vec3(0.0);
     float w = i == 0 ? wAxis : wRing;
     float cosTheta = local.z;
     sh = tlShAdd(sh, tlShScale(tlShProjectRadiance(dir, radiance), w / (0.25 + 0.5 * cosTheta)));

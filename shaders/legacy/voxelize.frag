@@ -14,6 +14,7 @@
 layout(set = 0, binding = kLegacyBindingFrame) uniform Frame { FrameConstants frame; };
 layout(set = 0, binding = kLegacyBindingShadow) uniform sampler2DShadow sunShadow;
 layout(set = 0, binding = kLegacyBindingRadiance, rgba16f) uniform writeonly image3D radianceOut;
+layout(set = 0, binding = kLegacyBindingSeeds, r8ui) uniform writeonly uimage3D seedsOut;
 layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
 #include "common/material.glsl"
 layout(set = 0, binding = kLegacyBindingPrevRadiance) uniform sampler2D previousRadiance;
@@ -100,9 +101,17 @@ void main() {
       gLightAlbedo = albedo;
       radiance += shadeLights(inPosition, ns, uvec3(uvec2(v.xy), uint(v.z) + 977u * uint(side)));
     }
+    // Direct light (not last frame's image, which may hold light that leaked) marks the
+    // empty voxels this side looks into as where light enters the air (the rooms' seeds).
+    bool lit = any(greaterThan(radiance, vec3(0.0)));
     vec3 seen;
     if (screenRadiance(inPosition, ns, seen)) radiance = seen;
-    for (int f = 0; f < 6; ++f)
-      if (dot(ns, kFace[f]) > 0.35) imageStore(radianceOut, ivec3(v.x + f * R, v.y, v.z) + z, vec4(radiance, 1.0));
+    for (int f = 0; f < 6; ++f) {
+      if (dot(ns, kFace[f]) <= 0.35) continue;
+      imageStore(radianceOut, ivec3(v.x + f * R, v.y, v.z) + z, vec4(radiance, 1.0));
+      ivec3 front = v + ivec3(kFace[f]);
+      if (lit && level == 0u && push.clipmap.roomGate != 0u && all(greaterThanEqual(front, ivec3(0))) && all(lessThan(front, ivec3(R))))
+        imageStore(seedsOut, front, uvec4(1u));
+    }
   }
 }

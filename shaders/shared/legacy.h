@@ -15,6 +15,14 @@
 //             premultiplied radiance), then average across it.
 // Mips: a second image holds levels 1.. of the chain (R/2 and smaller), so every graph
 // resource has one writer; cone tracing reads mip 0 from the first.
+// Rooms (finest level only, R^3 r8ui each):
+//   seeds: 1 where an empty voxel lies in front of a surface that direct light reaches (the
+//          sun, the light table, emission: what voxelize.frag injects before any feedback).
+//   reach: the level's empty voxels that light can reach, flooded through empty voxels
+//          (6-connected) from the seeds and from the level's outer faces (the sky, or what
+//          lies beyond the level): kLegacyReach* below. A surface voxelized along all three
+//          axes separates the air on its two sides, so air no light reaches is a sealed room
+//          that holds no light, and cones starting there gather none (cones.comp).
 #ifndef TL_SHARED_LEGACY_H
 #define TL_SHARED_LEGACY_H
 #include "common.h"
@@ -44,7 +52,7 @@ struct LegacyClipmap {
   uint resolution;     // R
   uint levels;         // N
   uint mipCount;       // mips of the mip images (levels 1.. of the chain)
-  float pad;
+  uint roomGate;       // 1: the reach image is bound and cones from sealed, unlit air gather nothing
 };
 
 struct LegacyPush {
@@ -70,7 +78,7 @@ struct LegacyPush {
 // the whole level.
 struct LegacyVoxelPush {
   LegacyClipmap clipmap;
-  uint axis;            // voxelize: projection axis (0 x, 1 y, 2 z) + 3 x level
+  uint axis;            // voxelize: projection axis (0 x, 1 y, 2 z) + 3 x level; reach sweeps: the axis swept
   uint voxelRound;      // voxelize: 0 opacity of every face, 1 radiance of the faces a surface looks out of
   uint screenRadiance;  // voxelize: surfaces seen last frame take their shaded radiance from it
   uint level;           // clear and mips: the clipmap level the region lies in
@@ -99,6 +107,13 @@ TL_CONST uint kLegacyBindingMotion = 19;        // gbuffer.motion
 TL_CONST uint kLegacyBindingSsaoOut = 20;       // reduced-res accumulated SSAO: AO (r), view depth (g), frames (b)
 TL_CONST uint kLegacyBindingVertices = 21;      // voxelize: the scene's vertex buffer (tl::scene::Vertex, 12 floats)
 TL_CONST uint kLegacyBindingIndices = 22;       // voxelize: the scene's index buffer
+TL_CONST uint kLegacyBindingSeeds = 23;         // rooms: empty voxels in front of directly lit surfaces (r8ui, level 0)
+TL_CONST uint kLegacyBindingReach = 24;         // rooms: kLegacyReach* per voxel of level 0 (r8ui)
+
+// Values of the reach image.
+TL_CONST uint kLegacyReachSealed = 0u;  // empty, and no light reaches it
+TL_CONST uint kLegacyReachLit = 1u;     // empty, and light reaches it
+TL_CONST uint kLegacyReachSolid = 2u;   // a surface's voxel
 TL_END
 
 #ifdef __cplusplus

@@ -169,8 +169,8 @@ TEST_F(LegacyTest, VoxelsPersistWhileNothingTheyHoldChanges) {
 }
 
 // The banners deform between two frames: the second patches the voxels the banners and
-// their shadows reach, and must hold what a rebuild of the same pose holds (mip 0 and the
-// mips). Without screen feedback the voxels depend on nothing but the pose.
+// their shadows reach, and must hold what a rebuild of the same pose holds (mip 0, the mips
+// and the rooms). Without screen feedback the voxels depend on nothing but the pose.
 TEST_F(LegacyTest, PartialVoxelUpdateMatchesARebuildOfTheSamePose) {
   auto& s = session();
   s.loadScene(contentFile("banners.gltf"));
@@ -179,7 +179,7 @@ TEST_F(LegacyTest, PartialVoxelUpdateMatchesARebuildOfTheSamePose) {
   s.settings().legacyVoxelResolution = 32;
   s.setAnimationStep(0.0);
   s.setAnimationTime(0.3);
-  const std::vector<std::string> voxels = {kVoxelRadiance, kVoxelRadianceMips};
+  const std::vector<std::string> voxels = {kVoxelRadiance, kVoxelRadianceMips, kVoxelSeeds, kVoxelReach};
   render("legacy", 48, 27, 1, voxels);
   EXPECT_EQ(figure("voxelUpdate"), kVoxelsRebuilt);
   const auto before = s.buffer(kVoxelRadiance).texels();
@@ -188,10 +188,14 @@ TEST_F(LegacyTest, PartialVoxelUpdateMatchesARebuildOfTheSamePose) {
   EXPECT_EQ(figure("voxelUpdate"), kVoxelsPatched);
   EXPECT_LT(figure("voxelizedInstances"), double(s.scene().instances.size()));
   const auto patched = s.buffer(kVoxelRadiance).texels(), patchedMips = s.buffer(kVoxelRadianceMips).texels();
+  const auto patchedSeeds = s.buffer(kVoxelSeeds).texels(), patchedReach = s.buffer(kVoxelReach).texels();
   s.resetHistory();  // the voxels are lost: the same pose is rebuilt from nothing
   render("legacy", 48, 27, 1, voxels);
   EXPECT_EQ(figure("voxelUpdate"), kVoxelsRebuilt);
   const auto rebuilt = s.buffer(kVoxelRadiance).texels(), rebuiltMips = s.buffer(kVoxelRadianceMips).texels();
+  // The rooms' seeds are patched with the voxels and the flood redone: both as a rebuild's.
+  EXPECT_EQ(patchedSeeds, s.buffer(kVoxelSeeds).texels());
+  EXPECT_EQ(patchedReach, s.buffer(kVoxelReach).texels());
   ASSERT_EQ(patched.size(), rebuilt.size());
   ASSERT_EQ(patchedMips.size(), rebuiltMips.size());
   EXPECT_EQ(countNonFinite(patched), 0u);

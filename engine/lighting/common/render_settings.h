@@ -121,6 +121,7 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(uint32_t, legacyMaxLevels, 4, 1, 4, "levels", "legacy", "legacy", kSettingPlain, "clipmap levels at most") \
   X(float, legacyConeRange, 0.0f, 0.0f, 1e6f, "m", "legacy", "", kSettingAuto, "cones stop after this distance") \
   X(float, legacyConeStep, 1.0f, 0.2f, 2.0f, "x diameter", "legacy", "", kSettingPlain, "cone step as a fraction of its diameter: smaller is slower and more exact") \
+  X(uint32_t, legacyRoomSweeps, 4, 0, 64, "rounds", "legacy", "legacy", kSettingPlain, "rooms: rounds of x, y and z sweeps that flood the finest level's air from its lit surfaces and open edges; cones in air no light reaches (a sealed room) gather nothing (0: off)") \
   X(bool, legacyScreenRadiance, true, 0, 1, "", "legacy", "legacy", kSettingPlain, "voxels seen last frame take its shaded radiance, so light bounces more than once") \
   X(bool, legacyPartialVoxels, true, 0, 1, "", "legacy", "", kSettingPlain, "deforming or moved instances re-voxelize only the voxels they and their shadows reach") \
   X(bool, legacyVoxelizeEveryFrame, false, 0, 1, "", "legacy", "", kSettingPlain, "rebuild the voxels every frame, even when nothing they hold changed") \

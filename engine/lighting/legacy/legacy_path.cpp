@@ -133,6 +133,17 @@ class LegacyPath final : public LightingPath {
         VK_FORMAT_R16G16B16A16_SFLOAT, aw, ah, "GTAO accumulated (r), view depth (g), frames (b), 1/aoDivisor, last frame");
     graph.declareCache(kVoxelRadiance, voxelDesc);
     graph.declareCache(kVoxelRadianceMips, voxelMipsDesc);
+    // Rooms: the finest level's air that light reaches, redone with the voxels (shared/legacy.h).
+    const bool rooms = s.legacyRoomSweeps > 0;
+    push.clipmap.roomGate = rooms ? 1u : 0u;
+    const graph::ResourceDesc seedsDesc = graph::ResourceDesc::image3D(
+        VK_FORMAT_R8_UINT, R, R, R, "rooms: 1 where an empty voxel of the finest level faces a directly lit surface");
+    const graph::ResourceDesc reachDesc = graph::ResourceDesc::image3D(
+        VK_FORMAT_R8_UINT, R, R, R, "rooms: the finest level's voxels, 0 sealed air, 1 air light reaches, 2 solid");
+    if (rooms) {
+      graph.declareCache(kVoxelSeeds, seedsDesc);
+      graph.declareCache(kVoxelReach, reachDesc);
+    }
     const bool feedback = s.legacyScreenRadiance;
     if (feedback) {  // only the voxelization reads these
       graph.declarePersistent(kLegacyHistRadiance, radianceDesc);
@@ -160,7 +171,8 @@ class LegacyPath final : public LightingPath {
         .add(graph);
     const bool historyOk = feedback && screenKept && in.historyValid(kLegacyHistRadiance, radianceDesc) &&
                            in.historyValid(kLegacyHistDepth, depthDesc);
-    const bool voxelsKept = in.historyValid(kVoxelRadiance, voxelDesc) && in.historyValid(kVoxelRadianceMips, voxelMipsDesc);
+    const bool voxelsKept = in.historyValid(kVoxelRadiance, voxelDesc) && in.historyValid(kVoxelRadianceMips, voxelMipsDesc) &&
+                            (!rooms || (in.historyValid(kVoxelSeeds, seedsDesc) && in.historyValid(kVoxelReach, reachDesc)));
     // The voxels hold this placement, sun and settings: a change of some instances can be
     // patched into them.
     const std::vector<glm::dvec4> placement = voxelPlacement(in, fit);
@@ -172,11 +184,15 @@ class LegacyPath final : public LightingPath {
     push.screenRadiance = historyOk ? 1u : 0u;
     const auto work = std::make_shared<VoxelWork>(planVoxelUpdate(in, fit, changes, placed, historyOk));
     lastWork_ = {work->kind, work->instancesDrawn, work->regionVoxels, uint32_t(work->regionCount())};
-    if (work->kind != VoxelWork::Kind::Keep) addVoxelPasses(graph, in, fit, work, feedback, push.screenRadiance);
+    if (work->kind != VoxelWork::Kind::Keep) {
+      addVoxelPasses(graph, in, push.clipmap, work, feedback, push.screenRadiance);
+      if (rooms) addRoomPasses(graph, in, push.clipmap, s.legacyRoomSweeps);
+    }
 
     withCommon(ComputePass(in.device, "legacy.cones", "legacy/cones.comp"))
         .sampled(shared::kLegacyBindingRadiance, kVoxelRadiance, samplers::linear)
         .sampled(shared::kLegacyBindingRadianceMips, kVoxelRadianceMips, samplers::linear)
+        .optionalSampled(shared::kLegacyBindingReach, kVoxelReach, rooms)
         .storageOut(shared::kLegacyBindingConeShY, kConeShY,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced irradiance, SH luma")
                         .decodedAs(shIrradianceDecoder(kConeCoCgAo)))
@@ -222,23 +238,33 @@ class LegacyPath final : public LightingPath {
   // The voxel work over the work's regions (whole levels for a rebuild), as steps of one
   // write each of the voxels and their mips, which the graph orders and fences: the regions
   // emptied, voxelized in up to three rounds, then the mips, a level per pass.
-  void addVoxelPasses(graph::RenderGraph& graph, FrameInputs& in, const LegacyClipmapFit& fit,
+  void addVoxelPasses(graph::RenderGraph& graph, FrameInputs& in, const shared::LegacyClipmap& clipmap,
                       std::shared_ptr<const VoxelWork> work, bool feedback, uint32_t screenRadiance) {
-    const uint32_t R = fit.clipmap.resolution, mips = fit.clipmap.mipCount;
+    const uint32_t R = clipmap.resolution, mips = clipmap.mipCount;
+    const bool rooms = clipmap.roomGate != 0;
     LegacyVoxelPush vpush{};
-    vpush.clipmap = fit.clipmap;
+    vpush.clipmap = clipmap;
     vpush.screenRadiance = screenRadiance;
 
-    // The voxels start empty: a rebuild's by a transfer clear of the whole image (a compute
-    // clear costs 10 ms more on lavapipe), a patch's in all six face blocks of each region.
-    if (work->kind == VoxelWork::Kind::Full)
-      TransferPass("legacy.voxel.clear").clear(kVoxelRadiance).add(graph);
-    else
-      ComputePass(in.device, "legacy.voxel.clear", "legacy/voxel_clear.comp")
-          .storageOut(shared::kLegacyBindingRadiance, kVoxelRadiance)
-          .push(vpush)
+    // The voxels (and the rooms' seeds) start empty: a rebuild's by a transfer clear of the
+    // whole image (a compute clear costs 10 ms more on lavapipe), a patch's in all six face
+    // blocks of each region.
+    if (work->kind == VoxelWork::Kind::Full) {
+      TransferPass clear("legacy.voxel.clear");
+      clear.clear(kVoxelRadiance);
+      if (rooms) clear.clear(kVoxelSeeds);
+      clear.add(graph);
+    } else {
+      ComputePass clear(in.device, "legacy.voxel.clear", "legacy/voxel_clear.comp");
+      clear.storageOut(shared::kLegacyBindingRadiance, kVoxelRadiance);
+      if (rooms)
+        clear.storageOut(shared::kLegacyBindingSeeds, kVoxelSeeds);
+      else
+        clear.optionalStorageInOut(shared::kLegacyBindingSeeds, kVoxelSeeds, false);
+      clear.push(vpush)
           .record([vpush, work](graph::PassContext& ctx) { dispatchOverRegions(ctx, vpush, *work, 0); })
           .add(graph);
+    }
 
     // Round 0 makes every touched voxel opaque on all faces; round 1 writes the faces each
     // surface looks out of; emitters come last, in a pass of their own, so where an emitter
@@ -255,7 +281,7 @@ class LegacyPath final : public LightingPath {
     for (const Round& round : rounds) {
       if (round.instances->empty()) continue;
       vpush.voxelRound = round.mode;
-      voxelizePass(in, round.name, vpush, feedback, R)
+      voxelizePass(in, round.name, vpush, feedback, rooms, R)
           .draw([this, &in, vpush, work, set = round.set](graph::PassContext& ctx, const RasterPass::Use&) mutable {
             std::vector<uint32_t> draw;
             for (uint32_t level = 0; level < work->regions.size(); ++level)
@@ -292,12 +318,40 @@ class LegacyPath final : public LightingPath {
     }
   }
 
+  // Rooms (shared/legacy.h): the finest level's voxels as solid, seeded or sealed air, then
+  // `rounds` rounds of sweeps along x, y and z that flood the air from the seeds. Each sweep is
+  // a pass: the graph orders them and places the barriers between them. Redone with the
+  // voxels, over the whole level: the flood is global, and a 64^3 level costs a few sweeps.
+  static void addRoomPasses(graph::RenderGraph& graph, FrameInputs& in, const shared::LegacyClipmap& clipmap,
+                            uint32_t rounds) {
+    const uint32_t R = clipmap.resolution;
+    LegacyVoxelPush vpush{};
+    vpush.clipmap = clipmap;
+    ComputePass(in.device, "legacy.voxel.reach", "legacy/voxel_reach_init.comp")
+        .storageIn(shared::kLegacyBindingMipSrcRadiance, kVoxelRadiance)
+        .storageIn(shared::kLegacyBindingSeeds, kVoxelSeeds)
+        .storageOut(shared::kLegacyBindingReach, kVoxelReach)
+        .push(vpush)
+        .dispatch(R, R, R, 4, 4, 4)
+        .add(graph);
+    for (uint32_t sweep = 0; sweep < 3 * rounds; ++sweep) {
+      vpush.axis = sweep % 3;
+      ComputePass(in.device, fmt::format("legacy.voxel.reach.sweep{}", sweep + 1), "legacy/voxel_reach_sweep.comp")
+          .pipelineName("legacy.voxel.reach.sweep")
+          .storageUpdate(shared::kLegacyBindingReach, kVoxelReach)
+          .push(vpush)
+          .dispatch(R, R)
+          .add(graph);
+    }
+  }
+
   // One voxelization round's pass: the list every round binds, the voxels as the next step.
   // Every binding but the frame, the voxels and the geometry is read only where the shader is
   // told it is there: the sun's map under kFrameFlagSunShadows, the light table when
   // lightCount > 0, the lights' maps through a light's shadowView, last frame's image when
   // screenRadiance (only with feedback). Absent, they are unbound: no stand-ins.
-  static RasterPass voxelizePass(FrameInputs& in, const char* name, const LegacyVoxelPush& vpush, bool feedback, uint32_t R) {
+  static RasterPass voxelizePass(FrameInputs& in, const char* name, const LegacyVoxelPush& vpush, bool feedback, bool rooms,
+                                 uint32_t R) {
     const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
     const bool mapped = in.lightShadowViews > 0;
     RasterPass pass(in.device, name, voxelizePipeline());
@@ -315,6 +369,10 @@ class LegacyPath final : public LightingPath {
         .drawsScene(in.scene.table(), true, Usage::StorageRead)
         .area(R, R)
         .push(vpush);
+    if (rooms)
+      pass.storageUpdate(shared::kLegacyBindingSeeds, kVoxelSeeds);
+    else
+      pass.optionalStorageInOut(shared::kLegacyBindingSeeds, kVoxelSeeds, false);
     return pass;
   }
 
