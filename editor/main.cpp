@@ -378,7 +378,13 @@ nlohmann::json renderOptionsJson(const RenderOptions& o) {
           {"animate", opt(o.animateFps)}};
 }
 
-double figure(const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); }
+// A report's figure in a column `width` wide with `decimals`, or "-" where the report holds none:
+// a figure that is undefined for the view (the PSNR of two equal images, a mean ratio against a
+// black reference) is stored as null, and a table shows no "nan".
+std::string cell(const nlohmann::json& v, int width, int decimals) {
+  if (!v.is_number()) return fmt::format("{:>{}}", "-", width);
+  return fmt::format("{:{}.{}f}", v.get<double>(), width, decimals);
+}
 
 // One view's figures as tables, and its gate. `failAbove` gives the thresholds' order as the
 // user wrote them (a merged report has them only as a JSON object).
@@ -388,20 +394,20 @@ void printCompareReport(const nlohmann::json& report, const std::vector<tl::sess
   fmt::print("{:10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>9}\n", "path", "GPU ms", "relMSE", "RMSE", "PSNR", "SSIM", "FLIP",
              "HDR-FLIP");
   for (auto& p : report["paths"])
-    fmt::print("{:10} {:9.2f} {:9.4f} {:9.4f} {:8.2f} {:7.4f} {:7.4f} {:9.4f}\n", p["path"].get<std::string>(),
-               p["frameMs"].get<double>(), figure(p["relMSE"]), figure(p["RMSE"]), figure(p["PSNR"]), figure(p["SSIM"]),
-               figure(p["FLIP"]), figure(p["HDR-FLIP"]));
+    fmt::print("{:10} {:9.2f} {} {} {} {} {} {}\n", p["path"].get<std::string>(), p["frameMs"].get<double>(),
+               cell(p["relMSE"], 9, 4), cell(p["RMSE"], 9, 4), cell(p["PSNR"], 8, 2), cell(p["SSIM"], 7, 4),
+               cell(p["FLIP"], 7, 4), cell(p["HDR-FLIP"], 9, 4));
   fmt::print("exposure-normalised (both images x{:.4g}: the reference's mean Y {:.4g} -> 0.18)\n",
              report["reference"]["normalisation"].get<double>(), report["reference"]["meanLuminance"].get<double>());
   fmt::print("{:10} {:>11} {:>11} {:>11} {:>10}\n", "path", "relMSE_norm", "RMSE_norm", "FLIP_norm", "mean ratio");
   for (auto& p : report["paths"])
-    fmt::print("{:10} {:11.4f} {:11.4f} {:11.4f} {:10.3f}\n", p["path"].get<std::string>(), figure(p["relMSE_norm"]),
-               figure(p["RMSE_norm"]), figure(p["FLIP_norm"]), figure(p.value("meanRatio", nlohmann::json())));
+    fmt::print("{:10} {} {} {} {}\n", p["path"].get<std::string>(), cell(p["relMSE_norm"], 11, 4), cell(p["RMSE_norm"], 11, 4),
+               cell(p["FLIP_norm"], 11, 4), cell(p.value("meanRatio", nlohmann::json()), 10, 3));
   fmt::print("per stage (surface pixels)  {:>13} {:>18}\n", "AO abs error", "irradiance relMSE");
   for (auto& p : report["paths"])
     if (p["stages"].contains("ao"))
-      fmt::print("{:27} {:13.4f} {:18.4f}\n", p["path"].get<std::string>(), figure(p["stages"]["ao"]["meanAbsError"]),
-                 figure(p["stages"]["irradiance"]["relMSE"]));
+      fmt::print("{:27} {} {}\n", p["path"].get<std::string>(), cell(p["stages"]["ao"]["meanAbsError"], 13, 4),
+                 cell(p["stages"]["irradiance"]["relMSE"], 18, 4));
   const auto& ref = report["reference"];
   if (ref["source"] == "file") {
     fmt::print("reference: {} (external)\n", ref["file"].get<std::string>());
@@ -460,8 +466,8 @@ void printSweepReport(const nlohmann::json& report) {
   fmt::print("== sweep: {} view(s); each configuration's mean over them\n", report["views"].size());
   fmt::print("{:20} {:>9} {:>9} {:>7} {:>11} {:>11}\n", "configuration", "GPU ms", "relMSE", "FLIP", "relMSE_norm", "FLIP_norm");
   for (auto& c : report["configurations"])
-    fmt::print("{:20} {:9.2f} {:9.4f} {:7.4f} {:11.4f} {:11.4f}\n", c["path"].get<std::string>(), figure(c["frameMs"]),
-               figure(c["relMSE"]), figure(c["FLIP"]), figure(c["relMSE_norm"]), figure(c["FLIP_norm"]));
+    fmt::print("{:20} {} {} {} {} {}\n", c["path"].get<std::string>(), cell(c["frameMs"], 9, 2), cell(c["relMSE"], 9, 4),
+               cell(c["FLIP"], 7, 4), cell(c["relMSE_norm"], 11, 4), cell(c["FLIP_norm"], 11, 4));
   if (report.contains("gate"))
     for (auto& f : report["gate"]["failures"])
       fmt::print("gate: FAIL {} {} {} {} {} > {}\n", f["scene"].get<std::string>(), f["camera"].get<std::string>(),

@@ -425,7 +425,8 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     auto rms = metrics::rmse(test, reference);
     double peak = 0.0;
     for (float v : reference.data) peak = std::max(peak, double(v));
-    double psnr = metrics::psnr(test, reference, std::max(peak, 1e-6));
+    // PSNR is relative to the reference's peak: undefined (null in the report) for a black one.
+    double psnr = peak > 0.0 ? metrics::psnr(test, reference, peak) : std::nan("");
     auto ssim = metrics::ssim(testDisplay, referenceDisplay, 1.0);
     auto flip = metrics::flipLdr(testDisplay, referenceDisplay);
     auto hdrFlip = metrics::flipHdr(test, reference);
