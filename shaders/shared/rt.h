@@ -251,7 +251,7 @@ struct RtPush {
   uint cacheBounces;     // rays of an update path
   uint cacheTile;        // one update path per cacheTile x cacheTile pixels
   float hitDistanceCap;  // a GI ray's hit distance counts as at most this, a miss as this (the denoiser's base radius, m)
-  uint pad1;
+  uint environmentSampling;  // 1: pixels sample the environment map by its importance (MIS with the GI ray; table bound)
 };
 
 // The two-pass spatial denoiser on the SH (Metro's "little monster"): its own push constants.

@@ -157,5 +157,36 @@ TEST_F(EnvironmentTest, OneBrightTexelIsADirectionalLightInEveryPath) {
   }
 }
 
+// A map whose light is almost all below the plane's horizon: a dim sky of L = 0.1 and a wide
+// bright patch (45 x 34 degrees of L = 30, 30 times the map's mean: no sun is separated) under
+// the horizon. The plane faces up, so it sees only the dim sky: E = pi 0.1, pixel rho 0.1. The
+// order-2 SH that the rt path's misses read without environment sampling spread the patch's
+// light over the upper hemisphere too (and that is what direct and legacy shade, by design: the
+// map's irradiance through its SH); with rtEnvironmentSampling the misses read the texels, by
+// MIS with a shadow ray drawn by the map's importance, and the plane is as dim as the sky.
+TEST_F(EnvironmentTest, LightBelowTheHorizonDoesNotReachAnUpFacingPlaneInRt) {
+  const uint32_t w = 64, h = 32;
+  std::vector<glm::vec3> t(size_t(w) * h, glm::vec3(0.1f));
+  for (uint32_t r = 20; r < 26; ++r)  // rows 16.. lie below the horizon (theta > 90 degrees)
+    for (uint32_t c = 28; c < 36; ++c) t[size_t(r) * w + c] = glm::vec3(30.0f);
+  auto map = std::make_shared<const scene::EnvironmentMap>(scene::makeEnvironmentMap(w, h, t));
+  ASSERT_FALSE(scene::separateEnvironmentSun(*map).has_value()) << "the patch must stay in the map";
+  auto& s = session();
+  s.loadScene(contentFile("plane.gltf"));
+  const double want = albedo("rt") * 0.1;
+  s.settings().rtEnvironmentSampling = true;
+  const double sampled = planeMean("rt", map, 0.0f, 32);
+  s.settings().rtEnvironmentSampling = false;
+  const double fromSh = planeMean("rt", map, 0.0f, 32);
+  const double reference = planeMean("reference", map, 0.0f, 8);
+  std::printf("light below the horizon: closed form %.5f; rt %.5f, rt from the SH %.5f, reference %.5f (closed form %.5f)\n",
+              want, sampled, fromSh, reference, albedo("reference") * 0.1);
+  RecordProperty("rt_sampled", std::to_string(sampled / want));
+  RecordProperty("rt_from_sh", std::to_string(fromSh / want));
+  EXPECT_NEAR(sampled / want, 1.0, 0.03);
+  EXPECT_GT(std::abs(fromSh / want - 1.0), 0.2) << "the SH must miss this for the test to mean anything";
+  EXPECT_NEAR(reference / (albedo("reference") * 0.1), 1.0, 0.03);
+}
+
 }  // namespace
 }  // namespace tl::test

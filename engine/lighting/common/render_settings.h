@@ -98,6 +98,7 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(float, rtCacheCellAngle, 0.03f, 0.001f, 1.0f, "rad", "rt", "", kSettingPlain, "radiance cache: a cell is at least this angle times its distance from the camera across") \
   X(float, rtCacheCellSize, 0.0f, 0.0f, 1e6f, "m", "rt", "", kSettingAuto, "radiance cache: the smallest cell (auto: the scene's size / 1000)") \
   X(uint32_t, rtCacheEntries, 1u << 16, 1u << 10, 1u << 24, "cells", "rt", "", kSettingPow2, "radiance cache: hash table slots (32 + 48 bytes each)") \
+  X(bool, rtEnvironmentSampling, true, 0, 1, "", "rt", "rt", kSettingPlain, "with an environment map, each traced pixel also takes a shadow ray towards a direction drawn by the map's importance, weighed against its GI ray by MIS: the pixel sees the map's texels, not its order-2 SH") \
   X(bool, rtEmitterSampling, true, 0, 1, "", "rt", "rt", kSettingPlain, "emissive triangles are sampled at pixels and hits through shadow rays, not found only by chance") \
   X(float, rtCullAngle, 0.002f, 0.0f, 3.14159f, "rad", "rt", "rt", kSettingPlain, "contribution culling: instances subtending less are left out of the top level") \
   X(float, rtCullMargin, 0.0f, 0.0f, 1e6f, "m", "rt", "rt", kSettingPlain, "expanded frustum: margin around the view frustum (besides the ray length)") \

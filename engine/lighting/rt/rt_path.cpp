@@ -13,6 +13,7 @@
 #include "lighting/lighting_path.h"
 #include "lighting/rt/blue_noise.h"
 #include "lighting/rt/radiance_cache.h"
+#include "lighting/common/environment_table.h"
 #include "lighting/rt/rt_path.h"
 #include "lighting/rt/rt_scene.h"
 #include "shared/scene.h"
@@ -112,6 +113,7 @@ class RtPath final : public LightingPath {
     push.lightChanged = action == HistoryAction::Reject ? 1u : 0u;
     push.disocclusionRays = std::min(s.rtDisocclusionRays, kMaxDisocclusionRays);
     push.hitSky = s.rtHitSky ? 1u : 0u;
+    push.environmentSampling = s.rtEnvironmentSampling && hasEnvironmentMap(in) ? 1u : 0u;
     push.emitterCount = s.rtEmitterSampling ? scene_->emitterCount() : 0u;
     push.cameraWorld = glm::vec4(glm::vec3(in.cameraWorld), 0.0f);
     cache_.plan(graph, in, push, scale, scene_->maxEmitterRadiance());
@@ -338,6 +340,7 @@ class RtPath final : public LightingPath {
         .optionalSampled(shared::kRtBindingFirstShY, kFirstRay.shY, first != nullptr)
         .optionalSampled(shared::kRtBindingFirstCoCg, kFirstRay.coCg, first != nullptr)
         .optionalSampled(shared::kRtBindingFirstAo, kFirstRay.ao, first != nullptr)
+        .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, push.environmentSampling != 0u)
         .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.frame).handle())
         .push(push, screenRadianceAtRecord(screenRadiance))
         .trace(tracedWidth(in), tracedHeight(in))
