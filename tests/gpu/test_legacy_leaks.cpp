@@ -70,6 +70,20 @@ class LegacyLeakTest : public GpuTest {
     v.yfovRadians = fov;
     s.setView(v);
   }
+  // The legacy path at 64x48 after 8 frames from `position` along `forward`, the rooms' flood at
+  // `roomSweeps` rounds (0: off; else the reach image is read back too): the mean luminance of
+  // `image`.
+  double legacyMean(uint32_t roomSweeps, const char* image, glm::dvec3 position, glm::dvec3 forward) {
+    auto& s = session();
+    s.settings().legacyRoomSweeps = roomSweeps;
+    s.setPath("legacy");
+    s.setSize(64, 48);
+    s.requestBuffer(image);
+    if (roomSweeps > 0) s.requestBuffer(kVoxelReach);
+    look(position, forward);
+    s.renderFrames(8);
+    return meanLuminance(image);
+  }
   // Mean luminance of an RGB(A) buffer over every pixel.
   double meanLuminance(const std::string& name) {
     const auto& b = session().buffer(name);
@@ -84,7 +98,7 @@ class LegacyLeakTest : public GpuTest {
 
 // The lit room first, so the voxels hold its light (and, through the screen, its bounces),
 // then the closed room from inside: the ratio of the closed room's mean to the lit room's.
-double closedRoomRatio(LegacyLeakTest& t, session::Session& s, uint32_t roomSweeps);
+double closedRoomRatio(LegacyLeakTest& t, uint32_t roomSweeps);
 
 // The truth in the closed room is black. Measured on lavapipe: 0.0000 % with the rooms (their
 // whole image is the sun's shadowed direct light, none); without them (legacyRoomSweeps 0) the
@@ -97,25 +111,17 @@ TEST_F(LegacyLeakTest, ClosedRoomBesideASunlitOneStaysDark) {
   ASSERT_GE(kWall, fit.clipmap.levelMin[0].w) << "the walls must be at least one finest voxel thick";
   s.installScene(std::move(scene));
   lightTwoRooms(s);
-  const double withRooms = closedRoomRatio(*this, s, s.settings().legacyRoomSweeps);
-  const double without = closedRoomRatio(*this, s, 0);
+  const double withRooms = closedRoomRatio(*this, s.settings().legacyRoomSweeps);
+  const double without = closedRoomRatio(*this, 0);
   RecordProperty("closed_over_lit", std::to_string(withRooms));
   RecordProperty("closed_over_lit_without_rooms", std::to_string(without));
   EXPECT_LT(withRooms, 0.01);
   EXPECT_GT(without, 0.05) << "without the rooms the cones leak: the scene must show it for the test to mean anything";
 }
 
-double closedRoomRatio(LegacyLeakTest& t, session::Session& s, uint32_t roomSweeps) {
-  s.settings().legacyRoomSweeps = roomSweeps;
-  s.setPath("legacy");
-  s.setSize(64, 48);
-  s.requestBuffer(kCompositeHdr);
-  t.look({-3.6, 1.5, 0.0}, {1.0, -0.1, 0.0});
-  s.renderFrames(8);
-  const double lit = t.meanLuminance(kCompositeHdr);
-  t.look({3.6 + kWall, 1.5, 0.0}, {-1.0, -0.1, 0.0});
-  s.renderFrames(8);
-  const double closed = t.meanLuminance(kCompositeHdr);
+double closedRoomRatio(LegacyLeakTest& t, uint32_t roomSweeps) {
+  const double lit = t.legacyMean(roomSweeps, kCompositeHdr, {-3.6, 1.5, 0.0}, {1.0, -0.1, 0.0});
+  const double closed = t.legacyMean(roomSweeps, kCompositeHdr, {3.6 + kWall, 1.5, 0.0}, {-1.0, -0.1, 0.0});
   std::printf("two rooms, legacyRoomSweeps %u: lit room %.5f, closed room %.5f, ratio %.5f\n", roomSweeps, lit, closed,
               closed / lit);
   EXPECT_GT(lit, 0.1);
@@ -199,14 +205,7 @@ TEST_F(LegacyLeakTest, ARoomLitThroughADoorwayIsReachedAndKeepsItsLight) {
     l.sunIrradiance = glm::vec3(0.0f);
     l.skyRadiance = glm::vec3(1.0f);
     s.setLighting(l);
-    s.settings().legacyRoomSweeps = roomSweeps;
-    s.setPath("legacy");
-    s.setSize(64, 48);
-    s.requestBuffer(kCompositeHdr);
-    if (roomSweeps > 0) s.requestBuffer(kVoxelReach);
-    look({3.6 + kWall, 1.5, 1.2}, {-1.0, -0.1, -0.4});
-    s.renderFrames(8);
-    return meanLuminance(kCompositeHdr);
+    return legacyMean(roomSweeps, kCompositeHdr, {3.6 + kWall, 1.5, 1.2}, {-1.0, -0.1, -0.4});
   };
   const uint32_t sweeps = s.settings().legacyRoomSweeps;
   const double withRooms = render(true, sweeps);
@@ -242,14 +241,7 @@ TEST_F(LegacyLeakTest, AClosedRoomWithALampInsideKeepsItsLight) {
     lamp.position = glm::dvec3(2.0 + kWall, 2.2, 0.3);
     l.lights = {lamp};
     s.setLighting(l);
-    s.settings().legacyRoomSweeps = roomSweeps;
-    s.setPath("legacy");
-    s.setSize(64, 48);
-    s.requestBuffer(kCompositeIrradiance);
-    if (roomSweeps > 0) s.requestBuffer(kVoxelReach);
-    look({3.6 + kWall, 1.5, 0.0}, {-1.0, -0.1, 0.0});
-    s.renderFrames(8);
-    return meanLuminance(kCompositeIrradiance);
+    return legacyMean(roomSweeps, kCompositeIrradiance, {3.6 + kWall, 1.5, 0.0}, {-1.0, -0.1, 0.0});
   };
   const double withRooms = render(s.settings().legacyRoomSweeps);
   const Reach reach = readReach(s);
@@ -279,6 +271,7 @@ TEST_F(LegacyLeakTest, TheDefaultSweepsFloodTheInteriorsCompletely) {
     s.settings().legacyRoomSweeps = 64;
     s.requestBuffer(kVoxelReach);
     s.renderFrames(1);
+    ASSERT_EQ(pathFigure(s, "voxelUpdate"), 2.0) << "a new sweep count floods afresh (the voxels are rebuilt)";
     const std::vector<float> converged = s.buffer(kVoxelReach).texels();
     ASSERT_EQ(byDefault.size(), converged.size());
     size_t differ = 0, sealed = 0, lit = 0;
