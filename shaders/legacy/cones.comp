@@ -14,6 +14,7 @@ layout(set = 0, binding = kLegacyBindingRadianceMips) uniform sampler3D radiance
 layout(set = 0, binding = kLegacyBindingConeShY, rgba16f) uniform writeonly image2D shYOut;
 layout(set = 0, binding = kLegacyBindingConeCoCgAo, rgba16f) uniform writeonly image2D coCgAoOut;
 layout(set = 0, binding = kLegacyBindingReach) uniform usampler3D reach;  // rooms (shared/legacy.h), when roomGate
+layout(set = 0, binding = kLegacyBindingReachUnsettled, std430) readonly buffer Unsettled { uint unsettledVoxels; };
 
 
 struct VoxelSample {
@@ -74,7 +75,7 @@ VoxelSample sampleClipmap(vec3 position, vec3 dir, float diameter) {
 // lies beyond the 3x3x3 block of a voxel on its near face).
 bool lightReaches(vec3 origin) {
   LegacyClipmap c = push.clipmap;
-  if (c.roomGate == 0u) return true;
+  if (c.roomGate == 0u || unsettledVoxels != 0u) return true;  // off, or the flood may not have settled
   ivec3 v = ivec3(floor((origin - c.levelMin[0].xyz) / c.levelMin[0].w));
   int R = int(c.resolution);
   if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(R)))) return true;  // outside: the cones decide

@@ -22,7 +22,9 @@
 //          (6-connected) from the seeds and from the level's outer faces (the sky, or what
 //          lies beyond the level): kLegacyReach* below. A surface voxelized along all three
 //          axes separates the air on its two sides, so air no light reaches is a sealed room
-//          that holds no light, and cones starting there gather none (cones.comp).
+//          that holds no light, and cones starting there gather none (cones.comp). The flood
+//          runs a fixed number of rounds; where its last round still reached voxels it may not
+//          have settled (air light reaches could still read sealed), and the cones ignore it.
 #ifndef TL_SHARED_LEGACY_H
 #define TL_SHARED_LEGACY_H
 #include "common.h"
@@ -81,7 +83,7 @@ struct LegacyVoxelPush {
   uint axis;            // voxelize: projection axis (0 x, 1 y, 2 z) + 3 x level; reach sweeps: the axis swept
   uint voxelRound;      // voxelize: 0 opacity of every face, 1 radiance of the faces a surface looks out of
   uint screenRadiance;  // voxelize: surfaces seen last frame take their shaded radiance from it
-  uint level;           // clear and mips: the clipmap level the region lies in
+  uint level;           // clear and mips: the clipmap level the region lies in; reach sweeps: 1 in the last round
   ivec4 regionMin;      // xyz: first voxel of the region (inclusive)
   ivec4 regionMax;      // xyz: end of the region (exclusive)
 };
@@ -109,6 +111,7 @@ TL_CONST uint kLegacyBindingVertices = 21;      // voxelize: the scene's vertex 
 TL_CONST uint kLegacyBindingIndices = 22;       // voxelize: the scene's index buffer
 TL_CONST uint kLegacyBindingSeeds = 23;         // rooms: empty voxels in front of directly lit surfaces (r8ui, level 0)
 TL_CONST uint kLegacyBindingReach = 24;         // rooms: kLegacyReach* per voxel of level 0 (r8ui)
+TL_CONST uint kLegacyBindingReachUnsettled = 25;  // rooms: one uint, the voxels the flood's last round still reached
 
 // Values of the reach image.
 TL_CONST uint kLegacyReachSealed = 0u;  // empty, and no light reaches it

@@ -138,6 +138,11 @@ class BindingPass : public BindingList {
   Self& bufferOut(uint32_t binding, std::string_view buffer, const graph::ResourceDesc& create) {
     return listed(binding, Kind::BufferOut, buffer, {.create = create});
   }
+  // A storage buffer a pass declared before this one writes, written again as the next step of
+  // that work (graph::PassBuilder::update), as storageUpdate for an image.
+  Self& bufferUpdate(uint32_t binding, std::string_view buffer) {
+    return listed(binding, Kind::BufferOut, buffer, {.update = true});
+  }
   // A storage buffer read that the frame may lack (the light table in a scene without lights):
   // absent, no access and no descriptor (partially bound; the shader is told, e.g. by a count).
   Self& optionalBufferIn(uint32_t binding, std::string_view buffer, bool present) {

@@ -140,9 +140,12 @@ class LegacyPath final : public LightingPath {
         VK_FORMAT_R8_UINT, R, R, R, "rooms: 1 where an empty voxel of the finest level faces a directly lit surface");
     const graph::ResourceDesc reachDesc = graph::ResourceDesc::image3D(
         VK_FORMAT_R8_UINT, R, R, R, "rooms: the finest level's voxels, 0 sealed air, 1 air light reaches, 2 solid");
+    const graph::ResourceDesc unsettledDesc =
+        graph::ResourceDesc::buffer(sizeof(uint32_t), "rooms: voxels the flood's last round still reached (0: settled)");
     if (rooms) {
       graph.declareCache(kVoxelSeeds, seedsDesc);
       graph.declareCache(kVoxelReach, reachDesc);
+      graph.declareCache(kVoxelReachUnsettled, unsettledDesc);
     }
     const bool feedback = s.legacyScreenRadiance;
     if (feedback) {  // only the voxelization reads these
@@ -172,7 +175,8 @@ class LegacyPath final : public LightingPath {
     const bool historyOk = feedback && screenKept && in.historyValid(kLegacyHistRadiance, radianceDesc) &&
                            in.historyValid(kLegacyHistDepth, depthDesc);
     const bool voxelsKept = in.historyValid(kVoxelRadiance, voxelDesc) && in.historyValid(kVoxelRadianceMips, voxelMipsDesc) &&
-                            (!rooms || (in.historyValid(kVoxelSeeds, seedsDesc) && in.historyValid(kVoxelReach, reachDesc)));
+                            (!rooms || (in.historyValid(kVoxelSeeds, seedsDesc) && in.historyValid(kVoxelReach, reachDesc) &&
+                                        in.historyValid(kVoxelReachUnsettled, unsettledDesc)));
     // The voxels hold this placement, sun and settings: a change of some instances can be
     // patched into them.
     const std::vector<glm::dvec4> placement = voxelPlacement(in, fit);
@@ -193,6 +197,7 @@ class LegacyPath final : public LightingPath {
         .sampled(shared::kLegacyBindingRadiance, kVoxelRadiance, samplers::linear)
         .sampled(shared::kLegacyBindingRadianceMips, kVoxelRadianceMips, samplers::linear)
         .optionalSampled(shared::kLegacyBindingReach, kVoxelReach, rooms)
+        .optionalBufferIn(shared::kLegacyBindingReachUnsettled, kVoxelReachUnsettled, rooms)
         .storageOut(shared::kLegacyBindingConeShY, kConeShY,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced irradiance, SH luma")
                         .decodedAs(shIrradianceDecoder(kConeCoCgAo)))
@@ -246,9 +251,12 @@ class LegacyPath final : public LightingPath {
     vpush.clipmap = clipmap;
     vpush.screenRadiance = screenRadiance;
 
-    // The voxels (and the rooms' seeds) start empty: a rebuild's by a transfer clear of the
-    // whole image (a compute clear costs 10 ms more on lavapipe), a patch's in all six face
-    // blocks of each region.
+    // The voxels start empty: a rebuild's by a transfer clear of the whole image (a compute
+    // clear costs 10 ms more on lavapipe), a patch's in all six face blocks of each region. The
+    // rooms' seeds are emptied by a rebuild only: a patch adds the seeds of what it redraws and
+    // keeps the rest (a surface outside a region can seed the voxel in front of it inside; a
+    // seed left where light no longer enters only lets light into a room, never darkens one,
+    // until the rebuilds that settle the bounces once the geometry stops).
     if (work->kind == VoxelWork::Kind::Full) {
       TransferPass clear("legacy.voxel.clear");
       clear.clear(kVoxelRadiance);
@@ -257,10 +265,6 @@ class LegacyPath final : public LightingPath {
     } else {
       ComputePass clear(in.device, "legacy.voxel.clear", "legacy/voxel_clear.comp");
       clear.storageOut(shared::kLegacyBindingRadiance, kVoxelRadiance);
-      if (rooms)
-        clear.storageOut(shared::kLegacyBindingSeeds, kVoxelSeeds);
-      else
-        clear.optionalStorageInOut(shared::kLegacyBindingSeeds, kVoxelSeeds, false);
       clear.push(vpush)
           .record([vpush, work](graph::PassContext& ctx) { dispatchOverRegions(ctx, vpush, *work, 0); })
           .add(graph);
@@ -278,10 +282,14 @@ class LegacyPath final : public LightingPath {
     const Round rounds[] = {{"legacy.voxelize", 0, DrawSet::All, &allInstances_},
                             {"legacy.voxelize.faces", 1, DrawSet::Plain, &plainInstances_},
                             {"legacy.voxelize.emitters", 1, DrawSet::Emissive, &emissiveInstances_}};
+    // The seeds' first writer this frame: the clear in a rebuild, else the first round drawn.
+    SeedsAccess seeds = !rooms ? SeedsAccess::Absent : (work->kind == VoxelWork::Kind::Full ? SeedsAccess::Update : SeedsAccess::Write);
     for (const Round& round : rounds) {
       if (round.instances->empty()) continue;
       vpush.voxelRound = round.mode;
-      voxelizePass(in, round.name, vpush, feedback, rooms, R)
+      RasterPass pass = voxelizePass(in, round.name, vpush, feedback, seeds, R);
+      if (seeds == SeedsAccess::Write) seeds = SeedsAccess::Update;
+      pass
           .draw([this, &in, vpush, work, set = round.set](graph::PassContext& ctx, const RasterPass::Use&) mutable {
             std::vector<uint32_t> draw;
             for (uint32_t level = 0; level < work->regions.size(); ++level)
@@ -319,8 +327,9 @@ class LegacyPath final : public LightingPath {
   }
 
   // Rooms (shared/legacy.h): the finest level's voxels as solid, seeded or sealed air, then
-  // `rounds` rounds of sweeps along x, y and z that flood the air from the seeds. Each sweep is
-  // a pass: the graph orders them and places the barriers between them. Redone with the
+  // `rounds` rounds of sweeps along x, y and z that flood the air from the seeds; the last
+  // round counts what it still reaches (non-zero: not settled, the cones ignore the flood).
+  // Each sweep is a pass: the graph orders them and places the barriers between them. Redone with the
   // voxels, over the whole level: the flood is global, and a 64^3 level costs a few sweeps.
   static void addRoomPasses(graph::RenderGraph& graph, FrameInputs& in, const shared::LegacyClipmap& clipmap,
                             uint32_t rounds) {
@@ -331,14 +340,17 @@ class LegacyPath final : public LightingPath {
         .storageIn(shared::kLegacyBindingMipSrcRadiance, kVoxelRadiance)
         .storageIn(shared::kLegacyBindingSeeds, kVoxelSeeds)
         .storageOut(shared::kLegacyBindingReach, kVoxelReach)
+        .bufferOut(shared::kLegacyBindingReachUnsettled, kVoxelReachUnsettled)
         .push(vpush)
         .dispatch(R, R, R, 4, 4, 4)
         .add(graph);
     for (uint32_t sweep = 0; sweep < 3 * rounds; ++sweep) {
       vpush.axis = sweep % 3;
+      vpush.level = sweep + 3 >= 3 * rounds ? 1u : 0u;  // the last round counts what it still reaches
       ComputePass(in.device, fmt::format("legacy.voxel.reach.sweep{}", sweep + 1), "legacy/voxel_reach_sweep.comp")
           .pipelineName("legacy.voxel.reach.sweep")
           .storageUpdate(shared::kLegacyBindingReach, kVoxelReach)
+          .bufferUpdate(shared::kLegacyBindingReachUnsettled, kVoxelReachUnsettled)
           .push(vpush)
           .dispatch(R, R)
           .add(graph);
@@ -350,8 +362,11 @@ class LegacyPath final : public LightingPath {
   // told it is there: the sun's map under kFrameFlagSunShadows, the light table when
   // lightCount > 0, the lights' maps through a light's shadowView, last frame's image when
   // screenRadiance (only with feedback). Absent, they are unbound: no stand-ins.
-  static RasterPass voxelizePass(FrameInputs& in, const char* name, const LegacyVoxelPush& vpush, bool feedback, bool rooms,
-                                 uint32_t R) {
+  // How a voxelization round binds the rooms' seeds: not at all (rooms off), as their first
+  // writer this frame (a patch keeps what the seeds held), or as the next step after one.
+  enum class SeedsAccess { Absent, Write, Update };
+  static RasterPass voxelizePass(FrameInputs& in, const char* name, const LegacyVoxelPush& vpush, bool feedback,
+                                 SeedsAccess seeds, uint32_t R) {
     const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
     const bool mapped = in.lightShadowViews > 0;
     RasterPass pass(in.device, name, voxelizePipeline());
@@ -369,10 +384,10 @@ class LegacyPath final : public LightingPath {
         .drawsScene(in.scene.table(), true, Usage::StorageRead)
         .area(R, R)
         .push(vpush);
-    if (rooms)
+    if (seeds == SeedsAccess::Update)
       pass.storageUpdate(shared::kLegacyBindingSeeds, kVoxelSeeds);
     else
-      pass.optionalStorageInOut(shared::kLegacyBindingSeeds, kVoxelSeeds, false);
+      pass.optionalStorageInOut(shared::kLegacyBindingSeeds, kVoxelSeeds, seeds == SeedsAccess::Write);
     return pass;
   }
 

@@ -11,6 +11,7 @@ inline constexpr const char* kVoxelRadiance = "legacy.voxel.clipmap";
 inline constexpr const char* kVoxelRadianceMips = "legacy.voxel.clipmapMips";
 inline constexpr const char* kVoxelSeeds = "legacy.voxel.seeds";  // rooms: where direct light enters the air (level 0)
 inline constexpr const char* kVoxelReach = "legacy.voxel.reach";  // rooms: the air light reaches (level 0)
+inline constexpr const char* kVoxelReachUnsettled = "legacy.voxel.reachUnsettled";  // rooms: the flood's last round's count
 inline constexpr const char* kConeShY = "legacy.cones.shY";
 inline constexpr const char* kConeCoCgAo = "legacy.cones.coCgAo";
 inline constexpr const char* kLegacyAo = "legacy.ao";
