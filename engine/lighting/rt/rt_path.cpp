@@ -376,6 +376,7 @@ class RtPath final : public LightingPath {
                     cells(VK_FORMAT_R16G16B16A16_SFLOAT, "disocclusion rays: mean chroma (xy), AO (z)"))
         .storageOut(shared::kRtBindingCellPosition, kCellOrigin,
                     cells(VK_FORMAT_R32G32B32A32_SFLOAT, "disocclusion rays: world origin (xyz), 1 if traced (w)"))
+        .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, push.environmentSampling != 0u)
         .push(push, screenRadianceAtRecord(screenRadiance))
         .trace(cw, ch)
         .add(graph);
