@@ -176,14 +176,20 @@ TEST_F(EnvironmentTest, LightBelowTheHorizonDoesNotReachAnUpFacingPlaneInRt) {
   const double want = albedo("rt") * 0.1;
   s.settings().rtEnvironmentSampling = true;
   const double sampled = planeMean("rt", map, 0.0f, 32);
+  // The disocclusion rays (first frames: no history) sample the map the same way.
+  s.settings().rtDisocclusionRays = 8;
+  const double withDisocclusion = planeMean("rt", map, 0.0f, 4);
+  s.settings().rtDisocclusionRays = 0;
   s.settings().rtEnvironmentSampling = false;
   const double fromSh = planeMean("rt", map, 0.0f, 32);
   const double reference = planeMean("reference", map, 0.0f, 8);
-  std::printf("light below the horizon: closed form %.5f; rt %.5f, rt from the SH %.5f, reference %.5f (closed form %.5f)\n",
-              want, sampled, fromSh, reference, albedo("reference") * 0.1);
+  std::printf("light below the horizon: closed form %.5f; rt %.5f (with disocclusion rays, 4 frames: %.5f), rt from the SH "
+              "%.5f, reference %.5f (closed form %.5f)\n",
+              want, sampled, withDisocclusion, fromSh, reference, albedo("reference") * 0.1);
   RecordProperty("rt_sampled", std::to_string(sampled / want));
   RecordProperty("rt_from_sh", std::to_string(fromSh / want));
   EXPECT_NEAR(sampled / want, 1.0, 0.03);
+  EXPECT_NEAR(withDisocclusion / want, 1.0, 0.05);
   EXPECT_GT(std::abs(fromSh / want - 1.0), 0.2) << "the SH must miss this for the test to mean anything";
   EXPECT_NEAR(reference / (albedo("reference") * 0.1), 1.0, 0.03);
 }
