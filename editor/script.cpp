@@ -454,7 +454,8 @@ void Script::step(EditorApp& app) {
         std::string decoder;
         for (const auto& r : app.session().resources())
           if (r.name == v.resource) decoder = r.desc.decoder;
-        const auto lines = probeTexel(v, decoder, glm::uvec3(x, y, 0), app.session().decodingScene());
+        // A volume is probed in the slice on view, as the viewport's own probe does.
+        const auto lines = probeTexel(v, decoder, glm::uvec3(x, y, v.slice), app.session().decodingScene());
         if (!lines) return fail(app, fmt::format("`{}` was not read back", v.resource));
         std::string all;
         for (auto& [l, val] : lines->raw) all += l + " = " + val + "; ";

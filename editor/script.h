@@ -46,7 +46,8 @@
 //                          (its true aspect); prints the shown window
 //   keep-b, show-b on|off  A/B against a kept copy
 //   view-probe X Y         probe texel (X, Y) as if hovered
-//   expect-probe X Y TEXT  fail unless texel (X, Y)'s raw or decoded lines contain TEXT (or one of A|B)
+//   expect-probe X Y TEXT  fail unless texel (X, Y) (in a volume, of the slice on view) has raw or decoded
+//                          lines containing TEXT (or one of A|B)
 //   expect-viewer-matches-capture DIR  the viewer's read-back equals DIR/<resource>.exr
 //   append-line FILE TEXT  append a line to a file (tests: break a shader under TWINLIGHT_SHADER_SOURCES)
 //   expect-shader-error T  wait (up to 120 frames) for a hot-reload error containing T

@@ -67,6 +67,14 @@ TEST(Decoders, HitRecordRoundTrips) {
   EXPECT_NE(find(rawTexel(r, 0, 0), "r").find(fmt::format("0x{:08x}", hit)), std::string::npos) << "raw bits shown";
 }
 
+// Integer texels narrower than 32 bits (the legacy rooms' r8ui, r16ui) show their values: they
+// showed nothing when every channel was read as 4 bytes.
+TEST(Decoders, NarrowIntegerTexelsShowTheirValues) {
+  EXPECT_EQ(find(rawTexel(oneTexel(VK_FORMAT_R8_UINT, uint8_t(2)), 0, 0), "r"), "2 (0x02)");
+  EXPECT_EQ(find(rawTexel(oneTexel(VK_FORMAT_R16_UINT, uint16_t(65535)), 0, 0), "r"), "65535 (0xffff)");
+  EXPECT_EQ(find(rawTexel(oneTexel(VK_FORMAT_R32_UINT, uint32_t(7)), 0, 0), "r"), "7 (0x00000007)");
+}
+
 TEST(Decoders, HitSurfaceAndOctahedralNormalsRoundTrip) {
   const glm::vec3 n = glm::normalize(glm::vec3(0.3f, -0.8f, 0.52f));
   const glm::uvec2 surface(shared::tlOctEncodeSnorm16(n), shared::tlPackRgb9e5(glm::vec3(2.0f, 0.5f, 0.0f)));

@@ -182,10 +182,14 @@ DecodedLines rawTexel(const graph::Readback& r, uint32_t x, uint32_t y, uint32_t
   DecodedLines out;
   static const char* kChannels[] = {"r", "g", "b", "a"};
   if (fi.kind == gpu::TexelKind::Uint || fi.kind == gpu::TexelKind::Sint) {
-    for (uint32_t c = 0; c < fi.channels && 4 * (c + 1) <= fi.bytes; ++c) {
-      uint32_t v;
-      std::memcpy(&v, p + 4 * c, 4);
-      out.push_back({kChannels[c], fmt::format("{} (0x{:08x})", fi.kind == gpu::TexelKind::Sint ? int64_t(int32_t(v)) : int64_t(v), v)});
+    // Channels of 1, 2 or 4 bytes (r8ui rooms, r32ui hit records), little-endian.
+    const uint32_t size = fi.channels > 0 ? fi.bytes / fi.channels : 0;
+    if (size != 1 && size != 2 && size != 4) return {{"texel", "unsupported integer layout"}};
+    for (uint32_t c = 0; c < fi.channels && c < 4; ++c) {
+      uint32_t v = 0;
+      std::memcpy(&v, p + size * c, size);
+      const int64_t value = fi.kind == gpu::TexelKind::Sint ? int64_t(int32_t(v)) : int64_t(v);  // sint: 32-bit only
+      out.push_back({kChannels[c], fmt::format("{} (0x{:0{}x})", value, v, 2 * size)});
     }
     return out;
   }

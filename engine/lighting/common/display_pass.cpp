@@ -7,6 +7,8 @@
 #include "lighting/common/pass_builders.h"
 #include "shared/display.h"
 
+#include <fmt/format.h>
+
 namespace tl::lighting {
 
 void DisplayPass::add(graph::RenderGraph& graph, FrameInputs& in, const DisplayRequest& request) {
@@ -36,8 +38,6 @@ void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w
   push.mode = requested == kTonemapLdr ? shared::kDisplayModeFinal
               : fi.kind == gpu::TexelKind::Uint ? shared::kDisplayModeId
                                                  : shared::kDisplayModeLinear;
-  if (volume && push.mode == shared::kDisplayModeId)
-    throw gpu::Error("the display shows integer images in 2D only; `" + requested + "` is 3D");
   push.selectedId = request.selectedInstance;
   push.channels = fi.channels;
   push.channel = request.channel;
@@ -62,8 +62,8 @@ void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w
   for (std::string& c : companions)
     if (c.empty()) c = source;
   const bool ids = push.mode == shared::kDisplayModeId;
-  ComputePass pass(device, ids ? "display.uint" : volume ? "display.float3d" : "display.float",
-                   ids ? "common/display_uint.comp" : volume ? "common/display_float3d.comp" : "common/display_float.comp");
+  const char* kind = ids ? (volume ? "uint3d" : "uint") : (volume ? "float3d" : "float");
+  ComputePass pass(device, fmt::format("display.{}", kind), fmt::format("common/display_{}.comp", kind));
   // Only the 2D float view declares the companions; the integer and the volume views have none
   // (the builder refuses a binding the shader does not declare).
   if (!ids && !volume)
