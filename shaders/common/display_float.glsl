@@ -4,32 +4,20 @@
 #include "shared/packing.h"
 #include "shared/sh.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-#ifdef DISPLAY_3D
-layout(set = 0, binding = kDisplaySource) uniform sampler3D source;
-#else
-layout(set = 0, binding = kDisplaySource) uniform sampler2D source;
-#endif
-layout(set = 0, binding = kDisplayInstanceId) uniform usampler2D instanceId;
+#include "common/display_bindings.glsl"
 #ifndef DISPLAY_3D
 layout(set = 0, binding = kDisplayCompanionA) uniform sampler2D companionA;
 layout(set = 0, binding = kDisplayCompanionB) uniform sampler2D companionB;
 #endif
-layout(set = 0, binding = kDisplayOutput, rgba8) uniform writeonly image2D display;
-layout(push_constant) uniform Push { DisplayPush push; };
-
-#include "common/display_outline.glsl"
 
 void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = imageSize(display);
-  if (any(greaterThanEqual(p, size))) return;
-  vec2 uv = sourceUv(p, size);
+  ivec2 p, size;
+  vec2 uv;
+  if (!displayPixel(p, size, uv)) return;
+  ivec2 sourceSize = displaySourceSize();
 #ifdef DISPLAY_3D
-  ivec2 sourceSize = textureSize(source, 0).xy;
   vec4 v = textureLod(source, vec3(uv, push.slice), 0.0);
 #else
-  ivec2 sourceSize = textureSize(source, 0);
   vec4 v = textureLod(source, uv, 0.0);
 #endif
   vec3 c;

@@ -4,17 +4,8 @@
 #include "shared/packing.h"
 #include "shared/rt.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-#ifdef DISPLAY_3D
-layout(set = 0, binding = kDisplaySource) uniform usampler3D source;
-#else
-layout(set = 0, binding = kDisplaySource) uniform usampler2D source;
-#endif
-layout(set = 0, binding = kDisplayInstanceId) uniform usampler2D instanceId;
-layout(set = 0, binding = kDisplayOutput, rgba8) uniform writeonly image2D display;
-layout(push_constant) uniform Push { DisplayPush push; };
-
-#include "common/display_outline.glsl"
+#define DISPLAY_INTEGER 1
+#include "common/display_bindings.glsl"
 
 // A stable, well-spread colour per integer value; 0 stays black.
 vec3 idColor(uint v) {
@@ -26,21 +17,16 @@ vec3 idColor(uint v) {
 }
 
 void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = imageSize(display);
-  if (any(greaterThanEqual(p, size))) return;
-  vec2 uv = sourceUv(p, size);
-#ifdef DISPLAY_3D
-  ivec3 volumeSize = textureSize(source, 0);
-  ivec2 sourceSize = volumeSize.xy;
-#else
-  ivec2 sourceSize = textureSize(source, 0);
-#endif
+  ivec2 p, size;
+  vec2 uv;
+  if (!displayPixel(p, size, uv)) return;
+  ivec2 sourceSize = displaySourceSize();
   vec3 c = vec3(0.04);
   if (all(greaterThanEqual(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)))) {
 #ifdef DISPLAY_3D
     // A slice of a volume: its integers as colours (a volume's meanings are the stored values).
-    uvec4 v = texelFetch(source, ivec3(ivec2(uv * vec2(sourceSize)), min(int(push.slice * float(volumeSize.z)), volumeSize.z - 1)), 0);
+    int depth = textureSize(source, 0).z;
+    uvec4 v = texelFetch(source, ivec3(ivec2(uv * vec2(sourceSize)), min(int(push.slice * float(depth)), depth - 1)), 0);
 #else
     uvec4 v = texelFetch(source, ivec2(uv * vec2(sourceSize)), 0);
 #endif
