@@ -60,7 +60,7 @@ void lightTwoRooms(session::Session& s) {
 }
 
 class LegacyLeakTest : public GpuTest {
- public:
+ protected:
   void look(glm::dvec3 position, glm::dvec3 forward, float fov = 1.3f) {
     auto& s = session();
     session::View v = s.view();
@@ -84,6 +84,16 @@ class LegacyLeakTest : public GpuTest {
     s.renderFrames(8);
     return meanLuminance(image);
   }
+  // The two rooms: the lit room first, so the voxels hold its light (and, through the screen,
+  // its bounces), then the closed room from inside: the closed room's mean over the lit room's.
+  double closedRoomRatio(uint32_t roomSweeps) {
+    const double lit = legacyMean(roomSweeps, kCompositeHdr, {-3.6, 1.5, 0.0}, {1.0, -0.1, 0.0});
+    const double closed = legacyMean(roomSweeps, kCompositeHdr, {3.6 + kWall, 1.5, 0.0}, {-1.0, -0.1, 0.0});
+    std::printf("two rooms, legacyRoomSweeps %u: lit room %.5f, closed room %.5f, ratio %.5f\n", roomSweeps, lit, closed,
+                closed / lit);
+    EXPECT_GT(lit, 0.1);
+    return closed / lit;
+  }
   // Mean luminance of an RGB(A) buffer over every pixel.
   double meanLuminance(const std::string& name) {
     const auto& b = session().buffer(name);
@@ -96,10 +106,6 @@ class LegacyLeakTest : public GpuTest {
   }
 };
 
-// The lit room first, so the voxels hold its light (and, through the screen, its bounces),
-// then the closed room from inside: the ratio of the closed room's mean to the lit room's.
-double closedRoomRatio(LegacyLeakTest& t, uint32_t roomSweeps);
-
 // The truth in the closed room is black. Measured on lavapipe: 0.0000 % with the rooms (their
 // whole image is the sun's shadowed direct light, none); without them (legacyRoomSweeps 0) the
 // coarse cones blend in the lit room's light and the sky through the walls: 10.4 %.
@@ -111,21 +117,12 @@ TEST_F(LegacyLeakTest, ClosedRoomBesideASunlitOneStaysDark) {
   ASSERT_GE(kWall, fit.clipmap.levelMin[0].w) << "the walls must be at least one finest voxel thick";
   s.installScene(std::move(scene));
   lightTwoRooms(s);
-  const double withRooms = closedRoomRatio(*this, s.settings().legacyRoomSweeps);
-  const double without = closedRoomRatio(*this, 0);
+  const double withRooms = closedRoomRatio(s.settings().legacyRoomSweeps);
+  const double without = closedRoomRatio(0);
   RecordProperty("closed_over_lit", std::to_string(withRooms));
   RecordProperty("closed_over_lit_without_rooms", std::to_string(without));
   EXPECT_LT(withRooms, 0.01);
   EXPECT_GT(without, 0.05) << "without the rooms the cones leak: the scene must show it for the test to mean anything";
-}
-
-double closedRoomRatio(LegacyLeakTest& t, uint32_t roomSweeps) {
-  const double lit = t.legacyMean(roomSweeps, kCompositeHdr, {-3.6, 1.5, 0.0}, {1.0, -0.1, 0.0});
-  const double closed = t.legacyMean(roomSweeps, kCompositeHdr, {3.6 + kWall, 1.5, 0.0}, {-1.0, -0.1, 0.0});
-  std::printf("two rooms, legacyRoomSweeps %u: lit room %.5f, closed room %.5f, ratio %.5f\n", roomSweeps, lit, closed,
-              closed / lit);
-  EXPECT_GT(lit, 0.1);
-  return closed / lit;
 }
 
 // The flood runs a fixed number of rounds; only a last round that reaches nothing proves it
@@ -135,8 +132,8 @@ TEST_F(LegacyLeakTest, AFloodNotShownToHaveSettledIsIgnored) {
   auto& s = session();
   s.installScene(makeTwoRooms());
   lightTwoRooms(s);
-  const double oneRound = closedRoomRatio(*this, 1);
-  const double twoRounds = closedRoomRatio(*this, 2);
+  const double oneRound = closedRoomRatio(1);
+  const double twoRounds = closedRoomRatio(2);
   RecordProperty("closed_over_lit_one_round", std::to_string(oneRound));
   RecordProperty("closed_over_lit_two_rounds", std::to_string(twoRounds));
   EXPECT_GT(oneRound, 0.05);
