@@ -3,6 +3,7 @@
 #include "session/provenance.h"
 #include "session/ray_figures.h"
 #include "session/settings_json.h"
+#include "metrics/statistics.h"
 
 #include <fmt/format.h>
 
@@ -11,14 +12,7 @@
 
 namespace {
 
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  double pos = q * double(v.size() - 1);
-  size_t i = size_t(pos);
-  double f = pos - double(i);
-  return i + 1 < v.size() ? v[i] * (1.0 - f) + v[i + 1] * f : v[i];
-}
+using tl::metrics::quantile;
 
 nlohmann::json stats(const std::vector<double>& ms) {
   return {{"median", quantile(ms, 0.5)}, {"p10", quantile(ms, 0.1)}, {"p90", quantile(ms, 0.9)},

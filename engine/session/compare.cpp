@@ -8,6 +8,7 @@
 #include "metrics/depth_attribution.h"
 #include "metrics/flip.h"
 #include "metrics/metrics.h"
+#include "metrics/statistics.h"
 #include "session/image_io.h"
 #include "session/provenance.h"
 #include "session/report_html.h"
@@ -27,11 +28,7 @@
 namespace tl::session {
 namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
+using metrics::median;
 
 // The reference's shaders as compiled (includes and all) and the BRDF tables they read: any
 // change to the path tracer's GPU code gives new SPIR-V and so a new cache key, with no

@@ -1,6 +1,7 @@
 #include "session/ray_figures.h"
 
 #include "lighting/rt/rt_path.h"
+#include "metrics/statistics.h"
 #include "shared/rt.h"
 
 #include <algorithm>
@@ -9,11 +10,7 @@
 namespace tl::session {
 namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
+using metrics::median;
 
 double medianOf(const PassTimes& passes, const std::string& pass) {
   for (const auto& [name, ms] : passes)

@@ -16,25 +16,34 @@ vec4 slotTexelLod0(GpuTextureSlot s, vec2 uv0, vec2 uv1) {
   return textureLod(sceneTextures[nonuniformEXT(s.texture)], tlSlotUv(s, uv0, uv1), 0.0);
 }
 
-// Base colour (linear) and alpha: factor x texture x COLOR_0.
-vec4 materialBaseColorLod0(GpuMaterial m, vec2 uv0, vec2 uv1, vec4 vertexColor) {
-  vec4 base = m.baseColorFactor * vertexColor;
-  if (m.baseColorTexture.texture != kNoTexture) base *= slotTexelLod0(m.baseColorTexture, uv0, uv1);
-  return base;
-}
+// The material inputs, written once for both ways a slot is read: each names its functions and
+// the slot reader they sample through. Base colour (linear) and alpha: factor x texture x
+// COLOR_0; roughness and metallic (x, y); glTF's occlusion, 1 + strength (texel.r - 1), 1
+// without a texture; emission. Below: the *Lod0 forms (slotTexelLod0); common/material.glsl
+// makes the fragment forms (sampleSlot, with derivatives).
+#define TL_MATERIAL_INPUTS(BASE_COLOR, ROUGHNESS_METALLIC, OCCLUSION, EMISSION, SAMPLE)                  \
+  vec4 BASE_COLOR(GpuMaterial m, vec2 uv0, vec2 uv1, vec4 vertexColor) {                                 \
+    vec4 base = m.baseColorFactor * vertexColor;                                                         \
+    if (m.baseColorTexture.texture != kNoTexture) base *= SAMPLE(m.baseColorTexture, uv0, uv1);          \
+    return base;                                                                                         \
+  }                                                                                                      \
+  vec2 ROUGHNESS_METALLIC(GpuMaterial m, vec2 uv0, vec2 uv1) {                                           \
+    vec2 rm = vec2(m.roughness, m.metallic);                                                             \
+    if (m.metallicRoughnessTexture.texture != kNoTexture) rm *= SAMPLE(m.metallicRoughnessTexture, uv0, uv1).gb; \
+    return rm;                                                                                           \
+  }                                                                                                      \
+  float OCCLUSION(GpuMaterial m, vec2 uv0, vec2 uv1) {                                                   \
+    if (m.occlusionTexture.texture == kNoTexture) return 1.0;                                            \
+    return 1.0 + m.occlusionStrength * (SAMPLE(m.occlusionTexture, uv0, uv1).r - 1.0);                   \
+  }                                                                                                      \
+  vec3 EMISSION(GpuMaterial m, vec2 uv0, vec2 uv1) {                                                     \
+    vec3 e = m.emissive.rgb;                                                                             \
+    if (m.emissiveTexture.texture != kNoTexture) e *= SAMPLE(m.emissiveTexture, uv0, uv1).rgb;           \
+    return e;                                                                                            \
+  }
 
-// x: roughness, y: metallic.
-vec2 materialRoughnessMetallicLod0(GpuMaterial m, vec2 uv0, vec2 uv1) {
-  vec2 rm = vec2(m.roughness, m.metallic);
-  if (m.metallicRoughnessTexture.texture != kNoTexture) rm *= slotTexelLod0(m.metallicRoughnessTexture, uv0, uv1).gb;
-  return rm;
-}
-
-vec3 materialEmissionLod0(GpuMaterial m, vec2 uv0, vec2 uv1) {
-  vec3 e = m.emissive.rgb;
-  if (m.emissiveTexture.texture != kNoTexture) e *= slotTexelLod0(m.emissiveTexture, uv0, uv1).rgb;
-  return e;
-}
+TL_MATERIAL_INPUTS(materialBaseColorLod0, materialRoughnessMetallicLod0, materialOcclusionLod0, materialEmissionLod0,
+                   slotTexelLod0)
 
 // A normal map's tangent-space texel (as stored, [0, 1]) applied to the unit normal n facing the
 // viewer or the ray: the tangent is made orthogonal to n, the bitangent is n x t times the
