@@ -1,4 +1,8 @@
-#include "bake_command.h"
+// `twinlight bake`: the albedo database from the command line — bake scenes (or a shard of
+// their keys: by hand, or from a Slurm array / Kubernetes Indexed Job), merge databases, list
+// what one holds.
+#include "cli_command.h"
+#include "render_options.h"
 
 #include "cli_args.h"
 #include "cli_output.h"
@@ -13,10 +17,23 @@
 #include <cstdlib>
 #include <filesystem>
 
+namespace tl::editor {
 namespace {
 
-using tl::session::SessionError;
-namespace albedo = tl::albedo;
+using session::SessionError;
+
+struct BakeArgs {
+  std::vector<std::string> scenes;  // baked in order; a key two scenes share is baked once
+  std::string db;
+  std::string shard;                      // "i/N" or "auto"
+  std::optional<std::string> shardCount;  // with auto, where the scheduler gives no count
+  uint32_t batch = 0;                     // combinations per submission, 0 = as many as fit
+  uint32_t tileSize = 64;
+  bool force = false;
+  bool list = false;
+  std::vector<std::string> merge;  // databases to merge into --db
+  bool allowOutsideFiles = false;  // the scene may read files outside its folder
+};
 
 int listDatabase(const std::string& file) {
   albedo::AlbedoDatabase db(file, false);
@@ -48,9 +65,7 @@ int mergeDatabases(const BakeArgs& a) {
   return 0;
 }
 
-}  // namespace
-
-int runBake(const BakeArgs& a, const std::string& defaultScene) {
+int runBake(const BakeArgs& a) {
   if (a.db.empty()) throw SessionError("bake needs --db FILE");
   if (a.list) return listDatabase(a.db);
   if (!a.merge.empty()) return mergeDatabases(a);
@@ -58,10 +73,10 @@ int runBake(const BakeArgs& a, const std::string& defaultScene) {
   albedo::BakeOptions options;
   options.settings.tileSize = a.tileSize;
   if (a.tileSize < 8 || a.tileSize > 256) throw SessionError("--tile must be between 8 and 256 pixels");
-  std::optional<tl::session::Shard> shard;
+  std::optional<session::Shard> shard;
   if (!a.shard.empty() || a.shardCount) {
-    if (a.shard.empty()) throw tl::session::ShardError("--shard-count goes with --shard auto");
-    shard = tl::session::resolveShard(a.shard, a.shardCount);
+    if (a.shard.empty()) throw session::ShardError("--shard-count goes with --shard auto");
+    shard = session::resolveShard(a.shard, a.shardCount);
     options.shardIndex = shard->index;
     options.shardCount = shard->count;
     fmt::print("shard {}/{}: {}\n", shard->index, shard->count, shard->source);
@@ -76,19 +91,19 @@ int runBake(const BakeArgs& a, const std::string& defaultScene) {
     };
   }
 
-  const std::vector<std::string> scenes = a.scenes.empty() ? std::vector<std::string>{defaultScene} : a.scenes;
-  tl::session::Session session;
+  const std::vector<std::string> scenes = a.scenes.empty() ? std::vector<std::string>{defaultScene().string()} : a.scenes;
+  session::Session session;
   uint32_t failed = 0;
   for (const std::string& file : scenes) {
     // Keys an earlier scene baked are in the database by now: this scene skips them.
     const auto loadStart = std::chrono::steady_clock::now();
-    session.loadScene(file, tl::scene::LoadOptions{a.allowOutsideFiles});
+    session.loadScene(file, scene::LoadOptions{a.allowOutsideFiles});
     session.openAlbedoDatabase(a.db);
     const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     const auto start = std::chrono::steady_clock::now();
     auto job = session.startAlbedoBake(options);
     {
-      tl::editor::Progress progress("bake " + session.scene().name);
+      Progress progress("bake " + session.scene().name);
       auto report = [&] {
         const auto& p = job->progress();
         progress.update(p.total ? double(p.done) / p.total : 1.0,
@@ -115,3 +130,37 @@ int runBake(const BakeArgs& a, const std::string& defaultScene) {
   }
   return exitStatus(session);
 }
+
+class BakeCommand : public CliCommand {
+ public:
+  CLI::App* add(CLI::App& app) override {
+    auto* cmd = app.add_subcommand("bake", "bake the per-instance albedo database (or merge or list databases)");
+    cmd->add_option("--scene", a_.scenes,
+                    "glTF file(s), baked in order into one database (a key they share is baked once); default "
+                    "content/atrium.gltf");
+    cmd->add_option("--db", a_.db, "the albedo database (SQLite), created when missing")->required();
+    cmd->add_option("--shard", a_.shard,
+                    "bake only shard i of N (i/N, 0-based): a fixed subset of the keys; or `auto` from a Slurm array "
+                    "(SLURM_ARRAY_TASK_ID) or Kubernetes Indexed Job (JOB_COMPLETION_INDEX)");
+    cmd->add_option("--shard-count", a_.shardCount,
+                    "with --shard auto under a Kubernetes Indexed Job: the shard count (else TWINLIGHT_SHARD_COUNT)");
+    cmd->add_option("--batch", a_.batch, "combinations per GPU submission (default: as many as fit, 42)");
+    cmd->add_option("--tile", a_.tileSize, "pixels per side of each of the 6 views (part of every key)")->capture_default_str();
+    cmd->add_flag("--force", a_.force, "re-bake keys the database already holds");
+    cmd->add_flag("--list", a_.list, "print the database's baked entries and overrides, bake nothing");
+    cmd->add_option("--merge", a_.merge, "merge these databases into --db (conflicts reported, overrides kept)");
+    cmd->add_flag("--allow-outside-files", a_.allowOutsideFiles,
+                  "let the scene read buffers and images outside its own folder (../, absolute paths, links out)");
+    return cmd;
+  }
+  int run() override { return runBake(a_); }
+
+ private:
+  BakeArgs a_;
+};
+
+}  // namespace
+
+std::unique_ptr<CliCommand> makeBakeCommand() { return std::make_unique<BakeCommand>(); }
+
+}  // namespace tl::editor
