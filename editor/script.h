@@ -1,6 +1,7 @@
 // `twinlight --script FILE`: editor actions, one a line, run as a person would use the
 // editor (one action per frame; `wait` lets frames pass). A failed action or expectation
-// stops the editor with exit code 1 and the line number.
+// stops the editor with exit code 1 and the line number. Each command is a function in the
+// table of editor/script_commands.h.
 //
 //   open PATH              load a scene (relative: to the working directory, else the project)
 //   wait-loaded            wait until the scene has loaded
@@ -91,13 +92,9 @@
 //   quit
 #pragma once
 
-#include "frame_profile.h"
+#include "script_commands.h"
 
-#include <glm/glm.hpp>
-
-#include <chrono>
 #include <filesystem>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -117,33 +114,8 @@ class Script {
   std::filesystem::path file_;
   std::vector<std::string> lines_;
   size_t next_ = 0;
-  int waitFrames_ = 0;
-  uint64_t waitUntil_ = 0;           // engine frames done when a `wait` ends
-  double changedAtLeast_ = 0.01;     // expect-viewport-changed's least mean difference
-  bool waitCapture_ = false;
-  int captureWaitFrames_ = 0;
-  uint64_t measureEngineStart_ = 0;
-  double measureCpu_ = 0.0, measureProcessCpu_ = 0.0;
-  std::map<std::string, double> measureThreads_;  // frame_profile.h, at the start of `measure`
-  FrameProfile measureProfile_;
-  bool waitLoaded_ = false;
-  bool waitBake_ = false;
-  std::string waitShaderError_;
-  int shaderErrorFrames_ = 0;
-  int scrollFrames_ = 0;  // frames click-ui has waited for its control to scroll into view
-  int measureFrames_ = 0;
-  uint64_t measureStart_ = 0, measurePresentedStart_ = 0, measureSupersededStart_ = 0;
-  bool waitScreenshot_ = false;
-  double measureSeconds_ = 0.0;
   std::string failure_;
-  enum class Capture { None, Snapshot, Compare } capture_ = Capture::None;
-  std::vector<float> snapshot_;
-  uint32_t samplesAtMove_ = 0, restartsAtMove_ = 0;  // the live reference when the camera last moved
-  // The last copy-file: the reload count and the camera then, for expect-reload.
-  uint64_t reloadsAtCopy_ = 0;
-  glm::dvec3 cameraAtCopy_{0.0};
-  bool reloadWaiting_ = false;  // expect-reload, since reloadWaitStart_
-  std::chrono::steady_clock::time_point reloadWaitStart_;
+  ScriptState state_;
 };
 
 }  // namespace tl::editor

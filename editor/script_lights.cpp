@@ -1,4 +1,6 @@
-#include "script_lights.h"
+// Script commands on lights: dragging a viewport handle as a person does, and the
+// expectations a test of light editing needs.
+#include "script_commands.h"
 
 #include "editor_app.h"
 #include "ui_helpers.h"
@@ -65,68 +67,77 @@ std::string checkGizmoFollowed(const EditorApp::FinishedGizmoDrag& d) {
   return {};
 }
 
+// drag-ui NAME DX DY: press on a tracked control or handle, move by (DX, DY) pixels over eight
+// frames, release.
+void dragUi(EditorApp& app, ScriptState&, const std::string& arg) {
+  char name[128];
+  float dx = 0.0f, dy = 0.0f;
+  if (std::sscanf(arg.c_str(), "%127s %f %f", name, &dx, &dy) != 3) throw ScriptFailure("drag-ui needs NAME DX DY");
+  const auto item = trackedItem(name);
+  if (!item) throw ScriptFailure(fmt::format("no control `{}` on screen", name));
+  const glm::vec2 from = 0.5f * (item->min + item->max);
+  auto& in = app.input();
+  in.push({InputEvent::Kind::Move, from});
+  in.push({InputEvent::Kind::Frame});
+  in.push({InputEvent::Kind::Button, {}, 0, true});
+  constexpr int kSteps = 8;
+  for (int i = 1; i <= kSteps; ++i) {
+    in.push({InputEvent::Kind::Frame});
+    in.push({InputEvent::Kind::Move, from + glm::vec2(dx, dy) * (float(i) / kSteps)});
+  }
+  in.push({InputEvent::Kind::Frame});
+  in.push({InputEvent::Kind::Button, {}, 0, false});
+}
+
+void expectLights(EditorApp& app, ScriptState&, const std::string& arg) {
+  const auto& lights = app.session().lighting().lights;
+  const size_t want = size_t(std::max(0, std::atoi(arg.c_str())));
+  for (size_t i = 0; i < lights.size(); ++i) fmt::print("script: light {}: {}\n", i, describe(lights[i]));
+  if (lights.size() != want) throw ScriptFailure(fmt::format("{} lights, expected {}", lights.size(), want));
+}
+
+// expect-light I TEXT: light I's description holds TEXT.
+void expectLight(EditorApp& app, ScriptState&, const std::string& arg) {
+  const auto& lights = app.session().lighting().lights;
+  const auto space = arg.find(' ');
+  const size_t i = size_t(std::max(0, std::atoi(arg.substr(0, space).c_str())));
+  const std::string text = space == std::string::npos ? "" : arg.substr(space + 1);
+  if (i >= lights.size()) throw ScriptFailure(fmt::format("no light {} ({} lights)", i, lights.size()));
+  const std::string d = describe(lights[i]);
+  if (d.find(text) == std::string::npos) throw ScriptFailure(fmt::format("light {} is `{}`, without `{}`", i, d, text));
+  fmt::print("script: light {}: {}\n", i, d);
+}
+
+void expectGizmoFollowed(EditorApp& app, ScriptState&, const std::string&) {
+  if (!app.lastGizmoDrag()) throw ScriptFailure("no gizmo drag has finished");
+  if (const std::string failure = checkGizmoFollowed(*app.lastGizmoDrag()); !failure.empty()) throw ScriptFailure(failure);
+}
+
+void expectSelectedLight(EditorApp& app, ScriptState&, const std::string& arg) {
+  const auto& lights = app.session().lighting().lights;
+  const auto s = app.selectedLight();
+  const std::string have = s && *s < lights.size() ? lights[*s].name : "none";
+  if (have != arg) throw ScriptFailure(fmt::format("expected light `{}` to be selected, but `{}` is", arg, have));
+  fmt::print("script: light `{}` is selected\n", have);
+}
+
+void saveLighting(EditorApp& app, ScriptState&, const std::string&) {
+  const std::string saved = app.saveLighting();
+  if (saved.empty()) throw ScriptFailure("the lighting was not saved");
+  fmt::print("script: {}\n", saved);
+}
+
+constexpr ScriptCommand kCommands[] = {
+    {"drag-ui", dragUi},
+    {"expect-lights", expectLights},
+    {"expect-light", expectLight},
+    {"expect-gizmo-followed", expectGizmoFollowed},
+    {"expect-selected-light", expectSelectedLight},
+    {"save-lighting", saveLighting},
+};
+
 }  // namespace
 
-bool runLightScriptCommand(EditorApp& app, const std::string& cmd, const std::string& arg, std::string& failure) {
-  const auto& lights = app.session().lighting().lights;
-  if (cmd == "drag-ui") {
-    // drag-ui NAME DX DY: press on a tracked control or handle, move by (DX, DY) pixels over
-    // eight frames, release.
-    char name[128];
-    float dx = 0.0f, dy = 0.0f;
-    if (std::sscanf(arg.c_str(), "%127s %f %f", name, &dx, &dy) != 3) return failure = "drag-ui needs NAME DX DY", true;
-    const auto item = trackedItem(name);
-    if (!item) return failure = fmt::format("no control `{}` on screen", name), true;
-    const glm::vec2 from = 0.5f * (item->min + item->max);
-    auto& in = app.input();
-    in.push({InputEvent::Kind::Move, from});
-    in.push({InputEvent::Kind::Frame});
-    in.push({InputEvent::Kind::Button, {}, 0, true});
-    constexpr int kSteps = 8;
-    for (int i = 1; i <= kSteps; ++i) {
-      in.push({InputEvent::Kind::Frame});
-      in.push({InputEvent::Kind::Move, from + glm::vec2(dx, dy) * (float(i) / kSteps)});
-    }
-    in.push({InputEvent::Kind::Frame});
-    in.push({InputEvent::Kind::Button, {}, 0, false});
-    return true;
-  }
-  if (cmd == "expect-lights") {
-    const size_t want = size_t(std::max(0, std::atoi(arg.c_str())));
-    for (size_t i = 0; i < lights.size(); ++i) fmt::print("script: light {}: {}\n", i, describe(lights[i]));
-    if (lights.size() != want) failure = fmt::format("{} lights, expected {}", lights.size(), want);
-    return true;
-  }
-  if (cmd == "expect-light") {
-    // expect-light I TEXT: light I's description holds TEXT.
-    const auto space = arg.find(' ');
-    const size_t i = size_t(std::max(0, std::atoi(arg.substr(0, space).c_str())));
-    const std::string text = space == std::string::npos ? "" : arg.substr(space + 1);
-    if (i >= lights.size()) return failure = fmt::format("no light {} ({} lights)", i, lights.size()), true;
-    const std::string d = describe(lights[i]);
-    if (d.find(text) == std::string::npos) failure = fmt::format("light {} is `{}`, without `{}`", i, d, text);
-    else fmt::print("script: light {}: {}\n", i, d);
-    return true;
-  }
-  if (cmd == "expect-gizmo-followed") {
-    if (!app.lastGizmoDrag()) return failure = "no gizmo drag has finished", true;
-    failure = checkGizmoFollowed(*app.lastGizmoDrag());
-    return true;
-  }
-  if (cmd == "expect-selected-light") {
-    const auto s = app.selectedLight();
-    const std::string have = s && *s < lights.size() ? lights[*s].name : "none";
-    if (have != arg) failure = fmt::format("expected light `{}` to be selected, but `{}` is", arg, have);
-    else fmt::print("script: light `{}` is selected\n", have);
-    return true;
-  }
-  if (cmd == "save-lighting") {
-    const std::string saved = app.saveLighting();
-    if (saved.empty()) failure = "the lighting was not saved";
-    else fmt::print("script: {}\n", saved);
-    return true;
-  }
-  return false;
-}
+std::span<const ScriptCommand> lightScriptCommands() { return kCommands; }
 
 }  // namespace tl::editor
