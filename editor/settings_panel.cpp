@@ -20,19 +20,19 @@ namespace {
 using lighting::SettingInfo;
 using lighting::SettingType;
 
-std::string settingTooltip(const SettingInfo& s, const lighting::RenderSettings& settings, float sceneScale) {
+std::string settingTooltip(const SettingInfo& s, const lighting::RenderSettings& settings, const lighting::SceneSize& sceneSize) {
   std::string text = fmt::format("{}\n{}{}{}", s.help, lighting::settingDomain(s), s.unit.empty() ? "" : ", in ",
                                  s.unit);
   if (s.flags & lighting::kSettingAuto)
-    if (auto value = lighting::autoSettingValue(s.name, settings, sceneScale))
-      text += fmt::format("\n0 = auto: {:.3g} {} now", *value, s.unit);
+    if (auto value = lighting::autoSettingValue(s, settings, sceneSize))
+      text += fmt::format("\n0 = auto ({}): {:.3g} {} now", s.autoRule, *value, s.unit);
   text += s.history.empty() ? "\nchanging it restarts no history"
                             : fmt::format("\nchanging it restarts the history of: {}", s.history);
   return text;
 }
 
 // The widget for one setting; writes only a valid value back.
-void settingWidget(const SettingInfo& s, lighting::RenderSettings& settings, float sceneScale) {
+void settingWidget(const SettingInfo& s, lighting::RenderSettings& settings, const lighting::SceneSize& sceneSize) {
   const std::string label(s.name);
   const double value = s.get(settings);
   double next = value;
@@ -93,7 +93,7 @@ void settingWidget(const SettingInfo& s, lighting::RenderSettings& settings, flo
     }
   }
   trackItem("settings." + label);  // scripts reach the widget itself: click-ui settings.NAME
-  tooltip(settingTooltip(s, settings, sceneScale).c_str());
+  tooltip(settingTooltip(s, settings, sceneSize).c_str());
   if (next != value && !lighting::settingRangeError(s, next)) s.set(settings, next);
 }
 
@@ -182,8 +182,7 @@ std::filesystem::path saveNamedPreset(EditorApp& app, const std::string& name) {
 void settingsSection(EditorApp& app) {
   auto& session = app.session();
   lighting::RenderSettings& settings = session.settings();
-  const auto& b = session.scene().bounds;
-  const float sceneScale = b.valid() ? float(glm::length(b.size())) : 1.0f;
+  const lighting::SceneSize sceneSize = session.sceneSize();
 
   ImGui::Separator();
   ImGui::TextUnformatted("Render settings");
@@ -245,7 +244,7 @@ void settingsSection(EditorApp& app) {
       if (s.owner == owner) labelWidth = std::max(labelWidth, ImGui::CalcTextSize(std::string(s.name).c_str()).x);
     ImGui::PushItemWidth(-(labelWidth + ImGui::GetStyle().ItemInnerSpacing.x + 1.0f));
     for (const SettingInfo& s : lighting::settingsSchema())
-      if (s.owner == owner && !(s.flags & lighting::kSettingNoPanel)) settingWidget(s, settings, sceneScale);
+      if (s.owner == owner && !(s.flags & lighting::kSettingNoPanel)) settingWidget(s, settings, sceneSize);
     ImGui::PopItemWidth();
   }
 }

@@ -284,12 +284,15 @@ void Session::useSceneCamera(size_t index) {
   v.forward = c.orientation * glm::dvec3(0.0, 0.0, -1.0);
   v.up = c.orientation * glm::dvec3(0.0, 1.0, 0.0);
   v.yfovRadians = c.yfovRadians;
-  v.znear = std::max(1e-4f, c.znear);
+  // The importer holds znear > 0 (and zfar > znear for an orthographic camera); the floor
+  // only keeps depth precision in a scene a million times the near plane.
+  const float diagonal = sceneSize().diagonal;
+  v.znear = std::max(c.znear, 1e-7f * diagonal);
   if (c.orthographic) {
     v.orthographic = true;
     v.orthoHalfHeight = c.ymag;
     v.znear = std::max(0.0f, c.znear);
-    v.zfar = c.zfar.value_or(v.znear + 1000.0f);
+    v.zfar = c.zfar.value_or(v.znear + 2.0f * diagonal + float(glm::length(c.position - scene_->bounds.center())));
   }
   setView(v);
 }
@@ -301,7 +304,7 @@ void Session::fitViewToScene() {
   View v;
   v.forward = glm::normalize(glm::dvec3(-0.4, -0.35, -1.0));
   v.position = c - v.forward * (r / std::tan(0.45) + r);
-  v.znear = float(std::max(1e-3, r * 1e-3));
+  v.znear = float(std::max(1e-30, r * 1e-3));
   setView(v);
 }
 
@@ -347,22 +350,25 @@ std::optional<scene::EnvironmentSun> Session::environmentSun() const {
   return separatedSun_->sun;
 }
 
-float autoExposureEv(const Lighting& l, float brightestEmission) {
-  // A white Lambertian surface facing the sun under the sky has radiance E/pi + L.
+float autoExposureEv(const Lighting& l, float brightestEmission, float sceneScale) {
+  // A white Lambertian surface facing the sun under the sky has radiance E/pi + L. Lights are
+  // seen from a fifth of the scene's extent (2 m in a 10 m room): a distance of the scene's,
+  // so the same scene at any scale gets the same exposure.
+  const double seenFrom = 0.2 * std::max(double(sceneScale), 1e-30), seenFrom2 = seenFrom * seenFrom;
   double brightestLight = 0.0;
   for (const auto& light : l.lights) {
     if (light.hidden) continue;
     const double e = shared::tlLuminance(light.radiometric());
-    // A point or spot light of intensity I lights a surface 2 m away with I / 4; an area light of
-    // radiance L and emitting area A as much as a point of intensity L A (its area seen face on;
-    // a tube's side 2 r x length), and never more than pi L (a surface touching it).
+    // A point or spot light of intensity I lights a surface that far away with I / d^2; an area
+    // light of radiance L and emitting area A as much as a point of intensity L A (its area seen
+    // face on; a tube's side 2 r x length), and never more than pi L (a surface touching it).
     double area = 0.0;
     if (light.type == scene::LightType::Rect) area = double(light.width) * light.height;
     if (light.type == scene::LightType::Disk) area = glm::pi<double>() * light.radius * light.radius;
     if (light.type == scene::LightType::Tube) area = 2.0 * light.radius * light.length;
     const double seen = light.type == scene::LightType::Directional ? e
-                        : scene::isAreaLight(light.type)           ? std::min(glm::pi<double>() * e, e * area / 4.0)
-                                                                   : e / 4.0;
+                        : scene::isAreaLight(light.type)           ? std::min(glm::pi<double>() * e, e * area / seenFrom2)
+                                                                   : e / seenFrom2;
     brightestLight = std::max(brightestLight, seen);
   }
   const glm::vec3 sky = l.environmentMap ? l.environmentMap->meanRadiance * l.environmentIntensity : l.skyRadiance;
@@ -372,7 +378,7 @@ float autoExposureEv(const Lighting& l, float brightestEmission) {
 }
 
 float Session::exposureEv() const {
-  return shaded_.exposureEv.value_or(autoExposureEv(shaded_, brightestEmission_));
+  return shaded_.exposureEv.value_or(autoExposureEv(shaded_, brightestEmission_, sceneSize().diagonal));
 }
 
 void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumber, bool jitter) const {
@@ -414,6 +420,10 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
   fc.flags |= uint32_t(settings_.materials) << shared::kFrameMaterialsShift;
   if (jitter) fc.flags |= shared::kFrameFlagFramesAveraged;
   fc.sceneScale = float(scene_->bounds.valid() ? glm::length(scene_->bounds.size()) : 1.0);
+  if (scene_->bounds.valid()) {
+    fc.sceneMin = glm::vec4(glm::vec3(scene_->bounds.min - view_.position), 0.0f);
+    fc.sceneMax = glm::vec4(glm::vec3(scene_->bounds.max - view_.position), 0.0f);
+  }
   fc.lightCount = 0;  // renderOne writes the light table and its count
   if (const auto& map = shaded_.environmentMap) {
     fc.flags |= shared::kFrameFlagEnvironment;
@@ -509,7 +519,10 @@ void Session::beginOne(bool readback) {
                                                       "the environment map's texels and importance table (shared/environment.h)"), environmentTable_);
   }
 
-  lighting::FrameInputs in{*device_, *gpuScene_, *scene_, settings_, fc, view_.position, frame};
+  // The paths render with every automatic setting resolved against this scene's extent; the
+  // frame key keeps the settings as set (0 = automatic), so only a real change restarts a history.
+  frameSettings_ = lighting::resolveAutomatic(settings_, sceneSize());
+  lighting::FrameInputs in{*device_, *gpuScene_, *scene_, frameSettings_, fc, view_.position, frame};
   in.historyValid = [this](std::string_view name, const graph::ResourceDesc& desc) {
     return executor_->historyValid(name, desc);
   };
@@ -767,6 +780,13 @@ ImageWriteReport Session::saveImage(const std::filesystem::path& file) const {
   if (ext == ".exr") return writeImageAtomically(file, buffer(lighting::kCompositeHdr), ImageEncoding::Linear);
   if (ext == ".png") return writeImageAtomically(file, buffer(lighting::kTonemapLdr), ImageEncoding::Display8);
   throw SessionError(fmt::format("{}: unsupported image type `{}` (use .exr or .png)", file.string(), ext));
+}
+
+lighting::SceneSize Session::sceneSize() const {
+  if (!scene_ || !scene_->bounds.valid()) return {};
+  const auto& b = scene_->bounds;
+  const glm::dvec3 size = b.size();
+  return {float(glm::length(size)), float(std::max({size.x, size.y, size.z}))};
 }
 
 }  // namespace tl::session

@@ -240,6 +240,8 @@ class Session {
   // GPU milliseconds of each frame of the last renderFrames call, and per pass (in order).
   const std::vector<double>& frameGpuMs() const { return frameGpuMs_; }
   const std::vector<std::pair<std::string, std::vector<double>>>& passGpuMs() const { return passGpuMs_; }
+  // The loaded scene's size, which automatic settings derive from (render_settings.h).
+  lighting::SceneSize sceneSize() const;
   uint64_t frameIndex() const { return frameIndex_; }
   // The active path's figures about the last frame (see LightingPath::figures).
   std::vector<std::pair<std::string, double>> pathFigures() const { return path_->figures(); }
@@ -298,6 +300,7 @@ class Session {
   gpu::UploadRing lightTable_;  // shared/lights.h GpuLight[], rewritten each frame; grows, exists once a scene has lights
   gpu::UploadRing lightShadowViews_;  // shared/lights.h GpuShadowView[] of point and spot light shadow maps, rewritten each frame
   lighting::RenderSettings settings_;
+  lighting::RenderSettings frameSettings_;  // settings_ with automatic values resolved: what the frame renders with
   View view_;
   std::optional<View> previousView_;
   Lighting lighting_;
@@ -330,6 +333,7 @@ class Session {
 // In scenes lit by emitters, a white surface near the brightest one (taken as a tenth of its
 // radiance: a rule of thumb for a light of modest solid angle) counts too, and so does a white
 // surface facing the brightest other light (a point or spot light from 2 m).
-float autoExposureEv(const Lighting& lighting, float brightestEmission = 0.0f);
+// sceneScale: the scene's extent (bounds diagonal); lights are taken as seen from a fifth of it.
+float autoExposureEv(const Lighting& lighting, float brightestEmission = 0.0f, float sceneScale = 10.0f);
 
 }  // namespace tl::session

@@ -45,7 +45,7 @@ SunShadowFit fitSunShadow(const View& view, double aspect, const scene::Bounds& 
   const glm::dvec3 d = glm::normalize(sunTravel);
   const bool haveScene = sceneBounds.valid();
   const glm::dvec3 sceneCenter = haveScene ? sceneBounds.center() - view.position : glm::dvec3(0.0);
-  const double sceneRadius = haveScene ? std::max(1e-3, 0.5 * glm::length(sceneBounds.size())) : 10.0;
+  const double sceneRadius = haveScene ? std::max(1e-30, 0.5 * glm::length(sceneBounds.size())) : 10.0;
 
   // Bounding sphere of the frustum slice [near, far], far = the scene's diameter.
   const double farDist = 2.0 * sceneRadius + glm::length(sceneCenter);
@@ -92,7 +92,7 @@ SunShadowFit fitSunShadow(const View& view, double aspect, const scene::Bounds& 
   }
   extendZ(center + d * radius);
   extendZ(center - d * radius);
-  const double pad = 0.01 * (zMax - zMin) + 1e-3;
+  const double pad = 0.01 * (zMax - zMin) + 1e-6 * sceneRadius;
   zMin -= pad;
   zMax += pad;
 

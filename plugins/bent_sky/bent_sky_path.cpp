@@ -44,7 +44,6 @@ class BentSkyPath final : public LightingPath {
     const LightingOutputs rt = tracer_->addPasses(graph, in);  // for its top level
     const RenderSettings& s = in.settings;
     const uint32_t w = s.width, h = s.height;
-    const float scale = std::max(in.constants.sceneScale, 1e-3f);
 
     const auto historyDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                                           "mean escaping direction (xyz) and visibility (w), last frame");
@@ -56,7 +55,7 @@ class BentSkyPath final : public LightingPath {
     shared::BentSkyPush push{};
     push.rays = std::max(1u, s.bentSkyRays);
     push.frames = frames_;
-    push.rayLength = s.rtRayLength > 0.0f ? s.rtRayLength : sceneScaledRayLength(scale);
+    push.rayLength = s.rtRayLength;  // in.settings has automatic values resolved
     ComputePass(in.device, "bentsky.trace", "plugins/bent_sky/shaders/bent_sky.comp")
         .uniform(shared::kBindingFrame, kFrameConstants)
         .sampled(shared::kBentSkyNormal, "gbuffer.normal")

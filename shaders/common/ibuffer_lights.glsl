@@ -98,7 +98,7 @@ void main() {
     gView = towardsViewer(position);
     float roughness = tlMaterialRoughness(texelFetch(gMaterial, p, 0).x, tlFrameMaterials(frame.flags));
     gGeometry = tlIbufferSurface(roughness, tlFrameMaterials(frame.flags));
-    gShadowOrigin = tlOffsetRayOrigin(position, gNormalHere);
+    gShadowOrigin = tlOffsetRayOrigin(position, gNormalHere, frame.sceneScale);
     sums = shadeLights(position, gNormalHere, uvec3(uvec2(p), frame.frameIndex));
   }
   if (push.accumulate != 0u) {

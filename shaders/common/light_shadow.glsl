@@ -119,8 +119,8 @@ float areaShadowVisibility(uint lightIndex, vec3 position, vec3 normal) {
   uint first = l.shadowView;
   vec3 lightPosition = l.position.xyz;
   float distance = length(position - lightPosition);
-  if (distance < 1e-4) return 1.0;
   AreaShadowCube cube = areaShadowCube(first);
+  if (distance <= cube.nearPlane) return 1.0;  // closer than the views' near plane: nothing between
   // The punctual lookup's normal offset, by the texel at the receiver.
   float texel = cube.texelPerMetre * distance;
   float cosine = dot(normal, (lightPosition - position) / distance);

@@ -51,7 +51,7 @@ void main() {
   gView = towardsViewer(position);
   vec4 material = texelFetch(gMaterial, p, 0);
   gSurface = tlMaterialSurface(texelFetch(gBaseColor, p, 0).rgb, material.x, material.y, tlFrameMaterials(frame.flags));
-  gShadowOrigin = tlOffsetRayOrigin(position, gNormalHere);
+  gShadowOrigin = tlOffsetRayOrigin(position, gNormalHere, frame.sceneScale);
   vec3 radiance = shadeLights(position, gNormalHere, uvec3(uvec2(p), frame.frameIndex));
   if (push.accumulate != 0u) {
     vec4 sum = vec4(radiance, 1.0);

@@ -52,7 +52,7 @@ void main() {
     return;
   }
   SunShadowEstimate soft = sunShadowSoft(position, n, p);
-  float traced = tracedVisibility(tlOffsetRayOrigin(position, n), l);
+  float traced = tracedVisibility(tlOffsetRayOrigin(position, n, frame.sceneScale), l);
   float visibility;
   if (soft.blockerDistance < 0.0) {
     // The map saw no blocker; a ray that hits found one the map cannot (thinner than a texel,

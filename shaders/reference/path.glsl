@@ -105,7 +105,7 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
 
     vec3 n = hit.normal.xyz, geometric = hit.geometric.xyz, v = -dir;
     SurfaceParams s = tlMaterialSurface(hit.baseColor.rgb, hit.baseColor.a, hit.emission.a, tlFrameMaterials(frame.flags));
-    vec3 position = tlOffsetRayOrigin(hit.positionT.xyz, geometric);
+    vec3 position = tlOffsetRayOrigin(hit.positionT.xyz, geometric, frame.sceneScale);
 
     if (bounce == 0u && push.aoRadius > 0.0) {
       // One cosine-distributed ray within the AO radius: the definition RTAO estimates.

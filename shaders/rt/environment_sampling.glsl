@@ -22,7 +22,8 @@ ShLumaCoCg environmentSampleSh(vec3 origin, vec3 n, uvec3 seed) {
   float pdf;
   vec3 l = environmentSample(tlRandom2(seed), pdf);
   float c = dot(n, l);
-  if (c <= 0.0 || pdf <= 0.0 || unoccluded(origin, l, push.tMax) == 0.0) return tlShZero();
+  // The map is at infinity: the shadow ray passes everything in the scene, as the sun's does.
+  if (c <= 0.0 || pdf <= 0.0 || unoccluded(origin, l, 1e30) == 0.0) return tlShZero();
   vec3 radiance = environmentRadiance(l) * environmentMisWeight(pdf, c * kInvPi);
   return tlShScale(tlShProjectRadiance(l, radiance), tlRtShWeightForPdf(c, 1.0 / pdf));
 }

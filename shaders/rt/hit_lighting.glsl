@@ -83,7 +83,7 @@ vec3 emitterLight(vec3 start, vec3 normal, uvec3 seed, out vec3 direction) {
   RtEmitter e = emitters[lo];
   vec3 toLight = tlRtEmitterPoint(e, vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y))) - push.cameraWorld.xyz - start;
   float distance2 = dot(toLight, toLight);
-  if (distance2 <= 1e-12) return vec3(0.0);
+  if (distance2 <= 1e-12 * e.edge1.w) return vec3(0.0);  // on the emitter itself (a share of its area)
   float distance = sqrt(distance2);
   direction = toLight / distance;
   // Beyond the ray length the top level may have culled what lies between (and the rays, which
@@ -121,10 +121,21 @@ bool cachedIncoming(vec3 position, vec3 normal, out vec3 incoming) {
   return cachedCell(tlRtCacheCoarseCell(world, normal, distance, push.cacheCellSize, push.cacheCellAngle), incoming);
 }
 
+// A GI ray that met nothing while its length (RtPush::tMax, shorter than the way out of the
+// scene) ran out has not left the scene: what lies beyond it is unknown, never the sky. The
+// light arriving at its start from every direction, the radiance cache's C at the surface it
+// left, stands in for what it would have brought back (C leaves out what is sampled
+// explicitly, as the ray does); without a cell, nothing (the rays that end so turn the cache on).
+bool rayEndedInScene(vec3 origin, vec3 dir) { return push.tMax < tlSceneExitDistance(frame, origin, dir); }
+vec3 endedRayRadiance(vec3 position, vec3 normal) {
+  vec3 incoming;
+  return cachedIncoming(position, normal, incoming) ? incoming : vec3(0.0);
+}
+
 // Where rays leave a hit rebuilt from its stored distance: the stored distance is a half, so
 // the rebuilt point may sit up to 2^-11 of the distance off the surface; rays leave by more.
 vec3 hitRayStart(vec3 hitPosition, float distance, vec3 normal) {
-  return tlOffsetRayOrigin(hitPosition + normal * (distance * (1.0 / 1024.0)), normal);
+  return tlOffsetRayOrigin(hitPosition + normal * (distance * (1.0 / 1024.0)), normal, frame.sceneScale);
 }
 
 // The light a hit sends back of what is sampled explicitly there: its emission (when the rays

@@ -33,7 +33,7 @@ vec3 pixelRayDirection(ivec2 p, vec3 normal) {
 }
 
 // The ray starts off the surface by a few ULPs of its position (shared/ray_origin.h).
-vec3 pixelRayOrigin(vec3 position, vec3 normal) { return tlOffsetRayOrigin(position, normal); }
+vec3 pixelRayOrigin(vec3 position, vec3 normal) { return tlOffsetRayOrigin(position, normal, frame.sceneScale); }
 
 // With fewer rays than pixels the passes that trace launch fewer invocations, each mapped to
 // a pixel that traces this frame (no idle SIMD lanes on skipped pixels): half as many for the

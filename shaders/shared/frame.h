@@ -34,6 +34,8 @@ struct FrameConstants {
   vec4 envParams;        // x, y: cosine and sine of the map's rotation about +Y; z: its intensity
   vec4 envSh[9];         // rgb: the map's radiance on the SH basis (rotation and intensity applied)
   vec4 cameraAxis;       // xyz: the unit view direction (camera-relative world); w: 1 orthographic, 0 perspective
+  vec4 sceneMin;         // xyz: the scene's bounds (every instance, every animated pose), camera-relative
+  vec4 sceneMax;
 };
 
 TL_CONST uint kFrameFlagSunShadows = 1u;
@@ -54,6 +56,18 @@ TL_FN vec3 tlSkyRadiance(FrameConstants f, vec3 d) {
 }
 TL_FN vec3 tlSkyIrradiance(FrameConstants f, vec3 n) {
   return (f.flags & kFrameFlagEnvironment) != 0u ? tlEnvShIrradiance(f.envSh, n) : kPi * vec3(f.skyRadiance);
+}
+
+// Where a ray from `origin` (inside the scene's bounds) along unit `d` leaves them: past this
+// distance there is nothing to meet. A ray shorter than that which meets nothing has not left
+// the scene: it ended at its length (RtPush::tMax), and what lies beyond it is unknown.
+TL_FN float tlSceneExitDistance(FrameConstants f, vec3 origin, vec3 d) {
+  // An axis the ray runs along never limits it (a huge 1/d there, never 0 * inf).
+  vec3 safe = vec3(abs(d.x) > 1e-30f ? d.x : 1e-30f, abs(d.y) > 1e-30f ? d.y : 1e-30f, abs(d.z) > 1e-30f ? d.z : 1e-30f);
+  vec3 inv = vec3(1.0f) / safe;
+  vec3 t0 = (vec3(f.sceneMin) - origin) * inv, t1 = (vec3(f.sceneMax) - origin) * inv;
+  vec3 far = max(t0, t1);
+  return max(min(far.x, min(far.y, far.z)), 0.0f);
 }
 TL_END
 

@@ -84,7 +84,9 @@ struct GpuLight {
 TL_CONST uint kNoLightShadow = 0xFFFFFFFFu;
 TL_CONST float kLightShadowGuardTexels = 4.0f;
 TL_CONST float kLightShadowMaxSpotTan = 1.7320508f;  // tan 60 degrees: wider spots take a cube
-TL_CONST float kLightShadowNear = 0.02f;              // metres: casters closer to a light clamp to it
+// A shadow view's near plane as a share of its far plane (2 cm for a 20 m reach): a length of
+// the scene's, not a constant in metres, so a scene at any scale keeps the same depth precision.
+TL_CONST float kLightShadowNearShare = 1e-3f;
 // Receivers are pushed along their normal and towards the light by these many texels of the
 // map at their distance (world units grow with distance in a perspective map).
 TL_CONST float kLightShadowNormalOffsetTexels = 1.5f;

@@ -197,7 +197,9 @@ TL_FN vec3 tlRtEmitterPoint(RtEmitter e, vec2 u) {
 }
 // 1 / pdf in solid angle of that point seen from `distance2` away at `cosLight` to its normal.
 TL_FN float tlRtEmitterInversePdf(RtEmitter e, float distance2, float cosLight) {
-  return e.edge1.w * abs(cosLight) / (max(distance2, 1e-8f) * max(e.edge2.w, 1e-30f));
+  // The squared distance is kept above a millionth of the triangle's area (a share of its own
+  // size, not a length in metres) so a point touching the emitter does not divide by zero.
+  return e.edge1.w * abs(cosLight) / (max(distance2, 1e-6f * e.edge1.w) * max(e.edge2.w, 1e-30f));
 }
 // The L1 SH weight of a sample of radiance from `direction` drawn with inverse pdf `inversePdf`
 // (solid angle), so that it resolves to its irradiance L cos / pdf at the normal (shared/sh.h:
@@ -305,7 +307,7 @@ TL_CONST uint kRtBindingDenoiseMoment = 36;    // r32f: the accumulation's mean 
 TL_CONST uint kRtBindingCacheEntries = 37;     // RtCacheEntry[]: the radiance cache as hits read it (shared/rt_cache.h)
 TL_CONST uint kRtBindingCacheAccum = 38;       // RtCacheAccum[]: its keys and this frame's sums
 TL_CONST uint kRtBindingCacheSamples = 39;     // RtCacheSample[]: the update paths' samples
-TL_CONST uint kRtBindingCacheOutcomes = 40;    // uint[]: what each update path's first ray found (kRtCacheOutcome*)
+TL_CONST uint kRtBindingCacheOutcomes = 40;    // RtCacheOutcome[]: each update path's first ray and the light the cache adds there
 TL_END
 
 #ifdef __cplusplus

@@ -49,12 +49,27 @@ TL_CONST float kRtCacheHistoryFrames = 4.0f;
 TL_CONST float kRtCacheFixedOne = 4194304.0f;
 TL_CONST uint kRtCacheSampleCap = 512u;
 
-// What the first ray of an update path found (rt.cache.outcomes, one uint per path): the
-// share of GI rays that end on surfaces off screen decides whether the cache runs.
+// What the first ray of an update path found (rt.cache.outcomes, one RtCacheOutcome per path)
+// and the light the cache adds there: whether the cache runs is decided from that light.
 TL_CONST uint kRtCacheOutcomeNone = 0u;       // no path (the tile's pixel shows the sky)
 TL_CONST uint kRtCacheOutcomeSky = 1u;        // the ray left the scene
 TL_CONST uint kRtCacheOutcomeOnScreen = 2u;   // it hit a surface seen on screen last frame
 TL_CONST uint kRtCacheOutcomeOffScreen = 3u;  // it hit a surface off screen: what the cache serves
+TL_CONST uint kRtCacheOutcomeEnded = 4u;      // its length ran out inside the scene: only the cache knows what is there
+
+// One update path's first ray, std430. `gathered` is the luminance of the light the pixel's GI
+// ray brings back without the cache (the sky, last frame's image on screen, or a hit lit
+// afresh: its direct light and the sky it sees); `added` what the cache adds to it at a hit
+// off screen: the hit's albedo times the light arriving there from the next surface its path
+// meets (that surface's direct light while the cache is off: the second bounce, a lower
+// bound; with the cache on, every bounce the path and the cache hold). Sky reaching the hit
+// is counted in `gathered`, as the hit's own sky ray sees it.
+struct RtCacheOutcome {
+  uint outcome;  // kRtCacheOutcome*
+  float gathered;
+  float added;
+  uint pad0;
+};
 
 // One cell's accumulation this frame and the next (by the cache's frame parity), std430.
 struct RtCacheAccum {

@@ -183,7 +183,7 @@ TEST_F(FrameKeyTest, EachPartRestartsExactlyTheHistoriesThatDependOnIt) {
       s.setSize(48, 27);
       s.settings().taa = true;
       s.settings().rtFarLegacy = false;        // one legacy path at a time
-      s.settings().rtCacheMinShare = 0.0f;     // the radiance cache runs whatever it measures
+      s.settings().rtCacheMinGain = 0.0f;     // the radiance cache runs whatever it measures
       s.settings().legacyLevel0Extent = 200;   // one level over the whole scene: it does not follow the camera
       s.settings().legacyMaxLevels = 1;
       s.settings().legacyVoxelResolution = 32;

@@ -118,7 +118,7 @@ TEST_F(RtTest, CameraCutRejectsHistory) {
   s.loadScene(contentFile("atrium.gltf"));
   // The radiance cache off: this is about the temporal history alone (a warming cache
   // shortens the history's window to half its own age, RtRadianceCache::temporalWindow).
-  s.settings().rtCacheMinShare = 2.0f;
+  s.settings().rtCacheMinGain = 2.0f;
   session::View v = s.view();
   v.position = {0.0, 1.7, 8.0};
   v.forward = {0.0, 0.0, -1.0};
@@ -168,7 +168,7 @@ TEST_F(RtTest, DisocclusionRaysBringACutCloserToConverged) {
   s.loadScene(contentFile("atrium.gltf"));
   // The radiance cache off: this is about the temporal history alone (a warming cache
   // shortens the history's window to half its own age, RtRadianceCache::temporalWindow).
-  s.settings().rtCacheMinShare = 2.0f;
+  s.settings().rtCacheMinGain = 2.0f;
   const uint32_t w = 64, h = 36;
   session::View before = s.view();
   before.position = {0.0, 1.7, 8.0};  // the yard, then a cut to inside the room
@@ -509,7 +509,7 @@ TEST_F(RtTest, LightSwitchedOffDoesNotGhost) {
   auto afterSwitchOff = [&](bool rejection) {
     s.settings() = RenderSettings{};
     s.settings().rtLumaRejection = rejection;
-    s.settings().rtCacheMinShare = 2.0f;  // the cache off: this is about the temporal history alone
+    s.settings().rtCacheMinGain = 2.0f;  // the cache off: this is about the temporal history alone
     s.setLighting(daylight);
     const double lit = meanAccumulatedLuma(s, 64, 36, 24);
     s.setLighting(dark);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <set>
@@ -113,23 +114,39 @@ TEST(RtCache, BlendIsARunningMeanThenBounded) {
 }
 
 TEST(RtCache, OutcomesAndSwitch) {
-  const uint32_t codes[] = {kRtCacheOutcomeNone, kRtCacheOutcomeSky, kRtCacheOutcomeOffScreen,
-                            kRtCacheOutcomeOnScreen, kRtCacheOutcomeOffScreen};
-  std::vector<uint8_t> bytes(sizeof codes);
-  std::memcpy(bytes.data(), codes, sizeof codes);
+  const RtCacheOutcome records[] = {{kRtCacheOutcomeNone, 5.0f, 5.0f, 0u},  // no path: nothing counts
+                                    {kRtCacheOutcomeSky, 1.0f, 0.0f, 0u},
+                                    {kRtCacheOutcomeOffScreen, 0.5f, 0.25f, 0u},
+                                    {kRtCacheOutcomeOnScreen, 2.0f, 0.0f, 0u},
+                                    {kRtCacheOutcomeOffScreen, 0.5f, std::nanf(""), 0u}};  // a bad value is dropped
+  std::vector<uint8_t> bytes(sizeof records);
+  std::memcpy(bytes.data(), records, sizeof records);
   const RtCacheOutcomes o = countCacheOutcomes(bytes);
   EXPECT_EQ(o.paths, 4u);
   EXPECT_EQ(o.offScreen, 2u);
   EXPECT_DOUBLE_EQ(o.offScreenShare(), 0.5);
+  EXPECT_DOUBLE_EQ(o.gathered, 4.0);
+  EXPECT_DOUBLE_EQ(o.added, 0.25);
+  EXPECT_DOUBLE_EQ(o.addedShare(), 0.25 / 4.25);
 
+  // The switch follows the light the cache adds, not how many rays end off screen.
   RtCacheSwitch sw;
   EXPECT_FALSE(sw.on());  // nothing measured yet: the probe paths measure first
-  RtCacheOutcomes outdoors{100, 97, 2, 1};
-  EXPECT_FALSE(sw.update(outdoors, 0.05f));
-  RtCacheOutcomes edge{100, 90, 6, 4};  // 4%: between half the threshold and it: stays off
-  EXPECT_FALSE(sw.update(edge, 0.05f));
-  RtCacheOutcomes indoors{100, 10, 40, 50};
-  EXPECT_TRUE(sw.update(indoors, 0.05f));
-  EXPECT_TRUE(sw.update(edge, 0.05f));  // and on, once on
-  EXPECT_TRUE(sw.update(RtCacheOutcomes{}, 0.05f));  // nothing seen: kept
+  const auto measured = [](double gathered, double added) {
+    RtCacheOutcomes m{100, 10, 40, 50};
+    m.gathered = gathered, m.added = added;
+    return m;
+  };
+  EXPECT_FALSE(sw.update(measured(100.0, 0.5), 0.02f));  // many rays off screen, little light added: off
+  EXPECT_FALSE(sw.update(measured(100.0, 1.5), 0.02f));  // 1.5%: below the threshold, stays off
+  EXPECT_TRUE(sw.update(measured(100.0, 25.0), 0.02f));  // a fifth of the light: on
+  EXPECT_TRUE(sw.update(measured(100.0, 1.5), 0.02f));   // above half the threshold: stays on
+  EXPECT_FALSE(sw.update(measured(100.0, 0.5), 0.02f));  // below half: off
+  EXPECT_FALSE(sw.update(RtCacheOutcomes{}, 0.02f));     // nothing seen: kept
+  // Rays whose length runs out inside the scene bring back only what the cache holds.
+  RtCacheOutcomes shortRays{100, 0, 50, 10};
+  shortRays.ended = 40;
+  shortRays.gathered = 100.0;
+  EXPECT_DOUBLE_EQ(shortRays.cacheGain(), 0.4);
+  EXPECT_TRUE(sw.update(shortRays, 0.02f));
 }

@@ -218,18 +218,27 @@ scene::Bounds box(glm::dvec3 lo, glm::dvec3 hi) {
   return b;
 }
 
-TEST(LegacyClipmap, SmallScenesGetOneLevelLargeOnesMore) {
-  auto cornell = lighting::fitLegacyClipmap(box({-1, 0, -1}, {1, 2, 1}), {0, 1, 3.9}, 64, 0.0f, 4);
-  EXPECT_EQ(cornell.clipmap.levels, 1u);
-  EXPECT_EQ(cornell.clipmap.resolution, 64u);
-  EXPECT_EQ(cornell.clipmap.mipCount, 6u);  // 32, 16, 8, 4, 2, 1
-  // The level spans the scene: its minimum corner is at or below the scene's, camera-relative.
-  EXPECT_LE(cornell.clipmap.levelMin[0].x, -1.0f - 0.0f);
-  EXPECT_LE(cornell.clipmap.levelMin[0].z, -1.0f - 3.9f);
+TEST(LegacyClipmap, TheAutomaticFinestLevelHoldsTheSceneAtAnyScale) {
+  // Unset (0), the finest level holds the whole scene: one level, whatever its size in metres,
+  // so the same scene at any scale gets the same voxels relative to itself.
+  for (double scale : {0.01, 1.0, 100.0}) {
+    auto cornell = lighting::fitLegacyClipmap(box(glm::dvec3(-1, 0, -1) * scale, glm::dvec3(1, 2, 1) * scale),
+                                              glm::dvec3(0, 1, 3.9) * scale, 64, 0.0f, 4);
+    EXPECT_EQ(cornell.clipmap.levels, 1u) << scale;
+    EXPECT_EQ(cornell.clipmap.resolution, 64u);
+    EXPECT_EQ(cornell.clipmap.mipCount, 6u);  // 32, 16, 8, 4, 2, 1
+    // The level spans the scene: its minimum corner is at or below the scene's, camera-relative.
+    EXPECT_LE(cornell.clipmap.levelMin[0].x, -1.0f * scale);
+    EXPECT_LE(cornell.clipmap.levelMin[0].z, (-1.0f - 3.9f) * scale);
+    EXPECT_NEAR(cornell.clipmap.levelMin[0].w, 2.0 * 1.02 / 64.0 * scale, 1e-6 * scale);  // the largest side, +2%, / R
+  }
   auto atrium = lighting::fitLegacyClipmap(box({-12.5, -0.2, -12.5}, {12.5, 6, 12.5}), {0, 3.5, 13}, 64, 0.0f, 4);
-  EXPECT_EQ(atrium.clipmap.levels, 2u);
-  EXPECT_FLOAT_EQ(atrium.clipmap.levelMin[1].w, 2.0f * atrium.clipmap.levelMin[0].w);
-  auto capped = lighting::fitLegacyClipmap(box({-500, 0, -500}, {500, 10, 500}), {0, 1, 0}, 64, 0.0f, 3);
+  EXPECT_EQ(atrium.clipmap.levels, 1u);
+  // A finest level set smaller: coarser ones double it until the scene is covered, at most maxLevels.
+  auto finer = lighting::fitLegacyClipmap(box({-12.5, -0.2, -12.5}, {12.5, 6, 12.5}), {0, 3.5, 13}, 64, 16.0f, 4);
+  EXPECT_EQ(finer.clipmap.levels, 2u);
+  EXPECT_FLOAT_EQ(finer.clipmap.levelMin[1].w, 2.0f * finer.clipmap.levelMin[0].w);
+  auto capped = lighting::fitLegacyClipmap(box({-500, 0, -500}, {500, 10, 500}), {0, 1, 0}, 64, 16.0f, 3);
   EXPECT_EQ(capped.clipmap.levels, 3u) << "at most maxLevels";
   EXPECT_EQ(lighting::fitLegacyClipmap(box({-1, 0, -1}, {1, 2, 1}), {}, 100, 0.0f, 4).clipmap.resolution, 128u)
       << "rounded up to a power of two";

@@ -61,7 +61,7 @@ TEST(SettingsJson, ValuesOutsideTheirStatedRangeAreRefused) {
   EXPECT_EQ(message({{"rtPretraceSteps", 4000000000ull}}),
             "setting `rtPretraceSteps` must be a whole number from 1 to 256, not 4000000000");
   EXPECT_EQ(message({{"legacyConeStep", 0}}), "setting `legacyConeStep` must be a number from 0.2 to 2, not 0");
-  EXPECT_EQ(message({{"rtAoRadius", 1e39}}), "setting `rtAoRadius` must be a number from 0 to 1e+06, not 1e+39");
+  EXPECT_EQ(message({{"rtAoRadius", 1e39}}), "setting `rtAoRadius` must be a number from 0 to 1e+09, not 1e+39");
   EXPECT_EQ(message({{"legacyAoSteps", 2.5}}), "setting `legacyAoSteps` must be a whole number from 1 to 64, not 2.5");
   EXPECT_EQ(applySettingsJson(base, {{"shadowMapSize", 8192}}).shadowMapSize, 8192u);
   EXPECT_EQ(applySettingsJson(base, {{"rtPretraceSteps", 256}}).rtPretraceSteps, 256u);

@@ -14,7 +14,7 @@ namespace {
 shared::GpuShadowView makeView(const glm::dvec3& eye, const glm::dvec3& forward, double tanHalf, double farPlane,
                                uint32_t tileTexels, uint32_t viewCount) {
   const glm::dvec3 up = std::abs(forward.y) > 0.9 ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(0.0, 1.0, 0.0);
-  const double nearPlane = shared::kLightShadowNear;
+  const double nearPlane = double(shared::kLightShadowNearShare) * farPlane;
   const glm::dmat4 view = glm::lookAtRH(eye, eye + forward, up);
   const glm::dmat4 proj = glm::perspectiveRH_ZO(2.0 * std::atan(tanHalf), 1.0, nearPlane, farPlane);
   shared::GpuShadowView v{};
@@ -74,7 +74,7 @@ LightShadowPlan planLightShadows(std::vector<shared::GpuLight>& table, uint32_t 
       farPlane = std::max(farPlane, glm::length(corner - eye));
     }
     if (l.position.w > 0.0f) farPlane = std::min(farPlane, double(l.position.w));
-    farPlane = std::max(farPlane * 1.01, 4.0 * shared::kLightShadowNear);
+    farPlane = std::max(farPlane * 1.01, 1e-30);
     l.shadowView = uint32_t(plan.views.size());
     if (viewCount(l) == 1) {
       const double tanOuter = std::sqrt(std::max(1.0 - double(l.cosOuter) * l.cosOuter, 0.0)) / double(l.cosOuter);

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
@@ -45,6 +46,40 @@ T fromDouble(double v) {
 
 bool isPowerOfTwo(double v) { return v > 0.0 && std::exp2(std::round(std::log2(v))) == v; }
 
+// What each automatic setting stands for at 0: a share of the scene's extent e (the diagonal
+// of its bounds) or of the image, so the same scene at any scale renders the same picture.
+// No clamp in metres: a constant length is wrong for the first file authored in centimetres.
+struct Derivation {
+  std::string_view name;
+  float (*derive)(const RenderSettings&, const SceneSize&);
+  std::string_view rule;
+};
+float extent(const SceneSize& size) { return std::max(size.diagonal, 1e-30f); }
+const Derivation kDerivations[] = {
+    // AO sees occluders within a twentieth of the scene (Metro's SSAO reached about a metre in
+    // rooms of tens of metres).
+    {"rtAoRadius", [](const RenderSettings&, const SceneSize& e) { return 0.05f * extent(e); }, "5% of the scene's extent"},
+    {"legacyAoRadius", [](const RenderSettings&, const SceneSize& e) { return 0.05f * extent(e); }, "5% of the scene's extent"},
+    // Rays and cones as long as the scene is wide: nothing they could meet is out of reach.
+    {"rtRayLength", [](const RenderSettings&, const SceneSize& e) { return extent(e); }, "the scene's extent"},
+    {"legacyConeRange", [](const RenderSettings&, const SceneSize& e) { return extent(e); }, "the scene's extent"},
+    // Twice the scene: every visible point is in the RT path's own GI.
+    // A visible point's GI ray can reach what lies within its length of the view.
+    {"rtCullMargin", [](const RenderSettings& s, const SceneSize& e) { return s.rtRayLength > 0.0f ? s.rtRayLength : extent(e); },
+     "the ray length"},
+    {"rtBlendDistance", [](const RenderSettings&, const SceneSize& e) { return 2.0f * extent(e); }, "twice the scene's extent"},
+    // Metro's pass-1 radius relative to its world; the hit distances limit it further per pixel.
+    {"rtDenoiseRadius", [](const RenderSettings&, const SceneSize& e) { return extent(e) / 6.0f; }, "the scene's extent / 6"},
+    {"rtCacheCellSize", [](const RenderSettings&, const SceneSize& e) { return extent(e) / 1000.0f; }, "the scene's extent / 1000"},
+    // The same share of the view at any resolution: 128 px at 360 lines.
+    {"rtPretracePixels", [](const RenderSettings& s, const SceneSize&) { return std::max(16.0f, float(s.height) * (128.0f / 360.0f)); },
+     "128 px per 360 lines of the image (at least 16)"},
+    // The finest clipmap level holds the whole scene (its largest side, with the margin the
+    // fit keeps for walls on the bounds): one level, its rooms' flood over all of it.
+    {"legacyLevel0Extent", [](const RenderSettings&, const SceneSize& e) { return 1.02f * std::max(e.largestSide, 1e-30f); },
+     "the scene's largest side (+2%): the finest level holds the scene"},
+};
+
 std::vector<SettingInfo> buildSchema() {
   std::vector<SettingInfo> schema;
 #define TL_SETTING_INFO(type, name, def, lo, hi, unit, owner, history, flags, help)                              \
@@ -54,6 +89,17 @@ std::vector<SettingInfo> buildSchema() {
                     [](RenderSettings& s, double v) { s.name = fromDouble<type>(v); }});
   TL_RENDER_SETTINGS(TL_SETTING_INFO)
 #undef TL_SETTING_INFO
+  // Each automatic setting has its derivation, and only those: checked once, loudly.
+  for (const Derivation& d : kDerivations) {
+    auto it = std::find_if(schema.begin(), schema.end(), [&](const SettingInfo& s) { return s.name == d.name; });
+    if (it == schema.end() || !(it->flags & kSettingAuto))
+      throw std::logic_error(fmt::format("automatic value for `{}`, which is not an automatic setting", d.name));
+    it->derive = d.derive;
+    it->autoRule = d.rule;
+  }
+  for (const SettingInfo& s : schema)
+    if ((s.flags & kSettingAuto) && !s.derive)
+      throw std::logic_error(fmt::format("automatic setting `{}` has no derivation", s.name));
   return schema;
 }
 
@@ -148,15 +194,21 @@ uint64_t historySettingsHash(const RenderSettings& settings, std::string_view pa
   return any ? hasher.done() : 0;
 }
 
-std::optional<float> autoSettingValue(std::string_view name, const RenderSettings& s, float sceneScale) {
-  if (name == "rtAoRadius" || name == "legacyAoRadius") return sceneScaledAoRadius(sceneScale);
-  if (name == "rtRayLength" || name == "legacyConeRange") return sceneScaledRayLength(sceneScale);
-  if (name == "rtBlendDistance") return sceneScaledBlendDistance(sceneScale);
-  if (name == "rtDenoiseRadius") return sceneScaledDenoiseRadius(sceneScale);
-  if (name == "rtCacheCellSize") return sceneScaledCacheCellSize(sceneScale);
-  if (name == "rtPretracePixels") return pretraceAutoPixels(s.height);
-  if (name == "legacyLevel0Extent") return autoLevel0Extent(sceneScale, s.legacyVoxelResolution);
-  return std::nullopt;
+std::optional<float> autoSettingValue(const SettingInfo& setting, const RenderSettings& s, const SceneSize& scene) {
+  if (!setting.derive) return std::nullopt;
+  return setting.derive(s, scene);
+}
+
+std::optional<float> autoSettingValue(std::string_view name, const RenderSettings& s, const SceneSize& scene) {
+  const SettingInfo* setting = findSetting(name);
+  return setting ? autoSettingValue(*setting, s, scene) : std::nullopt;
+}
+
+RenderSettings resolveAutomatic(const RenderSettings& settings, const SceneSize& scene) {
+  RenderSettings resolved = settings;
+  for (const SettingInfo& s : settingsSchema())
+    if (s.derive && s.get(settings) == 0.0) s.set(resolved, double(s.derive(settings, scene)));
+  return resolved;
 }
 
 }  // namespace tl::lighting

@@ -72,9 +72,9 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(uint32_t, referenceSamplesPerFrame, 1, 1, 1024, "spp", "reference", "", kSettingPlain, "samples per pixel added each frame (render --spp sets it)") \
   X(float, rtSimplifyRatio, 0.25f, 0.01f, 1.0f, "x", "rt", "rt", kSettingPlain, "RT (BLAS) mesh triangles / source triangles (Metro: about 4x fewer); 1 = the full mesh") \
   X(float, rtSimplifyError, 0.01f, 0.0f, 1.0f, "x size", "rt", "rt", kSettingPlain, "largest deviation the simplifier may introduce, as a fraction of the mesh's size") \
-  X(float, rtAoRadius, 0.0f, 0.0f, 1e6f, "m", "rt", "rt reference", kSettingAuto, "RTAO radius: a hit closer than this occludes (also the reference's AO)") \
-  X(float, rtRayLength, 0.0f, 0.0f, 1e6f, "m", "rt", "rt bentsky", kSettingAuto, "GI rays stop after this distance; also the top level's culling margin") \
-  X(float, rtBlendDistance, 0.0f, 0.0f, 1e6f, "m", "rt", "rt", kSettingAuto, "beyond this view distance RT GI fades to the far field (Metro: 250 m); the top level culls instances beyond it") \
+  X(float, rtAoRadius, 0.0f, 0.0f, 1e9f, "m", "rt", "rt reference", kSettingAuto, "RTAO radius: a hit closer than this occludes (also the reference's AO)") \
+  X(float, rtRayLength, 0.0f, 0.0f, 1e9f, "m", "rt", "rt bentsky", kSettingAuto, "GI rays stop after this distance; also the top level's culling margin") \
+  X(float, rtBlendDistance, 0.0f, 0.0f, 1e9f, "m", "rt", "rt", kSettingAuto, "beyond this view distance RT GI fades to the far field (Metro: 250 m); the top level culls instances beyond it") \
   X(bool, rtFarLegacy, true, 0, 1, "", "rt", "", kSettingPlain, "the far field beyond the blend distance is the legacy path's voxel GI (Metro), else the unoccluded sky") \
   X(bool, rtPretrace, true, 0, 1, "", "rt", "rt", kSettingPlain, "screen-space pre-trace: march the depth buffer first, real rays only where it finds nothing") \
   X(uint32_t, rtPretraceSteps, 16, 1, 256, "steps", "rt", "rt", kSettingPlain, "depth samples along a pre-traced ray") \
@@ -88,20 +88,20 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(bool, rtLumaRejection, true, 0, 1, "", "rt", "", kSettingPlain, "when the light changes, clip each pixel's history to this frame's samples around it (no ghosting; RE ENGINE)") \
   X(uint32_t, rtDisocclusionRays, 0, 0, 64, "rays", "rt", "", kSettingPlain, "rays per 8x8 cell holding a pixel whose history was rejected (RE ENGINE; 0: off)") \
   X(bool, rtDenoise, true, 0, 1, "", "rt", "", kSettingPlain, "two-pass spatial denoiser on the SH after accumulation (Metro's)") \
-  X(float, rtDenoiseRadius, 0.0f, 0.0f, 1e6f, "m", "rt", "", kSettingAuto, "denoiser pass 1 base radius; pass 2 uses half (Metro: 6 m and 3 m)") \
+  X(float, rtDenoiseRadius, 0.0f, 0.0f, 1e9f, "m", "rt", "", kSettingAuto, "denoiser pass 1 base radius; pass 2 uses half (Metro: 6 m and 3 m)") \
   X(bool, rtScreenRadiance, true, 0, 1, "", "rt", "rt", kSettingPlain, "hits seen on screen last frame reuse its shaded radiance, so light bounces more than once") \
   X(bool, rtHitSky, true, 0, 1, "", "rt", "rt", kSettingPlain, "hits lit afresh (off screen) also see the sky, through one more ray") \
-  X(float, rtCacheMinShare, 0.25f, 0.0f, 2.0f, "share", "rt", "", kSettingPlain, "radiance cache: runs while at least this share of its update paths' first rays ends on surfaces off screen, measured every frame (0: always; above 1: never)") \
+  X(float, rtCacheMinGain, 0.02f, 0.0f, 2.0f, "share", "rt", "", kSettingPlain, "radiance cache: runs while the light it adds (bounces off surfaces off screen) is at least this share of the bounced light, measured every frame; stops below half of it (0: always; above 1: never)") \
   X(uint32_t, rtCachePaths, 4096, 16, 1u << 20, "paths", "rt", "", kSettingPlain, "radiance cache: update paths a frame, at least (one pixel of each square tile that gives this many starts one)") \
   X(uint32_t, rtCacheBounces, 3, 1, 8, "rays", "rt", "", kSettingPlain, "radiance cache: rays of an update path; its last hit reads the cache, so light bounces on from frame to frame") \
   X(uint32_t, rtCacheMaxSamples, 64, 1, 65536, "samples", "rt", "", kSettingPlain, "radiance cache: a cell averages at most this many samples (fewer: follows changes sooner, noisier)") \
   X(float, rtCacheCellAngle, 0.03f, 0.001f, 1.0f, "rad", "rt", "", kSettingPlain, "radiance cache: a cell is at least this angle times its distance from the camera across") \
-  X(float, rtCacheCellSize, 0.0f, 0.0f, 1e6f, "m", "rt", "", kSettingAuto, "radiance cache: the smallest cell (auto: the scene's size / 1000)") \
+  X(float, rtCacheCellSize, 0.0f, 0.0f, 1e9f, "m", "rt", "", kSettingAuto, "radiance cache: the smallest cell (auto: the scene's size / 1000)") \
   X(uint32_t, rtCacheEntries, 1u << 16, 1u << 10, 1u << 24, "cells", "rt", "", kSettingPow2, "radiance cache: hash table slots (32 + 48 bytes each)") \
   X(bool, rtEnvironmentSampling, true, 0, 1, "", "rt", "rt", kSettingPlain, "with an environment map, each traced pixel also takes a shadow ray towards a direction drawn by the map's importance, weighed against its GI ray by MIS: the pixel sees the map's texels, not its order-2 SH") \
   X(bool, rtEmitterSampling, true, 0, 1, "", "rt", "rt", kSettingPlain, "emissive triangles are sampled at pixels and hits through shadow rays, not found only by chance") \
   X(float, rtCullAngle, 0.002f, 0.0f, 3.14159f, "rad", "rt", "rt", kSettingPlain, "contribution culling: instances subtending less are left out of the top level") \
-  X(float, rtCullMargin, 0.0f, 0.0f, 1e6f, "m", "rt", "rt", kSettingPlain, "expanded frustum: margin around the view frustum (besides the ray length)") \
+  X(float, rtCullMargin, 0.0f, 0.0f, 1e9f, "m", "rt", "rt", kSettingAuto, "expanded frustum: margin around the view frustum within which instances stay in the top level (a visible point's ray reaches that far)") \
   X(uint32_t, rtRefitTop, 16, 0, 65536, "meshes", "rt", "", kSettingPlain, "deforming meshes whose BLAS is refitted each frame: the highest priorities (Metro: 16)") \
   X(uint32_t, rtRefitRandom, 4, 0, 65536, "meshes", "rt", "", kSettingPlain, "plus this many others drawn at random, so none waits forever (Metro: 4)") \
   X(uint32_t, rtRefitVertexBudget, 1u << 20, 0, 1u << 30, "vertices", "rt", "", kSettingPlain, "vertices refitted per frame at most (the first pick always goes)") \
@@ -110,7 +110,7 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(bool, rtRawRayProbe, false, 0, 1, "", "rt", "", kSettingNoPanel, "benchmark: also trace the same rays with a trivial kernel (rt.rawRays; bench --rays)") \
   X(uint32_t, bentSkyRays, 4, 1, 64, "rays", "bentsky", "bentsky", kSettingPlain, "bentsky plugin: sky-visibility rays per pixel and frame (cosine-distributed, as long as rtRayLength)") \
   X(uint32_t, bentSkyMaxFrames, 32, 1, 1024, "frames", "bentsky", "", kSettingPlain, "bentsky plugin: accumulation window while the view holds still") \
-  X(float, legacyAoRadius, 0.0f, 0.0f, 1e6f, "m", "legacy", "legacy", kSettingAuto, "reach of SSAO and voxel AO") \
+  X(float, legacyAoRadius, 0.0f, 0.0f, 1e9f, "m", "legacy", "legacy", kSettingAuto, "reach of SSAO and voxel AO") \
   X(float, legacyAoThickness, 0.1f, 0.0f, 1.0f, "", "legacy", "legacy", kSettingPlain, "GTAO thickness heuristic: how fast a horizon falls back behind thin occluders (0 infinitely thick, 1 paper thin)") \
   X(uint32_t, legacyAoSlices, 1, 1, 16, "slices", "legacy", "legacy", kSettingPlain, "GTAO slice directions per pixel and frame (the 2x2 interleave and the accumulation supply more)") \
   X(uint32_t, legacyAoSteps, 4, 1, 64, "samples", "legacy", "legacy", kSettingPlain, "GTAO depth samples per direction and side") \
@@ -118,9 +118,9 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(uint32_t, legacyAoFrames, 8, 1, 64, "frames", "legacy", "", kSettingPlain, "SSAO temporal accumulation window (1: off)") \
   X(uint32_t, legacyConeDivisor, 4, 1, 4, "", "legacy", "", kSettingPow2, "cone tracing resolution divisor: 1 full, 2 half, 4 quarter") \
   X(uint32_t, legacyVoxelResolution, 64, 8, 256, "voxels", "legacy", "legacy", kSettingPow2, "clipmap resolution R: each level holds R^3 voxels") \
-  X(float, legacyLevel0Extent, 0.0f, 0.0f, 1e6f, "m", "legacy", "legacy", kSettingAuto, "side of the finest clipmap level; coarser levels double it until the scene is covered") \
+  X(float, legacyLevel0Extent, 0.0f, 0.0f, 1e9f, "m", "legacy", "legacy", kSettingAuto, "side of the finest clipmap level; coarser levels double it until the scene is covered") \
   X(uint32_t, legacyMaxLevels, 4, 1, 4, "levels", "legacy", "legacy", kSettingPlain, "clipmap levels at most") \
-  X(float, legacyConeRange, 0.0f, 0.0f, 1e6f, "m", "legacy", "", kSettingAuto, "cones stop after this distance") \
+  X(float, legacyConeRange, 0.0f, 0.0f, 1e9f, "m", "legacy", "", kSettingAuto, "cones stop after this distance") \
   X(float, legacyConeStep, 1.0f, 0.2f, 2.0f, "x diameter", "legacy", "", kSettingPlain, "cone step as a fraction of its diameter: smaller is slower and more exact") \
   X(uint32_t, legacyRoomSweeps, 4, 0, 64, "rounds", "legacy", "legacy", kSettingPlain, "rooms: rounds of x, y and z sweeps that flood the finest level's air from its lit surfaces and open edges; cones in air no light reaches (a sealed room) gather nothing (0: off)") \
   X(bool, legacyScreenRadiance, true, 0, 1, "", "legacy", "legacy", kSettingPlain, "voxels seen last frame take its shaded radiance, so light bounces more than once") \
@@ -137,6 +137,12 @@ struct RenderSettings {
 
 enum class SettingType { Bool, UInt, Float, Enum };
 
+// What automatic values derive from: the scene's size in its own units.
+struct SceneSize {
+  float diagonal = 1.0f;     // of its bounds (FrameConstants::sceneScale)
+  float largestSide = 1.0f;  // of its bounds
+};
+
 // One setting as the schema knows it. `get`/`set` read and write it as a double (a bool as 0 or
 // 1, the material mode as its index in `choices`); `set` takes a value already checked.
 struct SettingInfo {
@@ -151,6 +157,10 @@ struct SettingInfo {
   std::vector<std::string_view> choices;  // names of an enum's values, in order
   double (*get)(const RenderSettings&);
   void (*set)(RenderSettings&, double);
+  // kSettingAuto: what 0 stands for, from the settings and the scene's extent, and that rule
+  // in words ("the scene's extent / 6").
+  float (*derive)(const RenderSettings&, const SceneSize&) = nullptr;
+  std::string_view autoRule;
 
   bool resetsHistoryOf(std::string_view path) const;
 };
@@ -174,24 +184,15 @@ std::string settingDomain(const SettingInfo& setting);
 // key's settings part for that path, so changing one of them restarts its history.
 uint64_t historySettingsHash(const RenderSettings& settings, std::string_view path);
 
-// Defaults that scale with the scene (sceneScale: the diagonal of its bounds, metres), shared
-// by the paths and the editor's lighting panel: an AO radius of 5% of the scene between
-// 0.1 and 1 m (Metro's SSAO reached about 1 m), rays and cones as long as the scene up to
-// Metro's 50 m (which also bounds how far outside the view the RT top level keeps instances).
-inline float sceneScaledAoRadius(float sceneScale) { return std::clamp(0.05f * sceneScale, 0.1f, 1.0f); }
-inline float sceneScaledRayLength(float sceneScale) { return std::clamp(sceneScale, 1e-3f, 50.0f); }
-// The pre-trace's march in pixels when not set: a constant share of the image height (128 px
-// at 360 lines), so it covers the same part of the view at any resolution.
-inline float pretraceAutoPixels(uint32_t height) { return std::max(16.0f, float(height) * (128.0f / 360.0f)); }
-inline float sceneScaledBlendDistance(float sceneScale) { return 2.0f * std::max(sceneScale, 1e-3f); }
-// The RT denoiser's pass-1 radius: a sixth of the scene, within Metro's 6 m.
-inline float sceneScaledCacheCellSize(float sceneScale) { return std::max(sceneScale, 1e-3f) / 1000.0f; }
-inline float sceneScaledDenoiseRadius(float sceneScale) { return std::clamp(sceneScale / 6.0f, 0.25f, 6.0f); }
-// The legacy clipmap's finest level: the scene, at most R/4 m.
-inline float autoLevel0Extent(float sceneScale, uint32_t voxelResolution) {
-  return std::min(sceneScale, 0.25f * float(voxelResolution));
-}
-// What a kSettingAuto setting stands for at 0 in a scene of this size (metres, pixels).
-std::optional<float> autoSettingValue(std::string_view name, const RenderSettings& settings, float sceneScale);
+// Automatic values. A kSettingAuto setting at 0 stands for a value derived from the scene's
+// extent (`sceneScale`: the diagonal of its bounds, in the scene's own units) or the image,
+// never a length in metres: a scene authored in millimetres or kilometres gets the same
+// picture. The derivations are the schema's (render_settings.cpp, one table; each setting's
+// `autoRule` says it in words); a value the user sets keeps meaning metres.
+// The value a kSettingAuto setting stands for at 0 (nothing for another setting).
+std::optional<float> autoSettingValue(const SettingInfo& setting, const RenderSettings& settings, const SceneSize& scene);
+std::optional<float> autoSettingValue(std::string_view name, const RenderSettings& settings, const SceneSize& scene);
+// The settings a frame renders with: every automatic setting left at 0 replaced by its value.
+RenderSettings resolveAutomatic(const RenderSettings& settings, const SceneSize& scene);
 
 }  // namespace tl::lighting

@@ -88,14 +88,13 @@ class LegacyPath final : public LightingPath {
     const RenderSettings& s = in.settings;
     const LegacyClipmapFit fit = fitLegacyClipmap(in.sceneData.bounds, in.cameraWorld, s.legacyVoxelResolution,
                                                   s.legacyLevel0Extent, s.legacyMaxLevels);
-    const float scale = std::max(in.constants.sceneScale, 1e-3f);
     LegacyPush push{};
     push.clipmap = fit.clipmap;
-    push.aoRadius = s.legacyAoRadius > 0.0f ? s.legacyAoRadius : sceneScaledAoRadius(scale);
+    push.aoRadius = s.legacyAoRadius;  // in.settings has automatic values resolved
     push.aoThickness = std::clamp(s.legacyAoThickness, 0.0f, 1.0f);
     push.aoSlices = std::max(1u, s.legacyAoSlices);
     push.aoSteps = std::max(1u, s.legacyAoSteps);
-    push.coneRange = s.legacyConeRange > 0.0f ? s.legacyConeRange : sceneScaledRayLength(scale);
+    push.coneRange = s.legacyConeRange;
     push.coneStep = std::clamp(s.legacyConeStep, 0.2f, 2.0f);
     push.aoDivisor = s.legacyAoDivisor >= 2 ? 2u : 1u;
     push.coneDivisor = s.legacyConeDivisor >= 4 ? 4u : (s.legacyConeDivisor >= 2 ? 2u : 1u);
@@ -606,15 +605,18 @@ LegacyClipmapFit fitLegacyClipmap(const scene::Bounds& bounds, const glm::dvec3&
   while (R < resolution && R < 256) R *= 2;
   const glm::dvec3 size = bounds.valid() ? bounds.size() : glm::dvec3(1.0);
   const double maxAxis = std::max({size.x, size.y, size.z, 1e-3}) * 1.02;  // a margin so walls on the bounds are inside
-  const double e0 = level0Extent > 0.0f ? double(level0Extent) : std::min(maxAxis, 0.25 * R);
+  // Unset: the finest level holds the scene (the automatic value, render_settings.cpp).
+  const double e0 = level0Extent > 0.0f ? double(level0Extent) : maxAxis;
   const uint32_t levels =
-      std::clamp(1u + uint32_t(std::max(0.0, std::ceil(std::log2(maxAxis / e0) - 1e-9))), 1u, std::min(maxLevels, shared::kLegacyMaxLevels));
+      // A finest level within 1e-4 of the scene's side holds it (the automatic value arrives
+      // through a float, and rounding must not add a level at one scale and not at another).
+      std::clamp(1u + uint32_t(std::max(0.0, std::ceil(std::log2(maxAxis / e0) - 1e-4))), 1u, std::min(maxLevels, shared::kLegacyMaxLevels));
   const glm::dvec3 centreOfScene = bounds.valid() ? bounds.center() : glm::dvec3(0.0);
   for (uint32_t l = 0; l < levels; ++l) {
     const double voxel = e0 / R * std::exp2(double(l)), extent = voxel * R;
     glm::dvec3 centre;
     for (int a = 0; a < 3; ++a) {
-      if (extent >= size[a] * 1.02) {
+      if (extent >= size[a] * 1.02 * (1.0 - 1e-4)) {  // (with the levels' count's tolerance)
         centre[a] = centreOfScene[a];  // the level spans the scene on this axis: no need to follow the camera
       } else {
         double c = std::floor(camera[a] / voxel + 0.5) * voxel;  // on the voxel grid: stable as the camera moves

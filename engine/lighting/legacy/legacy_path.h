@@ -27,8 +27,8 @@ struct LegacyClipmapFit {
 };
 
 // Levels of `resolution`^3 voxels (rounded up to a power of two in 16..256) around the
-// camera, the finest `level0Extent` metres wide (<= 0: the scene's largest side, at most R/4
-// m), as many levels as it takes to span the scene (at most maxLevels). Each level is
+// camera, the finest `level0Extent` wide (<= 0: the scene's largest side, +2%), as many levels
+// as it takes to span the scene (at most maxLevels). Each level is
 // clamped into the scene's bounds, so a scene that fits the finest level needs one.
 LegacyClipmapFit fitLegacyClipmap(const scene::Bounds& bounds, const glm::dvec3& camera, uint32_t resolution,
                                   float level0Extent, uint32_t maxLevels);

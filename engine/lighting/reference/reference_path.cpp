@@ -82,8 +82,7 @@ class ReferencePath final : public LightingPath {
     graph.declarePersistent(kAccum, accumDesc);
     graph.declarePersistent(kAoAccum, aoAccumDesc);
     shared::RefPush push{};
-    push.aoRadius = in.settings.rtAoRadius > 0.0f ? in.settings.rtAoRadius
-                                                  : sceneScaledAoRadius(std::max(in.constants.sceneScale, 1e-3f));
+    push.aoRadius = in.settings.rtAoRadius;  // resolved (render_settings.h resolveAutomatic)
     push.samplesPerFrame = std::max(1u, in.settings.referenceSamplesPerFrame);
     push.maxBounces = std::max(1u, in.settings.referenceBounces);
     withPathInputs(RayTracingPass(in.device, "reference.trace", kTraceShaders), in)

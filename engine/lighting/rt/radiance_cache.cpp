@@ -15,23 +15,28 @@ using graph::Usage;
 
 RtCacheOutcomes countCacheOutcomes(std::span<const uint8_t> bytes) {
   RtCacheOutcomes o;
-  for (size_t i = 0; i + sizeof(uint32_t) <= bytes.size(); i += sizeof(uint32_t)) {
-    uint32_t v;
+  for (size_t i = 0; i + sizeof(shared::RtCacheOutcome) <= bytes.size(); i += sizeof(shared::RtCacheOutcome)) {
+    shared::RtCacheOutcome v;
     std::memcpy(&v, bytes.data() + i, sizeof v);
-    if (v == shared::kRtCacheOutcomeNone) continue;
+    if (v.outcome == shared::kRtCacheOutcomeNone) continue;
     ++o.paths;
-    if (v == shared::kRtCacheOutcomeSky) ++o.sky;
-    if (v == shared::kRtCacheOutcomeOnScreen) ++o.onScreen;
-    if (v == shared::kRtCacheOutcomeOffScreen) ++o.offScreen;
+    if (v.outcome == shared::kRtCacheOutcomeSky) ++o.sky;
+    if (v.outcome == shared::kRtCacheOutcomeOnScreen) ++o.onScreen;
+    if (v.outcome == shared::kRtCacheOutcomeOffScreen) ++o.offScreen;
+    if (v.outcome == shared::kRtCacheOutcomeEnded) ++o.ended;
+    // The shader writes finite, non-negative luminances; a file or device could still hand
+    // back anything, and one bad value must not decide.
+    if (std::isfinite(v.gathered) && v.gathered > 0.0f) o.gathered += v.gathered;
+    if (std::isfinite(v.added) && v.added > 0.0f) o.added += v.added;
   }
   return o;
 }
 
-bool RtCacheSwitch::update(const RtCacheOutcomes& measured, float minShare) {
-  const double share = measured.offScreenShare();
+bool RtCacheSwitch::update(const RtCacheOutcomes& measured, float minGain) {
   if (measured.paths == 0) return on_;  // nothing seen (all sky): keep the decision
-  if (!on_ && share >= minShare) on_ = true;
-  if (on_ && share < 0.5 * minShare) on_ = false;
+  const double share = measured.cacheGain();
+  if (!on_ && share >= minGain) on_ = true;
+  if (on_ && share < 0.5 * minGain) on_ = false;
   return on_;
 }
 
@@ -52,11 +57,12 @@ graph::ResourceDesc RtRadianceCache::samplesDesc(const FrameInputs& in) const {
                                      "radiance cache: each update path vertex's sample (cell, incoming radiance)");
 }
 graph::ResourceDesc RtRadianceCache::outcomesDesc(const FrameInputs& in) const {
-  return graph::ResourceDesc::buffer(VkDeviceSize(paths(in)) * sizeof(uint32_t),
-                                     "radiance cache: what each update path's first ray found (0 none, 1 sky, 2 on screen, 3 off screen)");
+  return graph::ResourceDesc::buffer(VkDeviceSize(paths(in)) * sizeof(shared::RtCacheOutcome),
+                                     "radiance cache: each update path's first ray (0 none, 1 sky, 2 on screen, 3 off screen), "
+                                     "the light it gathers and the light the cache adds there");
 }
 
-void RtRadianceCache::plan(graph::RenderGraph& graph, FrameInputs& in, shared::RtPush& push, float sceneScale, float maxEmitterRadiance) {
+void RtRadianceCache::plan(graph::RenderGraph& graph, FrameInputs& in, shared::RtPush& push, float maxEmitterRadiance) {
   const RenderSettings& s = in.settings;
   // A new scene starts the switch over (off, measuring): the outcomes still held and the
   // decision they led to are another scene's, and an image must not depend on what was
@@ -77,11 +83,11 @@ void RtRadianceCache::plan(graph::RenderGraph& graph, FrameInputs& in, shared::R
     const uint64_t deciding = in.frame - std::min<uint64_t>(in.frame, kOutcomeLag);
     if (auto it = outcomes_.find(deciding); it != outcomes_.end() && in.frame >= kOutcomeLag) {
       measured_ = it->second;
-      switch_.update(measured_, s.rtCacheMinShare);
+      switch_.update(measured_, s.rtCacheMinGain);
     }
     outcomes_.erase(outcomes_.begin(), outcomes_.upper_bound(deciding));
   }
-  active_ = s.rtCacheMinShare <= 1.0f && (s.rtCacheMinShare <= 0.0f || switch_.on());
+  active_ = s.rtCacheMinGain <= 1.0f && (s.rtCacheMinGain <= 0.0f || switch_.on());
   const uint32_t entries = s.rtCacheEntries;
   restart_ = false;
   if (active_) {
@@ -97,14 +103,14 @@ void RtRadianceCache::plan(graph::RenderGraph& graph, FrameInputs& in, shared::R
 
   // One path per tile of tile_ x tile_ pixels: the largest tile that gives rtCachePaths, so
   // the cache's samples (and cost) do not fall with the image size. Off, the probe paths go on
-  // measuring: a sixteenth as many, one ray each.
+  // measuring: a sixteenth as many, two rays each (the second measures what the cache would add).
   const double pixels = double(s.width) * double(s.height);
   tile_ = uint32_t(std::max(1.0, std::floor(std::sqrt(pixels / double(std::max(s.rtCachePaths, 1u))))));
   if (!active_) tile_ *= 4u;
-  bounces_ = active_ ? std::clamp(s.rtCacheBounces, 1u, shared::kRtCacheMaxBounces) : 1u;
+  bounces_ = active_ ? std::clamp(s.rtCacheBounces, 1u, shared::kRtCacheMaxBounces) : 2u;
   push.cacheLookup = active_ && !restart_ ? 1u : 0u;
   push.cacheEntryMask = entries - 1u;
-  push.cacheCellSize = s.rtCacheCellSize > 0.0f ? s.rtCacheCellSize : sceneScaledCacheCellSize(sceneScale);
+  push.cacheCellSize = s.rtCacheCellSize;  // resolved: automatic at the scene's extent / 1000
   push.cacheCellAngle = s.rtCacheCellAngle;
   push.cacheBounces = bounces_;
   push.cacheTile = tile_;
@@ -157,6 +163,8 @@ uint32_t RtRadianceCache::temporalWindow(uint32_t frames) const {
 
 std::vector<std::pair<std::string, double>> RtRadianceCache::figures() const {
   return {{"cacheActive", active_ ? 1.0 : 0.0},
+          {"cacheAddedShare", measured_.addedShare()},
+          {"cacheEndedShare", measured_.endedShare()},
           {"cacheOffScreenShare", measured_.offScreenShare()},
           {"cachePaths", double(measured_.paths)}};
 }

@@ -11,6 +11,7 @@
 #include "shared/rt.h"
 #include "shared/rt_cache.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <span>
@@ -22,25 +23,34 @@ namespace tl::lighting {
 inline constexpr const char* kRtCacheEntries = "rt.cache.entries";    // persistent: what hits read
 inline constexpr const char* kRtCacheAccum = "rt.cache.accum";        // persistent: keys and sums
 inline constexpr const char* kRtCacheSamples = "rt.cache.samples";    // the update paths' samples
-inline constexpr const char* kRtCacheOutcomes = "rt.cache.outcomes";  // each path's first ray: kRtCacheOutcome*
+inline constexpr const char* kRtCacheOutcomes = "rt.cache.outcomes";  // each path's first ray: shared::RtCacheOutcome
 
-// What the update paths' first rays found in one frame.
+// What the update paths' first rays found in one frame, and the light involved.
 struct RtCacheOutcomes {
   uint32_t paths = 0;      // paths that started (their pixel is not sky)
   uint32_t sky = 0;
   uint32_t onScreen = 0;
   uint32_t offScreen = 0;
-  // The share of rays that end on surfaces off screen: the light only the cache brings.
+  uint32_t ended = 0;      // rays whose length ran out inside the scene
+  double gathered = 0.0;   // luminance the GI rays bring back without the cache (summed)
+  double added = 0.0;      // luminance the cache adds to it at hits off screen (summed)
   double offScreenShare() const { return paths ? double(offScreen) / double(paths) : 0.0; }
+  // The share of the bounced light that only the cache brings: what it changes.
+  double addedShare() const { return gathered + added > 0.0 ? added / (gathered + added) : 0.0; }
+  // Rays that end inside the scene bring back nothing but the cache's light.
+  double endedShare() const { return paths ? double(ended) / double(paths) : 0.0; }
+  // What decides whether the cache runs: the larger of the two.
+  double cacheGain() const { return std::max(addedShare(), endedShare()); }
 };
-// Counts the outcomes of rt.cache.outcomes' bytes (one uint each).
+// Sums rt.cache.outcomes' bytes (one shared::RtCacheOutcome each).
 RtCacheOutcomes countCacheOutcomes(std::span<const uint8_t> bytes);
 
-// Starts while the measured share is at least `minShare`, stops below half of it (no flicker
-// on the edge). It starts off: the first frame's probe paths measure, the next decides.
+// Whether the cache runs, from what it changes: on while the light it adds is at least
+// `minGain` of the bounced light, off below half of that (no flicker on the edge). It starts
+// off: the first frame's probe paths measure, the next decides.
 class RtCacheSwitch {
  public:
-  bool update(const RtCacheOutcomes& measured, float minShare);
+  bool update(const RtCacheOutcomes& measured, float minGain);
   bool on() const { return on_; }
 
  private:
@@ -57,7 +67,7 @@ class RtRadianceCache {
   // This frame's plan: whether the cache runs (from the last frame's outcomes) or only its
   // probe paths measure, whether it restarts; fills the cache's fields of `push` and
   // requests this frame's outcomes. Call before any pass that reads the cache.
-  void plan(graph::RenderGraph& graph, FrameInputs& in, shared::RtPush& push, float sceneScale, float maxEmitterRadiance);
+  void plan(graph::RenderGraph& graph, FrameInputs& in, shared::RtPush& push, float maxEmitterRadiance);
   bool active() const { return active_; }  // the cache is read and written this frame
   bool restart() const { return restart_; }
   // Frames the cache has run since it last started over (0: this frame starts it).

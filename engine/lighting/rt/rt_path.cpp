@@ -62,16 +62,17 @@ class RtPath final : public LightingPath {
   LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
     prepare(in);
     const RenderSettings& s = in.settings;
-    const float scale = std::max(in.constants.sceneScale, 1e-3f);
+    // in.settings has every automatic value resolved (render_settings.h resolveAutomatic).
+    const float scale = std::max(in.constants.sceneScale, 1e-30f);
     params_ = RtResolvedParams{};
-    params_.aoRadius = s.rtAoRadius > 0.0f ? s.rtAoRadius : sceneScaledAoRadius(scale);
-    params_.rayLength = s.rtRayLength > 0.0f ? s.rtRayLength : sceneScaledRayLength(scale);
-    params_.blendDistance = s.rtBlendDistance > 0.0f ? s.rtBlendDistance : sceneScaledBlendDistance(scale);
+    params_.aoRadius = s.rtAoRadius;
+    params_.rayLength = s.rtRayLength;
+    params_.blendDistance = s.rtBlendDistance;
     params_.tMin = 1.5f * scene_->stats().maxDeviation + 1e-5f * scale;
 
     RtCulling culling;
     culling.viewProj = in.constants.viewProj;
-    culling.margin = s.rtCullMargin > 0.0f ? s.rtCullMargin : params_.rayLength;
+    culling.margin = s.rtCullMargin;  // resolved: the ray length unless set
     culling.minAngle = s.rtCullAngle;
     culling.maxDistance = params_.blendDistance + culling.margin;
     RefitPolicy refits;
@@ -88,13 +89,13 @@ class RtPath final : public LightingPath {
     push.pretrace = s.rtPretrace ? 1u : 0u;
     push.rayPattern = rtRayPattern(s);
     push.pretraceSteps = s.rtPretraceSteps;
-    push.pretraceLength = s.rtPretracePixels > 0.0f ? s.rtPretracePixels : pretraceAutoPixels(s.height);
+    push.pretraceLength = s.rtPretracePixels;
     push.thickness = s.rtThickness;
     push.maxAccumFrames = s.rtMaxAccumFrames;
     push.aoFilterDepth = 0.02f;
     push.fireflyClamp = std::max(s.rtFireflyClamp, 0.0f);
-    // Metro's denoiser radii are 6 m and 3 m in its world; here a sixth of the scene, at most 6 m.
-    const float denoiseRadius = s.rtDenoiseRadius > 0.0f ? s.rtDenoiseRadius : sceneScaledDenoiseRadius(scale);
+    // Metro's denoiser radii are 6 m and 3 m in its world; here a sixth of the scene.
+    const float denoiseRadius = s.rtDenoiseRadius;
     push.hitDistanceCap = denoiseRadius;
     const uint32_t w = s.width, h = s.height;
     auto image = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, w, h, what); };
@@ -116,7 +117,7 @@ class RtPath final : public LightingPath {
     push.environmentSampling = s.rtEnvironmentSampling && hasEnvironmentMap(in) ? 1u : 0u;
     push.emitterCount = s.rtEmitterSampling ? scene_->emitterCount() : 0u;
     push.cameraWorld = glm::vec4(glm::vec3(in.cameraWorld), 0.0f);
-    cache_.plan(graph, in, push, scale, scene_->maxEmitterRadiance());
+    cache_.plan(graph, in, push, scene_->maxEmitterRadiance());
     push.maxAccumFrames = cache_.temporalWindow(push.maxAccumFrames);
 
     for (int i = 0; i < 4; ++i) graph.declarePersistent(histNames[i], histDescs[i]);

@@ -246,7 +246,7 @@ void RtScene::prepareTopLevel(const scene::GpuScene& gpuScene, const RtCulling& 
   for (uint32_t m = 0; m < meshInstance_.size(); ++m) {
     if (meshInstance_[m] < 0 || gpuScene.meshVersion(m) == refitVersion_[m]) continue;
     const size_t i = size_t(meshInstance_[m]);
-    stale.push_back({m, geometry_[m].vertexCount, inTopLevel[i], radii[i] / std::max(glm::length(centres[i]), 1e-3f)});
+    stale.push_back({m, geometry_[m].vertexCount, inTopLevel[i], radii[i] / std::max(glm::length(centres[i]), radii[i])});
   }
   stats_.staleLastFrame = uint32_t(stale.size());
   for (uint32_t m : scheduler_.choose(stale, refits, frame_++)) {

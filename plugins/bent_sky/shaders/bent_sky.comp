@@ -47,7 +47,7 @@ void main() {
     return;
   }
   vec3 n = tlOctDecode(texelFetch(gNormal, p, 0).xy);
-  vec3 origin = tlOffsetRayOrigin(pixelPosition(p, depth), n);
+  vec3 origin = tlOffsetRayOrigin(pixelPosition(p, depth), n, frame.sceneScale);
   mat3 basis = tlBasisFromNormal(n);
   vec4 sample_ = vec4(0.0);  // sum of escaping directions, count escaping
   for (uint i = 0u; i < push.rays; ++i) {
