@@ -481,12 +481,12 @@ int SceneWriter::node(const std::string& name, int mesh, glm::vec3 t, glm::vec3 
   return index;
 }
 
-void SceneWriter::camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees) {
+void SceneWriter::camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees, float znear) {
   tinygltf::Camera c;
   c.name = name;
   c.type = "perspective";
   c.perspective.yfov = glm::radians(yfovDegrees);
-  c.perspective.znear = 0.05;
+  c.perspective.znear = znear;
   c.perspective.aspectRatio = 16.0 / 9.0;
   addCamera(c, from, to);
 }
@@ -572,8 +572,13 @@ void SceneWriter::light(tinygltf::Light l, glm::vec3 position, glm::vec3 directi
 void SceneWriter::sky(glm::vec3 radiance) {
   tinygltf::Value::Array a{tinygltf::Value(double(radiance.r)), tinygltf::Value(double(radiance.g)),
                            tinygltf::Value(double(radiance.b))};
+  twinlightExtra("sky_radiance", tinygltf::Value(a));
+}
+
+void SceneWriter::twinlightExtra(const std::string& key, tinygltf::Value value) {
   tinygltf::Value::Object t;
-  t["sky_radiance"] = tinygltf::Value(a);
+  if (extras_.count("twinlight")) t = extras_["twinlight"].Get<tinygltf::Value::Object>();
+  t[key] = std::move(value);
   extras_["twinlight"] = tinygltf::Value(t);
 }
 

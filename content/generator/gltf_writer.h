@@ -118,7 +118,8 @@ class SceneWriter {
   // "scale" (x, y, z; w unused) in the animation called `animation`, LINEAR or STEP.
   void nodeChannel(const std::string& animation, int node, const std::string& path, const std::vector<float>& times,
                    const std::vector<glm::vec4>& values, const std::string& interpolation = "LINEAR");
-  void camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees);
+  // znear: glTF's near plane in metres (the project's own scenes keep 5 cm).
+  void camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees, float znear = 0.05f);
   // glTF's orthographic camera: xmag and ymag are half the view's width and height in metres.
   void orthographicCamera(const std::string& name, glm::vec3 from, glm::vec3 to, float xmag, float ymag, float znear,
                           float zfar);
@@ -132,6 +133,8 @@ class SceneWriter {
   void spotLight(const std::string& name, glm::vec3 position, glm::vec3 direction, float candela, float innerDegrees,
                  float outerDegrees, glm::vec3 color = glm::vec3(1.0f));
   void sky(glm::vec3 radiance);
+  // A value in the scene's extras.twinlight object (beside sky_radiance).
+  void twinlightExtra(const std::string& key, tinygltf::Value value);
   void write(const std::filesystem::path& dir);
 
  private:

@@ -2,6 +2,7 @@
 // question measurable; content/README.md says which. Usage: tl_content_gen <content-dir>
 // The scale scene is generated when measured, never committed (it is tens of megabytes):
 // tl_content_gen --sprawl <dir> [instances=100000] [keys=1000]
+#include "corpus.h"
 #include "gltf_writer.h"
 #include "hard_scenes.h"
 
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
@@ -1158,7 +1160,49 @@ void sprawl(const std::filesystem::path& dir, uint32_t instances, uint32_t keys)
 }  // namespace
 }  // namespace tl::content
 
+// tl_content_gen --corpus DIR SEED [FIRST=0] [COUNT=64]: the randomized interiors (corpus.h)
+// and DIR/corpus.json listing what was drawn for each.
+int corpusMain(int argc, char** argv) {
+  try {
+    if (argc < 4 || argc > 6) throw std::invalid_argument("expected DIR SEED [FIRST] [COUNT]");
+    auto number = [](const char* text, const char* what) {
+      size_t used = 0;
+      const unsigned long long v = std::stoull(text, &used);
+      if (used != std::strlen(text)) throw std::invalid_argument(std::string(what) + " is not a whole number");
+      return v;
+    };
+    const uint64_t seed = number(argv[3], "SEED");
+    const unsigned long long first = argc > 4 ? number(argv[4], "FIRST") : 0ull;
+    const unsigned long long count = argc > 5 ? number(argv[5], "COUNT") : 64ull;
+    if (count == 0 || count > 100000 || first > 1000000) throw std::invalid_argument("COUNT 1..100000, FIRST <= 1000000");
+    const std::filesystem::path dir = argv[2];
+    const auto scenes = tl::content::writeCorpus(dir, seed, uint32_t(first), uint32_t(count));
+    std::string list = "{\n  \"seed\": " + std::to_string(seed) + ",\n  \"scenes\": [\n";
+    for (size_t i = 0; i < scenes.size(); ++i) {
+      const auto& c = scenes[i];
+      char line[512];
+      std::snprintf(line, sizeof line,
+                    "    {\"name\": \"%s\", \"size_m\": %.4g, \"shape\": \"%s\", \"openings\": \"%s\", \"lights\": \"%s\", "
+                    "\"albedo\": \"%s\", \"walls\": \"%s\", \"triangles\": %u, \"sealed_room\": %s}%s\n",
+                    c.name.c_str(), double(c.size), c.shape.c_str(), c.openings.c_str(), c.lights.c_str(), c.albedo.c_str(),
+                    c.walls.c_str(), c.triangles, c.sealedRoom ? "true" : "false", i + 1 < scenes.size() ? "," : "");
+      list += line;
+    }
+    list += "  ]\n}\n";
+    std::ofstream out(dir / "corpus.json", std::ios::binary | std::ios::trunc);
+    out << list;
+    out.close();
+    if (!out) throw std::runtime_error("cannot write " + (dir / "corpus.json").string());
+    std::printf("wrote %zu interiors of corpus %llu to %s\n", scenes.size(), (unsigned long long)seed, argv[2]);
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tl_content_gen --corpus DIR SEED [FIRST] [COUNT]: %s\n", e.what());
+    return 2;
+  }
+}
+
 int main(int argc, char** argv) {
+  if (argc >= 2 && std::string(argv[1]) == "--corpus") return corpusMain(argc, argv);
   if (argc >= 3 && std::string(argv[1]) == "--sprawl") {
     try {
       const uint32_t instances = argc > 3 ? uint32_t(std::stoul(argv[3])) : 100000u;

@@ -33,14 +33,33 @@ std::vector<session::CompareVariant> compareVariants(const nlohmann::json& list,
   return variants;
 }
 
-int compareMergeCommand(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& out) {
+// The accuracy goals a sweep's summary missed (session/sweep_summary.h), for --goals.
+size_t missedGoals(const nlohmann::json& report) {
+  size_t missed = 0;
+  if (report.contains("summary"))
+    for (const auto& g : report["summary"]["goals"]) missed += g.value("held", true) ? 0 : 1;
+  return missed;
+}
+
+// With --goals, a missed accuracy goal is a failed gate too.
+int goalsExit(const nlohmann::json* report, bool goals) {
+  if (!goals || !report) return 0;
+  const size_t missed = missedGoals(*report);
+  if (missed == 0) return 0;
+  std::fflush(stdout);
+  fmt::print(stderr, "twinlight: error: {} accuracy goal(s) missed (the summary above says which)\n", missed);
+  return 3;
+}
+
+int compareMergeCommand(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& out, bool goals) {
   const nlohmann::json report = session::mergeSweep(dirs, out);
   if (report.value("kind", "") == "sweep") printSweepReport(report);
   else printCompareReport(report, {});
   const size_t views = report.value("kind", "") == "sweep" ? report["views"].size() : 1;
   fmt::print("merged {} shard(s): {} view(s) into {}\n", dirs.size(), views,
              (std::filesystem::absolute(out) / "report.html").string());
-  return gateExit(session::gateFailureCount(report));
+  if (int status = gateExit(session::gateFailureCount(report)); status != 0) return status;
+  return goalsExit(&report, goals);
 }
 
 class CompareCommand : public CliCommand {
@@ -90,6 +109,10 @@ class CompareCommand : public CliCommand {
     cmd->add_option("--shard-count", shardCount_,
                     "with --shard auto under a Kubernetes Indexed Job: the shard count (else TWINLIGHT_SHARD_COUNT)");
     cmd->add_option("--merge", merge_, "assemble the finished shards' report folders into one report in --out (no GPU)");
+    cmd->add_flag("--goals", goals_,
+                  "a sweep of several views: exit 3 when the share of views meeting an accuracy goal is below its "
+                  "target (rt mean within 10% on 95%, rt relMSE_norm <= 0.5x legacy's on 90%, legacy mean within 35% "
+                  "on 90%, dark views dark in every path; the summary table lists them)");
     addViewAndLightOptions(*cmd, render_);
     return cmd;
   }
@@ -107,7 +130,7 @@ class CompareCommand : public CliCommand {
       if (!shard_.empty() || shardCount_) throw UsageError("--merge assembles finished shards: it takes no --shard");
       session::checkOutputFolder(out_);
       std::vector<std::filesystem::path> dirs(merge_.begin(), merge_.end());
-      return compareMergeCommand(dirs, out_);
+      return compareMergeCommand(dirs, out_, goals_);
     }
     std::optional<session::Shard> shard;
     if (!shard_.empty() || shardCount_) {
@@ -146,7 +169,8 @@ class CompareCommand : public CliCommand {
     }
     // Validation errors first (the figures are not trusted then), then the gate.
     if (int status = exitStatus(session); status != 0) return status;
-    return gateExit(outcome.gateFailures);
+    if (int status = gateExit(outcome.gateFailures); status != 0) return status;
+    return goalsExit(outcome.sweepReport ? &*outcome.sweepReport : nullptr, goals_);
   }
 
  private:
@@ -204,6 +228,7 @@ class CompareCommand : public CliCommand {
   session::CompareOptions compare_;
   std::vector<std::string> scenes_;
   std::string paths_, out_ = "out/compare", cache_, cameras_, reference_, failAbove_, shard_;
+  bool goals_ = false;
   bool presets_ = false;
   std::optional<std::string> shardCount_;
   std::vector<std::string> merge_;

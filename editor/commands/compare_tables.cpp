@@ -1,5 +1,7 @@
 #include "compare_tables.h"
 
+#include "session/sweep_summary.h"
+
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -103,6 +105,8 @@ void printSweepReport(const nlohmann::json& report) {
                  f["path"].get<std::string>(), f["metric"].get<std::string>(),
                  f["value"].is_number() ? fmt::format("{:.4f}", f["value"].get<double>()) : std::string("non-finite"),
                  f["threshold"].get<double>());
+  // Per view and path, and the share of views that meet each accuracy goal.
+  if (report.contains("summary")) fmt::print("\n{}", tl::session::sweepSummaryTable(report["summary"]));
 }
 
 int gateExit(size_t failures) {

@@ -430,7 +430,8 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     const metrics::Image testNormalised = metrics::scaled(test, normalisation);
     const double relNorm = metrics::relMse(testNormalised, referenceNormalised).value;
     // The ratio of the mean luminances: how much of the reference's light the path shows.
-    const double meanRatio = referenceMean > 0.0 ? metrics::meanLuminance(test) / referenceMean : std::nan("");
+    const double testMean = metrics::meanLuminance(test);
+    const double meanRatio = referenceMean > 0.0 ? testMean / referenceMean : std::nan("");
     const double rmsNorm = metrics::rmse(testNormalised, referenceNormalised).value;
     const double flipNorm = metrics::flipLdr(displayEncode(test, float(normalisation)), referenceNormalisedDisplay).value;
 
@@ -470,6 +471,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                        {"FLIP", finite(flip.value)},
                        {"HDR-FLIP", finite(hdrFlip.value)},
                        {"meanRatio", finite(meanRatio)},
+                       {"meanLuminance", finite(testMean)},
                        {"relMSE_norm", finite(relNorm)},
                        {"RMSE_norm", finite(rmsNorm)},
                        {"FLIP_norm", finite(flipNorm)},
@@ -508,6 +510,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                    {"FLIP", "as rendered: LDR-FLIP of the display images at the report's exposure, 67 pixels per degree"},
                    {"HDR-FLIP", "as rendered: HDR-FLIP of the linear images (its exposures come from the reference)"},
                    {"meanRatio", "the path's mean luminance over the reference's (1: as much light; null for a black reference)"},
+                   {"meanLuminance", "the path's mean luminance (linear, before exposure)"},
                    {"relMSE_norm", "exposure-normalised: relMSE of both images scaled so the reference's mean luminance is "
                                    "0.18 (reference.normalisation), so a dark scene's figure means what a bright one's does"},
                    {"RMSE_norm", "exposure-normalised: RMSE of both images scaled as for relMSE_norm"},

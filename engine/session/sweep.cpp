@@ -3,6 +3,7 @@
 #include "session/image_io.h"
 #include "session/provenance.h"
 #include "session/report_html.h"
+#include "session/sweep_summary.h"
 
 #include <fmt/format.h>
 
@@ -98,6 +99,7 @@ nlohmann::json writeSweepReport(const std::filesystem::path& root, const nlohman
                                      "a view's figure is missing); frameMs is a timing, the rest are errors"}};
   if (!reports.empty()) report["forms"] = reports[0]["forms"], report["metrics"] = reports[0]["metrics"];
   if (!limits.is_null()) report["gate"] = {{"failAbove", limits}, {"failures", failures}, {"passed", failures.empty()}};
+  report["summary"] = summarizeSweep(report);
   writeJson(root / "report.json", report);
   writeSweepReportHtml(root / "report.html", report);
   return report;
