@@ -27,12 +27,15 @@ layout(push_constant) uniform Push { HybridShadowPush push; };
 layout(set = 0, binding = kHybridShadowMapDepth) uniform sampler2D sunShadowDepth;
 #include "common/sun_shadow.glsl"
 
-// 1 when nothing lies between the surface and the sun's centre.
-float tracedVisibility(vec3 origin, vec3 toSun) {
+// The distance to the nearest surface between the surface and the sun's centre, or -1 when
+// nothing lies there (the closest hit, not the first found: it bounds the penumbra below).
+float tracedBlocker(vec3 origin, vec3 toSun) {
   rayQueryEXT q;
-  rayQueryInitializeEXT(q, tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT, 0xFF, origin, 0.0, toSun, 1e30);
+  rayQueryInitializeEXT(q, tlas, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, toSun, 1e30);
   while (rayQueryProceedEXT(q)) {}
-  return rayQueryGetIntersectionTypeEXT(q, true) == gl_RayQueryCommittedIntersectionNoneEXT ? 1.0 : 0.0;
+  return rayQueryGetIntersectionTypeEXT(q, true) == gl_RayQueryCommittedIntersectionNoneEXT
+             ? -1.0
+             : rayQueryGetIntersectionTEXT(q, true);
 }
 
 void main() {
@@ -52,7 +55,9 @@ void main() {
     return;
   }
   SunShadowEstimate soft = sunShadowSoft(position, n, p);
-  float traced = tracedVisibility(tlOffsetRayOrigin(position, n, frame.sceneScale), l);
+  float blocker = tracedBlocker(tlOffsetRayOrigin(position, n, frame.sceneScale), l);
+  float traced = blocker < 0.0 ? 1.0 : 0.0;
+  float hard = max(push.hardPenumbraTexels * frame.shadowParams.x, 1e-6);
   float visibility;
   if (soft.blockerDistance < 0.0) {
     // The map saw no blocker; a ray that hits found one the map cannot (thinner than a texel,
@@ -60,8 +65,11 @@ void main() {
     visibility = traced;
   } else {
     // L = saturate(penumbra width / the narrowest the map draws); the talk's lerp(RTS, PCSS, L).
-    float penumbra = 2.0 * tan(frame.sunToLight.w) * soft.blockerDistance;
-    float hard = max(push.hardPenumbraTexels * frame.shadowParams.x, 1e-6);
+    // Where the ray is blocked, its own (nearest) blocker bounds how wide the penumbra can be:
+    // a wall close by that the map's texels let light past (a corner of sides without
+    // thickness) still shadows, as the ray says.
+    float blockerDistance = blocker < 0.0 ? soft.blockerDistance : min(soft.blockerDistance, blocker);
+    float penumbra = 2.0 * tan(frame.sunToLight.w) * blockerDistance;
     visibility = mix(traced, soft.visibility, clamp(penumbra / hard, 0.0, 1.0));
   }
   imageStore(outVisibility, p, vec4(visibility));

@@ -234,7 +234,7 @@ struct RtPush {
   uint maxAccumFrames;   // temporal accumulation: history weight saturates at this many frames
   uint historyValid;     // 0: the history images hold nothing usable (first frame, resize, reset)
   float aoFilterDepth;   // AO filter: relative view-depth difference that halves a tap's weight
-  uint screenRadiance;   // hit lighting may reuse last frame's shaded pixels (1: history is valid)
+  uint screenRadiance;   // hit lighting may reuse last frame's shaded pixels: kRtScreenRadiance*
   uint rayPattern;       // kRtRays*: which pixels trace this frame
   uint rawPendingOnly;   // benchmark probe: trace only the rays the pre-trace left pending
   float fireflyClamp;    // firefly suppression: ceiling in multiples of the neighbourhood / history luma (0: off)
@@ -308,6 +308,12 @@ TL_CONST uint kRtBindingCacheEntries = 37;     // RtCacheEntry[]: the radiance c
 TL_CONST uint kRtBindingCacheAccum = 38;       // RtCacheAccum[]: its keys and this frame's sums
 TL_CONST uint kRtBindingCacheSamples = 39;     // RtCacheSample[]: the update paths' samples
 TL_CONST uint kRtBindingCacheOutcomes = 40;    // RtCacheOutcome[]: each update path's first ray and the light the cache adds there
+// RtPush::screenRadiance: last frame's image is reused at hits seen on screen (Used); not this
+// frame (Unavailable: a first frame, a restart, the light changed); or never (Off: the setting
+// is off, every hit is lit afresh, and the radiance cache's vote counts every hit as off screen).
+TL_CONST uint kRtScreenRadianceUnavailable = 0u;
+TL_CONST uint kRtScreenRadianceUsed = 1u;
+TL_CONST uint kRtScreenRadianceOff = 2u;
 TL_END
 
 #ifdef __cplusplus

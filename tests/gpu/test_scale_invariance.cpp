@@ -5,13 +5,22 @@
 // length in it, so any difference between the scales is a constant in metres somewhere.
 //
 // Measured per scene and path, against the x1 image from frame index 0: the x1 image from
-// another frame index (another draw of every random number: the noise between two seeds), and
-// the x0.01 and x100 images from frame index 0. The scaled images must hold the x1 mean within
-// 2% and be no further from it (relMSE_norm) than the other seed is, with a floor for paths
-// without noise (there the two seeds are the same image).
+// two other draws of every random number (the noise between two seeds: frames from another
+// frame index, the camera moved across and up, then down and back, by a thousandth of a pixel,
+// so that pixels whose centre falls exactly on an edge (a nearest-filtered texel's, a
+// shadow-map texel's) land on either side, as rounding at another scale may let them; the
+// reference, whose samples are numbered from its own start, takes the next frames' samples),
+// and the x0.01 and x100 images from frame index 0. The scaled images must hold the x1 mean
+// within 2% (or within three times the two seeds' difference where the noise is larger) and
+// be no further from it (relMSE_norm) than the other seeds are (within 1.5x: one pair's mean
+// square over 1,296 correlated pixels is itself uncertain by tens of percent; the constants in
+// metres this test found were 3x to 400x above it), with a floor for paths without noise
+// (there the seeds give the same image). A failed comparison leaves its images in
+// $TMPDIR/scale_invariance/ for a look.
 #include "gpu_fixture.h"
 
 #include "scene/scene_scale.h"
+#include "session/image_io.h"
 #include "session/lighting_file.h"
 
 #include <cstdio>
@@ -58,16 +67,62 @@ std::vector<float> render(session::Session& s, const std::string& path, uint64_t
   return s.buffer(finalImageOf(path)).texels();
 }
 
+// The same image from other random numbers, `draw` 0 or 1: frames from another frame index,
+// the camera moved across and up (draw 0) or down and back (draw 1) by a thousandth of a pixel;
+// for the reference (its sample k is the same draw whatever the frame) the mean of the
+// kFrames samples after the first (draw + 1) kFrames, from two running means.
+std::vector<float> renderOtherSeed(session::Session& s, const session::PathInfo& info, int draw) {
+  if (info.capabilities.isReference) {
+    const char* image = finalImageOf(info.name);
+    s.setPath(info.name);
+    s.setSize(kWidth, kHeight);
+    s.setFrameIndex(0);
+    s.resetHistory();
+    s.renderFrames(uint32_t(draw + 1) * kFrames - 1);
+    s.requestBuffer(image);
+    s.renderFrames(1);
+    const std::vector<float> before = s.buffer(image).texels();
+    s.renderFrames(kFrames - 1);
+    s.requestBuffer(image);
+    s.renderFrames(1);
+    std::vector<float> after = s.buffer(image).texels();
+    const float n = float(draw + 2), m = float(draw + 1);
+    for (size_t i = 0; i < after.size(); ++i) after[i] = n * after[i] - m * before[i];
+    return after;
+  }
+  const session::View view = s.view();
+  session::View moved = view;
+  const glm::dvec3 right = glm::normalize(glm::cross(view.forward, view.up));
+  const glm::dvec3 centre = s.scene().bounds.valid() ? s.scene().bounds.center() : view.position + view.forward;
+  const double depth = std::max(glm::dot(centre - view.position, view.forward), 1e-30);
+  const double pixel = view.orthographic ? 2.0 * view.orthoHalfHeight / kHeight
+                                         : 2.0 * depth * std::tan(0.5 * view.yfovRadians) / kHeight;
+  const double side = draw == 0 ? 1.0 : -1.0;
+  moved.position += (right + glm::normalize(glm::cross(right, view.forward))) * (side * 1e-3 * pixel);
+  s.setView(moved);
+  std::vector<float> image = render(s, info.name, uint64_t(draw + 1) << 20);
+  s.setView(view);
+  return image;
+}
+
+void writeForALook(const std::string& name, const std::vector<float>& rgba) {
+  std::vector<float> rgb;
+  for (size_t i = 0; i + 3 < rgba.size(); i += 4) rgb.insert(rgb.end(), {rgba[i], rgba[i + 1], rgba[i + 2]});
+  const auto dir = std::filesystem::temp_directory_path() / "scale_invariance";
+  std::filesystem::create_directories(dir);
+  session::writeExrRgb(dir / (name + ".exr"), kWidth, kHeight, rgb);
+}
+
 double meanLuminance(const std::vector<float>& rgba) {
   double sum = 0.0;
   for (size_t i = 0; i + 3 < rgba.size(); i += 4) sum += 0.2126 * rgba[i] + 0.7152 * rgba[i + 1] + 0.0722 * rgba[i + 2];
   return sum / double(rgba.size() / 4);
 }
 
-// Mean squared RGB difference over the square of the reference's mean luminance (the
-// exposure-normalised relMSE of compare, without its per-pixel weighting).
-double relMseNorm(const std::vector<float>& a, const std::vector<float>& b) {
-  const double m = std::max(meanLuminance(b), 1e-30);
+// Mean squared RGB difference over the square of mean luminance `m` (the exposure-normalised
+// relMSE of compare, without its per-pixel weighting).
+double relMseNorm(const std::vector<float>& a, const std::vector<float>& b, double m) {
+  m = std::max(m, 1e-30);
   double sum = 0.0;
   for (size_t i = 0; i + 3 < a.size() && i + 3 < b.size(); i += 4)
     for (int c = 0; c < 3; ++c) sum += double(a[i + c] - b[i + c]) * double(a[i + c] - b[i + c]);
@@ -84,23 +139,33 @@ TEST_P(ScaleInvarianceTest, EveryPathDrawsTheSameImageAtAHundredthAndAHundredTim
     const std::string& path = info.name;
     loadScaled(s, file, 1.0);
     const std::vector<float> base = render(s, path, 0);
-    const std::vector<float> otherSeed = render(s, path, 1u << 20);
+    const std::vector<float> otherSeed = renderOtherSeed(s, info, 0), thirdSeed = renderOtherSeed(s, info, 1);
     const double mean = meanLuminance(base);
-    // Two seeds' difference is the noise a scaled image may show; a noise-free path gives the
-    // same image twice, and then only rounding may part the scales (1% RMS of the mean).
-    const double noise = std::max(relMseNorm(otherSeed, base), 1e-4);
+    // Two seeds' difference is the noise a scaled image may show (the larger of two pairs; the
+    // pair moved opposite ways holds every edge pixel); a noise-free path gives the same image,
+    // and then only rounding may part the scales (1% RMS of the mean).
+    const double noise = std::max({relMseNorm(otherSeed, base, mean), relMseNorm(otherSeed, thirdSeed, mean), 1e-4});
+    const double meanNoise = mean > 0.0 ? std::abs(meanLuminance(otherSeed) / mean - 1.0) : 0.0;
     for (double factor : {0.01, 100.0}) {
       loadScaled(s, file, factor);
       const std::vector<float> scaled = render(s, path, 0);
-      const double scaledMean = meanLuminance(scaled), difference = relMseNorm(scaled, base);
+      const double scaledMean = meanLuminance(scaled), difference = relMseNorm(scaled, base, mean);
       std::printf("scale %-26s %-9s x%-5g mean %.5g / %.5g  relMSE_norm %.2e (seeds %.2e)\n", GetParam().c_str(),
                   path.c_str(), factor, scaledMean, mean, difference, noise);
       if (!(mean > 0.0)) {
         EXPECT_EQ(scaledMean, 0.0) << path << " x" << factor << ": light in a black image";
         continue;
       }
-      EXPECT_NEAR(scaledMean / mean, 1.0, 0.02) << path << " x" << factor << ": the mean moved";
-      EXPECT_LE(difference, noise) << path << " x" << factor << ": the image differs beyond the noise between two seeds";
+      const bool meanHeld = std::abs(scaledMean / mean - 1.0) <= std::max(0.02, 3.0 * meanNoise);
+      EXPECT_TRUE(meanHeld) << path << " x" << factor << ": the mean moved by " << scaledMean / mean - 1.0
+                            << " (two seeds: " << meanNoise << ")";
+      EXPECT_LE(difference, 1.5 * noise) << path << " x" << factor << ": the image differs beyond the noise between two seeds";
+      if (!meanHeld || difference > 1.5 * noise) {
+        const std::string stem = std::filesystem::path(GetParam()).stem().string() + "_" + path;
+        writeForALook(stem + "_x1", base);
+        writeForALook(stem + "_x1_other_seed", otherSeed);
+        writeForALook(stem + (factor < 1.0 ? "_x0.01" : "_x100"), scaled);
+      }
     }
   }
 }

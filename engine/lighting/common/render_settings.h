@@ -93,7 +93,7 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(bool, rtHitSky, true, 0, 1, "", "rt", "rt", kSettingPlain, "hits lit afresh (off screen) also see the sky, through one more ray") \
   X(float, rtCacheMinGain, 0.02f, 0.0f, 2.0f, "share", "rt", "", kSettingPlain, "radiance cache: runs while the light it adds (bounces off surfaces off screen) is at least this share of the bounced light, measured every frame; stops below half of it (0: always; above 1: never)") \
   X(uint32_t, rtCachePaths, 4096, 16, 1u << 20, "paths", "rt", "", kSettingPlain, "radiance cache: update paths a frame, at least (one pixel of each square tile that gives this many starts one)") \
-  X(uint32_t, rtCacheBounces, 3, 1, 8, "rays", "rt", "", kSettingPlain, "radiance cache: rays of an update path; its last hit reads the cache, so light bounces on from frame to frame") \
+  X(uint32_t, rtCacheBounces, 8, 1, 8, "rays", "rt", "", kSettingPlain, "radiance cache: rays of an update path at most; from the third on a path goes on with the probability of its surface's albedo (Russian roulette), and where it ends it reads the cache, so light bounces on from frame to frame") \
   X(uint32_t, rtCacheMaxSamples, 64, 1, 65536, "samples", "rt", "", kSettingPlain, "radiance cache: a cell averages at most this many samples (fewer: follows changes sooner, noisier)") \
   X(float, rtCacheCellAngle, 0.03f, 0.001f, 1.0f, "rad", "rt", "", kSettingPlain, "radiance cache: a cell is at least this angle times its distance from the camera across") \
   X(float, rtCacheCellSize, 0.0f, 0.0f, 1e9f, "m", "rt", "", kSettingAuto, "radiance cache: the smallest cell (auto: the scene's size / 1000)") \
@@ -105,7 +105,7 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(uint32_t, rtRefitTop, 16, 0, 65536, "meshes", "rt", "", kSettingPlain, "deforming meshes whose BLAS is refitted each frame: the highest priorities (Metro: 16)") \
   X(uint32_t, rtRefitRandom, 4, 0, 65536, "meshes", "rt", "", kSettingPlain, "plus this many others drawn at random, so none waits forever (Metro: 4)") \
   X(uint32_t, rtRefitVertexBudget, 1u << 20, 0, 1u << 30, "vertices", "rt", "", kSettingPlain, "vertices refitted per frame at most (the first pick always goes)") \
-  X(bool, hybridShadows, false, 0, 1, "", "rt", "", kSettingPlain, "hybrid ray-traced sun shadows (GameWorks HRTS): a ray's hard shadow near contacts, PCSS further away, blended by blocker distance (shadow.sun.visibility)") \
+  X(bool, hybridShadows, true, 0, 1, "", "rt", "", kSettingPlain, "hybrid ray-traced sun shadows (GameWorks HRTS): a ray's hard shadow near contacts, PCSS further away, blended by blocker distance (shadow.sun.visibility); off: the shadow map alone") \
   X(float, hybridShadowHardTexels, 4.0f, 0.5f, 64.0f, "texels", "rt", "", kSettingPlain, "HRTS: penumbrae narrower than this many shadow-map texels take the ray's hard shadow; linear blend up to it") \
   X(bool, rtRawRayProbe, false, 0, 1, "", "rt", "", kSettingNoPanel, "benchmark: also trace the same rays with a trivial kernel (rt.rawRays; bench --rays)") \
   X(uint32_t, bentSkyRays, 4, 1, 64, "rays", "bentsky", "bentsky", kSettingPlain, "bentsky plugin: sky-visibility rays per pixel and frame (cosine-distributed, as long as rtRayLength)") \

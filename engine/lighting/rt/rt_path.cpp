@@ -462,13 +462,18 @@ class RtPath final : public LightingPath {
   // the luminance rejection would clip the history to samples of the old light).
   static uint32_t useScreenRadiance(graph::PassContext& ctx, const RtPush& push, bool screenRadiance) {
     return screenRadiance && push.lightChanged == 0u && ctx.historyValid(kHistRadiance) && ctx.historyValid(kHistDepth)
-               ? 1u
-               : 0u;
+               ? shared::kRtScreenRadianceUsed
+               : shared::kRtScreenRadianceUnavailable;
   }
   // The same as the pass records (when the histories' "stored" flags are known).
   std::function<void(graph::PassContext&, RtPush&)> screenRadianceAtRecord(bool screenRadiance) {
+    // While the radiance cache runs, hits are lit afresh and read it: last frame's image lags
+    // behind its own accumulation window, and where bounced light matters (which is where the
+    // cache runs) that lag held the image down (a white room lit through slits: 0.68 of the
+    // reference after 64 frames with the image, 0.76 with the cache alone; docs/accuracy.md).
     return [this, screenRadiance](graph::PassContext& ctx, RtPush& p) {
-      p.screenRadiance = useScreenRadiance(ctx, p, screenRadiance && !restart_);
+      p.screenRadiance = screenRadiance && !cache_.active() ? useScreenRadiance(ctx, p, !restart_)
+                                                           : shared::kRtScreenRadianceOff;
     };
   }
 
