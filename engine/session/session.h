@@ -97,7 +97,7 @@ class Session {
   bool hasScene() const { return scene_ != nullptr; }
   const scene::Scene& scene() const;
 
-  // Per-instance hit albedo for the RT path (T7): override > baked > texture average. Edits
+  // Per-instance hit albedo for the RT path (engine/albedo/): override > baked > texture average. Edits
   // through it show in the next frame.
   albedo::AlbedoLibrary& albedo() { return *albedo_; }
   const albedo::AlbedoLibrary& albedo() const { return *albedo_; }
@@ -223,7 +223,7 @@ class Session {
   const std::vector<graph::PhysicalInfo>& resources() const;
   const std::vector<graph::PassTiming>& timings() const;
 
-  // A capture reopened without its scene (T8): while open, frames show its images through
+  // A capture reopened without its scene: while open, frames show its images through
   // the display pass and resources()/buffer()/timings() describe it. Throws SessionError.
   void openCapture(const std::filesystem::path& dir);
   void closeCapture();

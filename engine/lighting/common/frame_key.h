@@ -1,4 +1,4 @@
-// One frame key for every history (T9). The session describes each frame in named parts
+// One frame key for every history. The session describes each frame in named parts
 // (camera, projection, light, scene, geometry, albedo, each path's settings); every history
 // keeps the key of the last frame it saw and decides from the parts that changed whether it
 // keeps, rejects or restarts what it accumulated. No history hashes its own inputs, so a
