@@ -165,7 +165,7 @@ TEST(SettingsSchema, DefaultsAreValidAndFormatBackToThemselves) {
 }
 
 // The history flags name lighting paths that exist, and a path's history settings hash is
-// exactly what its flags say: the frame key's `settings` part (docs/architecture.md).
+// exactly what its flags say: the frame key's `settings` part (docs/design/frame-key.md).
 TEST(SettingsSchema, HistoryFlagsDecideEachPathsHistorySettings) {
   std::vector<std::string> paths;
   for (auto make : lighting::lightingPathRegistry()) paths.push_back(make()->name());

@@ -3,7 +3,7 @@
 // keeps the key of the last frame it saw and decides from the parts that changed whether it
 // keeps, rejects or restarts what it accumulated. No history hashes its own inputs, so a
 // value that changes the image cannot be left out of one key and not another.
-// docs/architecture.md ("The frame key") lists who listens to which part.
+// docs/design/frame-key.md lists who listens to which part.
 #pragma once
 
 #include <glm/glm.hpp>
