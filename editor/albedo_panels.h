@@ -1,4 +1,4 @@
-// The albedo database in the editor (T7): the inspector's albedo section for the selected
+// The albedo database in the editor: the inspector's albedo section for the selected
 // instance and the Albedo panel (entries, filters, bake). Edits go through the session's
 // AlbedoLibrary, so undo/redo and save behave as in the tests.
 #pragma once

@@ -1,4 +1,4 @@
-// The Buffers panel: the graph's resources and the buffer viewer (T8).
+// The Buffers panel: the graph's resources and the buffer viewer.
 #pragma once
 
 namespace tl::editor {

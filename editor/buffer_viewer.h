@@ -1,4 +1,4 @@
-// The buffer viewer's state and logic (T8): which resource the viewport shows and how
+// The buffer viewer's state and logic: which resource the viewport shows and how
 // (channel, range, false colour, invalid-value highlight, zoom, 3D slice, A/B copy), its
 // read-back for the histogram and the pixel probe. The Buffers panel (buffer_panel.cpp)
 // draws it; EditorApp turns it into the display request. Nothing here knows a resource by

@@ -10,9 +10,10 @@
 #include <utility>
 
 // Ceilings on what one command may ask for, so every loop a user value controls ends
-// (docs/user-guide.md, "Limits"). Frames: render, capture, bench and compare; spp: the
-// reference's samples per pixel (16 a frame); a side of the image: the Vulkan minimum every
-// device supports for 2D images is 4096, lavapipe's and most GPUs' is 16384.
+// (docs/user-guide.md, "Input limits, hard cases and `twinlight doctor`"). Frames: render,
+// capture, bench and compare; spp: the reference's samples per pixel (16 a frame); a side of the
+// image: the Vulkan minimum every device supports for 2D images is 4096, lavapipe's and most
+// GPUs' is 16384.
 inline constexpr uint32_t kMaxFrames = 100000;
 inline constexpr uint32_t kMaxWarmupFrames = 1000;
 inline constexpr uint32_t kMaxSpp = 65536;

@@ -2,7 +2,7 @@
 # run_fuzzer.sh DEFAULT_SECONDS FUZZER [LIBFUZZER ARGS...]: the CTest of a fuzz target. It
 # runs for $TWINLIGHT_FUZZ_SECONDS when set (scripts/fuzz.sh), else DEFAULT_SECONDS, niced
 # (the machine is shared), and passes only when libFuzzer found nothing. With
-# TWINLIGHT_FUZZ_RUNS=N it stops after N executions instead (issue 22 counts executions; the
+# TWINLIGHT_FUZZ_RUNS=N it stops after N executions instead (a goal counted in executions; the
 # time a count takes depends on the machine's load): `TWINLIGHT_FUZZ_SECONDS=0` then lifts the
 # time limit. TWINLIGHT_FUZZ_TIMEOUT overrides the per-input timeout (10 s) for loaded machines.
 set -u

@@ -8,8 +8,8 @@
 #   scripts/fuzz.sh                    every target for 1 hour
 #   scripts/fuzz.sh 14400 gltf image   the named targets for 4 hours each
 #   TWINLIGHT_FUZZ_RUNS=1000000 TWINLIGHT_FUZZ_TIMEOUT=60 scripts/fuzz.sh 0 gltf
-#                                      1,000,000 executions, however long they take (issue 22's
-#                                      count), 60 s per input on a loaded machine
+#                                      1,000,000 executions, however long they take (the
+#                                      goal's count), 60 s per input on a loaded machine
 #
 # A finding fails that target's test (or the replay); the input is in
 # build-fuzz-fast/fuzz/crashes/ and becomes a regression test. The fuzzers run niced: the

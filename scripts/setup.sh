@@ -4,7 +4,9 @@
 # no ray tracing (on Debian 12 only: the backports source is bookworm's), then configures and
 # builds the Release tree in build/ with warnings as errors.
 #
-#   scripts/setup.sh            install + configure + build
+#   scripts/setup.sh            install + configure + build, then build the fuzz targets
+#                               (build/fuzz-ci/: clang, ASan, UBSan) the full suite runs
+#   scripts/setup.sh --no-fuzz  the same without the fuzz targets (the quick test tier)
 #   scripts/setup.sh --no-build install only
 #   scripts/setup.sh --packages print the Debian packages needed, one line, and change nothing
 #
@@ -115,3 +117,9 @@ else
   cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DTWINLIGHT_WERROR="$werror"
 fi
 cmake --build "$build_dir"
+
+# The fuzz targets the full suite's fuzz.bounded runs (fuzz/ci.sh): built here, not inside a
+# test, so the suite's time is the tests'. Incremental after the first build.
+if [ "${1:-}" != "--no-fuzz" ]; then
+  "$root/fuzz/ci.sh" build "$build_dir/fuzz-ci"
+fi

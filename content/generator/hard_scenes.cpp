@@ -1,4 +1,4 @@
-// The hard-case corpus, content/hard/ (issue 22): small scenes that each push one number to
+// The hard-case corpus, content/hard/: small scenes that each push one number to
 // where renderers break -- far from the origin, a millimetre next to a kilometre, paper-thin
 // walls, degenerate triangles, emitters of 1e5 next to diffuse walls, black and mirror
 // materials, a grazing sun. `twinlight doctor` runs every lighting path on each and CI

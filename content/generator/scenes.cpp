@@ -195,7 +195,7 @@ void slab(SceneWriter& w, const std::string& name, int material, glm::vec3 lo, g
 // through a 1 x 2.2 m doorway in its south wall; the sky is black. The sun lands on a floor
 // patch by the door; camera 0 stands beside the door looking into the far corner, where no
 // surface it sees is sunlit: everything on screen is bounced light, most of it after two or
-// more bounces off surfaces behind the camera (T12, issue 21). Camera 1 looks back at the door.
+// more bounces off surfaces behind the camera. Camera 1 looks back at the door.
 void doorwayRoom(const std::filesystem::path& dir) {
   SceneWriter w("doorway_room");
   const int white = w.material({"plaster_white", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
@@ -274,7 +274,7 @@ void twinRooms(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
-// Node animation (T10): a white room (base colour 0.8), 4 x 3 x 4 m inside 0.25 m walls, with a
+// Node animation: a white room (base colour 0.8), 4 x 3 x 4 m inside 0.25 m walls, with a
 // 1.2 x 2.2 m doorway in its south wall and a wooden door hinged on the doorway's west jamb.
 // The door is the child of a hinge node whose rotation about +Y the animation drives (4 s
 // loop): closed until 1 s, swinging inwards to 90 degrees by 2 s, open until 3 s, closed again
@@ -316,7 +316,7 @@ void movingDoor(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
-// Skinning (T10): a box figure 1.83 m tall walking along +x. One mesh (torso, head, legs and
+// Skinning: a box figure 1.83 m tall walking along +x. One mesh (torso, head, legs and
 // arms, 120 vertices) skinned to five joints: hips, two legs, two arms; each part follows its
 // joint with weight 1 except the legs' top vertices, shared half and half with the hips. The
 // legs swing +-30 degrees about z once a second in opposition, the arms +-20 degrees against
@@ -594,7 +594,7 @@ void areaRoom(const std::filesystem::path& dir) {
 // The lamps room with one area light more: a 0.8 x 0.4 m ceiling panel of 2000 nits over the
 // table, beside the file's two bulbs and spot, in lamps_with_panel.lighting.json (`--lighting`;
 // not named lamps.lighting.json, so the editor does not read it for lamps.gltf by itself). The
-// interior of issue T11's content: point, spot and area lights together.
+// interior lit by the light table: point, spot and area lights together.
 void lampsWithPanel(const std::filesystem::path& dir) {
   writeLightingSidecar(dir / "lamps_with_panel.lighting.json", R"({
   "format": "twinlight.lighting",
@@ -976,7 +976,7 @@ void translucentPane(const std::filesystem::path& dir) {
 // (generated on import, MikkTSpace), an occlusion texture darkening the seams, and an emissive
 // visor strip (strength 4). A 0.5 m shell (a sphere stretched 1.1 x tall) on a rim (a torus),
 // standing on a grey ground, under a sun of E = 12 and a blue sky. Every path must render it
-// as the reference does (T10's "helmet-like asset").
+// as the reference does (a helmet-like asset).
 void helmet(const std::filesystem::path& dir) {
   SceneWriter w("helmet");
   w.binary();
@@ -1060,7 +1060,7 @@ void orthographicProbe(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
-// Contact shadows (hybrid ray-traced shadows, T11): a 1 m white cube standing on a 0.8 grey
+// Contact shadows (hybrid ray-traced shadows): a 1 m white cube standing on a 0.8 grey
 // floor, under a sun of E = 10 travelling (0.6, -0.8, 0) (53 degrees high) and a sky of 1.
 // With the real sun's 0.27 degree radius every penumbra is under 1.3 cm, so the floor's
 // visibility is a closed form: 0 in the cube's shadow (x from its foot at -0.5 to +0.25,

@@ -1,6 +1,6 @@
 // A lighting path is an interface, not an if-statement: given the G-buffer and the sun
 // shadow map in the graph, it adds its own passes and names the resources the shared
-// composite consumes. Direct (T1), legacy, RT and reference implement it; plugins may too.
+// composite consumes. Direct, legacy, RT and reference implement it; plugins may too.
 #pragma once
 
 #include "graph/graph.h"

@@ -1,5 +1,5 @@
 // One colour per material, from texture averages: the RT path's hit albedo and emission
-// when nothing better is known (T7's database bakes a visible average; artists override).
+// when nothing better is known (the albedo database bakes a visible average; artists override).
 #pragma once
 
 #include "scene/scene.h"

@@ -31,7 +31,7 @@ float cornerAngle(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, co
 }  // namespace
 
 // Tangents follow MikkTSpace (M. Mikkelsen, "Simulation of wrinkled surfaces revisited",
-// 2008, and the description in mikktspace.h), which is what Blender, Substance and the glTF
+// 2008, and the description in the header of its reference implementation, mikktspace.c), which is what Blender, Substance and the glTF
 // sample models write, on the texture coordinates as those tools see them: v up. glTF
 // stores v down (v_gltf = 1 - v), so the bitangent the normal map's green channel follows is
 // -dP/dv_gltf, and the handedness is the sign of the UV area in that flipped space.

@@ -2,21 +2,14 @@
 
 #include "lighting/common/albedo_view_pass.h"
 #include "lighting/common/composite_pass.h"
-#include "lighting/common/environment_table.h"
-#include "lighting/common/light_shadow_pass.h"
-#include "lighting/common/light_shadows.h"
-#include "lighting/common/light_table.h"
-#include "lighting/common/lights_pass.h"
-#include "lighting/common/gbuffer_pass.h"
-#include "lighting/common/shadow_pass.h"
 #include "lighting/common/taa_pass.h"
 #include "scene/morph.h"
 #include "scene/node_animation.h"
 #include "scene/skinning.h"
 #include "session/captured_frame.h"
+#include "session/frame_pipeline.h"
 #include "session/image_io.h"
 #include "session/view_math.h"
-#include "shared/brdf_tables.h"
 #include "shared/taa.h"
 
 #include <fmt/format.h>
@@ -27,32 +20,13 @@
 
 namespace tl::session {
 
-struct Session::Passes {
-  lighting::GbufferPass gbuffer;
-  lighting::ShadowPass shadow;
-  lighting::LightShadowPass lightShadow;
-  lighting::LightsPass lights;
-  lighting::CompositePass composite;
-  lighting::TaaPass taa;
-  lighting::TonemapPass tonemap;
-  lighting::DisplayPass display;
-  lighting::AlbedoViewPass albedoView;
-  lighting::CompareViewPass compareView;
-};
-
-
 Session::Session(const gpu::DeviceOptions& options)
     : device_(std::make_unique<gpu::Device>(options)),
       executor_(std::make_unique<graph::Executor>(*device_)),
-      passes_(std::make_unique<Passes>()) {
+      pipeline_(std::make_unique<FramePipeline>(*device_)) {
   for (lighting::LightingPathFactory make : lighting::lightingPathRegistry()) paths_.push_back(make());
   path_ = paths_.front().get();
   pathName_ = path_->name();
-  constants_ = gpu::UploadRing(*device_, sizeof(shared::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                               lighting::kFrameConstants);
-  brdfTables_ = gpu::Buffer(*device_, sizeof(shared::BrdfTables), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                            gpu::MemoryUsage::Upload, lighting::kBrdfTables);
-  brdfTables_.write(&shared::kBrdfTables, sizeof(shared::BrdfTables));
 }
 
 Session::~Session() {
@@ -96,7 +70,7 @@ void Session::installScene(std::unique_ptr<scene::Scene> loaded) {
     }
   }
   // Pipelines depend on the scene's descriptor layout: rebuild them with the new scene.
-  passes_ = std::make_unique<Passes>();
+  pipeline_->resetPasses();
   executor_->resetHistory();
   previousView_.reset();
   comparePrevious_.clear();
@@ -143,8 +117,8 @@ void Session::closeAlbedoDatabase() {
   if (albedo_) albedo_->attach(nullptr);
 }
 
-void Session::captureAlbedoBaseline() { passes_->albedoView.captureBaseline(); }
-bool Session::hasAlbedoBaseline() const { return passes_->albedoView.hasBaseline(); }
+void Session::captureAlbedoBaseline() { pipeline_->albedoView().captureBaseline(); }
+bool Session::hasAlbedoBaseline() const { return pipeline_->albedoView().hasBaseline(); }
 
 std::unique_ptr<albedo::BakeJob> Session::startAlbedoBake(const albedo::BakeOptions& options) {
   if (!albedo_ || !albedo_->database()) throw SessionError("open an albedo database before baking");
@@ -424,7 +398,7 @@ void Session::buildFrameConstants(shared::FrameConstants& fc, uint32_t frameNumb
     fc.sceneMin = glm::vec4(glm::vec3(scene_->bounds.min - view_.position), 0.0f);
     fc.sceneMax = glm::vec4(glm::vec3(scene_->bounds.max - view_.position), 0.0f);
   }
-  fc.lightCount = 0;  // renderOne writes the light table and its count
+  fc.lightCount = 0;  // FramePipeline::importBuffers writes the light table and its count
   if (const auto& map = shaded_.environmentMap) {
     fc.flags |= shared::kFrameFlagEnvironment;
     fc.envWidth = map->width;
@@ -442,6 +416,9 @@ void Session::setFramesInFlight(uint32_t frames) {
   framesInFlight_ = frames;
 }
 
+// The facade's part of a frame: which path renders it, its constants, the pose, the inputs
+// every pass gets; FramePipeline adds the buffers and passes, then the graph is compiled and
+// submitted with the read-backs this frame owes.
 void Session::beginOne(bool readback) {
   // The oldest frame is collected first when the limit is reached: what the host writes for
   // this frame goes into buffers that frame (two frames back) used.
@@ -466,7 +443,6 @@ void Session::beginOne(bool readback) {
   const uint32_t frameNumber = compare_ ? uint32_t(compareFrames_[compared]++) : uint32_t(frameIndex_);
   shared::FrameConstants fc{};
   buildFrameConstants(fc, frameNumber, taa);
-  constants_.write(frame, &fc, sizeof(fc));
   // Animated nodes move their instances first: the instance table, the top level, the voxel
   // regions and the frame key all see this frame's pose.
   std::vector<glm::dmat4> nodeWorld;
@@ -478,47 +454,8 @@ void Session::beginOne(bool readback) {
   historyLog_.clear();
 
   graph::RenderGraph graph;
-  graph.importBuffer(lighting::kFrameConstants, graph::ResourceDesc::buffer(constants_.size(), "per-frame constants (shared/frame.h)"), constants_.forFrame(frame));
-  graph.importBuffer(lighting::kBrdfTables, graph::ResourceDesc::buffer(brdfTables_.size(), "the shared BRDF's tables (shared/brdf_lut.h)"), brdfTables_);
-  gpuScene_->importBuffers(graph, frame);
-  // The light table exists only in frames that have lights to shade: without, no pass reads it.
-  auto lights = lighting::buildLightTable(shaded_.lights, view_.position, fc.sceneScale);
-  // Point, spot and area lights' shadow maps (direct, legacy): their views exist only with such lights.
-  const scene::Bounds& bounds = scene_->bounds;
-  const glm::dvec3 relMin = bounds.valid() ? bounds.min - view_.position : glm::dvec3(-1.0);
-  const glm::dvec3 relMax = bounds.valid() ? bounds.max - view_.position : glm::dvec3(1.0);
-  const lighting::LightShadowPlan shadowPlan =
-      lighting::planLightShadows(lights, settings_.lightShadowMapSize, settings_.lightShadowMaxLights, relMin, relMax);
-  if (!shadowPlan.views.empty()) {
-    const VkDeviceSize bytes = shadowPlan.views.size() * sizeof(shared::GpuShadowView);
-    if (lightShadowViews_.size() < bytes)
-      lightShadowViews_ = gpu::UploadRing(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, lighting::kLightShadowViews);
-    lightShadowViews_.write(frame, shadowPlan.views.data(), bytes);
-    graph.importBuffer(lighting::kLightShadowViews, graph::ResourceDesc::buffer(lightShadowViews_.size(), "point, spot and area light shadow views (shared/lights.h GpuShadowView[])"), lightShadowViews_.forFrame(frame));
-  }
-  if (!lights.empty()) {
-    const VkDeviceSize bytes = lights.size() * sizeof(shared::GpuLight);
-    if (lightTable_.size() < bytes)
-      lightTable_ = gpu::UploadRing(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, lighting::kLightTable);
-    lightTable_.write(frame, lights.data(), bytes);
-    fc.lightCount = uint32_t(lights.size());
-    constants_.write(frame, &fc, sizeof(fc));
-    graph.importBuffer(lighting::kLightTable, graph::ResourceDesc::buffer(lightTable_.size(), "lights other than the sun (shared/lights.h GpuLight[])"), lightTable_.forFrame(frame));
-  }
-  // The environment map's table exists only in frames with a map (the reference samples it).
-  if (const auto& map = shaded_.environmentMap) {
-    if (environmentTableHash_ != map->contentHash || environmentTable_.size() == 0) {
-      const std::vector<float> table = scene::environmentTable(*map);
-      device_->waitIdle();  // an earlier frame may still read the table being replaced
-      environmentTable_ = gpu::Buffer(*device_, table.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                      gpu::MemoryUsage::Upload, lighting::kEnvironmentTable);
-      environmentTable_.write(table.data(), table.size() * sizeof(float));
-      environmentTableHash_ = map->contentHash;
-    }
-    graph.importBuffer(lighting::kEnvironmentTable, graph::ResourceDesc::buffer(environmentTable_.size(),
-                                                      "the environment map's texels and importance table (shared/environment.h)"), environmentTable_);
-  }
-
+  const FrameLights lights = pipeline_->importBuffers(graph, frame, fc, *gpuScene_, shaded_.lights,
+                                                      shaded_.environmentMap.get(), scene_->bounds, view_.position, settings_);
   // The paths render with every automatic setting resolved against this scene's extent; the
   // frame key keeps the settings as set (0 = automatic), so only a real change restarts a history.
   frameSettings_ = lighting::resolveAutomatic(settings_, sceneSize());
@@ -536,45 +473,18 @@ void Session::beginOne(bool readback) {
   in.pathName = path->name();
   in.key = frameKey(frameNumber);  // after applyDeformation: the geometry this frame shows
   in.historyLog = &historyLog_;
-  passes_->gbuffer.add(graph, in);
-  passes_->shadow.add(graph, in);
-  in.lightShadowViews = uint32_t(shadowPlan.views.size());
-  const float nearLight = 0.05f * std::max(in.constants.sceneScale, 1e-3f);
-  for (const auto& l : lights) {
-    const float strongest = std::max({l.intensity.x, l.intensity.y, l.intensity.z});
-    in.areaLights += shared::tlIsAreaLight(l.type) ? 1u : 0u;
-    in.lightTableRadiance += shared::tlIsAreaLight(l.type)           ? strongest
-                             : l.type == shared::kLightDirectional ? strongest / shared::kPi
-                                                                   : strongest / (shared::kPi * nearLight * nearLight);
-  }
-  passes_->lightShadow.add(graph, in, shadowPlan);  // culled in paths that trace their shadows
-  lighting::LightingOutputs outputs = path->addPasses(graph, in);
-  // A path that computes the whole image (the reference) shades the lights itself.
-  if (outputs.radiance.empty())
-    outputs.lightsRadiance = passes_->lights.add(graph, in, outputs.shadowStructures, outputs.shadowTlasHandle);
-  in.refineLights = [this, &in, &outputs](graph::RenderGraph& g) {
-    passes_->lights.addIbufferRefine(g, in, outputs.shadowStructures, outputs.shadowTlasHandle);
-  };
-  passes_->composite.add(graph, in, outputs);
-  if (in.temporalAntialiasing) passes_->taa.add(graph, in);
-  passes_->albedoView.add(graph, in);
-  passes_->tonemap.add(graph, in);
+  FrameViews views;
   if (compare_) {
     const auto& v = compare_->view();
-    passes_->compareView.add(graph, in, v, compared, compare_->hasImage(v.left) || compared == v.left,
-                             compare_->hasImage(v.right) || compared == v.right);
+    views.compare = &v;
+    views.compared = compared;
+    views.hasLeft = compare_->hasImage(v.left) || compared == v.left;
+    views.hasRight = compare_->hasImage(v.right) || compared == v.right;
   } else if (display_) {
-    // A resource this frame does not make (another path's, after a switch) is not an error:
-    // the final image shows instead, and displayMissing() names what was asked for.
-    lighting::DisplayRequest request = *display_;
-    const auto id = request.source.empty() ? std::nullopt : graph.find(request.source);
-    displayMissing_.clear();
-    if (!request.source.empty() && (!id || graph.resources()[*id].desc.type != graph::ResourceType::Image)) {
-      displayMissing_ = request.source;
-      request = lighting::DisplayRequest{.selectedInstance = request.selectedInstance};
-    }
-    passes_->display.add(graph, in, request);
+    views.display = &*display_;
   }
+  const std::string missing = pipeline_->addPasses(graph, in, *path, lights, views);
+  if (views.display) displayMissing_ = missing;
   // What is read back is wanted: debug views nothing else reads (albedo.*) survive culling
   // in the frame that reads them, and a capture gets every buffer the frame can make.
   if (readback) {

@@ -97,7 +97,7 @@ class Session {
   bool hasScene() const { return scene_ != nullptr; }
   const scene::Scene& scene() const;
 
-  // Per-instance hit albedo for the RT path (T7): override > baked > texture average. Edits
+  // Per-instance hit albedo for the RT path (engine/albedo/): override > baked > texture average. Edits
   // through it show in the next frame.
   albedo::AlbedoLibrary& albedo() { return *albedo_; }
   const albedo::AlbedoLibrary& albedo() const { return *albedo_; }
@@ -223,7 +223,7 @@ class Session {
   const std::vector<graph::PhysicalInfo>& resources() const;
   const std::vector<graph::PassTiming>& timings() const;
 
-  // A capture reopened without its scene (T8): while open, frames show its images through
+  // A capture reopened without its scene: while open, frames show its images through
   // the display pass and resources()/buffer()/timings() describe it. Throws SessionError.
   void openCapture(const std::filesystem::path& dir);
   void closeCapture();
@@ -287,18 +287,10 @@ class Session {
   std::vector<std::unique_ptr<lighting::LightingPath>> paths_;
   lighting::LightingPath* path_ = nullptr;
   std::string pathName_;
-  struct Passes;
-  std::unique_ptr<Passes> passes_;
-  gpu::UploadRing constants_;
-  gpu::Buffer brdfTables_;  // shared/brdf_lut.h BrdfTables, written once
-  // The environment map's table (shared/environment.h), uploaded when the map changes; exists
-  // only once a map was set. Its SH projection is recomputed when the map, its rotation or its
+  std::unique_ptr<class FramePipeline> pipeline_;  // the frame's buffers and pass order (session/frame_pipeline.h)
+  // The environment map's SH projection, recomputed when the map, its rotation or its
   // intensity change (setLighting).
-  gpu::Buffer environmentTable_;
-  uint64_t environmentTableHash_ = 0;
   std::array<glm::vec4, 9> environmentSh_{};
-  gpu::UploadRing lightTable_;  // shared/lights.h GpuLight[], rewritten each frame; grows, exists once a scene has lights
-  gpu::UploadRing lightShadowViews_;  // shared/lights.h GpuShadowView[] of point and spot light shadow maps, rewritten each frame
   lighting::RenderSettings settings_;
   lighting::RenderSettings frameSettings_;  // settings_ with automatic values resolved: what the frame renders with
   View view_;

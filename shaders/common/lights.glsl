@@ -22,7 +22,7 @@
 //                               (solid-angle pdf) and one shadow ray to it; with
 //                               TL_LIGHTS_AREA_MIS the includer also defines
 //                               float lightMisWeight(vec3 toLight, float lightPdf) and counts the
-//                               BRDF's rays that meet a light itself (common/area_lights_hit.glsl)
+//                               BRDF's rays that meet a light itself (reference/path.glsl)
 layout(set = 0, binding = kBindingLights, std430) readonly buffer LightTable { GpuLight lights[]; };
 
 #define TL_AREA_ANALYTIC 0

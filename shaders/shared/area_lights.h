@@ -12,7 +12,7 @@
 // (their front normal); axisV.w = 1 makes rectangles and disks emit from both faces; a tube
 // always does. Lights are emitters that block nothing: shadow rays pass through them, and no
 // path shows them to the camera (the reference shows them in reflections, through the BRDF's
-// rays): see docs/architecture.md "The light table".
+// rays): see docs/design/lights.md.
 //
 // Three ways to shade one, all of the same shape and radiance:
 //   tlAreaLightAnalytic  the unshadowed vector irradiance F (Lambert's polygon formula, a disk as

@@ -1,5 +1,5 @@
 // Included by C++ and GLSL. Maps GLSL types onto glm so one struct or function written
-// here compiles in both languages (nvpro's host_device.h idea). Rules for shared code:
+// here compiles in both languages (the idea of nvpro-samples' shared host/device header). Rules for shared code:
 // no bool in a block, no vec3 in a block (std430 pads it), no swizzles, no in/out params.
 #ifndef TL_SHARED_COMMON_H
 #define TL_SHARED_COMMON_H

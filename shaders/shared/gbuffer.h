@@ -1,6 +1,6 @@
 // The G-buffer's bindings and encodings, shared by the G-buffer pass (writer), the
 // composite, and later lighting paths. The channel table itself (name, format, meaning)
-// lives once in engine/lighting/common/gbuffer_layout.h.
+// lives once in engine/lighting/common/gbuffer_pass.h (kGbufferChannels).
 #ifndef TL_SHARED_GBUFFER_H
 #define TL_SHARED_GBUFFER_H
 #include "common.h"

@@ -1,6 +1,6 @@
 // Redeferred shading (Fools Engine): the shared BRDF (shared/shading.h) split into sums of light
 // that hold no material, the I-buffer, and the material pass that applies base colour,
-// metalness and F0 once. docs/architecture.md ("Redeferred shading") has the derivation.
+// metalness and F0 once. docs/design/redeferred.md has the derivation.
 //
 // For a light of irradiance E_c = E n.l (visibility included) from l, the illumination passes add
 //   Ldg  += E_c (1 - E_d(mu_i))          the diffuse layer's share of the light

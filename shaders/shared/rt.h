@@ -91,7 +91,7 @@ TL_FN vec3 tlMaterialHitAlbedo(vec3 baseColor, float metallic, uint materials) {
 }
 
 // Last frame's shaded radiance at a hit seen on screen, re-coloured to the albedo the hit
-// record carries (T7's per-instance albedo for real rays, the G-buffer's for pre-traced
+// record carries (the per-instance albedo for real rays, the G-buffer's for pre-traced
 // ones): the light the surface reflected, divided by the albedo it was shaded with, times
 // the record's albedo, plus its emission. So an artist's override or the baked database
 // shows in the bounce also where the hit is on screen. Albedos here follow the F0 rule,
@@ -211,7 +211,7 @@ TL_FN float tlRtShWeightForPdf(float cosTheta, float inversePdf) {
 
 // Per-instance data the real rays read at a hit (gl_InstanceCustomIndexEXT), std430.
 struct RtInstance {
-  vec4 albedo;         // rgb: resolved hit albedo (T7: override > baked > the texture-average fallback)
+  vec4 albedo;         // rgb: resolved hit albedo (override > baked > the texture-average fallback)
   vec4 emission;       // rgb: emitted radiance (factor x texture average)
   vec4 albedoScale;    // rgb: albedo / the texture-average fallback (1 unless a database entry or
                        // override applies): re-colours pre-traced hits, which read the G-buffer

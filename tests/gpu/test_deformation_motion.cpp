@@ -1,4 +1,4 @@
-// Motion vectors of deforming meshes (T10): a morph target slides a cube's vertices along +x
+// Motion vectors of deforming meshes: a morph target slides a cube's vertices along +x
 // while its instance stands still. The G-buffer's motion on the cube is the vertices' own
 // displacement projected (closed form), and zero again once the animation stops.
 #include "gpu_fixture.h"

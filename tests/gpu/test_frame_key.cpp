@@ -1,4 +1,4 @@
-// The frame key (T9): every history decides from the parts of the session's key what it
+// The frame key: every history decides from the parts of the session's key what it
 // keeps. A 0.2 m sideways step restarts the reference (it once kept summing samples of the
 // old position: its key held a camera-relative view-projection, blind to translation), and a
 // table changes each part once and checks which histories restart, reject or keep, with the

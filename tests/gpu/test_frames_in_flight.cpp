@@ -1,4 +1,4 @@
-// Two frames in flight (T13): the host records frame N+1 while the device runs frame N, so
+// Two frames in flight: the host records frame N+1 while the device runs frame N, so
 // everything the host writes per frame (the frame constants, the camera-relative instance
 // transforms and TLAS instances, the light table and its shadow views) lives in a ring, one
 // copy per frame in flight. With the camera moving every frame a shared copy would hand

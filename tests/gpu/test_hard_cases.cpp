@@ -1,4 +1,4 @@
-// Hard numerical cases (issue 22) through every lighting path: surfaces emitting 1e4 to 1e7,
+// Hard numerical cases through every lighting path: surfaces emitting 1e4 to 1e7,
 // a sun of 1e6. Every float buffer the frame writes is read back and counted
 // (session/buffer_health.h): no value may be non-finite, no radiance, irradiance, emission or
 // AO negative, and no SH irradiance may store a colour with a negative channel. Before the

@@ -1,4 +1,4 @@
-// Hybrid ray-traced shadows (T11, GameWorks HRTS) on content/contact_shadows.gltf: a 1 m cube
+// Hybrid ray-traced shadows (GameWorks HRTS) on content/contact_shadows.gltf: a 1 m cube
 // on a floor under the real sun, whose penumbrae (under 1.3 cm) are a fraction of a pixel
 // here, so the floor's sun visibility is a closed form: 0 inside the cube's shadow, 1 outside.
 // The hybrid pass's buffer must match it, including along the contact, where the shadow map

@@ -1,4 +1,4 @@
-// The project's interiors (content/doorway_room, slit_corridor, twin_rooms; T12): each renders
+// The project's interiors (content/doorway_room, slit_corridor, twin_rooms): each renders
 // in every lighting path without a validation message or a non-finite value, and the closed
 // room of twin_rooms is black in the reference (its true image) while the sunlit room beside it
 // is not. Cheap sizes: the figures of these scenes are measured by `twinlight compare`

@@ -1,4 +1,4 @@
-// Node animation in every path (T10): content/moving_door.gltf's door swings on its hinge and
+// Node animation in every path: content/moving_door.gltf's door swings on its hinge and
 // its crate slides. The door: with it shut, the sun patch on the floor inside is in its shadow;
 // open, it is sunlit, the same in direct, legacy, rt and the reference. The crate: a path that
 // accumulates (rt's history, TAA) must follow it through the motion vectors, not leave a trail.

@@ -58,7 +58,7 @@ class RtCacheTest : public RayTracingTest {
 // emitter samples count) is the cache's C = 0.8. Without the cache the RT path sees the bounces
 // its rays find on screen (measured 0.52); with it, after 64 frames at 48x32, 0.929 and C
 // 0.771 (a cold start converging like a damped iteration: 0.97 and 0.79 after 512 frames;
-// before T12's third round 0.76 and 0.60, docs/accuracy.md), never more than the truth: no gain.
+// an earlier version of the cache 0.76 and 0.60, docs/accuracy.md), never more than the truth: no gain.
 TEST_F(RtCacheTest, ClosedLambertianBoxIsLeOverOneMinusRho) {
   auto& s = session();
   s.loadScene(contentFile("closed_box.gltf"));

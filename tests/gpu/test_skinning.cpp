@@ -1,4 +1,4 @@
-// Skinned meshes in every path (T10): content/walker.gltf, a box figure whose legs and arms
+// Skinned meshes in every path: content/walker.gltf, a box figure whose legs and arms
 // swing on five joints while it walks. The rasterizing paths draw the skinned vertices; the
 // reference traces them (its bottom level rebuilt exactly); the rt path refits its bottom level.
 #include "gpu_fixture.h"

@@ -1,4 +1,4 @@
-// EXR output (issue 22): an image whose values all fit the half-float range is written in
+// EXR output: an image whose values all fit the half-float range is written in
 // half floats; one with any value beyond 65504 is written in 32-bit floats, so nothing clips,
 // and the write reports how many pixels would have clipped and how many are not finite. Under
 // `--sun 1e6` 63-67% of the pixels used to clip silently at 65504.

@@ -1,4 +1,4 @@
-// Hard input (issue 22): every file the importer reads is a regular file within its limits,
+// Hard input: every file the importer reads is a regular file within its limits,
 // JSON nesting is bounded before any parser sees it, accessor bounds survive offsets near
 // 2^64, files stay inside the scene's folder unless allowed, and every number from a file is
 // finite as the float it becomes and within its range (negative light clamped with a warning).

@@ -42,7 +42,7 @@ TEST(SettingsJson, UnknownKeysAndWrongTypesAreRefusedByName) {
   EXPECT_THROW(applySettingsJson(base, nlohmann::json::array()), SessionError);
 }
 
-// Issue 22: values are range-checked before they are converted (shadowMapSize 0 or 65536 gave
+// Values are range-checked before they are converted (shadowMapSize 0 or 65536 gave
 // validation errors and exit 0; 4294967297 was truncated to 1; rtPretraceSteps 4000000000
 // never ended).
 TEST(SettingsJson, ValuesOutsideTheirStatedRangeAreRefused) {
@@ -165,7 +165,7 @@ TEST(SettingsSchema, DefaultsAreValidAndFormatBackToThemselves) {
 }
 
 // The history flags name lighting paths that exist, and a path's history settings hash is
-// exactly what its flags say: the frame key's `settings` part (docs/architecture.md).
+// exactly what its flags say: the frame key's `settings` part (docs/design/frame-key.md).
 TEST(SettingsSchema, HistoryFlagsDecideEachPathsHistorySettings) {
   std::vector<std::string> paths;
   for (auto make : lighting::lightingPathRegistry()) paths.push_back(make()->name());

@@ -351,7 +351,7 @@ TEST(Sh, IsLinearAndDegeneratesSafely) {
   EXPECT_EQ(tlShDirectionality(zero), 0.0f);
 }
 
-// Issue 22: a sample from a strong emitter stored in half floats. Saturating each channel on
+// A sample from a strong emitter stored in half floats. Saturating each channel on
 // its own (what an RGBA16F store does) leaves a colour with a negative channel; fitting the
 // whole SH keeps the colour (non-negative, same chroma ratio) and the direction.
 TEST(Sh, FittingIntoHalfRangeKeepsTheColourWhereSaturatingDoesNot) {

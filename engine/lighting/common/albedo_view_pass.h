@@ -1,4 +1,4 @@
-// Debug views of the per-instance albedo (T7), as named resources any viewer can show:
+// Debug views of the per-instance albedo (engine/albedo/), as named resources any viewer can show:
 //   albedo.instance    the resolved albedo the RT path's rays read, per visible pixel; alpha
 //                      the source (shared/albedo.h kAlbedoSource*)
 //   albedo.difference  |resolved - the G-buffer's hit albedo| (a bake or override vs texels)

@@ -60,7 +60,7 @@ struct FrameInputs {
   // What the last finished frame read back under `name`, or null (a path's own feedback,
   // e.g. the radiance cache's outcomes; up to a frame or two old with frames in flight).
   std::function<const graph::Readback*(std::string_view name)> lastReadback;
-  // Per-instance hit albedo resolved by the session (T7: override > baked > texture average;
+  // Per-instance hit albedo resolved by the session (override > baked > texture average;
   // w: the source, shared/albedo.h kAlbedoSource*), and a counter that changes whenever any
   // value does; null: texture averages.
   const std::vector<glm::vec4>* instanceAlbedo = nullptr;

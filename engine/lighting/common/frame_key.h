@@ -1,9 +1,9 @@
-// One frame key for every history (T9). The session describes each frame in named parts
+// One frame key for every history. The session describes each frame in named parts
 // (camera, projection, light, scene, geometry, albedo, each path's settings); every history
 // keeps the key of the last frame it saw and decides from the parts that changed whether it
 // keeps, rejects or restarts what it accumulated. No history hashes its own inputs, so a
 // value that changes the image cannot be left out of one key and not another.
-// docs/architecture.md ("The frame key") lists who listens to which part.
+// docs/design/frame-key.md lists who listens to which part.
 #pragma once
 
 #include <glm/glm.hpp>

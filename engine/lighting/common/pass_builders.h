@@ -190,7 +190,7 @@ class BindingPass : public BindingList {
     return listed(binding, Kind::Sampled, image, {.sampler = sampler, .optional = true, .present = present});
   }
   // Last frame's `name` (declared persistent here) sampled at `binding`. Whether it holds
-  // anything is the history's decision from the frame key (T9, frame_key.h): historyValid().
+  // anything is the history's decision from the frame key (frame_key.h): historyValid().
   Self& history(uint32_t binding, std::string_view name, const graph::ResourceDesc& desc, graph::RenderGraph& graph,
                 FrameInputs& in, HistoryKeeper& keeper, const HistoryPolicy& policy,
                 const gpu::SamplerDesc& sampler = samplers::linear) {

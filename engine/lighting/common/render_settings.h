@@ -48,7 +48,7 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
 // Distances flagged kSettingAuto are "scaled to the scene" at 0 (see autoSettingValue).
 // History: what a path's accumulated samples estimate restarts it; the ray pattern, the
 // accumulation window, denoisers and update policies change only noise, weights or work
-// (docs/architecture.md, "The frame key"). Redeferred shading changes how the composite
+// (docs/design/frame-key.md). Redeferred shading changes how the composite
 // applies light, downstream of every path's history: it resets none (its own light sums keep
 // their own accumulation images).
 // clang-format off

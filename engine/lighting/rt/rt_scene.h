@@ -76,7 +76,7 @@ class RtScene {
   uint32_t emitterCount() const { return emitterCount_; }
   float maxEmitterRadiance() const { return maxEmitterRadiance_; }  // the brightest channel of any emitter
   // Per-instance hit albedo under a material override mode (shared/material_mode.h): as
-  // authored, the one resolved outside (T7: override > baked > texture average; null: texture
+  // authored, the one resolved outside (engine/albedo/: override > baked > texture average; null: texture
   // averages); in the Lambertian modes what the mode reflects (the base colour's texture
   // average, or the clay albedo), which no override or database entry changes. Until called,
   // each instance has its material's authored texture average.
