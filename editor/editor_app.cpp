@@ -677,6 +677,8 @@ void EditorApp::stepAlbedoBake() {
   const albedo::BakeProgress& p = bake_->progress();
   lastBakeSummary_ = fmt::format("{}: baked {}, skipped {}, failed {} of {} keys", p.cancelled ? "cancelled" : "done",
                                  p.baked, p.skipped, p.failed, p.total);
+  if (p.invisible)
+    lastBakeSummary_ += fmt::format("; {} not visible from any direction (fully cut out or empty: nothing to bake)", p.invisible);
   for (const std::string& f : p.failures) lastBakeSummary_ += "\nfailed: " + f;
   bake_.reset();
   session_->albedo().reload();  // the new rows apply from the next frame
