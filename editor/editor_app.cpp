@@ -432,7 +432,7 @@ void EditorApp::setCompare(bool on) {
   // weighs), else the last such path; failing that, any other path that is not the reference.
   std::vector<std::string> realTime, others;
   for (const auto& p : session_->paths()) {
-    if (!p.available || p.capabilities.isReference) continue;
+    if (!p.available || p.capabilities.isReference || p.capabilities.debugView) continue;
     (p.capabilities.accumulates ? realTime : others).push_back(p.name);
   }
   const bool current = std::find(realTime.begin(), realTime.end(), session_->path()) != realTime.end();
