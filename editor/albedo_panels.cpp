@@ -232,10 +232,12 @@ void albedoPanel(EditorApp& app) {
   } else {
     ImGui::BeginDisabled(!lib.database());
     if (ImGui::Button("Bake")) app.startAlbedoBake(false);
+    trackItem("albedo.bake");
     tooltip("Render each mesh + material from 6 directions and store its visible average albedo.\n"
         "Keys already in the database are skipped.");
     ImGui::SameLine();
     if (ImGui::Button("Re-bake all")) app.startAlbedoBake(true);
+    trackItem("albedo.rebake");
     ImGui::EndDisabled();
     if (!app.lastBakeSummary().empty()) ImGui::TextWrapped("%s", app.lastBakeSummary().c_str());
   }

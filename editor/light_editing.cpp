@@ -106,6 +106,7 @@ std::string EditorApp::saveLighting() {
     session::Lighting l = session_->lighting();
     const auto saved = session::saveSceneLighting(session_->scene().path, l);
     session_->setLighting(l);  // the nodes the lights now live on (not an edit: the history ignores them)
+    savedLighting_ = l;
     watchScene();              // our own write is not an export to reload
     const std::string text = fmt::format("saved {} light{} into {} and all the lighting into {}", saved.gltfLights,
                                          saved.gltfLights == 1 ? "" : "s", session_->scene().path.filename().string(),
@@ -125,20 +126,6 @@ void EditorApp::loadEnvironmentMap(const std::string& file) {
     l.environmentMap = std::make_shared<const scene::EnvironmentMap>(scene::loadEnvironmentMap(file));
     session_->setLighting(l);
     notify(fmt::format("environment map {} ({}x{})", file, l.environmentMap->width, l.environmentMap->height));
-  } catch (const std::exception& e) {
-    showError(e.what());
-  }
-}
-
-void EditorApp::applySavedLighting() {
-  // --lighting for the first scene; else the sidecar an earlier save left beside the scene.
-  std::filesystem::path file = lightingFile_.value_or(session::lightingSidecarPath(session_->scene().path));
-  lightingFile_.reset();
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) return;
-  try {
-    session_->setLighting(session::readLightingFile(file, session_->lighting()));
-    notify(fmt::format("lighting from {}", file.filename().string()));
   } catch (const std::exception& e) {
     showError(e.what());
   }
