@@ -161,7 +161,8 @@ void outlinerPanel(EditorApp& app) {
   ImGui::InputTextWithHint("##search", "search instances, meshes, materials", filter, sizeof filter);
   if (app.session().hasScene()) {
     const auto& s = app.session().scene();
-    ImGui::BeginChild("instances");
+    // Names longer than the panel scroll into view rather than being cut off.
+    ImGui::BeginChild("instances", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar);
     for (uint32_t i = 0; i < s.instances.size(); ++i) {
       const auto& inst = s.instances[i];
       const auto& mesh = s.meshes[inst.mesh];
@@ -179,14 +180,10 @@ void outlinerPanel(EditorApp& app) {
   ImGui::End();
 }
 
-void inspectorPanel(EditorApp& app) {
-  ImGui::SetNextWindowPos(ImVec2(0, 440), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(300, 436), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Inspector");
-  if (lightInspector(app)) return ImGui::End();
+void inspectorContents(EditorApp& app) {
+  if (lightInspector(app)) return;
   if (!app.session().hasScene() || !app.selected() || *app.selected() >= app.session().scene().instances.size()) {
     ImGui::TextDisabled("Click an instance or a light in the viewport or the outliner.");
-    ImGui::End();
     return;
   }
   const auto& s = app.session().scene();
@@ -221,6 +218,16 @@ void inspectorPanel(EditorApp& app) {
   if (ImGui::Button("Focus (F)")) app.focusSelection();
   ImGui::Separator();
   albedoInspectorSection(app, *app.selected());
+}
+
+void inspectorPanel(EditorApp& app) {
+  ImGui::SetNextWindowPos(ImVec2(0, 440), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(300, 436), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Inspector");
+  // Its lines wrap at the panel's edge: a long mesh or material name is read, not cut off.
+  ImGui::PushTextWrapPos(0.0f);
+  inspectorContents(app);
+  ImGui::PopTextWrapPos();
   ImGui::End();
 }
 
@@ -406,19 +413,24 @@ void helpWindow(const PanelLayout& layout, bool& open) {
     size_t end = first;
     while (end < rows.size() && std::strcmp(rows[end].section, rows[first].section) == 0) ++end;
     ImGui::TextDisabled("%s", rows[first].section);
+    // The keys as wide as the widest, the action wrapped in what is left: nothing cut off.
     if (ImGui::BeginTable(rows[first].section, 2, ImGuiTableFlags_SizingFixedFit)) {
+      ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed);
+      ImGui::TableSetupColumn("action", ImGuiTableColumnFlags_WidthStretch);
       for (size_t i = first; i < end; ++i) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(rows[i].keys);
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(rows[i].action);
+        ImGui::TextWrapped("%s", rows[i].action);
       }
       ImGui::EndTable();
     }
     first = end;
   }
+  ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled("Scenes can also be dropped onto the window; a scene reloads when its file changes on disk.");
+  ImGui::PopTextWrapPos();
   trackItem("help.text");
   ImGui::End();
 }
@@ -644,6 +656,7 @@ void drawPanels(EditorApp& app) {
   errorPopup(app.error_);
   unsavedWorkPopup(app);
   recoveryPopup(app);
+  checkWindowsFit();
 }
 
 }  // namespace tl::editor
