@@ -56,9 +56,17 @@ void EditorApp::addLight(scene::LightType type) {
   session::Lighting l = session_->lighting();
   scene::Light light = defaultLight(type);
   const session::View v = camera_.view();
-  // In front of the camera, a third of the scene's size away (0.5 to 5 m).
+  // In front of the camera, a third of the scene's size away (0.5 to 5 m); beside a light already
+  // there (the last one added, not yet moved) rather than inside it, a quarter of that away to
+  // the camera's right, so each new light can be seen and picked on its own.
   const double away = std::clamp(0.3 * glm::length(session_->scene().bounds.size()), 0.5, 5.0);
   light.position = v.position + glm::normalize(v.forward) * away;
+  const glm::dvec3 right = glm::normalize(glm::cross(v.forward, v.up));
+  const auto taken = [&](const glm::dvec3& p) {
+    return std::any_of(l.lights.begin(), l.lights.end(),
+                       [&](const scene::Light& o) { return glm::length(o.position - p) < 0.2 * away; });
+  };
+  for (int step = 0; step < 64 && taken(light.position); ++step) light.position += right * (0.25 * away);
   size_t same = 1;
   for (const auto& other : l.lights) same += other.type == type;
   light.name = fmt::format("{} {}", scene::lightTypeName(type), same);

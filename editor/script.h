@@ -85,6 +85,7 @@
 //   expect-lights N        fail unless the scene has N lights besides the sun; lists them
 //   expect-light I TEXT    fail unless light I's line ("name (type) at x y z aim dx dy dz I unit
 //                          [hidden]") holds TEXT
+//   expect-lights-apart I J  fail unless lights I and J stand apart (not at one point)
 //   expect-gizmo-followed  fail unless the last gizmo drag moved the light along its arrow alone,
 //                          as far as the mouse went along it (or aimed its knob under the mouse)
 //   expect-selected-light NAME  fail unless the light NAME (or `none`) is selected
