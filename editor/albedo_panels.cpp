@@ -232,10 +232,12 @@ void albedoPanel(EditorApp& app) {
   } else {
     ImGui::BeginDisabled(!lib.database());
     if (ImGui::Button("Bake")) app.startAlbedoBake(false);
+    trackItem("albedo.bake");
     tooltip("Render each mesh + material from 6 directions and store its visible average albedo.\n"
         "Keys already in the database are skipped.");
     ImGui::SameLine();
     if (ImGui::Button("Re-bake all")) app.startAlbedoBake(true);
+    trackItem("albedo.rebake");
     ImGui::EndDisabled();
     if (!app.lastBakeSummary().empty()) ImGui::TextWrapped("%s", app.lastBakeSummary().c_str());
   }
@@ -249,11 +251,13 @@ void albedoPanel(EditorApp& app) {
   ImGui::SetNextItemWidth(180);
   ImGui::Combo("Show", &filter, kFilterNames, IM_ARRAYSIZE(kFilterNames));
 
-  const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV;
+  // Long mesh / material labels scroll sideways rather than being cut off.
+  const ImGuiTableFlags flags =
+      ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX | ImGuiTableFlags_BordersInnerV;
   if (ImGui::BeginTable("entries", 4, flags, ImVec2(0, -1))) {
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, 18.0f);
-    ImGui::TableSetupColumn("mesh / material", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableSetupColumn("mesh / material", ImGuiTableColumnFlags_WidthFixed);
     ImGui::TableSetupColumn("source", ImGuiTableColumnFlags_WidthFixed, 64.0f);
     ImGui::TableSetupColumn("flags", ImGuiTableColumnFlags_WidthFixed, 60.0f);
     ImGui::TableHeadersRow();

@@ -301,8 +301,7 @@ void viewerControls(EditorApp& app) {
 
 void buffersPanel(EditorApp& app, bool& open) {
   if (!open) return;
-  ImGui::SetNextWindowPos(ImVec2(300, 20), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(470, 720), ImGuiCond_FirstUseEver);
+  placeToolPanel(app.panelLayout(), ToolPanel::Buffers);
   if (!ImGui::Begin("Buffers", &open)) {
     ImGui::End();
     return;

@@ -69,8 +69,7 @@ std::string figure(const std::optional<double>& v, const char* format) {
 
 void comparePanel(EditorApp& app) {
   if (!app.compareOpen()) return;
-  ImGui::SetNextWindowPos(ImVec2(320, 420), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(380, 360), ImGuiCond_FirstUseEver);
+  placeToolPanel(app.panelLayout(), ToolPanel::Compare);
   if (!ImGui::Begin("Compare", &app.compareOpen())) {
     ImGui::End();
     return;

@@ -49,8 +49,7 @@ void checkVk(VkResult r) {
 }  // namespace
 
 EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<std::filesystem::path> script,
-                     lighting::MaterialMode materials, std::optional<std::filesystem::path> lighting)
-    : lightingFile_(std::move(lighting)) {
+                     lighting::MaterialMode materials, std::optional<std::filesystem::path> lighting) {
   settings_ = loadSettings();
   savedSettings_ = toJson(settings_);
   browserDir_ = std::filesystem::current_path();
@@ -69,15 +68,11 @@ EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<s
     return;
   }
   session_->settings().materials = materials;
-  // The first scene loads before the first frame so a script starts on a loaded scene.
-  try {
-    session_->loadScene(first);
-    camera_.reset(session_->view(), glm::length(session_->scene().bounds.size()));
-    watchScene();
-    settings_.addRecent(std::filesystem::absolute(first).string());
-  } catch (const std::exception& e) {
-    showError(e.what());
-  }
+  // The first scene opens as every scene does (scene_document.cpp), before the first frame so a
+  // script starts on it.
+  beginOpen({first, std::move(lighting)});
+  load_.wait();
+  finishLoad();
   try {
     session_->setPath(settings_.lightingPath);
   } catch (const std::exception&) {
@@ -87,6 +82,12 @@ EditorApp::EditorApp(std::optional<std::filesystem::path> scene, std::optional<s
 
 EditorApp::~EditorApp() {
   if (session_) {
+    // Everything that works for the scene stops before the engine's device goes (a bake's
+    // batches, the compare's FLIP, the frames under way; run() did this already on a clean quit).
+    try {
+      stopSceneWork("quitting", true);
+    } catch (const std::exception&) {
+    }
     try {
       session_->finishFrame();
     } catch (const std::exception&) {
@@ -96,6 +97,7 @@ EditorApp::~EditorApp() {
   if (presenter_) presenter_->stop();  // its thread draws with Dear ImGui's backend
   if (uiDevice_) uiDevice_->waitIdle();
   if (load_.valid()) load_.wait();
+  for (auto& f : abandonedLoads_) f.wait();
   ImGui_ImplVulkan_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
@@ -194,7 +196,11 @@ void EditorApp::initImgui() {
 
 int EditorApp::run() {
   lastTime_ = glfwGetTime();
-  while (!glfwWindowShouldClose(window_) && !quit_) frame();
+  while (!quit_) frame();
+  // The user answered for the unsaved work (saved or discarded it; a script's quit discards):
+  // the recovery file goes, unless the recovery it offered was never answered.
+  if (session_->hasScene() && !recoveryOffer_) session::removeRecovery(recoveryPath());
+  stopSceneWork("quitting", true);
   saveSettingsIfChanged();
   presenter_->finish();  // a screenshot asked for last is written, its validation counted
   if (script_ && script_->failed()) {
@@ -259,15 +265,23 @@ void EditorApp::frame() {
   float seconds = float(now - lastTime_);
   lastTime_ = now;
 
-  for (auto& f : droppedFiles) openScene(f);
+  // The window's close button asks first, as File > Quit does.
+  if (glfwWindowShouldClose(window_)) {
+    glfwSetWindowShouldClose(window_, GLFW_FALSE);
+    askToQuit();
+  }
+  if (!droppedFiles.empty()) openScene(droppedFiles.back());  // one scene at a time: the last one dropped
   droppedFiles.clear();
   if (load_.valid() && load_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) finishLoad();
+  std::erase_if(abandonedLoads_, [](auto& f) { return f.wait_for(std::chrono::seconds(0)) == std::future_status::ready; });
   collectEngineFrame();
   if (!load_.valid() && sceneWatcher_.changed(now)) reloadScene();
   if (script_) script_->step(*this);
   // A bake uses the engine's device between its frames (its batches wait for their own work).
   if (!session_->frameInFlight()) stepAlbedoBake();
   if (uiFrames_ % 15 == 0) pollShaders(), saveSettingsIfChanged();
+  updateWindowTitle();
+  autosave(now);
   refreshShownFigures(now);
 
   const double panelsStart = glfwGetTime();
@@ -405,18 +419,10 @@ void EditorApp::handleCameraInput(float seconds) {
     if (ImGui::IsKeyPressed(GLFW_KEY_F12, false) && gpu::RenderDoc::get().attached()) requestRenderDocCapture();
     bool ctrl = io.KeyCtrl;
     if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_O, false)) showBrowser_ = true;
-    // Albedo edits (the inspector's override): undo, redo, save.
-    auto& albedo = session_->albedo();
-    // Undo and redo: settings, lighting and albedo edits, the latest first.
+    // Undo and redo: settings, lighting and albedo edits, the latest first; save all of them.
     if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Z, false)) io.KeyShift ? redo() : undo();
     if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_Y, false)) redo();
-    if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S, false) && albedo.database() && albedo.unsaved()) {
-      try {
-        albedo.save();
-      } catch (const std::exception& e) {
-        showError(e.what());
-      }
-    }
+    if (ctrl && ImGui::IsKeyPressed(GLFW_KEY_S, false)) saveWork();
     for (int slot = 1; slot <= 9; ++slot)
       if (ImGui::IsKeyPressed(GLFW_KEY_0 + slot, false)) applyBookmark(slot, ctrl);
   }
@@ -432,7 +438,7 @@ void EditorApp::setCompare(bool on) {
   // weighs), else the last such path; failing that, any other path that is not the reference.
   std::vector<std::string> realTime, others;
   for (const auto& p : session_->paths()) {
-    if (!p.available || p.capabilities.isReference) continue;
+    if (!p.available || p.capabilities.isReference || p.capabilities.debugView) continue;
     (p.capabilities.accumulates ? realTime : others).push_back(p.name);
   }
   const bool current = std::find(realTime.begin(), realTime.end(), session_->path()) != realTime.end();
@@ -504,52 +510,6 @@ void EditorApp::setPath(const std::string& name) {
   }
 }
 
-void EditorApp::openScene(const std::filesystem::path& file) {
-  if (load_.valid()) return;  // one load at a time
-  loadingPath_ = file;
-  load_ = std::async(std::launch::async, [file] { return session::Session::parseScene(file); });
-}
-
-void EditorApp::cancelLoad() {
-  // Parsing cannot be interrupted safely; its result is dropped when it arrives.
-  if (!load_.valid()) return;
-  keptAcrossReload_.reset();
-  std::thread([f = std::move(load_)]() mutable {
-    try {
-      f.get();
-    } catch (...) {
-    }
-  }).detach();
-  load_ = {};
-}
-
-void EditorApp::finishLoad() {
-  try {
-    session_->installScene(load_.get());
-    if (!keptAcrossReload_) {
-      camera_.reset(session_->view(), glm::length(session_->scene().bounds.size()));
-      selected_.reset();
-      selectedLight_.reset();
-      gizmoDrag_.reset();
-      preview_.clear();
-      announceScene();
-      applySavedLighting();
-    }
-    watchScene();
-    settings_.addRecent(std::filesystem::absolute(loadingPath_).string());
-    saveSettingsIfChanged();
-    reopenAlbedoDatabase();
-    // After the database: attaching one drops unsaved edits, which a reload puts back.
-    if (keptAcrossReload_) restoreAfterReload();
-    history_.reset(session_->settings(), session_->lighting());
-  } catch (const std::exception& e) {
-    keptAcrossReload_.reset();
-    watchScene();  // a broken export is not retried until the file changes again
-    showError(e.what());
-  }
-  load_ = {};
-}
-
 std::filesystem::path EditorApp::defaultCaptureFolder() const {
   const std::string scene = session_->hasScene() ? session_->scene().name : "none";
   return std::filesystem::path("captures") / fmt::format("{}-{}-frame{}", scene, session_->path(), session_->frameIndex());
@@ -558,27 +518,6 @@ std::filesystem::path EditorApp::defaultCaptureFolder() const {
 void EditorApp::openAlbedoDatabase(const std::filesystem::path& file) {
   attachAlbedoDatabase(file);
   if (session_->albedo().orphanCount()) notifyOrphans();
-}
-
-void EditorApp::announceScene() {
-  const scene::Scene& s = session_->scene();
-  showScenePanel_ = !s.warnings.empty();
-  sceneReport_ = scene::sceneReport(s);
-  if (!s.warnings.empty())
-    notify(fmt::format("{} import warning{}: View > Scene", s.warnings.size(), s.warnings.size() == 1 ? "" : "s"));
-  // A file with no light (no sun, no punctual light, nothing emissive) would show only the
-  // uniform sky: flat. The editor (not a headless render, whose light is the file's) lights it
-  // with the default sun.
-  bool emissive = false;
-  for (const auto& m : s.materials) emissive |= m.emissiveStrength * glm::length(m.emissiveFactor) > 0.0f;
-  if (!s.environment.sunFromFile && !emissive && s.lights.empty()) {
-    session::Lighting l = session_->lighting();
-    l.sunIrradiance = scene::Environment{}.sunIrradiance;
-    session_->setLighting(l);
-    const glm::dvec3 toSun = -glm::normalize(l.sunDirection);
-    notify(fmt::format("no light in the file: a default sun of {:.0f} W/m2 at {:.0f} deg elevation and the sky (Lighting panel)",
-                       l.sunIrradiance.r, glm::degrees(std::asin(std::clamp(toSun.y, -1.0, 1.0)))));
-  }
 }
 
 std::string EditorApp::undo() {
@@ -622,7 +561,14 @@ void EditorApp::notifyOrphans() {
 void EditorApp::attachAlbedoDatabase(const std::filesystem::path& file) {
   if (bake_) throw session::SessionError("a bake is running: cancel it first");
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  // Attaching drops the library's unsaved edits: they are carried over onto the new database
+  // as edits (unsaved there until saved), never lost to a database switch.
+  const std::vector<session::RecoveredOverride> carried = session_->hasScene() ? unsavedOverrides() : std::vector<session::RecoveredOverride>{};
   session_->openAlbedoDatabase(file);
+  applyOverrides(carried);
+  if (!carried.empty())
+    notify(fmt::format("{} unsaved albedo edit{} carried over to {}", carried.size(), carried.size() == 1 ? "" : "s",
+                       file.filename().string()));
   albedoDbField_ = file.string();
   // Remembered for the scene: reopened when the scene is loaded again.
   if (session_->hasScene()) settings_.albedoDatabases[sceneKey()] = std::filesystem::absolute(file).string();
@@ -677,6 +623,8 @@ void EditorApp::stepAlbedoBake() {
   const albedo::BakeProgress& p = bake_->progress();
   lastBakeSummary_ = fmt::format("{}: baked {}, skipped {}, failed {} of {} keys", p.cancelled ? "cancelled" : "done",
                                  p.baked, p.skipped, p.failed, p.total);
+  if (p.invisible)
+    lastBakeSummary_ += fmt::format("; {} not visible from any direction (fully cut out or empty: nothing to bake)", p.invisible);
   for (const std::string& f : p.failures) lastBakeSummary_ += "\nfailed: " + f;
   bake_.reset();
   session_->albedo().reload();  // the new rows apply from the next frame

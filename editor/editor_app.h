@@ -12,6 +12,7 @@
 #include "camera_controller.h"
 #include "input_queue.h"
 #include "light_gizmo.h"
+#include "panel_layout.h"
 #include "scene_watcher.h"
 #include "settings.h"
 #include "window_presenter.h"
@@ -20,10 +21,13 @@
 #include "gpu/descriptor_pool.h"
 #include "gpu/shader_reload.h"
 #include "session/edit_history.h"
+#include "session/lighting_file.h"
+#include "session/recovery.h"
 #include "session/session.h"
 
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <future>
 #include <memory>
 #include <optional>
@@ -49,7 +53,13 @@ class EditorApp {
   // --- used by the panels and the script runner -------------------------------------
   session::Session& session() { return *session_; }
   Settings& settings() { return settings_; }
-  void openScene(const std::filesystem::path& file);  // starts a background load
+  // Opens a scene (scene_document.cpp). Every way a scene opens goes through here and through the
+  // same steps: the one named at start-up or on the command line, File > Open and Open recent, a
+  // file dropped on the window, a script's `open`. `lighting` (`--lighting`) is applied to this
+  // scene in place of its sidecar, and to no other. With unsaved work the editor asks first
+  // (save, discard, cancel); the file is then read in the background, and everything that
+  // worked for the scene before stops before the new one is installed.
+  void openScene(const std::filesystem::path& file, std::optional<std::filesystem::path> lighting = std::nullopt);
   // A capture folder (manifest.json + EXRs) in the viewer, without its scene.
   void openCapture(const std::filesystem::path& dir);
   bool loading() const { return load_.valid(); }
@@ -57,6 +67,40 @@ class EditorApp {
   // albedo overrides of unchanged mesh + material combinations, edited lighting and the
   // animation time. Called when the file changes on disk (scene_reload.cpp).
   void reloadScene();
+  // Unsaved work (scene_document.cpp): the lighting, the render settings (a preset applied is a
+  // settings edit) and the albedo overrides as they differ from what was opened or last saved.
+  struct UnsavedWork {
+    bool lighting = false, settings = false, albedo = false;
+    bool any() const { return lighting || settings || albedo; }
+    std::string describe() const;  // "the lighting and the albedo overrides"
+  };
+  UnsavedWork unsavedWork() const;
+  // File > Save (Ctrl+S): the lights into the glTF and everything into its lighting sidecar, the
+  // overrides into the albedo database (the scene's default one when none is open), the render
+  // settings as this scene's (reapplied when it opens). False, with the error shown, when
+  // something could not be written (what could be is).
+  bool saveWork();
+  // The question asked before unsaved work would go (quitting, opening another scene); the
+  // answer carries out what was asked, or nothing (cancel).
+  enum class Answer { Save, Discard, Cancel };
+  struct UnsavedQuestion {
+    std::string text;
+    bool quitting = false;
+    std::optional<std::pair<std::filesystem::path, std::optional<std::filesystem::path>>> opening;  // scene, lighting
+  };
+  const std::optional<UnsavedQuestion>& unsavedQuestion() const { return question_; }
+  void answer(Answer a);
+  // A recovery file of the scene just opened: work an editor that did not close had not saved.
+  struct RecoveryOffer {
+    std::filesystem::path file;
+    std::string text;
+  };
+  const std::optional<RecoveryOffer>& recoveryOffer() const { return recoveryOffer_; }
+  void answerRecovery(bool recover);
+  // "lamps.gltf* - Twinlight": the scene, marked while it holds unsaved work.
+  const std::string& windowTitle() const { return windowTitle_; }
+  // What the last scene change or quit stopped ("the albedo bake (12 of 40 keys baked, kept)").
+  const std::vector<std::string>& lastStopped() const { return lastStopped_; }
   uint64_t sceneReloads() const { return sceneReloads_; }
   session::View cameraView() const { return camera_.view(); }
   // File > Save image: the last frame as .png (display) or .exr (linear radiance). Throws
@@ -83,7 +127,10 @@ class EditorApp {
   bool screenshotPending() const { return screenshotPath_ || (presenter_ && presenter_->screenshotPending()); }
   // Writes every buffer of the next engine frame into `dir` (EXR + manifest.json).
   void requestFrameCapture(const std::filesystem::path& dir) { frameCapturePath_ = dir; }
+  // Quits at once: unsaved work is discarded (a script's `quit`, a failed script).
   void requestQuit() { quit_ = true; }
+  // File > Quit, the window's close button: asks first when there is unsaved work.
+  void askToQuit();
   // Throws SessionError with the reason when RenderDoc is not attached.
   void requestRenderDocCapture();
   std::filesystem::path defaultCaptureFolder() const;
@@ -204,6 +251,10 @@ class EditorApp {
   const FrameProfile& frameProfile() const { return profile_; }
   double fps() const;            // UI loop passes per second, over the last 30
   const std::deque<double>& frameHistoryMs() const { return frameHistory_; }
+  // Resizes the window as a person dragging its corner does (the layout and the engine's image follow).
+  void resizeWindow(int width, int height);
+  // Where the panels sit this frame (panel_layout.h): the tool panels beside the viewport.
+  const PanelLayout& panelLayout() const { return layout_; }
   // Viewport panel rectangle in window pixels (valid after the first frame).
   glm::vec2 viewportMin() const { return viewportMin_; }
   glm::vec2 viewportSize() const { return viewportSize_; }
@@ -220,6 +271,43 @@ class EditorApp {
   void presentIfChanged();
   void refreshShownFigures(double now);
   void finishLoad();
+  // The scene opening (scene_document.cpp): what was asked for and the steps every way shares.
+  struct OpenRequest {
+    std::filesystem::path file;
+    std::optional<std::filesystem::path> lighting;  // --lighting, for this scene only
+  };
+  void beginOpen(OpenRequest request);
+  void settleOpenedScene(const OpenRequest& request);
+  // Everything that works for the scene stops before it goes (another scene, a reload, quitting):
+  // the albedo bake, the compare's measurement, the frames under way. Each stops within
+  // kStopSeconds or the editor says which did not; `why` goes into the message.
+  static constexpr double kStopSeconds = 20.0;
+  static constexpr double kNoticedSeconds = 0.5;  // a wait shorter than this is not reported
+  void stopSceneWork(const std::string& why, bool quitting);
+  // Waits until `done` or `seconds` passed, saying what it waits for after a moment; false on timeout.
+  bool waitBounded(const std::string& what, const std::function<bool()>& done, double seconds);
+  void markSaved();            // what is open now is what is saved
+  void updateWindowTitle();
+  void autosave(double now);   // the recovery file, every settings_.autosaveSeconds while work is unsaved
+  session::RecoveredWork unsavedWorkRecord() const;
+  std::filesystem::path recoveryPath() const;
+  void offerRecovery();
+  bool saveAlbedoEdits();
+  // The albedo edits not in the database (what differs from it), and those applied as edits.
+  std::vector<session::RecoveredOverride> unsavedOverrides() const;
+  void applyOverrides(const std::vector<session::RecoveredOverride>& edits);
+  void proceed(const UnsavedQuestion& question);
+  std::optional<OpenRequest> loadingRequest_;
+  OpenRequest openedWith_;  // how the scene shown was opened (a reload opens it the same way)
+  std::vector<std::future<std::unique_ptr<scene::Scene>>> abandonedLoads_;  // cancelled, still parsing
+  session::Lighting savedLighting_;            // the lighting as opened or last saved
+  lighting::RenderSettings savedRenderSettings_;  // the render settings as opened or last saved
+  std::optional<UnsavedQuestion> question_;
+  std::optional<RecoveryOffer> recoveryOffer_;
+  std::string windowTitle_;
+  std::vector<std::string> lastStopped_;
+  double lastAutosave_ = 0.0;
+  std::string autosaved_;  // the recovery record last written ("" = none)
   void applyBookmark(int slot, bool save);
   void saveSettingsIfChanged();
   void reopenAlbedoDatabase();
@@ -244,7 +332,6 @@ class EditorApp {
   std::unique_ptr<Script> script_;
   CameraController camera_;
   std::future<std::unique_ptr<scene::Scene>> load_;
-  std::filesystem::path loadingPath_;
   std::optional<uint32_t> selected_;
   std::optional<glm::vec2> pendingClick_;
   std::optional<std::filesystem::path> screenshotPath_;
@@ -255,11 +342,12 @@ class EditorApp {
   bool showCompare_ = false;
   bool showScenePanel_ = false;
   std::vector<std::string> sceneReport_;
-  void announceScene();  // warnings and the default light of a scene just loaded
+  void announceScene(const session::OpeningLighting& opened);  // warnings and the lighting of a scene just opened
   bool playing_ = true;
   std::optional<session::CompareView> compareView_;
   bool draggingWipe_ = false;
   glm::vec2 viewportMin_{0.0f}, viewportSize_{0.0f};
+  PanelLayout layout_;
   bool viewportHovered_ = false;
   bool showHelp_ = false, showBrowser_ = false;
   std::filesystem::path browserDir_;
@@ -307,9 +395,6 @@ class EditorApp {
   bool interactionChanged_ = false;  // and the hold has made an edit step already
   std::string environmentField_;
   bool handleLightOverlayInput(glm::vec2 mouse);  // true: the overlay took the mouse
-  // The lighting file given with --lighting, applied to the first scene loaded in place of its sidecar.
-  std::optional<std::filesystem::path> lightingFile_;
-  void applySavedLighting();
 
   friend void drawPanels(EditorApp& app);
   friend class Script;

@@ -18,7 +18,7 @@ std::span<const KeyHelp> keyHelp() {
       {"Camera (over the viewport)", "Ctrl + 1 .. 9", "save camera bookmark (compare --cameras bookmarks)"},
       {"Edits", "Ctrl + Z", "undo the latest edit: a render setting, the lighting or an albedo override"},
       {"Edits", "Ctrl + Y, Ctrl + Shift + Z", "redo the edit undone last"},
-      {"Edits", "Ctrl + S", "save the albedo overrides to the database"},
+      {"Edits", "Ctrl + S", "File > Save: the lights (into the glTF and its sidecar), the albedo overrides, the render settings"},
       {"Windows", "F1", "this window"},
       {"Windows", "F2", "Buffers: every resource of the frame, the viewer"},
       {"Windows", "F3", "Compare: two paths side by side, their error"},

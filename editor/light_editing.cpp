@@ -56,9 +56,17 @@ void EditorApp::addLight(scene::LightType type) {
   session::Lighting l = session_->lighting();
   scene::Light light = defaultLight(type);
   const session::View v = camera_.view();
-  // In front of the camera, a third of the scene's size away (0.5 to 5 m).
+  // In front of the camera, a third of the scene's size away (0.5 to 5 m); beside a light already
+  // there (the last one added, not yet moved) rather than inside it, a quarter of that away to
+  // the camera's right, so each new light can be seen and picked on its own.
   const double away = std::clamp(0.3 * glm::length(session_->scene().bounds.size()), 0.5, 5.0);
   light.position = v.position + glm::normalize(v.forward) * away;
+  const glm::dvec3 right = glm::normalize(glm::cross(v.forward, v.up));
+  const auto taken = [&](const glm::dvec3& p) {
+    return std::any_of(l.lights.begin(), l.lights.end(),
+                       [&](const scene::Light& o) { return glm::length(o.position - p) < 0.2 * away; });
+  };
+  for (int step = 0; step < 64 && taken(light.position); ++step) light.position += right * (0.25 * away);
   size_t same = 1;
   for (const auto& other : l.lights) same += other.type == type;
   light.name = fmt::format("{} {}", scene::lightTypeName(type), same);
@@ -106,6 +114,7 @@ std::string EditorApp::saveLighting() {
     session::Lighting l = session_->lighting();
     const auto saved = session::saveSceneLighting(session_->scene().path, l);
     session_->setLighting(l);  // the nodes the lights now live on (not an edit: the history ignores them)
+    savedLighting_ = l;
     watchScene();              // our own write is not an export to reload
     const std::string text = fmt::format("saved {} light{} into {} and all the lighting into {}", saved.gltfLights,
                                          saved.gltfLights == 1 ? "" : "s", session_->scene().path.filename().string(),
@@ -125,20 +134,6 @@ void EditorApp::loadEnvironmentMap(const std::string& file) {
     l.environmentMap = std::make_shared<const scene::EnvironmentMap>(scene::loadEnvironmentMap(file));
     session_->setLighting(l);
     notify(fmt::format("environment map {} ({}x{})", file, l.environmentMap->width, l.environmentMap->height));
-  } catch (const std::exception& e) {
-    showError(e.what());
-  }
-}
-
-void EditorApp::applySavedLighting() {
-  // --lighting for the first scene; else the sidecar an earlier save left beside the scene.
-  std::filesystem::path file = lightingFile_.value_or(session::lightingSidecarPath(session_->scene().path));
-  lightingFile_.reset();
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) return;
-  try {
-    session_->setLighting(session::readLightingFile(file, session_->lighting()));
-    notify(fmt::format("lighting from {}", file.filename().string()));
   } catch (const std::exception& e) {
     showError(e.what());
   }

@@ -18,6 +18,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <cstring>
 
@@ -42,6 +43,13 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
         if (ImGui::MenuItem(r.c_str())) app.openScene(r);
       ImGui::EndMenu();
     }
+    const auto unsaved = app.unsavedWork();
+    if (ImGui::MenuItem(unsaved.any() ? "Save*" : "Save", "Ctrl+S", false, app.session().hasScene())) app.saveWork();
+    tooltip(unsaved.any() ? ("Unsaved: " + unsaved.describe() +
+                             ".\nThe lights into the scene's glTF and all the lighting into its sidecar, the albedo overrides into\n"
+                             "the database, the render settings as this scene's (the editor reapplies them when it opens it).")
+                                .c_str()
+                          : "Nothing unsaved");
     if (ImGui::MenuItem("Reload scene", nullptr, false, app.session().hasScene() && !app.loading())) app.reloadScene();
     tooltip("Loads the scene's file again, keeping the camera, the selection and the albedo overrides.\n"
             "Happens by itself when the file changes on disk (a re-export).");
@@ -72,7 +80,8 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
                                  : ("Unavailable: " + renderdoc.unavailableReason()).c_str());
     if (ImGui::MenuItem("Close capture", nullptr, false, app.session().hasCapture())) app.session().closeCapture();
     tooltip("Back to the live frame of the scene");
-    if (ImGui::MenuItem("Quit")) app.requestQuit();
+    if (ImGui::MenuItem("Quit")) app.askToQuit();
+    tooltip("Asks first when there is unsaved work (save, discard or stay)");
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
@@ -101,15 +110,16 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
 }
 
 void viewportPanel(EditorApp& app, glm::vec2& min, glm::vec2& size, bool& hovered) {
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(300, 20), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(display.x - 640, display.y - 44), ImGuiCond_FirstUseEver);
+  // Between the columns, beside the tool panels open (panel_layout.h): nothing opens over it.
+  ImGui::SetNextWindowPos(app.panelLayout().viewportPos, ImGuiCond_Always);
+  ImGui::SetNextWindowSize(app.panelLayout().viewportSize, ImGuiCond_Always);
   // No background: the engine's image is blitted into the window's area underneath. It stays
-  // behind every other window when clicked, so floating panels over it keep their clicks.
+  // behind every other window when clicked, so a dialog over it keeps its clicks.
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
   ImGui::Begin("Viewport", nullptr,
                ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse |
-                   ImGuiWindowFlags_NoBringToFrontOnFocus);
+                   ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                   ImGuiWindowFlags_NoCollapse);
   ImVec2 pos = ImGui::GetCursorScreenPos();
   ImVec2 avail = ImGui::GetContentRegionAvail();
   min = {pos.x, pos.y};
@@ -117,6 +127,7 @@ void viewportPanel(EditorApp& app, glm::vec2& min, glm::vec2& size, bool& hovere
   ImGui::InvisibleButton("viewport.area", ImVec2(std::max(avail.x, 1.0f), std::max(avail.y, 1.0f)),
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight | ImGuiButtonFlags_MouseButtonMiddle);
   hovered = ImGui::IsItemHovered() || ImGui::IsItemActive();
+  trackItem("viewport");  // scripts drag in it (drag-ui viewport DX DY orbits the camera)
   if (app.overlayShown())
     drawLightOverlay(ImGui::GetWindowDrawList(), app.viewportProjection(), app.session().lighting().lights,
                      app.selectedLight(), app.activeGizmoHandle());
@@ -150,7 +161,8 @@ void outlinerPanel(EditorApp& app) {
   ImGui::InputTextWithHint("##search", "search instances, meshes, materials", filter, sizeof filter);
   if (app.session().hasScene()) {
     const auto& s = app.session().scene();
-    ImGui::BeginChild("instances");
+    // Names longer than the panel scroll into view rather than being cut off.
+    ImGui::BeginChild("instances", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar);
     for (uint32_t i = 0; i < s.instances.size(); ++i) {
       const auto& inst = s.instances[i];
       const auto& mesh = s.meshes[inst.mesh];
@@ -168,14 +180,10 @@ void outlinerPanel(EditorApp& app) {
   ImGui::End();
 }
 
-void inspectorPanel(EditorApp& app) {
-  ImGui::SetNextWindowPos(ImVec2(0, 440), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(300, 436), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Inspector");
-  if (lightInspector(app)) return ImGui::End();
+void inspectorContents(EditorApp& app) {
+  if (lightInspector(app)) return;
   if (!app.session().hasScene() || !app.selected() || *app.selected() >= app.session().scene().instances.size()) {
     ImGui::TextDisabled("Click an instance or a light in the viewport or the outliner.");
-    ImGui::End();
     return;
   }
   const auto& s = app.session().scene();
@@ -210,6 +218,16 @@ void inspectorPanel(EditorApp& app) {
   if (ImGui::Button("Focus (F)")) app.focusSelection();
   ImGui::Separator();
   albedoInspectorSection(app, *app.selected());
+}
+
+void inspectorPanel(EditorApp& app) {
+  ImGui::SetNextWindowPos(ImVec2(0, 440), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(300, 436), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Inspector");
+  // Its lines wrap at the panel's edge: a long mesh or material name is read, not cut off.
+  ImGui::PushTextWrapPos(0.0f);
+  inspectorContents(app);
+  ImGui::PopTextWrapPos();
   ImGui::End();
 }
 
@@ -376,9 +394,8 @@ void shaderErrorWindow(EditorApp& app) {
   if (!app.shaderReloader()) return;
   const std::vector<std::string> errors = app.shaderReloader()->errors();
   if (errors.empty()) return;
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(310, display.y - 200), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(820, 170), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(app.panelLayout().shaderErrorsPos, ImGuiCond_Always);
+  ImGui::SetNextWindowSize(app.panelLayout().shaderErrorsSize, ImGuiCond_Always);
   ImGui::Begin("Shader errors");
   ImGui::TextDisabled("The last good shaders keep running. Fix and save: the next poll recompiles.");
   for (const std::string& e : errors) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", e.c_str());
@@ -386,11 +403,9 @@ void shaderErrorWindow(EditorApp& app) {
 }
 
 // Every key and mouse action the editor knows, grouped; the file browser's keys with it.
-void helpWindow(bool& open) {
+void helpWindow(const PanelLayout& layout, bool& open) {
   if (!open) return;
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f - 330, display.y * 0.5f - 320), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(660, 640), ImGuiCond_FirstUseEver);
+  placeToolPanel(layout, ToolPanel::Help);
   ImGui::Begin("Help", &open);
   // One table per section of editor/key_help.cpp (a test checks it names every key handled).
   const auto rows = keyHelp();
@@ -398,19 +413,24 @@ void helpWindow(bool& open) {
     size_t end = first;
     while (end < rows.size() && std::strcmp(rows[end].section, rows[first].section) == 0) ++end;
     ImGui::TextDisabled("%s", rows[first].section);
+    // The keys as wide as the widest, the action wrapped in what is left: nothing cut off.
     if (ImGui::BeginTable(rows[first].section, 2, ImGuiTableFlags_SizingFixedFit)) {
+      ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed);
+      ImGui::TableSetupColumn("action", ImGuiTableColumnFlags_WidthStretch);
       for (size_t i = first; i < end; ++i) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(rows[i].keys);
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(rows[i].action);
+        ImGui::TextWrapped("%s", rows[i].action);
       }
       ImGui::EndTable();
     }
     first = end;
   }
+  ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled("Scenes can also be dropped onto the window; a scene reloads when its file changes on disk.");
+  ImGui::PopTextWrapPos();
   trackItem("help.text");
   ImGui::End();
 }
@@ -508,6 +528,54 @@ void loadingPopup(EditorApp& app) {
   }
 }
 
+// A question that needs an answer (unsaved work, a recovery), as a modal window: opened when no
+// other modal window is (an error first), closed when the question is gone.
+void questionPopup(const char* id, bool asked, const std::function<void()>& body) {
+  if (asked && !ImGui::IsPopupOpen(id) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) ImGui::OpenPopup(id);
+  if (!ImGui::BeginPopupModal(id, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  if (!asked) ImGui::CloseCurrentPopup();
+  else body();
+  ImGui::EndPopup();
+}
+
+void unsavedWorkPopup(EditorApp& app) {
+  const auto& q = app.unsavedQuestion();
+  questionPopup("Unsaved work", q.has_value(), [&] {
+    ImGui::TextUnformatted(q->text.c_str());
+    ImGui::Separator();
+    std::optional<EditorApp::Answer> a;
+    if (ImGui::Button("Save")) a = EditorApp::Answer::Save;
+    trackItem("unsaved.save");
+    tooltip("File > Save, then go on");
+    ImGui::SameLine();
+    if (ImGui::Button("Discard")) a = EditorApp::Answer::Discard;
+    trackItem("unsaved.discard");
+    tooltip("Lose the unsaved work and go on");
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) a = EditorApp::Answer::Cancel;
+    trackItem("unsaved.cancel");
+    tooltip("Stay: nothing closes");
+    if (a) app.answer(*a), ImGui::CloseCurrentPopup();
+  });
+}
+
+void recoveryPopup(EditorApp& app) {
+  const auto& offer = app.recoveryOffer();
+  questionPopup("Recover unsaved work", offer.has_value(), [&] {
+    ImGui::TextUnformatted(offer->text.c_str());
+    ImGui::Separator();
+    std::optional<bool> recover;
+    if (ImGui::Button("Recover")) recover = true;
+    trackItem("recovery.recover");
+    tooltip("Apply it as unsaved edits (File > Save keeps them, Ctrl+Z takes them back)");
+    ImGui::SameLine();
+    if (ImGui::Button("Discard")) recover = false;
+    trackItem("recovery.discard");
+    tooltip("Delete the recovery file: the scene stays as its files hold it");
+    if (recover) app.answerRecovery(*recover), ImGui::CloseCurrentPopup();
+  });
+}
+
 void errorPopup(std::string& error) {
   if (!error.empty()) ImGui::OpenPopup("Error");
   if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
@@ -531,8 +599,7 @@ void errorPopup(std::string& error) {
 void scenePanel(EditorApp& app) {
   if (!app.scenePanelOpen() || !app.session().hasScene()) return;
   const scene::Scene& s = app.session().scene();
-  ImGui::SetNextWindowPos(ImVec2(320, 80), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(560, 320), ImGuiCond_FirstUseEver);
+  placeToolPanel(app.panelLayout(), ToolPanel::Scene);
   if (!ImGui::Begin("Scene", &app.scenePanelOpen())) {
     ImGui::End();
     return;
@@ -561,6 +628,15 @@ void scenePanel(EditorApp& app) {
 
 void drawPanels(EditorApp& app) {
   beginTrackedFrame();
+  {
+    std::array<bool, size_t(ToolPanel::Count)> tools{};
+    tools[size_t(ToolPanel::Scene)] = app.scenePanelOpen() && app.session().hasScene();
+    tools[size_t(ToolPanel::Buffers)] = app.buffersOpen();
+    tools[size_t(ToolPanel::Compare)] = app.compareOpen();
+    tools[size_t(ToolPanel::Help)] = app.showHelp_;
+    const bool shaderErrors = app.shaderReloader() && !app.shaderReloader()->errors().empty();
+    app.layout_ = panelLayout(ImGui::GetIO().DisplaySize, tools, shaderErrors);
+  }
   mainMenu(app, app.showHelp_, app.showBrowser_);
   viewportPanel(app, app.viewportMin_, app.viewportSize_, app.viewportHovered_);
   outlinerPanel(app);
@@ -574,10 +650,13 @@ void drawPanels(EditorApp& app) {
   scenePanel(app);
   statusBar(app);
   shaderErrorWindow(app);
-  helpWindow(app.showHelp_);
+  helpWindow(app.layout_, app.showHelp_);
   fileBrowser(app, app.showBrowser_, app.browserDir_);
   loadingPopup(app);
   errorPopup(app.error_);
+  unsavedWorkPopup(app);
+  recoveryPopup(app);
+  checkWindowsFit();
 }
 
 }  // namespace tl::editor

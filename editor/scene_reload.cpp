@@ -33,13 +33,16 @@ void EditorApp::reloadScene() {
   if (selected_ && *selected_ < s.instances.size()) kept.selected = s.instances[*selected_].name;
   for (const auto& e : session_->albedo().entries())
     if (e.override) kept.overrides.push_back({e.combination.key, *e.override, e.combination.label});
-  // The lighting the scene brought is reloaded with it; an edit away from it is the artist's, and kept.
+  // The lighting the scene opened with is read again with it (the file, its sidecar); an edit
+  // away from it is the artist's, and kept.
   const session::Lighting& now = session_->lighting();
-  if (!session::sameLighting(now, session::sceneLighting(s, now))) kept.lighting = now;
+  if (!session::sameLighting(now, savedLighting_)) kept.lighting = now;
   kept.animationTime = session_->animationTime();
   keptAcrossReload_ = std::move(kept);
   spdlog::info("{} changed on disk: reloading", s.path.string());
-  openScene(s.path);
+  // Opened as it was opened (a --lighting file given for it applies again); no question: the
+  // artist's work is kept across the reload.
+  beginOpen(openedWith_);
 }
 
 void EditorApp::restoreAfterReload() {

@@ -23,7 +23,8 @@ void Script::fail(EditorApp& app, const std::string& why) {
 
 const ScriptCommand* findScriptCommand(std::string_view name) {
   for (auto group : {sceneScriptCommands, inputScriptCommands, viewerScriptCommands, albedoScriptCommands,
-                     compareScriptCommands, settingsScriptCommands, frameScriptCommands, lightScriptCommands})
+                     compareScriptCommands, settingsScriptCommands, frameScriptCommands, lightScriptCommands,
+                     workScriptCommands})
     for (const ScriptCommand& c : group())
       if (c.name == name) return &c;
   return nullptr;

@@ -85,11 +85,29 @@
 //   expect-lights N        fail unless the scene has N lights besides the sun; lists them
 //   expect-light I TEXT    fail unless light I's line ("name (type) at x y z aim dx dy dz I unit
 //                          [hidden]") holds TEXT
+//   expect-lights-apart I J  fail unless lights I and J stand apart (not at one point)
 //   expect-gizmo-followed  fail unless the last gizmo drag moved the light along its arrow alone,
 //                          as far as the mouse went along it (or aimed its knob under the mouse)
 //   expect-selected-light NAME  fail unless the light NAME (or `none`) is selected
 //   save-lighting          File > Save lighting: the lights into the glTF, all into SCENE.lighting.json
-//   quit
+//   expect-sun TEXT        fail unless the sun's line ("sun E r g b towards x y z") holds TEXT
+// The artist's work (script_work.cpp):
+//   reload                 File > Reload scene (wait-loaded waits for it)
+//   close-window           the window's close button (File > Quit): asks first when work is unsaved
+//   expect-question TEXT   fail unless the unsaved-work question is asked and holds TEXT (`none`: not
+//                          asked); click-ui unsaved.save, unsaved.discard or unsaved.cancel answers it
+//   expect-unsaved TEXT    fail unless the unsaved work's description holds TEXT (`none`: nothing unsaved)
+//   expect-title TEXT      fail unless the window's title holds TEXT
+//   expect-recovery TEXT   fail unless a recovery is offered and its text holds TEXT (`none`: not
+//                          offered); click-ui recovery.recover or recovery.discard answers it
+//   autosave-every S       write unsaved work to the recovery file every S seconds (1 to 60)
+//   expect-stopped TEXT    fail unless what the last scene change stopped holds TEXT (`none`: nothing)
+//   resize W H             resize the window to W x H pixels, as a person dragging its corner
+//   expect-viewport-uncovered  fail when a panel (not a dialog) lies over the viewport
+//   dump-state DIR TAG     write what the scene opened as (lighting, settings, history, selection,
+//                          camera, database, title) to DIR/<scene file>.TAG.json, to compare ways
+//                          of opening
+//   quit                   quit at once; unsaved work is discarded (close-window asks)
 #pragma once
 
 #include "script_commands.h"

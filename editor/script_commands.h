@@ -1,7 +1,7 @@
 // The editor script's commands (editor/script.h lists them) as a table: each is one small
 // function, grouped in files by concern (script_scene.cpp, script_input.cpp, script_viewer.cpp,
 // script_albedo.cpp, script_compare.cpp, script_settings.cpp, script_frames.cpp,
-// script_lights.cpp). A command does its action, or checks its expectation and throws
+// script_lights.cpp, script_work.cpp). A command does its action, or checks its expectation and throws
 // ScriptFailure with what it found; it may leave a wait (ScriptState) that holds the lines
 // after it until the editor has done what it started (script_waits.cpp).
 // A new command: a function in the file of its concern and a line in that file's table.
@@ -80,6 +80,7 @@ std::span<const ScriptCommand> compareScriptCommands();
 std::span<const ScriptCommand> settingsScriptCommands();
 std::span<const ScriptCommand> frameScriptCommands();
 std::span<const ScriptCommand> lightScriptCommands();
+std::span<const ScriptCommand> workScriptCommands();
 
 // The command called `name` in any group; nothing for an unknown one.
 const ScriptCommand* findScriptCommand(std::string_view name);

@@ -108,6 +108,19 @@ void expectLight(EditorApp& app, ScriptState&, const std::string& arg) {
   fmt::print("script: light {}: {}\n", i, d);
 }
 
+// expect-lights-apart I J: lights I and J do not stand at one point (a tenth of a per cent of the
+// scene's size apart at least).
+void expectLightsApart(EditorApp& app, ScriptState&, const std::string& arg) {
+  const auto& lights = app.session().lighting().lights;
+  size_t i = 0, j = 0;
+  if (std::sscanf(arg.c_str(), "%zu %zu", &i, &j) != 2) throw ScriptFailure("expect-lights-apart needs I J");
+  if (i >= lights.size() || j >= lights.size()) throw ScriptFailure(fmt::format("no light {} or {} ({} lights)", i, j, lights.size()));
+  const double d = glm::length(lights[i].position - lights[j].position);
+  const double size = glm::length(app.session().scene().bounds.size());
+  if (d < 1e-3 * size) throw ScriptFailure(fmt::format("lights {} and {} stand {:.4f} m apart: at one point", i, j, d));
+  fmt::print("script: lights {} and {} stand {:.3f} m apart\n", i, j, d);
+}
+
 void expectGizmoFollowed(EditorApp& app, ScriptState&, const std::string&) {
   if (!app.lastGizmoDrag()) throw ScriptFailure("no gizmo drag has finished");
   if (const std::string failure = checkGizmoFollowed(*app.lastGizmoDrag()); !failure.empty()) throw ScriptFailure(failure);
@@ -131,6 +144,7 @@ constexpr ScriptCommand kCommands[] = {
     {"drag-ui", dragUi},
     {"expect-lights", expectLights},
     {"expect-light", expectLight},
+    {"expect-lights-apart", expectLightsApart},
     {"expect-gizmo-followed", expectGizmoFollowed},
     {"expect-selected-light", expectSelectedLight},
     {"save-lighting", saveLighting},

@@ -37,6 +37,8 @@ Settings loadSettings() {
     s.windowHeight = std::clamp(j.value("windowHeight", s.windowHeight), 240, 16384);
     if (j.contains("bookmarks") && j["bookmarks"].is_object()) s.bookmarks = j["bookmarks"];
     if (j.contains("albedoDatabases") && j["albedoDatabases"].is_object()) s.albedoDatabases = j["albedoDatabases"];
+    if (j.contains("sceneSettings") && j["sceneSettings"].is_object()) s.sceneSettings = j["sceneSettings"];
+    s.autosaveSeconds = std::clamp(j.value("autosaveSeconds", s.autosaveSeconds), 1, 60);
   } catch (const std::exception& e) {
     spdlog::warn("{}: ignored ({}); using defaults", file.string(), e.what());
   }
@@ -46,7 +48,8 @@ Settings loadSettings() {
 nlohmann::json toJson(const Settings& s) {
   return {{"recentScenes", s.recentScenes}, {"renderScale", s.renderScale}, {"vsync", s.vsync},
           {"lightingPath", s.lightingPath}, {"windowWidth", s.windowWidth}, {"windowHeight", s.windowHeight},
-          {"bookmarks", s.bookmarks}, {"albedoDatabases", s.albedoDatabases}};
+          {"bookmarks", s.bookmarks}, {"albedoDatabases", s.albedoDatabases}, {"sceneSettings", s.sceneSettings},
+          {"autosaveSeconds", s.autosaveSeconds}};
 }
 
 void saveSettings(const Settings& s) {

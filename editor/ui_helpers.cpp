@@ -35,7 +35,9 @@ void checkLastItemFits() {
   const ImVec2 max = ImGui::GetItemRectMax(), min = ImGui::GetItemRectMin();
   const ImRect visible = window->InnerClipRect;
   if (min.y < visible.Min.y || max.y > visible.Max.y) return;  // not on screen: nothing to read
-  if (max.x > visible.Max.x + 0.5f)
+  // A selectable's highlight reaches half an item spacing past the work area by design (its
+  // text does not): that much is not a label cut off.
+  if (max.x > visible.Max.x + 0.5f * ImGui::GetStyle().ItemSpacing.x + 0.5f)
     clipped.push_back(std::string(window->Name) + ": the item at y " + std::to_string(int(min.y)) + " ends at x " +
                       std::to_string(int(max.x)) + ", the window at " + std::to_string(int(visible.Max.x)));
 }
@@ -89,5 +91,19 @@ void beginTrackedFrame() {
 }
 
 const std::vector<std::string>& clippedLabels() { return previousClipped; }
+
+void checkWindowsFit() {
+  ImGuiContext& g = *GImGui;
+  for (ImGuiWindow* w : g.Windows) {
+    if (!w->Active || w->Hidden || w->SkipItems || w->ScrollbarX) continue;
+    if (w->Flags & (ImGuiWindowFlags_Tooltip | ImGuiWindowFlags_ChildMenu)) continue;  // sized to their text
+    // Where its content actually reaches (a table that scrolls sideways is a window of its own
+    // with a scrollbar; text cut inside a table cell without one is not seen here).
+    const float right = w->DC.CursorMaxPos.x;
+    if (right > w->InnerClipRect.Max.x + 1.0f)
+      clipped.push_back(std::string(w->Name) + ": its content reaches x " + std::to_string(int(right)) +
+                        ", the window shows up to x " + std::to_string(int(w->InnerClipRect.Max.x)));
+  }
+}
 
 }  // namespace tl::editor

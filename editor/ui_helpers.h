@@ -37,7 +37,12 @@ void raiseItemWindow(const std::string& name);
 void beginTrackedFrame();
 
 // Labels that do not fit their window: a label is measured where tooltip() or trackItem()
-// follows it; expect-labels-fit in scripts reads the list of the last frame.
+// follows it, and every window's content (text, tables, widgets) is measured against what the
+// window shows (checkWindowsFit); expect-labels-fit in scripts reads the list of the last frame.
 const std::vector<std::string>& clippedLabels();
+// Called once a frame after the panels drew: every window shown whose content reaches past its
+// right edge without a horizontal scrollbar to reach it (text cut off) goes on that list (text
+// cut inside a table cell is not seen: tables here wrap or scroll).
+void checkWindowsFit();
 
 }  // namespace tl::editor

@@ -116,10 +116,15 @@ int runBake(const BakeArgs& a) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto& p = job->progress();
     for (const std::string& f : p.failures) fmt::print("failed: {}\n", f);
-    fmt::print("{}: {} keys{}: baked {}, skipped {} (up to date), failed {} in {:.2f} s ({:.1f} keys/s baking); "
+    // A mesh nothing of which is visible (fully cut out, empty) has no albedo a ray could read:
+    // noted, not stored, not a failure.
+    for (const std::string& k : p.invisibleKeys) fmt::print("not visible from any direction, nothing to bake: {}\n", k);
+    fmt::print("{}: {} keys{}: baked {}, skipped {} (up to date), failed {}{} in {:.2f} s ({:.1f} keys/s baking); "
                "scene loaded in {:.2f} s\n",
                session.scene().name, p.total, shard ? fmt::format(" in shard {}/{}", shard->index, shard->count) : "",
-               p.baked, p.skipped, p.failed, seconds, p.gpuSeconds > 0.0 ? p.baked / p.gpuSeconds : 0.0, loadSeconds);
+               p.baked, p.skipped, p.failed,
+               p.invisible ? fmt::format(", {} not visible (fully cut out or empty: no ray hits them)", p.invisible) : "",
+               seconds, p.gpuSeconds > 0.0 ? p.baked / p.gpuSeconds : 0.0, loadSeconds);
     failed += p.failed;
   }
   fmt::print("database {}: {} baked, {} overrides, {} bytes\n", a.db, session.albedo().database()->baked().size(),

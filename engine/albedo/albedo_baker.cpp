@@ -153,7 +153,7 @@ std::vector<BakeOutcome> AlbedoBaker::bake(const std::vector<const Combination*>
     outcomes[c].key = batch[c]->key;
     outcomes[c].entry = entryFromViewSums(batch[c]->key, views, tile);
     if (outcomes[c].entry) outcomes[c].entry->label = batch[c]->label;
-    else outcomes[c].error = "nothing visible from any direction (empty mesh or fully cut out)";
+    else outcomes[c].error = "nothing visible from any direction (empty mesh or fully cut out)", outcomes[c].invisible = true;
   }
   return outcomes;
 }

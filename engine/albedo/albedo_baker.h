@@ -24,8 +24,12 @@ inline constexpr const char* kBakeSums = "albedo.bake.sums";
 
 struct BakeOutcome {
   AlbedoKey key = 0;
-  std::optional<BakedEntry> entry;  // empty: failed
-  std::string error;                // why it failed
+  std::optional<BakedEntry> entry;  // empty: nothing to store (why says why)
+  std::string error;                // why there is no entry
+  // No texel of it is seen from any of the views: an empty mesh or a fully cut-out material
+  // (alpha below its cutoff everywhere). No ray can hit it, so there is no albedo to bake: it is
+  // what it is, not a failure.
+  bool invisible = false;
 };
 
 class AlbedoBaker {

@@ -50,6 +50,9 @@ bool BakeJob::step() {
     if (outcomes[i].entry) {
       rows.push_back(*outcomes[i].entry);
       rows.back().bakedAt = now;
+    } else if (outcomes[i].invisible) {
+      ++progress_.invisible;
+      progress_.invisibleKeys.push_back(keyToHex(outcomes[i].key) + " " + batch[i]->label);
     } else {
       ++progress_.failed;
       progress_.failures.push_back(keyToHex(outcomes[i].key) + " " + batch[i]->label + ": " + outcomes[i].error);

@@ -23,8 +23,13 @@ struct BakeOptions {
 
 struct BakeProgress {
   uint32_t total = 0;      // keys in this shard
-  uint32_t done = 0;       // baked + skipped + failed so far
+  uint32_t done = 0;       // baked + skipped + invisible + failed so far
   uint32_t baked = 0, skipped = 0, failed = 0;
+  // Keys nothing of which is visible from any direction (an empty mesh, a material cut out
+  // everywhere): no ray hits them, so nothing is stored for them. Not failures: a scene with a
+  // fully cut-out mesh bakes to completion.
+  uint32_t invisible = 0;
+  std::vector<std::string> invisibleKeys;  // "key label"
   std::vector<std::string> failures;  // "key label: why"
   double gpuSeconds = 0.0;            // wall time spent in bake() calls
   bool cancelled = false;

@@ -61,6 +61,10 @@ struct PathCapabilities {
   bool rasterizes = true;        // shades the G-buffer the rasterizer drew, so TAA's jitter applies; the reference
                                  // path tracer computes every pixel itself, jittering its own rays
   bool halfResolution = false;   // can trace at reduced resolution (its settings say how)
+  // A debug view, not lighting: its image holds values to look at (AO as grey), shown as they
+  // are (no exposure, no tonemap curve: the same grey in every scene) and left out of compare
+  // and the Compare panel unless asked for by name (an error against the reference means nothing).
+  bool debugView = false;
 };
 
 class LightingPath {

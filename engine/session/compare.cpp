@@ -228,6 +228,12 @@ metrics::Image readReferenceFile(const std::filesystem::path& file, uint32_t wid
   std::error_code ec;
   if (!std::filesystem::exists(file, ec))
     throw SessionError(fmt::format("reference image {}: no such file", file.string()));
+  // Linear radiance, as the paths' own images are measured: a display-referred image (a PNG,
+  // tonemapped and 8-bit) would be read as radiance and give meaningless figures.
+  if (const std::string format = imageFileFormat(file); format != "EXR")
+    throw SessionError(fmt::format("reference image {} is not an OpenEXR file ({}): compare needs the linear radiance "
+                                   "of another renderer as EXR",
+                                   file.string(), format.empty() ? "not an image format it knows" : "it is a " + format));
   std::optional<RgbImage> image = readExrRgb(file);
   if (!image) throw SessionError(fmt::format("reference image {}: cannot be read as an RGB EXR", file.string()));
   if (image->width != width || image->height != height)
@@ -337,7 +343,8 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
   for (const auto& p : o.paths) runs.push_back({p, p, nlohmann::json::object()});
   if (o.paths.empty() && o.variants.empty())
     for (auto& p : s.paths())
-      if (p.available && !p.capabilities.isReference) runs.push_back({p.name, p.name, nlohmann::json::object()});
+      // Debug views (AO as grey) are not lighting: measured only when named.
+      if (p.available && !p.capabilities.isReference && !p.capabilities.debugView) runs.push_back({p.name, p.name, nlohmann::json::object()});
   for (const auto& v : o.variants) {
     if (std::any_of(runs.begin(), runs.end(), [&](auto& r) { return r.name == v.name; }))
       throw SessionError(fmt::format("two compared configurations are called `{}`", v.name));

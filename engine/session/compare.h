@@ -37,7 +37,7 @@ struct CompareVariant {
 };
 
 struct CompareOptions {
-  std::vector<std::string> paths;      // empty (and no variants): every available path except the reference
+  std::vector<std::string> paths;      // empty (and no variants): every available lighting path but the reference (debug views only by name)
   std::vector<CompareVariant> variants;  // measured after `paths` (compare --settings FILE)
   uint32_t referenceSpp = 256;         // multiple of 16
   uint32_t referenceBounces = lighting::RenderSettings{}.referenceBounces;  // the hard cap (Russian roulette ends paths first)

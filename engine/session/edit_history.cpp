@@ -27,6 +27,7 @@ void EditHistory::reset(const lighting::RenderSettings& settings, const Lighting
   done_ = 0;
   seenSettings_ = settings;
   seenLighting_ = lighting;
+  watching_ = true;
 }
 
 bool EditHistory::Step::sameKind(const Step& other) const {
@@ -38,6 +39,10 @@ bool EditHistory::Step::sameKind(const Step& other) const {
 }
 
 bool EditHistory::observe(const lighting::RenderSettings& settings, const Lighting& lighting, bool continuing) {
+  if (!watching_) {
+    reset(settings, lighting);
+    return false;
+  }
   Step step;
   for (const lighting::SettingInfo& s : lighting::settingsSchema()) {
     if (s.flags & lighting::kSettingNoPanel) continue;  // the image size follows the viewport

@@ -17,11 +17,14 @@ namespace tl::session {
 
 class EditHistory {
  public:
-  // Forgets every step; `settings` and `lighting` are the state to watch from (a new scene).
+  // Forgets every step; `settings` and `lighting` are the state to watch from (a scene as it
+  // opened: its own lighting, the lighting file applied, the default sun given).
   void reset(const lighting::RenderSettings& settings, const Lighting& lighting);
   // Compares the state with the last one observed and records the difference as a step.
   // `continuing` (a drag still under way) folds it into the previous step when that step
-  // changed the same things. Returns whether anything changed.
+  // changed the same things. Returns whether anything changed. Before the first reset() there
+  // is no state to compare with: the first observation only becomes it (a history never
+  // holds the scene's loading as an edit, which an undo would take back).
   bool observe(const lighting::RenderSettings& settings, const Lighting& lighting, bool continuing);
   bool canUndo() const { return done_ > 0; }
   bool canRedo() const { return done_ < steps_.size(); }
@@ -52,6 +55,7 @@ class EditHistory {
   void apply(const Step& step, bool forward, lighting::RenderSettings& settings, Lighting& lighting);
   std::vector<Step> steps_;
   size_t done_ = 0;  // steps_[0, done_) are applied
+  bool watching_ = false;  // a state to compare with was given (reset) or taken (the first observe)
   lighting::RenderSettings seenSettings_;
   Lighting seenLighting_;
 };

@@ -10,9 +10,11 @@
 #include <glm/gtx/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <set>
 
 namespace tl::session {
@@ -225,8 +227,18 @@ std::vector<uint32_t> placeLights(json& doc, const std::vector<scene::Light>& li
     return hasLight && !node.contains("mesh") && !node.contains("camera") && !node.contains("skin") && !hasChildren &&
            !animated.count(n);
   };
-  std::vector<bool> reusable(nodes.size());
-  for (size_t n = 0; n < nodes.size(); ++n) reusable[n] = holdsOnlyALight(n);
+  // A node that holds nothing at all: the one an earlier save gave a light that has since been
+  // deleted or hidden (it kept its place and lost the light). Placing a light there changes
+  // nothing else of the file, and a light that comes back (an undo, a redo) takes its node again
+  // instead of the file growing a node each time.
+  const auto holdsNothing = [&](size_t n) {
+    const json& node = nodes[n];
+    const bool hasChildren = node.contains("children") && node["children"].is_array() && !node["children"].empty();
+    return !node.contains("extensions") && !node.contains("mesh") && !node.contains("camera") && !node.contains("skin") &&
+           !node.contains("extras") && !hasChildren && !animated.count(n);
+  };
+  std::vector<bool> reusable(nodes.size()), empty(nodes.size());
+  for (size_t n = 0; n < nodes.size(); ++n) reusable[n] = holdsOnlyALight(n), empty[n] = holdsNothing(n);
   for (auto& node : nodes) eraseExtension(node);
 
   size_t sceneIndex = doc.contains("scene") && doc["scene"].is_number_unsigned() ? doc["scene"].get<size_t>() : 0;
@@ -272,10 +284,18 @@ std::vector<uint32_t> placeLights(json& doc, const std::vector<scene::Light>& li
     table.push_back(lightJson(l));
     const bool sun = l.type == scene::LightType::Directional && sunIndex == SIZE_MAX;
     if (sun) sunIndex = i;
+    // Its own node; else an empty root node of its name (a light saved before without a node of
+    // its own now: undone and redone); else a new one.
+    std::optional<size_t> own;
+    if (l.node && *l.node < reusable.size() && (reusable[*l.node] || empty[*l.node])) own = *l.node;
+    for (size_t r = 0; !own && !l.node && r < empty.size(); ++r)
+      if (empty[r] && parent[r] < 0 && nodes[r].value("name", json()) == json(l.name) &&
+          std::find(sceneRoots.begin(), sceneRoots.end(), json(r)) != sceneRoots.end())
+        own = r;
     size_t n = 0;
-    if (l.node && *l.node < reusable.size() && reusable[*l.node]) {
-      n = *l.node;
-      reusable[n] = false;  // two lights never share a node
+    if (own) {
+      n = *own;
+      reusable[n] = empty[n] = false;  // two lights never share a node
     } else {
       n = newNode(l, i, sun);
     }

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <string_view>
 #include <system_error>
 #include <stdlib.h>
 #include <unistd.h>
@@ -191,6 +193,21 @@ std::vector<float> falseColour(const std::vector<float>& values, float maxValue)
 void writeFalseColourPng(const std::filesystem::path& file, uint32_t w, uint32_t h, const std::vector<float>& values,
                          float maxValue) {
   writePngRgb(file, w, h, falseColour(values, maxValue));
+}
+
+std::string imageFileFormat(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  char head[10] = {};
+  in.read(head, sizeof head);
+  const std::string_view h(head, size_t(in.gcount()));
+  const auto starts = [&](std::string_view magic) { return h.substr(0, magic.size()) == magic; };
+  using namespace std::string_view_literals;  // the magic numbers hold NUL bytes
+  if (starts("\x76\x2f\x31\x01"sv)) return "EXR";
+  if (starts("\x89PNG"sv)) return "PNG";
+  if (starts("\xff\xd8\xff"sv)) return "JPEG";
+  if (starts("#?RADIANCE"sv) || starts("#?RGBE"sv)) return "HDR";
+  if (starts("II*\x00"sv) || starts("MM\x00*"sv)) return "TIFF";
+  return {};
 }
 
 }  // namespace tl::session

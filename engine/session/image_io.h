@@ -51,6 +51,9 @@ struct RgbImage {
 };
 // Nothing when the file is missing or unreadable (a cache miss, not an error).
 std::optional<RgbImage> readExrRgb(const std::filesystem::path& file);
+// The image format a file holds, from its first bytes (not its name): "EXR", "PNG", "JPEG",
+// "HDR" (Radiance), "TIFF"; empty when it is none of these or cannot be read.
+std::string imageFileFormat(const std::filesystem::path& file);
 void writeExrRgb(const std::filesystem::path& file, uint32_t w, uint32_t h, const std::vector<float>& rgb);  // float32
 void writeExrGray(const std::filesystem::path& file, uint32_t w, uint32_t h, const std::vector<float>& values);
 void writePngRgb(const std::filesystem::path& file, uint32_t w, uint32_t h, const std::vector<float>& rgb01);

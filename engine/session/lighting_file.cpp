@@ -462,4 +462,27 @@ SavedLighting saveSceneLighting(const std::filesystem::path& scene, Lighting& li
   return saved;
 }
 
+OpeningLighting openingLighting(const scene::Scene& scene, const std::optional<std::filesystem::path>& lightingFile,
+                                bool defaultSun) {
+  OpeningLighting opened;
+  opened.lighting = sceneLighting(scene, Lighting{});
+  bool emissive = false;
+  for (const auto& m : scene.materials) emissive |= m.emissiveStrength * glm::length(m.emissiveFactor) > 0.0f;
+  if (defaultSun && !scene.environment.sunFromFile && !emissive && scene.lights.empty()) {
+    opened.lighting.sunIrradiance = scene::Environment{}.sunIrradiance;
+    opened.defaultSun = true;
+  }
+  const std::filesystem::path file = lightingFile.value_or(lightingSidecarPath(scene.path));
+  std::error_code ec;
+  // A --lighting file that is not there is an error; a scene without a sidecar is the usual case.
+  if (!lightingFile && !std::filesystem::exists(file, ec)) return opened;
+  try {
+    opened.lighting = readLightingFile(file, opened.lighting);
+    opened.readFrom = file;
+  } catch (const SessionError& e) {
+    opened.error = e.what();
+  }
+  return opened;
+}
+
 }  // namespace tl::session

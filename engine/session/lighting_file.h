@@ -9,6 +9,7 @@
 #include "session/session.h"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 namespace tl::session {
@@ -46,5 +47,21 @@ struct SavedLighting {
 // were written to. Throws SessionError; the glTF is written first and a failure leaves both
 // files as they were.
 SavedLighting saveSceneLighting(const std::filesystem::path& scene, Lighting& lighting);
+
+// The lighting a scene opens with in the editor, whichever way it is opened (at start-up, File >
+// Open, a reload, the command line): the scene's own (sceneLighting, from nothing: no lighting
+// carries over from the scene before), then `lightingFile` (`--lighting`, given for this scene)
+// or else the sidecar beside the scene when there is one. A file with no light at all (no sun, no
+// punctual light, nothing emissive) would show only the flat uniform sky: with `defaultSun` (the
+// editor's choice; a headless render keeps the file's light) it gets the default sun first.
+struct OpeningLighting {
+  Lighting lighting;
+  std::optional<std::filesystem::path> readFrom;  // the lighting file applied
+  bool defaultSun = false;                        // the default sun was given
+  // Why the lighting file could not be applied (the scene's own lighting is used then).
+  std::string error;
+};
+OpeningLighting openingLighting(const scene::Scene& scene, const std::optional<std::filesystem::path>& lightingFile,
+                                bool defaultSun);
 
 }  // namespace tl::session

@@ -4,6 +4,7 @@
 #include "metrics/metrics.h"
 #include "session/compare.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace tl::session {
@@ -140,6 +141,12 @@ bool LiveCompare::referenceTrusted() const {
   if (e.empty() || !e.front().relMse) return false;
   const double scale = e.size() == 2 && e.back().relMse ? std::abs(*e.front().relMse - *e.back().relMse) : *e.front().relMse;
   return *noise * kTrustRatio <= scale;
+}
+
+bool LiveCompare::measuring() const {
+  return std::any_of(pendingFlip_.begin(), pendingFlip_.end(), [](const auto& p) {
+    return p.second.value.valid() && p.second.value.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
+  });
 }
 
 std::vector<LiveError> LiveCompare::errors() const {

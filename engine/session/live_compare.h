@@ -66,6 +66,9 @@ class LiveCompare {
   std::vector<LiveError> errors() const;
   // Waits for the FLIP measurements under way and takes their figures (tests, scripts).
   void finishFlip();
+  // Whether a FLIP measurement's worker is still running (the editor waits for it, bounded,
+  // before the scene it measures goes).
+  bool measuring() const;
   uint32_t referenceSamples() const { return referenceSamples_; }
   // How often the reference's accumulation started over while a sum was under way, and the
   // frame-key parts that made it do so the last time (e.g. camera.position; none when its

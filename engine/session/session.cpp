@@ -443,6 +443,7 @@ void Session::beginOne(bool readback) {
   const uint32_t frameNumber = compare_ ? uint32_t(compareFrames_[compared]++) : uint32_t(frameIndex_);
   shared::FrameConstants fc{};
   buildFrameConstants(fc, frameNumber, taa);
+  if (path->capabilities().debugView) fc.flags |= shared::kFrameFlagShowValues;  // its values as they are
   // Animated nodes move their instances first: the instance table, the top level, the voxel
   // regions and the frame key all see this frame's pose.
   std::vector<glm::dmat4> nodeWorld;

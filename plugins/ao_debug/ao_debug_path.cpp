@@ -26,6 +26,7 @@ class AoDebugPath final : public LightingPath {
   PathCapabilities capabilities() const override {
     PathCapabilities c = source_->capabilities();
     c.halfResolution = false;  // its own settings are the rt path's
+    c.debugView = true;        // AO, not radiance
     return c;
   }
   std::vector<std::pair<std::string, double>> figures() const override { return source_->figures(); }

@@ -1,5 +1,6 @@
 // Outline of the selected instance: texels of it whose 4-neighbourhood leaves it, at `uv`
-// of the frame (the display may be zoomed).
+// of the frame (the display may be zoomed). Inside, its own colour, untinted: the colour an
+// artist edits (an albedo override) is the colour shown.
 vec3 outline(vec2 uv, vec3 c) {
   if (push.selectedId == 0u || any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return c;
   ivec2 idSize = textureSize(instanceId, 0);
@@ -12,8 +13,7 @@ vec3 outline(vec2 uv, vec3 c) {
     o = clamp(o, ivec2(0), idSize - 1);
     edge = edge || ((texelFetch(instanceId, o, 0).r == push.selectedId) != inside);
   }
-  if (edge) return vec3(1.0, 0.55, 0.05);
-  return inside ? mix(c, vec3(1.0, 0.55, 0.05), 0.12) : c;
+  return edge ? vec3(1.0, 0.55, 0.05) : c;
 }
 
 // The source UV a display pixel shows, and whether it is a texel border when zoomed in.

@@ -14,6 +14,7 @@ void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
   vec3 radiance = max(texelFetch(hdr, p, 0).rgb, vec3(0.0));
-  vec3 display = tlTonemapAces(radiance * frame.exposure);
+  // A debug view's values as they are; radiance through exposure and the tonemap curve.
+  vec3 display = (frame.flags & kFrameFlagShowValues) != 0u ? min(radiance, vec3(1.0)) : tlTonemapAces(radiance * frame.exposure);
   imageStore(ldr, p, vec4(tlLinearToSrgb(display), 1.0));
 }

@@ -41,6 +41,9 @@ struct FrameConstants {
 TL_CONST uint kFrameFlagSunShadows = 1u;
 // TAA averages frames: stochastic transparency's dither moves each frame (shared/sampling.h).
 TL_CONST uint kFrameFlagFramesAveraged = 16u;
+// The path is a debug view (PathCapabilities::debugView): its image holds values shown as they
+// are, 0..1 as black to white, without exposure or the tonemap curve.
+TL_CONST uint kFrameFlagShowValues = 32u;
 // Bits 1-2: the material override mode (shared/material_mode.h kMaterials*).
 TL_CONST uint kFrameMaterialsShift = 1u;
 TL_FN uint tlFrameMaterials(uint flags) { return (flags >> kFrameMaterialsShift) & 3u; }

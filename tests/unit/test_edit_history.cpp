@@ -83,5 +83,33 @@ TEST(EditHistory, LightingIsUndoneWithTheSettings) {
   EXPECT_TRUE(s.taa);
 }
 
+// A history that was never given a state to watch from (an editor that opened its first scene
+// before any reset) takes the first state it sees as that state: the scene's loaded lights are
+// not an edit, so the first undo after start-up finds nothing (it used to take the lamps' three
+// lights and the atrium's sun away, and a save then deleted them from the file).
+TEST(EditHistory, TheFirstStateSeenIsWhereTheHistoryStartsNotAnEdit) {
+  lighting::RenderSettings s;
+  s.shadowMapSize = 512;
+  Lighting loaded;
+  loaded.sunIrradiance = glm::vec3(20.0f);
+  loaded.lights.resize(3);
+  loaded.lights[0].name = "bulb";
+  EditHistory h;
+  EXPECT_FALSE(h.observe(s, loaded, false));
+  EXPECT_FALSE(h.canUndo());
+  EXPECT_EQ(h.steps(), 0u);
+  EXPECT_EQ(h.undoLabel(), "");
+  Lighting l = loaded;
+  EXPECT_FALSE(h.undo(s, l));
+  EXPECT_TRUE(sameLighting(l, loaded));
+  EXPECT_EQ(s.shadowMapSize, 512u);
+  // From there on every change is an edit, and undoing it goes back to the loaded state.
+  l.lights.pop_back();
+  ASSERT_TRUE(h.observe(s, l, false));
+  ASSERT_TRUE(h.undo(s, l));
+  EXPECT_TRUE(sameLighting(l, loaded));
+  EXPECT_FALSE(h.canUndo());
+}
+
 }  // namespace
 }  // namespace tl::session
