@@ -31,6 +31,9 @@ inline constexpr const char* kAo = "reference.ao";
 inline constexpr const char* kIrradianceAccum = "reference.irradianceAccum";
 inline constexpr const char* kIrradiance = "reference.irradiance";
 inline constexpr const char* kDepthAccum = "reference.bouncesAccum";
+inline constexpr const char* kMoments = "reference.moments";
+inline constexpr const char* kSampleMean = "reference.sampleMean";
+inline constexpr const char* kNoiseTiles = "reference.noise.tiles";
 inline constexpr const char* kTlas = "reference.tlas";
 inline constexpr const char* kTlasInstances = "reference.tlas.instances";
 inline constexpr const char* kTlasScratch = "reference.tlas.scratch";
@@ -72,15 +75,21 @@ class ReferencePath final : public LightingPath {
     prepareScene(in);
     addStructurePasses(graph, in);
     const uint32_t w = in.settings.width, h = in.settings.height;
-    const auto accumDesc =
-        graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "sum of path samples (rgb) and their count (a)");
-    const auto aoAccumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h, "sum of AO samples");
-    const bool stored = in.historyValid(kAccum, accumDesc) && in.historyValid(kAoAccum, aoAccumDesc);
+    const auto accumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                                        "sum of each round's sample mean (rgb) and the rounds (a)");
+    const auto aoAccumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h, "sum of each round's mean AO");
+    const auto momentsDesc = graph::ResourceDesc::image2D(
+        VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "squared deviations of the samples from their mean, summed (rgb), samples (a)");
+    const auto sampleMeanDesc = graph::ResourceDesc::image2D(
+        VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "mean of all the pixel's samples (rgb), sum over rounds of 1 / samples (a)");
+    const bool stored = in.historyValid(kAccum, accumDesc) && in.historyValid(kAoAccum, aoAccumDesc) &&
+                        in.historyValid(kMoments, momentsDesc) && in.historyValid(kSampleMean, sampleMeanDesc);
     if (accumulation_.advance(kAccumulation, in.key, name(), in.historyLog, {stored}).action == HistoryAction::Restart)
       samples_ = 0, irradianceSamples_ = 0;
 
-    graph.declarePersistent(kAccum, accumDesc);
-    graph.declarePersistent(kAoAccum, aoAccumDesc);
+    for (const auto& [image, desc] : {std::pair{kAccum, accumDesc}, {kAoAccum, aoAccumDesc}, {kMoments, momentsDesc},
+                                      {kSampleMean, sampleMeanDesc}})
+      graph.declarePersistent(image, desc);
     shared::RefPush push{};
     push.aoRadius = in.settings.rtAoRadius > 0.0f ? in.settings.rtAoRadius
                                                   : sceneScaledAoRadius(std::max(in.constants.sceneScale, 1e-3f));
@@ -89,6 +98,13 @@ class ReferencePath final : public LightingPath {
     withPathInputs(RayTracingPass(in.device, "reference.trace", kTraceShaders), in)
         .storageInOut(shared::kRefBindingAccum, kAccum)
         .storageInOut(shared::kRefBindingAoAccum, kAoAccum)
+        .storageInOut(shared::kRefBindingMoments, kMoments)
+        .storageInOut(shared::kRefBindingSampleMean, kSampleMean)
+        .storageOut(shared::kRefBindingStdErr, kReferenceStdErr,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                                 "standard error of reference.radiance per channel (rgb: how far each "
+                                                 "pixel's estimate is expected to be from the converged one), the "
+                                                 "pixel's samples (a)"))
         .storageOut(shared::kRefBindingAo, kAo,
                     graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
                                                  "ambient occlusion at the AO radius (cosine-weighted), ground truth")
@@ -98,13 +114,16 @@ class ReferencePath final : public LightingPath {
         .push(push,
               [this](graph::PassContext& ctx, shared::RefPush& p) {
                 // History can vanish under us (resize, reset): then the sum starts over.
-                if (!ctx.historyValid(kAccum) || !ctx.historyValid(kAoAccum)) samples_ = 0;
+                if (!ctx.historyValid(kAccum) || !ctx.historyValid(kAoAccum) || !ctx.historyValid(kMoments) ||
+                    !ctx.historyValid(kSampleMean))
+                  samples_ = 0;
                 p.samplesSoFar = samples_;
                 p.seed = 0;
                 samples_ += p.samplesPerFrame;
               })
         .trace(w, h)
         .add(graph);
+    addNoisePasses(graph, in);
     addIrradiancePass(graph, in, push);
     addDepthSplitPass(graph, in, push);
     LightingOutputs out;
@@ -120,6 +139,35 @@ class ReferencePath final : public LightingPath {
   }
 
  private:
+  // The image's noise (shared/reference.h RefNoiseTotals) summed on the GPU in two steps and
+  // read back every frame: 32 bytes, so the session knows the relative standard error of every
+  // frame it finishes (Session::referenceNoise) without reading the images.
+  void addNoisePasses(graph::RenderGraph& graph, FrameInputs& in) {
+    const uint32_t w = in.settings.width, h = in.settings.height;
+    shared::RefNoisePush push{};
+    push.width = w, push.height = h;
+    push.tiles = ((w + shared::kRefNoiseTile - 1) / shared::kRefNoiseTile) * ((h + shared::kRefNoiseTile - 1) / shared::kRefNoiseTile);
+    ComputePass(in.device, "reference.noise.tiles", "reference/noise_tiles.comp")
+        .storageIn(shared::kRefNoiseBindingRadiance, kRadiance)
+        .storageIn(shared::kRefNoiseBindingStdErr, kReferenceStdErr)
+        .bufferOut(shared::kRefNoiseBindingTiles, kNoiseTiles,
+                   graph::ResourceDesc::buffer(push.tiles * sizeof(shared::RefNoiseTotals),
+                                               "the reference's noise summed per 16 x 16 tile"))
+        .push(push)
+        .dispatch(w, h, 1, shared::kRefNoiseTile, shared::kRefNoiseTile)
+        .add(graph);
+    ComputePass(in.device, "reference.noise", "reference/noise_sum.comp")
+        .bufferIn(shared::kRefNoiseBindingTiles, kNoiseTiles)
+        .bufferOut(shared::kRefNoiseBindingTotals, kReferenceNoise,
+                   graph::ResourceDesc::buffer(sizeof(shared::RefNoiseTotals),
+                                               "the reference's noise over the image (shared/reference.h RefNoiseTotals)"))
+        .push(push)
+        .dispatch(256, 1, 1, 256, 1, 1)
+        .add(graph);
+    graph.markOutput(kReferenceNoise);
+    graph.requestReadback(kReferenceNoise);
+  }
+
   // The diffuse irradiance at the primary hit (what composite.irradiance holds for the
   // real-time paths), its own progressive sum. It costs a second path per sample, so it runs
   // only in frames that read reference.irradiance (compare's per-stage error, the inspector).
