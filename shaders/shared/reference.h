@@ -21,6 +21,7 @@ TL_CONST uint kRefBindingDepth0 = 12;      // rgba32f: the radiance of depth gro
 TL_CONST uint kRefBindingMoments = 16;     // rgba32f: squared deviations from the pixel's sample mean, summed (rgb), samples (a) (persistent)
 TL_CONST uint kRefBindingSampleMean = 17;  // rgba32f: the mean of all the pixel's samples (rgb), sum over rounds of 1 / samples (a) (persistent)
 TL_CONST uint kRefBindingStdErr = 18;      // rgba32f: standard error of reference.radiance per channel (rgb), the pixel's samples (a)
+TL_CONST uint kRefBindingEmitters = 19;    // Emitter[] (shared/emitters.h): RefPush::emitterCount of them (bound when > 0)
 
 // The reference's noise, summed over the image by reference/noise.comp (two steps: tiles of
 // kRefNoiseTile x kRefNoiseTile pixels, then the tiles) into one RefNoiseTotals.
@@ -40,7 +41,7 @@ struct RefInstanceGeometry {
   uint firstIndex;
   int vertexOffset;
   uint material;
-  uint pad;
+  uint emitters;  // its first entry in the emitter table + 1 (0: it emits nothing): triangle t is entry emitters - 1 + t
 };
 
 // What the noise passes add up, over pixels and the three channels.
@@ -74,14 +75,16 @@ struct RefPush {
   uint seed;
   float aoRadius;        // reference AO: one cosine ray per sample from the primary hit, this long (m)
   uint sampleBase;       // the depth split's first sample index: the trace pass's samplesSoFar (same paths)
-  uint pad1, pad2;
+  uint emitterCount;     // emissive triangles sampled at every scattering event (0: emission found by rays only)
+  uint pad2;
 };
 
 // What a closest-hit shader reports (hitT < 0: the ray missed).
 struct RefHit {
   vec4 positionT;     // xyz camera-relative hit point, w hit distance
   vec4 normal;        // xyz shading normal facing the ray, w unused
-  vec4 geometric;     // xyz geometric normal facing the ray
+  vec4 geometric;     // xyz geometric normal facing the ray; w the density per unit area with which emitter
+                      // sampling draws the hit point (its triangle's probability / area; 0: never)
   vec4 baseColor;     // rgb, a roughness
   vec4 emission;      // rgb emitted radiance, a metallic
 };

@@ -6,12 +6,14 @@
 #include "graph/executor.h"
 #include "lighting/common/decoders.h"
 #include "lighting/lighting_path.h"
+#include "lighting/common/emitter_table.h"
 #include "lighting/common/environment_table.h"
 #include "lighting/common/light_table.h"
 #include "lighting/common/lights_pass.h"
 #include "lighting/common/pass_builders.h"
 #include "shared/lights.h"
 #include "lighting/reference/reference_path.h"
+#include "scene/material_average.h"
 #include "scene/scene.h"
 #include "shared/brdf_lut.h"
 #include "shared/reference.h"
@@ -95,6 +97,7 @@ class ReferencePath final : public LightingPath {
                                                   : sceneScaledAoRadius(std::max(in.constants.sceneScale, 1e-3f));
     push.samplesPerFrame = std::max(1u, in.settings.referenceSamplesPerFrame);
     push.maxBounces = std::max(1u, in.settings.referenceBounces);
+    push.emitterCount = in.settings.referenceEmitterSampling ? emitterCount_ : 0u;
     withPathInputs(RayTracingPass(in.device, "reference.trace", kTraceShaders), in)
         .storageInOut(shared::kRefBindingAccum, kAccum)
         .storageInOut(shared::kRefBindingAoAccum, kAoAccum)
@@ -279,10 +282,23 @@ class ReferencePath final : public LightingPath {
           blas_[m] = gpu::buildBottomLevelAt(in.device, meshGeometry(in, m), fmt::format("reference.blas.{}", m),
                                              deformingStorage_, placeAt[m], false);
     }
+    // The emitters (lighting/common/emitter_table.h): every triangle of each instance whose
+    // material emits, drawn by its power from the material's average emission.
+    std::vector<glm::vec3> instanceEmission;
+    for (const auto& instance : in.sceneData.instances)
+      instanceEmission.push_back(scene::materialAverageEmission(
+          in.sceneData, in.sceneData.materials[in.sceneData.meshes[instance.mesh].material]));
+    const EmitterTable emitters = buildEmitterTable(in.sceneData, instanceEmission);
+    emitterCount_ = uint32_t(emitters.entries.size());
+    std::vector<shared::Emitter> entries = emitters.entries;
+    if (entries.empty()) entries.emplace_back();  // a binding needs a buffer
+    emitters_ = gpu::Buffer(in.device, entries.size() * sizeof(shared::Emitter), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                            gpu::MemoryUsage::Upload, "reference.emitters");
+    emitters_.write(entries.data(), entries.size() * sizeof(shared::Emitter));
     std::vector<shared::RefInstanceGeometry> table(std::max<size_t>(1, in.scene.instanceCount()));
     for (size_t i = 0; i < in.scene.instanceCount(); ++i) {
       const auto& r = ranges[in.scene.instanceMesh(i)];
-      table[i] = {r.firstIndex, r.vertexOffset, r.material, 0};
+      table[i] = {r.firstIndex, r.vertexOffset, r.material, i < emitters.firstOfInstance.size() ? emitters.firstOfInstance[i] : 0u};
     }
     geometry_ = gpu::Buffer(in.device, table.size() * sizeof(table[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                             gpu::MemoryUsage::Upload, "reference.instanceGeometry");
@@ -368,6 +384,7 @@ class ReferencePath final : public LightingPath {
         .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
         .optionalBufferIn(shared::kBindingLights, kLightTable, in.constants.lightCount > 0)
         .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, hasEnvironmentMap(in))
+        .constantBuffer(shared::kRefBindingEmitters, emitters_.handle())
         .reads(kSceneInstances, graph::Usage::StorageRead)
         .reads(kSceneMaterials, graph::Usage::StorageRead)
         .sceneTable(in.scene.table());
@@ -384,6 +401,8 @@ class ReferencePath final : public LightingPath {
   gpu::TopLevelBuilder tlas_;
   std::vector<glm::mat4> tlasTransforms_;
   gpu::Buffer geometry_;
+  gpu::Buffer emitters_;  // shared::Emitter per emissive triangle (at least one entry; emitterCount_ valid)
+  uint32_t emitterCount_ = 0;
   HistoryKeeper accumulation_;
   uint32_t samples_ = 0;
   uint32_t irradianceSamples_ = 0;
