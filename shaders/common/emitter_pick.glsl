@@ -2,5 +2,5 @@
 // `emitters[]` (Emitter, std430) and passes its valid count (> 0).
 uint emitterPick(uint h, uint count) {
   uint slot = tlAliasSlot(h, count);
-  return tlAliasKeepsSlot(h, count, emitters[slot].p0.w) ? slot : emitters[slot].ids.z;
+  return tlAliasKeepsSlot(h, emitters[slot].p0.w) ? slot : emitters[slot].ids.z;
 }

@@ -14,6 +14,7 @@
 #ifndef TL_SHARED_EMITTERS_H
 #define TL_SHARED_EMITTERS_H
 #include "common.h"
+#include "sampling.h"
 
 TL_BEGIN
 struct Emitter {
@@ -24,15 +25,12 @@ struct Emitter {
   uvec4 ids;      // x: instance, y: triangle of its mesh, z: the alias slot's other triangle, w unused
 };
 
-// The alias table's draw from one 32-bit uniform h over `count` slots: the slot is h mod count
-// and the rest of h (h / count) decides between the slot's own triangle (below its threshold)
-// and its alias. Both parts are uniform to within count / 2^32.
-TL_FN uint tlAliasSlot(uint h, uint count) { return h % count; }
-TL_FN bool tlAliasKeepsSlot(uint h, uint count, float threshold) {
-  if (threshold >= 1.0f) return true;
-  float f = float(h / count) / float(0xFFFFFFFFu / count + 1u);
-  return f < threshold;
-}
+// The alias table's draw from one 32-bit uniform h over `count` slots: its top 24 bits choose
+// the slot, a hash of all of it decides between the slot's own triangle (below its threshold)
+// and its alias. (The low bits of h are not used for the slot: of a PCG hash of pixel and frame
+// they follow patterns a 2-triangle light showed as a bias.) Uniform to 2^-24 for up to 2^24 slots.
+TL_FN uint tlAliasSlot(uint h, uint count) { return min(uint(tlUintToUnitFloat(h) * float(count)), count - 1u); }
+TL_FN bool tlAliasKeepsSlot(uint h, float threshold) { return threshold >= 1.0f || tlUintToUnitFloat(tlPcgHash(h)) < threshold; }
 
 // The barycentrics (of p1, p2) of a point uniform in area on a triangle (the square-root warp).
 TL_FN vec2 tlEmitterBarycentrics(vec2 u) {

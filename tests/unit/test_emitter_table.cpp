@@ -23,7 +23,7 @@ std::vector<double> drawFrequencies(const std::vector<Emitter>& table, uint32_t 
   for (uint32_t i = 0; i < draws; ++i) {
     const uint32_t h = rng();
     const uint32_t slot = tlAliasSlot(h, n);
-    count[tlAliasKeepsSlot(h, n, table[slot].p0.w) ? slot : table[slot].ids.z] += 1.0;
+    count[tlAliasKeepsSlot(h, table[slot].p0.w) ? slot : table[slot].ids.z] += 1.0;
   }
   for (double& c : count) c /= draws;
   return count;
