@@ -77,9 +77,15 @@ class CompareCommand : public CliCommand {
     cmd->add_flag("--presets", presets_,
                   "measure the built-in presets (Fast, Balanced, Reference-like) of the --paths (default: every "
                   "path, the reference's included) instead of the paths alone");
-    cmd->add_option("--spp", compare_.referenceSpp, "reference samples per pixel (<= 16 or a multiple of 16)")
-        ->check(CLI::Range(1u, kMaxSpp))
-        ->capture_default_str();
+    spp_ = cmd->add_option("--spp", compare_.referenceSpp,
+                           "reference samples per pixel (<= 16 or a multiple of 16); with --reference-noise, the cap")
+               ->check(CLI::Range(1u, kMaxSpp))
+               ->capture_default_str();
+    cmd->add_option("--reference-noise", compare_.referenceNoise,
+                    fmt::format("render the reference until its relative standard error (the root of the mean variance "
+                                "of the pixels' estimates over their mean) is at most this, e.g. 0.01, instead of a fixed "
+                                "--spp, which then caps it (default {} samples a pixel)",
+                                session::NoiseTarget::kDefaultMaxSamples));
     auto* bounces = cmd->add_option("--bounces", compare_.referenceBounces, "reference scattering events per path")
                         ->check(CLI::Range(1u, kMaxBounces))
                         ->capture_default_str();
@@ -141,6 +147,10 @@ class CompareCommand : public CliCommand {
     if (!reference_.empty() && (!cameras_.empty() || scenes.size() > 1))
       throw UsageError("--reference is one camera's image: it cannot be compared with --cameras or several scenes");
     compare_.referenceFile = reference_;
+    if (compare_.referenceNoise) {
+      if (!reference_.empty()) throw UsageError("--reference-noise is the path tracer's: it cannot go with --reference");
+      if (spp_->count() > 0) compare_.referenceNoiseCap = compare_.referenceSpp;
+    }
     chooseConfigurations();
     compare_.cacheDir = cache_;
     compare_.outDir = out_;
@@ -226,6 +236,7 @@ class CompareCommand : public CliCommand {
 
   RenderOptions render_;
   session::CompareOptions compare_;
+  CLI::Option* spp_ = nullptr;
   std::vector<std::string> scenes_;
   std::string paths_, out_ = "out/compare", cache_, cameras_, reference_, failAbove_, shard_;
   bool goals_ = false;

@@ -47,6 +47,13 @@ void printCompareReport(const nlohmann::json& report, const std::vector<session:
     fmt::print("reference: {} spp{}{}\n", ref["spp"].get<int>(), ref["scope"] == "same" ? ", same scope (direct + one bounce)" : "",
                ref["cached"].get<bool>() ? " (reused from the cache)" : "");
     fmt::print("reference bounces: {}\n", ref["bouncePolicy"].get<std::string>());
+    if (ref.contains("noise") && ref["noise"].contains("relativeStdError")) {
+      std::string target;
+      if (ref.contains("noiseTarget"))
+        target = fmt::format(" (target {}: {})", ref["noiseTarget"]["relativeStdError"].get<double>(),
+                             ref["noise"].value("reached", false) ? "reached" : "not reached, the sample cap stopped it");
+      fmt::print("reference noise: relative standard error {:.5f}{}\n", ref["noise"]["relativeStdError"].get<double>(), target);
+    }
   }
   fmt::print("materials: {}\n", ref["materials"].get<std::string>());
   // Per bounce: which share of each depth group of the reference each path holds.

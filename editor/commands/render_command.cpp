@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace tl::editor {
 namespace {
@@ -67,8 +68,14 @@ class RenderCommand : public CliCommand {
         ->required();
     cmd->add_option("--dump-graph", o_.dumpGraph,
                     "write the compiled render graph as text (- for stdout), or Graphviz DOT for a .dot file");
-    cmd->add_option("--spp", o_.spp, "reference path: samples per pixel to accumulate (sets the frames)")
+    cmd->add_option("--spp", o_.spp,
+                    "reference path: samples per pixel to accumulate (sets the frames); with --until-noise, the cap")
         ->check(CLI::Range(1u, kMaxSpp));
+    cmd->add_option("--until-noise", o_.untilNoise,
+                    fmt::format("reference path: accumulate until the image's relative standard error (the root of the "
+                                "mean variance of the pixels' estimates over their mean) is at most this, e.g. 0.01, or "
+                                "until --spp samples (default {}) a pixel",
+                                session::NoiseTarget::kDefaultMaxSamples));
     cmd->add_option("--bounces", o_.bounces,
                     "reference path: scattering events per path (1 = direct light only, 2 = one indirect bounce)")
         ->check(CLI::Range(1u, kMaxBounces))
@@ -95,6 +102,10 @@ int runRender(const RenderOptions& o) {
   if (sequence && !o.animateFps)
     throw UsageError("--out with # writes one image per frame of an animation: add --animate FPS (and --frames N)");
   if (sequence && o.spp) throw UsageError("--spp accumulates one image: it cannot write a --out sequence");
+  if (sequence && o.untilNoise) throw UsageError("--until-noise accumulates one image: it cannot write a --out sequence");
+  if (o.untilNoise && !(*o.untilNoise > 0.0 && std::isfinite(*o.untilNoise)))
+    throw SessionError(fmt::format("--until-noise must be a number > 0 (a relative standard error, e.g. 0.01), not {}",
+                                   *o.untilNoise));
   if (o.frames == 0) throw SessionError("--frames must be at least 1");
   if (o.bounces == 0) throw SessionError("--bounces must be at least 1");
   uint32_t frames = o.frames;
@@ -109,6 +120,8 @@ int runRender(const RenderOptions& o) {
   const uint32_t w = session.settings().width, h = session.settings().height;
   if (o.spp && o.path != session.referencePath())
     throw SessionError(fmt::format("--spp applies to --path {}", session.referencePath()));
+  if (o.untilNoise && o.path != session.referencePath())
+    throw SessionError(fmt::format("--until-noise applies to --path {}", session.referencePath()));
   if (o.bounces) session.settings().referenceBounces = *o.bounces;
   // Up to 16 samples a frame: fewer submissions, and each frame stays short.
   if (o.spp) session.settings().referenceSamplesPerFrame = std::min(*o.spp, 16u);
@@ -128,6 +141,7 @@ int runRender(const RenderOptions& o) {
       throw SessionError(fmt::format("{}: {} of {} pixels are not finite", file.string(), result.nonFinite, result.pixels));
   };
   auto start = std::chrono::steady_clock::now();
+  std::optional<session::ReferenceConvergence> converged;
   {
     Progress progress("render");
     auto report = [&](uint32_t done) {
@@ -135,7 +149,23 @@ int runRender(const RenderOptions& o) {
                       o.spp ? fmt::format("{}/{} spp", done * session.settings().referenceSamplesPerFrame, *o.spp)
                             : fmt::format("frame {}/{}", done, frames));
     };
-    if (!sequence) {
+    if (o.untilNoise) {
+      session::NoiseTarget target;
+      target.relativeStdError = *o.untilNoise;
+      if (o.spp) target.maxSamples = *o.spp;
+      target.samplesPerFrame = std::min(target.samplesPerFrame, target.maxSamples);
+      converged = session.renderReferenceUntilNoise(target, [&](const session::ReferenceConvergence& sofar) {
+        if (sofar.frames > 0) times.add(session);
+        if (!sofar.noise) return;
+        // Progress by the noise: samples needed scale as 1 / noise^2.
+        const double needed = double(sofar.noise->mostSamples) * std::pow(sofar.noise->relativeStdError / target.relativeStdError, 2.0);
+        progress.update(std::min(1.0, double(sofar.noise->mostSamples) / std::min(needed, double(target.maxSamples))),
+                        fmt::format("{} spp, noise {:.4f} (target {})", sofar.noise->mostSamples,
+                                    sofar.noise->relativeStdError, target.relativeStdError));
+      });
+      times.add(session);
+      frames = converged->frames;
+    } else if (!sequence) {
       session.renderFrames(frames, report);
       times.add(session);
     } else {
@@ -160,6 +190,16 @@ int runRender(const RenderOptions& o) {
   fmt::print("rendered {} frame(s) of {} with `{}` at {}x{} on {} in {:.2f} s\n", frames, session.scene().name,
              session.path(), w, h, session.device().name(), seconds);
   printFrameTimes(times);
+  if (const auto noise = session.referenceNoise()) {
+    // The reference's own noise (session/reference_noise.h), and whether the target was met.
+    std::string target;
+    if (converged)
+      target = converged->reached ? fmt::format(" (target {}: reached)", *o.untilNoise)
+                                  : fmt::format(" (target {}: not reached; the cap of {} samples stopped it)", *o.untilNoise,
+                                                o.spp.value_or(session::NoiseTarget::kDefaultMaxSamples));
+    fmt::print("reference noise: relative standard error {:.5f} after {} samples per pixel{}\n", noise->relativeStdError,
+               noise->mostSamples, target);
+  }
   if (!o.dumpGraph.empty()) {
     if (o.dumpGraph == "-") {
       fmt::print("{}", session.graphDump());

@@ -29,6 +29,7 @@ struct RenderOptions {
   LightArgs light;
   std::string dumpGraph;
   std::optional<uint32_t> spp;
+  std::optional<double> untilNoise;  // render: the reference until its relative standard error is at most this
   std::optional<uint32_t> bounces;
   std::optional<float> sunSizeDegrees;
   // The short forms of render settings (--materials, --hard-shadows, --rt-mesh-ratio, ...): their

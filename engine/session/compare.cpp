@@ -52,10 +52,14 @@ uint64_t referenceSpirvHash() {
 std::string referenceKey(const Session& s, const CompareOptions& o) {
   using lighting::FramePart;
   const lighting::FrameKey key = s.frameKey();
-  std::string text = fmt::format("{:x}|{:x}|{:x}|{:x}|{:x}|{:x}|scene {:x}|spirv {:x}|spp {}",
+  // A noise target stops the render at a frame its seeds decide: the target and the cap name
+  // the image as well as a sample count does.
+  const std::string samples = o.referenceNoise ? fmt::format("noise {} cap {}", *o.referenceNoise, o.referenceNoiseCap)
+                                               : fmt::format("spp {}", o.referenceSpp);
+  std::string text = fmt::format("{:x}|{:x}|{:x}|{:x}|{:x}|{:x}|scene {:x}|spirv {:x}|{}",
                                  key.hash(FramePart::CameraPosition), key.hash(FramePart::CameraOrientation),
                                  key.hash(FramePart::Projection), key.hash(FramePart::Sun), key.hash(FramePart::Sky),
-                                 key.settingsOf("reference"), s.scene().contentHash, referenceSpirvHash(), o.referenceSpp);
+                                 key.settingsOf("reference"), s.scene().contentHash, referenceSpirvHash(), samples);
   if (s.animated()) text += fmt::format("|t{}", s.animationTime());  // the pose of deforming meshes and moving nodes
   return fmt::format("{:016x}", scene::hashBytes(text.data(), text.size()));
 }
@@ -74,6 +78,9 @@ std::string referenceBouncePolicy(uint32_t cap) {
 struct ReferenceImages {
   metrics::Image radiance, ao, irradiance;
   std::vector<metrics::Image> byDepth;
+  // The standard error of each pixel's radiance per channel (reference.stderr); empty for
+  // another renderer's image, whose noise is unknown.
+  metrics::Image stdErr;
 };
 
 // What each depth group is called in reports, in referenceBounceBuffers()'s order.
@@ -96,7 +103,9 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   const std::string key = referenceKey(s, o);
   const auto& depthBuffers = lighting::referenceBounceBuffers();
   // The radiance first: its presence is what a run looks for first (it is written last).
-  std::vector<std::filesystem::path> files = {dir / (key + ".exr"), dir / (key + ".ao.exr"), dir / (key + ".irradiance.exr")};
+  std::vector<std::filesystem::path> files = {dir / (key + ".exr"), dir / (key + ".ao.exr"), dir / (key + ".irradiance.exr"),
+                                              dir / (key + ".stderr.exr"), dir / (key + ".noise.json")};
+  const size_t firstDepthFile = files.size();
   for (size_t g = 0; g < depthBuffers.size(); ++g) files.push_back(dir / fmt::format("{}.bounces{}.exr", key, g));
   info = {{"source", "path tracer"},
           {"spp", o.referenceSpp},
@@ -105,10 +114,18 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
           {"materials", lighting::materialModeName(s.settings().materials)},
           {"scope", o.scope},
           {"cacheFile", files[0].string()}};
+  if (o.referenceNoise) info["noiseTarget"] = {{"relativeStdError", *o.referenceNoise}, {"sampleCap", o.referenceNoiseCap}};
   const uint32_t w = s.settings().width, h = s.settings().height;
   std::vector<std::optional<RgbImage>> cached(files.size());
+  std::optional<nlohmann::json> cachedNoise;
   bool hit = true;
   for (size_t i = 0; i < files.size(); ++i) {
+    if (files[i].extension() == ".json") {
+      std::ifstream in(files[i]);
+      if (in) cachedNoise = nlohmann::json::parse(in, nullptr, false);
+      hit = hit && cachedNoise && cachedNoise->is_object();
+      continue;
+    }
     cached[i] = readExrRgb(files[i]);
     hit = hit && cached[i] && cached[i]->width == w && cached[i]->height == h;
   }
@@ -117,34 +134,64 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
     ReferenceImages r{metrics::Image::fromTexels(w, h, 3, std::move(cached[0]->rgb)), metrics::Image::filled(w, h, 1, 0.0f),
                       metrics::Image::fromTexels(w, h, 3, std::move(cached[2]->rgb))};
     for (size_t i = 0; i < r.ao.data.size(); ++i) r.ao.data[i] = cached[1]->rgb[3 * i];
+    r.stdErr = metrics::Image::fromTexels(w, h, 3, std::move(cached[3]->rgb));
     for (size_t g = 0; g < depthBuffers.size(); ++g)
-      r.byDepth.push_back(metrics::Image::fromTexels(w, h, 3, std::move(cached[3 + g]->rgb)));
+      r.byDepth.push_back(metrics::Image::fromTexels(w, h, 3, std::move(cached[firstDepthFile + g]->rgb)));
+    info["noise"] = *cachedNoise;
+    if (cachedNoise->contains("spp")) info["spp"] = (*cachedNoise)["spp"];
     return r;
   }
   info["cached"] = false;
   const std::string referencePath = s.referencePath();
   if (referencePath.empty()) throw SessionError("this build has no reference path to compare against");
   s.setPath(referencePath);
-  s.settings().referenceSamplesPerFrame = std::min(o.referenceSpp, 16u);
-  const uint32_t frames = std::max(1u, o.referenceSpp / s.settings().referenceSamplesPerFrame);
   s.resetHistory();
   s.setFrameIndex(0);  // the noise does not depend on what the process rendered before (see runCompare)
-  for (uint32_t f = 0; f < frames; ++f) {
-    // The irradiance and depth-split passes run only in frames that read their results: every
-    // frame here, so the split holds the very samples of the radiance.
+  // The irradiance and depth-split passes run only in frames that read their results: every
+  // frame here, so the split holds the very samples of the radiance.
+  auto request = [&](bool all) {
     s.requestBuffer("reference.irradiance");
     for (const auto& b : depthBuffers) s.requestBuffer(b);
-    if (f + 1 == frames) s.requestBuffer("reference.radiance"), s.requestBuffer("reference.ao");
-    s.renderFrames(1);
-    if (progress) progress(fmt::format("reference {} spp", (f + 1) * s.settings().referenceSamplesPerFrame), double(f + 1) / frames);
+    if (all) s.requestBuffer("reference.radiance"), s.requestBuffer("reference.ao"), s.requestBuffer(lighting::kReferenceStdErr);
+  };
+  if (o.referenceNoise) {
+    // Stopped by its noise: any frame may be the last, so each one reads the images back.
+    NoiseTarget target;
+    target.relativeStdError = *o.referenceNoise;
+    target.maxSamples = o.referenceNoiseCap;
+    const ReferenceConvergence run = s.renderReferenceUntilNoise(target, [&](const ReferenceConvergence& sofar) {
+      request(true);
+      if (progress && sofar.noise)
+        progress(fmt::format("reference {} spp, noise {:.4f} (target {})", sofar.noise->mostSamples,
+                             sofar.noise->relativeStdError, target.relativeStdError),
+                 std::min(1.0, double(sofar.noise->mostSamples) / target.maxSamples));
+    });
+    info["noise"] = {{"reached", run.reached}};
+  } else {
+    s.settings().referenceSamplesPerFrame = std::min(o.referenceSpp, 16u);
+    const uint32_t frames = std::max(1u, o.referenceSpp / s.settings().referenceSamplesPerFrame);
+    for (uint32_t f = 0; f < frames; ++f) {
+      request(f + 1 == frames);
+      s.renderFrames(1);
+      if (progress) progress(fmt::format("reference {} spp", (f + 1) * s.settings().referenceSamplesPerFrame), double(f + 1) / frames);
+    }
+    info["noise"] = nlohmann::json::object();
+  }
+  if (const auto noise = s.referenceNoise()) {
+    info["noise"]["relativeStdError"] = noise->relativeStdError;
+    info["noise"]["spp"] = noise->mostSamples;
+    info["spp"] = noise->mostSamples;
   }
   ReferenceImages r{rgbImage(s.buffer("reference.radiance")), channelOf(s.buffer("reference.ao"), 0),
                     rgbImage(s.buffer("reference.irradiance"))};
+  r.stdErr = rgbImage(s.buffer(lighting::kReferenceStdErr));
   for (const auto& b : depthBuffers) r.byDepth.push_back(rgbImage(s.buffer(b)));
   std::vector<float> aoRgb(r.ao.data.size() * 3);
   for (size_t i = 0; i < aoRgb.size(); ++i) aoRgb[i] = r.ao.data[i / 3];
   // The radiance file last: its presence is what a later run looks for first.
-  for (size_t g = 0; g < depthBuffers.size(); ++g) writeExrRgb(files[3 + g], w, h, r.byDepth[g].data);
+  for (size_t g = 0; g < depthBuffers.size(); ++g) writeExrRgb(files[firstDepthFile + g], w, h, r.byDepth[g].data);
+  writeTextFile(files[4], info["noise"].dump(2) + "\n");
+  writeExrRgb(files[3], w, h, r.stdErr.data);
   writeExrRgb(files[2], w, h, r.irradiance.data);
   writeExrRgb(files[1], w, h, aoRgb);
   writeExrRgb(files[0], w, h, r.radiance.data);
@@ -339,6 +386,10 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
   else if (o.scope != "full") throw SessionError(fmt::format("unknown reference scope `{}` (full or same)", o.scope));
   if (o.referenceSpp == 0 || (o.referenceSpp > 16 && o.referenceSpp % 16))
     throw SessionError("the reference sample count must be at most 16 or a multiple of 16");
+  if (o.referenceNoise && !(*o.referenceNoise > 0.0 && std::isfinite(*o.referenceNoise)))
+    throw SessionError(fmt::format("the reference's noise target must be a number > 0, not {}", *o.referenceNoise));
+  if (o.referenceNoise && o.referenceNoiseCap < 16)
+    throw SessionError("the reference's sample cap must be at least 16");
   std::vector<CompareVariant> runs;
   for (const auto& p : o.paths) runs.push_back({p, p, nlohmann::json::object()});
   if (o.paths.empty() && o.variants.empty())

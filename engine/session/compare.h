@@ -13,6 +13,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,11 @@ struct CompareOptions {
   std::vector<std::string> paths;      // empty (and no variants): every available lighting path but the reference (debug views only by name)
   std::vector<CompareVariant> variants;  // measured after `paths` (compare --settings FILE)
   uint32_t referenceSpp = 256;         // multiple of 16
+  // Render the reference until its relative standard error (session/reference_noise.h) is at
+  // most this instead of a fixed sample count; referenceNoiseCap samples stop it if it is not
+  // reached (the report says which).
+  std::optional<double> referenceNoise;
+  uint32_t referenceNoiseCap = NoiseTarget::kDefaultMaxSamples;
   uint32_t referenceBounces = lighting::RenderSettings{}.referenceBounces;  // the hard cap (Russian roulette ends paths first)
   // "full": referenceBounces scattering events; "same": 2 (direct light + one bounce, the
   // scope of the RT path's one-hit rays and of legacy's one-bounce cones).

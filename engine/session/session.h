@@ -15,6 +15,7 @@
 #include "scene/scene.h"
 #include "session/image_io.h"
 #include "session/live_compare.h"
+#include "session/reference_noise.h"
 
 #include <array>
 #include <deque>
@@ -245,6 +246,16 @@ class Session {
   uint64_t frameIndex() const { return frameIndex_; }
   // The active path's figures about the last frame (see LightingPath::figures).
   std::vector<std::pair<std::string, double>> pathFigures() const { return path_->figures(); }
+  // The reference's noise at the last finished frame (session/reference_noise.h): empty when
+  // that frame was not the reference's or some pixel has fewer than 2 samples.
+  std::optional<ReferenceNoise> referenceNoise() const;
+  // Switches to the reference path and renders it, on from what it has accumulated, until the
+  // relative standard error of its image is at most target.relativeStdError or a pixel has
+  // target.maxSamples samples; `beforeFrame` runs before each frame (progress, read-back
+  // requests: the last frame reads back as renderFrames' does). Throws SessionError when this
+  // build has no reference path or the target is not a number > 0.
+  ReferenceConvergence renderReferenceUntilNoise(const NoiseTarget& target,
+                                                 const std::function<void(const ReferenceConvergence&)>& beforeFrame = {});
   // Pins the next frame's index (it seeds per-frame noise): reproducible frames for tests.
   void setFrameIndex(uint64_t index) { frameIndex_ = index; }
 

@@ -169,6 +169,8 @@ nlohmann::json sweepGrid(const SweepPlan& plan, const CompareOptions& o) {
           {"paths", o.paths},
           {"variants", variants},
           {"referenceSpp", o.referenceSpp},
+          {"referenceNoise", o.referenceNoise ? nlohmann::json(*o.referenceNoise) : nlohmann::json(nullptr)},
+          {"referenceNoiseCap", o.referenceNoiseCap},
           {"referenceBounces", o.referenceBounces},
           {"scope", o.scope},
           {"framesPerPath", o.framesPerPath},

@@ -3,6 +3,7 @@
 // (shading) and the any-hit (alpha cut-out) shaders, so both read the same UVs and colours.
 #ifndef TL_REF_HIT_VERTICES_GLSL
 #define TL_REF_HIT_VERTICES_GLSL
+#include "shared/emitters.h"
 #include "shared/reference.h"
 #include "common/material_data.glsl"
 
@@ -49,5 +50,22 @@ RefHitVertices refHitVertices(RefInstanceGeometry g, uint primitive, vec2 bary) 
     h.color += refVertex4(v[k], kVertexColor) * w[k];
   }
   return h;
+}
+// The reference's emitter table (shared/emitters.h), bound where the scene has emitters: the
+// closest hit reads the probability of the triangle it hit, the paths draw from it.
+layout(set = 0, binding = kRefBindingEmitters, std430) readonly buffer Emitters { Emitter emitters[]; };
+
+// The area of a triangle in camera-relative world space (its instance's transform): the area
+// emitter sampling spreads a triangle's probability over, the same at a draw and at a hit.
+float refWorldArea(mat4 modelRelative, RefHitVertices h) {
+  mat3 m = mat3(modelRelative);
+  return 0.5 * length(cross(m * (h.p1 - h.p0), m * (h.p2 - h.p0)));
+}
+
+// The density per unit area with which emitter sampling draws a point of triangle `primitive`
+// of an instance with geometry g: its entry's probability over its area; 0 off the table.
+float refEmitterDensity(RefInstanceGeometry g, uint primitive, float area) {
+  if (g.emitters == 0u || !(area > 0.0)) return 0.0;
+  return emitters[g.emitters - 1u + primitive].edge2.w / area;
 }
 #endif

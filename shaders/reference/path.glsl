@@ -2,6 +2,10 @@
 // radiance and AO seen by the camera; irradiance.rgen: the diffuse irradiance at the camera's
 // primary hit). The includer declares `frame`, `tlas` and `push` (RefPush) and includes
 // shared/frame.h, lights.h, reference.h, ray_origin.h, sampling.h and shading.h.
+#include "reference/hit_vertices.glsl"
+#include "common/emitter_pick.glsl"
+
+layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
 
 layout(location = 0) rayPayloadEXT RefHit hit;
 layout(location = 1) rayPayloadEXT float visible;
@@ -12,8 +16,11 @@ layout(location = 1) rayPayloadEXT float visible;
 uvec2 gPixel;
 uint gSample;
 uint gDimension;
+uvec3 nextHash() {
+  return tlPcg3d(uvec3(gPixel.x | (gDimension++ << 16u), gPixel.y, gSample ^ (push.seed * 0x9E3779B9u)));
+}
 vec2 next2() {
-  uvec3 h = tlPcg3d(uvec3(gPixel.x | (gDimension++ << 16u), gPixel.y, gSample ^ (push.seed * 0x9E3779B9u)));
+  uvec3 h = nextHash();
   return vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y));
 }
 
@@ -61,6 +68,60 @@ vec3 areaLightsMet(vec3 origin, vec3 dir, float tMax, float directionPdf) {
   return sum;
 }
 
+// The scene's emissive triangles by next-event estimation (shared/emitters.h): one triangle
+// drawn in proportion to its power (the material's average emission), a point uniform on it,
+// rebuilt from its instance's camera-relative transform and its vertices, what the material
+// emits there (texture and all: the average only chose the triangle), a shadow ray to it. The
+// BRDF's rays that hit an emitter take the complementary power-heuristic weight (tracePath), so
+// each light path is counted once. The point's pdf in solid angle is its triangle's
+// probability / area x d^2 / |cos|, the same density a hit reads (refEmitterDensity).
+vec3 emitterLight(vec3 origin, vec3 n, vec3 geometric, vec3 v, SurfaceParams s, float pSpec) {
+  uvec3 h = nextHash();
+  Emitter e = emitters[emitterPick(h.z, push.emitterCount)];
+  uint instance = e.ids.x;
+  RefInstanceGeometry g = geometry[instance];
+  vec2 b = tlEmitterBarycentrics(vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y)));
+  RefHitVertices hv = refHitVertices(g, e.ids.y, b);
+  mat4 model = instances[instance].modelRelative;
+  vec3 w = vec3(1.0 - b.x - b.y, b.x, b.y);
+  vec3 point = vec3(model * vec4(hv.p0 * w.x + hv.p1 * w.y + hv.p2 * w.z, 1.0));
+  float area = refWorldArea(model, hv);
+  vec3 toLight = point - origin;
+  float distance2 = dot(toLight, toLight);
+  if (!(area > 0.0) || distance2 <= 0.0) return vec3(0.0);
+  float distance = sqrt(distance2);
+  vec3 l = toLight / distance;
+  float nl = dot(n, l);
+  if (nl <= 0.0 || dot(geometric, l) <= 0.0) return vec3(0.0);
+  mat3 m = mat3(model);
+  vec3 lightNormal = cross(m * (hv.p1 - hv.p0), m * (hv.p2 - hv.p0));
+  float cosLight = abs(dot(lightNormal, l)) / (2.0 * area);
+  if (!(cosLight > 0.0)) return vec3(0.0);
+  GpuMaterial material = materials[g.material];
+  vec3 emitted = materialEmissionLod0(material, hv.uv0, hv.uv1);
+  // Where a cut-out surface is not (alpha MASK), or not this time (BLEND: present with
+  // probability alpha), the rays pass through it and find no emission either.
+  float xi = tlUintToUnitFloat(tlPcgHash(h.z ^ 0x68E31DA4u));
+  if (materialCutout(material, materialBaseColorLod0(material, hv.uv0, hv.uv1, hv.color).a, xi)) return vec3(0.0);
+  if (dot(emitted, emitted) <= 0.0) return vec3(0.0);
+  visible = 0.0;
+  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT, 0xFF, 0, 0, 1, origin, 0.0, l,
+              distance * (1.0 - 1e-4), 1);
+  if (visible <= 0.0) return vec3(0.0);
+  float lightPdf = tlEmitterSolidAnglePdf(e.edge2.w, area, distance2, cosLight);
+  float weight = tlPowerHeuristic(lightPdf, tlBrdfPdf(s, n, v, l, pSpec));
+  return emitted * tlBrdf(s, n, v, l) * (nl * weight / lightPdf);
+}
+
+// The weight of emission a BRDF-drawn ray found (directionPdf: the BRDF's density of its
+// direction; 0: nothing else could have drawn it) against emitter sampling's draw of that point.
+float emissionWeight(vec3 dir, float directionPdf) {
+  if (push.emitterCount == 0u || !(directionPdf > 0.0) || !(hit.geometric.w > 0.0)) return 1.0;
+  float cosLight = abs(dot(hit.geometric.xyz, dir));
+  float lightPdf = hit.geometric.w * hit.positionT.w * hit.positionT.w / max(cosLight, 1e-12);
+  return tlPowerHeuristic(directionPdf, lightPdf);
+}
+
 // Ambient occlusion of this sample's primary hit (1 when the camera ray sees the sky): the
 // ground truth the real-time paths' AO is measured against, at the same radius.
 float gAo;
@@ -100,7 +161,7 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
       gather(radiance, bounce, throughput * environmentRadiance(dir) * w);
       break;
     }
-    gather(radiance, bounce, throughput * hit.emission.rgb);
+    gather(radiance, bounce, throughput * hit.emission.rgb * emissionWeight(dir, directionPdf));
     if (bounce >= push.maxBounces) break;  // no more scattering events allowed
 
     vec3 n = hit.normal.xyz, geometric = hit.geometric.xyz, v = -dir;
@@ -140,10 +201,12 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
       gather(radiance, bounce + 1u, throughput * shadeLights(position, n, uvec3(floatBitsToUint(u.x), floatBitsToUint(u.y), gSample)));
     }
 
+    float pSpec = tlBrdfSpecularProbability(s, dot(n, v));
+    if (push.emitterCount > 0u) gather(radiance, bounce + 1u, throughput * emitterLight(position, n, geometric, v, s, pSpec));
+
     // The environment map by next-event estimation: a direction drawn by its importance table,
     // weighted against the BRDF's density for it (the power heuristic); the BRDF's own
     // samples that escape take the complementary weight above.
-    float pSpec = tlBrdfSpecularProbability(s, dot(n, v));
     if (environmentMapOn()) {
       float envPdf;
       vec3 l = environmentSample(next2(), envPdf);

@@ -42,7 +42,7 @@ void main() {
   vec3 position = vec3(inst.modelRelative * vec4(h.p0 * w.x + h.p1 * w.y + h.p2 * w.z, 1.0));
   hit.positionT = vec4(position, gl_HitTEXT);
   hit.normal = vec4(shading, 0.0);
-  hit.geometric = vec4(geometric, 0.0);
+  hit.geometric = vec4(geometric, refEmitterDensity(g, uint(gl_PrimitiveID), refWorldArea(inst.modelRelative, h)));
   hit.baseColor = vec4(clamp(baseColor.rgb, 0.0, 1.0), clamp(rm.x, 0.0, 1.0));
   hit.emission = vec4(emission, clamp(rm.y, 0.0, 1.0));
 }

@@ -18,7 +18,8 @@ layout(set = 0, binding = kRtBindingBaseColor) uniform sampler2D gBaseColor;
 layout(set = 0, binding = kRtBindingMaterial) uniform sampler2D gMaterial;
 layout(set = 0, binding = kRtBindingEmissive) uniform sampler2D gEmissive;
 
-layout(set = 0, binding = kRtBindingEmitters, std430) readonly buffer Emitters { RtEmitter emitters[]; };
+layout(set = 0, binding = kRtBindingEmitters, std430) readonly buffer Emitters { Emitter emitters[]; };
+#include "common/emitter_pick.glsl"
 layout(set = 0, binding = kRtBindingCacheEntries, std430) readonly buffer CacheEntries { RtCacheEntry cacheEntries[]; };
 
 layout(location = 1) rayPayloadEXT float visible;
@@ -65,7 +66,7 @@ float unoccluded(vec3 start, vec3 direction, float tMax) {
   return visible;
 }
 
-// One emitter sample (shared/rt.h RtEmitter) seen from `start` on a surface with `normal`:
+// One emitter sample (shared/emitters.h) seen from `start` on a surface with `normal`:
 // the direction, and the emitted radiance over its pdf through a shadow ray that stops short
 // of the emitter (its own, possibly simplified, surface must not hide it). Multiply by the
 // cosine for irradiance. Zero without emitters, behind the surface or when hidden.
@@ -73,15 +74,8 @@ vec3 emitterLight(vec3 start, vec3 normal, uvec3 seed, out vec3 direction) {
   direction = normal;
   if (push.emitterCount == 0u) return vec3(0.0);
   uvec3 h = tlPcg3d(seed);
-  float pick = tlUintToUnitFloat(h.z);
-  uint lo = 0u, hi = push.emitterCount - 1u;
-  while (lo < hi) {  // the first triangle whose cumulative probability exceeds the uniform
-    uint mid = (lo + hi) / 2u;
-    if (pick < emitters[mid].p0.w) hi = mid;
-    else lo = mid + 1u;
-  }
-  RtEmitter e = emitters[lo];
-  vec3 toLight = tlRtEmitterPoint(e, vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y))) - push.cameraWorld.xyz - start;
+  Emitter e = emitters[emitterPick(h.z, push.emitterCount)];
+  vec3 toLight = tlEmitterPoint(e, vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y))) - push.cameraWorld.xyz - start;
   float distance2 = dot(toLight, toLight);
   if (distance2 <= 1e-12 * e.edge1.w) return vec3(0.0);  // on the emitter itself (a share of its area)
   float distance = sqrt(distance2);
@@ -94,7 +88,7 @@ vec3 emitterLight(vec3 start, vec3 normal, uvec3 seed, out vec3 direction) {
   if (cosLight == 0.0) return vec3(0.0);
   float reach = distance * (1.0 - 1e-3) - push.tMin;
   if (reach <= push.tMin) return vec3(0.0);
-  return e.radiance.rgb * tlRtEmitterInversePdf(e, distance2, cosLight) * unoccluded(start, direction, reach);
+  return e.radiance.rgb * tlEmitterInversePdf(e, distance2, cosLight) * unoccluded(start, direction, reach);
 }
 
 // The radiance cache's C in one cell: false where it holds no sample.

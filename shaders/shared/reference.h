@@ -7,17 +7,29 @@
 TL_BEGIN
 TL_CONST uint kRefBindingFrame = 0;      // FrameConstants (shared/frame.h)
 TL_CONST uint kRefBindingTlas = 1;
-TL_CONST uint kRefBindingAccum = 2;      // rgba32f: sum of samples (persistent)
+TL_CONST uint kRefBindingAccum = 2;      // rgba32f: sum of the rounds' means (rgb), rounds (a) (persistent)
 TL_CONST uint kRefBindingRadiance = 3;   // rgba32f: the estimate, sum / count
 TL_CONST uint kRefBindingGeometry = 4;   // RefInstanceGeometry[]
 TL_CONST uint kRefBindingVertices = 5;   // scene vertices as floats (kVertexFloats per vertex, shared/scene.h)
 TL_CONST uint kRefBindingIndices = 6;    // scene indices
-TL_CONST uint kRefBindingAoAccum = 7;    // r32f: sum of AO samples at the primary hit (persistent)
-TL_CONST uint kRefBindingAo = 8;         // r32f: ambient occlusion at the AO radius, sum / count
+TL_CONST uint kRefBindingAoAccum = 7;    // r32f: sum of the rounds' mean AO at the primary hit (persistent)
+TL_CONST uint kRefBindingAo = 8;         // r32f: ambient occlusion at the AO radius, sum / rounds
 TL_CONST uint kRefBindingIrradianceAccum = 9;  // rgba32f: sum of irradiance samples (rgb) and their count (a)
 TL_CONST uint kRefBindingIrradiance = 10;      // rgba32f: diffuse irradiance at the primary hit, sum / count
 TL_CONST uint kRefBindingDepthAccum = 11;  // rgba32f: sums of the radiance by depth group (rgb) and their count (a)
 TL_CONST uint kRefBindingDepth0 = 12;      // rgba32f: the radiance of depth group 0, sum / count; groups 1..3 at 13..15
+TL_CONST uint kRefBindingMoments = 16;     // rgba32f: squared deviations from the pixel's sample mean, summed (rgb), samples (a) (persistent)
+TL_CONST uint kRefBindingSampleMean = 17;  // rgba32f: the mean of all the pixel's samples (rgb), sum over rounds of 1 / samples (a) (persistent)
+TL_CONST uint kRefBindingStdErr = 18;      // rgba32f: standard error of reference.radiance per channel (rgb), the pixel's samples (a)
+TL_CONST uint kRefBindingEmitters = 19;    // Emitter[] (shared/emitters.h): RefPush::emitterCount of them (bound when > 0)
+
+// The reference's noise, summed over the image by reference/noise.comp (two steps: tiles of
+// kRefNoiseTile x kRefNoiseTile pixels, then the tiles) into one RefNoiseTotals.
+TL_CONST uint kRefNoiseTile = 16u;
+TL_CONST uint kRefNoiseBindingRadiance = 0;  // reference.radiance (tile step)
+TL_CONST uint kRefNoiseBindingStdErr = 1;    // reference.stderr (tile step)
+TL_CONST uint kRefNoiseBindingTiles = 2;     // RefNoiseTotals per tile: written by the tile step, read by the sum
+TL_CONST uint kRefNoiseBindingTotals = 3;    // RefNoiseTotals: the whole image (sum step)
 
 // The radiance by path depth (scattering events between light and camera), in four groups:
 // 0-1 (emission and direct light), 2 (the first bounce), 3 (the second), 4 and more.
@@ -29,6 +41,30 @@ struct RefInstanceGeometry {
   uint firstIndex;
   int vertexOffset;
   uint material;
+  uint emitters;  // its first entry in the emitter table + 1 (0: it emits nothing): triangle t is entry emitters - 1 + t
+};
+
+// What the noise passes add up, over pixels and the three channels.
+struct RefNoiseTotals {
+  vec4 sums;     // x: variance of each pixel's estimate (stderr^2), y: the estimates, z: samples, w: unused
+  uvec4 counts;  // x: pixels, y: pixels with fewer than 2 samples (no variance yet), z: fewest samples, w: most
+};
+
+// The relative standard error of the reference's mean image: the root of the mean over pixels
+// and channels of the variance of each pixel's estimate, over the mean of the estimates,
+//   RSE = sqrt(sum_pc Var(r_pc) / 3P) / (sum_pc r_pc / 3P).
+// It is how far (relative RMS) the image is expected to be from the converged one. Undefined
+// (negative) until every pixel has 2 samples; 0 for an image with no light (every sample 0).
+TL_FN float tlRefRelativeStdError(RefNoiseTotals t) {
+  if (t.counts.x == 0u || t.counts.y > 0u) return -1.0f;
+  if (!(t.sums.y > 0.0f)) return 0.0f;
+  float n = 3.0f * float(t.counts.x);
+  return sqrt(max(t.sums.x, 0.0f) / n) / (t.sums.y / n);
+}
+
+struct RefNoisePush {
+  uint width, height;  // the image (tile step)
+  uint tiles;          // tiles to sum (sum step)
   uint pad;
 };
 
@@ -39,14 +75,16 @@ struct RefPush {
   uint seed;
   float aoRadius;        // reference AO: one cosine ray per sample from the primary hit, this long (m)
   uint sampleBase;       // the depth split's first sample index: the trace pass's samplesSoFar (same paths)
-  uint pad1, pad2;
+  uint emitterCount;     // emissive triangles sampled at every scattering event (0: emission found by rays only)
+  uint pad2;
 };
 
 // What a closest-hit shader reports (hitT < 0: the ray missed).
 struct RefHit {
   vec4 positionT;     // xyz camera-relative hit point, w hit distance
   vec4 normal;        // xyz shading normal facing the ray, w unused
-  vec4 geometric;     // xyz geometric normal facing the ray
+  vec4 geometric;     // xyz geometric normal facing the ray; w the density per unit area with which emitter
+                      // sampling draws the hit point (its triangle's probability / area; 0: never)
   vec4 baseColor;     // rgb, a roughness
   vec4 emission;      // rgb emitted radiance, a metallic
 };
@@ -55,5 +93,7 @@ TL_END
 #ifdef __cplusplus
 static_assert(sizeof(tl::shared::RefInstanceGeometry) == 16);
 static_assert(sizeof(tl::shared::RefPush) == 32);
+static_assert(sizeof(tl::shared::RefNoiseTotals) == 32);
+static_assert(sizeof(tl::shared::RefNoisePush) == 16);
 #endif
 #endif

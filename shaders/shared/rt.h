@@ -28,6 +28,7 @@
 #ifndef TL_SHARED_RT_H
 #define TL_SHARED_RT_H
 #include "common.h"
+#include "emitters.h"
 #include "material_mode.h"
 #include "packing.h"
 #include "sampling.h"
@@ -177,30 +178,12 @@ TL_FN vec2 tlRtDisocclusionUniforms(uint i, uint n, vec2 rotation) {
   return u - floor(u);
 }
 
-// Emitter sampling (next-event estimation): the emissive triangles of the scene, chosen with
-// probability proportional to area x emitted luminance (a binary search over `cdf`), a point
-// uniform on the chosen one, a shadow ray to it. Its light arrives with pdf (solid angle)
-// p = prob / area * d^2 / |cos_light|; both faces emit, as the rays see them. With it on,
-// rays that hit an emitter leave its emission out (the sample counts it instead), at pixels
-// and at hits alike, so nothing is counted twice. Without it a small bright emitter is found
-// only by the few rays that happen to hit it: the Cornell box's light.
-struct RtEmitter {
-  vec4 p0;        // xyz: world position of the first corner; w: cumulative probability up to and including this one
-  vec4 edge1;     // xyz: p1 - p0; w: area (m^2)
-  vec4 edge2;     // xyz: p2 - p0; w: probability of choosing this triangle
-  vec4 radiance;  // rgb: emitted radiance
-};
-// A point uniform in area on the triangle (the square-root warp of two uniforms).
-TL_FN vec3 tlRtEmitterPoint(RtEmitter e, vec2 u) {
-  float su = sqrt(u.x);
-  return vec3(e.p0) + (1.0f - su) * vec3(e.edge1) + (u.y * su) * vec3(e.edge2);
-}
-// 1 / pdf in solid angle of that point seen from `distance2` away at `cosLight` to its normal.
-TL_FN float tlRtEmitterInversePdf(RtEmitter e, float distance2, float cosLight) {
-  // The squared distance is kept above a millionth of the triangle's area (a share of its own
-  // size, not a length in metres) so a point touching the emitter does not divide by zero.
-  return e.edge1.w * abs(cosLight) / (max(distance2, 1e-6f * e.edge1.w) * max(e.edge2.w, 1e-30f));
-}
+// Emitter sampling (next-event estimation, shared/emitters.h): the emissive triangles of the
+// scene, one chosen in proportion to its power from the alias table the reference draws from
+// too, a point uniform on it, a shadow ray to it. With it on, rays that hit an emitter leave
+// its emission out (the sample counts it instead), at pixels and at hits alike, so nothing is
+// counted twice. Without it a small bright emitter is found only by the few rays that happen
+// to hit it: the Cornell box's light.
 // The L1 SH weight of a sample of radiance from `direction` drawn with inverse pdf `inversePdf`
 // (solid angle), so that it resolves to its irradiance L cos / pdf at the normal (shared/sh.h:
 // E(n) = w L (1/4 + cos/2)); tlRtShSampleWeight is the case pdf = cos / pi.
@@ -302,7 +285,7 @@ TL_CONST uint kRtBindingCellPosition = 31;     // rgba32f: world position the ra
 TL_CONST uint kRtBindingFirstShY = 33;         // two rays per pixel: the first ray's raw SH, read by the second's hit lighting
 TL_CONST uint kRtBindingFirstCoCg = 34;
 TL_CONST uint kRtBindingFirstAo = 35;
-TL_CONST uint kRtBindingEmitters = 32;         // RtEmitter[] (at least one entry; RtPush::emitterCount of them valid)
+TL_CONST uint kRtBindingEmitters = 32;         // Emitter[] (shared/emitters.h; at least one entry, RtPush::emitterCount of them valid)
 TL_CONST uint kRtBindingDenoiseMoment = 36;    // r32f: the accumulation's mean squared sample luma (the denoiser's noise estimate)
 TL_CONST uint kRtBindingCacheEntries = 37;     // RtCacheEntry[]: the radiance cache as hits read it (shared/rt_cache.h)
 TL_CONST uint kRtBindingCacheAccum = 38;       // RtCacheAccum[]: its keys and this frame's sums
@@ -319,7 +302,6 @@ TL_END
 #ifdef __cplusplus
 static_assert(sizeof(tl::shared::RtInstance) == 80);
 static_assert(sizeof(tl::shared::RtPush) == 128);  // the least maxPushConstantsSize a device may have
-static_assert(sizeof(tl::shared::RtEmitter) == 64);
 static_assert(sizeof(tl::shared::RtDenoisePush) == 32);
 #endif
 #endif

@@ -3,7 +3,6 @@
 // normal), the blue-noise masks, the simplifier and instance culling.
 #include "lighting/legacy/legacy_path.h"
 #include "lighting/rt/blue_noise.h"
-#include "lighting/rt/emitters.h"
 #include "lighting/rt/rt_scene.h"
 #include "shared/rt.h"
 
@@ -330,52 +329,9 @@ TEST(RtDisocclusion, StratifiedRaysEstimateIrradianceClosely) {
   RecordProperty("random_rms", std::to_string(randomRms));
 }
 
-// The emitter table: every emissive triangle in world space, chosen in proportion to area x
-// luminance; a point uniform on the chosen one; its inverse pdf in solid angle. Closed forms:
-// a unit quad scaled 2x (area 4) beside a unit quad twice as bright (area 1, luminance 2x).
-TEST(RtEmitters, TableWeighsAreaTimesLuminanceAndSamplesUniformly) {
-  scene::Scene sc;
-  scene::Mesh quad;
-  for (glm::vec3 p : {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(1, 0, 1), glm::vec3(0, 0, 1)}) {
-    scene::Vertex v{};
-    v.position = p;
-    quad.vertices.push_back(v);
-  }
-  quad.indices = {0, 1, 2, 0, 2, 3};
-  sc.meshes.push_back(quad);
-  scene::Instance big, small, dark;
-  big.transform = glm::scale(glm::translate(glm::dmat4(1.0), glm::dvec3(0, 3, 0)), glm::dvec3(2.0));
-  small.transform = glm::translate(glm::dmat4(1.0), glm::dvec3(5, 0, 0));
-  sc.instances = {big, small, dark};
-  const std::vector<glm::vec3> emission = {glm::vec3(1.0f), glm::vec3(2.0f), glm::vec3(0.0f)};
-  const auto table = lighting::buildEmitterTable(sc, emission);
-  ASSERT_EQ(table.size(), 4u) << "two triangles per emitting quad, none for the dark one";
-  double area = 0.0, probability = 0.0, previous = 0.0;
-  for (const auto& e : table) {
-    area += e.edge1.w;
-    probability += e.edge2.w;
-    EXPECT_GT(e.p0.w, previous);
-    previous = e.p0.w;
-  }
-  EXPECT_NEAR(area, 5.0, 1e-5);
-  EXPECT_NEAR(probability, 1.0, 1e-6);
-  EXPECT_EQ(table.back().p0.w, 1.0f);
-  // Power 4 x 1 against 1 x 2: the big quad's triangles together are chosen 2/3 of the time.
-  EXPECT_NEAR(table[0].edge2.w + table[1].edge2.w, 2.0 / 3.0, 1e-6);
-  EXPECT_NEAR(table[0].p0.y, 3.0f, 1e-6) << "world space";
-
-  // Uniform points: their mean lands on the centroid.
-  const shared::RtEmitter& e = table[0];
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<float> uni(0.0f, 1.0f);
-  glm::dvec3 mean(0.0);
-  const int n = 20000;
-  for (int i = 0; i < n; ++i) mean += glm::dvec3(tlRtEmitterPoint(e, vec2(uni(rng), uni(rng))));
-  const glm::dvec3 centroid = glm::dvec3(e.p0) + (glm::dvec3(e.edge1) + glm::dvec3(e.edge2)) / 3.0;
-  EXPECT_LT(glm::length(mean / double(n) - centroid), 0.02);
-  // 1/pdf (solid angle) = area |cos| / (d^2 prob), either face.
-  EXPECT_NEAR(tlRtEmitterInversePdf(e, 9.0f, -0.5f), e.edge1.w * 0.5 / (9.0 * e.edge2.w), 1e-5);
-  // The SH weight for that pdf resolves to L cos / pdf; for the cosine pdf it is the usual one.
+// The SH weight for a sample of inverse pdf 1/p resolves to L cos / pdf; for the cosine pdf it
+// is the usual one (the emitter samples' weight: tests/unit/test_emitter_table.cpp).
+TEST(RtSh, WeightForAPdfIsTheCosineWeightAtTheCosinePdf) {
   EXPECT_NEAR(tlRtShWeightForPdf(0.6f, kPi / 0.6f), tlRtShSampleWeight(0.6f), 1e-5);
 }
 

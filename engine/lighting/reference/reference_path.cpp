@@ -6,12 +6,14 @@
 #include "graph/executor.h"
 #include "lighting/common/decoders.h"
 #include "lighting/lighting_path.h"
+#include "lighting/common/emitter_table.h"
 #include "lighting/common/environment_table.h"
 #include "lighting/common/light_table.h"
 #include "lighting/common/lights_pass.h"
 #include "lighting/common/pass_builders.h"
 #include "shared/lights.h"
 #include "lighting/reference/reference_path.h"
+#include "scene/material_average.h"
 #include "scene/scene.h"
 #include "shared/brdf_lut.h"
 #include "shared/reference.h"
@@ -31,6 +33,9 @@ inline constexpr const char* kAo = "reference.ao";
 inline constexpr const char* kIrradianceAccum = "reference.irradianceAccum";
 inline constexpr const char* kIrradiance = "reference.irradiance";
 inline constexpr const char* kDepthAccum = "reference.bouncesAccum";
+inline constexpr const char* kMoments = "reference.moments";
+inline constexpr const char* kSampleMean = "reference.sampleMean";
+inline constexpr const char* kNoiseTiles = "reference.noise.tiles";
 inline constexpr const char* kTlas = "reference.tlas";
 inline constexpr const char* kTlasInstances = "reference.tlas.instances";
 inline constexpr const char* kTlasScratch = "reference.tlas.scratch";
@@ -72,22 +77,36 @@ class ReferencePath final : public LightingPath {
     prepareScene(in);
     addStructurePasses(graph, in);
     const uint32_t w = in.settings.width, h = in.settings.height;
-    const auto accumDesc =
-        graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "sum of path samples (rgb) and their count (a)");
-    const auto aoAccumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h, "sum of AO samples");
-    const bool stored = in.historyValid(kAccum, accumDesc) && in.historyValid(kAoAccum, aoAccumDesc);
+    const auto accumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                                        "sum of each round's sample mean (rgb) and the rounds (a)");
+    const auto aoAccumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h, "sum of each round's mean AO");
+    const auto momentsDesc = graph::ResourceDesc::image2D(
+        VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "squared deviations of the samples from their mean, summed (rgb), samples (a)");
+    const auto sampleMeanDesc = graph::ResourceDesc::image2D(
+        VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "mean of all the pixel's samples (rgb), sum over rounds of 1 / samples (a)");
+    const bool stored = in.historyValid(kAccum, accumDesc) && in.historyValid(kAoAccum, aoAccumDesc) &&
+                        in.historyValid(kMoments, momentsDesc) && in.historyValid(kSampleMean, sampleMeanDesc);
     if (accumulation_.advance(kAccumulation, in.key, name(), in.historyLog, {stored}).action == HistoryAction::Restart)
       samples_ = 0, irradianceSamples_ = 0;
 
-    graph.declarePersistent(kAccum, accumDesc);
-    graph.declarePersistent(kAoAccum, aoAccumDesc);
+    for (const auto& [image, desc] : {std::pair{kAccum, accumDesc}, {kAoAccum, aoAccumDesc}, {kMoments, momentsDesc},
+                                      {kSampleMean, sampleMeanDesc}})
+      graph.declarePersistent(image, desc);
     shared::RefPush push{};
     push.aoRadius = in.settings.rtAoRadius;  // resolved (render_settings.h resolveAutomatic)
     push.samplesPerFrame = std::max(1u, in.settings.referenceSamplesPerFrame);
     push.maxBounces = std::max(1u, in.settings.referenceBounces);
+    push.emitterCount = in.settings.referenceEmitterSampling ? emitterCount_ : 0u;
     withPathInputs(RayTracingPass(in.device, "reference.trace", kTraceShaders), in)
         .storageInOut(shared::kRefBindingAccum, kAccum)
         .storageInOut(shared::kRefBindingAoAccum, kAoAccum)
+        .storageInOut(shared::kRefBindingMoments, kMoments)
+        .storageInOut(shared::kRefBindingSampleMean, kSampleMean)
+        .storageOut(shared::kRefBindingStdErr, kReferenceStdErr,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                                 "standard error of reference.radiance per channel (rgb: how far each "
+                                                 "pixel's estimate is expected to be from the converged one), the "
+                                                 "pixel's samples (a)"))
         .storageOut(shared::kRefBindingAo, kAo,
                     graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
                                                  "ambient occlusion at the AO radius (cosine-weighted), ground truth")
@@ -97,13 +116,16 @@ class ReferencePath final : public LightingPath {
         .push(push,
               [this](graph::PassContext& ctx, shared::RefPush& p) {
                 // History can vanish under us (resize, reset): then the sum starts over.
-                if (!ctx.historyValid(kAccum) || !ctx.historyValid(kAoAccum)) samples_ = 0;
+                if (!ctx.historyValid(kAccum) || !ctx.historyValid(kAoAccum) || !ctx.historyValid(kMoments) ||
+                    !ctx.historyValid(kSampleMean))
+                  samples_ = 0;
                 p.samplesSoFar = samples_;
                 p.seed = 0;
                 samples_ += p.samplesPerFrame;
               })
         .trace(w, h)
         .add(graph);
+    addNoisePasses(graph, in);
     addIrradiancePass(graph, in, push);
     addDepthSplitPass(graph, in, push);
     LightingOutputs out;
@@ -119,6 +141,35 @@ class ReferencePath final : public LightingPath {
   }
 
  private:
+  // The image's noise (shared/reference.h RefNoiseTotals) summed on the GPU in two steps and
+  // read back every frame: 32 bytes, so the session knows the relative standard error of every
+  // frame it finishes (Session::referenceNoise) without reading the images.
+  void addNoisePasses(graph::RenderGraph& graph, FrameInputs& in) {
+    const uint32_t w = in.settings.width, h = in.settings.height;
+    shared::RefNoisePush push{};
+    push.width = w, push.height = h;
+    push.tiles = ((w + shared::kRefNoiseTile - 1) / shared::kRefNoiseTile) * ((h + shared::kRefNoiseTile - 1) / shared::kRefNoiseTile);
+    ComputePass(in.device, "reference.noise.tiles", "reference/noise_tiles.comp")
+        .storageIn(shared::kRefNoiseBindingRadiance, kRadiance)
+        .storageIn(shared::kRefNoiseBindingStdErr, kReferenceStdErr)
+        .bufferOut(shared::kRefNoiseBindingTiles, kNoiseTiles,
+                   graph::ResourceDesc::buffer(push.tiles * sizeof(shared::RefNoiseTotals),
+                                               "the reference's noise summed per 16 x 16 tile"))
+        .push(push)
+        .dispatch(w, h, 1, shared::kRefNoiseTile, shared::kRefNoiseTile)
+        .add(graph);
+    ComputePass(in.device, "reference.noise", "reference/noise_sum.comp")
+        .bufferIn(shared::kRefNoiseBindingTiles, kNoiseTiles)
+        .bufferOut(shared::kRefNoiseBindingTotals, kReferenceNoise,
+                   graph::ResourceDesc::buffer(sizeof(shared::RefNoiseTotals),
+                                               "the reference's noise over the image (shared/reference.h RefNoiseTotals)"))
+        .push(push)
+        .dispatch(256, 1, 1, 256, 1, 1)
+        .add(graph);
+    graph.markOutput(kReferenceNoise);
+    graph.requestReadback(kReferenceNoise);
+  }
+
   // The diffuse irradiance at the primary hit (what composite.irradiance holds for the
   // real-time paths), its own progressive sum. It costs a second path per sample, so it runs
   // only in frames that read reference.irradiance (compare's per-stage error, the inspector).
@@ -230,10 +281,23 @@ class ReferencePath final : public LightingPath {
           blas_[m] = gpu::buildBottomLevelAt(in.device, meshGeometry(in, m), fmt::format("reference.blas.{}", m),
                                              deformingStorage_, placeAt[m], false);
     }
+    // The emitters (lighting/common/emitter_table.h): every triangle of each instance whose
+    // material emits, drawn by its power from the material's average emission.
+    std::vector<glm::vec3> instanceEmission;
+    for (const auto& instance : in.sceneData.instances)
+      instanceEmission.push_back(scene::materialAverageEmission(
+          in.sceneData, in.sceneData.materials[in.sceneData.meshes[instance.mesh].material]));
+    const EmitterTable emitters = buildEmitterTable(in.sceneData, instanceEmission);
+    emitterCount_ = uint32_t(emitters.entries.size());
+    std::vector<shared::Emitter> entries = emitters.entries;
+    if (entries.empty()) entries.emplace_back();  // a binding needs a buffer
+    emitters_ = gpu::Buffer(in.device, entries.size() * sizeof(shared::Emitter), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                            gpu::MemoryUsage::Upload, "reference.emitters");
+    emitters_.write(entries.data(), entries.size() * sizeof(shared::Emitter));
     std::vector<shared::RefInstanceGeometry> table(std::max<size_t>(1, in.scene.instanceCount()));
     for (size_t i = 0; i < in.scene.instanceCount(); ++i) {
       const auto& r = ranges[in.scene.instanceMesh(i)];
-      table[i] = {r.firstIndex, r.vertexOffset, r.material, 0};
+      table[i] = {r.firstIndex, r.vertexOffset, r.material, i < emitters.firstOfInstance.size() ? emitters.firstOfInstance[i] : 0u};
     }
     geometry_ = gpu::Buffer(in.device, table.size() * sizeof(table[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                             gpu::MemoryUsage::Upload, "reference.instanceGeometry");
@@ -319,6 +383,7 @@ class ReferencePath final : public LightingPath {
         .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
         .optionalBufferIn(shared::kBindingLights, kLightTable, in.constants.lightCount > 0)
         .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, hasEnvironmentMap(in))
+        .constantBuffer(shared::kRefBindingEmitters, emitters_.handle())
         .reads(kSceneInstances, graph::Usage::StorageRead)
         .reads(kSceneMaterials, graph::Usage::StorageRead)
         .sceneTable(in.scene.table());
@@ -335,6 +400,8 @@ class ReferencePath final : public LightingPath {
   gpu::TopLevelBuilder tlas_;
   std::vector<glm::mat4> tlasTransforms_;
   gpu::Buffer geometry_;
+  gpu::Buffer emitters_;  // shared::Emitter per emissive triangle (at least one entry; emitterCount_ valid)
+  uint32_t emitterCount_ = 0;
   HistoryKeeper accumulation_;
   uint32_t samples_ = 0;
   uint32_t irradianceSamples_ = 0;

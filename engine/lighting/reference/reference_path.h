@@ -7,6 +7,13 @@
 
 namespace tl::lighting {
 
+// The reference's noise, as graph resources every reference frame makes: the standard error
+// of each pixel's estimate (rgba32f: rgb per channel, a the pixel's samples) and its sum over
+// the image (a buffer of one shared::RefNoiseTotals, read back every frame:
+// shared::tlRefRelativeStdError gives the image's relative standard error).
+inline constexpr const char* kReferenceStdErr = "reference.stderr";
+inline constexpr const char* kReferenceNoise = "reference.noise";
+
 // The shaders (relative to the shader folder, as gpu::loadSpirv takes them) of every
 // pipeline the reference path builds.
 std::vector<std::string> referenceShaders();

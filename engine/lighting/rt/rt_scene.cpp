@@ -1,6 +1,6 @@
 #include "lighting/rt/rt_scene.h"
 
-#include "lighting/rt/emitters.h"
+#include "lighting/common/emitter_table.h"
 
 #include "scene/material_average.h"
 
@@ -195,11 +195,11 @@ RtScene::RtScene(gpu::Device& device, const scene::Scene& scene, scene::GpuScene
 
   std::vector<glm::vec3> instanceEmission;
   for (size_t i = 0; i < scene.instances.size(); ++i) instanceEmission.push_back(glm::vec3(data[i].emission));
-  std::vector<shared::RtEmitter> emitters = buildEmitterTable(scene, instanceEmission);
+  std::vector<shared::Emitter> emitters = buildEmitterTable(scene, instanceEmission).entries;
   emitterCount_ = uint32_t(emitters.size());
-  for (const shared::RtEmitter& e : emitters)
+  for (const shared::Emitter& e : emitters)
     maxEmitterRadiance_ = std::max({maxEmitterRadiance_, e.radiance.x, e.radiance.y, e.radiance.z});
-  if (emitters.empty()) emitters.push_back(shared::RtEmitter{});  // a binding needs a buffer
+  if (emitters.empty()) emitters.push_back(shared::Emitter{});  // a binding needs a buffer
   emitterData_ = gpu::Buffer(device, emitters.size() * sizeof(emitters[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                              gpu::MemoryUsage::Upload, "rt.emitters");
   emitterData_.write(emitters.data(), emitters.size() * sizeof(emitters[0]));

@@ -71,7 +71,7 @@ class RtScene {
   gpu::TopLevelBuilder& topLevel() { return topLevel_; }
   // Frame `frame`'s copy of the instance table (gpu::UploadRing: albedo edits while frames are in flight).
   gpu::Buffer& instanceData(uint64_t frame) { return instanceData_.forFrame(frame); }
-  // The emissive triangles (lighting/rt/emitters.h): at least one entry, emitterCount() valid.
+  // The emissive triangles (lighting/common/emitter_table.h): at least one entry, emitterCount() valid.
   gpu::Buffer& emitterData() { return emitterData_; }
   uint32_t emitterCount() const { return emitterCount_; }
   float maxEmitterRadiance() const { return maxEmitterRadiance_; }  // the brightest channel of any emitter
@@ -94,7 +94,7 @@ class RtScene {
   // Per material override mode, per instance: its material's texture-average albedo.
   std::vector<glm::vec3> fallbackAlbedo_[3];
   gpu::UploadRing instanceData_;                  // RtInstance per scene instance
-  gpu::Buffer emitterData_;                       // RtEmitter per emissive triangle
+  gpu::Buffer emitterData_;                       // shared::Emitter per emissive triangle
   uint32_t emitterCount_ = 0;
   float maxEmitterRadiance_ = 0.0f;
   gpu::TopLevelBuilder topLevel_;
