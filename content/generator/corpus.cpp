@@ -552,7 +552,7 @@ CorpusScene writeInterior(const std::filesystem::path& dir, uint64_t seed, uint3
   info.lights.clear();
   for (size_t i = 0; i < lights.size(); ++i) info.lights += (i ? "+" : "") + lights[i];
 
-  const float znear = 0.01f * smallest;
+  const double znear = 0.01 * double(smallest);
   const float fov = d.between(55.0f, 75.0f);
   w.camera("inside", eye, target, fov, znear);
   if (info.sealedRoom) {

@@ -481,7 +481,7 @@ int SceneWriter::node(const std::string& name, int mesh, glm::vec3 t, glm::vec3 
   return index;
 }
 
-void SceneWriter::camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees, float znear) {
+void SceneWriter::camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees, double znear) {
   tinygltf::Camera c;
   c.name = name;
   c.type = "perspective";

@@ -119,7 +119,7 @@ class SceneWriter {
   void nodeChannel(const std::string& animation, int node, const std::string& path, const std::vector<float>& times,
                    const std::vector<glm::vec4>& values, const std::string& interpolation = "LINEAR");
   // znear: glTF's near plane in metres (the project's own scenes keep 5 cm).
-  void camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees, float znear = 0.05f);
+  void camera(const std::string& name, glm::vec3 from, glm::vec3 to, float yfovDegrees, double znear = 0.05);
   // glTF's orthographic camera: xmag and ymag are half the view's width and height in metres.
   void orthographicCamera(const std::string& name, glm::vec3 from, glm::vec3 to, float xmag, float ymag, float znear,
                           float zfar);
