@@ -297,6 +297,7 @@ void Executor::unbindImported() {
 }
 
 void Executor::resetHistory() {
+  ++historyResets_;
   // The contents go (the next first use discards them); the accesses stay, to be waited for.
   for (auto& [name, p] : physical_)
     if (p.kind == Physical::Kind::Persistent) p.historyValid = false, p.state.layout = VK_IMAGE_LAYOUT_UNDEFINED;

@@ -174,6 +174,9 @@ class Executor {
   VkImageLayout importedLayout(std::string_view name) const;
   // Drops persistent history (e.g. a camera cut or a scene change).
   void resetHistory();
+  // How many times the history was dropped: state a pass keeps outside the graph's resources
+  // (a decision measured over frames) starts over when it changes.
+  uint64_t historyResets() const { return historyResets_; }
 
  private:
   friend class PassContext;
@@ -193,6 +196,7 @@ class Executor {
   };
   Physical& find(std::string_view name);
   Physical& importSlot(std::string_view name);
+  uint64_t historyResets_ = 0;
 
   void realise(const RenderGraph& graph, const CompiledGraph& compiled);
   void checkEntry(const RenderGraph& graph, const CompiledGraph& compiled);

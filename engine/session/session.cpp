@@ -468,6 +468,7 @@ void Session::beginOne(bool readback) {
     auto it = executor_->readbacks().find(std::string(name));
     return it == executor_->readbacks().end() ? nullptr : &it->second;
   };
+  in.historyResets = executor_->historyResets();
   in.instanceAlbedo = &albedo_->instanceAlbedo();
   in.instanceAlbedoVersion = albedo_->version();
   in.temporalAntialiasing = taa;

@@ -256,8 +256,8 @@ TEST_F(LightsTest, ManyLightsConvergeToTheExactSumOverFrames) {
 }
 
 // The mean radiance (luminance) of the final image of `path` on content/lamps.gltf at 96 x 54;
-// `bounces`: the reference's scattering events; `feedback`: legacy's and rt's reuse of the
-// last frame's image (their multi-bounce).
+// `bounces`: the reference's scattering events; `feedback`: legacy's and rt's multi-bounce (the
+// reuse of the last frame's image, and the RT path's radiance cache).
 double lampsMean(session::Session& s, const std::string& path, uint32_t frames, uint32_t bounces, bool feedback) {
   s.loadScene(contentFile("lamps.gltf"));
   s.setSize(96, 54);
@@ -266,6 +266,7 @@ double lampsMean(session::Session& s, const std::string& path, uint32_t frames, 
   s.settings().referenceBounces = bounces;
   s.settings().rtScreenRadiance = feedback;
   s.settings().legacyScreenRadiance = feedback;
+  s.settings().rtCacheMinGain = feedback ? lighting::RenderSettings{}.rtCacheMinGain : 2.0f;  // above 1: never
   s.setFrameIndex(0);
   s.requestBuffer(finalImageOf(path));
   s.renderFrames(frames);
@@ -301,6 +302,11 @@ TEST_F(LightsTest, EachPathLightsARoomOfLampsCloseToTheReference) {
     std::printf("%s: mean radiance %.5f, reference %.5f (ratio %.3f)\n", c.path, mean, c.reference, mean / c.reference);
     EXPECT_NEAR(mean / c.reference, 1.0, c.tolerance) << c.path;
   }
+  // With its multi-bounce (the cache switches itself on in a closed room), rt against every bounce.
+  const double every = lampsMean(s, "reference", 4, 64, true);
+  const double rtEvery = lampsMean(s, "rt", 32, 64, true);
+  std::printf("rt with its multi-bounce: mean radiance %.5f, every bounce %.5f (ratio %.3f)\n", rtEvery, every, rtEvery / every);
+  EXPECT_NEAR(rtEvery / every, 1.0, 0.10);
   std::printf("reference: direct light %.5f, direct light and one bounce %.5f\n", direct, oneBounce);
 }
 

@@ -439,11 +439,14 @@ TEST_F(RtTest, AtriumStaysFiniteAndItsIntermediatesAreNamed) {
     EXPECT_NE(dump.find(n), std::string::npos) << n;
 }
 
-// 10,000 instances, a camera at the corner looking out: the top level keeps only what rays
-// from the visible surfaces can reach, and the image is the one without culling.
+// 10,000 instances, a camera at the corner looking out, rays a tenth of the grove long: the
+// top level keeps only what rays from the visible surfaces can reach (the automatic margin is
+// the ray's length), and the image is the one without culling. With the automatic ray length
+// (the whole scene) every instance is in reach and nothing may be culled.
 TEST_F(RtTest, TopLevelCullingKeepsFewInstancesAndChangesNothing) {
   auto& s = session();
   s.loadScene(contentFile("grove.gltf"));
+  s.settings().rtRayLength = 0.1f * float(s.sceneSize().diagonal);
   auto figure = [&](const char* name) { return pathFigure(s, name); };
   s.setFrameIndex(3);
   render(64, 36, 1, {"composite.hdr"});
@@ -468,6 +471,11 @@ TEST_F(RtTest, TopLevelCullingKeepsFewInstancesAndChangesNothing) {
     for (int c = 0; c < 3; ++c) diff += std::abs(culled[i + c] - full[i + c]), sum += std::abs(full[i + c]);
   RecordProperty("relative_image_difference", std::to_string(diff / sum));
   EXPECT_LE(diff / sum, 1e-3) << "culling must not change what rays hit";
+  s.settings() = lighting::RenderSettings{};
+  s.resetHistory();
+  s.setFrameIndex(3);
+  render(64, 36, 1, {"composite.hdr"});
+  EXPECT_EQ(figure("tlasInstances"), total) << "rays as long as the scene reach every instance";
 }
 
 // Mean luma of the accumulated irradiance (SH L0) over surface pixels after `frames` more

@@ -60,6 +60,9 @@ struct FrameInputs {
   // What the last finished frame read back under `name`, or null (a path's own feedback,
   // e.g. the radiance cache's outcomes; up to a frame or two old with frames in flight).
   std::function<const graph::Readback*(std::string_view name)> lastReadback;
+  // Changes whenever the session drops every history (Session::resetHistory: a new render,
+  // a loaded scene): what a path measured over earlier frames no longer applies.
+  uint64_t historyResets = 0;
   // Per-instance hit albedo resolved by the session (override > baked > texture average;
   // w: the source, shared/albedo.h kAlbedoSource*), and a counter that changes whenever any
   // value does; null: texture averages.

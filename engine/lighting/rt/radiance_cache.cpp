@@ -67,26 +67,36 @@ void RtRadianceCache::plan(graph::RenderGraph& graph, FrameInputs& in, shared::R
   // A new scene starts the switch over (off, measuring): the outcomes still held and the
   // decision they led to are another scene's, and an image must not depend on what was
   // rendered before it.
+  // So does a session that dropped its histories (a new render from frame 0, a camera put
+  // back): the same frames must give the same image whatever was rendered before.
   const uint64_t scene = in.key.hash(FramePart::Scene);
-  if (scene != switchScene_) {
+  if (scene != switchScene_ || in.historyResets != switchResets_) {
     switch_ = RtCacheSwitch{};
     measured_ = {};
     outcomes_.clear();
+    ownFrames_.clear();
     switchScene_ = scene;
-    sceneFirstFrame_ = in.frame;
-  } else {
-    // Frame N decides from frame N-2's outcomes, whether one frame is in flight (N-1's are
-    // then at hand too, and wait a frame) or two (N-2's have just been collected): the same
-    // frames decide the same frame, so an image does not depend on the frames in flight.
-    if (const graph::Readback* r = in.lastReadback(kRtCacheOutcomes); r && r->frame >= sceneFirstFrame_)
-      outcomes_.try_emplace(r->frame, countCacheOutcomes(r->bytes));
-    const uint64_t deciding = in.frame - std::min<uint64_t>(in.frame, kOutcomeLag);
-    if (auto it = outcomes_.find(deciding); it != outcomes_.end() && in.frame >= kOutcomeLag) {
+    switchResets_ = in.historyResets;
+    ownFrame_ = 0;
+    frame_ = 0;  // its sums' parity and its samples' seeds: the same from the same start
+  }
+  // This path's frame K decides from its frame K-2's outcomes, whether one frame is in flight
+  // (K-1's are then at hand too, and wait a frame) or two (K-2's have just been collected):
+  // the same frames decide the same frame, so an image does not depend on the frames in
+  // flight. Its own count, not the session's: a live compare renders paths in turn.
+  if (const graph::Readback* r = in.lastReadback(kRtCacheOutcomes))
+    if (auto own = ownFrames_.find(r->frame); own != ownFrames_.end())
+      outcomes_.try_emplace(own->second, countCacheOutcomes(r->bytes));
+  if (ownFrame_ >= kOutcomeLag) {
+    const uint64_t deciding = ownFrame_ - kOutcomeLag;
+    if (auto it = outcomes_.find(deciding); it != outcomes_.end()) {
       measured_ = it->second;
       switch_.update(measured_, s.rtCacheMinGain);
     }
     outcomes_.erase(outcomes_.begin(), outcomes_.upper_bound(deciding));
+    std::erase_if(ownFrames_, [&](const auto& f) { return f.second <= deciding; });
   }
+  ownFrames_[in.frame] = ownFrame_++;
   active_ = s.rtCacheMinGain <= 1.0f && (s.rtCacheMinGain <= 0.0f || switch_.on());
   const uint32_t entries = s.rtCacheEntries;
   restart_ = false;

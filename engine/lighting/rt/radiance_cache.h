@@ -97,10 +97,12 @@ class RtRadianceCache {
   uint32_t age_ = 0;
   shared::RtCachePush push_{};
   RtCacheOutcomes measured_;
-  // Outcomes read back, by frame, until the frame kOutcomeLag later decides from them.
+  // Outcomes read back, until the frame kOutcomeLag later (in this path's frames) decides from them.
   static constexpr uint64_t kOutcomeLag = gpu::kMaxFramesInFlight;
-  std::map<uint64_t, RtCacheOutcomes> outcomes_;
-  uint64_t sceneFirstFrame_ = 0;
+  std::map<uint64_t, RtCacheOutcomes> outcomes_;   // by this path's own frame number
+  std::map<uint64_t, uint64_t> ownFrames_;           // the session's frame -> this path's
+  uint64_t ownFrame_ = 0;       // frames this path planned since the switch started over
+  uint64_t switchResets_ = 0;   // FrameInputs::historyResets the switch's measurements belong to
 };
 
 }  // namespace tl::lighting

@@ -471,9 +471,10 @@ class RtPath final : public LightingPath {
     // behind its own accumulation window, and where bounced light matters (which is where the
     // cache runs) that lag held the image down (a white room lit through slits: 0.68 of the
     // reference after 64 frames with the image, 0.76 with the cache alone; docs/accuracy.md).
-    return [this, screenRadiance](graph::PassContext& ctx, RtPush& p) {
-      p.screenRadiance = screenRadiance && !cache_.active() ? useScreenRadiance(ctx, p, !restart_)
-                                                           : shared::kRtScreenRadianceOff;
+    // This frame's state, taken now: the pass records after the next frame may have begun.
+    const bool reads = screenRadiance && !cache_.active(), restarted = restart_;
+    return [reads, restarted](graph::PassContext& ctx, RtPush& p) {
+      p.screenRadiance = reads ? useScreenRadiance(ctx, p, !restarted) : shared::kRtScreenRadianceOff;
     };
   }
 
