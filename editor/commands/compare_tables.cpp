@@ -135,8 +135,8 @@ void printCompareReport(const nlohmann::json& report, const std::vector<session:
                  f["threshold"].get<double>(), interval(f));
     if (gate.contains("withinNoise"))
       for (auto& f : gate["withinNoise"])
-        fmt::print("gate: within noise {} {} {:.4f}{} holds {}: the reference cannot tell (more samples, "
-                   "--reference-noise, decide)\n",
+        fmt::print("gate: within noise {} {} {:.4f}{} holds {}: the reference's noise cannot tell (a reference with "
+                   "more samples, --spp or --reference-noise, decides it)\n",
                    f["path"].get<std::string>(), f["metric"].get<std::string>(), f["value"].get<double>(), interval(f),
                    f["threshold"].get<double>());
     std::string limits;
