@@ -150,6 +150,9 @@ Exit codes:
   2  usage: a command line that does not parse or options that contradict each other
   3  a regression gate failed (compare --fail-above): the figures are printed and written
   4  the GPU did not finish its work within TWINLIGHT_GPU_TIMEOUT (a hung device)
+  5  a regression gate is undecided (compare --fail-above): no figure is above its threshold, but
+     one lies within the reference's noise of it (its 95% interval holds it); render the
+     reference with more samples
   Every error is one line on stderr that starts with the program's name and "error:".
 
 Environment:

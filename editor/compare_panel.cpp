@@ -156,10 +156,26 @@ void comparePanel(EditorApp& app) {
       ImGui::TextUnformatted(fmt::format("{:.2f}", e.gpuMs).c_str());
       if (!trusted) ImGui::PushStyleColor(ImGuiCol_Text, grey);
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(e.path == app.session().referencePath() ? "0 (itself)" : figure(e.relMse, "{:.4f}").c_str());
-      if (!trusted && e.path != app.session().referencePath()) tooltip("reference still converging: this figure is not yet the path's own");
+      if (e.path == app.session().referencePath()) {
+        ImGui::TextUnformatted("0 (itself)");
+      } else if (e.relMseAgainstConverged) {
+        const auto& f = *e.relMseAgainstConverged;
+        ImGui::TextUnformatted(fmt::format("{:.4f} [{:.4f}, {:.4f}]", f.value, f.low, f.high).c_str());
+        tooltip(fmt::format("against the converged reference, the reference's noise taken out, with its 95% interval; "
+                            "against the reference as rendered: {:.4f}", f.raw).c_str());
+      } else {
+        ImGui::TextUnformatted(figure(e.relMse, "{:.4f}").c_str());
+        if (!trusted) tooltip("reference still converging: this figure is not yet the path's own");
+      }
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(e.path == app.session().referencePath() ? "0" : figure(e.flip, "{:.4f}").c_str());
+      if (e.path != app.session().referencePath() && e.flipAgainstConverged) {
+        const auto& f = *e.flipAgainstConverged;
+        ImGui::TextUnformatted(fmt::format("{:.4f} [{:.4f}, {:.4f}]", f.value, f.low, f.high).c_str());
+        tooltip(fmt::format("against the converged reference (simulation-extrapolation of the reference's noise), with "
+                            "its 95% interval; against the reference as rendered: {:.4f}", f.raw).c_str());
+      } else {
+        ImGui::TextUnformatted(e.path == app.session().referencePath() ? "0" : figure(e.flip, "{:.4f}").c_str());
+      }
       if (!trusted) ImGui::PopStyleColor();
     }
     ImGui::EndTable();
@@ -168,18 +184,35 @@ void comparePanel(EditorApp& app) {
   // (A plain double, not `noise`: GCC 12 takes the optional's value as maybe uninitialised.)
   const double noiseValue = live->referenceUnavailable() ? -1.0 : live->referenceNoise().value_or(-1.0);
   if (noiseValue >= 0.0) relMseBands(errors, app.session().referencePath(), noiseValue);
-  if (!live->referenceUnavailable() && !trusted) {
+  // The verdict: none until the two sides' intervals against the converged reference part
+  // (LiveCompare::verdict); "within noise" while they overlap.
+  const bool twoPaths = errors.size() == 2 && errors[0].path != app.session().referencePath() &&
+                        errors[1].path != app.session().referencePath();
+  if (!live->referenceUnavailable() && twoPaths) {
+    const session::LiveVerdict verdict = live->verdict();
+    if (verdict == session::LiveVerdict::LeftCloser || verdict == session::LiveVerdict::RightCloser) {
+      const bool leftCloser = verdict == session::LiveVerdict::LeftCloser;
+      const auto& closer = leftCloser ? errors[0] : errors[1];
+      const auto& farther = leftCloser ? errors[1] : errors[0];
+      const auto &a = *closer.relMseAgainstConverged, &b = *farther.relMseAgainstConverged;
+      ImGui::TextWrapped("%s is closer to the converged reference: relMSE %.4f [%.4f, %.4f] against %s's %.4f [%.4f, %.4f]",
+                         closer.path.c_str(), a.value, a.low, a.high, farther.path.c_str(), b.value, b.low, b.high);
+      tooltip("the reference's noise taken out of both figures; the 95% intervals do not overlap");
+    } else {
+      ImGui::PushStyleColor(ImGuiCol_Text, grey);
+      if (verdict == session::LiveVerdict::WithinNoise)
+        ImGui::TextWrapped("within noise: %s and %s cannot be told apart at %u samples per pixel (their relMSE intervals "
+                           "overlap); the verdict waits for the reference to converge",
+                           errors[0].path.c_str(), errors[1].path.c_str(), live->referenceSamples());
+      else
+        ImGui::TextWrapped("no verdict yet: the reference needs %u samples per pixel before its noise is known",
+                           session::LiveCompare::kMinVerdictSamples);
+      ImGui::PopStyleColor();
+    }
+  } else if (!live->referenceUnavailable() && !trusted) {
     ImGui::PushStyleColor(ImGuiCol_Text, grey);
-    ImGui::TextWrapped("reference still converging: its noise is not yet well below the gap between the paths");
+    ImGui::TextWrapped("reference still converging: the path's figure still holds the reference's own noise");
     ImGui::PopStyleColor();
-  } else if (trusted && errors.size() == 2 && errors[0].relMse && errors[1].relMse &&
-             errors[0].path != app.session().referencePath() && errors[1].path != app.session().referencePath()) {
-    const bool leftCloser = *errors[0].relMse <= *errors[1].relMse;
-    const auto& closer = leftCloser ? errors[0] : errors[1];
-    const auto& farther = leftCloser ? errors[1] : errors[0];
-    const double lower = *farther.relMse > 0.0 ? 100.0 * (1.0 - *closer.relMse / *farther.relMse) : 0.0;
-    ImGui::TextWrapped("%s is closer to the reference: relMSE %.0f%% lower than %s", closer.path.c_str(), lower,
-                       farther.path.c_str());
   }
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
   const size_t turns = live->rotationLength();

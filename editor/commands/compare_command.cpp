@@ -58,7 +58,8 @@ int compareMergeCommand(const std::vector<std::filesystem::path>& dirs, const st
   const size_t views = report.value("kind", "") == "sweep" ? report["views"].size() : 1;
   fmt::print("merged {} shard(s): {} view(s) into {}\n", dirs.size(), views,
              (std::filesystem::absolute(out) / "report.html").string());
-  if (int status = gateExit(session::gateFailureCount(report)); status != 0) return status;
+  if (int status = gateExit(session::gateFailureCount(report), session::gateWithinNoiseCount(report)); status != 0)
+    return status;
   return goalsExit(&report, goals);
 }
 
@@ -179,7 +180,7 @@ class CompareCommand : public CliCommand {
     }
     // Validation errors first (the figures are not trusted then), then the gate.
     if (int status = exitStatus(session); status != 0) return status;
-    if (int status = gateExit(outcome.gateFailures); status != 0) return status;
+    if (int status = gateExit(outcome.gateFailures, outcome.gateWithinNoise); status != 0) return status;
     return goalsExit(outcome.sweepReport ? &*outcome.sweepReport : nullptr, goals_);
   }
 

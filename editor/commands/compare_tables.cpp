@@ -18,6 +18,43 @@ std::string cell(const nlohmann::json& v, int width, int decimals) {
   return fmt::format("{:{}.{}f}", v.get<double>(), width, decimals);
 }
 
+// " (95% interval LOW .. HIGH)" for a figure whose interval has a width, else nothing.
+std::string interval(const nlohmann::json& f) {
+  if (!f.contains("low") || !f["low"].is_number() || !f["high"].is_number()) return "";
+  const double low = f["low"].get<double>(), high = f["high"].get<double>();
+  return high > low ? fmt::format(" (95% interval {:.4f} .. {:.4f})", low, high) : "";
+}
+
+// A noise-aware figure as "VALUE [LOW, HIGH]" in a column `width` wide.
+std::string figureCell(const nlohmann::json& f, int width) {
+  if (!f.is_object() || !f["value"].is_number()) return fmt::format("{:>{}}", "-", width);
+  if (!f["low"].is_number() || !f["high"].is_number()) return fmt::format("{:>{}.4f}", f["value"].get<double>(), width);
+  return fmt::format("{:>{}}", fmt::format("{:.4f} [{:.4f}, {:.4f}]", f["value"].get<double>(), f["low"].get<double>(),
+                                           f["high"].get<double>()), width);
+}
+
+// The figures against the converged reference and the rankings they support.
+void printSignificance(const nlohmann::json& report) {
+  if (!report.contains("significance")) return;
+  const auto& sig = report["significance"];
+  fmt::print("against the converged reference (its noise taken out; 95% interval from the reference's noise)\n");
+  fmt::print("{:10} {:>26} {:>26} {:>26} {:>26}\n", "path", "relMSE", "relMSE_norm", "FLIP", "FLIP_norm");
+  for (auto& p : report["paths"]) {
+    if (!p.contains("significance")) continue;
+    const auto& f = p["significance"];
+    fmt::print("{:10} {} {} {} {}\n", p["path"].get<std::string>(), figureCell(f["relMSE"], 26),
+               figureCell(f["relMSE_norm"], 26), figureCell(f["FLIP"], 26), figureCell(f["FLIP_norm"], 26));
+  }
+  if (sig.contains("rankings") && report["paths"].size() > 1) {
+    std::string line;
+    for (auto& metric : sig["metrics"])
+      if (sig["rankings"].contains(metric.get<std::string>()))
+        line += fmt::format("{}{}: {}", line.empty() ? "" : "; ", metric.get<std::string>(),
+                            sig["rankings"][metric.get<std::string>()]["order"].get<std::string>());
+    fmt::print("ranking (< lower, ~ within noise): {}\n", line);
+  }
+}
+
 }  // namespace
 
 void printCompareReport(const nlohmann::json& report, const std::vector<session::GateThreshold>& failAbove) {
@@ -35,6 +72,7 @@ void printCompareReport(const nlohmann::json& report, const std::vector<session:
   for (auto& p : report["paths"])
     fmt::print("{:10} {} {} {} {}\n", p["path"].get<std::string>(), cell(p["relMSE_norm"], 11, 4), cell(p["RMSE_norm"], 11, 4),
                cell(p["FLIP_norm"], 11, 4), cell(p.value("meanRatio", nlohmann::json()), 10, 3));
+  printSignificance(report);
   fmt::print("per stage (surface pixels)  {:>13} {:>18}\n", "AO abs error", "irradiance relMSE");
   for (auto& p : report["paths"])
     if (p["stages"].contains("ao"))
@@ -52,7 +90,12 @@ void printCompareReport(const nlohmann::json& report, const std::vector<session:
       if (ref.contains("noiseTarget"))
         target = fmt::format(" (target {}: {})", ref["noiseTarget"]["relativeStdError"].get<double>(),
                              ref["noise"].value("reached", false) ? "reached" : "not reached, the sample cap stopped it");
-      fmt::print("reference noise: relative standard error {:.5f}{}\n", ref["noise"]["relativeStdError"].get<double>(), target);
+      std::string expected;
+      if (ref["noise"].contains("expectedRelMSE_norm"))
+        expected = fmt::format("; expected relMSE_norm against the converged image {:.5f}",
+                               ref["noise"]["expectedRelMSE_norm"].get<double>());
+      fmt::print("reference noise: relative standard error {:.5f}{}{}\n", ref["noise"]["relativeStdError"].get<double>(),
+                 target, expected);
     }
   }
   fmt::print("materials: {}\n", ref["materials"].get<std::string>());
@@ -87,16 +130,26 @@ void printCompareReport(const nlohmann::json& report, const std::vector<session:
   if (report.contains("gate")) {
     const auto& gate = report["gate"];
     for (auto& f : gate["failures"])
-      fmt::print("gate: FAIL {} {} {} > {}\n", f["path"].get<std::string>(), f["metric"].get<std::string>(),
+      fmt::print("gate: FAIL {} {} {} > {}{}\n", f["path"].get<std::string>(), f["metric"].get<std::string>(),
                  f["value"].is_number() ? fmt::format("{:.4f}", f["value"].get<double>()) : std::string("non-finite"),
-                 f["threshold"].get<double>());
+                 f["threshold"].get<double>(), interval(f));
+    if (gate.contains("withinNoise"))
+      for (auto& f : gate["withinNoise"])
+        fmt::print("gate: within noise {} {} {:.4f}{} holds {}: the reference's noise cannot tell (a reference with "
+                   "more samples, --spp or --reference-noise, decides it)\n",
+                   f["path"].get<std::string>(), f["metric"].get<std::string>(), f["value"].get<double>(), interval(f),
+                   f["threshold"].get<double>());
     std::string limits;
     if (!failAbove.empty())
       for (const auto& t : failAbove) limits += fmt::format("{}{} <= {}", limits.empty() ? "" : ", ", t.metric, t.value);
     else
       for (auto& [metric, value] : gate["failAbove"].items())
         limits += fmt::format("{}{} <= {}", limits.empty() ? "" : ", ", metric, value.get<double>());
-    fmt::print("gate: {} ({})\n", gate["passed"].get<bool>() ? "passed" : "FAILED", limits);
+    fmt::print("gate: {} ({})\n",
+               gate["passed"].get<bool>()        ? "passed"
+               : gate.value("decided", true)     ? "FAILED"
+                                                 : "UNDECIDED, within the reference's noise",
+               limits);
   }
 }
 
@@ -116,11 +169,18 @@ void printSweepReport(const nlohmann::json& report) {
   if (report.contains("summary")) fmt::print("\n{}", tl::session::sweepSummaryTable(report["summary"]));
 }
 
-int gateExit(size_t failures) {
-  if (failures == 0) return 0;
+int gateExit(size_t failures, size_t withinNoise) {
+  if (failures == 0 && withinNoise == 0) return 0;
   std::fflush(stdout);  // the figures first, then the error line
-  fmt::print(stderr, "twinlight: error: regression gate failed: {} figure(s) above their thresholds\n", failures);
-  return 3;
+  if (failures > 0) {
+    fmt::print(stderr, "twinlight: error: regression gate failed: {} figure(s) above their thresholds\n", failures);
+    return 3;
+  }
+  fmt::print(stderr,
+             "twinlight: error: regression gate undecided: {} figure(s) within the reference's noise of their thresholds "
+             "(render the reference with more samples: --spp or --reference-noise)\n",
+             withinNoise);
+  return 5;
 }
 
 }  // namespace tl::editor

@@ -16,6 +16,6 @@ void printCompareReport(const nlohmann::json& report, const std::vector<session:
 // A sweep's configurations: their means over the views.
 void printSweepReport(const nlohmann::json& report);
 // A failed gate is its own exit code (3), after every report is written.
-int gateExit(size_t failures);
+int gateExit(size_t failures, size_t withinNoise = 0);
 
 }  // namespace tl::editor

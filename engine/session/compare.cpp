@@ -9,6 +9,7 @@
 #include "metrics/flip.h"
 #include "metrics/metrics.h"
 #include "metrics/statistics.h"
+#include "session/compare_significance.h"
 #include "session/image_io.h"
 #include "session/provenance.h"
 #include "session/report_html.h"
@@ -297,19 +298,6 @@ std::string lowercase(std::string text) {
   return text;
 }
 
-// The gate: every path's figure against every threshold; a missing (non-finite) figure fails.
-nlohmann::json evaluateGate(const nlohmann::json& results, const std::vector<GateThreshold>& thresholds) {
-  nlohmann::json limits = nlohmann::json::object(), failures = nlohmann::json::array();
-  for (const auto& t : thresholds) limits[t.metric] = t.value;
-  for (const auto& r : results)
-    for (const auto& t : thresholds) {
-      const nlohmann::json& figure = r[t.metric];
-      if (figure.is_number() && figure.get<double>() <= t.value) continue;
-      failures.push_back({{"path", r["path"]}, {"metric", t.metric}, {"value", figure}, {"threshold", t.value}});
-    }
-  return {{"failAbove", limits}, {"failures", failures}, {"passed", failures.empty()}};
-}
-
 }  // namespace
 
 const std::vector<std::string>& gateMetrics() {
@@ -441,6 +429,13 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
   refInfo["normalisation"] = normalisation;
   const metrics::Image referenceNormalised = metrics::scaled(reference, normalisation);
   const metrics::Image referenceNormalisedDisplay = displayEncode(reference, float(normalisation));
+  // The reference's per-pixel variance (its standard error squared): what each figure's
+  // expectation carries of its noise (compare_significance.h). None for another renderer's image.
+  metrics::Image referenceVariance = referenceImages.stdErr;
+  for (float& v : referenceVariance.data) v *= v;
+  if (!referenceVariance.data.empty() && refInfo.contains("noise"))
+    refInfo["noise"]["expectedRelMSE_norm"] = metrics::expectedRelMse(reference, referenceVariance, normalisation);
+  const NoisyReference noisyReference{reference, referenceVariance, exposure, normalisation};
   if (!referenceImages.byDepth.empty()) {
     // The split's groups as shares of the reference, and how well they add up to it.
     metrics::Image sum = metrics::Image::filled(reference.width, reference.height, 3, 0.0f);
@@ -512,6 +507,8 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                                        ? nlohmann::json::object()
                                        : depthReport(test, referenceImages.byDepth, normalisation);
 
+    const nlohmann::json significance = pathSignificance(test, noisyReference);
+
     nlohmann::json passes = nlohmann::json::object();
     for (const auto& [pass, ms] : s.passGpuMs()) passes[pass] = median(ms);
     auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
@@ -537,7 +534,8 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                        {"flipMap", stem + "_flip.png"},
                        {"relMSEMap", stem + "_relmse.exr"},
                        {"stages", stages},
-                       {"bounces", bounces}});
+                       {"bounces", bounces},
+                       {"significance", significance}});
   }
   s.setPath(previousPath);
   s.setAnimationTime(animationTime);
@@ -588,6 +586,17 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
   // Which form each figure of a path is in, for readers that do not parse the descriptions.
   report["forms"] = {{"asRendered", {"relMSE", "RMSE", "PSNR", "SSIM", "FLIP", "HDR-FLIP"}},
                      {"exposureNormalised", {"relMSE_norm", "RMSE_norm", "FLIP_norm"}}};
+  report["significance"] = {
+      {"metrics", significanceMetrics()},
+      {"estimator",
+       "each path's figure against the converged reference, the reference's noise (its per-pixel variance v, "
+       "reference.stderr squared) taken out of the expectation: relMSE and relMSE_norm by the unbiased estimator of "
+       "g(r) = (t - r)^2 / (r^2 + eps) from r^ ~ N(r, v) to the second order, g - v/2 g'' + v^2/8 g''''; FLIP and "
+       "FLIP_norm by simulation-extrapolation (the figure at noise v, 2v and 3v, the quadratic through them at 0). "
+       "value = the estimate, raw = against the noisy reference as rendered, [low, high] = its 95% interval from the "
+       "reference's noise (docs/accuracy.md, Significance)"},
+      {"ranking", "paths in order of value; `<` where neighbours' intervals part, `~` where they overlap (within noise)"},
+      {"rankings", rankPaths(results)}};
   if (!o.failAbove.empty()) report["gate"] = evaluateGate(results, o.failAbove);
   writeTextFile(o.outDir / "report.json", report.dump(2) + "\n");
   writeReportHtml(o.outDir / "report.html", report, o.outDir);

@@ -40,11 +40,13 @@ void LiveCompare::collectFlip(bool wait) {
       ++it;
       continue;
     }
-    const double value = pending.value.get();
+    const metrics::NoiseAwareFigure value = pending.value.get();
     auto side = images_.find(path), ref = images_.find(reference_);
     if (side != images_.end() && ref != images_.end() && sameCompared(side->second.key, pending.key) &&
-        sameCompared(ref->second.key, pending.key) && view_.measureFlip)
-      errors_[path].flip = value;
+        sameCompared(ref->second.key, pending.key) && view_.measureFlip) {
+      errors_[path].flip = value.raw;
+      if (value.high > value.low) errors_[path].flipAgainstConverged = value;
+    }
     it = pendingFlip_.erase(it);
   }
 }
@@ -53,12 +55,18 @@ void LiveCompare::finishFlip() { collectFlip(true); }
 
 void LiveCompare::frameDone(const std::string& path, const graph::Readback& image, double gpuMs,
                             const lighting::FrameKey& key, uint32_t referenceSamples, float exposure,
-                            const std::optional<lighting::HistoryDecision>& referenceAccumulation) {
+                            const std::optional<lighting::HistoryDecision>& referenceAccumulation,
+                            const graph::Readback* referenceStdErr) {
   collectFlip(false);
   Side& side = images_[path];
   side.image = rgbImage(image);
   side.key = key;
   side.gpuMs = gpuMs;
+  side.variance = {};
+  if (referenceStdErr && referenceStdErr->extent.width == side.image.width && referenceStdErr->extent.height == side.image.height) {
+    side.variance = rgbImage(*referenceStdErr);
+    for (float& v : side.variance.data) v *= v;
+  }
   errors_[path].path = path;
   errors_[path].gpuMs = gpuMs;
   if (path == reference_) {
@@ -87,6 +95,9 @@ void LiveCompare::measure(const std::string& path, float exposure) {
     return;
   }
   e.relMse = metrics::relMse(side->second.image, ref->second.image).value;
+  e.relMseAgainstConverged.reset();
+  if (!ref->second.variance.data.empty())
+    e.relMseAgainstConverged = metrics::relMseNoiseAware(side->second.image, ref->second.image, ref->second.variance);
   e.referenceSamples = referenceSamples_;
   auto now = std::chrono::steady_clock::now();
   auto last = lastFlip_.find(path);
@@ -96,8 +107,13 @@ void LiveCompare::measure(const std::string& path, float exposure) {
                    std::chrono::duration<double>(now - last->second).count() >= view_.flipIntervalSeconds;
   if (view_.measureFlip && due && !pendingFlip_.count(path)) {
     // The worker gets its own copies: the sides' images change under it on the next frames.
-    auto job = [test = displayEncode(side->second.image, exposure), reference = displayEncode(ref->second.image, exposure)] {
-      return metrics::flipLdr(test, reference).value;
+    // Against the converged reference by simulation-extrapolation when its noise is known
+    // (metrics/noisy_reference.h): five FLIPs, on the worker.
+    auto job = [test = displayEncode(side->second.image, exposure), reference = ref->second.image,
+                variance = ref->second.variance, exposure] {
+      return metrics::simexNoiseAware(reference, variance, [&](const metrics::Image& r) {
+        return metrics::flipLdr(test, displayEncode(r, exposure)).value;
+      });
     };
     pendingFlip_[path] = {std::async(std::launch::async, std::move(job)), side->second.key};
     lastFlip_[path] = now;
@@ -134,10 +150,31 @@ std::optional<double> LiveCompare::referenceNoise() const {
   return *noise_ * double(noiseSamples_) / double(referenceSamples_);
 }
 
+LiveVerdict LiveCompare::verdict() const {
+  const auto e = errors();
+  if (e.size() != 2 || e[0].path == reference_ || e[1].path == reference_ || !e[0].relMseAgainstConverged ||
+      !e[1].relMseAgainstConverged || e[0].referenceSamples < kMinVerdictSamples ||
+      e[1].referenceSamples < kMinVerdictSamples)
+    return LiveVerdict::None;
+  switch (metrics::rank(*e[0].relMseAgainstConverged, *e[1].relMseAgainstConverged)) {
+    case metrics::Ranking::Lower: return LiveVerdict::LeftCloser;
+    case metrics::Ranking::Higher: return LiveVerdict::RightCloser;
+    default: return LiveVerdict::WithinNoise;
+  }
+}
+
 bool LiveCompare::referenceTrusted() const {
+  const auto e = errors();
+  if (!e.empty() && e.front().relMseAgainstConverged) {
+    if (e.size() == 2 && e.back().relMseAgainstConverged) {
+      const LiveVerdict v = verdict();
+      return v == LiveVerdict::LeftCloser || v == LiveVerdict::RightCloser;
+    }
+    // One side: its interval lies clear of 0 (its error is its own, not the reference's noise).
+    return e.front().referenceSamples >= kMinVerdictSamples && e.front().relMseAgainstConverged->low > 0.0;
+  }
   const auto noise = referenceNoise();
   if (!noise) return false;
-  const auto e = errors();
   if (e.empty() || !e.front().relMse) return false;
   const double scale = e.size() == 2 && e.back().relMse ? std::abs(*e.front().relMse - *e.back().relMse) : *e.front().relMse;
   return *noise * kTrustRatio <= scale;

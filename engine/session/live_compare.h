@@ -10,6 +10,7 @@
 #include "lighting/common/frame_key.h"
 #include "graph/executor.h"
 #include "metrics/image.h"
+#include "metrics/noisy_reference.h"
 
 #include <chrono>
 #include <future>
@@ -34,7 +35,15 @@ struct LiveError {
   std::optional<double> relMse;     // linear radiance, same epsilon as `compare`
   std::optional<double> flip;       // LDR-FLIP of the display images (same exposure)
   uint32_t referenceSamples = 0;    // what the reference had accumulated when measured
+  // The same figures against the converged reference: the reference's noise (its
+  // reference.stderr) taken out, with a 95% interval (metrics/noisy_reference.h). Empty until the
+  // reference's standard error has come with its image.
+  std::optional<metrics::NoiseAwareFigure> relMseAgainstConverged, flipAgainstConverged;
 };
+
+// What the panel may say about the two sides: nothing yet, that they are within the noise of
+// the reference (their relMSE intervals overlap), or which is closer (the intervals part).
+enum class LiveVerdict { None, WithinNoise, LeftCloser, RightCloser };
 
 class LiveCompare {
  public:
@@ -57,10 +66,12 @@ class LiveCompare {
   // Whether compare.<path> holds an image yet.
   bool hasImage(const std::string& path) const { return images_.count(path) != 0; }
   // After a frame of `path`: its image (compare.<path>), its GPU time, its frame key and, for
-  // the reference, its samples and what its accumulation did in that frame.
+  // the reference, its samples, what its accumulation did in that frame and its standard error
+  // (reference.stderr: null when the frame did not read it back).
   void frameDone(const std::string& path, const graph::Readback& image, double gpuMs, const lighting::FrameKey& key,
                  uint32_t referenceSamples, float exposure,
-                 const std::optional<lighting::HistoryDecision>& referenceAccumulation = std::nullopt);
+                 const std::optional<lighting::HistoryDecision>& referenceAccumulation = std::nullopt,
+                 const graph::Readback* referenceStdErr = nullptr);
 
   // Left and right, in that order (one entry when both sides show the same path).
   std::vector<LiveError> errors() const;
@@ -81,10 +92,19 @@ class LiveCompare {
   // it has doubled its samples once. A side's relMSE against a noisy reference carries about
   // this much of the reference's noise besides its own error.
   std::optional<double> referenceNoise() const;
-  // Whether the reference is converged enough to rank the sides: its noise at most
-  // 1/kTrustRatio of the gap between their relMSE (of its relMSE, when one side is compared).
+  // Whether the reference is converged enough to rank the sides: with its standard error, when
+  // the sides' relMSE intervals against the converged reference part (verdict()); without it,
+  // when its noise is at most 1/kTrustRatio of the gap between their relMSE (of its relMSE, when
+  // one side is compared).
   static constexpr double kTrustRatio = 4.0;
   bool referenceTrusted() const;
+  // The verdict on the two sides (None while either lacks a figure against the converged
+  // reference, while the reference has fewer than kMinVerdictSamples samples, or when one side
+  // is the reference itself). Below that count the per-pixel standard error misses the rare,
+  // bright paths a pixel has not drawn yet (at 1 sample it is 0), so its intervals would be too
+  // narrow: 16 samples give each pixel's variance 15 degrees of freedom.
+  static constexpr uint32_t kMinVerdictSamples = 16;
+  LiveVerdict verdict() const;
 
   // The parts of the frame key a side's image and the reference's must share to be compared.
   static constexpr lighting::FrameParts kComparedParts =
@@ -99,6 +119,7 @@ class LiveCompare {
     metrics::Image image;
     lighting::FrameKey key;
     double gpuMs = 0.0;
+    metrics::Image variance;  // the reference's: its standard error squared (empty: not known)
   };
   CompareView view_;
   std::string reference_;
@@ -110,7 +131,7 @@ class LiveCompare {
   // FLIP under way per path, with the frame key of the images it measures: a result arrives only
   // while both images still show that view.
   struct PendingFlip {
-    std::future<double> value;
+    std::future<metrics::NoiseAwareFigure> value;
     lighting::FrameKey key;
   };
   std::map<std::string, PendingFlip> pendingFlip_;

@@ -111,6 +111,52 @@ td:first-child,th:first-child{text-align:left}
 .legend{height:12px;width:256px;background:linear-gradient(to right,#05051a,#590d73,#cc1a33,#fa800d,#fce533,#fff)}
 </style>)";
 
+// The gate's outcome: passed, FAILED, or undecided when a figure's interval holds its threshold
+// and none is above (compare.cpp, evaluateGate).
+std::string gateWord(const nlohmann::json& gate) {
+  if (gate["passed"].get<bool>()) return "passed";
+  return gate.value("decided", true) ? "FAILED" : "undecided (within the reference's noise)";
+}
+
+// The figures against the converged reference (the reference's noise taken out, a 95% interval
+// each) and the rankings they support: "within noise" where two paths' intervals overlap.
+std::string significanceSection(const nlohmann::json& r) {
+  if (!r.contains("significance")) return "";
+  const auto& sig = r["significance"];
+  const auto& noise = r["reference"].value("noise", nlohmann::json::object());
+  std::string html = "<h2>Against the converged reference</h2><p>Each figure with the reference's own noise taken out of "
+                     "its expectation, and its 95% interval from that noise";
+  if (noise.contains("relativeStdError"))
+    html += fmt::format(" (the reference's relative standard error {}{})", number(noise["relativeStdError"]),
+                        noise.contains("expectedRelMSE_norm")
+                            ? fmt::format(", its own expected relMSE_norm against the converged image {}",
+                                          number(noise["expectedRelMSE_norm"], "{:.5f}"))
+                            : std::string());
+  html += ". Two paths are ranked only where their intervals do not overlap; where they do, they are within noise of "
+          "each other: more reference samples, not these figures, would tell them apart.</p><table><tr><th>path</th>";
+  for (auto& m : sig["metrics"]) html += fmt::format("<th>{}</th>", escape(m.get<std::string>()));
+  html += "</tr>";
+  for (auto& p : r["paths"]) {
+    if (!p.contains("significance")) continue;
+    html += fmt::format("<tr><td>{}</td>", escape(p["path"].get<std::string>()));
+    for (auto& m : sig["metrics"]) {
+      const auto& f = p["significance"][m.get<std::string>()];
+      html += fmt::format("<td>{} <small>[{}, {}]</small></td>", number(f["value"]), number(f["low"]), number(f["high"]));
+    }
+    html += "</tr>";
+  }
+  html += "</table>";
+  if (sig.contains("rankings") && r["paths"].size() > 1) {
+    html += "<p>Rankings (<b>&lt;</b> lower, significant; <b>~</b> within noise):</p><ul>";
+    for (auto& m : sig["metrics"])
+      if (sig["rankings"].contains(m.get<std::string>()))
+        html += fmt::format("<li>{}: {}</li>", escape(m.get<std::string>()),
+                            escape(sig["rankings"][m.get<std::string>()]["order"].get<std::string>()));
+    html += "</ul>";
+  }
+  return html;
+}
+
 }  // namespace
 
 void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r, const std::filesystem::path& dir) {
@@ -135,7 +181,7 @@ void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r,
     const auto& g = r["gate"];
     std::string limits;
     for (auto& [m, v] : g["failAbove"].items()) limits += fmt::format("{}{} ≤ {}", limits.empty() ? "" : ", ", escape(m), v.get<double>());
-    html += fmt::format("<p><b>Regression gate {}</b> ({}).</p>", g["passed"].get<bool>() ? "passed" : "FAILED", limits);
+    html += fmt::format("<p><b>Regression gate {}</b> ({}).</p>", gateWord(g), limits);
     if (!g["failures"].empty()) {
       html += "<table><tr><th>path</th><th>metric</th><th>value</th><th>threshold</th></tr>";
       for (auto& f : g["failures"])
@@ -143,7 +189,18 @@ void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r,
                             escape(f["metric"].get<std::string>()), number(f["value"]), f["threshold"].get<double>());
       html += "</table>";
     }
+    if (g.contains("withinNoise") && !g["withinNoise"].empty()) {
+      html += "<p>Within noise of their thresholds (the reference's noise cannot tell whether they pass: render it with "
+              "more samples or a --reference-noise target):</p>";
+      html += "<table><tr><th>path</th><th>metric</th><th>value</th><th>95% interval</th><th>threshold</th></tr>";
+      for (auto& f : g["withinNoise"])
+        html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td><td>{}</td></tr>",
+                            escape(f["path"].get<std::string>()), escape(f["metric"].get<std::string>()), number(f["value"]),
+                            number(f["low"]), number(f["high"]), f["threshold"].get<double>());
+      html += "</table>";
+    }
   }
+  html += significanceSection(r);
   html += "<h2>Error as rendered</h2><p>Linear radiance as each path rendered it; the display metrics at the report's "
           "exposure.</p>";
   html += "<table><tr><th>path</th><th>GPU ms</th><th>relMSE</th><th>RMSE</th><th>PSNR dB</th><th>SSIM</th><th>FLIP</th><th>HDR-FLIP</th></tr>";
@@ -225,8 +282,9 @@ void writeSweepReportHtml(const std::filesystem::path& file, const nlohmann::jso
                       r["grid"]["referenceSpp"].get<int>(), escape(r["grid"]["scope"].get<std::string>()));
   if (r.contains("gate")) {
     const auto& g = r["gate"];
-    html += fmt::format("<p><b>Regression gate {}</b>: {} figure(s) above their thresholds.</p>",
-                        g["passed"].get<bool>() ? "passed" : "FAILED", g["failures"].size());
+    html += fmt::format("<p><b>Regression gate {}</b>: {} figure(s) above their thresholds, {} within the reference's "
+                        "noise of them.</p>",
+                        gateWord(g), g["failures"].size(), g.value("withinNoise", nlohmann::json::array()).size());
     if (!g["failures"].empty()) {
       html += "<table><tr><th>scene</th><th>camera</th><th>path</th><th>metric</th><th>value</th><th>threshold</th></tr>";
       for (auto& f : g["failures"])

@@ -1,5 +1,7 @@
 #include "session/session.h"
 
+#include "lighting/reference/reference_path.h"
+
 #include "lighting/common/albedo_view_pass.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/taa_pass.h"
@@ -503,6 +505,8 @@ void Session::beginOne(bool readback) {
     executor_->requestReadback(lighting::kTonemapLdr);
   }
   if (compare_) executor_->requestReadback(lighting::compareImageName(compared));
+  // The compare panel's figures against the converged reference need the reference's noise.
+  if (compare_ && compared == compare_->referencePath()) executor_->requestReadback(lighting::kReferenceStdErr);
   executor_->submit(graph, compiled);
   graphDump_ = graph.dump(compiled);
   if (readback) graphDot_ = graph.dot(compiled);
@@ -534,7 +538,10 @@ void Session::finishOne() {
   // The compare view it was rendered for may have been closed or replaced since.
   if (compare_ && !done.compared.empty() && done.compareGeneration == compareGeneration_) {
     compare_->frameDone(done.compared, executor_->readback(lighting::compareImageName(done.compared)), total, done.key,
-                        done.referenceSamples, done.exposure, done.accumulation);
+                        done.referenceSamples, done.exposure, done.accumulation,
+                        executor_->readbacks().count(lighting::kReferenceStdErr) && done.compared == compare_->referencePath()
+                            ? &executor_->readback(lighting::kReferenceStdErr)
+                            : nullptr);
   }
 }
 

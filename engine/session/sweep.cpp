@@ -60,7 +60,7 @@ nlohmann::json writeSweepReport(const std::filesystem::path& root, const nlohman
   std::map<std::string, std::vector<const nlohmann::json*>> byName;  // a configuration's entry in each view
   std::vector<nlohmann::json> reports;
   for (const auto& v : grid["views"]) reports.push_back(readJson(viewDir(root, v["dir"]) / "report.json"));
-  nlohmann::json failures = nlohmann::json::array(), limits = nullptr;
+  nlohmann::json failures = nlohmann::json::array(), withinNoise = nlohmann::json::array(), limits = nullptr;
   for (size_t i = 0; i < reports.size(); ++i) {
     const nlohmann::json& r = reports[i];
     const nlohmann::json& v = grid["views"][i];
@@ -81,6 +81,11 @@ nlohmann::json writeSweepReport(const std::filesystem::path& root, const nlohman
         f["camera"] = v["camera"];
         failures.push_back(f);
       }
+      for (auto f : r["gate"].value("withinNoise", nlohmann::json::array())) {
+        f["scene"] = r["scene"];
+        f["camera"] = v["camera"];
+        withinNoise.push_back(f);
+      }
     }
   }
   nlohmann::json configurations = nlohmann::json::array();
@@ -98,7 +103,12 @@ nlohmann::json writeSweepReport(const std::filesystem::path& root, const nlohman
                            {"means", "each configuration's figures are means over the views that measured it (null when "
                                      "a view's figure is missing); frameMs is a timing, the rest are errors"}};
   if (!reports.empty()) report["forms"] = reports[0]["forms"], report["metrics"] = reports[0]["metrics"];
-  if (!limits.is_null()) report["gate"] = {{"failAbove", limits}, {"failures", failures}, {"passed", failures.empty()}};
+  if (!limits.is_null())
+    report["gate"] = {{"failAbove", limits},
+                      {"failures", failures},
+                      {"withinNoise", withinNoise},
+                      {"passed", failures.empty() && withinNoise.empty()},
+                      {"decided", withinNoise.empty() || !failures.empty()}};
   report["summary"] = summarizeSweep(report);
   writeJson(root / "report.json", report);
   writeSweepReportHtml(root / "report.html", report);
@@ -183,6 +193,10 @@ size_t gateFailureCount(const nlohmann::json& report) {
   return report.contains("gate") ? report["gate"]["failures"].size() : 0;
 }
 
+size_t gateWithinNoiseCount(const nlohmann::json& report) {
+  return report.contains("gate") ? report["gate"].value("withinNoise", nlohmann::json::array()).size() : 0;
+}
+
 SweepOutcome runSweep(Session& s, const SweepPlan& plan, const CompareOptions& options, const std::optional<Shard>& shard,
                       const SweepCallbacks& cb) {
   const nlohmann::json grid = sweepGrid(plan, options);
@@ -207,6 +221,7 @@ SweepOutcome runSweep(Session& s, const SweepPlan& plan, const CompareOptions& o
     o.outDir = viewDir(options.outDir, view.dir);
     const nlohmann::json report = runCompare(s, o, cb.progress);
     outcome.gateFailures += gateFailureCount(report);
+    outcome.gateWithinNoise += gateWithinNoiseCount(report);
     ++outcome.views;
     done.push_back(i);
     if (cb.viewDone) cb.viewDone(view, report);

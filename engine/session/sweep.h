@@ -58,6 +58,7 @@ struct SweepCallbacks {
 struct SweepOutcome {
   size_t views = 0;          // views measured by this process
   size_t gateFailures = 0;   // figures over their thresholds, in those views
+  size_t gateWithinNoise = 0;  // figures whose interval holds their threshold (the gate cannot tell)
   std::optional<nlohmann::json> sweepReport;  // the top-level report when one was written
 };
 
@@ -73,5 +74,8 @@ nlohmann::json mergeSweep(const std::vector<std::filesystem::path>& shardDirs, c
 
 // Figures over their thresholds in a report (a view's, or a sweep's).
 size_t gateFailureCount(const nlohmann::json& report);
+// The figures of a report's gate within the reference's noise of their thresholds: neither
+// passed nor failed (compare.cpp, evaluateGate).
+size_t gateWithinNoiseCount(const nlohmann::json& report);
 
 }  // namespace tl::session

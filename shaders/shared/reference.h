@@ -23,8 +23,8 @@ TL_CONST uint kRefBindingSampleMean = 17;  // rgba32f: the mean of all the pixel
 TL_CONST uint kRefBindingStdErr = 18;      // rgba32f: standard error of reference.radiance per channel (rgb), the pixel's samples (a)
 TL_CONST uint kRefBindingEmitters = 19;    // Emitter[] (shared/emitters.h): RefPush::emitterCount of them (bound when > 0)
 
-// The reference's noise, summed over the image by reference/noise.comp (two steps: tiles of
-// kRefNoiseTile x kRefNoiseTile pixels, then the tiles) into one RefNoiseTotals.
+// The reference's noise, summed over the image in two steps (reference/noise_tiles.comp: tiles of
+// kRefNoiseTile x kRefNoiseTile pixels; reference/noise_sum.comp: the tiles) into one RefNoiseTotals.
 TL_CONST uint kRefNoiseTile = 16u;
 TL_CONST uint kRefNoiseBindingRadiance = 0;  // reference.radiance (tile step)
 TL_CONST uint kRefNoiseBindingStdErr = 1;    // reference.stderr (tile step)

@@ -92,3 +92,70 @@ TEST(LiveCompare, ReferenceRestartForgetsTheNoiseEstimate) {
 
 }  // namespace
 }  // namespace tl::session
+
+namespace tl::session {
+namespace {
+
+// The reference's standard error as the renderer reads it back (reference.stderr: RGB + samples).
+graph::Readback stdErrReadback(const std::vector<float>& grey, uint32_t samples) {
+  graph::Readback r = readback(grey);
+  std::vector<float> rgba(grey.size() * 4);
+  for (size_t i = 0; i < grey.size(); ++i) rgba[i * 4] = rgba[i * 4 + 1] = rgba[i * 4 + 2] = grey[i], rgba[i * 4 + 3] = float(samples);
+  std::memcpy(r.bytes.data(), rgba.data(), r.bytes.size());
+  return r;
+}
+
+// The panel's verdict against a reference whose noise is known from its running moments: a black
+// side against a correct side that is noisier than the reference is at first (its own error, a
+// fixed image, about the reference's at 2 samples). As the reference converges, the verdict
+// goes from none (too few samples to know the reference's noise) to within noise or the correct
+// side closer, and never to the black side closer, while the raw figures do rank black closer at
+// the start.
+TEST(LiveCompare, NoVerdictUntilSignificantAndNeverForABlackImage) {
+  CompareView view = legacyAgainstRt();
+  view.left = "black", view.right = "correct";
+  LiveCompare live(view, "reference", std::nullopt);
+  const size_t count = size_t(kSize) * kSize;
+  std::vector<float> truth(count), black(count, 0.0f), correct(count), sum(count, 0.0f), squares(count, 0.0f);
+  std::mt19937 rng(11);
+  std::normal_distribution<float> normal(0.0f, 1.0f);
+  std::uniform_real_distribution<float> spread(-0.5f, 0.5f);  // the reference's samples: sd 0.29 about the truth
+  for (size_t i = 0; i < count; ++i) truth[i] = truthAt(i), correct[i] = truth[i] + 0.2f * normal(rng);
+  ASSERT_LT(metrics::relMse(image(correct), image(truth)).value, metrics::relMse(image(black), image(truth)).value)
+      << "the correct side is closer in truth";
+  const lighting::FrameKey key;
+  live.frameDone("black", readback(black), 1.0, key, 0, 1.0f);
+  live.frameDone("correct", readback(correct), 1.0, key, 0, 1.0f);
+  int rawBlackCloser = 0, blackCloser = 0, verdictsBeforeEnoughSamples = 0;
+  bool correctCloser = false;
+  for (uint32_t n = 1; n <= 256; ++n) {
+    std::vector<float> mean(count), stdErr(count);
+    for (size_t i = 0; i < count; ++i) {
+      const float x = truth[i] + spread(rng);
+      sum[i] += x, squares[i] += x * x;
+      mean[i] = sum[i] / float(n);
+      const float variance = n > 1 ? std::max(squares[i] - float(n) * mean[i] * mean[i], 0.0f) / float(n - 1) : 0.0f;
+      stdErr[i] = std::sqrt(variance / float(n));
+    }
+    const graph::Readback errors = stdErrReadback(stdErr, n);
+    live.frameDone("reference", readback(mean), 1.0, key, n, 1.0f, std::nullopt, &errors);
+    const auto e = live.errors();
+    ASSERT_EQ(e.size(), 2u);
+    ASSERT_TRUE(e[0].relMse && e[1].relMse && e[0].relMseAgainstConverged && e[1].relMseAgainstConverged);
+    rawBlackCloser += *e[0].relMse < *e[1].relMse;
+    const LiveVerdict verdict = live.verdict();
+    if (n < LiveCompare::kMinVerdictSamples) verdictsBeforeEnoughSamples += verdict != LiveVerdict::None;
+    blackCloser += verdict == LiveVerdict::LeftCloser;
+    correctCloser |= verdict == LiveVerdict::RightCloser;
+  }
+  std::printf("raw relMSE ranked black closer at %d of 256 reference states; the verdict did %d times\n", rawBlackCloser,
+              blackCloser);
+  EXPECT_GT(rawBlackCloser, 0) << "the raw figures do rank black closer early (the test can fail)";
+  EXPECT_EQ(blackCloser, 0);
+  EXPECT_EQ(verdictsBeforeEnoughSamples, 0) << "no verdict before the reference's noise is known";
+  EXPECT_TRUE(correctCloser) << "the correct side is found closer once the reference allows";
+  EXPECT_TRUE(live.referenceTrusted());
+}
+
+}  // namespace
+}  // namespace tl::session
