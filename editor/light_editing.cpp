@@ -15,15 +15,18 @@
 namespace tl::editor {
 namespace {
 
-// A new light of `type` in glTF's units, bright enough to be seen in a room.
-scene::Light defaultLight(scene::LightType type) {
+// A new light of `type` placed `away` from the camera in a scene `size` across (its bounds'
+// diagonal): an area light's size is a share of the scene's, and a point or spot light gives
+// the illuminance at `away` that 150 cd (600 cd) give at 2 m, so it lights a millimetre model
+// and a hall alike. Nits and lux do not depend on the scene's units.
+scene::Light defaultLight(scene::LightType type, double away, double size) {
   scene::Light l;
   l.type = type;
   l.direction = {0.0, -1.0, 0.0};  // ceiling lights shine down
   switch (type) {
-    case scene::LightType::Point: l.intensity = 150.0f; break;
+    case scene::LightType::Point: l.intensity = float(150.0 * (away / 2.0) * (away / 2.0)); break;
     case scene::LightType::Spot:
-      l.intensity = 600.0f;
+      l.intensity = float(600.0 * (away / 2.0) * (away / 2.0));
       l.innerConeAngle = glm::radians(20.0f);
       l.outerConeAngle = glm::radians(30.0f);
       break;
@@ -33,16 +36,16 @@ scene::Light defaultLight(scene::LightType type) {
       break;
     case scene::LightType::Rect:
       l.intensity = 3000.0f;
-      l.width = l.height = 0.5f;
+      l.width = l.height = float(0.05 * size);
       break;
     case scene::LightType::Disk:
       l.intensity = 3000.0f;
-      l.radius = 0.25f;
+      l.radius = float(0.025 * size);
       break;
     case scene::LightType::Tube:
       l.intensity = 3000.0f;
-      l.radius = 0.02f;
-      l.length = 1.0f;
+      l.radius = float(0.002 * size);
+      l.length = float(0.1 * size);
       l.direction = {1.0, 0.0, 0.0};  // a tube's axis
       break;
   }
@@ -54,12 +57,13 @@ scene::Light defaultLight(scene::LightType type) {
 void EditorApp::addLight(scene::LightType type) {
   if (!session_->hasScene()) return;
   session::Lighting l = session_->lighting();
-  scene::Light light = defaultLight(type);
   const session::View v = camera_.view();
-  // In front of the camera, a third of the scene's size away (0.5 to 5 m); beside a light already
-  // there (the last one added, not yet moved) rather than inside it, a quarter of that away to
-  // the camera's right, so each new light can be seen and picked on its own.
-  const double away = std::clamp(0.3 * glm::length(session_->scene().bounds.size()), 0.5, 5.0);
+  // In front of the camera, a third of the scene's size away; beside a light already there
+  // (the last one added, not yet moved) rather than inside it, a quarter of that away to the
+  // camera's right, so each new light can be seen and picked on its own.
+  const double size = session_->scene().bounds.valid() ? std::max(glm::length(session_->scene().bounds.size()), 1e-6) : 1.0;
+  const double away = 0.3 * size;
+  scene::Light light = defaultLight(type, away, size);
   light.position = v.position + glm::normalize(v.forward) * away;
   const glm::dvec3 right = glm::normalize(glm::cross(v.forward, v.up));
   const auto taken = [&](const glm::dvec3& p) {
@@ -82,7 +86,9 @@ void EditorApp::duplicateSelectedLight() {
   scene::Light copy = l.lights[*selectedLight_];
   copy.node.reset();  // a light of its own when saved
   copy.name += " copy";
-  copy.position += glm::dvec3(0.25, 0.0, 0.0);
+  // Beside the original by a fortieth of the scene's size: apart, and still where it was put.
+  const double size = session_->scene().bounds.valid() ? glm::length(session_->scene().bounds.size()) : 1.0;
+  copy.position += glm::dvec3(0.025 * size, 0.0, 0.0);
   l.lights.push_back(copy);
   session_->setLighting(l);
   selectLight(l.lights.size() - 1);

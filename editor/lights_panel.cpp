@@ -6,6 +6,7 @@
 
 #include "scene/color_temperature.h"
 #include "scene/environment_map.h"
+#include "scene/input_limits.h"
 
 #include <fmt/format.h>
 #include <imgui.h>
@@ -50,14 +51,19 @@ bool directionWidgets(glm::dvec3& direction) {
   return changed;
 }
 
-bool metres(const char* label, float& value, const char* help) {
-  const bool changed = ImGui::DragFloat(label, &value, 0.01f, 0.001f, 1000.0f, "%.3f m", ImGuiSliderFlags_AlwaysClamp);
+// A length in the scene's units, dragged by a share of its own size (or of the scene's, from
+// nothing) and bounded by the scene's size: the same feel in a millimetre model and a city.
+bool metres(const char* label, float& value, const char* help, float sceneSize) {
+  const float speed = 0.01f * std::max(std::abs(value), 1e-3f * sceneSize);
+  const bool changed = ImGui::DragFloat(label, &value, speed, 1e-6f * sceneSize, 100.0f * sceneSize, "%.4g m",
+                                        ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
   tooltip(help);
   return changed;
 }
 
-// The selected light's properties; returns whether one changed.
-bool lightProperties(scene::Light& l) {
+// The selected light's properties; returns whether one changed. `sceneSize`: the diagonal of
+// the scene's bounds, which sets the lengths' drag speeds, bounds and new defaults.
+bool lightProperties(scene::Light& l, float sceneSize) {
   bool changed = false;
   char name[128];
   std::snprintf(name, sizeof name, "%s", l.name.c_str());
@@ -80,16 +86,18 @@ bool lightProperties(scene::Light& l) {
                                            : "Luminous intensity in candela (a 100 W bulb: about 140)");
   if (l.type != LightType::Directional) {
     glm::vec3 p(l.position);
-    if (ImGui::DragFloat3("Position", &p.x, 0.01f, -1e6f, 1e6f, "%.3f m", ImGuiSliderFlags_AlwaysClamp))
+    const float limit = float(scene::InputLimits::kMaxCoordinate);
+    if (ImGui::DragFloat3("Position", &p.x, 1e-3f * sceneSize, -limit, limit, "%.4g m", ImGuiSliderFlags_AlwaysClamp))
       l.position = glm::dvec3(p), changed = true;
     tooltip("World position in metres, y up (or drag the gizmo's arrows)");
   }
   if (l.type != LightType::Point) changed |= directionWidgets(l.direction);
   if (l.type == LightType::Point || l.type == LightType::Spot) {
     bool limited = l.range.has_value();
-    if (ImGui::Checkbox("Limited range", &limited)) l.range = limited ? std::optional<float>(10.0f) : std::nullopt, changed = true;
+    // Limited, it starts at half the scene's size: the light fades out inside the scene.
+    if (ImGui::Checkbox("Limited range", &limited)) l.range = limited ? std::optional<float>(0.5f * sceneSize) : std::nullopt, changed = true;
     tooltip("KHR_lights_punctual's range: the light fades to nothing at this distance (off: the inverse square law alone)");
-    if (l.range) changed |= metres("Range", *l.range, "Distance at which the light has faded to nothing");
+    if (l.range) changed |= metres("Range", *l.range, "Distance at which the light has faded to nothing", sceneSize);
   }
   if (l.type == LightType::Spot) {
     float inner = glm::degrees(l.innerConeAngle), outer = glm::degrees(l.outerConeAngle);
@@ -107,11 +115,11 @@ bool lightProperties(scene::Light& l) {
     }
   }
   if (l.type == LightType::Rect) {
-    changed |= metres("Width", l.width, "Size along the panel's width axis");
-    changed |= metres("Height", l.height, "Size across it");
+    changed |= metres("Width", l.width, "Size along the panel's width axis", sceneSize);
+    changed |= metres("Height", l.height, "Size across it", sceneSize);
   }
-  if (l.type == LightType::Disk || l.type == LightType::Tube) changed |= metres("Radius", l.radius, "Radius of the disk or tube");
-  if (l.type == LightType::Tube) changed |= metres("Length", l.length, "Length of the tube along its axis (its aim)");
+  if (l.type == LightType::Disk || l.type == LightType::Tube) changed |= metres("Radius", l.radius, "Radius of the disk or tube", sceneSize);
+  if (l.type == LightType::Tube) changed |= metres("Length", l.length, "Length of the tube along its axis (its aim)", sceneSize);
   if (l.type == LightType::Rect || l.type == LightType::Disk) {
     changed |= ImGui::Checkbox("Two-sided", &l.twoSided);
     tooltip("Emit from both faces (off: the front face alone, the side it aims at)");
@@ -181,7 +189,8 @@ bool lightInspector(EditorApp& app) {
   ImGui::Text("%s", l.lights[*selected].name.c_str());
   ImGui::Separator();
   ImGui::PushItemWidth(-ImGui::CalcTextSize("Aim elevation").x - 2.0f * ImGui::GetStyle().ItemInnerSpacing.x);
-  if (lightProperties(l.lights[*selected])) session.setLighting(l);
+  const float sceneSize = session.scene().bounds.valid() ? float(glm::length(session.scene().bounds.size())) : 1.0f;
+  if (lightProperties(l.lights[*selected], std::max(sceneSize, 1e-6f))) session.setLighting(l);
   ImGui::PopItemWidth();
   return true;
 }

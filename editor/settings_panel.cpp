@@ -76,8 +76,16 @@ void settingWidget(const SettingInfo& s, lighting::RenderSettings& settings, con
           ImGui::EndCombo();
         }
       } else if (s.flags & lighting::kSettingAuto) {
-        if (ImGui::DragFloat(label.c_str(), &v, 0.01f, float(s.min), float(s.max), v > 0.0f ? ("%.3g" + unit).c_str() : "auto"))
-          next = std::clamp(double(v), s.min, s.max);
+        // 0 shows "auto"; a drag starts from the automatic value (not from 0) and moves by a
+        // hundredth of the value a pixel, so it feels the same in a millimetre model and a city.
+        const float automatic = lighting::autoSettingValue(s, settings, sceneSize).value_or(0.0f);
+        const float from = v > 0.0f ? v : automatic;
+        const float speed = 0.01f * std::max(from, 1e-6f);
+        float dragged = from;
+        if (ImGui::DragFloat(label.c_str(), &dragged, speed, float(s.min), float(s.max),
+                             v > 0.0f ? ("%.4g" + unit).c_str() : "auto") &&
+            dragged != from)
+          next = std::clamp(double(dragged), s.min, s.max);
       } else if (s.min > 0.0 && s.max / s.min >= 100.0) {
         if (ImGui::SliderFloat(label.c_str(), &v, float(s.min), float(s.max), ("%.3g" + unit).c_str(),
                                ImGuiSliderFlags_Logarithmic))

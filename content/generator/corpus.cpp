@@ -1,6 +1,7 @@
 #include "corpus.h"
 
 #include "gltf_writer.h"
+#include "sky_map.h"
 
 #include <fmt/format.h>
 #include <glm/gtc/constants.hpp>
@@ -455,7 +456,29 @@ CorpusScene writeInterior(const std::filesystem::path& dir, uint64_t seed, uint3
   // closed interiors, and some open ones, also have lamps, panels or an emissive mesh.
   std::vector<std::string> lights;
   const bool open = info.openings != "none";
-  if (open) {
+  // A fifth of the open interiors are lit by an HDRI alone (a sky with a sun disc in its
+  // texels, turned to a random azimuth), set up in the scene's lighting sidecar, as an artist's
+  // export lit by an environment map would be; their other lights are meshes (a sidecar's
+  // light list is the scene's whole).
+  const bool hdri = open && d.chance(0.2f);
+  if (hdri) {
+    w.sky(glm::vec3(0.0f));
+    const std::filesystem::path sky = dir / "environments" / "corpus_sky.exr";
+    if (!std::filesystem::exists(sky)) writeCourtyardSky(sky);
+    const std::string sidecar = fmt::format(R"({{
+  "format": "twinlight.lighting",
+  "version": 1,
+  "sun": {{"direction": [0.3, -1, 0.2], "irradiance": 0}},
+  "sky": {{"radiance": 0}},
+  "exposure_ev": null,
+  "environment": {{"file": "environments/corpus_sky.exr", "rotation_deg": {:.1f}, "intensity": {:.3f}}},
+  "lights": []
+}}
+)", d.between(0.0f, 360.0f), d.between(0.5f, 2.0f));
+    writeLightingSidecar(dir / (info.name + ".lighting.json"), sidecar.c_str());
+    lights.push_back("hdri");
+  }
+  if (open && !hdri) {
     // The sun shines in through the opening (aimed at a wall opening, or high over a roof
     // opening) or comes from anywhere; a sun that may miss the openings comes with a sky, so
     // no open interior is left without light.
@@ -497,11 +520,12 @@ CorpusScene writeInterior(const std::filesystem::path& dir, uint64_t seed, uint3
       const std::vector<Rect> pieces = subtractHoles({lo.x - margin, hi.x + margin, lo.z - margin, hi.z + margin}, {footprint});
       for (size_t k = 0; k < pieces.size(); ++k) build.ground(fmt::format("ground_{}", k), pieces[k], lo.y, groundMat);
     }
-  } else {
+  } else if (!open) {
     w.sky(glm::vec3(0.0f));
   }
   if (!open || d.chance(0.3f)) {
-    const std::vector<std::string> kinds{"panels", "emitter", "lamps", "spots"};
+    const std::vector<std::string> kinds = hdri ? std::vector<std::string>{"panels", "emitter"}
+                                                : std::vector<std::string>{"panels", "emitter", "lamps", "spots"};
     const int count = d.integer(1, 2);
     for (int k = 0; k < count; ++k) {
       const std::string kind = d.pick(kinds);

@@ -4,8 +4,9 @@
 //   scale       the main room's longest side, log-uniform from 0.5 m to 500 m;
 //   shape       a box, a hall, a corridor, an L of two rooms, or a suite of rooms joined by doors;
 //   openings    none, a door, windows, slits across the roof or a skylight;
-//   light       the sun and the sky through the openings, emissive panels and meshes, KHR
-//               point and spot lamps (every closed interior has lamps or emitters);
+//   light       the sun and the sky through the openings, or an HDRI (an environment map
+//               with a sun disc, set up in the scene's lighting sidecar), emissive panels and
+//               meshes, KHR point and spot lamps (every closed interior has lamps or emitters);
 //   albedo      white 0.9, greys, or saturated colours;
 //   walls       two triangles a wall piece (no thickness), or boxes with thickness whose faces
 //               are tessellated (10k+ triangles);
@@ -27,7 +28,7 @@ struct CorpusScene {
   std::string name;        // file stem: "interior_007"
   std::string shape;       // box, hall, corridor, l_shape, suite
   std::string openings;    // none, door, windows, slits, skylight
-  std::string lights;      // "+"-joined: sun, sky, panels, emitter, lamps, spots
+  std::string lights;      // "+"-joined: sun, sky, hdri, panels, emitter, lamps, spots
   std::string albedo;      // white, grey, saturated
   std::string walls;       // quads, thick
   float size = 0.0f;       // the main room's longest side, metres

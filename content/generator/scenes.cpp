@@ -5,6 +5,7 @@
 #include "corpus.h"
 #include "gltf_writer.h"
 #include "hard_scenes.h"
+#include "sky_map.h"
 
 #include <OpenImageIO/imageio.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -36,6 +37,8 @@ void writeChecker(const std::filesystem::path& file) {
     throw std::runtime_error("cannot write " + file.string());
 }
 
+}  // namespace
+
 // A lighting sidecar (session/lighting_file.h) beside a scene; a failed write is an error.
 void writeLightingSidecar(const std::filesystem::path& file, const char* text) {
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
@@ -43,6 +46,8 @@ void writeLightingSidecar(const std::filesystem::path& file, const char* text) {
   out.close();  // a failed flush shows only after close
   if (!out) throw std::runtime_error("cannot write " + file.string());
 }
+
+namespace {
 
 // A box-shaped wall piece as its own node: boxes have real thickness, so light does not
 // leak through the seams the way it does through single-sided quads.
@@ -616,6 +621,8 @@ void lampsWithPanel(const std::filesystem::path& dir) {
 )");
 }
 
+}  // namespace
+
 // An equirectangular sky for the HDRI-lit exterior (radiance on Twinlight's scale, row 0 at the
 // zenith): a blue zenith fading to a pale horizon, a warm grey ground below it, and a sun disc of
 // 2 degrees radius at 35 degrees elevation whose texels give an irradiance of about 8 on a
@@ -656,6 +663,8 @@ void writeCourtyardSky(const std::filesystem::path& file) {
   if (!out || !out->open(file.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, px.data()) || !out->close())
     throw std::runtime_error("cannot write " + file.string());
 }
+
+namespace {
 
 // The HDRI-lit exterior: a 30 m grey paved ground with a white wall, two boxes, a column, an
 // arch and a copper sphere, lit by environments/courtyard_sky.exr alone (no glTF sun; the map's

@@ -32,8 +32,17 @@ std::optional<double> number(const nlohmann::json& object, const char* key) {
   return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
 }
 
+// A member of a const object, or null: a const json's operator[] on a missing key is undefined
+// behaviour (a merged or older report may lack a figure).
+const nlohmann::json& field(const nlohmann::json& object, const char* key) {
+  static const nlohmann::json kNull;
+  return object.is_object() && object.contains(key) ? object[key] : kNull;
+}
+
 const nlohmann::json* pathEntry(const nlohmann::json& view, const std::string& path) {
-  for (const auto& p : view["paths"])
+  const nlohmann::json& paths = field(view, "paths");
+  if (!paths.is_array()) return nullptr;
+  for (const auto& p : paths)
     if (p.value("path", "") == path) return &p;
   return nullptr;
 }
@@ -53,12 +62,12 @@ nlohmann::json summarizeSweep(const nlohmann::json& report) {
   std::map<std::string, double> brightest;
   for (const auto& v : views) {
     const std::string scene = v.value("sceneFile", v.value("scene", std::string()));
-    const double mean = number(v["reference"], "meanLuminance").value_or(0.0);
+    const double mean = number(field(v, "reference"), "meanLuminance").value_or(0.0);
     brightest[scene] = std::max(brightest[scene], mean);
   }
   std::vector<std::string> paths;
   for (const auto& v : views)
-    for (const auto& p : v["paths"])
+    for (const auto& p : field(v, "paths"))
       if (std::find(paths.begin(), paths.end(), p.value("path", "")) == paths.end()) paths.push_back(p.value("path", ""));
 
   std::map<std::string, std::pair<int, int>> tally;  // goal -> (met, judged)
@@ -66,7 +75,7 @@ nlohmann::json summarizeSweep(const nlohmann::json& report) {
   for (const auto& v : views) {
     const std::string scene = v.value("sceneFile", v.value("scene", std::string()));
     const double lit = brightest[scene];
-    const double mean = number(v["reference"], "meanLuminance").value_or(0.0);
+    const double mean = number(field(v, "reference"), "meanLuminance").value_or(0.0);
     nlohmann::json row = {{"dir", v.value("dir", "")}, {"scene", v.value("scene", "")}, {"camera", v.value("camera", "")},
                           {"referenceMean", mean}};
     std::vector<std::string> missed;
@@ -79,7 +88,7 @@ nlohmann::json summarizeSweep(const nlohmann::json& report) {
     nlohmann::json figures = nlohmann::json::object();
     for (const std::string& path : paths)
       if (const nlohmann::json* e = pathEntry(v, path))
-        figures[path] = {{"meanRatio", (*e)["meanRatio"]}, {"relMSE_norm", (*e)["relMSE_norm"]},
+        figures[path] = {{"meanRatio", field(*e, "meanRatio")}, {"relMSE_norm", field(*e, "relMSE_norm")},
                          {"meanLuminance", pathMean(*e, mean) ? nlohmann::json(*pathMean(*e, mean)) : nlohmann::json()}};
     row["paths"] = figures;
     if (!(lit > 0.0)) {
