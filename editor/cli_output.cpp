@@ -107,11 +107,15 @@ void Progress::bar(double fraction, const std::string& what, double elapsed, dou
   const size_t width = text.size();
   if (width < barWidth_) text += std::string(barWidth_ - width, ' ');  // blank the longer last bar
   barWidth_ = width;
+  std::fflush(stdout);  // as in line()
   fmt::print(stderr, "\r{}", text);
   std::fflush(stderr);
 }
 
 void Progress::line(double fraction, const std::string& what, double elapsed, double eta) {
+  // What the command printed before comes first: stdout is buffered when it is a pipe, and a
+  // reader of both streams (a log, a test) would find this line in the middle of one of its lines.
+  std::fflush(stdout);
   fmt::print(stderr, "{}: {:3.0f}% {}, {} elapsed{}\n", task_, fraction * 100.0, what, formatDuration(elapsed),
              eta >= 0.0 ? fmt::format(", {} left", formatDuration(eta)) : std::string());
   std::fflush(stderr);
