@@ -61,7 +61,7 @@ void EditorApp::addLight(scene::LightType type) {
   // In front of the camera, a third of the scene's size away; beside a light already there
   // (the last one added, not yet moved) rather than inside it, a quarter of that away to the
   // camera's right, so each new light can be seen and picked on its own.
-  const double size = session_->scene().bounds.valid() ? std::max(glm::length(session_->scene().bounds.size()), 1e-6) : 1.0;
+  const double size = std::max(double(session_->sceneSize().diagonal), 1e-6);
   const double away = 0.3 * size;
   scene::Light light = defaultLight(type, away, size);
   light.position = v.position + glm::normalize(v.forward) * away;
@@ -87,8 +87,7 @@ void EditorApp::duplicateSelectedLight() {
   copy.node.reset();  // a light of its own when saved
   copy.name += " copy";
   // Beside the original by a fortieth of the scene's size: apart, and still where it was put.
-  const double size = session_->scene().bounds.valid() ? glm::length(session_->scene().bounds.size()) : 1.0;
-  copy.position += glm::dvec3(0.025 * size, 0.0, 0.0);
+  copy.position += glm::dvec3(0.025 * double(session_->sceneSize().diagonal), 0.0, 0.0);
   l.lights.push_back(copy);
   session_->setLighting(l);
   selectLight(l.lights.size() - 1);

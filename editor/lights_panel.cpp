@@ -189,8 +189,7 @@ bool lightInspector(EditorApp& app) {
   ImGui::Text("%s", l.lights[*selected].name.c_str());
   ImGui::Separator();
   ImGui::PushItemWidth(-ImGui::CalcTextSize("Aim elevation").x - 2.0f * ImGui::GetStyle().ItemInnerSpacing.x);
-  const float sceneSize = session.scene().bounds.valid() ? float(glm::length(session.scene().bounds.size())) : 1.0f;
-  if (lightProperties(l.lights[*selected], std::max(sceneSize, 1e-6f))) session.setLighting(l);
+  if (lightProperties(l.lights[*selected], std::max(session.sceneSize().diagonal, 1e-6f))) session.setLighting(l);
   ImGui::PopItemWidth();
   return true;
 }

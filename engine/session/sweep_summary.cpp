@@ -26,17 +26,18 @@ constexpr Goal kGoals[] = {
     {"dark_stays_dark", "dark views stay dark (< 1% of the lit view) in every path", 1.0},
 };
 
-std::optional<double> number(const nlohmann::json& object, const char* key) {
-  if (!object.is_object() || !object.contains(key) || !object[key].is_number()) return std::nullopt;
-  const double v = object[key].get<double>();
-  return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
-}
-
 // A member of a const object, or null: a const json's operator[] on a missing key is undefined
 // behaviour (a merged or older report may lack a figure).
 const nlohmann::json& field(const nlohmann::json& object, const char* key) {
   static const nlohmann::json kNull;
   return object.is_object() && object.contains(key) ? object[key] : kNull;
+}
+
+std::optional<double> number(const nlohmann::json& object, const char* key) {
+  const nlohmann::json& v = field(object, key);
+  if (!v.is_number()) return std::nullopt;
+  const double d = v.get<double>();
+  return std::isfinite(d) ? std::optional<double>(d) : std::nullopt;
 }
 
 const nlohmann::json* pathEntry(const nlohmann::json& view, const std::string& path) {
@@ -87,9 +88,11 @@ nlohmann::json summarizeSweep(const nlohmann::json& report) {
     };
     nlohmann::json figures = nlohmann::json::object();
     for (const std::string& path : paths)
-      if (const nlohmann::json* e = pathEntry(v, path))
+      if (const nlohmann::json* e = pathEntry(v, path)) {
+        const std::optional<double> pathLuminance = pathMean(*e, mean);
         figures[path] = {{"meanRatio", field(*e, "meanRatio")}, {"relMSE_norm", field(*e, "relMSE_norm")},
-                         {"meanLuminance", pathMean(*e, mean) ? nlohmann::json(*pathMean(*e, mean)) : nlohmann::json()}};
+                         {"meanLuminance", pathLuminance ? nlohmann::json(*pathLuminance) : nlohmann::json()}};
+      }
     row["paths"] = figures;
     if (!(lit > 0.0)) {
       row["class"] = "unlit";  // nothing to judge: every view of the scene is black

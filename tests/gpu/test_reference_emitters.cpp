@@ -125,6 +125,20 @@ TEST_F(ReferenceEmittersTest, CornellVarianceAtEqualSamplesFallsByAnOrderOfMagni
   EXPECT_GT(all, 2.5);
 }
 
+// The scene loaded in `s` rendered at 256 spp with emitter sampling and without it (the BRDF's
+// rays alone): the two images agree pixel by pixel within their standard errors, and their
+// means within 4 of the difference's.
+void expectEmitterSamplingAgreesWithTheRays(session::Session& s, const char* what) {
+  const uint32_t spp = 256;
+  const Render sampled = render(s, true, spp), rays = render(s, false, spp);
+  const Agreement a = agreement(sampled, rays);
+  std::printf("%s, 32x24, %u spp: variance %.1fx less; mean z^2 %.3f, image mean difference %.2f sigma\n", what, spp,
+              rays.meanVariance / sampled.meanVariance, a.meanSquaredZ, a.meanZ);
+  ::testing::Test::RecordProperty("mean_squared_z", std::to_string(a.meanSquaredZ));
+  EXPECT_LT(std::abs(a.meanZ), 4.0) << what << ": the image means agree within 4 standard errors";
+  EXPECT_NEAR(a.meanSquaredZ, 1.0, 0.25) << what << ": every pixel agrees within its noise";
+}
+
 // The same box with the light 1.5 m wide, so that the BRDF's rays find it often enough for
 // their estimate's noise to be measured by its own moments: with emitter sampling the same
 // image, pixel by pixel, within the two images' standard errors. Counting the emission a ray
@@ -133,14 +147,7 @@ TEST_F(ReferenceEmittersTest, EmitterSamplingConvergesToWhatTheRaysFind) {
   auto& s = session();
   const fs::path dir = fs::temp_directory_path() / "twinlight-wide-light";
   s.loadScene(cornellWithLight(dir, 3.0));
-  const uint32_t spp = 256;
-  const Render sampled = render(s, true, spp), rays = render(s, false, spp);
-  const Agreement a = agreement(sampled, rays);
-  std::printf("cornell, 1.5 m light, 32x24, %u spp: variance %.1fx less; mean z^2 %.3f, image mean difference %.2f sigma\n",
-              spp, rays.meanVariance / sampled.meanVariance, a.meanSquaredZ, a.meanZ);
-  RecordProperty("mean_squared_z", std::to_string(a.meanSquaredZ));
-  EXPECT_LT(std::abs(a.meanZ), 4.0) << "the image means agree within 4 standard errors";
-  EXPECT_NEAR(a.meanSquaredZ, 1.0, 0.25) << "every pixel agrees within its noise";
+  expectEmitterSamplingAgreesWithTheRays(s, "cornell, 1.5 m light");
   fs::remove_all(dir);
 }
 
@@ -153,14 +160,7 @@ TEST_F(ReferenceEmittersTest, TexturedEmissionIsWeighedByTheTexelThePointEmits) 
   auto& s = session();
   const fs::path dir = fs::temp_directory_path() / "twinlight-textured-light";
   s.loadScene(cornellWithLight(dir, 3.0, 1.99, {1.0f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f}));
-  const uint32_t spp = 256;
-  const Render sampled = render(s, true, spp), rays = render(s, false, spp);
-  const Agreement a = agreement(sampled, rays);
-  std::printf("textured 1.5 m light, 32x24, %u spp: variance %.1fx less; mean z^2 %.3f, image mean difference %.2f sigma\n",
-              spp, rays.meanVariance / sampled.meanVariance, a.meanSquaredZ, a.meanZ);
-  RecordProperty("mean_squared_z", std::to_string(a.meanSquaredZ));
-  EXPECT_LT(std::abs(a.meanZ), 4.0);
-  EXPECT_NEAR(a.meanSquaredZ, 1.0, 0.25);
+  expectEmitterSamplingAgreesWithTheRays(s, "textured 1.5 m light");
   fs::remove_all(dir);
 }
 

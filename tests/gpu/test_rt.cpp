@@ -632,9 +632,8 @@ IrradianceErrors irradianceErrors(session::Session& s, const char* scene, uint32
     s.settings().referenceBounces = 2;
     s.settings().rtScreenRadiance = false;
     s.settings().legacyScreenRadiance = false;
-    s.settings().rtCacheMinGain = 2.0f;  // above 1: never
   }
-  if (scope == Scope::NoCache) s.settings().rtCacheMinGain = 2.0f;
+  if (scope != Scope::Full) s.settings().rtCacheMinGain = 2.0f;  // above 1: never
   auto irradiance = [&](const char* path, uint32_t frames, const char* name) {
     s.setPath(path);
     s.resetHistory();
