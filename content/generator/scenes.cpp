@@ -143,6 +143,84 @@ void cornell(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// The white furnace in polished metal: three spheres of white metal (base colour 1,
+// metallic 1) at roughness 0 (a mirror), 0.15 and 0.35, apart, under a uniform sky of radiance
+// 1. A white metal reflects all it receives at any roughness, so every pixel, sphere, sky or a
+// sphere seen in another, is exactly 1: the reflections' estimator and its demodulation add
+// and lose nothing.
+void metalFurnace(const std::filesystem::path& dir) {
+  SceneWriter w("metal_furnace");
+  const float roughness[] = {0.0f, 0.15f, 0.35f};
+  for (int i = 0; i < 3; ++i) {
+    char name[48];
+    std::snprintf(name, sizeof name, "white_metal_%03d", int(roughness[i] * 100.0f + 0.5f));
+    int m = w.material({name, {1.0f, 1.0f, 1.0f}, 1.0f, roughness[i]});
+    w.node(name, w.mesh(name, sphere(0.5f, 160, 80), m), {-1.2f + 1.2f * float(i), 0.0f, float(i % 2) * -0.6f});
+  }
+  w.camera("front", {0.0f, 0.6f, 3.6f}, {0.0f, 0.0f, -0.2f}, 50.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
+// The Cornell box made metal, as a new user tries reflections: the floor and both boxes
+// polished white metal (base colour 0.95, metallic 1) at `roughness`, the walls as in cornell,
+// the ceiling panel lit, and a sun and sky through the open front. Most of what the camera
+// sees of the floor and the boxes is the room reflected.
+void metalCornell(const std::filesystem::path& dir, const char* name, float roughness) {
+  SceneWriter w(name);
+  int white = w.material({"cornell_white", {0.73f, 0.73f, 0.73f}, 0.0f, 1.0f});
+  int red = w.material({"cornell_red", {0.63f, 0.065f, 0.05f}, 0.0f, 1.0f});
+  int green = w.material({"cornell_green", {0.14f, 0.45f, 0.091f}, 0.0f, 1.0f});
+  int metal = w.material({"polished_metal", {0.95f, 0.95f, 0.95f}, 1.0f, roughness});
+  int light = w.material({"ceiling_light", {0.78f, 0.78f, 0.78f}, 0.0f, 1.0f, {1.0f, 0.85f, 0.6f}, 15.0f});
+  Shape panel = quad(2.0f, 2.0f);
+  w.node("floor_metal", w.mesh("floor", panel, metal), {0.0f, 0.0f, 0.0f});
+  w.node("ceiling", w.mesh("ceiling", panel, white), {0.0f, 2.0f, 0.0f}, {180.0f, 0.0f, 0.0f});
+  w.node("back_wall", w.mesh("back_wall", panel, white), {0.0f, 1.0f, -1.0f}, {90.0f, 0.0f, 0.0f});
+  w.node("left_wall_red", w.mesh("left_wall", panel, red), {-1.0f, 1.0f, 0.0f}, {0.0f, 0.0f, -90.0f});
+  w.node("right_wall_green", w.mesh("right_wall", panel, green), {1.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 90.0f});
+  w.node("light_quad", w.mesh("light", quad(0.5f, 0.5f), light), {0.0f, 1.99f, 0.0f}, {180.0f, 0.0f, 0.0f});
+  w.node("tall_box_metal", w.mesh("tall_box", box({0.6f, 1.2f, 0.6f}), metal), {-0.35f, 0.6f, -0.3f}, {0.0f, 18.0f, 0.0f});
+  w.node("short_box_metal", w.mesh("short_box", box({0.6f, 0.6f, 0.6f}), metal), {0.35f, 0.3f, 0.35f}, {0.0f, -17.0f, 0.0f});
+  w.camera("front", {0.0f, 1.0f, 3.9f}, {0.0f, 1.0f, 0.0f}, 38.6f);
+  w.sun({0.2f, -0.5f, -0.85f}, 3.0f);
+  w.sky({0.35f, 0.4f, 0.5f});
+  w.write(dir);
+}
+
+// A hall of polished metals: a row of white-metal spheres from a mirror (roughness 0) to 0.5,
+// a gold and a copper one, over a floor of dark polished stone (dielectric, roughness 0.1), in
+// front of a white wall with an emissive sign, under a sun and sky. Each sphere shows the hall
+// through its own lobe: the reflections' sharpness, the seam at the traced roughness and the
+// furnace-like energy of white metals are all visible in one view.
+void polishedMetals(const std::filesystem::path& dir) {
+  SceneWriter w("polished_metals");
+  int stone = w.material({"polished_stone", {0.08f, 0.08f, 0.09f}, 0.0f, 0.1f});
+  int plaster = w.material({"white_plaster", {0.8f, 0.8f, 0.78f}, 0.0f, 0.9f});
+  int sign = w.material({"sign_cyan", {0.05f, 0.05f, 0.05f}, 0.0f, 1.0f, {0.2f, 0.9f, 1.0f}, 8.0f});
+  const float roughness[] = {0.0f, 0.05f, 0.1f, 0.2f, 0.3f, 0.4f, 0.5f};
+  int sphereMesh = -1;
+  for (int i = 0; i < 7; ++i) {
+    char name[48];
+    std::snprintf(name, sizeof name, "metal_roughness_%03d", int(roughness[i] * 100.0f + 0.5f));
+    int m = w.material({name, {0.95f, 0.95f, 0.95f}, 1.0f, roughness[i]});
+    sphereMesh = w.mesh(name, sphere(0.45f, 48, 24), m);
+    w.node(name, sphereMesh, {-3.0f + float(i), 0.45f, 0.0f});
+  }
+  int gold = w.material({"gold", {1.0f, 0.78f, 0.34f}, 1.0f, 0.15f});
+  int copper = w.material({"copper", {0.95f, 0.64f, 0.54f}, 1.0f, 0.3f});
+  w.node("gold_sphere", w.mesh("gold_sphere", sphere(0.6f, 48, 24), gold), {-1.5f, 0.6f, -2.0f});
+  w.node("copper_sphere", w.mesh("copper_sphere", sphere(0.6f, 48, 24), copper), {1.5f, 0.6f, -2.0f});
+  wall(w, "floor_stone", stone, {0.0f, -0.1f, -1.0f}, {12.0f, 0.2f, 10.0f});
+  wall(w, "back_wall", plaster, {0.0f, 2.0f, -4.1f}, {12.0f, 4.0f, 0.2f});
+  wall(w, "left_wall", plaster, {-6.1f, 2.0f, -1.0f}, {0.2f, 4.0f, 6.0f});
+  wall(w, "sign", sign, {0.0f, 2.6f, -3.95f}, {3.0f, 0.5f, 0.1f});
+  w.camera("front", {0.0f, 1.4f, 5.0f}, {0.0f, 0.6f, -1.0f}, 50.0f);
+  w.sun({-0.3f, -0.6f, -0.75f}, 6.0f);
+  w.sky({0.45f, 0.55f, 0.75f});
+  w.write(dir);
+}
+
 void furnace(const std::filesystem::path& dir) {
   SceneWriter w("furnace");
   int grey = w.material({"furnace_grey", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
@@ -1235,6 +1313,10 @@ int main(int argc, char** argv) {
     tl::content::atrium(dir);
     tl::content::cornell(dir);
     tl::content::furnace(dir);
+    tl::content::metalCornell(dir, "metal_cornell", 0.05f);
+    tl::content::metalCornell(dir, "metal_cornell_rough", 0.25f);
+    tl::content::polishedMetals(dir);
+    tl::content::metalFurnace(dir);
     tl::content::plane(dir);
     tl::content::grove(dir);
     tl::content::banners(dir);

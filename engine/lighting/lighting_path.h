@@ -26,7 +26,7 @@ struct LightingOutputs {
   std::string ambientOcclusion;  // R8/R16F, 1 = unoccluded
   std::string diffuseShY;        // RGBA16F, L1 SH of luma (shared/sh.h)
   std::string diffuseCoCg;       // RG16F, chroma
-  std::string specular;          // RGBA16F, indirect specular radiance
+  std::string specular;          // RGBA16F, traced reflections: demodulated radiance (rgb), weight (a) (shared/rt_specular.h)
   std::string radiance;          // a path that computes the whole image (the reference):
                                  // the composite passes it through unchanged
   // Beyond this view distance (m) the path's diffuse GI fades out over 20% of it (Metro: RT

@@ -14,6 +14,7 @@ layout(set = 0, binding = kCompositeCoCg) uniform sampler2D pathCoCg;
 layout(set = 0, binding = kCompositeFarShY) uniform sampler2D farShY;
 layout(set = 0, binding = kCompositeFarCoCg) uniform sampler2D farCoCg;
 layout(set = 0, binding = kCompositeFarAo) uniform sampler2D farAo;
+layout(set = 0, binding = kCompositeSpecular) uniform sampler2D tracedSpecular;
 
 // 1 where the path gives no AO.
 float pathAmbientOcclusion(ivec2 p) {
@@ -55,8 +56,10 @@ vec3 pathDiffuseIrradiance(ivec2 p, vec3 n, vec3 position, float ao, vec3 albedo
 // mirror direction) through the split-sum environment BRDF, times AO. With it: the specular the
 // path's SH implies (shared/sh_specular.h: dominant direction, roughness from the
 // directionality, GGX), so a metal indoors reflects the room, not the sky; it fades beyond
-// the blend distance like the diffuse.
-vec3 pathSpecular(ivec2 p, vec3 n, vec3 v, vec3 position, float ao, SurfaceParams s, vec3 skyRadiance) {
+// the blend distance like the diffuse. Where the path traced reflections (kCompositeHasTracedSpecular,
+// shared/rt_specular.h): their lobe-weighted radiance times the specular albedo, blended into
+// the estimate above over the seam near the traced roughness threshold.
+vec3 pathSpecularFromSh(ivec2 p, vec3 n, vec3 v, vec3 position, float ao, SurfaceParams s, vec3 skyRadiance) {
   vec3 albedo = tlHemisphericalAlbedo(s);
   vec3 occlusion = tlMultiBounceAo(ao, albedo);
   vec3 sky = skyRadiance * tlEnvironmentSpecular(s, dot(n, v)) * occlusion;
@@ -69,4 +72,11 @@ vec3 pathSpecular(ivec2 p, vec3 n, vec3 v, vec3 position, float ao, SurfaceParam
   if ((push.flags & kCompositeHasFarGi) != 0u)
     far = tlShSpecular(farSh(p), s, n, v, push.farOpenSkyDirectionality) * tlMultiBounceAo(farAmbientOcclusion(p), albedo);
   return mix(far, specular, fade);
+}
+vec3 pathSpecular(ivec2 p, vec3 n, vec3 v, vec3 position, float ao, SurfaceParams s, vec3 skyRadiance) {
+  vec4 traced = (push.flags & kCompositeHasTracedSpecular) != 0u ? texelFetch(tracedSpecular, p, 0) : vec4(0.0);
+  if (traced.a >= 1.0) return tlEnvironmentSpecular(s, dot(n, v)) * traced.rgb;
+  vec3 fromSh = pathSpecularFromSh(p, n, v, position, ao, s, skyRadiance);
+  if (!(traced.a > 0.0)) return fromSh;
+  return mix(fromSh, tlEnvironmentSpecular(s, dot(n, v)) * traced.rgb, traced.a);
 }

@@ -23,7 +23,7 @@ void main() {
     for (int x = -1; x <= 1; ++x) {
       ivec2 q = clamp(p + 2 * ivec2(x, y), ivec2(0), size - 1);
       float w = texelFetch(viewDepth, q, 0).r;
-      float d = abs(w - w0) / (w0 * max(push.aoFilterDepth, 1e-4));
+      float d = abs(w - w0) / (w0 * kRtAoFilterDepth);
       float k = (w > 0.0 ? 1.0 : 0.0) / (1.0 + d * d);
       sum += k * texelFetch(accumulated, q, 0).z;
       weight += k;

@@ -46,6 +46,7 @@ TL_CONST uint kCompositeFarCoCg = 15;
 TL_CONST uint kCompositeFarAo = 16;
 TL_CONST uint kCompositeLights = 17;  // rgba16f: the light table's reflected radiance (lights.direct)
 TL_CONST uint kCompositeSunVisibility = 18;  // r16f: the sun's visibility from shadow.sun.hybrid (HRTS)
+TL_CONST uint kCompositeSpecular = 19;  // rgba16f: the path's traced specular, demodulated (rgb), its weight (a) (shared/rt_specular.h)
 
 TL_CONST uint kCompositeHasAo = 1u;
 TL_CONST uint kCompositeHasGi = 2u;
@@ -54,6 +55,7 @@ TL_CONST uint kCompositeHasFarGi = 8u;
 TL_CONST uint kCompositeSpecularGi = 16u;  // specular from the path's SH (else the sky's, times AO)
 TL_CONST uint kCompositeHasLights = 32u;   // lights.direct is bound: add it
 TL_CONST uint kCompositeHasSunVisibility = 64u;  // shadow.sun.visibility is bound: the sun's shadow from it, not the map
+TL_CONST uint kCompositeHasTracedSpecular = 128u;  // the path traced reflections (kCompositeSpecular is bound)
 struct CompositePush {
   uint flags;               // kCompositeHas*: which path outputs are bound
   float giBlendDistance;    // beyond this view distance GI fades to the far field, else the sky (0: never)

@@ -39,6 +39,8 @@ TL_CONST uint kRtHitMiss = 0xFFFFu;
 TL_CONST uint kRtHitPending = 0xFFFEu;
 TL_CONST float kRtMaxHitDistance = 65504.0f;
 TL_CONST uint kRtBlueNoiseSize = 64u;
+// The AO filter: the relative view-depth difference that halves a tap's weight.
+TL_CONST float kRtAoFilterDepth = 0.02f;
 
 TL_FN uint tlRtEncodeAlbedo(vec3 albedo) {
   vec3 e = sqrt(clamp(albedo, vec3(0.0f), vec3(1.0f)));
@@ -216,7 +218,7 @@ struct RtPush {
   float thickness;       // assumed depth of a depth-buffer surface, fraction of its view distance
   uint maxAccumFrames;   // temporal accumulation: history weight saturates at this many frames
   uint historyValid;     // 0: the history images hold nothing usable (first frame, resize, reset)
-  float aoFilterDepth;   // AO filter: relative view-depth difference that halves a tap's weight
+  uint specularRoughness; // reflections: half2 thresholds, traced below x, mirror below y (shared/rt_specular.h; 0: none)
   uint screenRadiance;   // hit lighting may reuse last frame's shaded pixels: kRtScreenRadiance*
   uint rayPattern;       // kRtRays*: which pixels trace this frame
   uint rawPendingOnly;   // benchmark probe: trace only the rays the pre-trace left pending

@@ -22,7 +22,8 @@ void addPathInputs(ComputePass& pass, const LightingOutputs& path, uint32_t flag
       .optionalSampled(shared::kCompositeCoCg, path.diffuseCoCg, gi)
       .optionalSampled(shared::kCompositeFarShY, path.farShY, far)
       .optionalSampled(shared::kCompositeFarCoCg, path.farCoCg, far)
-      .optionalSampled(shared::kCompositeFarAo, path.farAo, far);
+      .optionalSampled(shared::kCompositeFarAo, path.farAo, far)
+      .optionalSampled(shared::kCompositeSpecular, path.specular, (flags & shared::kCompositeHasTracedSpecular) != 0);
 }
 
 void addCompositeGbuffer(ComputePass& pass) {
@@ -54,6 +55,7 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
                    (push.flags & shared::kCompositeHasGi);
   if (far) push.flags |= shared::kCompositeHasFarGi;
   if (in.settings.specularGi) push.flags |= shared::kCompositeSpecularGi;
+  if (!path.specular.empty()) push.flags |= shared::kCompositeHasTracedSpecular;
   // The light table's radiance (lights.direct), where the path made it.
   if (!path.lightsRadiance.empty()) push.flags |= shared::kCompositeHasLights;
   // The sun's shadow from hybrid ray-traced shadows where the path has a top level.

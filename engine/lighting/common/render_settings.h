@@ -99,6 +99,11 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(float, rtCacheCellAngle, 0.03f, 0.001f, 1.0f, "rad", "rt", "", kSettingPlain, "radiance cache: a cell is at least this angle times its distance from the camera across") \
   X(float, rtCacheCellSize, 0.0f, 0.0f, 1e9f, "m", "rt", "", kSettingAuto, "radiance cache: the smallest cell (auto: the scene's size / 1000)") \
   X(uint32_t, rtCacheEntries, 1u << 16, 1u << 10, 1u << 24, "cells", "rt", "", kSettingPow2, "radiance cache: hash table slots (32 + 48 bytes each)") \
+  X(float, rtReflectionRoughness, 0.5f, 0.0f, 1.0f, "roughness", "rt", "", kSettingPlain, "reflections: pixels below this roughness trace one specular ray a frame (GGX visible normals), blended into the SH specular over the top fifth of the range; 0: no traced reflections, the SH specular everywhere") \
+  X(float, rtMirrorRoughness, 0.02f, 0.0f, 1.0f, "roughness", "rt", "", kSettingPlain, "reflections: at or below this roughness the ray is the perfect reflection and the image is not filtered across pixels (RE ENGINE's mirrors)") \
+  X(uint32_t, rtReflectionFrames, 16, 1, 1024, "frames", "rt", "", kSettingPlain, "reflections: temporal accumulation window (reprojected by the reflected point's virtual position)") \
+  X(float, rtReflectionClamp, 1.5f, 0.1f, 100.0f, "sigma", "rt", "", kSettingPlain, "reflections: the history is clamped to this many standard deviations around this frame's 3x3 neighbourhood (what moved in a mirror leaves no ghost; larger: less noise, longer ghosts)") \
+  X(float, rtReflectionFilterRadius, 8.0f, 0.0f, 64.0f, "px", "rt", "", kSettingPlain, "reflections: the spatial filter's largest radius (its footprint follows hit distance x roughness)") \
   X(bool, rtEnvironmentSampling, true, 0, 1, "", "rt", "rt", kSettingPlain, "with an environment map, each traced pixel also takes a shadow ray towards a direction drawn by the map's importance, weighed against its GI ray by MIS: the pixel sees the map's texels, not its order-2 SH") \
   X(bool, rtEmitterSampling, true, 0, 1, "", "rt", "rt", kSettingPlain, "emissive triangles are sampled at pixels and hits through shadow rays, not found only by chance") \
   X(float, rtCullAngle, 0.002f, 0.0f, 3.14159f, "rad", "rt", "rt", kSettingPlain, "contribution culling: instances subtending less are left out of the top level") \

@@ -16,6 +16,8 @@
 #include "lighting/common/environment_table.h"
 #include "lighting/rt/rt_path.h"
 #include "lighting/rt/rt_scene.h"
+#include "shared/brdf_lut.h"
+#include "shared/rt_specular.h"
 #include "shared/scene.h"
 
 #include <fmt/format.h>
@@ -40,6 +42,9 @@ const RayShaders kDisocclusionShaders{"rt.disocclusion", "rt/disocclusion.rgen",
 // The whole hit in the payload, as the disocclusion rays have it.
 const RayShaders kCacheUpdateShaders{"rt.cache.update", "rt/cache_update.rgen",
                                      {"rt/shadow.rmiss", "rt/disocclusion.rmiss"}, {{"rt/disocclusion.rchit", kAnyHit}}};
+// Reflections: the whole hit in the payload, as the disocclusion rays have it.
+const RayShaders kSpecularShaders{"rt.specular", "rt/specular.rgen", {"rt/shadow.rmiss", "rt/disocclusion.rmiss"},
+                                  {{"rt/disocclusion.rchit", kAnyHit}}};
 const RayShaders kRawShaders{"rt.rawRays", "rt/raw.rgen", {"rt/raw.rmiss"}, {{"rt/raw.rchit", ""}}};
 
 // The temporal accumulation (SH, chroma, AO, depth, luma moment) and last frame's radiance
@@ -92,7 +97,6 @@ class RtPath final : public LightingPath {
     push.pretraceLength = s.rtPretracePixels;
     push.thickness = s.rtThickness;
     push.maxAccumFrames = s.rtMaxAccumFrames;
-    push.aoFilterDepth = 0.02f;
     push.fireflyClamp = std::max(s.rtFireflyClamp, 0.0f);
     // Metro's denoiser radii are 6 m and 3 m in its world; here a sixth of the scene.
     const float denoiseRadius = s.rtDenoiseRadius;
@@ -168,6 +172,7 @@ class RtPath final : public LightingPath {
         .dispatch(w, h)
         .add(graph);
 
+    LightingOutputs out;
     // What the history, the AO filter and the denoiser take: the accumulation, with the
     // disocclusion rays filled into its fresh pixels when they are on.
     const char* accShY = kShY;
@@ -177,6 +182,9 @@ class RtPath final : public LightingPath {
       accShY = kFilledShY;
       accCoCgAo = kFilledCoCgAo;
     }
+
+    const bool reflections = s.rtReflectionRoughness > 0.0f;
+    if (reflections) out.specular = addReflections(graph, in, push, screenRadiance);
 
     addCopyPass(graph, "rt.history",
                 {{accShY, kHistShY}, {accCoCgAo, kHistCoCgAo}, {kViewDepth, kHistDepth}, {kLumaMoment, kHistLumaMoment}});
@@ -246,7 +254,6 @@ class RtPath final : public LightingPath {
       giCoCg = kDenoisedCoCgAo;
     }
 
-    LightingOutputs out;
     out.ambientOcclusion = kAo;
     out.diffuseShY = giShY;
     out.diffuseCoCg = giCoCg;
@@ -359,6 +366,76 @@ class RtPath final : public LightingPath {
         .trace(cache_.tilesX(in), cache_.tilesY(in))
         .add(graph);
     graph.markOutput(kRtCacheOutcomes);
+  }
+
+  // Ray-traced reflections (shared/rt_specular.h): one specular ray per pixel below the traced
+  // roughness, its temporal accumulation by virtual motion, the lobe-sized filter. Returns the
+  // image the composite reads.
+  std::string addReflections(graph::RenderGraph& graph, FrameInputs& in, RtPush push, bool screenRadiance) {
+    const RenderSettings& s = in.settings;
+    const uint32_t w = s.width, h = s.height;
+    auto image = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, w, h, what); };
+    push.specularRoughness = shared::tlRtPackSpecularRoughness(s.rtReflectionRoughness, s.rtMirrorRoughness);
+    const graph::ResourceDesc historyDesc = image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated reflections (rgb), frames (a), last frame");
+    const graph::ResourceDesc historyHitDesc = image(VK_FORMAT_R16_SFLOAT, "accumulated reflection hit distance, last frame");
+    graph.declarePersistent(kHistSpecular, historyDesc);
+    graph.declarePersistent(kHistSpecularHit, historyHitDesc);
+
+    withHitLighting(withCommon(RayTracingPass(in.device, "rt.specular", kSpecularShaders)), screenRadiance, in)
+        .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.frame).handle())
+        .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, hasEnvironmentMap(in))
+        .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
+        .storageOut(shared::kRtBindingSpecularRaw, kSpecularRaw,
+                    image(VK_FORMAT_R16G16B16A16_SFLOAT,
+                          "one specular ray: radiance x lobe weight / lobe albedo (rgb), hit distance (a; -1 untraced)"))
+        .push(push, screenRadianceAtRecord(screenRadiance))
+        .trace(w, h)
+        .add(graph);
+
+    shared::RtSpecularPush sp{};
+    sp.maxFrames = float(s.rtReflectionFrames);
+    sp.clampSigma = s.rtReflectionClamp;
+    sp.specularRoughness = push.specularRoughness;
+    sp.rotation = float(in.constants.frameIndex % 1024u) * 2.3999632f;  // golden angle per frame
+    sp.maxRadius = s.rtReflectionFilterRadius;
+    sp.lightChanged = push.lightChanged;
+    ComputePass(in.device, "rt.specular.temporal", "rt/specular_temporal.comp")
+        .uniform(shared::kRtBindingFrame, kFrameConstants)
+        .sampled(shared::kRtBindingDepth, kGbufferDepth)
+        .sampled(shared::kRtBindingSpecularMotion, "gbuffer.motion")
+        .sampled(shared::kRtBindingMaterial, "gbuffer.material")
+        .sampled(shared::kRtBindingHistDepth, kHistDepth)
+        .sampled(shared::kRtBindingSpecularRaw, kSpecularRaw)
+        .sampled(shared::kRtBindingSpecularHistory, kHistSpecular, samplers::linear)
+        .sampled(shared::kRtBindingSpecularHistoryHit, kHistSpecularHit, samplers::linear)
+        .storageOut(shared::kRtBindingSpecularAccumulated, kSpecularTemporal,
+                    image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated reflections, demodulated (rgb), frames (a)"))
+        .storageOut(shared::kRtBindingSpecularHit, kSpecularHitDistance,
+                    image(VK_FORMAT_R16_SFLOAT, "accumulated reflection hit distance (the filter's footprint)"))
+        .push(sp)
+        .push(sp,
+              [this](graph::PassContext& ctx, shared::RtSpecularPush& p) {
+                p.historyValid = !restart_ && ctx.historyValid(kHistSpecular) && ctx.historyValid(kHistSpecularHit) &&
+                                 ctx.historyValid(kHistDepth);
+              })
+        .dispatch(w, h)
+        .add(graph);
+    addCopyPass(graph, "rt.specular.history", {{kSpecularTemporal, kHistSpecular}, {kSpecularHitDistance, kHistSpecularHit}});
+
+    ComputePass(in.device, "rt.specular.filter", "rt/specular_filter.comp")
+        .uniform(shared::kRtBindingFrame, kFrameConstants)
+        .sampled(shared::kRtBindingDepth, kGbufferDepth)
+        .sampled(shared::kRtBindingNormal, "gbuffer.normal")
+        .sampled(shared::kRtBindingMaterial, "gbuffer.material")
+        .sampled(shared::kRtBindingSpecularAccumulated, kSpecularTemporal)
+        .sampled(shared::kRtBindingSpecularHit, kSpecularHitDistance)
+        .storageOut(shared::kRtBindingSpecularFiltered, kSpecular,
+                    image(VK_FORMAT_R16G16B16A16_SFLOAT,
+                          "reflections, filtered by the lobe's footprint, demodulated (rgb); weight against the SH specular (a)"))
+        .push(sp)
+        .dispatch(w, h)
+        .add(graph);
+    return kSpecular;
   }
 
   static constexpr uint32_t kMaxDisocclusionRays = 64;  // RE ENGINE traces 16-64 per low-resolution pixel

@@ -43,6 +43,15 @@ inline constexpr const char* kHistCoCgAo = "rt.history.coCgAo";
 inline constexpr const char* kHistDepth = "rt.history.viewDepth";
 inline constexpr const char* kHistLumaMoment = "rt.history.lumaMoment";
 inline constexpr const char* kHistRadiance = "rt.history.radiance";
+// Ray-traced reflections (shared/rt_specular.h): this frame's specular ray per pixel (raw),
+// its temporal accumulation by virtual motion and hit distance, the lobe-sized filter's
+// output the composite reads, and the two histories.
+inline constexpr const char* kSpecularRaw = "rt.specular.raw";
+inline constexpr const char* kSpecularTemporal = "rt.specular.temporal";
+inline constexpr const char* kSpecularHitDistance = "rt.specular.hitDistance";
+inline constexpr const char* kSpecular = "rt.specular";
+inline constexpr const char* kHistSpecular = "rt.history.specular";
+inline constexpr const char* kHistSpecularHit = "rt.history.specularHitDistance";
 inline constexpr const char* kRawRays = "rt.rawRays";  // benchmark only: distances of the trivial kernel
 inline constexpr const char* kRawRaysPending = "rt.rawRays.pending";  // the same, on the pre-trace's pending rays only
 
