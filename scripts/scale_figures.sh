@@ -38,7 +38,7 @@ r = json.load(open(sys.argv[1]))
 f = r["figures"]
 ms = {p["pass"]: p["median"] for p in r["passes"]}
 print(f"street view {sys.argv[2]}: {int(f['tlasInstances'])} of {int(f['sceneInstances'])} instances in the TLAS "
-      f"(legacy far field: {'yes' if f['farFieldLegacy'] else 'no'}); GPU ms at 320x180: rt.tlas {ms['rt.tlas']:.1f}, "
+      f"(legacy far field: {'yes' if f['farFieldLegacy'] else 'no'}); GPU ms at 320x180: accel.simplified.tlas {ms['accel.simplified.tlas']:.1f}, "
       f"rt.trace {ms['rt.trace']:.1f}, gbuffer {ms['gbuffer']:.0f}, shadow.sun {ms['shadow.sun']:.0f}, "
       f"frame {r['frame']['median']:.0f}")
 EOF

@@ -3,11 +3,29 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstring>
 #include <utility>
 
 namespace tl::gpu {
 namespace {
+
+struct Totals {
+  std::atomic<uint64_t> bottomLevelBuilds{0}, topLevelBuilds{0}, refits{0}, rebuilds{0}, liveBytes{0};
+  std::atomic<uint64_t> bottomLevelBuildNs{0};
+};
+Totals& totals() {
+  static Totals t;
+  return t;
+}
+
+// Counts one bottom-level build made at load time and its host time since `start`.
+void countBottomLevelBuild(std::chrono::steady_clock::time_point start) {
+  totals().bottomLevelBuilds += 1;
+  totals().bottomLevelBuildNs +=
+      uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
+}
 
 VkDeviceSize scratchAlignment(Device& device) {
   VkPhysicalDeviceAccelerationStructurePropertiesKHR as{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
@@ -146,6 +164,18 @@ std::vector<VkAccelerationStructureInstanceKHR> rawInstances(const std::vector<T
 
 }  // namespace
 
+AccelerationStructureTotals accelerationStructureTotals() {
+  const Totals& t = totals();
+  AccelerationStructureTotals out;
+  out.bottomLevelBuilds = t.bottomLevelBuilds.load();
+  out.bottomLevelBuildMs = double(t.bottomLevelBuildNs.load()) * 1e-6;
+  out.topLevelBuilds = t.topLevelBuilds.load();
+  out.refits = t.refits.load();
+  out.rebuilds = t.rebuilds.load();
+  out.liveBytes = t.liveBytes.load();
+  return out;
+}
+
 AccelerationStructure& AccelerationStructure::operator=(AccelerationStructure&& o) noexcept {
   if (this != &o) {
     reset();
@@ -163,6 +193,7 @@ void AccelerationStructure::reset() {
     Device* d = device_;
     VkAccelerationStructureKHR h = handle_;
     d->destroyLater([d, h] { d->ext().destroyAccelerationStructure(d->handle(), h, nullptr); });
+    totals().liveBytes -= bytes_;
   }
   handle_ = VK_NULL_HANDLE;
   buffer_.reset();
@@ -187,12 +218,15 @@ VkAccelerationStructureGeometryKHR trianglesGeometry(const TriangleGeometry& g) 
 
 AccelerationStructure buildBottomLevel(Device& device, const TriangleGeometry& g, std::string_view name, bool compact,
                                        bool allowUpdate) {
+  const auto start = std::chrono::steady_clock::now();
   VkAccelerationStructureGeometryKHR geometry = trianglesGeometry(g);
   AccelerationStructure as;
   as.device_ = &device;
   build(device, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, g.triangleCount, name,
         compact && !allowUpdate, as.buffer_, as.handle_, as.address_, allowUpdate);
   as.bytes_ = as.buffer_.size();
+  totals().liveBytes += as.bytes_;
+  countBottomLevelBuild(start);
   return as;
 }
 
@@ -205,6 +239,7 @@ VkDeviceSize bottomLevelBytes(Device& device, const TriangleGeometry& g, bool al
 
 AccelerationStructure buildBottomLevelAt(Device& device, const TriangleGeometry& g, std::string_view name,
                                          const Buffer& storage, VkDeviceSize offset, bool allowUpdate) {
+  const auto start = std::chrono::steady_clock::now();
   const auto& ext = device.ext();
   VkAccelerationStructureGeometryKHR geometry = trianglesGeometry(g);
   VkAccelerationStructureBuildGeometryInfoKHR info =
@@ -232,6 +267,8 @@ AccelerationStructure buildBottomLevelAt(Device& device, const TriangleGeometry&
   VkAccelerationStructureBuildRangeInfoKHR range{g.triangleCount, 0, 0, 0};
   const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
   device.immediate([&](VkCommandBuffer cmd) { ext.cmdBuildAccelerationStructures(cmd, 1, &info, &ranges); });
+  totals().liveBytes += as.bytes_;
+  countBottomLevelBuild(start);
   return as;
 }
 
@@ -254,6 +291,7 @@ void recordRefit(VkCommandBuffer cmd, Device& device, const AccelerationStructur
   VkAccelerationStructureBuildGeometryInfoKHR info =
       buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, false, true);
   info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_UPDATE_KHR;
+  totals().refits += 1;
   info.srcAccelerationStructure = blas.handle();
   info.dstAccelerationStructure = blas.handle();
   info.scratchData.deviceAddress = alignedScratch(device, scratch, scratchOffset);
@@ -266,6 +304,7 @@ void recordRebuild(VkCommandBuffer cmd, Device& device, const AccelerationStruct
                    const Buffer& scratch, VkDeviceSize scratchOffset) {
   VkAccelerationStructureGeometryKHR geometry = trianglesGeometry(g);
   VkAccelerationStructureBuildGeometryInfoKHR info = buildInfo(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, geometry, false);
+  totals().rebuilds += 1;
   info.dstAccelerationStructure = blas.handle();
   info.scratchData.deviceAddress = alignedScratch(device, scratch, scratchOffset);
   VkAccelerationStructureBuildRangeInfoKHR range{g.triangleCount, 0, 0, 0};
@@ -285,6 +324,8 @@ AccelerationStructure buildTopLevel(Device& device, const std::vector<TlasInstan
   build(device, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, geometry, uint32_t(raw.size()), name, false, as.buffer_,
         as.handle_, as.address_);
   as.bytes_ = as.buffer_.size();
+  totals().liveBytes += as.bytes_;
+  totals().topLevelBuilds += 1;
   return as;
 }
 
@@ -306,6 +347,7 @@ void TopLevelBuilder::prepare(const std::vector<TlasInstance>& instances, uint64
     createStructure(device, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, sizes.accelerationStructureSize, name_,
                     structure_.buffer_, structure_.handle_, structure_.address_);
     structure_.bytes_ = structure_.buffer_.size();
+    totals().liveBytes += structure_.bytes_;
     scratchBytes_ = sizes.buildScratchSize + scratchAlignment(device);
   }
   std::vector<VkAccelerationStructureInstanceKHR> raw = rawInstances(instances);
@@ -323,6 +365,7 @@ void TopLevelBuilder::record(VkCommandBuffer cmd, const Buffer& scratch) {
   VkAccelerationStructureBuildRangeInfoKHR range{count_, 0, 0, 0};
   const VkAccelerationStructureBuildRangeInfoKHR* ranges = &range;
   device_->ext().cmdBuildAccelerationStructures(cmd, 1, &info, &ranges);
+  totals().topLevelBuilds += 1;
 }
 
 }  // namespace tl::gpu

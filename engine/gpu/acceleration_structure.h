@@ -13,6 +13,21 @@
 
 namespace tl::gpu {
 
+// What the process has built, for the tests and the benchmark that check every tracer shares
+// one set of structures (lighting/common/scene_accel.h): builds made at load time (bottom
+// levels, with their host wall time including the wait), builds recorded in frames (top
+// levels, refits, in-place rebuilds), and the bytes of the structures alive now. Counted over
+// every device; read as differences.
+struct AccelerationStructureTotals {
+  uint64_t bottomLevelBuilds = 0;  // buildBottomLevel, buildBottomLevelAt
+  double bottomLevelBuildMs = 0.0;
+  uint64_t topLevelBuilds = 0;     // buildTopLevel, TopLevelBuilder::record
+  uint64_t refits = 0;             // recordRefit
+  uint64_t rebuilds = 0;           // recordRebuild
+  VkDeviceSize liveBytes = 0;      // every structure not yet reset (bottom and top levels)
+};
+AccelerationStructureTotals accelerationStructureTotals();
+
 class AccelerationStructure {
  public:
   AccelerationStructure() = default;

@@ -95,6 +95,7 @@ FrameLights FramePipeline::importBuffers(graph::RenderGraph& graph, uint64_t fra
 std::string FramePipeline::addPasses(graph::RenderGraph& graph, lighting::FrameInputs& in, lighting::LightingPath& path,
                                      const FrameLights& lights, const FrameViews& views) {
   Passes& p = *passes_;
+  in.accel = &accel_;
   p.gbuffer.add(graph, in);
   p.shadow.add(graph, in);
   in.lightShadowViews = uint32_t(lights.shadowPlan.views.size());

@@ -17,6 +17,7 @@
 #include "lighting/common/display_pass.h"
 #include "lighting/common/frame_inputs.h"
 #include "lighting/common/light_shadows.h"
+#include "lighting/common/scene_accel.h"
 #include "lighting/lighting_path.h"
 #include "scene/environment_map.h"
 #include "shared/lights.h"
@@ -75,6 +76,8 @@ class FramePipeline {
   void uploadEnvironmentTable(const scene::EnvironmentMap& map);
 
   gpu::Device& device_;
+  // The scene's acceleration structures, built once and lent to every tracer (FrameInputs::accel).
+  lighting::SceneAccel accel_;
   struct Passes;
   std::unique_ptr<Passes> passes_;
   gpu::UploadRing constants_;

@@ -2,12 +2,13 @@
 // sky through the rays that escape the scene: its irradiance is the visibility times the sky's
 // irradiance along their mean direction, accumulated while the view holds still. Light does
 // not bounce: set against rt (one bounce and more) and the reference, it shows what the bounce
-// light is worth in a scene, at the price of sky visibility alone. It traces the rt path's top
-// level (the one acceleration structure the engine builds; rt's passes run to build and cull
-// it, so its GPU time in a benchmark includes theirs).
+// light is worth in a scene, at the price of sky visibility alone. It traces the scene's
+// simplified structures (lighting/common/scene_accel.h), which every real-time tracer borrows:
+// its GPU time is its own pass and the culled top level's build, not the rt path's passes.
 #include "lighting/common/frame_inputs.h"
 #include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/pass_builders.h"
+#include "lighting/common/scene_accel.h"
 #include "lighting/lighting_path.h"
 
 #include "shaders/bent_sky.h"
@@ -41,7 +42,7 @@ class BentSkyPath final : public LightingPath {
   PathCapabilities capabilities() const override { return {.needsRayTracing = true, .accumulates = true}; }
 
   LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
-    const LightingOutputs rt = tracer_->addPasses(graph, in);  // for its top level
+    const TraceStructures& traced = traceStructures(graph, in, AccelDetail::Simplified);
     const RenderSettings& s = in.settings;
     const uint32_t w = s.width, h = s.height;
 
@@ -60,7 +61,7 @@ class BentSkyPath final : public LightingPath {
         .uniform(shared::kBindingFrame, kFrameConstants)
         .sampled(shared::kBentSkyNormal, "gbuffer.normal")
         .sampled(shared::kBentSkyDepth, kGbufferDepth)
-        .accelerationStructure(shared::kBentSkyTlas, rt.shadowTlasHandle, rt.shadowStructures)
+        .accelerationStructure(shared::kBentSkyTlas, traced.tlas, traced.names)
         .storageInOut(shared::kBentSkyHistory, kHistory)
         .storageOut(shared::kBentSkyShY, kShY,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "sky irradiance, L1 SH of luma (L0 only)"))
@@ -75,13 +76,12 @@ class BentSkyPath final : public LightingPath {
     out.diffuseShY = kShY;
     out.diffuseCoCg = kCoCg;
     out.openSkyDirectionality = 0.0f;  // the SH carries no direction (bent_sky.comp)
-    out.shadowStructures = rt.shadowStructures;  // the light table's shadow rays too
-    out.shadowTlasHandle = rt.shadowTlasHandle;
+    out.shadowStructures = traced.names;  // the light table's shadow rays too
+    out.shadowTlasHandle = traced.tlas;
     return out;
   }
 
  private:
-  std::unique_ptr<LightingPath> tracer_ = makeRtPath();
   HistoryKeeper history_;
   uint32_t frames_ = 0;
 };

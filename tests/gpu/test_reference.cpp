@@ -378,7 +378,7 @@ TEST_F(ReferenceTest, ErrorFallsAsOneOverSqrtSpp) {
 }
 
 // Deforming meshes: when their vertices move, the reference rebuilds their bottom levels in
-// a graph pass (reference.blas.rebuild, then reference.tlas). A pose reached by animating must
+// a graph pass (SceneAccel's accel.full.blas.rebuild, then accel.full.tlas). A pose reached by animating must
 // then render exactly as the same pose built at load, with the same samples; the pose it left
 // renders differently, so the comparison can fail.
 TEST_F(ReferenceTest, RebuiltBottomLevelsFollowTheDeformedMeshes) {

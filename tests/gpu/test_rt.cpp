@@ -4,6 +4,7 @@
 #include "lighting_checks.h"
 
 #include "lighting/common/composite_pass.h"
+#include "lighting/common/scene_accel.h"
 #include "lighting/rt/rt_path.h"
 #include "metrics/metrics.h"
 #include "shared/packing.h"
@@ -438,7 +439,7 @@ TEST_F(RtTest, AtriumStaysFiniteAndItsIntermediatesAreNamed) {
   render(80, 45, 3, {kShY, kCoCgAo, kAo, "composite.hdr"});
   for (const char* n : {kShY, kCoCgAo, kAo, "composite.hdr"}) EXPECT_EQ(countNonFinite(s.buffer(n).texels()), 0u) << n;
   const std::string dump = s.graphDump();
-  for (const char* n : {kRtTlas, kPretraceHits, kHits, kHitSurface, kRawShY, kRawAo, kShY, kAo, kHistShY})
+  for (const char* n : {kAccelSimplified.tlas, kPretraceHits, kHits, kHitSurface, kRawShY, kRawAo, kShY, kAo, kHistShY})
     EXPECT_NE(dump.find(n), std::string::npos) << n;
 }
 

@@ -1,7 +1,7 @@
 // The BLAS refit throttle: the 16 highest priorities plus 4 random others, priorities that
 // grow with visibility and size and start over when refitted, nothing starving, and the
 // vertex budget.
-#include "lighting/rt/blas_refit.h"
+#include "lighting/common/blas_refit.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // normal), the blue-noise masks, the simplifier and instance culling.
 #include "lighting/legacy/legacy_path.h"
 #include "lighting/rt/blue_noise.h"
-#include "lighting/rt/rt_scene.h"
+#include "lighting/common/scene_accel.h"
 #include "shared/rt.h"
 
 #include <glm/gtc/matrix_transform.hpp>

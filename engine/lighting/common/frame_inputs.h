@@ -22,6 +22,8 @@
 
 namespace tl::lighting {
 
+class SceneAccel;
+
 // Resources the frame imports from outside the graph: the session's constants, and the
 // scene's buffers (named and imported by scene/gpu_scene.h, GpuScene::importBuffers).
 inline constexpr const char* kFrameConstants = "frame.constants";
@@ -54,6 +56,9 @@ struct FrameInputs {
   // ring (gpu/upload_ring.h), as the frame before may still be running. A path imports what
   // it owns through the graph (RenderGraph::importBuffer) and asks for read-backs there too.
   uint64_t frame = 0;
+  // The scene's acceleration structures, which every tracer borrows (lighting/common/scene_accel.h
+  // traceStructures); the session's FramePipeline owns them and sets this.
+  SceneAccel* accel = nullptr;
   // Whether a persistent resource holds last frame's contents with this description (the
   // executor's record; false after a reset, a resize or a frame that did not write it).
   std::function<bool(std::string_view name, const graph::ResourceDesc& desc)> historyValid;

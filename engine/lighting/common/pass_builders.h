@@ -300,7 +300,7 @@ std::vector<gpu::ReflectedBinding> reflectStages(const std::vector<std::string>&
 //
 //   RayTracingPass(in.device, "rt.trace", kTraceShaders)
 //       .uniform(shared::kRtBindingFrame, kFrameConstants)
-//       .accelerationStructure(shared::kRtBindingTlas, tlas, {kRtTlas})
+//       .accelerationStructure(shared::kRtBindingTlas, structures.tlas, structures.names)
 //       .storageOut(shared::kRtBindingHitsOut, kHits, hitsDesc)
 //       .sceneTable(in.scene.table())
 //       .push(push)
@@ -418,11 +418,11 @@ class TransferPass {
 // a top level refers to; a refit reads what it rewrites), the one it writes, and its scratch,
 // which the pass creates and hands to the recording.
 //
-//   AccelerationStructurePass("rt.tlas")
-//       .input(kRtTlasInstances)
-//       .writes(kRtTlas)
-//       .scratch(kRtTlasScratch, top.scratchBytes(), "scratch of the top-level build")
-//       .record([this](graph::PassContext& ctx, const gpu::Buffer& scratch) { scene_->topLevel().record(ctx.cmd, scratch); })
+//   AccelerationStructurePass(names.tlasPass)
+//       .input(names.tlasInstances)
+//       .writes(names.tlas)
+//       .scratch(names.tlasScratch, topLevel.scratchBytes(), "scratch of the top-level build")
+//       .record([this](graph::PassContext& ctx, const gpu::Buffer& scratch) { topLevel.record(ctx.cmd, scratch); })
 //       .add(graph);
 class AccelerationStructurePass {
  public:

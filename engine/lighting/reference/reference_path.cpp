@@ -2,7 +2,6 @@
 // accumulates into a persistent sum while nothing that changes the image changes (camera,
 // projection, light, scene, geometry, its settings: the frame key) and starts over when
 // something does.
-#include "gpu/acceleration_structure.h"
 #include "graph/executor.h"
 #include "lighting/common/decoders.h"
 #include "lighting/lighting_path.h"
@@ -11,6 +10,7 @@
 #include "lighting/common/light_table.h"
 #include "lighting/common/lights_pass.h"
 #include "lighting/common/pass_builders.h"
+#include "lighting/common/scene_accel.h"
 #include "shared/lights.h"
 #include "lighting/reference/reference_path.h"
 #include "scene/material_average.h"
@@ -36,11 +36,6 @@ inline constexpr const char* kDepthAccum = "reference.bouncesAccum";
 inline constexpr const char* kMoments = "reference.moments";
 inline constexpr const char* kSampleMean = "reference.sampleMean";
 inline constexpr const char* kNoiseTiles = "reference.noise.tiles";
-inline constexpr const char* kTlas = "reference.tlas";
-inline constexpr const char* kTlasInstances = "reference.tlas.instances";
-inline constexpr const char* kTlasScratch = "reference.tlas.scratch";
-inline constexpr const char* kBlasDeforming = "reference.blas.deforming";
-inline constexpr const char* kBlasScratch = "reference.blas.scratch";
 
 // Every part of the frame key changes the converged image except the per-instance hit
 // albedo (the RT path's, not the materials the reference shades with): the sums start over.
@@ -74,8 +69,10 @@ class ReferencePath final : public LightingPath {
   }
 
   LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
+    // The scene's full structures, borrowed (SceneAccel: every triangle, deforming meshes
+    // rebuilt exactly, the top level over every instance).
+    structures_ = traceStructures(graph, in, AccelDetail::Full);
     prepareScene(in);
-    addStructurePasses(graph, in);
     const uint32_t w = in.settings.width, h = in.settings.height;
     const auto accumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                                         "sum of each round's sample mean (rgb) and the rounds (a)");
@@ -230,57 +227,14 @@ class ReferencePath final : public LightingPath {
         .add(graph);
   }
 
-  // Bottom-level structures (one per mesh, full resolution: the reference does not
-  // simplify) and the per-instance geometry table, once per scene (the pipelines are the
+  // The per-instance geometry table and the emitters, once per scene (the pipelines are the
   // device's, RayTracingPass: built once, not with each scene, as on lavapipe each takes tens of
-  // seconds to compile; and again only if the scene table's layout changes). Deforming
-  // meshes' bottom levels sit side by side in one buffer the graph knows by name, rebuilt
-  // in place by a graph pass when their vertices move.
+  // seconds to compile; and again only if the scene table's layout changes).
   void prepareScene(FrameInputs& in) {
-    if (sceneId_ == in.scene.id()) {
-      pendingRebuilds_.clear();
-      const auto& ranges = in.scene.meshRanges();
-      for (uint32_t m = 0; m < ranges.size(); ++m)
-        if (in.scene.meshVersion(m) != blasVersion_[m]) pendingRebuilds_.push_back(m);
-      return;
-    }
+    if (sceneId_ == in.scene.id()) return;
     in.device.waitIdle();
     sceneId_ = in.scene.id();
-    // The top level points into the old bottom levels: rebuild it even when the new scene's
-    // transforms are the same (the same file loaded again).
-    tlas_ = gpu::TopLevelBuilder(in.device, kTlas);
-    tlasTransforms_.clear();
-    blas_.clear();
-    blasVersion_.clear();
-    pendingRebuilds_.clear();
-    deformingStorage_.reset();
-    rebuildScratchOffset_.clear();
-    rebuildScratchBytes_ = 0;
     const auto& ranges = in.scene.meshRanges();
-    std::vector<VkDeviceSize> placeAt(ranges.size(), 0);
-    VkDeviceSize deformingBytes = 0;
-    for (uint32_t m = 0; m < ranges.size(); ++m) {
-      const bool deforms = m < in.sceneData.meshes.size() && in.sceneData.meshes[m].deforms();
-      rebuildScratchOffset_.push_back(rebuildScratchBytes_);
-      if (deforms) {
-        placeAt[m] = deformingBytes;
-        deformingBytes += gpu::bottomLevelBytes(in.device, meshGeometry(in, m), false);
-        rebuildScratchBytes_ += gpu::rebuildScratchBytes(in.device, meshGeometry(in, m));
-        blas_.emplace_back();
-      } else {
-        blas_.push_back(gpu::buildBottomLevel(in.device, meshGeometry(in, m), fmt::format("reference.blas.{}", m)));
-      }
-      blasVersion_.push_back(in.scene.meshVersion(m));
-    }
-    if (deformingBytes > 0) {
-      deformingStorage_ = gpu::Buffer(in.device, deformingBytes,
-                                      VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                      gpu::MemoryUsage::GpuOnly, kBlasDeforming);
-      for (uint32_t m = 0; m < ranges.size(); ++m)
-        if (!blas_[m])
-          blas_[m] = gpu::buildBottomLevelAt(in.device, meshGeometry(in, m), fmt::format("reference.blas.{}", m),
-                                             deformingStorage_, placeAt[m], false);
-    }
     // The emitters (lighting/common/emitter_table.h): every triangle of each instance whose
     // material emits, drawn by its power from the material's average emission.
     std::vector<glm::vec3> instanceEmission;
@@ -304,79 +258,13 @@ class ReferencePath final : public LightingPath {
     geometry_.write(table.data(), table.size() * sizeof(table[0]));
   }
 
-  // Mesh m's full triangles in the scene's shared buffers (the reference does not simplify).
-  static gpu::TriangleGeometry meshGeometry(FrameInputs& in, uint32_t m) {
-    const auto& r = in.scene.meshRanges()[m];
-    gpu::TriangleGeometry g;
-    // Cut-out materials need the any-hit shader; everything else stays opaque (no any-hit calls).
-    g.opaque = !in.scene.meshAlphaTested(m);
-    g.vertices = in.scene.vertexBuffer().address() + VkDeviceAddress(r.vertexOffset) * sizeof(scene::Vertex);
-    g.vertexStride = sizeof(scene::Vertex);
-    g.vertexCount = r.vertexCount;
-    g.indices = in.scene.indexBuffer().address() + VkDeviceAddress(r.firstIndex) * sizeof(uint32_t);
-    g.triangleCount = r.indexCount / 3;
-    return g;
-  }
-
-  // The structures' passes. Deforming meshes that moved: the ground truth rebuilds their
-  // bottom levels exactly (no throttle, no refit) and the sum starts over (the geometry version
-  // is in the state). The top level is camera-relative like everything the GPU sees, so it
-  // follows the camera: it is rebuilt when a transform or a bottom level changed.
-  void addStructurePasses(graph::RenderGraph& graph, FrameInputs& in) {
-    const auto& transforms = in.scene.relativeTransforms();
-    const bool rebuildTop = !tlas_ || transforms != tlasTransforms_ || !pendingRebuilds_.empty();
-    if (rebuildTop) {
-      std::vector<gpu::TlasInstance> instances;
-      for (size_t i = 0; i < transforms.size(); ++i)
-        instances.push_back({transforms[i], uint32_t(i), 0xFF, blas_[in.scene.instanceMesh(i)].address()});
-      tlas_.prepare(instances, in.frame);
-      tlasTransforms_ = transforms;
-    }
-    graph.importBuffer(kTlas, graph::ResourceDesc::buffer(tlas_.storage().size(), "the reference's top level"), tlas_.storage());
-    graph.importBuffer(kTlasInstances, graph::ResourceDesc::buffer(tlas_.instances().size(),
-                                                                      "the reference's top-level instances (host-written)"), tlas_.instances());
-    if (deformingStorage_) {
-      graph.importBuffer(kBlasDeforming, graph::ResourceDesc::buffer(deformingStorage_.size(),
-                                                                        "bottom levels of the deforming meshes"), deformingStorage_);
-    }
-    if (!pendingRebuilds_.empty())
-      AccelerationStructurePass("reference.blas.rebuild")
-          .input(scene::kSceneVertices)
-          .input(scene::kSceneIndices)
-          .writes(kBlasDeforming)
-          .scratch(kBlasScratch, rebuildScratchBytes_, "scratch of the rebuilds")
-          .record([this, &in](graph::PassContext& ctx, const gpu::Buffer& scratch) {
-            for (uint32_t m : pendingRebuilds_) {
-              gpu::recordRebuild(ctx.cmd, ctx.device, blas_[m], meshGeometry(in, m), scratch, rebuildScratchOffset_[m]);
-              blasVersion_[m] = in.scene.meshVersion(m);
-            }
-            pendingRebuilds_.clear();
-          })
-          .add(graph);
-    if (rebuildTop) {
-      AccelerationStructurePass top("reference.tlas");
-      top.input(kTlasInstances);
-      if (deformingStorage_) top.reads(kBlasDeforming);
-      top.writes(kTlas)
-          .scratch(kTlasScratch, tlas_.scratchBytes(), "scratch of the top-level build")
-          .record([this](graph::PassContext& ctx, const gpu::Buffer& scratch) { tlas_.record(ctx.cmd, scratch); })
-          .add(graph);
-    }
-  }
-  // What a trace reads: the top level and, through it, the bottom levels a frame may rebuild.
-  std::vector<std::string> structures() const {
-    std::vector<std::string> names{kTlas};
-    if (deformingStorage_) names.push_back(kBlasDeforming);
-    return names;
-  }
-
   // What every path-tracing pass (trace, irradiance, bounces) binds: the frame, the structures,
   // the hits' geometry, the BRDF tables, the light and environment tables where the scene has
   // them (path.glsl reads them only for frame.lightCount > 0 and with the environment flag),
   // and the scene table (set 1: the materials and textures the hits shade with).
   RayTracingPass withPathInputs(RayTracingPass pass, const FrameInputs& in) const {
     pass.uniform(shared::kRefBindingFrame, kFrameConstants)
-        .accelerationStructure(shared::kRefBindingTlas, tlas_.structure().handle(), structures())
+        .accelerationStructure(shared::kRefBindingTlas, structures_.tlas, structures_.names)
         .constantBuffer(shared::kRefBindingGeometry, geometry_.handle())
         .bufferIn(shared::kRefBindingVertices, kSceneVertices)
         .bufferIn(shared::kRefBindingIndices, kSceneIndices)
@@ -391,14 +279,7 @@ class ReferencePath final : public LightingPath {
   }
 
   uint64_t sceneId_ = 0;
-  std::vector<gpu::AccelerationStructure> blas_;
-  std::vector<uint64_t> blasVersion_;  // per mesh: the vertex version its bottom level holds
-  gpu::Buffer deformingStorage_;       // the deforming meshes' bottom levels, side by side
-  std::vector<VkDeviceSize> rebuildScratchOffset_;  // per mesh: its range of the rebuild scratch
-  VkDeviceSize rebuildScratchBytes_ = 0;
-  std::vector<uint32_t> pendingRebuilds_;  // meshes whose vertices moved since their build
-  gpu::TopLevelBuilder tlas_;
-  std::vector<glm::mat4> tlasTransforms_;
+  TraceStructures structures_;  // this frame's, borrowed from the SceneAccel
   gpu::Buffer geometry_;
   gpu::Buffer emitters_;  // shared::Emitter per emissive triangle (at least one entry; emitterCount_ valid)
   uint32_t emitterCount_ = 0;

@@ -10,6 +10,7 @@
 #include "lighting/common/light_table.h"
 #include "lighting/common/lights_pass.h"
 #include "lighting/common/pass_builders.h"
+#include "lighting/common/scene_accel.h"
 #include "lighting/lighting_path.h"
 #include "lighting/rt/blue_noise.h"
 #include "lighting/rt/radiance_cache.h"
@@ -65,6 +66,10 @@ class RtPath final : public LightingPath {
   }
 
   LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
+    // The scene's simplified structures, borrowed (their build, refits and culled top level
+    // are SceneAccel's passes, added once per frame whoever asks first).
+    structures_ = traceStructures(graph, in, AccelDetail::Simplified);
+    accelStats_ = in.accel->stats(AccelDetail::Simplified);
     prepare(in);
     const RenderSettings& s = in.settings;
     // in.settings has every automatic value resolved (render_settings.h resolveAutomatic).
@@ -73,19 +78,7 @@ class RtPath final : public LightingPath {
     params_.aoRadius = s.rtAoRadius;
     params_.rayLength = s.rtRayLength;
     params_.blendDistance = s.rtBlendDistance;
-    params_.tMin = 1.5f * scene_->stats().maxDeviation + 1e-5f * scale;
-
-    RtCulling culling;
-    culling.viewProj = in.constants.viewProj;
-    culling.margin = s.rtCullMargin;  // resolved: the ray length unless set
-    culling.minAngle = s.rtCullAngle;
-    culling.maxDistance = params_.blendDistance + culling.margin;
-    RefitPolicy refits;
-    refits.top = s.rtRefitTop;
-    refits.random = s.rtRefitRandom;
-    refits.vertexBudget = s.rtRefitVertexBudget;
-    scene_->prepareTopLevel(in.scene, culling, in.frame, refits);
-    sceneInstances_ = uint32_t(in.scene.instanceCount());
+    params_.tMin = 1.5f * accelStats_.maxDeviation + 1e-5f * scale;
 
     RtPush push{};
     push.tMin = params_.tMin;
@@ -128,8 +121,6 @@ class RtPath final : public LightingPath {
     const bool screenRadiance = s.rtScreenRadiance;
     if (screenRadiance)
       graph.declarePersistent(kHistRadiance, image(kCompositeHdrFormat, "composite radiance, last frame"));
-
-    addStructurePasses(graph);
 
     // One ray per traced pixel, or two: the second's hit lighting writes the mean of both.
     push.raysPerPixel = s.rtTwoRays ? 2u : 1u;
@@ -277,11 +268,11 @@ class RtPath final : public LightingPath {
 
   std::vector<std::pair<std::string, double>> figures() const override {
     if (!scene_) return {};
-    const RtSceneStats& st = scene_->stats();
-    std::vector<std::pair<std::string, double>> out{{"tlasInstances", double(scene_->instancesInTopLevel())},
-            {"sceneInstances", double(sceneInstances_)},
+    const AccelStats& st = accelStats_;
+    std::vector<std::pair<std::string, double>> out{{"tlasInstances", double(st.instancesInTopLevel)},
+            {"sceneInstances", double(st.sceneInstances)},
             {"sourceTriangles", double(st.sourceTriangles)},
-            {"rtTriangles", double(st.rtTriangles)},
+            {"rtTriangles", double(st.triangles)},
             {"blasBytes", double(st.blasBytes)},
             {"blasBuildMs", st.blasBuildMs},
             {"emitterTriangles", double(scene_->emitterCount())},
@@ -480,42 +471,9 @@ class RtPath final : public LightingPath {
     return (pixels + shared::kRtDisocclusionCell - 1) / shared::kRtDisocclusionCell;
   }
 
-  // Deforming meshes: the throttle's refits, then the top level over all bottom levels, each
-  // an acceleration-structure build pass whose barriers the graph derives.
-  void addStructurePasses(graph::RenderGraph& graph) {
-    gpu::TopLevelBuilder& top = scene_->topLevel();
-    graph.importBuffer(kRtTlas, graph::ResourceDesc::buffer(top.storage().size(),
-                                                               "top-level acceleration structure (culled instances)"), top.storage());
-    graph.importBuffer(kRtTlasInstances, graph::ResourceDesc::buffer(top.instances().size(),
-                                                                        "the top level's instances (host-written)"), top.instances());
-    const bool deforming = scene_->hasDeforming();
-    if (deforming) {
-      graph.importBuffer(kRtBlasDeforming, graph::ResourceDesc::buffer(scene_->deformingStorage().size(),
-                                                        "bottom levels of the deforming meshes (refitted under a throttle)"), scene_->deformingStorage());
-    }
-    if (deforming && scene_->refitsPending())
-      AccelerationStructurePass("rt.blas.refit")
-          .input(scene::kSceneVertices)
-          .reads(kRtBlasDeforming)  // an update reads the structure it rewrites
-          .writes(kRtBlasDeforming)
-          .scratch(kRtRefitScratch, scene_->refitScratchBytes(), "scratch of the refits")
-          .record([this](graph::PassContext& ctx, const gpu::Buffer& scratch) { scene_->recordRefits(ctx.cmd, scratch); })
-          .add(graph);
-    AccelerationStructurePass tlas("rt.tlas");
-    tlas.input(kRtTlasInstances);
-    if (deforming) tlas.reads(kRtBlasDeforming);
-    tlas.writes(kRtTlas)
-        .scratch(kRtTlasScratch, top.scratchBytes(), "scratch of the top-level build")
-        .record([this](graph::PassContext& ctx, const gpu::Buffer& scratch) { scene_->topLevel().record(ctx.cmd, scratch); })
-        .add(graph);
-  }
   // What a trace reads: the top level and, through it, the bottom levels a frame may rewrite.
-  std::vector<std::string> structures() const {
-    std::vector<std::string> names{kRtTlas};
-    if (scene_->hasDeforming()) names.push_back(kRtBlasDeforming);
-    return names;
-  }
-  VkAccelerationStructureKHR tlas() const { return scene_->topLevel().structure().handle(); }
+  const std::vector<std::string>& structures() const { return structures_.names; }
+  VkAccelerationStructureKHR tlas() const { return structures_.tlas; }
 
   // What shading a hit reads (rt/hit_lighting.glsl): the top level, last frame's image and
   // depth for hits seen on screen, the G-buffer's material there, the emitters, the light
@@ -581,14 +539,15 @@ class RtPath final : public LightingPath {
     return rtRayPattern(in.settings) == shared::kRtRaysHalfResolution ? (in.settings.height + 1) / 2 : in.settings.height;
   }
 
-  // Scene geometry and blue noise: once per scene (and RT mesh ratio). The pipelines are the
-  // device's (RayTracingPass), built at their first frame and kept across scenes.
+  // The hits' scene data and blue noise: once per build of the simplified structures (a scene,
+  // an RT mesh ratio). The pipelines are the device's (RayTracingPass), built at their first
+  // frame and kept across scenes.
   void prepare(FrameInputs& in) {
-    if (!scene_ || sceneId_ != in.scene.id() || scene_->simplifyRatio() != std::clamp(in.settings.rtSimplifyRatio, 0.01f, 1.0f)) {
+    const uint64_t generation = in.accel->generation(AccelDetail::Simplified);
+    if (!scene_ || accelGeneration_ != generation) {
       in.device.waitIdle();
-      scene_ = std::make_unique<RtScene>(in.device, in.sceneData, in.scene, in.settings.rtSimplifyRatio,
-                                         in.settings.rtSimplifyError);
-      sceneId_ = in.scene.id();
+      scene_ = std::make_unique<RtScene>(in.device, in.sceneData, in.scene, in.accel->meshIndices(AccelDetail::Simplified));
+      accelGeneration_ = generation;
       albedoVersion_ = ~0ull;
     }
     const uint32_t materials = uint32_t(in.settings.materials);
@@ -616,12 +575,13 @@ class RtPath final : public LightingPath {
   }
 
   std::unique_ptr<RtScene> scene_;
+  TraceStructures structures_;  // this frame's, borrowed from the SceneAccel
+  AccelStats accelStats_;
+  uint64_t accelGeneration_ = 0;  // the build of the structures scene_ was made for
   std::unique_ptr<LightingPath> farField_;  // the legacy path, for GI beyond the blend distance
   bool farLegacy_ = false;
-  uint64_t sceneId_ = 0;
   uint64_t albedoVersion_ = ~0ull;
   uint32_t materials_ = 0;  // the material override mode the instance albedos were set for
-  uint32_t sceneInstances_ = 0;
   HistoryKeeper temporalHistory_;
   bool restart_ = false;  // this frame drops the temporal history (a cut, a new scene, a setting)
   RtResolvedParams params_;

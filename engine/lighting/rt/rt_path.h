@@ -7,11 +7,6 @@
 
 namespace tl::lighting {
 
-inline constexpr const char* kRtTlas = "rt.tlas";
-inline constexpr const char* kRtBlasDeforming = "rt.blas.deforming";  // imported: the deforming meshes' bottom levels
-inline constexpr const char* kRtTlasInstances = "rt.tlas.instances";  // imported: the top level's instance list
-inline constexpr const char* kRtTlasScratch = "rt.tlas.scratch";
-inline constexpr const char* kRtRefitScratch = "rt.blas.refitScratch";
 inline constexpr const char* kPretraceHits = "rt.pretrace.hits";
 inline constexpr const char* kPretraceSurface = "rt.pretrace.surface";
 inline constexpr const char* kHits = "rt.hits";

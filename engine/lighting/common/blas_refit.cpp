@@ -1,4 +1,4 @@
-#include "lighting/rt/blas_refit.h"
+#include "lighting/common/blas_refit.h"
 
 #include <algorithm>
 #include <cstddef>
