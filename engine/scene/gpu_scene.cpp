@@ -179,6 +179,7 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
     g.alphaCutoff = m.alphaCutoff;
     g.alphaMode = alphaModeOnGpu(m.alphaMode);
     g.occlusionStrength = m.occlusionStrength;
+    g.flags = m.doubleSided ? shared::kMaterialDoubleSided : 0u;
     g.baseColorTexture = textureSlot(m.baseColorTexture);
     g.normalTexture = textureSlot(m.normalTexture);
     g.metallicRoughnessTexture = textureSlot(m.metallicRoughnessTexture);

@@ -38,10 +38,13 @@ void main() {
   float xi = tlAlphaDither(uint(gl_FragCoord.x), uint(gl_FragCoord.y), frame.frameIndex, framesAveraged);
   if (materialCutout(m, base.a, xi)) discard;
 
-  // Geometric normal faces the viewer: single-sided walls seen from behind shade as their
-  // back side instead of going black.
+  // The glTF front (shared/scene.h): the rasterizer's facing of the world-space winding, turned
+  // over where the instance mirrors (the winding is then clockwise). Single-sided surfaces seen
+  // from behind are culled; double-sided ones shade their back side (the normal faces the viewer).
+  bool front = gl_FrontFacing == (determinant(mat3(inst.modelRelative)) > 0.0);
+  if (!front && tlMaterialCulledFromBehind(m.flags)) discard;
   vec3 n = normalize(inNormal);
-  if (!gl_FrontFacing) n = -n;
+  if (!front) n = -n;
   if (m.normalTexture.texture != kNoTexture && tlMaterialNormalMaps(materials))
     n = normalMapped(n, inTangent, sampleSlot(m.normalTexture, inUv, inUv1).xyz, m.normalScale);
 

@@ -122,6 +122,19 @@ float emissionWeight(vec3 dir, float directionPdf) {
   return tlPowerHeuristic(directionPdf, lightPdf);
 }
 
+// A camera ray: what it meets first, passing the backs of single-sided surfaces as the raster
+// culls them (glTF doubleSided, shared/scene.h). Each crossing restarts the ray just beyond the
+// surface, up to kCameraRayCulledLayers of them (a bound for the GPU's sake: past it the ray
+// stops at the back it met, shaded as the back side).
+const uint kCameraRayCulledLayers = 64u;
+void traceCameraRay(vec3 origin, vec3 dir) {
+  traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+  for (uint layer = 0u; layer < kCameraRayCulledLayers && hit.positionT.w >= 0.0 && hit.normal.w > 0.0; ++layer) {
+    origin = tlOffsetRayOrigin(hit.positionT.xyz, -hit.geometric.xyz, frame.sceneScale);
+    traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+  }
+}
+
 // Ambient occlusion of this sample's primary hit (1 when the camera ray sees the sky): the
 // ground truth the real-time paths' AO is measured against, at the same radius.
 float gAo;
@@ -152,7 +165,11 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
   // the caller's first direction).
   float directionPdf = 0.0;
   for (uint bounce = firstBounce;; ++bounce) {
-    traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+    // Only camera rays cull single-sided backs; every scattered ray sees both sides.
+    if (bounce == 0u)
+      traceCameraRay(origin, dir);
+    else
+      traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
     // Area lights are not shown to the camera (no path draws them): only scattered rays see them.
     if (bounce > 0u && frame.lightCount > 0u)
       gather(radiance, bounce, throughput * areaLightsMet(origin, dir, hit.positionT.w < 0.0 ? 1e30 : hit.positionT.w, directionPdf));

@@ -54,7 +54,7 @@ struct GpuMaterial {
   float alphaCutoff;        // alpha MASK's cutoff (tlMaterialCutout)
   float occlusionStrength;  // glTF occlusionTexture.strength: occlusion = 1 + strength (texel.r - 1)
   uint alphaMode;           // kAlphaOpaque, kAlphaMask or kAlphaBlend
-  uint pad1;
+  uint flags;               // kMaterialDoubleSided
   uint pad2;
   GpuTextureSlot baseColorTexture;
   GpuTextureSlot normalTexture;
@@ -62,6 +62,17 @@ struct GpuMaterial {
   GpuTextureSlot emissiveTexture;
   GpuTextureSlot occlusionTexture;
 };
+
+// glTF's doubleSided. A single-sided surface (the flag clear) is culled where the camera sees
+// its back: the G-buffer discards it and the reference's camera rays pass through it. Every
+// other view of it (shadow maps, shadow and GI rays, voxels, AO) sees both sides, as a closed
+// interior modelled with single-sided walls needs (its walls keep the sun out), and shades its
+// back as the back side (the normal turned towards the viewer or the ray). The front is where
+// the triangle's object-space normal (p1 - p0) x (p2 - p0) points, carried to the world by the
+// instance's normal matrix: a mirroring transform (negative determinant) keeps the front where
+// glTF says it is (its winding is then clockwise).
+TL_CONST uint kMaterialDoubleSided = 1u;
+TL_FN bool tlMaterialCulledFromBehind(uint flags) { return (flags & kMaterialDoubleSided) == 0u; }
 
 // Where a slot samples its texture for a point with UV sets uv0 and uv1.
 TL_FN vec2 tlSlotUv(GpuTextureSlot s, vec2 uv0, vec2 uv1) {
