@@ -52,14 +52,22 @@ void main() {
   float roughness = tlMaterialRoughness(rm.x, materials);
   float metallic = tlMaterialMetallic(rm.y, materials);
   vec3 emissive = materialEmission(m, inUv, inUv1);
+  vec4 fresnel = materialDielectricFresnel(m, inUv, inUv1);
+  vec3 baseColor = clamp(tlMaterialBaseColor(base.rgb, materials), 0.0, 1.0);
+  // Unlit (shared/scene.h): the base colour as emission over a black surface with no specular.
+  if ((m.flags & kMaterialUnlit) != 0u) {
+    emissive += baseColor;
+    baseColor = vec3(0.0);
+    fresnel = vec4(0.0);
+  }
   float occlusion = tlMaterialOcclusion(materialOcclusion(m, inUv, inUv1), materials);
 
   vec2 ndc = inClip.xy / inClip.w;
   vec2 prevNdc = inPrevClip.xy / inPrevClip.w;
 
-  outBaseColor = vec4(clamp(tlMaterialBaseColor(base.rgb, materials), 0.0, 1.0), 1.0);
+  outBaseColor = vec4(baseColor, clamp(fresnel.w, 0.0, 1.0));
   outNormal = tlOctEncode(n);
-  outMaterial = vec4(clamp(roughness, 0.0, 1.0), clamp(metallic, 0.0, 1.0), 0.0, clamp(occlusion, 0.0, 1.0));
+  outMaterial = vec4(clamp(roughness, 0.0, 1.0), clamp(metallic, 0.0, 1.0), tlGbufferEncodeF0(fresnel.rgb), clamp(occlusion, 0.0, 1.0));
   outEmissive = vec4(emissive, 1.0);
   outMotion = (ndc - prevNdc) * 0.5;
   outInstanceId = inst.instanceId;

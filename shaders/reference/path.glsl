@@ -99,10 +99,14 @@ vec3 emitterLight(vec3 origin, vec3 n, vec3 geometric, vec3 v, SurfaceParams s, 
   if (!(cosLight > 0.0)) return vec3(0.0);
   GpuMaterial material = materials[g.material];
   vec3 emitted = materialEmissionLod0(material, hv.uv0, hv.uv1);
+  vec4 base = materialBaseColorLod0(material, hv.uv0, hv.uv1, hv.color);
+  // An unlit surface emits its base colour, as its hits report (trace.rchit).
+  if ((material.flags & kMaterialUnlit) != 0u)
+    emitted += clamp(tlMaterialBaseColor(base.rgb, tlFrameMaterials(frame.flags)), 0.0, 1.0);
   // Where a cut-out surface is not (alpha MASK), or not this time (BLEND: present with
   // probability alpha), the rays pass through it and find no emission either.
   float xi = tlUintToUnitFloat(tlPcgHash(h.z ^ 0x68E31DA4u));
-  if (materialCutout(material, materialBaseColorLod0(material, hv.uv0, hv.uv1, hv.color).a, xi)) return vec3(0.0);
+  if (materialCutout(material, base.a, xi)) return vec3(0.0);
   if (dot(emitted, emitted) <= 0.0) return vec3(0.0);
   visible = 0.0;
   traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT, 0xFF, 0, 0, 1, origin, 0.0, l,
@@ -182,7 +186,8 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
     if (bounce >= push.maxBounces) break;  // no more scattering events allowed
 
     vec3 n = hit.normal.xyz, geometric = hit.geometric.xyz, v = -dir;
-    SurfaceParams s = tlMaterialSurface(hit.baseColor.rgb, hit.baseColor.a, hit.emission.a, tlFrameMaterials(frame.flags));
+    SurfaceParams s =
+        tlMaterialSurfaceFresnel(hit.baseColor.rgb, hit.baseColor.a, hit.emission.a, hit.fresnel, tlFrameMaterials(frame.flags));
     vec3 position = tlOffsetRayOrigin(hit.positionT.xyz, geometric, frame.sceneScale);
 
     if (bounce == 0u && push.aoRadius > 0.0) {

@@ -39,6 +39,14 @@ void main() {
   vec4 baseColor = materialBaseColorLod0(m, h.uv0, h.uv1, h.color);
   vec2 rm = materialRoughnessMetallicLod0(m, h.uv0, h.uv1);
   vec3 emission = materialEmissionLod0(m, h.uv0, h.uv1);
+  vec4 fresnel = materialDielectricFresnelLod0(m, h.uv0, h.uv1);
+  // Unlit (shared/scene.h): the base colour as emission over a black surface with no specular,
+  // as the G-buffer writes it. The override modes' clay replaces its colour there too.
+  if ((m.flags & kMaterialUnlit) != 0u) {
+    emission += clamp(tlMaterialBaseColor(baseColor.rgb, tlFrameMaterials(frame.flags)), 0.0, 1.0);
+    baseColor.rgb = vec3(0.0);
+    fresnel = vec4(0.0);
+  }
 
   // Position from the triangle, not origin + t * direction: exact at any distance.
   vec3 w = vec3(1.0 - bary.x - bary.y, bary.x, bary.y);
@@ -48,4 +56,5 @@ void main() {
   hit.geometric = vec4(geometric, refEmitterDensity(g, uint(gl_PrimitiveID), refWorldArea(inst.modelRelative, h)));
   hit.baseColor = vec4(clamp(baseColor.rgb, 0.0, 1.0), clamp(rm.x, 0.0, 1.0));
   hit.emission = vec4(emission, clamp(rm.y, 0.0, 1.0));
+  hit.fresnel = fresnel;
 }

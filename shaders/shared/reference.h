@@ -88,6 +88,7 @@ struct RefHit {
                       // sampling draws the hit point (its triangle's probability / area; 0: never)
   vec4 baseColor;     // rgb, a roughness
   vec4 emission;      // rgb emitted radiance, a metallic
+  vec4 fresnel;       // the dielectric's F0 (rgb) and F90 (a): KHR_materials_ior / specular (shared/scene.h)
 };
 TL_END
 
