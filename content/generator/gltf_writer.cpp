@@ -246,6 +246,31 @@ int SceneWriter::material(const MaterialSpec& spec) {
     if (spec.alphaMode == "MASK") m.alphaCutoff = spec.alphaCutoff;
   }
   m.doubleSided = spec.doubleSided;
+  auto use = [&](const char* extension) {
+    if (std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), extension) == model_.extensionsUsed.end())
+      model_.extensionsUsed.push_back(extension);
+  };
+  if (spec.ior) {
+    tinygltf::Value::Object e;
+    e["ior"] = tinygltf::Value(double(*spec.ior));
+    m.extensions["KHR_materials_ior"] = tinygltf::Value(e);
+    use("KHR_materials_ior");
+  }
+  if (spec.specularFactor || spec.specularColorFactor) {
+    tinygltf::Value::Object e;
+    if (spec.specularFactor) e["specularFactor"] = tinygltf::Value(double(*spec.specularFactor));
+    if (spec.specularColorFactor) {
+      const glm::vec3 c = *spec.specularColorFactor;
+      e["specularColorFactor"] = tinygltf::Value(
+          tinygltf::Value::Array{tinygltf::Value(double(c.r)), tinygltf::Value(double(c.g)), tinygltf::Value(double(c.b))});
+    }
+    m.extensions["KHR_materials_specular"] = tinygltf::Value(e);
+    use("KHR_materials_specular");
+  }
+  if (spec.unlit) {
+    m.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object{});
+    use("KHR_materials_unlit");
+  }
   if (!spec.baseColorTexture.empty()) {
     tinygltf::Image img;
     img.uri = spec.baseColorTexture;

@@ -76,6 +76,11 @@ struct MaterialSpec {
   float alphaCutoff = 0.5f;
   bool doubleSided = false;
   float alpha = 1.0f;            // baseColorFactor's alpha (coverage under MASK and BLEND)
+  // KHR_materials_ior and KHR_materials_specular, written when set; KHR_materials_unlit when true.
+  std::optional<float> ior;
+  std::optional<float> specularFactor;
+  std::optional<glm::vec3> specularColorFactor;
+  bool unlit = false;
 };
 
 // An image file's bytes encoded in memory by OpenImageIO (`extension`: "png", "exr", ...):

@@ -1189,6 +1189,64 @@ void occlusionProbe(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// glTF doubleSided: five 0.8 m quads in a row 1.2 m up, seen against the sky, each named
+// by what the camera must see of it. Single-sided ones facing the camera (one plain, one
+// through a mirroring transform, whose winding glTF then reads clockwise) are drawn; single-
+// sided ones facing away (plain and mirrored) are culled, so the sky shows where they stand;
+// a double-sided one facing away shows its back. Every quad still casts its shadow on the
+// ground behind it (the sun comes from behind the camera): culling is for the camera only.
+void oneSidedProbe(const std::filesystem::path& dir) {
+  SceneWriter w("one_sided_probe");
+  MaterialSpec oneSided{"one_sided", {0.9f, 0.6f, 0.2f}, 0.0f, 0.8f};
+  MaterialSpec twoSided{"double_sided", {0.2f, 0.7f, 0.3f}, 0.0f, 0.8f};
+  twoSided.doubleSided = true;
+  const int single = w.material(oneSided), both = w.material(twoSided);
+  const int ground = w.material({"ground", {0.5f, 0.5f, 0.5f}, 0.0f, 0.9f});
+  // 8 m deep: the camera's rays through the quads' row pass beyond it, into the sky.
+  w.node("ground", w.mesh("ground", quad(12.0f, 8.0f), ground), {0.0f, 0.0f, 0.0f});
+  const int singleQuad = w.mesh("single_quad", quad(0.8f, 0.8f), single);
+  const int doubleQuad = w.mesh("double_quad", quad(0.8f, 0.8f), both);
+  // quad() faces +Y: 90 degrees about X turn it towards the camera (+Z), -90 away from it.
+  const glm::vec3 mirror(-1.0f, 1.0f, 1.0f);
+  w.node("front_drawn", singleQuad, {-2.0f, 1.2f, 0.0f}, {90.0f, 0.0f, 0.0f});
+  w.node("back_culled", singleQuad, {-1.0f, 1.2f, 0.0f}, {-90.0f, 0.0f, 0.0f});
+  w.node("double_back_drawn", doubleQuad, {0.0f, 1.2f, 0.0f}, {-90.0f, 0.0f, 0.0f});
+  w.node("mirrored_front_drawn", singleQuad, {1.0f, 1.2f, 0.0f}, {90.0f, 0.0f, 0.0f}, mirror);
+  w.node("mirrored_back_culled", singleQuad, {2.0f, 1.2f, 0.0f}, {-90.0f, 0.0f, 0.0f}, mirror);
+  w.camera("front", {0.0f, 2.0f, 4.5f}, {0.0f, 1.1f, 0.0f}, 50.0f);
+  w.sun({0.0f, -1.0f, -1.5f}, 3.0f);
+  w.sky({0.2f, 0.3f, 0.5f});
+  w.write(dir);
+}
+
+// KHR_materials_ior, KHR_materials_specular and KHR_materials_unlit: a row of black, nearly
+// smooth dielectric quads (roughness 0.1) under a uniform sky of radiance 1 and nothing else,
+// seen from above. Head-on such a surface reflects Fresnel's ((n - 1) / (n + 1))^2 of the sky:
+// ior 1 (nothing), 1.33, 1.5 (glTF's default), 2 and 2.42, then specularFactor 0 (nothing) and
+// an unlit quad of base colour 0.25, which shows 0.25 whatever the light.
+void iorProbe(const std::filesystem::path& dir) {
+  SceneWriter w("ior_probe");
+  struct Probe {
+    const char* name;
+    float ior, specular;
+    bool unlit;
+  };
+  const Probe probes[] = {{"ior_1", 1.0f, 1.0f, false},    {"ior_1_33", 1.33f, 1.0f, false}, {"ior_1_5", 1.5f, 1.0f, false},
+                          {"ior_2", 2.0f, 1.0f, false},    {"ior_2_42", 2.42f, 1.0f, false}, {"specular_0", 1.5f, 0.0f, false},
+                          {"unlit_quarter", 1.5f, 1.0f, true}};
+  const int n = int(std::size(probes));
+  for (int i = 0; i < n; ++i) {
+    MaterialSpec spec{probes[i].name, probes[i].unlit ? glm::vec3(0.25f) : glm::vec3(0.0f), 0.0f, 0.1f};
+    if (probes[i].ior != 1.5f) spec.ior = probes[i].ior;
+    if (probes[i].specular != 1.0f) spec.specularFactor = probes[i].specular;
+    spec.unlit = probes[i].unlit;
+    w.node(probes[i].name, w.mesh(probes[i].name, quad(1.0f, 1.0f), w.material(spec)), {probeX(i, n), 0.0f, 0.0f});
+  }
+  w.camera("above", {0.0f, 6.0f, 0.01f}, {0.0f, 0.0f, 0.0f}, 70.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
 // Scale: `instances` boxes on a 2 km square of ground, each one of `keys` distinct mesh and
 // material combinations (albedo keys): 40 box shapes x as many materials as the keys need.
 // The positions are a jittered grid, the shapes and materials and yaw a fixed hash of the
@@ -1346,6 +1404,8 @@ int main(int argc, char** argv) {
     tl::content::color0Probe(dir);
     tl::content::contactShadows(dir);
     tl::content::occlusionProbe(dir);
+    tl::content::oneSidedProbe(dir);
+    tl::content::iorProbe(dir);
     tl::content::writeHardScenes(dir / "hard");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());

@@ -1,7 +1,10 @@
 // glTF materials: the metallic-roughness factors and textures (with KHR_texture_transform),
 // emission (KHR_materials_emissive_strength), alpha, normal and occlusion maps, every value
-// checked as the float it is stored in (ImportValues).
+// checked as the float it is stored in (ImportValues); the extensions that change the
+// reflection, and specular-glossiness's conversion, in gltf_material_extensions.cpp.
 #include "scene/gltf_parts.h"
+
+#include <algorithm>
 
 namespace tl::scene {
 namespace {
@@ -74,7 +77,25 @@ void readMaterials(GltfImport& in, TextureCache& textures) {
     m.occlusionTexture = textureRef(textures, gm.occlusionTexture.index, gm.occlusionTexture.texCoord,
                                     gm.occlusionTexture.extensions, false, values, what + " occlusionTexture");
     m.occlusionStrength = values.clamped(gm.occlusionTexture.strength, 0.0f, 1.0f, what + " occlusionTexture.strength");
+    const TextureReader texture = [&](const ExtensionTexture& t, bool srgb, const std::string& slot) {
+      return textureRef(textures, t.index, t.texCoord, t.extensions, srgb, values, slot);
+    };
+    readReflectionExtensions(gm, m, values, what, texture);
+    readSpecularGlossiness(gm, m, values, what, texture, in.scene);
     in.scene.materials.push_back(std::move(m));
+  }
+  // What the conversions and the G-buffer leave approximate, once per feature with its count.
+  float worst = 0.0f;
+  for (const auto& m : in.scene.materials) worst = std::max(worst, m.specularGlossinessError);
+  for (const auto& m : in.scene.materials) {
+    if (m.specularGlossinessError >= 0.0f)
+      in.ignored.add("KHR_materials_pbrSpecularGlossiness",
+                     fmt::format("converted to metal-rough (F0 and diffuse colour within {:.3f} of the file's)", worst));
+    if (m.specularGlossinessTextureUnread)
+      in.ignored.add("specularGlossinessTexture", "its mean enters the converted factors (the diffuse texture is kept)");
+    const glm::vec3 c = m.specularColorFactor;
+    if (m.specularColorTexture || c.r != c.g || c.g != c.b)
+      in.ignored.add("a tinted KHR_materials_specular colour", "in the reference; the G-buffer paths use its luminance");
   }
 }
 

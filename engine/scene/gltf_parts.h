@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,12 +48,14 @@ struct GltfImport {
   const std::filesystem::path& file;
 };
 
-// The extensions the importer applies (KHR_materials_emissive_strength, KHR_lights_punctual,
-// KHR_mesh_quantization, KHR_texture_transform): a file that requires another is refused, one
-// that merely uses another is loaded with an ignored-feature line.
+// The extensions the importer applies (KHR_materials_emissive_strength, _ior, _specular,
+// _unlit, _pbrSpecularGlossiness (converted), KHR_lights_punctual, KHR_mesh_quantization,
+// KHR_texture_transform): a file that requires another is refused, one that merely uses another
+// is loaded with an ignored-feature line.
 inline bool extensionApplied(const std::string& name) {
-  return name == "KHR_materials_emissive_strength" || name == "KHR_lights_punctual" || name == "KHR_mesh_quantization" ||
-         name == "KHR_texture_transform";
+  return name == "KHR_materials_emissive_strength" || name == "KHR_materials_ior" || name == "KHR_materials_specular" ||
+         name == "KHR_materials_unlit" || name == "KHR_materials_pbrSpecularGlossiness" || name == "KHR_lights_punctual" ||
+         name == "KHR_mesh_quantization" || name == "KHR_texture_transform";
 }
 
 // The file's bytes parsed by tinygltf under the input limits (gltf_file.cpp): one SceneError
@@ -65,6 +68,32 @@ void scanIgnored(const tinygltf::Model& model, IgnoredFeatures& ignored);
 
 // Scene::materials from the file's materials, their textures through `textures`.
 void readMaterials(GltfImport& in, TextureCache& textures);
+// A textureInfo inside a material extension (its index, UV set and own extensions; index -1: none).
+struct ExtensionTexture {
+  int index = -1;
+  int texCoord = 0;
+  tinygltf::ExtensionMap extensions;
+};
+ExtensionTexture extensionTexture(const tinygltf::Value& ext, const char* name, ImportValues& values, const std::string& what);
+// Reads a material's texture through the importer's cache (srgb: a colour texture).
+using TextureReader = std::function<std::optional<TextureRef>(const ExtensionTexture&, bool srgb, const std::string& what)>;
+// KHR_materials_ior, KHR_materials_specular and KHR_materials_unlit into m (gltf_material_extensions.cpp).
+void readReflectionExtensions(const tinygltf::Material& gm, Material& m, ImportValues& values, const std::string& what,
+                              const TextureReader& texture);
+// KHR_materials_pbrSpecularGlossiness converted into m's metal-rough fields, when the material has it.
+// The textures' means (scene's textures) stand in for the specular-glossiness texture.
+void readSpecularGlossiness(const tinygltf::Material& gm, Material& m, ImportValues& values, const std::string& what,
+                            const TextureReader& texture, const Scene& scene);
+// The metal-rough material closest to a specular-glossiness one (linear colours), and how far
+// glTF's reference shading of it is from the original's (largest difference of F0 and of the
+// diffuse colour).
+struct SpecularGlossinessConversion {
+  glm::vec3 baseColor{0.0f};
+  float metallic = 0.0f;
+  float error = 0.0f;
+};
+SpecularGlossinessConversion metalRoughFromSpecularGlossiness(glm::vec3 diffuse, glm::vec3 specular);
+
 // glTF's default material (Lambert 0.8 grey), appended when a primitive names none.
 void addDefaultMaterial(Scene& scene);
 

@@ -179,6 +179,11 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
     g.alphaCutoff = m.alphaCutoff;
     g.alphaMode = alphaModeOnGpu(m.alphaMode);
     g.occlusionStrength = m.occlusionStrength;
+    g.flags = (m.doubleSided ? shared::kMaterialDoubleSided : 0u) | (m.unlit ? shared::kMaterialUnlit : 0u);
+    g.ior = m.ior;
+    g.specularColor = glm::vec4(m.specularColorFactor, m.specularFactor);
+    g.specularTexture = textureSlot(m.specularTexture);
+    g.specularColorTexture = textureSlot(m.specularColorTexture);
     g.baseColorTexture = textureSlot(m.baseColorTexture);
     g.normalTexture = textureSlot(m.normalTexture);
     g.metallicRoughnessTexture = textureSlot(m.metallicRoughnessTexture);

@@ -59,7 +59,13 @@ uint64_t hashMaterial(const Material& m, const std::vector<Texture>& textures) {
   uint8_t doubleSided = m.doubleSided;
   h.add(doubleSided);
   h.add(m.occlusionStrength);
-  for (const auto& t : {m.baseColorTexture, m.normalTexture, m.metallicRoughnessTexture, m.emissiveTexture, m.occlusionTexture}) {
+  h.add(m.ior);
+  h.add(m.specularFactor);
+  h.add(m.specularColorFactor);
+  uint8_t unlit = m.unlit;
+  h.add(unlit);
+  for (const auto& t : {m.baseColorTexture, m.normalTexture, m.metallicRoughnessTexture, m.emissiveTexture, m.occlusionTexture,
+                        m.specularTexture, m.specularColorTexture}) {
     uint64_t th = t && t->texture < textures.size() ? textures[t->texture].contentHash : 0;
     h.add(th);
     if (!t) continue;

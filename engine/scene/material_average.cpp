@@ -20,10 +20,19 @@ glm::vec4 textureAverage(const Texture& t) {
 
 // The texture's mean over its whole image: a transform that shows part of it, and vertex
 // colours, are not weighed in (this is the far-field average, not a per-texel value).
-glm::vec3 materialAverageAlbedo(const Scene& scene, const Material& m, uint32_t materials) {
+namespace {
+glm::vec3 averageBaseColor(const Scene& scene, const Material& m) {
   glm::vec3 base = glm::vec3(m.baseColorFactor);
   if (m.baseColorTexture && m.baseColorTexture->texture < scene.textures.size())
     base *= glm::vec3(textureAverage(scene.textures[m.baseColorTexture->texture]));
+  return glm::clamp(base, 0.0f, 1.0f);
+}
+}  // namespace
+
+// An unlit material (KHR_materials_unlit, shared/scene.h) reflects nothing and emits its base colour.
+glm::vec3 materialAverageAlbedo(const Scene& scene, const Material& m, uint32_t materials) {
+  if (m.unlit) return glm::vec3(0.0f);
+  glm::vec3 base = averageBaseColor(scene, m);
   float metallic = m.metallic;
   if (m.metallicRoughnessTexture && m.metallicRoughnessTexture->texture < scene.textures.size())
     metallic *= textureAverage(scene.textures[m.metallicRoughnessTexture->texture]).b;
@@ -34,6 +43,7 @@ glm::vec3 materialAverageEmission(const Scene& scene, const Material& m) {
   glm::vec3 e = m.emissiveFactor * m.emissiveStrength;
   if (m.emissiveTexture && m.emissiveTexture->texture < scene.textures.size())
     e *= glm::vec3(textureAverage(scene.textures[m.emissiveTexture->texture]));
+  if (m.unlit) e += averageBaseColor(scene, m);
   return e;
 }
 

@@ -116,6 +116,20 @@ struct Material {
   std::optional<TextureRef> metallicRoughnessTexture;
   std::optional<TextureRef> emissiveTexture;
   std::optional<TextureRef> occlusionTexture;
+  // KHR_materials_ior and KHR_materials_specular: the dielectric's Fresnel, F0 = min(((ior - 1) /
+  // (ior + 1))^2 specularColor, 1) specular and F90 = specular (shared/scene.h tlDielectricFresnel).
+  float ior = 1.5f;
+  float specularFactor = 1.0f;
+  glm::vec3 specularColorFactor{1.0f};
+  std::optional<TextureRef> specularTexture;       // its alpha scales specularFactor
+  std::optional<TextureRef> specularColorTexture;  // its rgb (sRGB) scales specularColorFactor
+  bool unlit = false;                              // KHR_materials_unlit: shows its base colour, reflects nothing
+  // KHR_materials_pbrSpecularGlossiness, converted on import to the fields above: how far glTF's
+  // reference shading of the result is from the file's (the larger of the F0 and the diffuse
+  // colour's largest difference; -1: not converted), and whether a specularGlossinessTexture
+  // was left unread (the factors' conversion holds across the surface).
+  float specularGlossinessError = -1.0f;
+  bool specularGlossinessTextureUnread = false;
   uint64_t contentHash = 0;  // parameters + the content hashes of the textures it uses
 };
 

@@ -39,6 +39,26 @@ void count(std::vector<std::pair<std::string, size_t>>& c, const std::string& wh
   c.emplace_back(what, 1);
 }
 
+// How each extension the importer knows is rendered (docs/user-guide.md "What of glTF 2.0
+// renders"); what is still approximated is also a line of Scene::ignored.
+std::string extensionRendering(const std::string& name) {
+  static const std::pair<const char*, const char*> kRendered[] = {
+      {"KHR_materials_emissive_strength", "rendered: emission scaled in every path and the reference"},
+      {"KHR_materials_ior", "rendered: the dielectric's F0 in the shared BRDF, every path and the reference"},
+      {"KHR_materials_specular",
+       "rendered: the dielectric's F0 and F90 in the shared BRDF, every path and the reference (a tinted colour in grey in the "
+       "G-buffer paths)"},
+      {"KHR_materials_unlit", "rendered: the base colour as emission over a black, non-reflecting surface"},
+      {"KHR_materials_pbrSpecularGlossiness", "converted to metal-rough on import (the error is an ignored line)"},
+      {"KHR_lights_punctual", "rendered: point, spot and directional lights in their photometric units"},
+      {"KHR_mesh_quantization", "read: integer and normalized attributes"},
+      {"KHR_texture_transform", "rendered: in every stage that samples a texture"},
+  };
+  for (const auto& [extension, how] : kRendered)
+    if (name == extension) return how;
+  return "ignored (the file renders as if it were absent)";
+}
+
 }  // namespace
 
 std::vector<std::string> sceneReport(const Scene& s) {
@@ -77,9 +97,8 @@ std::vector<std::string> sceneReport(const Scene& s) {
   for (const auto& skin : s.skins) joints += skin.joints.size();
   for (const auto& m : s.meshes) skinnedMeshes += m.skinned();
   lines.push_back(fmt::format("skins: {} ({} joints, {} skinned meshes)", s.skins.size(), joints, skinnedMeshes));
-  std::string extensions;
-  for (const auto& e : s.extensionsUsed) extensions += (extensions.empty() ? "" : ", ") + e;
-  lines.push_back(fmt::format("extensions: {}", extensions.empty() ? "none" : extensions));
+  if (s.extensionsUsed.empty()) lines.push_back("extensions: none");
+  for (const auto& e : s.extensionsUsed) lines.push_back(fmt::format("extension {}: {}", e, extensionRendering(e)));
   for (const auto& i : s.ignored) lines.push_back("ignored: " + i);
   if (s.ignored.empty()) lines.push_back("ignored: nothing");
   return lines;

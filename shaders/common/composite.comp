@@ -45,9 +45,9 @@ void main() {
   vec3 position = cameraRelativePosition(uv, depth);
   vec3 n = tlOctDecode(texelFetch(gNormal, p, 0).xy);
   vec3 v = towardsViewer(position);
-  vec3 baseColor = texelFetch(gBaseColor, p, 0).rgb;
+  vec4 baseColor = texelFetch(gBaseColor, p, 0);
   vec4 material = texelFetch(gMaterial, p, 0);
-  SurfaceParams s = tlMaterialSurface(baseColor, material.x, material.y, tlFrameMaterials(frame.flags));
+  SurfaceParams s = tlGbufferSurface(baseColor, material, tlFrameMaterials(frame.flags));
 
   vec3 radiance = texelFetch(gEmissive, p, 0).rgb;
   float nl = dot(n, frame.sunToLight.xyz);

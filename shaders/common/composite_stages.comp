@@ -37,7 +37,7 @@ void main() {
   imageStore(outAo, p, vec4(ao));
   // The surface only for its albedo: what occlusion puts back (path_indirect.glsl).
   vec4 material = texelFetch(gMaterial, p, 0);
-  SurfaceParams s = tlMaterialSurface(texelFetch(gBaseColor, p, 0).rgb, material.x, material.y, tlFrameMaterials(frame.flags));
+  SurfaceParams s = tlGbufferSurface(texelFetch(gBaseColor, p, 0), material, tlFrameMaterials(frame.flags));
   vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), tlSkyIrradiance(frame, n));
   // As the composite applies it: times the material's occlusion (gbuffer.material.a).
   imageStore(outIrradiance, p, vec4(material.w * irradiance, 1.0));

@@ -38,10 +38,13 @@ void main() {
   float xi = tlAlphaDither(uint(gl_FragCoord.x), uint(gl_FragCoord.y), frame.frameIndex, framesAveraged);
   if (materialCutout(m, base.a, xi)) discard;
 
-  // Geometric normal faces the viewer: single-sided walls seen from behind shade as their
-  // back side instead of going black.
+  // The glTF front (shared/scene.h): the rasterizer's facing of the world-space winding, turned
+  // over where the instance mirrors (the winding is then clockwise). Single-sided surfaces seen
+  // from behind are culled; double-sided ones shade their back side (the normal faces the viewer).
+  bool front = gl_FrontFacing == (determinant(mat3(inst.modelRelative)) > 0.0);
+  if (!front && tlMaterialCulledFromBehind(m.flags)) discard;
   vec3 n = normalize(inNormal);
-  if (!gl_FrontFacing) n = -n;
+  if (!front) n = -n;
   if (m.normalTexture.texture != kNoTexture && tlMaterialNormalMaps(materials))
     n = normalMapped(n, inTangent, sampleSlot(m.normalTexture, inUv, inUv1).xyz, m.normalScale);
 
@@ -49,14 +52,22 @@ void main() {
   float roughness = tlMaterialRoughness(rm.x, materials);
   float metallic = tlMaterialMetallic(rm.y, materials);
   vec3 emissive = materialEmission(m, inUv, inUv1);
+  vec4 fresnel = materialDielectricFresnel(m, inUv, inUv1);
+  vec3 baseColor = clamp(tlMaterialBaseColor(base.rgb, materials), 0.0, 1.0);
+  // Unlit (shared/scene.h): the base colour as emission over a black surface with no specular.
+  if ((m.flags & kMaterialUnlit) != 0u) {
+    emissive += baseColor;
+    baseColor = vec3(0.0);
+    fresnel = vec4(0.0);
+  }
   float occlusion = tlMaterialOcclusion(materialOcclusion(m, inUv, inUv1), materials);
 
   vec2 ndc = inClip.xy / inClip.w;
   vec2 prevNdc = inPrevClip.xy / inPrevClip.w;
 
-  outBaseColor = vec4(clamp(tlMaterialBaseColor(base.rgb, materials), 0.0, 1.0), 1.0);
+  outBaseColor = vec4(baseColor, clamp(fresnel.w, 0.0, 1.0));
   outNormal = tlOctEncode(n);
-  outMaterial = vec4(clamp(roughness, 0.0, 1.0), clamp(metallic, 0.0, 1.0), 0.0, clamp(occlusion, 0.0, 1.0));
+  outMaterial = vec4(clamp(roughness, 0.0, 1.0), clamp(metallic, 0.0, 1.0), tlGbufferEncodeF0(fresnel.rgb), clamp(occlusion, 0.0, 1.0));
   outEmissive = vec4(emissive, 1.0);
   outMotion = (ndc - prevNdc) * 0.5;
   outInstanceId = inst.instanceId;

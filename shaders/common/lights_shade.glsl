@@ -50,7 +50,7 @@ void main() {
   gNormalHere = tlOctDecode(texelFetch(gNormal, p, 0).xy);
   gView = towardsViewer(position);
   vec4 material = texelFetch(gMaterial, p, 0);
-  gSurface = tlMaterialSurface(texelFetch(gBaseColor, p, 0).rgb, material.x, material.y, tlFrameMaterials(frame.flags));
+  gSurface = tlGbufferSurface(texelFetch(gBaseColor, p, 0), material, tlFrameMaterials(frame.flags));
   gShadowOrigin = tlOffsetRayOrigin(position, gNormalHere, frame.sceneScale);
   vec3 radiance = shadeLights(position, gNormalHere, uvec3(uvec2(p), frame.frameIndex));
   if (push.accumulate != 0u) {

@@ -13,5 +13,6 @@ vec4 sampleSlot(GpuTextureSlot s, vec2 uv0, vec2 uv1) {
   return texture(sceneTextures[nonuniformEXT(s.texture)], uv);
 }
 
-TL_MATERIAL_INPUTS(materialBaseColor, materialRoughnessMetallic, materialOcclusion, materialEmission, sampleSlot)
+TL_MATERIAL_INPUTS(materialBaseColor, materialRoughnessMetallic, materialOcclusion, materialEmission,
+                   materialDielectricFresnel, sampleSlot)
 #endif

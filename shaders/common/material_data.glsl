@@ -20,8 +20,9 @@ vec4 slotTexelLod0(GpuTextureSlot s, vec2 uv0, vec2 uv1) {
 // the slot reader they sample through. Base colour (linear) and alpha: factor x texture x
 // COLOR_0; roughness and metallic (x, y); glTF's occlusion, 1 + strength (texel.r - 1), 1
 // without a texture; emission. Below: the *Lod0 forms (slotTexelLod0); common/material.glsl
-// makes the fragment forms (sampleSlot, with derivatives).
-#define TL_MATERIAL_INPUTS(BASE_COLOR, ROUGHNESS_METALLIC, OCCLUSION, EMISSION, SAMPLE)                  \
+// makes the fragment forms (sampleSlot, with derivatives). The dielectric's Fresnel: F0 (rgb) and
+// F90 (w) from KHR_materials_ior and KHR_materials_specular (shared/scene.h tlDielectricFresnel).
+#define TL_MATERIAL_INPUTS(BASE_COLOR, ROUGHNESS_METALLIC, OCCLUSION, EMISSION, DIELECTRIC_FRESNEL, SAMPLE) \
   vec4 BASE_COLOR(GpuMaterial m, vec2 uv0, vec2 uv1, vec4 vertexColor) {                                 \
     vec4 base = m.baseColorFactor * vertexColor;                                                         \
     if (m.baseColorTexture.texture != kNoTexture) base *= SAMPLE(m.baseColorTexture, uv0, uv1);          \
@@ -40,10 +41,16 @@ vec4 slotTexelLod0(GpuTextureSlot s, vec2 uv0, vec2 uv1) {
     vec3 e = m.emissive.rgb;                                                                             \
     if (m.emissiveTexture.texture != kNoTexture) e *= SAMPLE(m.emissiveTexture, uv0, uv1).rgb;           \
     return e;                                                                                            \
+  }                                                                                                      \
+  vec4 DIELECTRIC_FRESNEL(GpuMaterial m, vec2 uv0, vec2 uv1) {                                           \
+    vec4 c = m.specularColor;                                                                            \
+    if (m.specularTexture.texture != kNoTexture) c.w *= SAMPLE(m.specularTexture, uv0, uv1).a;           \
+    if (m.specularColorTexture.texture != kNoTexture) c.rgb *= SAMPLE(m.specularColorTexture, uv0, uv1).rgb; \
+    return tlDielectricFresnel(m.ior, c.rgb, c.w);                                                       \
   }
 
 TL_MATERIAL_INPUTS(materialBaseColorLod0, materialRoughnessMetallicLod0, materialOcclusionLod0, materialEmissionLod0,
-                   slotTexelLod0)
+                   materialDielectricFresnelLod0, slotTexelLod0)
 
 // A normal map's tangent-space texel (as stored, [0, 1]) applied to the unit normal n facing the
 // viewer or the ray: the tangent is made orthogonal to n, the bitangent is n x t times the

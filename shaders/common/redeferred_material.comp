@@ -45,7 +45,7 @@ void main() {
   vec3 n = tlOctDecode(texelFetch(gNormal, p, 0).xy);
   vec3 v = towardsViewer(position);
   vec4 material = texelFetch(gMaterial, p, 0);
-  SurfaceParams s = tlMaterialSurface(texelFetch(gBaseColor, p, 0).rgb, material.x, material.y, tlFrameMaterials(frame.flags));
+  SurfaceParams s = tlGbufferSurface(texelFetch(gBaseColor, p, 0), material, tlFrameMaterials(frame.flags));
 
   IbufferSums sums;
   sums.dg = texelFetch(iDg, p, 0).rgb;

@@ -99,10 +99,14 @@ vec3 emitterLight(vec3 origin, vec3 n, vec3 geometric, vec3 v, SurfaceParams s, 
   if (!(cosLight > 0.0)) return vec3(0.0);
   GpuMaterial material = materials[g.material];
   vec3 emitted = materialEmissionLod0(material, hv.uv0, hv.uv1);
+  vec4 base = materialBaseColorLod0(material, hv.uv0, hv.uv1, hv.color);
+  // An unlit surface emits its base colour, as its hits report (trace.rchit).
+  if ((material.flags & kMaterialUnlit) != 0u)
+    emitted += clamp(tlMaterialBaseColor(base.rgb, tlFrameMaterials(frame.flags)), 0.0, 1.0);
   // Where a cut-out surface is not (alpha MASK), or not this time (BLEND: present with
   // probability alpha), the rays pass through it and find no emission either.
   float xi = tlUintToUnitFloat(tlPcgHash(h.z ^ 0x68E31DA4u));
-  if (materialCutout(material, materialBaseColorLod0(material, hv.uv0, hv.uv1, hv.color).a, xi)) return vec3(0.0);
+  if (materialCutout(material, base.a, xi)) return vec3(0.0);
   if (dot(emitted, emitted) <= 0.0) return vec3(0.0);
   visible = 0.0;
   traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT, 0xFF, 0, 0, 1, origin, 0.0, l,
@@ -120,6 +124,19 @@ float emissionWeight(vec3 dir, float directionPdf) {
   float cosLight = abs(dot(hit.geometric.xyz, dir));
   float lightPdf = hit.geometric.w * hit.positionT.w * hit.positionT.w / max(cosLight, 1e-12);
   return tlPowerHeuristic(directionPdf, lightPdf);
+}
+
+// A camera ray: what it meets first, passing the backs of single-sided surfaces as the raster
+// culls them (glTF doubleSided, shared/scene.h). Each crossing restarts the ray just beyond the
+// surface, up to kCameraRayCulledLayers of them (a bound for the GPU's sake: past it the ray
+// stops at the back it met, shaded as the back side).
+const uint kCameraRayCulledLayers = 64u;
+void traceCameraRay(vec3 origin, vec3 dir) {
+  traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+  for (uint layer = 0u; layer < kCameraRayCulledLayers && hit.positionT.w >= 0.0 && hit.normal.w > 0.0; ++layer) {
+    origin = tlOffsetRayOrigin(hit.positionT.xyz, -hit.geometric.xyz, frame.sceneScale);
+    traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+  }
 }
 
 // Ambient occlusion of this sample's primary hit (1 when the camera ray sees the sky): the
@@ -152,7 +169,11 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
   // the caller's first direction).
   float directionPdf = 0.0;
   for (uint bounce = firstBounce;; ++bounce) {
-    traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
+    // Only camera rays cull single-sided backs; every scattered ray sees both sides.
+    if (bounce == 0u)
+      traceCameraRay(origin, dir);
+    else
+      traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
     // Area lights are not shown to the camera (no path draws them): only scattered rays see them.
     if (bounce > 0u && frame.lightCount > 0u)
       gather(radiance, bounce, throughput * areaLightsMet(origin, dir, hit.positionT.w < 0.0 ? 1e30 : hit.positionT.w, directionPdf));
@@ -165,7 +186,8 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
     if (bounce >= push.maxBounces) break;  // no more scattering events allowed
 
     vec3 n = hit.normal.xyz, geometric = hit.geometric.xyz, v = -dir;
-    SurfaceParams s = tlMaterialSurface(hit.baseColor.rgb, hit.baseColor.a, hit.emission.a, tlFrameMaterials(frame.flags));
+    SurfaceParams s =
+        tlMaterialSurfaceFresnel(hit.baseColor.rgb, hit.baseColor.a, hit.emission.a, hit.fresnel, tlFrameMaterials(frame.flags));
     vec3 position = tlOffsetRayOrigin(hit.positionT.xyz, geometric, frame.sceneScale);
 
     if (bounce == 0u && push.aoRadius > 0.0) {

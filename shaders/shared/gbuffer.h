@@ -6,10 +6,16 @@
 #include "common.h"
 
 TL_BEGIN
+// The dielectric's F0 (KHR_materials_ior, KHR_materials_specular; shared/shading.h) as the
+// G-buffer keeps it: one grey value (the luminance of a tinted F0), stored as sqrt(F0) in 8 bits
+// so that glTF's 0.04 is exact (51 / 255 squared) and any F0 is within 2% of itself (half a step).
+TL_FN float tlGbufferEncodeF0(vec3 f0) { return sqrt(clamp(tlLuminance(f0), 0.0f, 1.0f)); }
+TL_FN float tlGbufferDecodeF0(float stored) { return stored * stored; }
+
 // Colour attachment locations of the G-buffer pass.
-TL_CONST uint kGbufferBaseColor = 0;   // RGBA8_SRGB: base colour (linear once sampled), a: 1
+TL_CONST uint kGbufferBaseColor = 0;   // RGBA8_SRGB: base colour (linear once sampled), a the dielectric's F90
 TL_CONST uint kGbufferNormal = 1;      // RG16_SNORM: octahedral world shading normal
-TL_CONST uint kGbufferMaterial = 2;    // RGBA8: r roughness, g metalness, b geometric-normal sign, a 1
+TL_CONST uint kGbufferMaterial = 2;    // RGBA8: r roughness, g metalness, b the dielectric's F0, a occlusion
 TL_CONST uint kGbufferEmissive = 3;    // RGBA16F: emitted radiance
 TL_CONST uint kGbufferMotion = 4;      // RG16F: screen motion in UV, current - previous
 TL_CONST uint kGbufferInstanceId = 5;  // R32UI: instance index + 1 (0: nothing)

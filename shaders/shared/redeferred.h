@@ -181,9 +181,9 @@ TL_FN IbufferSums tlIbufferScale(IbufferSums a, float k) {
 TL_FN vec3 tlIbufferResolve(SurfaceParams s, float nv, IbufferSums sums) {
   float c = max(nv, kBrdfMinCosine);
   vec2 split = tlSpecularAlbedoSplit(c, s.roughness);
-  vec3 diffuse = s.diffuse * ((1.0f - tlLayerAlbedo(s, split)) * kInvPi / (1.0f - s.layerAverage)) * sums.dg;
+  vec3 diffuse = s.diffuse * ((1.0f - tlLayerAlbedo(s, split)) * kInvPi / tlDiffuseLayerWeight(s)) * sums.dg;
   if (s.specular == 0.0f) return diffuse;
-  vec3 single = s.f0 * sums.sg1 + (vec3(1.0f) - s.f0) * sums.sg2;
+  vec3 single = s.f0 * sums.sg1 + (s.f90 - s.f0) * sums.sg2;
   vec3 multiple = s.msFresnel * ((1.0f - tlSingleScatteringAlbedo(split)) * kInvPi / max(1.0f - s.singleAverage, 1e-6f)) * sums.ms;
   return diffuse + single + multiple;
 }

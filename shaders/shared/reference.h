@@ -82,11 +82,13 @@ struct RefPush {
 // What a closest-hit shader reports (hitT < 0: the ray missed).
 struct RefHit {
   vec4 positionT;     // xyz camera-relative hit point, w hit distance
-  vec4 normal;        // xyz shading normal facing the ray, w unused
+  vec4 normal;        // xyz shading normal facing the ray; w 1 where the ray met a single-sided surface from
+                      // behind (camera rays pass it: glTF doubleSided, shared/scene.h), else 0
   vec4 geometric;     // xyz geometric normal facing the ray; w the density per unit area with which emitter
                       // sampling draws the hit point (its triangle's probability / area; 0: never)
   vec4 baseColor;     // rgb, a roughness
   vec4 emission;      // rgb emitted radiance, a metallic
+  vec4 fresnel;       // the dielectric's F0 (rgb) and F90 (a): KHR_materials_ior / specular (shared/scene.h)
 };
 TL_END
 

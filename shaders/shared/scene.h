@@ -54,14 +54,42 @@ struct GpuMaterial {
   float alphaCutoff;        // alpha MASK's cutoff (tlMaterialCutout)
   float occlusionStrength;  // glTF occlusionTexture.strength: occlusion = 1 + strength (texel.r - 1)
   uint alphaMode;           // kAlphaOpaque, kAlphaMask or kAlphaBlend
-  uint pad1;
-  uint pad2;
+  uint flags;               // kMaterialDoubleSided, kMaterialUnlit
+  float ior;                // KHR_materials_ior (1.5 without it; 0: Fresnel 1)
+  vec4 specularColor;       // KHR_materials_specular: rgb specularColorFactor, w specularFactor (1, 1 without it)
   GpuTextureSlot baseColorTexture;
   GpuTextureSlot normalTexture;
   GpuTextureSlot metallicRoughnessTexture;
   GpuTextureSlot emissiveTexture;
   GpuTextureSlot occlusionTexture;
+  GpuTextureSlot specularTexture;       // KHR_materials_specular: its alpha scales specularFactor
+  GpuTextureSlot specularColorTexture;  // and its rgb (sRGB) specularColorFactor
 };
+
+// glTF's doubleSided. A single-sided surface (the flag clear) is culled where the camera sees
+// its back: the G-buffer discards it and the reference's camera rays pass through it. Every
+// other view of it (shadow maps, shadow and GI rays, voxels, AO) sees both sides, as a closed
+// interior modelled with single-sided walls needs (its walls keep the sun out), and shades its
+// back as the back side (the normal turned towards the viewer or the ray). The front is where
+// the triangle's object-space normal (p1 - p0) x (p2 - p0) points, carried to the world by the
+// instance's normal matrix: a mirroring transform (negative determinant) keeps the front where
+// glTF says it is (its winding is then clockwise).
+TL_CONST uint kMaterialDoubleSided = 1u;
+TL_FN bool tlMaterialCulledFromBehind(uint flags) { return (flags & kMaterialDoubleSided) == 0u; }
+// KHR_materials_unlit: the surface shows its base colour (factor x texture x COLOR_0) whatever
+// the light, and reflects nothing. Shaded as emission of that radiance over a black surface
+// with no specular layer, so every path and the reference show it the same way (and, like any
+// emitter, it lights what it faces in the paths that gather emission).
+TL_CONST uint kMaterialUnlit = 2u;
+
+// KHR_materials_ior and KHR_materials_specular: the dielectric's F0 (rgb) and F90 (w) from the
+// ior, specularColor (factor x texture) and specular (factor x texture alpha):
+//   F0 = min(((ior - 1) / (ior + 1))^2 specularColor, 1) specular,   F90 = specular.
+// Their defaults (1.5, 1, 1) give glTF's core 0.04 and 1 (shared/shading.h).
+TL_FN vec4 tlDielectricFresnel(float ior, vec3 specularColor, float specular) {
+  float r = (ior - 1.0f) / (ior + 1.0f);
+  return vec4(min(vec3(r * r) * specularColor, vec3(1.0f)) * specular, specular);
+}
 
 // Where a slot samples its texture for a point with UV sets uv0 and uv1.
 TL_FN vec2 tlSlotUv(GpuTextureSlot s, vec2 uv0, vec2 uv1) {
@@ -105,7 +133,7 @@ TL_END
 
 #ifdef __cplusplus
 static_assert(sizeof(tl::shared::GpuTextureSlot) == 32);
-static_assert(sizeof(tl::shared::GpuMaterial) == 224);
+static_assert(sizeof(tl::shared::GpuMaterial) == 304);
 static_assert(sizeof(tl::shared::GpuInstance) == 208);
 #endif
 #endif

@@ -2,19 +2,28 @@
 // glTF 2.0's metal-rough model made energy-conserving (docs/accuracy.md has the derivation).
 //
 //   f = mix(f_dielectric, f_metal, metallic)
-//   f_metal      = f_ss(F0 = baseColor) + f_ms(F0 = baseColor)
-//   f_dielectric = f_ss(F0 = 0.04) + f_ms(F0 = 0.04) + f_diffuse
-//   f_ss(F0)     = D(h) V(l, v) F(v.h)             GGX, height-correlated Smith, Schlick's Fresnel
-//   f_ms(F0)     = F_ms (1 - E(mu_o)) (1 - E(mu_i)) / (pi (1 - E_avg))            (Kulla & Conty 2017)
-//                  F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)),  F_avg = F0 + (1 - F0) / 21
-//   f_diffuse    = baseColor / pi (1 - E_d(mu_o)) (1 - E_d(mu_i)) / (1 - E_d,avg)
+//   f_metal      = f_ss(F0 = baseColor, F90 = 1) + f_ms(F0 = baseColor, F90 = 1)
+//   f_dielectric = f_ss(F0_d, F90_d) + f_ms(F0_d, F90_d) + f_diffuse
+//   f_ss(F0,F90) = D(h) V(l, v) F(v.h)             GGX, height-correlated Smith, Schlick's Fresnel
+//                  F = F0 + (F90 - F0) (1 - v.h)^5
+//   f_ms(F0,F90) = F_ms (1 - E(mu_o)) (1 - E(mu_i)) / (pi (1 - E_avg))            (Kulla & Conty 2017)
+//                  F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)),  F_avg = F0 + (F90 - F0) / 21
+//   f_diffuse    = baseColor / pi (1 - E_d(mu_o)) (1 - E_d(mu_i)) / (1 - E_d,avg)     (per channel)
+//
+// The dielectric's Fresnel is glTF's KHR_materials_ior and KHR_materials_specular (their
+// defaults give F0_d = 0.04, F90_d = 1: glTF's core model):
+//   F0_d  = min(((ior - 1) / (ior + 1))^2 specularColor, 1) specular,   F90_d = specular
+// (shared/scene.h tlDielectricFresnel; specular and specularColor are the factors times their
+// textures). The G-buffer carries F0_d as one grey value (shared/gbuffer.h): a tinted specular
+// colour shows in the reference, in grey in the G-buffer paths.
 //
 // E(mu) is the albedo of f_ss with F = 1 and E_avg its cosine-weighted average, so f_ss + f_ms
 // reflects exactly what one microfacet bounce loses to masking: a white metal reflects all the
 // light it receives at any roughness. E_d(mu) is the dielectric's whole specular albedo (f_ss +
 // f_ms at F0 = 0.04): the diffuse layer gets exactly the energy the specular layer does not
 // reflect, so a white dielectric also reflects everything, and the form stays reciprocal.
-// It is glTF's fresnel_mix (diffuse weighted by 1 - F) with the Fresnel of one microfacet
+// A coloured F0_d makes E_d and the diffuse layer's weight coloured: each channel conserves
+// energy on its own. It is glTF's fresnel_mix (diffuse weighted by 1 - F) with the Fresnel of one microfacet
 // replaced by the albedo of the whole specular layer, which is what makes it conserve energy.
 // E and E_avg come from tables the build computes (shared/brdf_lut.h); a shader that includes
 // this file and shades reads them from binding kBindingBrdfTables of set 0 ("brdf.tables").
@@ -29,6 +38,7 @@
 #define TL_SHARED_SHADING_H
 #include "common.h"
 #include "brdf_lut.h"
+#include "gbuffer.h"
 #include "material_mode.h"
 #include "microfacet.h"
 #include "sampling.h"
@@ -53,14 +63,17 @@ TL_CONST float kDielectricF0 = 0.04f;  // glTF: index of refraction 1.5
 
 struct SurfaceParams {
   vec3 diffuse;          // the diffuse layer's albedo: baseColor (1 - metallic)
-  vec3 f0;               // Schlick's F0 of the single-scattering lobe: mix(0.04, baseColor, metallic)
-  vec3 msFresnel;        // F_ms of the multiple-scattering lobe, mixed like the model: mix(F_ms(0.04), F_ms(baseColor), metallic)
+  vec3 f0;               // Schlick's F0 of the single-scattering lobe: mix(F0_d, baseColor, metallic)
+  vec3 f90;              // and its F90: mix(F90_d, 1, metallic)
+  vec3 msFresnel;        // F_ms of the multiple-scattering lobe, mixed like the model: mix(F_ms(F0_d, F90_d), F_ms(baseColor, 1), metallic)
   float alpha;           // GGX alpha = roughness^2
   float roughness;       // perceptual roughness, clamped to [kBrdfMinRoughness, 1]: the tables' axis
   float specular;        // 1: the glTF model; 0: no specular layer (Lambert)
   float singleAverage;   // E_avg: the cosine-weighted average of E(mu)
-  float layerMsFresnel;  // F_ms(0.04): the dielectric layer's multiple-scattering Fresnel
-  float layerAverage;    // E_d,avg: the cosine-weighted average of the dielectric layer's specular albedo
+  vec3 layerF0;          // F0_d and F90_d: the dielectric layer's Fresnel
+  float layerF90;
+  vec3 layerMsFresnel;   // F_ms(F0_d, F90_d): the dielectric layer's multiple-scattering Fresnel
+  vec3 layerAverage;     // E_d,avg: the cosine-weighted average of the dielectric layer's specular albedo
   vec3 baseColor;        // what it was made from (tlSurfaceWithRoughness)
   float metallic;
 };
@@ -90,54 +103,67 @@ TL_FN vec2 tlSpecularAverageSplit(float roughness) {
 }
 
 // Kulla & Conty's Fresnel factor of the multiple-scattering lobe: the light that scatters more
-// than once, each bounce losing 1 - F_avg, and leaving with probability E_avg.
-TL_FN vec3 tlMultipleScatteringFresnel(vec3 f0, float singleAverage) {
-  vec3 fAvg = tlFresnelAverage(f0);
+// than once, each bounce losing 1 - F_avg, and leaving with probability E_avg. F_avg is Schlick's
+// from F0 to F90: F0 + (F90 - F0) / 21.
+TL_FN vec3 tlMultipleScatteringFresnel(vec3 f0, float f90, float singleAverage) {
+  vec3 fAvg = f0 + (vec3(f90) - f0) * (1.0f / 21.0f);
   return fAvg * fAvg * singleAverage / (vec3(1.0f) - fAvg * (1.0f - singleAverage));
 }
 
-TL_FN SurfaceParams tlSurface(vec3 baseColor, float roughness, float metallic) {
+// The surface with the dielectric's Fresnel given (F0_d, F90_d = specular: tlDielectricFresnel).
+TL_FN SurfaceParams tlSurfaceSpecular(vec3 baseColor, float roughness, float metallic, vec3 dielectricF0, float specular) {
   SurfaceParams s;
   float m = clamp(metallic, 0.0f, 1.0f);
+  float w = clamp(specular, 0.0f, 1.0f);
+  vec3 d0 = clamp(dielectricF0, vec3(0.0f), vec3(w));
   s.baseColor = baseColor;
   s.metallic = m;
   s.roughness = clamp(roughness, kBrdfMinRoughness, 1.0f);
   s.alpha = s.roughness * s.roughness;
   s.diffuse = baseColor * (1.0f - m);
-  s.f0 = mix(vec3(kDielectricF0), baseColor, m);
+  s.layerF0 = d0;
+  s.layerF90 = w;
+  s.f0 = mix(d0, baseColor, m);
+  s.f90 = mix(vec3(w), vec3(1.0f), m);
   s.specular = 1.0f;
   vec2 average = tlSpecularAverageSplit(s.roughness);
   s.singleAverage = average.x + average.y;
-  s.layerMsFresnel = tlMultipleScatteringFresnel(vec3(kDielectricF0), s.singleAverage).x;
-  s.msFresnel = mix(vec3(s.layerMsFresnel), tlMultipleScatteringFresnel(baseColor, s.singleAverage), m);
-  s.layerAverage = kDielectricF0 * average.x + average.y + s.layerMsFresnel * (1.0f - s.singleAverage);
+  s.layerMsFresnel = tlMultipleScatteringFresnel(d0, w, s.singleAverage);
+  s.msFresnel = mix(s.layerMsFresnel, tlMultipleScatteringFresnel(baseColor, 1.0f, s.singleAverage), m);
+  s.layerAverage = d0 * average.x + vec3(w * average.y) + s.layerMsFresnel * (1.0f - s.singleAverage);
   return s;
+}
+
+// glTF's core model: F0_d = 0.04, F90_d = 1.
+TL_FN SurfaceParams tlSurface(vec3 baseColor, float roughness, float metallic) {
+  return tlSurfaceSpecular(baseColor, roughness, metallic, vec3(kDielectricF0), 1.0f);
 }
 
 // No specular layer: f = albedo / pi (the diffuse and clay override modes).
 TL_FN SurfaceParams tlLambertSurface(vec3 albedo) {
-  SurfaceParams s = tlSurface(albedo, 1.0f, 0.0f);
-  s.f0 = vec3(0.0f);
-  s.msFresnel = vec3(0.0f);
+  SurfaceParams s = tlSurfaceSpecular(albedo, 1.0f, 0.0f, vec3(0.0f), 0.0f);
   s.specular = 0.0f;
-  s.layerMsFresnel = 0.0f;
-  s.layerAverage = 0.0f;
   return s;
 }
 
 // The same surface at another roughness (the SH specular's directional part, shared/sh_specular.h).
 TL_FN SurfaceParams tlSurfaceWithRoughness(SurfaceParams s, float roughness) {
   if (s.specular == 0.0f) return s;  // Lambert does not depend on roughness
-  return tlSurface(s.baseColor, roughness, s.metallic);
+  return tlSurfaceSpecular(s.baseColor, roughness, s.metallic, s.layerF0, s.layerF90);
 }
 
 // E(mu) with F = 1, from the split.
 TL_FN float tlSingleScatteringAlbedo(vec2 split) { return split.x + split.y; }
 
+// 1 - E_d,avg, the diffuse layer's normaliser: a dielectric of F0 = F90 = 1 (an ior of 0, a
+// bright specular colour) reflects everything specularly and leaves the diffuse layer nothing
+// (its 1 - E_d(mu) terms are 0 too), so the floor only keeps that 0 from becoming 0 / 0.
+TL_FN vec3 tlDiffuseLayerWeight(SurfaceParams s) { return max(vec3(1.0f) - s.layerAverage, vec3(1e-6f)); }
+
 // The dielectric layer's specular albedo E_d(mu) (0 without a specular layer).
-TL_FN float tlLayerAlbedo(SurfaceParams s, vec2 split) {
+TL_FN vec3 tlLayerAlbedo(SurfaceParams s, vec2 split) {
   float e = split.x + split.y;
-  return s.specular * (kDielectricF0 * split.x + split.y + s.layerMsFresnel * (1.0f - e));
+  return s.specular * (s.layerF0 * split.x + vec3(s.layerF90 * split.y) + s.layerMsFresnel * (1.0f - e));
 }
 
 // The specular lobes (f_ss + f_ms) alone.
@@ -149,7 +175,8 @@ TL_FN vec3 tlBrdfSpecular(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
   float hl = length(hv);
   vec3 h = hl > 1e-7f ? hv / hl : n;
   float vh = max(dot(v, h), 0.0f);
-  vec3 single = tlGgxDOfHalfVector(n, h, s.alpha) * tlSmithVisibility(nl, nv, s.alpha) * tlFresnelSchlick(s.f0, vh);
+  vec3 fresnel = s.f0 + (s.f90 - s.f0) * tlSchlickWeight(vh);
+  vec3 single = tlGgxDOfHalfVector(n, h, s.alpha) * tlSmithVisibility(nl, nv, s.alpha) * fresnel;
   float eo = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nv, s.roughness));
   float ei = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nl, s.roughness));
   vec3 multiple = s.msFresnel * ((1.0f - eo) * (1.0f - ei) * kInvPi / max(1.0f - s.singleAverage, 1e-6f));
@@ -161,9 +188,9 @@ TL_FN vec3 tlBrdfDiffuse(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
   float nl = dot(n, l);
   if (!(nl > 0.0f)) return vec3(0.0f);
   float nv = max(dot(n, v), kBrdfMinCosine);
-  float edo = tlLayerAlbedo(s, tlSpecularAlbedoSplit(nv, s.roughness));
-  float edi = tlLayerAlbedo(s, tlSpecularAlbedoSplit(nl, s.roughness));
-  return s.diffuse * (kInvPi * (1.0f - edo) * (1.0f - edi) / (1.0f - s.layerAverage));
+  vec3 edo = tlLayerAlbedo(s, tlSpecularAlbedoSplit(nv, s.roughness));
+  vec3 edi = tlLayerAlbedo(s, tlSpecularAlbedoSplit(nl, s.roughness));
+  return s.diffuse * kInvPi * (vec3(1.0f) - edo) * (vec3(1.0f) - edi) / tlDiffuseLayerWeight(s);
 }
 
 // f(l, v) (pi-free: radiance = f E n.l for a light of irradiance E from l); 0 below the surface.
@@ -177,6 +204,19 @@ TL_FN SurfaceParams tlMaterialSurface(vec3 baseColor, float roughness, float met
   return tlLambertSurface(tlMaterialBaseColor(baseColor, materials));
 }
 
+// The same with the dielectric's Fresnel (F0_d in rgb, F90_d in w: tlDielectricFresnel).
+TL_FN SurfaceParams tlMaterialSurfaceFresnel(vec3 baseColor, float roughness, float metallic, vec4 fresnel, uint materials) {
+  if (materials == kMaterialsAuthored) return tlSurfaceSpecular(baseColor, roughness, metallic, vec3(fresnel), fresnel.w);
+  return tlLambertSurface(tlMaterialBaseColor(baseColor, materials));
+}
+
+// The surface a G-buffer texel describes (shared/gbuffer.h): gbuffer.baseColor (rgb, and the
+// dielectric's F90 in a) and gbuffer.material (r roughness, g metallic, b the dielectric's F0).
+TL_FN SurfaceParams tlGbufferSurface(vec4 baseColor, vec4 material, uint materials) {
+  vec4 fresnel = vec4(vec3(tlGbufferDecodeF0(material.z)), baseColor.w);
+  return tlMaterialSurfaceFresnel(vec3(baseColor), material.x, material.y, fresnel, materials);
+}
+
 // Reflected radiance per unit of uniform incident radiance, seen at cos theta = nv: the
 // directional albedo of the specular lobes and of the diffuse layer. Exact for this BRDF (the
 // compensation is built from the same tables), so a white surface under a uniform sky L shows
@@ -184,10 +224,10 @@ TL_FN SurfaceParams tlMaterialSurface(vec3 baseColor, float roughness, float met
 TL_FN vec3 tlEnvironmentSpecular(SurfaceParams s, float nv) {
   vec2 split = tlSpecularAlbedoSplit(max(nv, kBrdfMinCosine), s.roughness);
   float e = tlSingleScatteringAlbedo(split);
-  return s.specular * (s.f0 * split.x + vec3(split.y) + s.msFresnel * (1.0f - e));
+  return s.specular * (s.f0 * split.x + s.f90 * split.y + s.msFresnel * (1.0f - e));
 }
 TL_FN vec3 tlEnvironmentDiffuse(SurfaceParams s, float nv) {
-  return s.diffuse * (1.0f - tlLayerAlbedo(s, tlSpecularAlbedoSplit(max(nv, kBrdfMinCosine), s.roughness)));
+  return s.diffuse * (vec3(1.0f) - tlLayerAlbedo(s, tlSpecularAlbedoSplit(max(nv, kBrdfMinCosine), s.roughness)));
 }
 TL_FN vec3 tlEnvironmentAlbedo(SurfaceParams s, float nv) { return tlEnvironmentSpecular(s, nv) + tlEnvironmentDiffuse(s, nv); }
 
@@ -195,8 +235,8 @@ TL_FN vec3 tlEnvironmentAlbedo(SurfaceParams s, float nv) { return tlEnvironment
 // reflects, averaged over the directions it leaves in; what a surface gives back as a bounce.
 TL_FN vec3 tlHemisphericalAlbedo(SurfaceParams s) {
   vec2 average = tlSpecularAverageSplit(s.roughness);
-  vec3 specular = s.specular * (s.f0 * average.x + vec3(average.y) + s.msFresnel * (1.0f - s.singleAverage));
-  return specular + s.diffuse * (1.0f - s.layerAverage);
+  vec3 specular = s.specular * (s.f0 * average.x + s.f90 * average.y + s.msFresnel * (1.0f - s.singleAverage));
+  return specular + s.diffuse * (vec3(1.0f) - s.layerAverage);
 }
 
 // Ambient occlusion with the occluders' light put back: the fraction 1 - ao of the sky that
@@ -215,9 +255,9 @@ TL_FN vec3 tlMultiBounceAo(float ao, vec3 albedo) {
 // chosen in proportion to the albedo it carries at this view (luminance).
 TL_FN float tlBrdfSpecularProbability(SurfaceParams s, float nv) {
   vec2 split = tlSpecularAlbedoSplit(max(nv, kBrdfMinCosine), s.roughness);
-  float single = s.specular * tlLuminance(s.f0 * split.x + vec3(split.y));
+  float single = s.specular * tlLuminance(s.f0 * split.x + s.f90 * split.y);
   float rest = tlLuminance(s.specular * s.msFresnel * (1.0f - tlSingleScatteringAlbedo(split)) +
-                           s.diffuse * (1.0f - tlLayerAlbedo(s, split)));
+                           s.diffuse * (vec3(1.0f) - tlLayerAlbedo(s, split)));
   return single + rest > 0.0f ? single / (single + rest) : 0.0f;
 }
 

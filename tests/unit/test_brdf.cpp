@@ -6,8 +6,11 @@
 //     quadrature sees the loss);
 //   - the uniform-environment terms the real-time paths use are that albedo;
 //   - reciprocity, the Lambert override surface, and the sampler's estimator (mean weight =
-//     albedo, density = the pdf it reports).
+//     albedo, density = the pdf it reports);
+//   - KHR_materials_ior / specular: a white dielectric still reflects everything at any F0 and
+//     F90, and F0 from the ior is Fresnel's head-on reflectance.
 #include "shared/sampling.h"
+#include "shared/scene.h"
 #include "shared/shading.h"
 
 #include <gtest/gtest.h>
@@ -238,6 +241,49 @@ TEST(Brdf, TablesAreBoundedAndSmoothMirrorsReflectEverything) {
   const vec2 e = tlSpecularAlbedoSplit(1.0f, kBrdfMinRoughness);
   EXPECT_NEAR(e.x + e.y, 1.0f, 1e-3f);
   EXPECT_NEAR(e.y, 0.0f, 1e-4f);
+}
+
+// KHR_materials_ior and KHR_materials_specular keep the balance: a white dielectric reflects all
+// it receives whatever its F0 and F90, each channel on its own where the specular is coloured
+// (the diffuse layer takes what that channel's specular layer leaves).
+TEST(Brdf, WhiteDielectricReflectsEverythingAtAnyIorAndSpecular) {
+  struct Case {
+    const char* name;
+    float ior;
+    vec3 color;
+    float specular;
+  };
+  const Case cases[] = {{"ior 1 (no specular reflection)", 1.0f, vec3(1.0f), 1.0f},
+                        {"ior 1.33", 1.33f, vec3(1.0f), 1.0f},
+                        {"ior 2.5", 2.5f, vec3(1.0f), 1.0f},
+                        {"ior 0 (Fresnel 1)", 0.0f, vec3(1.0f), 1.0f},
+                        {"specular 0", 1.5f, vec3(1.0f), 0.0f},
+                        {"specular 0.5, tinted colour", 1.5f, vec3(4.0f, 1.0f, 0.2f), 0.5f}};
+  for (const Case& k : cases)
+    for (float r : {0.3f, 1.0f}) {
+      const vec4 fresnel = tlDielectricFresnel(k.ior, k.color, k.specular);
+      double lo = 2.0, hi = 0.0;
+      for (double mu : kCosines) {
+        const glm::dvec3 a = directionalAlbedo(tlSurfaceSpecular(vec3(1.0f), r, 0.0f, vec3(fresnel), fresnel.w), mu);
+        for (int c = 0; c < 3; ++c) {
+          lo = std::min(lo, a[c]), hi = std::max(hi, a[c]);
+          EXPECT_NEAR(a[c], 1.0, 0.01) << k.name << " roughness " << r << " cos " << mu << " channel " << c;
+        }
+      }
+      std::printf("white dielectric, %s, roughness %.1f: albedo %.5f .. %.5f\n", k.name, r, lo, hi);
+    }
+}
+
+// F0 from the ior is Fresnel's reflectance at normal incidence, ((n - 1) / (n + 1))^2 for
+// unpolarised light: a black, smooth dielectric seen head-on reflects that much of a uniform sky.
+TEST(Brdf, SmoothBlackDielectricReflectsFresnelsReflectanceHeadOn) {
+  for (double n : {1.33, 1.5, 2.0, 2.42}) {
+    const double exact = (n - 1.0) * (n - 1.0) / ((n + 1.0) * (n + 1.0));
+    const vec4 fresnel = tlDielectricFresnel(float(n), vec3(1.0f), 1.0f);
+    const double a = directionalAlbedo(tlSurfaceSpecular(vec3(0.0f), 0.1f, 0.0f, vec3(fresnel), fresnel.w), 1.0).x;
+    std::printf("ior %.2f: head-on albedo %.5f, Fresnel %.5f\n", n, a, exact);
+    EXPECT_NEAR(a / exact, 1.0, 0.02) << "ior " << n;
+  }
 }
 
 }  // namespace

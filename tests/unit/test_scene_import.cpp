@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 
 namespace tl::scene {
@@ -224,6 +226,78 @@ TEST(SceneErrors, UnsupportedRequiredExtension) {
   j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
   writeText(tmp.path / "draco_required.gltf", j.dump());
   expectOneLineErrorNaming(tmp.path / "draco_required.gltf", "KHR_draco_mesh_compression");
+}
+
+// The material extensions exporters write: KHR_materials_ior and KHR_materials_specular reach
+// the material as authored, KHR_materials_unlit marks it, and a file that requires
+// KHR_materials_pbrSpecularGlossiness is converted to metal-rough (no longer refused), with the
+// conversion's error stated. Out-of-range values are clamped with a warning each.
+TEST(SceneImport, MaterialExtensionsAreReadAndSpecularGlossinessIsConverted) {
+  TempDir tmp;
+  writeTriangleBin(tmp.path / "t.bin");
+  auto j = triangle("t.bin");
+  j["extensionsUsed"] = {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_unlit",
+                         "KHR_materials_pbrSpecularGlossiness"};
+  j["extensionsRequired"] = {"KHR_materials_pbrSpecularGlossiness"};
+  j["materials"] = {
+      {{"name", "tinted"},
+       {"extensions",
+        {{"KHR_materials_ior", {{"ior", 2.0}}},
+         {"KHR_materials_specular", {{"specularFactor", 0.5}, {"specularColorFactor", {1.0, 0.5, 0.25}}}}}}},
+      {{"name", "flat"}, {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}},
+      {{"name", "plastic"},
+       {"extensions",
+        {{"KHR_materials_pbrSpecularGlossiness",
+          {{"diffuseFactor", {0.5, 0.25, 0.125, 1.0}}, {"specularFactor", {0.04, 0.04, 0.04}}, {"glossinessFactor", 0.75}}}}}},
+      {{"name", "gold"},
+       {"extensions",
+        {{"KHR_materials_pbrSpecularGlossiness",
+          {{"diffuseFactor", {0.0, 0.0, 0.0, 1.0}}, {"specularFactor", {1.0, 0.78, 0.34}}, {"glossinessFactor", 0.9}}}}}},
+      {{"name", "out_of_range"},
+       {"extensions", {{"KHR_materials_ior", {{"ior", 0.5}}}, {"KHR_materials_specular", {{"specularFactor", 2.0}}}}}}};
+  j["meshes"][0]["primitives"][0]["material"] = 0;
+  writeText(tmp.path / "extensions.gltf", j.dump());
+  const Scene s = loadGltf(tmp.path / "extensions.gltf");
+  ASSERT_EQ(s.materials.size(), 5u);
+  const Material& tinted = s.materials[0];
+  EXPECT_FLOAT_EQ(tinted.ior, 2.0f);
+  EXPECT_FLOAT_EQ(tinted.specularFactor, 0.5f);
+  EXPECT_FLOAT_EQ(tinted.specularColorFactor.g, 0.5f);
+  EXPECT_FALSE(tinted.unlit);
+  EXPECT_TRUE(s.materials[1].unlit);
+  // A grey plastic's specular is the model's 0.04: nothing to approximate.
+  const Material& plastic = s.materials[2];
+  EXPECT_NEAR(plastic.metallic, 0.0f, 1e-6f);
+  EXPECT_NEAR(plastic.baseColorFactor.r, 0.5f, 1e-5f);
+  EXPECT_NEAR(plastic.baseColorFactor.b, 0.125f, 1e-5f);
+  EXPECT_NEAR(plastic.roughness, 0.25f, 1e-6f);
+  EXPECT_LT(plastic.specularGlossinessError, 1e-5f);
+  // Gold: a black diffuse and a coloured specular are a metal of that colour.
+  const Material& gold = s.materials[3];
+  EXPECT_GT(gold.metallic, 0.99f);
+  EXPECT_NEAR(gold.baseColorFactor.g, 0.78f, 0.01f);
+  EXPECT_NEAR(gold.roughness, 0.1f, 1e-6f);
+  std::printf("specular-glossiness: plastic error %.5f, gold error %.5f (metallic %.4f)\n", plastic.specularGlossinessError,
+              gold.specularGlossinessError, gold.metallic);
+  EXPECT_LT(gold.specularGlossinessError, 0.02f);
+  EXPECT_FLOAT_EQ(s.materials[4].ior, 1.0f);
+  EXPECT_FLOAT_EQ(s.materials[4].specularFactor, 1.0f);
+  size_t clampWarnings = 0;
+  for (const auto& w : s.warnings) clampWarnings += w.find("out_of_range") != std::string::npos;
+  EXPECT_EQ(clampWarnings, 2u);
+  bool converted = false, tintedNoted = false;
+  for (const auto& i : s.ignored) {
+    EXPECT_EQ(i.find("not applied"), std::string::npos) << i;
+    converted |= i.find("KHR_materials_pbrSpecularGlossiness (2x): converted to metal-rough") == 0;
+    tintedNoted |= i.find("tinted KHR_materials_specular colour (1x)") != std::string::npos;
+  }
+  EXPECT_TRUE(converted);
+  EXPECT_TRUE(tintedNoted);
+  // The report names how each extension is rendered.
+  const auto report = sceneReport(s);
+  for (const char* line : {"extension KHR_materials_ior: rendered", "extension KHR_materials_unlit: rendered",
+                           "extension KHR_materials_pbrSpecularGlossiness: converted to metal-rough"})
+    EXPECT_TRUE(std::any_of(report.begin(), report.end(), [&](const std::string& l) { return l.rfind(line, 0) == 0; })) << line;
 }
 
 TEST(SceneErrors, NonFinitePosition) {

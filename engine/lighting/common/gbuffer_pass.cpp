@@ -15,8 +15,8 @@ void GbufferPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   d.fragmentShader = "common/gbuffer.frag";
   d.vertexBindings = scene::GpuScene::vertexBindings();
   d.vertexAttributes = scene::GpuScene::vertexAttributes();
-  // Culling off: single-sided walls seen from behind must still occlude and shade
-  // (the shader flips the normal of back faces).
+  // Culling off: the shader culls by the material's doubleSided (one pipeline serves every
+  // material, mirrored instances included) and flips the normal of the back faces it keeps.
   d.cullMode = VK_CULL_MODE_NONE;
 
   RasterPass pass(in.device, "gbuffer", d);

@@ -19,9 +19,9 @@ struct GbufferChannel {
 };
 
 inline constexpr GbufferChannel kGbufferChannels[] = {
-    {"gbuffer.baseColor", VK_FORMAT_R8G8B8A8_SRGB, shared::kGbufferBaseColor, "base colour, linear once sampled; a coverage"},
+    {"gbuffer.baseColor", VK_FORMAT_R8G8B8A8_SRGB, shared::kGbufferBaseColor, "base colour, linear once sampled; a the dielectric's F90 (KHR_materials_specular; 1: glTF's core model)"},
     {"gbuffer.normal", VK_FORMAT_R16G16_SNORM, shared::kGbufferNormal, "world shading normal, octahedral", "oct-normal"},
-    {"gbuffer.material", VK_FORMAT_R8G8B8A8_UNORM, shared::kGbufferMaterial, "r roughness, g metalness, a the material's occlusion (glTF occlusionTexture; 1: none)", "",
+    {"gbuffer.material", VK_FORMAT_R8G8B8A8_UNORM, shared::kGbufferMaterial, "r roughness, g metalness, b sqrt of the dielectric's F0 (KHR_materials_ior/specular; 0.2: glTF's 0.04), a the material's occlusion (glTF occlusionTexture; 1: none)", "",
      "roughness metalness B A"},
     {"gbuffer.emissive", VK_FORMAT_R16G16B16A16_SFLOAT, shared::kGbufferEmissive, "emitted radiance; a coverage"},
     {"gbuffer.motion", VK_FORMAT_R16G16_SFLOAT, shared::kGbufferMotion, "screen motion in UV, current - previous", "",
