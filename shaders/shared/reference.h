@@ -24,6 +24,7 @@ TL_CONST uint kRefBindingStdErr = 18;      // rgba32f: standard error of referen
 TL_CONST uint kRefBindingEmitters = 19;    // Emitter[] (shared/emitters.h): RefPush::emitterCount of them (bound when > 0)
 TL_CONST uint kRefBindingAllocation = 20;  // rgba32f: this frame's samples (x), the first one's number (y), the noise the next frame allocates by (z)
 TL_CONST uint kRefBindingLastNoise = 21;   // RefNoiseTotals: the image's noise at the end of the last frame (persistent)
+TL_CONST uint kRefBindingRawRays = 22;     // r32f: rays the benchmark's trivial kernel traced per pixel (reference/raw.rgen)
 
 // Adaptive sampling (RefPush::adaptive). Each frame's samples of a pixel are drawn in proportion
 // to the standard deviation of its samples, sigma = sqrt(sum over channels of s_c^2), over the

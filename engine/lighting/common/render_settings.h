@@ -110,6 +110,7 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(bool, hybridShadows, true, 0, 1, "", "rt", "", kSettingPlain, "hybrid ray-traced sun shadows (GameWorks HRTS): a ray's hard shadow near contacts, PCSS further away, blended by blocker distance (shadow.sun.visibility); off: the shadow map alone") \
   X(float, hybridShadowHardTexels, 4.0f, 0.5f, 64.0f, "texels", "rt", "", kSettingPlain, "HRTS: penumbrae narrower than this many shadow-map texels take the ray's hard shadow; linear blend up to it") \
   X(bool, rtRawRayProbe, false, 0, 1, "", "rt", "", kSettingNoPanel, "benchmark: also trace the same rays with a trivial kernel (rt.rawRays; bench --rays)") \
+  X(bool, referenceRawRayProbe, false, 0, 1, "", "reference", "", kSettingNoPanel, "benchmark: also trace a trivial kernel on the reference's top level (reference.rawRays; bench --rays)") \
   X(uint32_t, bentSkyRays, 4, 1, 64, "rays", "bentsky", "bentsky", kSettingPlain, "bentsky plugin: sky-visibility rays per pixel and frame (cosine-distributed, as long as rtRayLength)") \
   X(uint32_t, bentSkyMaxFrames, 32, 1, 1024, "frames", "bentsky", "", kSettingPlain, "bentsky plugin: accumulation window while the view holds still") \
   X(float, legacyAoRadius, 0.0f, 0.0f, 1e9f, "m", "legacy", "legacy", kSettingAuto, "reach of SSAO and voxel AO") \

@@ -62,6 +62,8 @@ constexpr const char* kAnyHit = "reference/alpha.rahit";  // alpha MASK and BLEN
 const RayShaders kTraceShaders{"reference.trace", kRaygen, {std::begin(kMisses), std::end(kMisses)}, {{kClosestHit, kAnyHit}}};
 const RayShaders kIrradianceShaders{"reference.irradiance", kIrradianceRaygen, kTraceShaders.misses, kTraceShaders.hitGroups};
 const RayShaders kDepthShaders{"reference.bounces", kDepthRaygen, kTraceShaders.misses, kTraceShaders.hitGroups};
+// The benchmark's trivial kernel (bench --rays): the rt path's distance-only hit and miss shaders.
+const RayShaders kRawShaders{"reference.rawRays", "reference/raw.rgen", {"rt/raw.rmiss"}, {{"rt/raw.rchit", ""}}};
 
 class ReferencePath final : public LightingPath {
  public:
@@ -142,6 +144,7 @@ class ReferencePath final : public LightingPath {
     addNoisePasses(graph, in);
     addIrradiancePass(graph, in, push);
     addDepthSplitPass(graph, in, push);
+    if (in.settings.referenceRawRayProbe) addRawRayPass(graph, in, push);
     LightingOutputs out;
     out.radiance = kRadiance;
     return out;
@@ -182,6 +185,24 @@ class ReferencePath final : public LightingPath {
         .add(graph);
     graph.markOutput(kReferenceNoise);
     graph.requestReadback(kReferenceNoise);
+  }
+
+  // The benchmark's trivial kernel (reference/raw.rgen) on the same top level, samplesPerFrame
+  // short paths of rays a pixel: the device's raw ray rate, which `bench --rays` holds the
+  // reference's paths per second against (session/ray_figures.h).
+  void addRawRayPass(graph::RenderGraph& graph, FrameInputs& in, shared::RefPush push) {
+    const uint32_t w = in.settings.width, h = in.settings.height;
+    push.samplesSoFar = samples_;
+    RayTracingPass(in.device, "reference.rawRays", kRawShaders)
+        .uniform(shared::kRefBindingFrame, kFrameConstants)
+        .accelerationStructure(shared::kRefBindingTlas, tlas_.structure().handle(), structures())
+        .storageOut(shared::kRefBindingRawRays, kReferenceRawRays,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
+                                                 "benchmark: rays the trivial kernel traced per pixel"))
+        .push(push)
+        .trace(w, h)
+        .add(graph);
+    graph.markOutput(kReferenceRawRays);
   }
 
   // The diffuse irradiance at the primary hit (what composite.irradiance holds for the
