@@ -152,7 +152,12 @@ std::string benchTable(const nlohmann::json& r) {
     for (const auto& [name, value] : r["figures"].items()) s += fmt::format(" {}={:g}", name, value.get<double>());
     s += "\n";
   }
-  if (r.contains("rays") && r["rays"].is_object()) {
+  if (r.contains("rays") && r["rays"].is_object() && r["rays"].contains("pathsPerSecond")) {
+    const auto& y = r["rays"];
+    s += fmt::format("  reference.trace {:.3f} M paths/s; raw kernel {:.2f} M rays/s ({:.2f} rays a path): a path costs {:.1f} raw rays\n",
+                     y["pathsPerSecond"].get<double>() * 1e-6, y["rawRaysPerSecond"].get<double>() * 1e-6,
+                     y["rawRaysPerPath"].get<double>(), y["rawRaysPerPathTime"].get<double>());
+  } else if (r.contains("rays") && r["rays"].is_object()) {
     const auto& y = r["rays"];
     s += fmt::format("  rays: {} real of {} surface pixels (pre-trace answered {:.1f}%), {:.3f} real rays/pixel\n",
                      y["realRays"].get<size_t>(), y["surfacePixels"].get<size_t>(), 100.0 * y["pretraceShare"].get<double>(),

@@ -23,7 +23,8 @@ class BenchCommand : public CliCommand {
         ->check(CLI::Range(0u, kMaxWarmupFrames))
         ->capture_default_str();
     cmd->add_flag("--rays", bench_.rays,
-                  "rt path: the device's raw ray rate on the scene's TLAS (trivial kernel) against rt.trace's");
+                  "rt path: the device's raw ray rate on the scene's TLAS (trivial kernel) against rt.trace's; "
+                  "reference: its paths per second against that rate on its own");
     cmd->add_flag("--cut-every-frame", bench_.cutEveryFrame,
                   "forget the history before every measured frame, as on a camera cut (what rejection costs at worst)");
     cmd->add_option("--frames-in-flight", bench_.framesInFlight,

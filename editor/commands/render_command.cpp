@@ -158,9 +158,9 @@ int runRender(const RenderOptions& o) {
         if (sofar.frames > 0) times.add(session);
         if (!sofar.noise) return;
         // Progress by the noise: samples needed scale as 1 / noise^2.
-        const double needed = double(sofar.noise->mostSamples) * std::pow(sofar.noise->relativeStdError / target.relativeStdError, 2.0);
-        progress.update(std::min(1.0, double(sofar.noise->mostSamples) / std::min(needed, double(target.maxSamples))),
-                        fmt::format("{} spp, noise {:.4f} (target {})", sofar.noise->mostSamples,
+        const double needed = double(sofar.noise->samplesPerPixel()) * std::pow(sofar.noise->relativeStdError / target.relativeStdError, 2.0);
+        progress.update(std::min(1.0, double(sofar.noise->samplesPerPixel()) / std::min(needed, double(target.maxSamples))),
+                        fmt::format("{} spp, noise {:.4f} (target {})", sofar.noise->samplesPerPixel(),
                                     sofar.noise->relativeStdError, target.relativeStdError));
       });
       times.add(session);
@@ -198,7 +198,7 @@ int runRender(const RenderOptions& o) {
                                   : fmt::format(" (target {}: not reached; the cap of {} samples stopped it)", *o.untilNoise,
                                                 o.spp.value_or(session::NoiseTarget::kDefaultMaxSamples));
     fmt::print("reference noise: relative standard error {:.5f} after {} samples per pixel{}\n", noise->relativeStdError,
-               noise->mostSamples, target);
+               noise->samplesPerPixel(), target);
   }
   if (!o.dumpGraph.empty()) {
     if (o.dumpGraph == "-") {

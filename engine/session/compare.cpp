@@ -163,9 +163,9 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
     const ReferenceConvergence run = s.renderReferenceUntilNoise(target, [&](const ReferenceConvergence& sofar) {
       request(true);
       if (progress && sofar.noise)
-        progress(fmt::format("reference {} spp, noise {:.4f} (target {})", sofar.noise->mostSamples,
+        progress(fmt::format("reference {} spp, noise {:.4f} (target {})", sofar.noise->samplesPerPixel(),
                              sofar.noise->relativeStdError, target.relativeStdError),
-                 std::min(1.0, double(sofar.noise->mostSamples) / target.maxSamples));
+                 std::min(1.0, double(sofar.noise->samplesPerPixel()) / target.maxSamples));
     });
     info["noise"] = {{"reached", run.reached}};
   } else {
@@ -180,8 +180,8 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   }
   if (const auto noise = s.referenceNoise()) {
     info["noise"]["relativeStdError"] = noise->relativeStdError;
-    info["noise"]["spp"] = noise->mostSamples;
-    info["spp"] = noise->mostSamples;
+    info["noise"]["spp"] = noise->samplesPerPixel();
+    info["spp"] = noise->samplesPerPixel();
   }
   ReferenceImages r{rgbImage(s.buffer("reference.radiance")), channelOf(s.buffer("reference.ao"), 0),
                     rgbImage(s.buffer("reference.irradiance"))};

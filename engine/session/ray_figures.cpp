@@ -1,5 +1,6 @@
 #include "session/ray_figures.h"
 
+#include "lighting/reference/reference_path.h"
 #include "lighting/rt/rt_path.h"
 #include "metrics/statistics.h"
 #include "shared/rt.h"
@@ -20,17 +21,47 @@ double medianOf(const PassTimes& passes, const std::string& pass) {
 
 }  // namespace
 
+// The reference's paths per second against the raw kernel's rays per second on its top level.
+nlohmann::json referenceRayFigures(Session& session, const PassTimes& passes) {
+  const auto counts = session.buffer(lighting::kReferenceRawRays).texels();
+  double rawRays = 0.0;
+  for (float c : counts) rawRays += c;
+  const double pixels = double(session.settings().width) * session.settings().height;
+  const double paths = pixels * session.settings().referenceSamplesPerFrame;
+  const double rawMs = medianOf(passes, "reference.rawRays"), traceMs = medianOf(passes, "reference.trace");
+  const double rawRate = rawMs > 0.0 ? rawRays / (rawMs * 1e-3) : 0.0;
+  const double pathRate = traceMs > 0.0 ? paths / (traceMs * 1e-3) : 0.0;
+  return {{"paths", paths},  // this frame's: samples per frame a pixel (adaptive sampling spreads them)
+          {"traceMs", traceMs},
+          {"pathsPerSecond", pathRate},
+          {"rawRays", rawRays},
+          {"rawRaysPerPath", paths > 0.0 ? rawRays / paths : 0.0},
+          {"rawKernelMs", rawMs},
+          {"rawRaysPerSecond", rawRate},
+          // What one path costs, in the trivial kernel's rays: the raw rate over the path rate.
+          {"rawRaysPerPathTime", pathRate > 0.0 ? rawRate / pathRate : 0.0}};
+}
+
 void requestRayFigureBuffers(Session& session) {
+  if (session.path() == "reference") {
+    session.requestBuffer(lighting::kReferenceRawRays);
+    return;
+  }
   session.requestBuffer(lighting::kPretraceHits);
   session.requestBuffer("gbuffer.depth");
 }
 
 void enableRayProbe(Session& session) {
-  if (session.path() != "rt") throw SessionError("--rays measures the rt path: add --path rt");
+  if (session.path() == "reference") {
+    session.settings().referenceRawRayProbe = true;
+    return;
+  }
+  if (session.path() != "rt") throw SessionError("--rays measures the rt path or the reference: add --path rt or --path reference");
   session.settings().rtRawRayProbe = true;
 }
 
 nlohmann::json rayFigures(Session& session, const PassTimes& passes) {
+  if (session.path() == "reference") return referenceRayFigures(session, passes);
   const auto& pre = session.buffer(lighting::kPretraceHits);
   const auto depth = session.buffer("gbuffer.depth").texels();
   std::vector<uint32_t> hits(pre.bytes.size() / 4);

@@ -51,8 +51,9 @@ ReferenceConvergence Session::renderReferenceUntilNoise(const NoiseTarget& targe
     ++run.frames;
     run.noise = referenceNoise();
     run.reached = run.noise && run.noise->relativeStdError <= target.relativeStdError;
-    const uint32_t most = run.noise ? run.noise->mostSamples : run.frames * target.samplesPerFrame;
-    if (run.reached || most + target.samplesPerFrame > target.maxSamples) break;
+    // Each frame draws samplesPerFrame a pixel on average, however adaptive sampling spreads them.
+    const uint32_t spent = run.frames * target.samplesPerFrame;
+    if (run.reached || spent + target.samplesPerFrame > target.maxSamples) break;
   }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return run;

@@ -16,14 +16,16 @@ struct ReferenceNoise {
   double relativeStdError = 0.0;  // RSE of the mean image (above)
   double meanVariance = 0.0;      // mean over pixels and channels of Var(estimate) (the RSE's numerator, squared)
   double meanValue = 0.0;         // mean over pixels and channels of the estimate
-  uint32_t fewestSamples = 0, mostSamples = 0;  // per pixel
+  uint32_t fewestSamples = 0, mostSamples = 0;  // per pixel (adaptive sampling gives pixels different counts)
   double meanSamples = 0.0;
+  // The samples a pixel took on average, the figure a render's "spp" means.
+  uint32_t samplesPerPixel() const { return uint32_t(meanSamples + 0.5); }
 };
 
 // What renderReferenceUntilNoise aims at.
 struct NoiseTarget {
   double relativeStdError = 0.01;
-  // The cap: the render stops once a pixel has this many samples, target reached or not.
+  // The cap: the render stops once the pixels have this many samples on average, target reached or not.
   static constexpr uint32_t kDefaultMaxSamples = 8192;
   uint32_t maxSamples = kDefaultMaxSamples;
   uint32_t samplesPerFrame = 16;  // RenderSettings::referenceSamplesPerFrame while it renders

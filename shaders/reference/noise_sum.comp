@@ -1,6 +1,7 @@
 #version 460
 // The reference's noise, second step: one workgroup sums every tile's RefNoiseTotals into
-// the image's (reference.noise), which the session reads back each frame.
+// the image's (reference.noise), which the session reads back each frame and the next frame's
+// trace allocates its samples by (its mean sigma).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/reference.h"
 

@@ -7,21 +7,48 @@
 TL_BEGIN
 TL_CONST uint kRefBindingFrame = 0;      // FrameConstants (shared/frame.h)
 TL_CONST uint kRefBindingTlas = 1;
-TL_CONST uint kRefBindingAccum = 2;      // rgba32f: sum of the rounds' means (rgb), rounds (a) (persistent)
+TL_CONST uint kRefBindingPilotMean = 2;  // rgba32f: the pilot's sample mean (rgb), its samples (a) (persistent; below)
 TL_CONST uint kRefBindingRadiance = 3;   // rgba32f: the estimate, sum / count
 TL_CONST uint kRefBindingGeometry = 4;   // RefInstanceGeometry[]
 TL_CONST uint kRefBindingVertices = 5;   // scene vertices as floats (kVertexFloats per vertex, shared/scene.h)
 TL_CONST uint kRefBindingIndices = 6;    // scene indices
-TL_CONST uint kRefBindingAoAccum = 7;    // r32f: sum of the rounds' mean AO at the primary hit (persistent)
-TL_CONST uint kRefBindingAo = 8;         // r32f: ambient occlusion at the AO radius, sum / rounds
+TL_CONST uint kRefBindingPilotMoments = 7;  // rgba32f: the pilot's squared deviations from its mean, summed (rgb) (persistent)
+TL_CONST uint kRefBindingAo = 8;         // r32f: ambient occlusion at the AO radius, the mean of the pixel's samples
 TL_CONST uint kRefBindingIrradianceAccum = 9;  // rgba32f: sum of irradiance samples (rgb) and their count (a)
 TL_CONST uint kRefBindingIrradiance = 10;      // rgba32f: diffuse irradiance at the primary hit, sum / count
 TL_CONST uint kRefBindingDepthAccum = 11;  // rgba32f: sums of the radiance by depth group (rgb) and their count (a)
 TL_CONST uint kRefBindingDepth0 = 12;      // rgba32f: the radiance of depth group 0, sum / count; groups 1..3 at 13..15
 TL_CONST uint kRefBindingMoments = 16;     // rgba32f: squared deviations from the pixel's sample mean, summed (rgb), samples (a) (persistent)
-TL_CONST uint kRefBindingSampleMean = 17;  // rgba32f: the mean of all the pixel's samples (rgb), sum over rounds of 1 / samples (a) (persistent)
+TL_CONST uint kRefBindingSampleMean = 17;  // rgba32f: the mean of the pixel's samples (rgb: the estimate; a: its AO) (persistent)
 TL_CONST uint kRefBindingStdErr = 18;      // rgba32f: standard error of reference.radiance per channel (rgb), the pixel's samples (a)
 TL_CONST uint kRefBindingEmitters = 19;    // Emitter[] (shared/emitters.h): RefPush::emitterCount of them (bound when > 0)
+TL_CONST uint kRefBindingAllocation = 20;  // rgba32f: this frame's samples (x), the first one's number (y), the noise the next frame allocates by (z)
+TL_CONST uint kRefBindingLastNoise = 21;   // RefNoiseTotals: the image's noise at the end of the last frame (persistent)
+TL_CONST uint kRefBindingRawRays = 22;     // r32f: rays the benchmark's trivial kernel traced per pixel (reference/raw.rgen)
+
+// Adaptive sampling (RefPush::adaptive). Each frame's samples of a pixel are drawn in proportion
+// to the standard deviation of its samples, sigma = sqrt(sum over channels of s_c^2), over the
+// image's mean sigma (what minimises the image's summed variance, the RSE's numerator, for a
+// fixed number of samples). The estimate stays the plain mean of the pixel's samples, which
+// is unbiased only if the counts do not depend on the samples they average: the counts are
+// decided by a pilot, a second, independent stream of samples of the same pixel (its own random
+// numbers) that the estimate never averages. kRefAdaptiveOwn decides them by the estimate's own
+// samples instead: biased (a pixel whose samples so far happen to agree gets fewer more), kept
+// as the diagnostic that shows why the pilot exists.
+TL_CONST uint kRefAdaptiveOff = 0;    // every pixel the same samples each frame
+TL_CONST uint kRefAdaptivePilot = 1;  // by the pilot's sigma (unbiased)
+TL_CONST uint kRefAdaptiveOwn = 2;    // by the estimate's own sigma (biased; diagnostic)
+// The pilot's share of the samples: one pilot sample for every kRefPilotEvery the image draws
+// (a pixel's sigma needs only rough precision: an allocation off by a factor (1 + e) costs a
+// fraction of order e^2 of its gain), and one each frame until a pixel has kRefPilotWarmup.
+TL_CONST uint kRefPilotEvery = 16u;
+TL_CONST uint kRefPilotWarmup = 4u;
+// A share of every frame's samples stays uniform, so a pixel whose pilot saw no variance yet
+// (a rare path not drawn) still converges: its variance is at most 1 / kRefAdaptiveFloor times
+// the uniform allocation's. A pixel takes at most kRefAdaptiveMost times the mean in a frame
+// (a frame's cost stays bounded, and so does the imbalance between neighbouring invocations).
+TL_CONST float kRefAdaptiveFloor = 0.125f;
+TL_CONST float kRefAdaptiveMost = 16.0f;
 
 // The reference's noise, summed over the image in two steps (reference/noise_tiles.comp: tiles of
 // kRefNoiseTile x kRefNoiseTile pixels; reference/noise_sum.comp: the tiles) into one RefNoiseTotals.
@@ -30,6 +57,7 @@ TL_CONST uint kRefNoiseBindingRadiance = 0;  // reference.radiance (tile step)
 TL_CONST uint kRefNoiseBindingStdErr = 1;    // reference.stderr (tile step)
 TL_CONST uint kRefNoiseBindingTiles = 2;     // RefNoiseTotals per tile: written by the tile step, read by the sum
 TL_CONST uint kRefNoiseBindingTotals = 3;    // RefNoiseTotals: the whole image (sum step)
+TL_CONST uint kRefNoiseBindingAllocation = 4;  // reference.allocation (tile step: the sigma adaptive sampling allocates by)
 
 // The radiance by path depth (scattering events between light and camera), in four groups:
 // 0-1 (emission and direct light), 2 (the first bounce), 3 (the second), 4 and more.
@@ -46,7 +74,8 @@ struct RefInstanceGeometry {
 
 // What the noise passes add up, over pixels and the three channels.
 struct RefNoiseTotals {
-  vec4 sums;     // x: variance of each pixel's estimate (stderr^2), y: the estimates, z: samples, w: unused
+  vec4 sums;     // x: variance of each pixel's estimate (stderr^2), y: the estimates, z: samples, w: the sigma
+                 // adaptive sampling allocates by (reference.allocation z)
   uvec4 counts;  // x: pixels, y: pixels with fewer than 2 samples (no variance yet), z: fewest samples, w: most
 };
 
@@ -74,9 +103,9 @@ struct RefPush {
   uint maxBounces;       // scattering events per path (1 = direct light only, 2 = plus one bounce)
   uint seed;
   float aoRadius;        // reference AO: one cosine ray per sample from the primary hit, this long (m)
-  uint sampleBase;       // the depth split's first sample index: the trace pass's samplesSoFar (same paths)
+  uint pad;
   uint emitterCount;     // emissive triangles sampled at every scattering event (0: emission found by rays only)
-  uint pad2;
+  uint adaptive;         // kRefAdaptiveOff, kRefAdaptivePilot or kRefAdaptiveOwn (the trace pass; 0 elsewhere)
 };
 
 // What a closest-hit shader reports (hitT < 0: the ray missed).

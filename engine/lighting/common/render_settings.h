@@ -71,6 +71,7 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(uint32_t, referenceBounces, 64, 1, 64, "events", "reference", "reference", kSettingPlain, "scattering events per path (1 = direct light only, 2 = one indirect bounce); Russian roulette ends paths first") \
   X(uint32_t, referenceSamplesPerFrame, 1, 1, 1024, "spp", "reference", "", kSettingPlain, "samples per pixel added each frame (render --spp sets it)") \
   X(bool, referenceEmitterSampling, true, 0, 1, "", "reference", "reference", kSettingPlain, "emissive triangles drawn by power at every scattering event (next-event estimation, power heuristic against the BRDF's rays); off: found only by rays that hit them") \
+  X(uint32_t, referenceAdaptive, 0, 0, 2, "", "reference", "reference", kSettingPlain, "where each frame's samples go: 0 every pixel alike; 1 in proportion to each pixel's noise as an independent pilot measures it (unbiased; loses where rare paths carry the noise: docs/design/reference.md); 2 by the estimate's own samples (biased: a diagnostic)") \
   X(float, rtSimplifyRatio, 0.25f, 0.01f, 1.0f, "x", "rt", "rt", kSettingPlain, "RT (BLAS) mesh triangles / source triangles (Metro: about 4x fewer); 1 = the full mesh") \
   X(float, rtSimplifyError, 0.01f, 0.0f, 1.0f, "x size", "rt", "rt", kSettingPlain, "largest deviation the simplifier may introduce, as a fraction of the mesh's size") \
   X(float, rtAoRadius, 0.0f, 0.0f, 1e9f, "m", "rt", "rt reference", kSettingAuto, "RTAO radius: a hit closer than this occludes (also the reference's AO)") \
@@ -114,6 +115,7 @@ inline constexpr uint32_t kSettingNoPanel = 1u << 2;  // set elsewhere (image si
   X(bool, hybridShadows, true, 0, 1, "", "rt", "", kSettingPlain, "hybrid ray-traced sun shadows (GameWorks HRTS): a ray's hard shadow near contacts, PCSS further away, blended by blocker distance (shadow.sun.visibility); off: the shadow map alone") \
   X(float, hybridShadowHardTexels, 4.0f, 0.5f, 64.0f, "texels", "rt", "", kSettingPlain, "HRTS: penumbrae narrower than this many shadow-map texels take the ray's hard shadow; linear blend up to it") \
   X(bool, rtRawRayProbe, false, 0, 1, "", "rt", "", kSettingNoPanel, "benchmark: also trace the same rays with a trivial kernel (rt.rawRays; bench --rays)") \
+  X(bool, referenceRawRayProbe, false, 0, 1, "", "reference", "", kSettingNoPanel, "benchmark: also trace a trivial kernel on the reference's top level (reference.rawRays; bench --rays)") \
   X(uint32_t, bentSkyRays, 4, 1, 64, "rays", "bentsky", "bentsky", kSettingPlain, "bentsky plugin: sky-visibility rays per pixel and frame (cosine-distributed, as long as rtRayLength)") \
   X(uint32_t, bentSkyMaxFrames, 32, 1, 1024, "frames", "bentsky", "", kSettingPlain, "bentsky plugin: accumulation window while the view holds still") \
   X(float, legacyAoRadius, 0.0f, 0.0f, 1e9f, "m", "legacy", "legacy", kSettingAuto, "reach of SSAO and voxel AO") \

@@ -26,9 +26,9 @@
 namespace tl::lighting {
 namespace {
 
-inline constexpr const char* kAccum = "reference.accum";
 inline constexpr const char* kRadiance = "reference.radiance";
-inline constexpr const char* kAoAccum = "reference.aoAccum";
+inline constexpr const char* kPilotMean = "reference.pilot.mean";
+inline constexpr const char* kPilotMoments = "reference.pilot.moments";
 inline constexpr const char* kAo = "reference.ao";
 inline constexpr const char* kIrradianceAccum = "reference.irradianceAccum";
 inline constexpr const char* kIrradiance = "reference.irradiance";
@@ -57,6 +57,8 @@ constexpr const char* kAnyHit = "reference/alpha.rahit";  // alpha MASK and BLEN
 const RayShaders kTraceShaders{"reference.trace", kRaygen, {std::begin(kMisses), std::end(kMisses)}, {{kClosestHit, kAnyHit}}};
 const RayShaders kIrradianceShaders{"reference.irradiance", kIrradianceRaygen, kTraceShaders.misses, kTraceShaders.hitGroups};
 const RayShaders kDepthShaders{"reference.bounces", kDepthRaygen, kTraceShaders.misses, kTraceShaders.hitGroups};
+// The benchmark's trivial kernel (bench --rays): the rt path's distance-only hit and miss shaders.
+const RayShaders kRawShaders{"reference.rawRays", "reference/raw.rgen", {"rt/raw.rmiss"}, {{"rt/raw.rchit", ""}}};
 
 class ReferencePath final : public LightingPath {
  public:
@@ -74,31 +76,45 @@ class ReferencePath final : public LightingPath {
     structures_ = traceStructures(graph, in, AccelDetail::Full);
     prepareScene(in);
     const uint32_t w = in.settings.width, h = in.settings.height;
-    const auto accumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                        "sum of each round's sample mean (rgb) and the rounds (a)");
-    const auto aoAccumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h, "sum of each round's mean AO");
     const auto momentsDesc = graph::ResourceDesc::image2D(
         VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "squared deviations of the samples from their mean, summed (rgb), samples (a)");
-    const auto sampleMeanDesc = graph::ResourceDesc::image2D(
-        VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "mean of all the pixel's samples (rgb), sum over rounds of 1 / samples (a)");
-    const bool stored = in.historyValid(kAccum, accumDesc) && in.historyValid(kAoAccum, aoAccumDesc) &&
-                        in.historyValid(kMoments, momentsDesc) && in.historyValid(kSampleMean, sampleMeanDesc);
+    const auto sampleMeanDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                                             "mean of the pixel's samples (rgb), their mean AO (a)");
+    const auto pilotMeanDesc = graph::ResourceDesc::image2D(
+        VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "adaptive sampling's pilot: mean of its samples (rgb), samples (a)");
+    const auto pilotMomentsDesc = graph::ResourceDesc::image2D(
+        VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "adaptive sampling's pilot: squared deviations from its mean, summed (rgb)");
+    const auto noiseDesc = graph::ResourceDesc::buffer(
+        sizeof(shared::RefNoiseTotals), "the reference's noise over the image (shared/reference.h RefNoiseTotals); the "
+                                        "next frame's trace allocates its samples by it");
+    const bool stored = in.historyValid(kMoments, momentsDesc) && in.historyValid(kSampleMean, sampleMeanDesc) &&
+                        in.historyValid(kPilotMean, pilotMeanDesc) && in.historyValid(kPilotMoments, pilotMomentsDesc) &&
+                        in.historyValid(kReferenceNoise, noiseDesc);
     if (accumulation_.advance(kAccumulation, in.key, name(), in.historyLog, {stored}).action == HistoryAction::Restart)
       samples_ = 0, irradianceSamples_ = 0;
 
-    for (const auto& [image, desc] : {std::pair{kAccum, accumDesc}, {kAoAccum, aoAccumDesc}, {kMoments, momentsDesc},
-                                      {kSampleMean, sampleMeanDesc}})
+    for (const auto& [image, desc] : {std::pair{kMoments, momentsDesc}, {kSampleMean, sampleMeanDesc},
+                                      {kPilotMean, pilotMeanDesc}, {kPilotMoments, pilotMomentsDesc}})
       graph.declarePersistent(image, desc);
+    graph.declarePersistent(kReferenceNoise, noiseDesc);
     shared::RefPush push{};
     push.aoRadius = in.settings.rtAoRadius;  // resolved (render_settings.h resolveAutomatic)
     push.samplesPerFrame = std::max(1u, in.settings.referenceSamplesPerFrame);
     push.maxBounces = std::max(1u, in.settings.referenceBounces);
     push.emitterCount = in.settings.referenceEmitterSampling ? emitterCount_ : 0u;
+    shared::RefPush tracePush = push;
+    tracePush.adaptive = in.settings.referenceAdaptive;
     withPathInputs(RayTracingPass(in.device, "reference.trace", kTraceShaders), in)
-        .storageInOut(shared::kRefBindingAccum, kAccum)
-        .storageInOut(shared::kRefBindingAoAccum, kAoAccum)
         .storageInOut(shared::kRefBindingMoments, kMoments)
         .storageInOut(shared::kRefBindingSampleMean, kSampleMean)
+        .storageInOut(shared::kRefBindingPilotMean, kPilotMean)
+        .storageInOut(shared::kRefBindingPilotMoments, kPilotMoments)
+        .bufferIn(shared::kRefBindingLastNoise, kReferenceNoise)
+        .storageOut(shared::kRefBindingAllocation, kReferenceAllocation,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                                 "where this frame's samples went: the pixel's samples (x) and the "
+                                                 "first one's number (y); the standard deviation the next frame "
+                                                 "allocates by (z)"))
         .storageOut(shared::kRefBindingStdErr, kReferenceStdErr,
                     graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                                  "standard error of reference.radiance per channel (rgb: how far each "
@@ -110,11 +126,11 @@ class ReferencePath final : public LightingPath {
                         .decodedAs("ao"))
         .storageOut(shared::kRefBindingRadiance, kRadiance,
                     graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "path-traced radiance"))
-        .push(push,
+        .push(tracePush,
               [this](graph::PassContext& ctx, shared::RefPush& p) {
                 // History can vanish under us (resize, reset): then the sum starts over.
-                if (!ctx.historyValid(kAccum) || !ctx.historyValid(kAoAccum) || !ctx.historyValid(kMoments) ||
-                    !ctx.historyValid(kSampleMean))
+                if (!ctx.historyValid(kMoments) || !ctx.historyValid(kSampleMean) || !ctx.historyValid(kPilotMean) ||
+                    !ctx.historyValid(kPilotMoments) || !ctx.historyValid(kReferenceNoise))
                   samples_ = 0;
                 p.samplesSoFar = samples_;
                 p.seed = 0;
@@ -125,6 +141,7 @@ class ReferencePath final : public LightingPath {
     addNoisePasses(graph, in);
     addIrradiancePass(graph, in, push);
     addDepthSplitPass(graph, in, push);
+    if (in.settings.referenceRawRayProbe) addRawRayPass(graph, in, push);
     LightingOutputs out;
     out.radiance = kRadiance;
     return out;
@@ -140,7 +157,8 @@ class ReferencePath final : public LightingPath {
  private:
   // The image's noise (shared/reference.h RefNoiseTotals) summed on the GPU in two steps and
   // read back every frame: 32 bytes, so the session knows the relative standard error of every
-  // frame it finishes (Session::referenceNoise) without reading the images.
+  // frame it finishes (Session::referenceNoise) without reading the images. It persists: the
+  // next frame's trace allocates its samples by its mean sigma.
   void addNoisePasses(graph::RenderGraph& graph, FrameInputs& in) {
     const uint32_t w = in.settings.width, h = in.settings.height;
     shared::RefNoisePush push{};
@@ -149,6 +167,7 @@ class ReferencePath final : public LightingPath {
     ComputePass(in.device, "reference.noise.tiles", "reference/noise_tiles.comp")
         .storageIn(shared::kRefNoiseBindingRadiance, kRadiance)
         .storageIn(shared::kRefNoiseBindingStdErr, kReferenceStdErr)
+        .storageIn(shared::kRefNoiseBindingAllocation, kReferenceAllocation)
         .bufferOut(shared::kRefNoiseBindingTiles, kNoiseTiles,
                    graph::ResourceDesc::buffer(push.tiles * sizeof(shared::RefNoiseTotals),
                                                "the reference's noise summed per 16 x 16 tile"))
@@ -157,14 +176,30 @@ class ReferencePath final : public LightingPath {
         .add(graph);
     ComputePass(in.device, "reference.noise", "reference/noise_sum.comp")
         .bufferIn(shared::kRefNoiseBindingTiles, kNoiseTiles)
-        .bufferOut(shared::kRefNoiseBindingTotals, kReferenceNoise,
-                   graph::ResourceDesc::buffer(sizeof(shared::RefNoiseTotals),
-                                               "the reference's noise over the image (shared/reference.h RefNoiseTotals)"))
+        .bufferOut(shared::kRefNoiseBindingTotals, kReferenceNoise)
         .push(push)
         .dispatch(256, 1, 1, 256, 1, 1)
         .add(graph);
     graph.markOutput(kReferenceNoise);
     graph.requestReadback(kReferenceNoise);
+  }
+
+  // The benchmark's trivial kernel (reference/raw.rgen) on the same top level, samplesPerFrame
+  // short paths of rays a pixel: the device's raw ray rate, which `bench --rays` holds the
+  // reference's paths per second against (session/ray_figures.h).
+  void addRawRayPass(graph::RenderGraph& graph, FrameInputs& in, shared::RefPush push) {
+    const uint32_t w = in.settings.width, h = in.settings.height;
+    push.samplesSoFar = samples_;
+    RayTracingPass(in.device, "reference.rawRays", kRawShaders)
+        .uniform(shared::kRefBindingFrame, kFrameConstants)
+        .accelerationStructure(shared::kRefBindingTlas, tlas_.structure().handle(), structures())
+        .storageOut(shared::kRefBindingRawRays, kReferenceRawRays,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
+                                                 "benchmark: rays the trivial kernel traced per pixel"))
+        .push(push)
+        .trace(w, h)
+        .add(graph);
+    graph.markOutput(kReferenceRawRays);
   }
 
   // The diffuse irradiance at the primary hit (what composite.irradiance holds for the
@@ -193,7 +228,8 @@ class ReferencePath final : public LightingPath {
   }
 
   // The radiance split by path depth (referenceBounceBuffers()), each group its own progressive
-  // sum. It traces the trace pass's paths a second time, so it runs only in frames that read
+  // sum. It traces the trace pass's paths a second time (the counts and sample numbers the trace
+  // wrote to reference.allocation this frame), so it runs only in frames that read
   // one of its buffers (compare's per-bounce attribution, the inspector); requested in every
   // frame since the reference's sum started, its four images sum to reference.radiance. Its
   // sum restarts with the reference's (a frame whose trace starts over).
@@ -210,6 +246,7 @@ class ReferencePath final : public LightingPath {
     const uint32_t base = samples_;  // the trace pass's samples before this frame: the same paths
     RayTracingPass pass = withPathInputs(RayTracingPass(in.device, "reference.bounces", kDepthShaders), in);
     pass.storageInOut(shared::kRefBindingDepthAccum, kDepthAccum);
+    pass.storageIn(shared::kRefBindingAllocation, kReferenceAllocation);
     for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
       pass.storageOut(shared::kRefBindingDepth0 + g, names[g],
                       graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
@@ -217,8 +254,8 @@ class ReferencePath final : public LightingPath {
                           .decodedAs(fmt::format("{} whole={}", kDepthShareDecoder, kRadiance)));
     pass.push(push,
               [this, base](graph::PassContext& ctx, shared::RefPush& p) {
-                p.sampleBase = ctx.historyValid(kAccum) ? base : 0;  // as the trace pass decides
-                if (!ctx.historyValid(kDepthAccum) || p.sampleBase == 0) depthSamples_ = 0;
+                const bool traceRestarted = base == 0 || !ctx.historyValid(kSampleMean);  // as the trace pass decides
+                if (!ctx.historyValid(kDepthAccum) || traceRestarted) depthSamples_ = 0;
                 p.samplesSoFar = depthSamples_;
                 p.seed = 0;  // the trace pass's seed
                 depthSamples_ += p.samplesPerFrame;

@@ -13,6 +13,12 @@ namespace tl::lighting {
 // shared::tlRefRelativeStdError gives the image's relative standard error).
 inline constexpr const char* kReferenceStdErr = "reference.stderr";
 inline constexpr const char* kReferenceNoise = "reference.noise";
+// Where each frame's samples went (adaptive sampling, shared/reference.h): rgba32f, the pixel's
+// samples this frame (x), the first one's number (y), the standard deviation the next frame
+// allocates by (z).
+inline constexpr const char* kReferenceAllocation = "reference.allocation";
+// The benchmark's trivial kernel (referenceRawRayProbe): rays traced per pixel (r32f).
+inline constexpr const char* kReferenceRawRays = "reference.rawRays";
 
 // The shaders (relative to the shader folder, as gpu::loadSpirv takes them) of every
 // pipeline the reference path builds.
