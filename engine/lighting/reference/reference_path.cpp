@@ -192,7 +192,7 @@ class ReferencePath final : public LightingPath {
     push.samplesSoFar = samples_;
     RayTracingPass(in.device, "reference.rawRays", kRawShaders)
         .uniform(shared::kRefBindingFrame, kFrameConstants)
-        .accelerationStructure(shared::kRefBindingTlas, tlas_.structure().handle(), structures())
+        .accelerationStructure(shared::kRefBindingTlas, structures_.tlas, structures_.names)
         .storageOut(shared::kRefBindingRawRays, kReferenceRawRays,
                     graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
                                                  "benchmark: rays the trivial kernel traced per pixel"))
