@@ -105,8 +105,8 @@
 //   resize W H             resize the window to W x H pixels, as a person dragging its corner
 //   expect-viewport-uncovered  fail when a panel (not a dialog) lies over the viewport
 //   dump-state DIR TAG     write what the scene opened as (lighting, settings, history, selection,
-//                          camera, database, title) to DIR/<scene file>.TAG.json, to compare ways
-//                          of opening
+//                          camera, database, albedo overrides, title) to DIR/<scene file>.TAG.json,
+//                          to compare ways of opening (and for the soak walk to check its edits)
 //   quit                   quit at once; unsaved work is discarded (close-window asks)
 #pragma once
 
