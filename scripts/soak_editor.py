@@ -118,6 +118,10 @@ class Walk:
         self.baseline_shadow = DEFAULT_SHADOW  # the settings as opened or last saved
         self.lh, self.ah = History(), History()  # lighting and settings; albedo
         self.clock = 0  # orders the edits as the editor's steady clock does
+        # A new light's place and name follow from the camera, the lights there and its kind alone
+        # (editor addLight): the same add from the same state makes the same light again.
+        self.camera = None  # ("open", scene) as a scene opens; a new value at every drag
+        self.adds = {}  # (kind, lights before, camera) -> the light token it made
         self.path = "direct"
         self.compare = False
         self.actions = 0
@@ -194,6 +198,7 @@ class Walk:
             self.shadow = scene.saved_settings
         self.baseline_shadow = self.shadow
         self.lh, self.ah = History(), History()
+        self.camera = ("open", scene.name)
 
     def saved(self):
         s = self.current
@@ -288,7 +293,10 @@ class Walk:
             kind_of_light = self.rng.choice(["point", "spot", "rect"])
             self.emit("click-ui outliner.lights", "wait 1", "click-ui lights.add", "wait 1",
                       f"click-ui lights.add.{kind_of_light}", "wait 1")
-            self.lights.append(self.new_id())
+            made = (kind_of_light, tuple(self.lights), self.current.name, self.camera)
+            if made not in self.adds:
+                self.adds[made] = self.new_id()
+            self.lights.append(self.adds[made])
             self.edited(self.lh, "lights", before, list(self.lights))
         elif kind == "delete":
             row = self.rng.randrange(len(self.lights))
@@ -340,8 +348,13 @@ class Walk:
         self.checks()
 
     def drag(self):
+        """The camera orbited: a drag in the viewport from its lower left, with an instance selected
+        (a drag on a selected light's gizmo or on a light's icon would move the light; new lights
+        stand in the middle of the view and to its right)."""
         dx, dy = self.rng.randint(-120, 120), self.rng.randint(-60, 60)
-        self.emit(f"drag-ui viewport {dx} {dy}", "wait 1")
+        u, v = round(self.rng.uniform(0.08, 0.3), 2), round(self.rng.uniform(0.65, 0.92), 2)
+        self.emit(f"select {self.current.instance}", f"drag-ui viewport {dx} {dy} {u} {v}", "wait 1")
+        self.camera = ("drag", self.actions)
         self.checks()
 
     def resize(self):
