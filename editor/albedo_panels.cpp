@@ -1,5 +1,6 @@
 #include "albedo_panels.h"
 
+#include "column_panels.h"
 #include "editor_app.h"
 #include "ui_helpers.h"
 
@@ -187,9 +188,7 @@ void albedoInspectorSection(EditorApp& app, uint32_t instance) {
 }
 
 void albedoPanel(EditorApp& app) {
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x - 340, 620), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(340, display.y - 644), ImGuiCond_FirstUseEver);
+  placeColumnPanel(ColumnPanel::Albedo);
   ImGui::Begin("Albedo");
   if (!app.session().hasScene()) {
     ImGui::TextDisabled("No scene.");

@@ -407,12 +407,8 @@ class EditorApp {
   // Reloading the scene when its file changes (scene_reload.cpp).
   struct KeptAcrossReload {
     std::string selected;  // instance name
-    struct Override {
-      albedo::AlbedoKey key;
-      glm::vec3 rgb;
-      std::string label;
-    };
-    std::vector<Override> overrides;
+    // The unsaved override edits, a cleared override too (else the database's would come back).
+    std::vector<session::RecoveredOverride> overrides;
     std::optional<session::Lighting> lighting;  // when edited away from the scene's own
     double animationTime = 0.0;
   };

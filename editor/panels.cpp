@@ -1,6 +1,7 @@
 // The editor's panels, one function per concern. Tooltips state physical units.
 #include "albedo_panels.h"
 #include "buffer_panel.h"
+#include "column_panels.h"
 #include "compare_panel.h"
 #include "settings_panel.h"
 #include "editor_app.h"
@@ -140,8 +141,7 @@ void viewportPanel(EditorApp& app, glm::vec2& min, glm::vec2& size, bool& hovere
 }
 
 void outlinerPanel(EditorApp& app) {
-  ImGui::SetNextWindowPos(ImVec2(0, 20), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(300, 420), ImGuiCond_FirstUseEver);
+  placeColumnPanel(ColumnPanel::Outliner);
   ImGui::Begin("Outliner");
   if (!ImGui::BeginTabBar("outliner tabs")) return ImGui::End();
   const bool instancesTab = ImGui::BeginTabItem("Instances");
@@ -221,8 +221,7 @@ void inspectorContents(EditorApp& app) {
 }
 
 void inspectorPanel(EditorApp& app) {
-  ImGui::SetNextWindowPos(ImVec2(0, 440), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(300, 436), ImGuiCond_FirstUseEver);
+  placeColumnPanel(ColumnPanel::Inspector);
   ImGui::Begin("Inspector");
   // Its lines wrap at the panel's edge: a long mesh or material name is read, not cut off.
   ImGui::PushTextWrapPos(0.0f);
@@ -232,9 +231,7 @@ void inspectorPanel(EditorApp& app) {
 }
 
 void lightingPanel(EditorApp& app) {
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x - 340, 20), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(340, 380), ImGuiCond_FirstUseEver);
+  placeColumnPanel(ColumnPanel::Lighting);
   ImGui::Begin("Lighting");
   // Widgets leave room on their right for the longest label ("Sun irradiance", "Voxels per
   // side"), so no label is cut off at the panel's default width.
@@ -317,9 +314,7 @@ void lightingPanel(EditorApp& app) {
 }
 
 void timingPanel(EditorApp& app) {
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x - 340, 400), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(340, 220), ImGuiCond_FirstUseEver);
+  placeColumnPanel(ColumnPanel::Timing);
   ImGui::Begin("Timing");
   auto& session = app.session();
   std::vector<graph::PassTiming> passes =
@@ -628,6 +623,7 @@ void scenePanel(EditorApp& app) {
 
 void drawPanels(EditorApp& app) {
   beginTrackedFrame();
+  beginColumnLayout();
   {
     std::array<bool, size_t(ToolPanel::Count)> tools{};
     tools[size_t(ToolPanel::Scene)] = app.scenePanelOpen() && app.session().hasScene();

@@ -31,8 +31,7 @@ void EditorApp::reloadScene() {
   const scene::Scene& s = session_->scene();
   KeptAcrossReload kept;
   if (selected_ && *selected_ < s.instances.size()) kept.selected = s.instances[*selected_].name;
-  for (const auto& e : session_->albedo().entries())
-    if (e.override) kept.overrides.push_back({e.combination.key, *e.override, e.combination.label});
+  kept.overrides = unsavedOverrides();
   // The lighting the scene opened with is read again with it (the file, its sidecar); an edit
   // away from it is the artist's, and kept.
   const session::Lighting& now = session_->lighting();
@@ -54,17 +53,11 @@ void EditorApp::restoreAfterReload() {
     if (!kept.selected.empty() && s.instances[i].name == kept.selected) selected_ = i;
   // Overrides follow their mesh + material key: a combination the export changed is new,
   // and an override of the old one becomes an orphan (Albedo panel), never silently lost.
+  // An unsaved clear of an override stays cleared (the database's override came back with the
+  // reload: an undone override reappeared, found by the editor soak walk).
   auto& albedo = session_->albedo();
   const size_t orphansBefore = albedo.orphanCount();
-  for (const auto& o : kept.overrides) {
-    bool found = false;
-    for (uint32_t c = 0; c < albedo.entries().size(); ++c) {
-      if (albedo.entries()[c].combination.key != o.key) continue;
-      found = true;
-      if (albedo.entries()[c].override != o.rgb) albedo.setOverride(c, o.rgb);
-    }
-    if (!found) albedo.keepOrphan(o.key, o.rgb, o.label);
-  }
+  applyOverrides(kept.overrides);
   if (kept.lighting) session_->setLighting(*kept.lighting);
   session_->setAnimationTime(kept.animationTime);
   ++sceneReloads_;

@@ -80,8 +80,9 @@
 //   expect-reload          wait (up to 60 s) until the scene reloaded after the last
 //                          copy-file, and fail unless the camera is where it was then
 //   save-image FILE        File > Save image: the last frame as .png or .exr
-//   drag-ui NAME DX DY     press on a named control or viewport handle (gizmo.move.x, gizmo.aim,
-//                          light.icon.N), move by DX, DY pixels over eight frames, release
+//   drag-ui NAME DX DY [U V]  press on a named control or viewport handle (gizmo.move.x, gizmo.aim,
+//                          light.icon.N), at the fraction U, V of its box (its centre by default),
+//                          move by DX, DY pixels over eight frames, release
 //   expect-lights N        fail unless the scene has N lights besides the sun; lists them
 //   expect-light I TEXT    fail unless light I's line ("name (type) at x y z aim dx dy dz I unit
 //                          [hidden]") holds TEXT
@@ -105,8 +106,8 @@
 //   resize W H             resize the window to W x H pixels, as a person dragging its corner
 //   expect-viewport-uncovered  fail when a panel (not a dialog) lies over the viewport
 //   dump-state DIR TAG     write what the scene opened as (lighting, settings, history, selection,
-//                          camera, database, title) to DIR/<scene file>.TAG.json, to compare ways
-//                          of opening
+//                          camera, database, albedo overrides, title) to DIR/<scene file>.TAG.json,
+//                          to compare ways of opening (and for the soak walk to check its edits)
 //   quit                   quit at once; unsaved work is discarded (close-window asks)
 #pragma once
 

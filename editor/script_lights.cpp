@@ -67,15 +67,17 @@ std::string checkGizmoFollowed(const EditorApp::FinishedGizmoDrag& d) {
   return {};
 }
 
-// drag-ui NAME DX DY: press on a tracked control or handle, move by (DX, DY) pixels over eight
-// frames, release.
+// drag-ui NAME DX DY [U V]: press on a tracked control or handle (at the fraction U, V of its box;
+// its centre by default), move by (DX, DY) pixels over eight frames, release.
 void dragUi(EditorApp& app, ScriptState&, const std::string& arg) {
   char name[128];
-  float dx = 0.0f, dy = 0.0f;
-  if (std::sscanf(arg.c_str(), "%127s %f %f", name, &dx, &dy) != 3) throw ScriptFailure("drag-ui needs NAME DX DY");
+  float dx = 0.0f, dy = 0.0f, u = 0.5f, v = 0.5f;
+  const int read = std::sscanf(arg.c_str(), "%127s %f %f %f %f", name, &dx, &dy, &u, &v);
+  if (read != 3 && read != 5) throw ScriptFailure("drag-ui needs NAME DX DY [U V]");
+  if (!(u >= 0.0f && u <= 1.0f && v >= 0.0f && v <= 1.0f)) throw ScriptFailure("drag-ui's U and V are fractions from 0 to 1");
   const auto item = trackedItem(name);
   if (!item) throw ScriptFailure(fmt::format("no control `{}` on screen", name));
-  const glm::vec2 from = 0.5f * (item->min + item->max);
+  const glm::vec2 from = item->min + (item->max - item->min) * glm::vec2(u, v);
   auto& in = app.input();
   in.push({InputEvent::Kind::Move, from});
   in.push({InputEvent::Kind::Frame});

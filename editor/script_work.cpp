@@ -122,6 +122,12 @@ nlohmann::json openedState(EditorApp& app) {
   j["undo"] = app.editHistory().undoLabel();
   j["undoSteps"] = app.editHistory().steps();
   j["albedoUndo"] = s.albedo().canUndo();
+  // The albedo overrides in use (saved or not), by mesh + material, for a walk that checks them.
+  nlohmann::json overrides = nlohmann::json::object();
+  for (const auto& e : s.albedo().entries())
+    if (e.override) overrides[e.combination.label] = {e.override->r, e.override->g, e.override->b};
+  j["overrides"] = overrides;
+  j["orphans"] = s.albedo().orphanCount();
   j["unsaved"] = app.unsavedWork().describe();
   j["title"] = app.windowTitle();
   j["selected"] = app.selected() ? nlohmann::json(*app.selected()) : nlohmann::json(nullptr);

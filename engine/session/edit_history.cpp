@@ -14,10 +14,23 @@ bool sameLight(const scene::Light& a, const scene::Light& b) {
          a.length == b.length && a.twoSided == b.twoSided && a.widthAxis == b.widthAxis && a.hidden == b.hidden;
 }
 
+namespace {
+
+// One map whether it is the same object or the same file read again (a reload reads it anew while
+// the artist's kept lighting holds the copy read before): compared by what it holds.
+bool sameEnvironmentMap(const std::shared_ptr<const scene::EnvironmentMap>& a,
+                        const std::shared_ptr<const scene::EnvironmentMap>& b) {
+  if (a == b) return true;
+  if (!a || !b) return false;
+  return a->path == b->path && a->width == b->width && a->height == b->height && a->contentHash == b->contentHash;
+}
+
+}  // namespace
+
 bool sameLighting(const Lighting& a, const Lighting& b) {
   return a.sunDirection == b.sunDirection && a.sunIrradiance == b.sunIrradiance && a.skyRadiance == b.skyRadiance &&
          a.exposureEv == b.exposureEv && a.sunAngularRadius == b.sunAngularRadius &&
-         a.environmentMap == b.environmentMap && a.environmentRotation == b.environmentRotation &&
+         sameEnvironmentMap(a.environmentMap, b.environmentMap) && a.environmentRotation == b.environmentRotation &&
          a.environmentIntensity == b.environmentIntensity &&
          std::equal(a.lights.begin(), a.lights.end(), b.lights.begin(), b.lights.end(), sameLight);
 }

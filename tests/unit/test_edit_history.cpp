@@ -111,5 +111,32 @@ TEST(EditHistory, TheFirstStateSeenIsWhereTheHistoryStartsNotAnEdit) {
   EXPECT_FALSE(h.canUndo());
 }
 
+// A scene reloaded reads its environment map again: the artist's lighting kept across the reload
+// holds the copy read before. The same file with the same texels is the same lighting (a light
+// added and deleted again left the scene "unsaved" forever, found by the editor soak walk on
+// courtyard); another file, or the same file with other texels, is not.
+TEST(EditHistory, AnEnvironmentMapReadAgainIsTheSameLighting) {
+  auto read = [](const char* path, float value) {
+    scene::EnvironmentMap m = scene::makeEnvironmentMap(4, 2, std::vector<glm::vec3>(8, glm::vec3(value)));
+    m.path = path;
+    return std::make_shared<const scene::EnvironmentMap>(std::move(m));
+  };
+  Lighting before, reloaded, otherFile, otherTexels;
+  before.environmentMap = read("sky.exr", 1.0f);
+  reloaded.environmentMap = read("sky.exr", 1.0f);
+  otherFile.environmentMap = read("dusk.exr", 1.0f);
+  otherTexels.environmentMap = read("sky.exr", 2.0f);
+  ASSERT_NE(before.environmentMap, reloaded.environmentMap);
+  EXPECT_TRUE(sameLighting(before, reloaded));
+  EXPECT_FALSE(sameLighting(before, otherFile));
+  EXPECT_FALSE(sameLighting(before, otherTexels));
+  EXPECT_FALSE(sameLighting(before, Lighting{})) << "a map against none";
+
+  EditHistory h;
+  h.reset(lighting::RenderSettings{}, before);
+  EXPECT_FALSE(h.observe(lighting::RenderSettings{}, reloaded, false)) << "reading the map again is not an edit";
+  EXPECT_TRUE(h.observe(lighting::RenderSettings{}, otherTexels, false));
+}
+
 }  // namespace
 }  // namespace tl::session

@@ -1,12 +1,16 @@
-// Undo holds only the artist's edits and saving keeps what the artist did not remove: a seeded
-// random walk of lighting and settings edits on content/lamps.gltf, each undo and redo followed by
-// File > Save lighting and the scene opened again as the editor opens it
-// (session/lighting_file.h openingLighting). What opens is what the walk says the artist has, and
-// the glTF alone holds every shown light of it (other tools read that file).
+// Undo holds only the artist's edits and saving keeps what the artist did not remove: seeded
+// random walks of edits on content/lamps.gltf, saved after undo and redo and the scene opened again
+// as the editor opens it (session/lighting_file.h openingLighting). What opens is what the walk says
+// the artist has, and the glTF alone holds every shown light of it (other tools read that file).
+// The second walk takes all three kinds of work File > Save writes: the lighting, the render
+// settings saved with the scene and the albedo overrides in the scene's database, undone across
+// the editor's two histories as its Ctrl+Z and Ctrl+Y do.
 #include "../common/temp_dir.h"
+#include "albedo/albedo_library.h"
 #include "scene/scene.h"
 #include "session/edit_history.h"
 #include "session/lighting_file.h"
+#include "session/settings_json.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -193,6 +197,154 @@ TEST_F(SavedEditsTest, ARandomWalkOfEditsUndoneRedoneAndSavedOpensAsTheArtistLef
   const auto doc = nlohmann::json::parse(std::ifstream(file));
   const size_t before = nlohmann::json::parse(std::ifstream(test::contentFile("lamps.gltf")))["nodes"].size();
   EXPECT_LE(doc["nodes"].size(), before + size_t(added) + 1) << saves << " saves";
+}
+
+
+// The editor's Ctrl+Z and Ctrl+Y (editor/editor_app.cpp EditorApp::undo and redo) over its two
+// histories: the latest edit of either is undone first, and redo goes forward from the earliest.
+bool undoLatest(EditHistory& history, albedo::AlbedoLibrary& albedo, ArtistState& now) {
+  const auto settingsAt = history.undoTime(), albedoAt = albedo.undoTime();
+  if (albedoAt && (!settingsAt || *albedoAt > *settingsAt)) return albedo.undo();
+  return history.undo(now.settings, now.lighting);
+}
+bool redoEarliest(EditHistory& history, albedo::AlbedoLibrary& albedo, ArtistState& now) {
+  const auto settingsAt = history.redoTime(), albedoAt = albedo.redoTime();
+  if (albedoAt && (!settingsAt || *albedoAt < *settingsAt)) return albedo.redo();
+  return history.redo(now.settings, now.lighting);
+}
+
+// What the walk says one history holds: the states it steps through (states[0] as the scene
+// opened), `at` applied, and when each step was made (the walk's own count of edits).
+template <typename State>
+struct ModelHistory {
+  std::vector<State> states;
+  std::vector<int> madeAt;  // madeAt[i]: the edit that made states[i + 1]
+  size_t at = 0;
+  void push(const State& s, int when) {
+    states.resize(at + 1);
+    madeAt.resize(at);
+    states.push_back(s);
+    madeAt.push_back(when);
+    ++at;
+  }
+  std::optional<int> undoAt() const { return at > 0 ? std::optional(madeAt[at - 1]) : std::nullopt; }
+  std::optional<int> redoAt() const { return at + 1 < states.size() ? std::optional(madeAt[at]) : std::nullopt; }
+};
+
+using Overrides = std::map<uint32_t, glm::vec3>;  // combination -> the artist's colour
+
+Overrides overridesOf(const albedo::AlbedoLibrary& lib) {
+  Overrides o;
+  for (uint32_t c = 0; c < lib.entries().size(); ++c)
+    if (lib.entries()[c].override) o[c] = *lib.entries()[c].override;
+  return o;
+}
+
+// The settings saved with a scene, as the editor keeps them (settings.json's sceneSettings: the
+// panel's settings as JSON, written and read again as text) and applies when it opens the scene.
+lighting::RenderSettings savedAndReadSettings(const lighting::RenderSettings& settings, const fs::path& file) {
+  std::ofstream(file) << settingsJson(settings).dump(2);
+  return applySettingsJson(lighting::RenderSettings{}, nlohmann::json::parse(std::ifstream(file)));
+}
+
+TEST_F(SavedEditsTest, TwoHundredEditsOfLightsSettingsAndOverridesSavedAfterEachUndoAndRedoSequenceOpenAsTheArtistLeftThem) {
+  const fs::path file = copyOf("lamps.gltf");
+  const fs::path dbFile = scratch.path / "lamps.albedo.db";
+  const fs::path settingsFile = scratch.path / "scene_settings.json";
+  const scene::Scene opened = scene::loadGltf(file);
+  const OpeningLighting first = openingLighting(opened, std::nullopt, true);
+  ASSERT_TRUE(first.error.empty()) << first.error;
+  albedo::AlbedoLibrary albedo(opened);
+  albedo.attach(std::make_unique<albedo::AlbedoDatabase>(dbFile));
+  const uint32_t combinations = uint32_t(albedo.entries().size());
+  ASSERT_GE(combinations, 3u);
+
+  ArtistState now{first.lighting, {}};
+  EditHistory history;
+  history.reset(now.settings, now.lighting);
+  ModelHistory<ArtistState> lightingModel{{now}, {}, 0};
+  ModelHistory<Overrides> albedoModel{{{}}, {}, 0};
+  std::mt19937 rng(20261205);
+  auto pick = [&](int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng); };
+  int edits = 0, added = 0, overrides = 0, sequences = 0, undos = 0, redos = 0, albedoSteps = 0;
+  constexpr int kEdits = 200;
+  while (edits < kEdits) {
+    SCOPED_TRACE(fmt::format("edit {}", edits));
+    if (pick(10) < 6) {
+      // An edit: a third of them an albedo override, the rest lights, the sun, sky and settings.
+      if (pick(3) == 0) {
+        const uint32_t c = uint32_t(pick(int(combinations)));
+        const glm::vec3 rgb(float(pick(1000)) / 1000.0f, float(pick(1000)) / 1000.0f, float(pick(1000)) / 1000.0f);
+        if (albedo.entries()[c].override == rgb) continue;
+        albedo.setOverride(c, rgb);
+        albedoModel.push(overridesOf(albedo), ++edits);
+        ++overrides;
+      } else {
+        editOnce(now, rng, added);
+        if (pick(4) == 0) now.settings.taa = !now.settings.taa;
+        if (!history.observe(now.settings, now.lighting, false)) continue;  // an edit that changed nothing
+        lightingModel.push(now, ++edits);
+      }
+      ASSERT_EQ(lightingDifference(lightingModel.states[lightingModel.at].lighting, now.lighting), "");
+      ASSERT_EQ(overridesOf(albedo), albedoModel.states[albedoModel.at]);
+      continue;
+    }
+    // A sequence of one to five presses of Ctrl+Z or Ctrl+Y, then File > Save.
+    const int presses = 1 + pick(5);
+    for (int p = 0; p < presses; ++p) {
+      if (pick(3) < 2) {
+        const auto l = lightingModel.undoAt(), a = albedoModel.undoAt();
+        const bool albedoFirst = a && (!l || *a > *l);
+        ASSERT_EQ(undoLatest(history, albedo, now), bool(l || a));
+        if (albedoFirst) --albedoModel.at, ++albedoSteps;
+        else if (l) --lightingModel.at;
+        ++undos;
+      } else {
+        const auto l = lightingModel.redoAt(), a = albedoModel.redoAt();
+        const bool albedoFirst = a && (!l || *a < *l);
+        ASSERT_EQ(redoEarliest(history, albedo, now), bool(l || a));
+        if (albedoFirst) ++albedoModel.at, ++albedoSteps;
+        else if (l) ++lightingModel.at;
+        ++redos;
+      }
+      const ArtistState& want = lightingModel.states[lightingModel.at];
+      ASSERT_EQ(lightingDifference(want.lighting, now.lighting), "") << "press " << p;
+      ASSERT_EQ(now.settings.shadowMapSize, want.settings.shadowMapSize);
+      ASSERT_EQ(now.settings.taa, want.settings.taa);
+      ASSERT_EQ(overridesOf(albedo), albedoModel.states[albedoModel.at]);
+    }
+    ++sequences;
+    // File > Save: the lighting into the glTF and its sidecar, the settings with the scene, the
+    // overrides into the database. Then the scene opened again from those files alone.
+    saveSceneLighting(file, now.lighting);
+    EXPECT_FALSE(history.observe(now.settings, now.lighting, false)) << "saving (the lights' new nodes) is not an edit";
+    const lighting::RenderSettings settingsRead = savedAndReadSettings(now.settings, settingsFile);
+    albedo.save();
+    EXPECT_FALSE(albedo.unsaved());
+
+    const scene::Scene reloaded = scene::loadGltf(file);
+    const OpeningLighting reopened = openingLighting(reloaded, std::nullopt, true);
+    ASSERT_TRUE(reopened.error.empty()) << reopened.error;
+    const ArtistState& want = lightingModel.states[lightingModel.at];
+    ASSERT_EQ(lightingDifference(want.lighting, reopened.lighting), "");
+    ASSERT_EQ(settingsRead.shadowMapSize, want.settings.shadowMapSize);
+    ASSERT_EQ(settingsRead.taa, want.settings.taa);
+    albedo::AlbedoLibrary reopenedAlbedo(reloaded);
+    reopenedAlbedo.attach(std::make_unique<albedo::AlbedoDatabase>(dbFile));
+    ASSERT_EQ(overridesOf(reopenedAlbedo), albedoModel.states[albedoModel.at]);
+    EXPECT_EQ(reopenedAlbedo.orphanCount(), 0u) << "every override reaches its mesh + material again";
+  }
+  // The walk did what it is for: every kind of edit, undone and redone across both histories.
+  fmt::print("the walk: {} edits ({} overrides, {} lights added), {} undo/redo sequences ({} undos, {} redos, {} of them "
+             "albedo steps), each saved and opened again\n", edits, overrides, added, sequences, undos, redos, albedoSteps);
+  EXPECT_EQ(edits, kEdits);
+  EXPECT_GT(sequences, 60);
+  EXPECT_GT(undos, 60);
+  EXPECT_GT(redos, 30);
+  EXPECT_GT(overrides, 40);
+  EXPECT_GT(albedoSteps, 20);
+  EXPECT_GT(added, 10);
+  EXPECT_GT(lightingModel.states.size(), 2u);
 }
 
 }  // namespace
