@@ -474,7 +474,11 @@ void walker(const std::filesystem::path& dir) {
 // everywhere, L = Le / (1 - rho) = 1.
 void closedBox(const std::filesystem::path& dir) {
   SceneWriter w("closed_box");
-  int glowing = w.material({"glowing_white", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f, {1.0f, 1.0f, 1.0f}, 0.2f});
+  // Seen from inside: the box's faces point out, so the file says it is double-sided (glTF culls
+  // the back of a single-sided surface for the camera).
+  MaterialSpec glowingSpec{"glowing_white", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f, {1.0f, 1.0f, 1.0f}, 0.2f};
+  glowingSpec.doubleSided = true;
+  int glowing = w.material(glowingSpec);
   w.node("box", w.mesh("box", box({2.0f, 2.0f, 2.0f}), glowing), {0.0f, 0.0f, 0.0f});
   w.camera("inside", {0.0f, 0.0f, 0.5f}, {0.0f, 0.0f, -1.0f}, 70.0f);
   w.sky({0.0f, 0.0f, 0.0f});

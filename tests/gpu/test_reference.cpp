@@ -203,6 +203,7 @@ TEST_F(ReferenceTest, ClosedEmissiveSphereSolvesItsIntegralEquation) {
   auto j = nlohmann::json::parse(std::ifstream(contentFile("furnace.gltf")));
   j["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {0.5, 0.5, 0.5, 1.0};
   j["materials"][0]["emissiveFactor"] = {1.0, 1.0, 1.0};
+  j["materials"][0]["doubleSided"] = true;  // seen from inside: its faces point out
   std::ofstream(dir / "furnace.gltf") << j.dump();
   fs::copy_file(contentFile("furnace.bin"), dir / "furnace.bin", fs::copy_options::overwrite_existing);
   s.loadScene(dir / "furnace.gltf");
