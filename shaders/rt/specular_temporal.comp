@@ -58,7 +58,7 @@ void main() {
   if (any(greaterThanEqual(p, size))) return;
   vec4 sample0 = texelFetch(raw, p, 0);
   float depth = texelFetch(gDepth, p, 0).r;
-  if (depth <= 0.0 || sample0.a < 0.0) {
+  if (depth <= 0.0 || sample0.a <= kRtSpecularNotTraced) {
     imageStore(outAccumulated, p, vec4(0.0));
     imageStore(outHit, p, vec4(0.0));
     return;
@@ -71,7 +71,7 @@ void main() {
       ivec2 q = clamp(p + ivec2(x, y), ivec2(0), size - 1);
       vec4 s = texelFetch(raw, q, 0);
       float d = texelFetch(gDepth, q, 0).r;
-      if (s.a < 0.0 || d <= 0.0 || abs(d - depth) > 0.05 * depth) continue;
+      if (s.a <= kRtSpecularNotTraced || d <= 0.0 || abs(d - depth) > 0.05 * depth) continue;
       sum += s.rgb;
       sumSquares += s.rgb * s.rgb;
       count += 1.0;

@@ -51,8 +51,9 @@ TL_FN vec3 tlRtSpecularSampleWeight(vec3 fresnel, float g2OverG1, vec3 singleAlb
   return fresnel * g2OverG1 / max(singleAlbedo, vec3(1e-4f));
 }
 
-// The hit distance stored for a pixel that traced no specular ray this frame.
-TL_CONST float kRtSpecularNotTraced = -1.0f;
+// The hit distance stored for a pixel that traced no specular ray this frame (a traced ray's
+// is at least RtPush::tMin > 0, a miss's kRtMaxHitDistance): every value stays >= 0.
+TL_CONST float kRtSpecularNotTraced = 0.0f;
 
 // The specular temporal pass and filter's own push constants.
 struct RtSpecularPush {
@@ -67,7 +68,7 @@ struct RtSpecularPush {
 };
 
 // Bindings (set 0) beyond the RT path's (shared/rt.h).
-TL_CONST uint kRtBindingSpecularRaw = 41;           // rgba16f: demodulated radiance of this frame's ray (rgb), hit distance (a; < 0 untraced)
+TL_CONST uint kRtBindingSpecularRaw = 41;           // rgba16f: demodulated radiance of this frame's ray (rgb), hit distance (a; 0 untraced)
 TL_CONST uint kRtBindingSpecularHistory = 42;       // rgba16f: last frame's accumulation (rgb), frames (a)
 TL_CONST uint kRtBindingSpecularHistoryHit = 43;    // r16f: last frame's accumulated hit distance
 TL_CONST uint kRtBindingSpecularAccumulated = 44;   // rgba16f: this frame's accumulation

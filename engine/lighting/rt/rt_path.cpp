@@ -378,7 +378,7 @@ class RtPath final : public LightingPath {
         .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
         .storageOut(shared::kRtBindingSpecularRaw, kSpecularRaw,
                     image(VK_FORMAT_R16G16B16A16_SFLOAT,
-                          "one specular ray: radiance x lobe weight / lobe albedo (rgb), hit distance (a; -1 untraced)"))
+                          "one specular ray: radiance x lobe weight / lobe albedo (rgb), hit distance (a; 0 untraced)"))
         .push(push, screenRadianceAtRecord(screenRadiance))
         .trace(w, h)
         .add(graph);
