@@ -75,8 +75,8 @@ vec3 pathSpecularFromSh(ivec2 p, vec3 n, vec3 v, vec3 position, float ao, Surfac
 }
 vec3 pathSpecular(ivec2 p, vec3 n, vec3 v, vec3 position, float ao, SurfaceParams s, vec3 skyRadiance) {
   vec4 traced = (push.flags & kCompositeHasTracedSpecular) != 0u ? texelFetch(tracedSpecular, p, 0) : vec4(0.0);
-  if (traced.a >= 1.0) return tlEnvironmentSpecular(s, dot(n, v)) * traced.rgb;
-  vec3 fromSh = pathSpecularFromSh(p, n, v, position, ao, s, skyRadiance);
-  if (!(traced.a > 0.0)) return fromSh;
-  return mix(fromSh, tlEnvironmentSpecular(s, dot(n, v)) * traced.rgb, traced.a);
+  if (!(traced.a > 0.0)) return pathSpecularFromSh(p, n, v, position, ao, s, skyRadiance);
+  vec3 fromRays = tlEnvironmentSpecular(s, dot(n, v)) * traced.rgb;
+  if (traced.a >= 1.0) return fromRays;
+  return mix(pathSpecularFromSh(p, n, v, position, ao, s, skyRadiance), fromRays, traced.a);
 }

@@ -3,7 +3,7 @@
 // energy-conserving BRDF reflects all the light it receives and a correct renderer shows exactly
 // 1.0 on every pixel, surface or sky, at every angle and after any number of bounces. Checked
 // on every pixel and channel of each path's final image: 1.000 +- 0.01.
-#include "gpu_fixture.h"
+#include "furnace_checks.h"
 
 #include "lighting/common/composite_pass.h"
 
@@ -17,36 +17,6 @@ namespace {
 
 constexpr uint32_t kSize = 40;
 
-struct FurnaceStats {
-  double mean = 0.0, p99 = 0.0, worst = 0.0;  // of the value; p99 and worst of |value - 1|
-  double lowest = 1.0, highest = 1.0;
-  size_t nonFinite = 0, values = 0;
-};
-
-FurnaceStats furnaceStats(const std::vector<float>& t, uint32_t c) {
-  FurnaceStats st;
-  std::vector<double> deviation;
-  for (size_t i = 0; i < t.size() / c; ++i)
-    for (uint32_t k = 0; k < std::min(c, 3u); ++k) {
-      const double v = t[i * c + k];
-      if (!std::isfinite(v)) {
-        ++st.nonFinite;
-        continue;
-      }
-      st.mean += v;
-      st.lowest = std::min(st.lowest, v), st.highest = std::max(st.highest, v);
-      deviation.push_back(std::abs(v - 1.0));
-    }
-  st.values = deviation.size();
-  st.mean /= double(std::max<size_t>(1, st.values));
-  std::sort(deviation.begin(), deviation.end());
-  if (!deviation.empty()) {
-    st.p99 = deviation[std::min(deviation.size() - 1, size_t(0.99 * double(deviation.size())))];
-    st.worst = deviation.back();
-  }
-  return st;
-}
-
 class FurnaceTest : public RayTracingTest {
  protected:
   // Renders `frames` frames of the furnace with `path`, then checks the mean of its image over
@@ -59,16 +29,8 @@ class FurnaceTest : public RayTracingTest {
     s.setSize(kSize, kSize);
     s.resetHistory();
     s.renderFrames(frames);
-    std::vector<float> mean;
     uint32_t channels = 0;
-    for (uint32_t f = 0; f < averaged; ++f) {
-      s.requestBuffer(image);
-      s.renderFrames(1);
-      auto t = s.buffer(image).texels();
-      channels = s.buffer(image).channels();
-      mean.resize(t.size(), 0.0f);
-      for (size_t i = 0; i < t.size(); ++i) mean[i] += t[i] / float(averaged);
-    }
+    const std::vector<float> mean = averagedFrames(s, image, averaged, channels);
     FurnaceStats st = furnaceStats(mean, channels);
     std::printf("white furnace, %-9s mean %.4f, p99 |v-1| %.4f, max |v-1| %.4f (range %.4f .. %.4f)\n", path.c_str(),
                 st.mean, st.p99, st.worst, st.lowest, st.highest);

@@ -1,7 +1,7 @@
 // The RT path's traced reflections (shared/rt_specular.h): energy against a closed form, the
 // mirror path against the reference, and what the reflections change against the reference
 // on the polished-metal Cornell box.
-#include "gpu_fixture.h"
+#include "furnace_checks.h"
 
 #include "lighting/common/composite_pass.h"
 #include "lighting/rt/rt_path.h"
@@ -18,24 +18,7 @@ namespace {
 // The traced roughness the tests use (RE ENGINE-like; the setting is off by default).
 constexpr float kTraced = 0.5f;
 
-class ReflectionsTest : public RayTracingTest {
- protected:
-  // The mean of `averaged` frames of `image` after `frames` frames.
-  std::vector<float> averagedImage(uint32_t frames, uint32_t averaged, const char* image, uint32_t& channels) {
-    auto& s = session();
-    s.renderFrames(frames);
-    std::vector<float> mean;
-    for (uint32_t f = 0; f < averaged; ++f) {
-      s.requestBuffer(image);
-      s.renderFrames(1);
-      auto t = s.buffer(image).texels();
-      channels = s.buffer(image).channels();
-      mean.resize(t.size(), 0.0f);
-      for (size_t i = 0; i < t.size(); ++i) mean[i] += t[i] / float(averaged);
-    }
-    return mean;
-  }
-};
+class ReflectionsTest : public RayTracingTest {};
 
 // White metal spheres (mirror, 0.15, 0.35) under a uniform sky of 1: every pixel is exactly 1,
 // spheres seen in spheres included. direct (no inter-reflection) must be exact per pixel. rt's
@@ -56,28 +39,16 @@ TEST_F(ReflectionsTest, PolishedMetalFurnaceShowsOneEverywhere) {
     s.setPath(b.path);
     s.resetHistory();
     uint32_t channels = 0;
-    auto image = averagedImage(16, 16, lighting::kCompositeHdr, channels);
-    double worst = 0.0, mean = 0.0;
-    size_t values = 0, nonFinite = 0;
-    for (size_t i = 0; i < image.size() / channels; ++i)
-      for (uint32_t c = 0; c < 3; ++c) {
-        const double v = image[i * channels + c];
-        if (!std::isfinite(v)) {
-          ++nonFinite;
-          continue;
-        }
-        worst = std::max(worst, std::abs(v - 1.0));
-        mean += v;
-        ++values;
-      }
-    mean /= double(std::max<size_t>(values, 1));
-    std::printf("metal furnace, %-6s mean %.4f, max |v-1| %.4f\n", b.path, mean, worst);
-    RecordProperty(std::string(b.path) + "_mean", std::to_string(mean));
-    RecordProperty(std::string(b.path) + "_max", std::to_string(worst));
-    EXPECT_EQ(nonFinite, 0u) << b.path;
-    EXPECT_LT(std::abs(mean - 1.0), b.mean) << b.path << ": a white metal under a sky of 1 shows 1";
+    s.renderFrames(16);
+    const std::vector<float> image = averagedFrames(s, lighting::kCompositeHdr, 16, channels);  // sets channels
+    const FurnaceStats st = furnaceStats(image, channels);
+    std::printf("metal furnace, %-6s mean %.4f, max |v-1| %.4f\n", b.path, st.mean, st.worst);
+    RecordProperty(std::string(b.path) + "_mean", std::to_string(st.mean));
+    RecordProperty(std::string(b.path) + "_max", std::to_string(st.worst));
+    EXPECT_EQ(st.nonFinite, 0u) << b.path;
+    EXPECT_LT(std::abs(st.mean - 1.0), b.mean) << b.path << ": a white metal under a sky of 1 shows 1";
     if (b.worst > 0.0) {
-      EXPECT_LT(worst, b.worst) << b.path;
+      EXPECT_LT(st.worst, b.worst) << b.path;
     }
   }
   s.settings() = lighting::RenderSettings{};

@@ -55,6 +55,10 @@ const RayShaders kRawShaders{"rt.rawRays", "rt/raw.rgen", {"rt/raw.rmiss"}, {{"r
 constexpr FrameParts kTemporalRestarts = parts(FramePart::Scene, FramePart::Settings, FramePart::CameraCut);
 constexpr FrameParts kTemporalRejects = parts(FramePart::Sun, FramePart::Sky, FramePart::Albedo);
 
+// The spatial filters' Poisson disk turns by the golden angle each frame (radians), so
+// successive frames' taps never line up.
+float goldenAngleRotation(uint32_t frameIndex) { return float(frameIndex % 1024u) * 2.3999632f; }
+
 class RtPath final : public LightingPath {
  public:
   std::string name() const override { return "rt"; }
@@ -218,7 +222,7 @@ class RtPath final : public LightingPath {
         shared::RtDenoisePush dp{};
         dp.baseRadius = radius;
         dp.normalWeight = normalWeight;
-        dp.rotation = float(frameIndex % 1024u) * 2.3999632f;  // golden angle per frame
+        dp.rotation = goldenAngleRotation(frameIndex);
         dp.planeDistance = 0.02f;
         dp.hitDistanceCap = denoiseRadius;
         ComputePass(in.device, name, "rt/denoise.comp")
@@ -387,7 +391,7 @@ class RtPath final : public LightingPath {
     sp.maxFrames = float(s.rtReflectionFrames);
     sp.clampSigma = s.rtReflectionClamp;
     sp.specularRoughness = push.specularRoughness;
-    sp.rotation = float(in.constants.frameIndex % 1024u) * 2.3999632f;  // golden angle per frame
+    sp.rotation = goldenAngleRotation(in.constants.frameIndex);
     sp.maxRadius = s.rtReflectionFilterRadius;
     sp.lightChanged = push.lightChanged;
     ComputePass(in.device, "rt.specular.temporal", "rt/specular_temporal.comp")
