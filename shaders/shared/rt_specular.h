@@ -51,6 +51,16 @@ TL_FN vec3 tlRtSpecularSampleWeight(vec3 fresnel, float g2OverG1, vec3 singleAlb
   return fresnel * g2OverG1 / max(singleAlbedo, vec3(1e-4f));
 }
 
+// Whether a lobe reflects enough to be worth a ray: its single-scattering albedo (per channel)
+// reaches 1/1024 in some channel, under a quarter of an 8-bit display step of what it reflects.
+// Below it (specularFactor 0, an IOR near 1) the SH specular shades the pixel: a sample's weight
+// would divide one tiny number by another (the albedo table's interpolation error then dominates),
+// and the spatial filter would spread those values into coplanar neighbours of other materials.
+TL_CONST float kRtSpecularMinAlbedo = 1.0f / 1024.0f;
+TL_FN bool tlRtSpecularWorthTracing(vec3 singleAlbedo) {
+  return max(max(singleAlbedo.x, singleAlbedo.y), singleAlbedo.z) >= kRtSpecularMinAlbedo;
+}
+
 // The hit distance stored for a pixel that traced no specular ray this frame (a traced ray's
 // is at least RtPush::tMin > 0, a miss's kRtMaxHitDistance): every value stays >= 0.
 TL_CONST float kRtSpecularNotTraced = 0.0f;

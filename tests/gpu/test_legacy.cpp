@@ -91,15 +91,16 @@ TEST_F(LegacyTest, AoDarkensACornerOfTheCornellBox) {
   EXPECT_LT(corner, centre - 0.1) << "corner " << corner << ", centre " << centre;
 }
 
-// A cube whose faces sit a quarter voxel inside voxels 16 and 47 (so no edge falls on a
-// pixel centre of the voxelizing raster): exactly its 32^3 - 30^3 shell is occupied.
+// A cube whose faces sit a quarter voxel inside voxels 15 and 47 (so no edge falls on a
+// pixel centre of the voxelizing raster): exactly its 33^3 - 31^3 shell is occupied. (The
+// voxel faces sit half a voxel off the scene's centre, so the centred cube spans an odd count.)
 TEST_F(LegacyTest, VoxelizationCoversAKnownBoxExactly) {
   scene::Material material;
   material.metallic = 0.0f;
-  auto scene = makeCubeScene(material, 2.0f * 15.75f / 32.0f);
+  auto scene = makeCubeScene(material, 2.0f * 16.25f / 32.0f);
   auto& s = session();
   s.installScene(std::move(scene));
-  s.settings().legacyLevel0Extent = 2.0f;  // 64 voxels of 1/32 m from -1 m: faces at voxel coordinates 16.25, 47.75
+  s.settings().legacyLevel0Extent = 2.0f;  // 64 voxels of 1/32 m from -1 + 1/64 m: faces at voxel coordinates 15.25, 47.75
   s.settings().legacyVoxelResolution = 64;
   render("legacy", 32, 32, 1, {kVoxelRadiance});
   const auto& rb = s.buffer(kVoxelRadiance);
@@ -113,11 +114,11 @@ TEST_F(LegacyTest, VoxelizationCoversAKnownBoxExactly) {
         bool any = false;
         for (uint32_t f = 0; f < 6; ++f) any |= t[((size_t(z) * 64 + y) * 384 + x + f * 64) * 4 + 3] > 0.0f;
         occupied += any;
-        bool shell = x >= 16 && x <= 47 && y >= 16 && y <= 47 && z >= 16 && z <= 47 &&
-                     (x == 16 || x == 47 || y == 16 || y == 47 || z == 16 || z == 47);
+        bool shell = x >= 15 && x <= 47 && y >= 15 && y <= 47 && z >= 15 && z <= 47 &&
+                     (x == 15 || x == 47 || y == 15 || y == 47 || z == 15 || z == 47);
         outside += any && !shell;
       }
-  EXPECT_EQ(occupied, size_t(32 * 32 * 32 - 30 * 30 * 30));
+  EXPECT_EQ(occupied, size_t(33 * 33 * 33 - 31 * 31 * 31));
   EXPECT_EQ(outside, 0u);
 }
 

@@ -230,6 +230,15 @@ TEST(LegacyClipmap, TheAutomaticFinestLevelHoldsTheSceneAtAnyScale) {
     EXPECT_LE(cornell.clipmap.levelMin[0].x, -1.0f * scale);
     EXPECT_LE(cornell.clipmap.levelMin[0].z, (-1.0f - 3.9f) * scale);
     EXPECT_NEAR(cornell.clipmap.levelMin[0].w, 2.0 * 1.02 / 64.0 * scale, 1e-6 * scale);  // the largest side, +2%, / R
+    // The scene's central planes (x = 0, z = 0 here) lie inside voxels, not on their faces,
+    // and its walls inside the level.
+    const double voxel = cornell.clipmap.levelMin[0].w;
+    for (int a : {0, 2}) {
+      const double camera = a == 0 ? 0.0 : 3.9 * scale;
+      const double centreInVoxels = (0.0 - camera - double(cornell.clipmap.levelMin[0][a])) / voxel;
+      EXPECT_NEAR(centreInVoxels - std::floor(centreInVoxels), 0.5, 0.05) << scale << " axis " << a;
+      EXPECT_GE(double(cornell.clipmap.levelMin[0][a]) + 64.0 * voxel, 1.0 * scale - camera) << scale << " axis " << a;
+    }
   }
   auto atrium = lighting::fitLegacyClipmap(box({-12.5, -0.2, -12.5}, {12.5, 6, 12.5}), {0, 3.5, 13}, 64, 0.0f, 4);
   EXPECT_EQ(atrium.clipmap.levels, 1u);
@@ -248,9 +257,10 @@ TEST(LegacyClipmap, AFinerLevelFollowsTheCameraOnTheVoxelGridAndStaysInTheScene)
   auto a = lighting::fitLegacyClipmap(bounds, {10.0, 1.0, 20.0}, 64, 16.0f, 4);
   const float voxel = a.clipmap.levelMin[0].w;
   EXPECT_FLOAT_EQ(voxel, 0.25f);
-  // World minimum corner of level 0 lies on the voxel grid, around the camera.
+  // World minimum corner of level 0 lies half a voxel off the voxel grid (world-origin planes
+  // fall inside voxels, not on their faces), around the camera.
   const double worldX = double(a.clipmap.levelMin[0].x) + 10.0;
-  EXPECT_NEAR(worldX / voxel, std::round(worldX / voxel), 1e-3);
+  EXPECT_NEAR(worldX / voxel - 0.5, std::round(worldX / voxel - 0.5), 1e-3);
   EXPECT_LT(worldX, 10.0);
   EXPECT_GT(worldX + 16.0, 10.0);
   // Near the scene's edge the level is clamped into the bounds (one voxel of margin).

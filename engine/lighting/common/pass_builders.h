@@ -174,6 +174,10 @@ class BindingPass : public BindingList {
   Self& storageOut(uint32_t binding, std::string_view image, uint32_t mip) {
     return listed(binding, Kind::StorageOut, image, {.mip = mip});
   }
+  // The first level of such a chain, creating the image (all its mips) with `create`.
+  Self& storageOut(uint32_t binding, std::string_view image, const graph::ResourceDesc& create, uint32_t mip) {
+    return listed(binding, Kind::StorageOut, image, {.create = create, .mip = mip});
+  }
   Self& storageUpdate(uint32_t binding, std::string_view image, uint32_t mip) {
     return listed(binding, Kind::StorageInOut, image, {.mip = mip, .update = true});
   }

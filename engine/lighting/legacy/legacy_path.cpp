@@ -18,6 +18,8 @@
 #include "lighting/common/light_shadows.h"
 #include "lighting/common/lights_pass.h"
 #include "lighting/common/pass_builders.h"
+#include "shared/brdf_lut.h"
+#include "shared/legacy_reflections.h"
 #include "shared/scene.h"
 
 #include <fmt/format.h>
@@ -222,6 +224,9 @@ class LegacyPath final : public LightingPath {
         .dispatch(w, h)
         .add(graph);
 
+    const bool reflections = s.legacyReflectionRoughness > 0.0f;
+    if (reflections) addReflections(graph, in, push, rooms, feedback, historyOk);
+
     std::vector<ImageCopy> history = {{kLegacySsao, kLegacyHistSsao}};
     if (feedback) {
       history.push_back({kGbufferDepth, kLegacyHistDepth});
@@ -234,11 +239,73 @@ class LegacyPath final : public LightingPath {
     out.diffuseShY = kLegacyShY;
     out.diffuseCoCg = kLegacyCoCg;
     out.aoOnGi = true;
+    if (reflections) out.specular = kLegacyReflections;
     out.openSkyDirectionality = shared::tlLegacyOpenSkyDirectionality();
     return out;
   }
 
  private:
+  // Reflections (shared/legacy_reflections.h): the hierarchical depth, a mip per pass, then
+  // one pass that marches the screen and traces the voxels' specular cone. Last frame's image
+  // and depth are bound only when the voxels' feedback keeps them; `screen` says they hold
+  // last frame.
+  static uint32_t mipSide(uint32_t side, uint32_t mip) { return std::max(side >> mip, 1u); }  // Vulkan's mip sizes
+  static void addReflections(graph::RenderGraph& graph, FrameInputs& in, const LegacyPush& push, bool rooms,
+                             bool feedback, bool screen) {
+    const RenderSettings& s = in.settings;
+    const uint32_t w = s.width, h = s.height;
+    uint32_t mips = 1;
+    while (mips < shared::kLegacyHizMaxMips && (std::max(w, h) >> mips) > 0) ++mips;
+    shared::LegacyReflectionPush rp{};
+    rp.clipmap = push.clipmap;
+    rp.roughness = s.legacyReflectionRoughness;
+    rp.coneRange = push.coneRange;
+    rp.coneStep = push.coneStep;
+    rp.screenHistory = screen ? 1u : 0u;
+    rp.hizMips = mips;
+    rp.maxSteps = s.legacyReflectionSteps;
+
+    ComputePass(in.device, "legacy.reflections.hiz0", "legacy/hiz_first.comp")
+        .uniform(shared::kLegacyBindingFrame, kFrameConstants)
+        .sampled(shared::kLegacyBindingDepth, kGbufferDepth)
+        .storageOut(shared::kLegacyBindingHizOut, kLegacyHiz,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
+                                                 "hierarchical depth: the nearest reversed-Z depth of each 2^m-pixel cell, mip m",
+                                                 mips),
+                    0)
+        .dispatch(w, h)
+        .add(graph);
+    for (uint32_t m = 1; m < mips; ++m) {
+      ComputePass(in.device, fmt::format("legacy.reflections.hiz{}", m), "legacy/hiz_reduce.comp")
+          .storageIn(shared::kLegacyBindingHizSource, kLegacyHiz, m - 1)
+          .storageUpdate(shared::kLegacyBindingHizOut, kLegacyHiz, m)
+          .pipelineName("legacy.reflections.hiz")
+          .dispatch(mipSide(w, m), mipSide(h, m))
+          .add(graph);
+    }
+
+    ComputePass(in.device, "legacy.reflections", "legacy/reflections.comp")
+        .uniform(shared::kLegacyBindingFrame, kFrameConstants)
+        .sampled(shared::kLegacyBindingDepth, kGbufferDepth)
+        .sampled(shared::kLegacyBindingNormal, "gbuffer.normal")
+        .sampled(shared::kLegacyBindingMaterial, "gbuffer.material")
+        .sampled(shared::kLegacyBindingBaseColor, "gbuffer.baseColor")
+        .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
+        .sampled(shared::kLegacyBindingHiz, kLegacyHiz)
+        .optionalSampled(shared::kLegacyBindingPrevRadiance, kLegacyHistRadiance, feedback, samplers::linear)
+        .optionalSampled(shared::kLegacyBindingPrevDepth, kLegacyHistDepth, feedback)
+        .sampled(shared::kLegacyBindingRadiance, kVoxelRadiance, samplers::linear)
+        .sampled(shared::kLegacyBindingRadianceMips, kVoxelRadianceMips, samplers::linear)
+        .optionalSampled(shared::kLegacyBindingReach, kVoxelReach, rooms)
+        .optionalBufferIn(shared::kLegacyBindingReachUnsettled, kVoxelReachUnsettled, rooms)
+        .storageOut(shared::kLegacyBindingReflections, kLegacyReflections,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
+                                                 "reflections: screen-space march and voxel cone, demodulated (rgb); weight against the SH specular (a)"))
+        .push(rp)
+        .dispatch(w, h)
+        .add(graph);
+  }
+
   // The voxel work over the work's regions (whole levels for a rebuild), as steps of one
   // write each of the voxels and their mips, which the graph orders and fences: the regions
   // emptied, voxelized in up to three rounds, then the mips, a level per pass.
@@ -612,14 +679,20 @@ LegacyClipmapFit fitLegacyClipmap(const scene::Bounds& bounds, const glm::dvec3&
       // through a float, and rounding must not add a level at one scale and not at another).
       std::clamp(1u + uint32_t(std::max(0.0, std::ceil(std::log2(maxAxis / e0) - 1e-4))), 1u, std::min(maxLevels, shared::kLegacyMaxLevels));
   const glm::dvec3 centreOfScene = bounds.valid() ? bounds.center() : glm::dvec3(0.0);
+  // Voxel faces sit half a voxel off the scene's centre (and off the world's origin): authored
+  // geometry lies on them otherwise (a wall through the middle of a symmetric scene, a floor at
+  // y = 0), and a surface exactly on a face falls into the voxel on one side or the other by the
+  // rounding of its position, which differs with the scene's scale.
   for (uint32_t l = 0; l < levels; ++l) {
     const double voxel = e0 / R * std::exp2(double(l)), extent = voxel * R;
     glm::dvec3 centre;
     for (int a = 0; a < 3; ++a) {
       if (extent >= size[a] * 1.02 * (1.0 - 1e-4)) {  // (with the levels' count's tolerance)
-        centre[a] = centreOfScene[a];  // the level spans the scene on this axis: no need to follow the camera
+        // The level spans the scene on this axis (no need to follow the camera); the half-voxel
+        // shift stays within the margin, so walls on the bounds stay inside.
+        centre[a] = centreOfScene[a] + std::min(0.5 * voxel, 0.45 * (extent - size[a]));
       } else {
-        double c = std::floor(camera[a] / voxel + 0.5) * voxel;  // on the voxel grid: stable as the camera moves
+        double c = (std::floor(camera[a] / voxel) + 0.5) * voxel;  // half a voxel off the grid: stable as the camera moves
         double lo = bounds.min[a] + 0.5 * extent - voxel, hi = bounds.max[a] - 0.5 * extent + voxel;
         centre[a] = std::clamp(c, lo, std::max(lo, hi));
       }

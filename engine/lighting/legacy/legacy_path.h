@@ -21,6 +21,8 @@ inline constexpr const char* kLegacyHistRadiance = "legacy.history.radiance";
 inline constexpr const char* kLegacyHistDepth = "legacy.history.depth";
 inline constexpr const char* kLegacySsao = "legacy.ssao";  // SSAO accumulated over frames, reduced resolution
 inline constexpr const char* kLegacyHistSsao = "legacy.history.ssao";
+inline constexpr const char* kLegacyHiz = "legacy.reflections.hiz";  // hierarchical depth: nearest depth per 2^m cell, mip m
+inline constexpr const char* kLegacyReflections = "legacy.reflections";
 
 struct LegacyClipmapFit {
   shared::LegacyClipmap clipmap{};
