@@ -162,6 +162,29 @@ void metalFurnace(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// A mirror floor under a moving box, for the reflections' ghosts: the floor's left half a white
+// metal mirror (roughness 0), its right half polished (0.2), a white wall behind, sun and sky.
+// A red box stands on the left half until t = 1 s, on the right half from 1 s to 2 s, then
+// on the left again (STEP: it jumps), so its reflection leaves one half of the floor for the
+// other at once, and whatever a history still shows where it stood is a ghost.
+void mirrorFloor(const std::filesystem::path& dir) {
+  SceneWriter w("mirror_floor");
+  int mirror = w.material({"mirror_metal", {0.95f, 0.95f, 0.95f}, 1.0f, 0.0f});
+  int polished = w.material({"polished_metal", {0.95f, 0.95f, 0.95f}, 1.0f, 0.2f});
+  int plaster = w.material({"white_plaster", {0.8f, 0.8f, 0.78f}, 0.0f, 0.9f});
+  int red = w.material({"red_paint", {0.7f, 0.08f, 0.06f}, 0.0f, 0.6f});
+  wall(w, "mirror_floor_left", mirror, {-2.0f, -0.05f, 0.0f}, {4.0f, 0.1f, 6.0f});
+  wall(w, "polished_floor_right", polished, {2.0f, -0.05f, 0.0f}, {4.0f, 0.1f, 6.0f});
+  wall(w, "back_wall", plaster, {0.0f, 1.5f, -3.1f}, {8.0f, 3.0f, 0.2f});
+  const glm::vec4 left(-1.5f, 0.4f, -0.5f, 0.0f), right(1.5f, 0.4f, -0.5f, 0.0f);
+  const int mover = w.node("moving_box", w.mesh("moving_box", box({0.8f, 0.8f, 0.8f}), red), glm::vec3(left));
+  w.nodeChannel("box_jumps", mover, "translation", {0.0f, 1.0f, 2.0f}, {left, right, left}, "STEP");
+  w.camera("front", {0.0f, 1.6f, 4.5f}, {0.0f, 0.2f, -0.5f}, 50.0f);
+  w.sun({-0.3f, -0.7f, -0.6f}, 4.0f);
+  w.sky({0.45f, 0.55f, 0.75f});
+  w.write(dir);
+}
+
 // The Cornell box made metal, as a new user tries reflections: the floor and both boxes
 // polished white metal (base colour 0.95, metallic 1) at `roughness`, the walls as in cornell,
 // the ceiling panel lit, and a sun and sky through the open front. Most of what the camera
@@ -1379,6 +1402,7 @@ int main(int argc, char** argv) {
     tl::content::metalCornell(dir, "metal_cornell_rough", 0.25f);
     tl::content::polishedMetals(dir);
     tl::content::metalFurnace(dir);
+    tl::content::mirrorFloor(dir);
     tl::content::plane(dir);
     tl::content::grove(dir);
     tl::content::banners(dir);

@@ -10,7 +10,8 @@
 //    temporal checks), else the surface motion's pixel, else none.
 //  - Colour clamping: the history is clamped into this frame's neighbourhood (mean +- k
 //    standard deviations of the 3x3 samples on the same surface), so content that moved in a
-//    mirror does not leave a ghost; a change of light resets the weight.
+//    mirror does not leave a ghost; on the mirror path a hit distance that changed twofold
+//    drops the history; a change of light resets the weight.
 //  - Average with weight 1 / n, n growing to the window (RtSpecularPush::maxFrames).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame.h"
@@ -50,6 +51,36 @@ bool previousUv(vec4 point, out vec2 uv, out float w) {
 bool sameSurface(vec2 uv, float expected, float tolerance) {
   float w = texelFetch(historyDepth, ivec2(uv * frame.viewport.xy), 0).r;
   return w > 0.0 && abs(w - expected) <= tolerance * expected;
+}
+
+// Last frame's accumulation at `uv`, bilinear over the texels that held one (frames > 0): an
+// untraced neighbour (a rough or non-reflecting surface, the sky) holds zeros, and a plain
+// bilinear fetch would blend them into the history a little every frame wherever the
+// reprojection is not exactly on a texel centre (a reflector's edges), a bias that settles
+// nowhere. False where none of the four held one.
+bool historyAt(vec2 uv, out vec4 accumulated, out float hit) {
+  vec2 texel = uv * frame.viewport.xy - 0.5;
+  ivec2 base = ivec2(floor(texel));
+  vec2 f = texel - vec2(base);
+  ivec2 size = ivec2(frame.viewport.xy);
+  accumulated = vec4(0.0);
+  hit = 0.0;
+  float total = 0.0;
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x) {
+      ivec2 q = base + ivec2(x, y);
+      if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+      vec4 h = texelFetch(history, q, 0);
+      if (!(h.a > 0.0)) continue;
+      float w = (x == 1 ? f.x : 1.0 - f.x) * (y == 1 ? f.y : 1.0 - f.y);
+      accumulated += w * h;
+      hit += w * texelFetch(historyHit, q, 0).r;
+      total += w;
+    }
+  if (!(total > 1e-4)) return false;
+  accumulated /= total;
+  hit /= total;
+  return true;
 }
 
 void main() {
@@ -99,13 +130,23 @@ void main() {
   bool valid = sp.historyValid != 0u && surfaceValid;
   // The virtual pixel must still lie on this surface (at a reflector's edge, the surface's own).
   if (valid && !sameSurface(historyUv, expected, 0.1)) historyUv = surfaceUv;
-  vec4 previous = valid ? textureLod(history, historyUv, 0.0) : vec4(0.0);
-  float previousHit = valid ? textureLod(historyHit, historyUv, 0.0).r : 0.0;
+  vec4 previous = vec4(0.0);
+  float previousHit = 0.0;
+  if (valid) valid = historyAt(historyUv, previous, previousHit);
   if (!all(lessThan(abs(previous), vec4(1e30)))) previous = vec4(0.0);
   float frames = valid ? previous.a : 0.0;
   if (sp.lightChanged != 0u) frames = min(frames, 1.0);
   // Clamp what the history remembers into what this frame sees around the pixel.
   vec3 remembered = clamp(previous.rgb, mean - sp.clampSigma * sigma, mean + sp.clampSigma * sigma);
+  // A mirror's ray is the same every frame: where its hit distance is more than twice the
+  // history's, or under half of it, something moved into or out of the reflection, and the
+  // history goes. (At a reflection's edges the colour clamp's 3x3 holds both sides and cannot
+  // tell: the box arriving on mirror_floor's mirror left a 16-frame ghost outline.) A rough
+  // lobe's rays differ from frame to frame, and a lobe that straddles two objects changes its
+  // distance every frame: there the test would only throw history away (the metal furnace's
+  // worst pixel went from 0.06 to 0.27), so rough lobes rely on the clamp.
+  bool mirror = tlRtSpecularIsMirror(roughness, tlRtSpecularRoughness(sp.specularRoughness).y);
+  if (mirror && frames > 0.0 && (hitDistance > 2.0 * previousHit || previousHit > 2.0 * hitDistance)) frames = 0.0;
   float n = min(frames + 1.0, max(sp.maxFrames, 1.0));
   vec3 accumulated = mix(remembered, sample0.rgb, 1.0 / n);
   float meanHit = frames > 0.0 ? mix(previousHit, min(hitDistance, kRtMaxHitDistance), 1.0 / n) : hitDistance;

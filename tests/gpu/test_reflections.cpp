@@ -7,6 +7,8 @@
 #include "lighting/legacy/legacy_path.h"
 #include "lighting/rt/rt_path.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -103,6 +105,102 @@ TEST_F(ReflectionsTest, ReflectionsAreTracedOnlyBelowTheirRoughness) {
   }
   s.settings() = lighting::RenderSettings{};
   s.setSize(64, 36);
+}
+
+// Ghosts behind what moves in a mirror (content/mirror_floor.gltf: a red box jumps at t = 1 s
+// from the mirror half of the floor to the polished half, and back at 2 s). From a history
+// converged on the old pose (a fresh one, 16 frames), the jump, 6 frames recorded, then 24 more
+// and the mean of 8: what the path settles on after the jump. Over a floor half's pixels that
+// the jump changes (converged before against settled after: more than a fifth of the settled
+// image's mean luminance), the residual is the share of that change a frame has not yet taken:
+// sum |frame - after| / sum |before - after|. A ghost lasts while the residual exceeds 10% plus
+// the noise floor (the residual of one more frame of the settled pose, which only the frames'
+// noise makes non-zero). In the mirror half, at most 4 frames, whether the box leaves it or
+// arrives on it, in rt and legacy (measured: 1 frame, the first frame after the jump still
+// shows the old pose). The polished half (roughness 0.2) is recorded, not asserted: rt's
+// rough lobes have only the colour clamp, and the box arriving there fades over about the
+// accumulation window (residual 0.54 to 0.39 in 6 frames, measured), a known limit. (Against
+// the settled image, not a fresh render of the new pose: light that the rest of the frame, the
+// diffuse GI, takes longer to settle is the GI's lag, shown in the mirror but not the
+// reflections' own.)
+TEST_F(ReflectionsTest, WhatMovesInAMirrorLeavesNoGhostLongerThanFourFrames) {
+  auto& s = session();
+  s.loadScene(contentFile("mirror_floor.gltf"));
+  const uint32_t width = 96, height = 54;
+  s.setSize(width, height);
+  const char* image = lighting::kCompositeHdr;
+  std::vector<uint32_t> halfIds;
+  for (const char* name : {"mirror_floor_left", "polished_floor_right"})
+    for (size_t i = 0; i < s.scene().instances.size(); ++i)
+      if (s.scene().instances[i].name == name) halfIds.push_back(uint32_t(i + 1));
+  ASSERT_EQ(halfIds.size(), 2u);
+  auto luminance = [](const std::vector<float>& t, uint32_t c) {
+    std::vector<double> y(t.size() / c);
+    for (size_t i = 0; i < y.size(); ++i) y[i] = 0.2126 * t[i * c] + 0.7152 * t[i * c + 1] + 0.0722 * t[i * c + 2];
+    return y;
+  };
+  auto frame = [&]() {
+    s.requestBuffer(image);
+    s.renderFrames(1);
+    return luminance(s.buffer(image).texels(), s.buffer(image).channels());
+  };
+  // The converged image of the pose at `time`, from a fresh history.
+  auto converged = [&](double time) {
+    s.setAnimationTime(time);
+    s.resetHistory();
+    s.renderFrames(16);
+    uint32_t channels = 0;
+    const std::vector<float> mean = averagedFrames(s, image, 8, channels);  // sets channels
+    return luminance(mean, channels);
+  };
+  for (const char* path : {"rt", "legacy"}) {
+    s.setPath(path);
+    for (auto [from, to] : {std::pair{0.5, 1.5}, std::pair{1.5, 2.5}}) {
+      const std::vector<double> before = converged(from);
+      s.setAnimationTime(to);
+      std::vector<std::vector<double>> frames;
+      for (int k = 0; k < 6; ++k) frames.push_back(frame());
+      s.renderFrames(24);
+      uint32_t channels = 0;
+      const std::vector<float> settledMean = averagedFrames(s, image, 8, channels);  // sets channels
+      const std::vector<double> after = luminance(settledMean, channels);
+      const std::vector<double> settled = frame();
+      s.requestBuffer("gbuffer.instanceId");
+      s.renderFrames(1);
+      const std::vector<float> ids = s.buffer("gbuffer.instanceId").texels();
+      double mean = 0.0;
+      for (double v : after) mean += v / double(after.size());
+      for (size_t h = 0; h < 2; ++h) {
+        double change = 0.0, noise = 0.0;
+        size_t pixels = 0;
+        std::vector<double> residual(frames.size(), 0.0);
+        for (size_t i = 0; i < after.size(); ++i) {
+          if (uint32_t(ids[i]) != halfIds[h] || std::abs(before[i] - after[i]) <= 0.2 * mean) continue;
+          ++pixels;
+          change += std::abs(before[i] - after[i]);
+          noise += std::abs(settled[i] - after[i]);
+          for (size_t k = 0; k < frames.size(); ++k) residual[k] += std::abs(frames[k][i] - after[i]);
+        }
+        ASSERT_GT(pixels, 20u) << path << ": the jump changes the floor's reflection";
+        noise /= change;
+        size_t ghost = 0;
+        std::string shares;
+        for (size_t k = 0; k < frames.size(); ++k) {
+          residual[k] /= change;
+          shares += fmt::format(" {:.3f}", residual[k]);
+          if (residual[k] > 0.1 + noise) ghost = k + 1;
+        }
+        std::printf("ghost %-6s t %.1f -> %.1f, %s half (%zu px): residual by frame%s, noise floor %.3f: %zu frame(s)\n",
+                    path, from, to, h == 0 ? "mirror" : "polished", pixels, shares.c_str(), noise, ghost);
+        RecordProperty(fmt::format("{}_{}_{:.1f}_ghost_frames", path, h == 0 ? "mirror" : "polished", to), int(ghost));
+        if (h == 0) {
+          EXPECT_LE(ghost, 4u) << path << " mirror half, t " << from << " -> " << to;
+        }
+      }
+    }
+  }
+  s.setAnimationTime(0.0);
+  s.settings() = lighting::RenderSettings{};
 }
 
 }  // namespace
