@@ -41,7 +41,7 @@ void main() {
     imageStore(outFiltered, p, vec4(0.0));
     return;
   }
-  if (tlRtSpecularIsMirror(roughness, thresholds.y)) {
+  if (tlRtSpecularIsMirror(texelFetch(gMaterial, p, 0).x, thresholds.y)) {
     imageStore(outFiltered, p, vec4(centre.rgb, weight));
     return;
   }

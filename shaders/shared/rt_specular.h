@@ -42,7 +42,9 @@ TL_FN float tlRtSpecularTracedWeight(float roughness, float threshold) {
   return clamp((threshold - roughness) / seam, 0.0f, 1.0f);
 }
 
-// The mirror path: roughness at or below the mirror threshold (0: none).
+// The mirror path: the material's roughness (the G-buffer's, before the BRDF's floor of
+// kBrdfMinRoughness, which lies above the default threshold) at or below the mirror threshold
+// (0: none). Every pass asks with the same value.
 TL_FN bool tlRtSpecularIsMirror(float roughness, float mirrorThreshold) { return roughness <= mirrorThreshold; }
 
 // One visible-normal sample's demodulated weight per channel: F(v.h) G2 / G1 over E_ss(mu_o)
@@ -61,6 +63,14 @@ TL_FN bool tlRtSpecularWorthTracing(vec3 singleAlbedo) {
   return max(max(singleAlbedo.x, singleAlbedo.y), singleAlbedo.z) >= kRtSpecularMinAlbedo;
 }
 
+// The rough reflections' checkerboard (rtReflectionRoughDivisor 2): a reflecting pixel above
+// the mirror threshold traces on the frames where x + y + frame is even, as the GI's
+// checkerboard does; on the others the temporal pass keeps its history (clamped by the traced
+// neighbours) or, without one, takes the traced neighbours' mean. Mirrors trace every frame.
+TL_FN bool tlRtSpecularSkipsFrame(uint x, uint y, uint frameIndex, uint roughDivisor) {
+  return roughDivisor >= 2u && ((x + y + frameIndex) & 1u) != 0u;
+}
+
 // The hit distance stored for a pixel that traced no specular ray this frame (a traced ray's
 // is at least RtPush::tMin > 0, a miss's kRtMaxHitDistance): every value stays >= 0.
 TL_CONST float kRtSpecularNotTraced = 0.0f;
@@ -74,7 +84,7 @@ struct RtSpecularPush {
   float rotation;        // the filter's Poisson disk rotation this frame (radians)
   float maxRadius;       // the filter's largest radius, pixels
   uint lightChanged;     // 1: the light changed: the history keeps one frame's weight
-  uint pad0;
+  uint roughDivisor;     // 2: rough (non-mirror) pixels trace on a checkerboard (tlRtSpecularSkipsFrame)
 };
 
 // Bindings (set 0) beyond the RT path's (shared/rt.h).

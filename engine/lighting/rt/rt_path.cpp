@@ -371,6 +371,8 @@ class RtPath final : public LightingPath {
     const uint32_t w = s.width, h = s.height;
     auto image = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, w, h, what); };
     push.specularRoughness = shared::tlRtPackSpecularRoughness(s.rtReflectionRoughness, s.rtMirrorRoughness);
+    // This pass's own pattern: the rough pixels' checkerboard (shared/rt_specular.h), not the GI's.
+    push.rayPattern = s.rtReflectionRoughDivisor >= 2 ? shared::kRtRaysCheckerboard : shared::kRtRaysFull;
     const graph::ResourceDesc historyDesc = image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated reflections (rgb), frames (a), last frame");
     const graph::ResourceDesc historyHitDesc = image(VK_FORMAT_R16_SFLOAT, "accumulated reflection hit distance, last frame");
     graph.declarePersistent(kHistSpecular, historyDesc);
@@ -394,6 +396,7 @@ class RtPath final : public LightingPath {
     sp.rotation = goldenAngleRotation(in.constants.frameIndex);
     sp.maxRadius = s.rtReflectionFilterRadius;
     sp.lightChanged = push.lightChanged;
+    sp.roughDivisor = s.rtReflectionRoughDivisor >= 2 ? 2u : 1u;
     ComputePass(in.device, "rt.specular.temporal", "rt/specular_temporal.comp")
         .uniform(shared::kRtBindingFrame, kFrameConstants)
         .sampled(shared::kRtBindingDepth, kGbufferDepth)
