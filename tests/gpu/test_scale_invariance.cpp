@@ -17,7 +17,14 @@
 // metres this test found were 3x to 400x above it), with a floor for paths without noise
 // (there the seeds give the same image). A failed comparison leaves its images in
 // $TMPDIR/scale_invariance/ for a look.
+//
+// One test instance per scene and path (ContentScenes/ScaleInvarianceTest.*/grove_legacy): the
+// slow shards share them out, where one instance per scene looping over the paths made a
+// shard of grove alone (79 s, legacy's voxelization of its foliage 44 s of it). Each instance
+// does what one turn of that loop did: the scene loaded at x1, x0.01 and x100 for its path.
 #include "gpu_fixture.h"
+
+#include "lighting/lighting_path.h"
 
 #include "scene/scene_scale.h"
 #include "session/image_io.h"
@@ -38,6 +45,25 @@ std::vector<std::string> contentSceneNames() {
   }
   std::sort(names.begin(), names.end());
   return names;
+}
+
+// Every lighting path this build knows (the built-ins and the plugins), by name, without a
+// device: the registry's factories are cheap to call.
+std::vector<std::string> lightingPathNames() {
+  std::vector<std::string> names;
+  for (lighting::LightingPathFactory make : lighting::lightingPathRegistry()) names.push_back(make()->name());
+  return names;
+}
+
+struct SceneAndPath {
+  std::string scene, path;
+};
+
+std::vector<SceneAndPath> contentScenesAndPaths() {
+  std::vector<SceneAndPath> out;
+  for (const std::string& scene : contentSceneNames())
+    for (const std::string& path : lightingPathNames()) out.push_back({scene, path});
+  return out;
 }
 
 // The scene and its lighting sidecar, `factor` times larger.
@@ -129,50 +155,53 @@ double relMseNorm(const std::vector<float>& a, const std::vector<float>& b, doub
   return sum / double(3 * (a.size() / 4)) / (m * m);
 }
 
-class ScaleInvarianceTest : public GpuTest, public ::testing::WithParamInterface<std::string> {};
+class ScaleInvarianceTest : public GpuTest, public ::testing::WithParamInterface<SceneAndPath> {};
 
 TEST_P(ScaleInvarianceTest, EveryPathDrawsTheSameImageAtAHundredthAndAHundredTimesTheSize) {
   auto& s = session();
-  const std::filesystem::path file = contentFile(GetParam().c_str());
-  for (const session::PathInfo& info : s.paths()) {
-    if (!info.available) continue;
-    const std::string& path = info.name;
-    loadScaled(s, file, 1.0);
-    const std::vector<float> base = render(s, path, 0);
-    const std::vector<float> otherSeed = renderOtherSeed(s, info, 0), thirdSeed = renderOtherSeed(s, info, 1);
-    const double mean = meanLuminance(base);
-    // Two seeds' difference is the noise a scaled image may show (the larger of two pairs; the
-    // pair moved opposite ways holds every edge pixel); a noise-free path gives the same image,
-    // and then only rounding may part the scales (1% RMS of the mean).
-    const double noise = std::max({relMseNorm(otherSeed, base, mean), relMseNorm(otherSeed, thirdSeed, mean), 1e-4});
-    const double meanNoise = mean > 0.0 ? std::abs(meanLuminance(otherSeed) / mean - 1.0) : 0.0;
-    for (double factor : {0.01, 100.0}) {
-      loadScaled(s, file, factor);
-      const std::vector<float> scaled = render(s, path, 0);
-      const double scaledMean = meanLuminance(scaled), difference = relMseNorm(scaled, base, mean);
-      std::printf("scale %-26s %-9s x%-5g mean %.5g / %.5g  relMSE_norm %.2e (seeds %.2e)\n", GetParam().c_str(),
-                  path.c_str(), factor, scaledMean, mean, difference, noise);
-      if (!(mean > 0.0)) {
-        EXPECT_EQ(scaledMean, 0.0) << path << " x" << factor << ": light in a black image";
-        continue;
-      }
-      const bool meanHeld = std::abs(scaledMean / mean - 1.0) <= std::max(0.02, 3.0 * meanNoise);
-      EXPECT_TRUE(meanHeld) << path << " x" << factor << ": the mean moved by " << scaledMean / mean - 1.0
-                            << " (two seeds: " << meanNoise << ")";
-      EXPECT_LE(difference, 1.5 * noise) << path << " x" << factor << ": the image differs beyond the noise between two seeds";
-      if (!meanHeld || difference > 1.5 * noise) {
-        const std::string stem = std::filesystem::path(GetParam()).stem().string() + "_" + path;
-        writeForALook(stem + "_x1", base);
-        writeForALook(stem + "_x1_other_seed", otherSeed);
-        writeForALook(stem + (factor < 1.0 ? "_x0.01" : "_x100"), scaled);
-      }
+  const std::string& sceneName = GetParam().scene;
+  const std::string& path = GetParam().path;
+  const std::filesystem::path file = contentFile(sceneName.c_str());
+  const std::vector<session::PathInfo> paths = s.paths();
+  const auto info = std::find_if(paths.begin(), paths.end(), [&](const session::PathInfo& p) { return p.name == path; });
+  ASSERT_NE(info, paths.end()) << "the session has no path `" << path << "`";
+  if (!info->available) GTEST_SKIP() << path << ": " << info->unavailableReason;
+  loadScaled(s, file, 1.0);
+  const std::vector<float> base = render(s, path, 0);
+  const std::vector<float> otherSeed = renderOtherSeed(s, *info, 0), thirdSeed = renderOtherSeed(s, *info, 1);
+  const double mean = meanLuminance(base);
+  // Two seeds' difference is the noise a scaled image may show (the larger of two pairs; the
+  // pair moved opposite ways holds every edge pixel); a noise-free path gives the same image,
+  // and then only rounding may part the scales (1% RMS of the mean).
+  const double noise = std::max({relMseNorm(otherSeed, base, mean), relMseNorm(otherSeed, thirdSeed, mean), 1e-4});
+  const double meanNoise = mean > 0.0 ? std::abs(meanLuminance(otherSeed) / mean - 1.0) : 0.0;
+  for (double factor : {0.01, 100.0}) {
+    loadScaled(s, file, factor);
+    const std::vector<float> scaled = render(s, path, 0);
+    const double scaledMean = meanLuminance(scaled), difference = relMseNorm(scaled, base, mean);
+    std::printf("scale %-26s %-9s x%-5g mean %.5g / %.5g  relMSE_norm %.2e (seeds %.2e)\n", sceneName.c_str(),
+                path.c_str(), factor, scaledMean, mean, difference, noise);
+    if (!(mean > 0.0)) {
+      EXPECT_EQ(scaledMean, 0.0) << path << " x" << factor << ": light in a black image";
+      continue;
+    }
+    const bool meanHeld = std::abs(scaledMean / mean - 1.0) <= std::max(0.02, 3.0 * meanNoise);
+    EXPECT_TRUE(meanHeld) << path << " x" << factor << ": the mean moved by " << scaledMean / mean - 1.0
+                          << " (two seeds: " << meanNoise << ")";
+    EXPECT_LE(difference, 1.5 * noise) << path << " x" << factor << ": the image differs beyond the noise between two seeds";
+    if (!meanHeld || difference > 1.5 * noise) {
+      const std::string stem = std::filesystem::path(sceneName).stem().string() + "_" + path;
+      writeForALook(stem + "_x1", base);
+      writeForALook(stem + "_x1_other_seed", otherSeed);
+      writeForALook(stem + (factor < 1.0 ? "_x0.01" : "_x100"), scaled);
     }
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(ContentScenes, ScaleInvarianceTest, ::testing::ValuesIn(contentSceneNames()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string name = std::filesystem::path(info.param).stem().string();
+// Instances named scene_path (grove_legacy, cornell_rt).
+INSTANTIATE_TEST_SUITE_P(ContentScenes, ScaleInvarianceTest, ::testing::ValuesIn(contentScenesAndPaths()),
+                         [](const ::testing::TestParamInfo<SceneAndPath>& info) {
+                           std::string name = std::filesystem::path(info.param.scene).stem().string() + "_" + info.param.path;
                            for (char& c : name)
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return name;
