@@ -1,4 +1,5 @@
-// The legacy path's reflections (legacy/hiz.comp, legacy/reflections.comp): the counterpart of
+// The legacy path's reflections (legacy/hiz_first.comp, legacy/hiz_reduce.comp,
+// legacy/reflections.comp): the counterpart of
 // the RT path's traced specular, with no ray tracing. For pixels below a roughness threshold,
 // the mirror direction is marched through a hierarchical depth buffer (screen-space
 // reflections); where the march finds a surface that was on screen last frame, that frame's
@@ -31,7 +32,7 @@ struct LegacyReflectionPush {
   uint screenHistory;    // 1: last frame's image and depth are valid (the march can use them)
   uint hizMips;          // mips of the hierarchical depth
   uint maxSteps;         // the march's iterations at most (0: no screen-space march)
-  uint mip;              // hiz.comp: the mip this dispatch writes
+  uint pad1;
   uint pad0;
 };
 
@@ -40,8 +41,8 @@ struct LegacyReflectionPush {
 TL_CONST uint kLegacyBindingMaterial = 26;        // gbuffer.material: roughness (r), metalness (g), sqrt F0 (b)
 TL_CONST uint kLegacyBindingBaseColor = 27;       // gbuffer.baseColor: base colour, F90 (a)
 TL_CONST uint kLegacyBindingHiz = 28;             // hierarchical depth, all mips (sampled)
-TL_CONST uint kLegacyBindingHizSource = 29;       // hiz.comp: the mip below (storage, r32f), or gbuffer.depth for mip 0
-TL_CONST uint kLegacyBindingHizOut = 30;          // hiz.comp: the mip written (storage, r32f)
+TL_CONST uint kLegacyBindingHizSource = 29;       // hiz_reduce.comp: the mip below (storage, r32f)
+TL_CONST uint kLegacyBindingHizOut = 30;          // hiz_first.comp, hiz_reduce.comp: the mip written (storage, r32f)
 TL_CONST uint kLegacyBindingReflections = 31;     // legacy.reflections (storage, rgba16f)
 TL_END
 
