@@ -1,9 +1,10 @@
 // What a furnace test reads from an image (every pixel should be exactly 1) and the mean of a
-// few frames of an image, shared by the white furnace (test_furnace.cpp) and the polished-metal
-// one (test_reflections.cpp).
+// few frames of an image (and its luminance), shared by the white furnace (test_furnace.cpp)
+// and the reflection tests (test_reflections.cpp).
 #pragma once
 
 #include "gpu_fixture.h"
+#include "shared/common.h"
 
 #include <algorithm>
 #include <cmath>
@@ -55,6 +56,21 @@ inline std::vector<float> averagedFrames(session::Session& s, const char* image,
     for (size_t i = 0; i < t.size(); ++i) mean[i] += t[i] / float(averaged);
   }
   return mean;
+}
+
+// The luminance (shared tlLuminance) of every texel of an image with `channels` channels.
+inline std::vector<double> luminanceOf(const std::vector<float>& texels, uint32_t channels) {
+  std::vector<double> y(texels.size() / channels);
+  for (size_t i = 0; i < y.size(); ++i)
+    y[i] = shared::tlLuminance(glm::vec3(texels[i * channels], texels[i * channels + 1], texels[i * channels + 2]));
+  return y;
+}
+
+// The luminance of the mean of `averaged` successive frames of `image` (averagedFrames).
+inline std::vector<double> averagedLuminance(session::Session& s, const char* image, uint32_t averaged) {
+  uint32_t channels = 0;
+  const std::vector<float> mean = averagedFrames(s, image, averaged, channels);  // sets channels
+  return luminanceOf(mean, channels);
 }
 
 }  // namespace tl::test

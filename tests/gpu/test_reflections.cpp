@@ -158,12 +158,7 @@ TEST_F(ReflectionsTest, TheRoughCheckerboardTracesHalfTheRoughPixelsAndConverges
     s.setFrameIndex(seed);
     s.resetHistory();
     s.renderFrames(16);
-    uint32_t channels = 0;
-    std::vector<float> mean = averagedFrames(s, lighting::kCompositeHdr, 8, channels);  // sets channels
-    std::vector<double> y(mean.size() / channels);
-    for (size_t i = 0; i < y.size(); ++i)
-      y[i] = 0.2126 * mean[i * channels] + 0.7152 * mean[i * channels + 1] + 0.0722 * mean[i * channels + 2];
-    return y;
+    return averagedLuminance(s, lighting::kCompositeHdr, 8);
   };
   const std::vector<double> full = converged(1, 0), otherSeed = converged(1, 1u << 20), half = converged(2, 0);
   double fullMean = 0.0, halfMean = 0.0;
@@ -209,24 +204,17 @@ TEST_F(ReflectionsTest, WhatMovesInAMirrorLeavesNoGhostLongerThanFourFrames) {
     for (size_t i = 0; i < s.scene().instances.size(); ++i)
       if (s.scene().instances[i].name == name) halfIds.push_back(uint32_t(i + 1));
   ASSERT_EQ(halfIds.size(), 2u);
-  auto luminance = [](const std::vector<float>& t, uint32_t c) {
-    std::vector<double> y(t.size() / c);
-    for (size_t i = 0; i < y.size(); ++i) y[i] = 0.2126 * t[i * c] + 0.7152 * t[i * c + 1] + 0.0722 * t[i * c + 2];
-    return y;
-  };
   auto frame = [&]() {
     s.requestBuffer(image);
     s.renderFrames(1);
-    return luminance(s.buffer(image).texels(), s.buffer(image).channels());
+    return luminanceOf(s.buffer(image).texels(), s.buffer(image).channels());
   };
   // The converged image of the pose at `time`, from a fresh history.
   auto converged = [&](double time) {
     s.setAnimationTime(time);
     s.resetHistory();
     s.renderFrames(16);
-    uint32_t channels = 0;
-    const std::vector<float> mean = averagedFrames(s, image, 8, channels);  // sets channels
-    return luminance(mean, channels);
+    return averagedLuminance(s, image, 8);
   };
   for (const char* path : {"rt", "legacy"}) {
     s.setPath(path);
@@ -236,9 +224,7 @@ TEST_F(ReflectionsTest, WhatMovesInAMirrorLeavesNoGhostLongerThanFourFrames) {
       std::vector<std::vector<double>> frames;
       for (int k = 0; k < 6; ++k) frames.push_back(frame());
       s.renderFrames(24);
-      uint32_t channels = 0;
-      const std::vector<float> settledMean = averagedFrames(s, image, 8, channels);  // sets channels
-      const std::vector<double> after = luminance(settledMean, channels);
+      const std::vector<double> after = averagedLuminance(s, image, 8);
       const std::vector<double> settled = frame();
       s.requestBuffer("gbuffer.instanceId");
       s.renderFrames(1);

@@ -194,11 +194,7 @@ class LegacyPath final : public LightingPath {
       if (rooms) addRoomPasses(graph, in, push.clipmap, s.legacyRoomSweeps);
     }
 
-    withCommon(ComputePass(in.device, "legacy.cones", "legacy/cones.comp"))
-        .sampled(shared::kLegacyBindingRadiance, kVoxelRadiance, samplers::linear)
-        .sampled(shared::kLegacyBindingRadianceMips, kVoxelRadianceMips, samplers::linear)
-        .optionalSampled(shared::kLegacyBindingReach, kVoxelReach, rooms)
-        .optionalBufferIn(shared::kLegacyBindingReachUnsettled, kVoxelReachUnsettled, rooms)
+    withVoxelCones(withCommon(ComputePass(in.device, "legacy.cones", "legacy/cones.comp")), rooms)
         .storageOut(shared::kLegacyBindingConeShY, kConeShY,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, cw, ch, "cone-traced irradiance, SH luma")
                         .decodedAs(shIrradianceDecoder(kConeCoCgAo)))
@@ -284,20 +280,13 @@ class LegacyPath final : public LightingPath {
           .add(graph);
     }
 
-    ComputePass(in.device, "legacy.reflections", "legacy/reflections.comp")
-        .uniform(shared::kLegacyBindingFrame, kFrameConstants)
-        .sampled(shared::kLegacyBindingDepth, kGbufferDepth)
-        .sampled(shared::kLegacyBindingNormal, "gbuffer.normal")
+    withVoxelCones(withCommon(ComputePass(in.device, "legacy.reflections", "legacy/reflections.comp")), rooms)
         .sampled(shared::kLegacyBindingMaterial, "gbuffer.material")
         .sampled(shared::kLegacyBindingBaseColor, "gbuffer.baseColor")
         .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
         .sampled(shared::kLegacyBindingHiz, kLegacyHiz)
         .optionalSampled(shared::kLegacyBindingPrevRadiance, kLegacyHistRadiance, feedback, samplers::linear)
         .optionalSampled(shared::kLegacyBindingPrevDepth, kLegacyHistDepth, feedback)
-        .sampled(shared::kLegacyBindingRadiance, kVoxelRadiance, samplers::linear)
-        .sampled(shared::kLegacyBindingRadianceMips, kVoxelRadianceMips, samplers::linear)
-        .optionalSampled(shared::kLegacyBindingReach, kVoxelReach, rooms)
-        .optionalBufferIn(shared::kLegacyBindingReachUnsettled, kVoxelReachUnsettled, rooms)
         .storageOut(shared::kLegacyBindingReflections, kLegacyReflections,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
                                                  "reflections: screen-space march and voxel cone, demodulated (rgb); weight against the SH specular (a)"))
@@ -607,6 +596,14 @@ class LegacyPath final : public LightingPath {
     pass.uniform(shared::kLegacyBindingFrame, kFrameConstants)
         .sampled(shared::kLegacyBindingDepth, kGbufferDepth)
         .sampled(shared::kLegacyBindingNormal, "gbuffer.normal");
+    return pass;
+  }
+  // What legacy/voxel_cones.glsl reads: the voxels, their mips and, with rooms, the flood.
+  static ComputePass withVoxelCones(ComputePass pass, bool rooms) {
+    pass.sampled(shared::kLegacyBindingRadiance, kVoxelRadiance, samplers::linear)
+        .sampled(shared::kLegacyBindingRadianceMips, kVoxelRadianceMips, samplers::linear)
+        .optionalSampled(shared::kLegacyBindingReach, kVoxelReach, rooms)
+        .optionalBufferIn(shared::kLegacyBindingReachUnsettled, kVoxelReachUnsettled, rooms);
     return pass;
   }
   void prepare(FrameInputs& in) {
