@@ -282,6 +282,7 @@ void EditorApp::frame() {
   if (uiFrames_ % 15 == 0) pollShaders(), saveSettingsIfChanged();
   updateWindowTitle();
   autosave(now);
+  pollTune();
   refreshShownFigures(now);
 
   const double panelsStart = glfwGetTime();

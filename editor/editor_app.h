@@ -15,6 +15,7 @@
 #include "panel_layout.h"
 #include "scene_watcher.h"
 #include "settings.h"
+#include "tune_job.h"
 #include "window_presenter.h"
 #include "window_redraw.h"
 
@@ -238,6 +239,15 @@ class EditorApp {
   // out/<file stem>-<hash of its absolute path>.albedo.db (two scene.gltf files differ).
   std::filesystem::path defaultAlbedoDatabase() const;
   const std::string& lastBakeSummary() const { return lastBakeSummary_; }
+  // Lighting › Tune for this view (tune_view.cpp): `twinlight tune` on this scene, camera and
+  // settings in a child process, one at a time; the scene's work like the bake (stopSceneWork
+  // stops it). The request's scene, path, view, settings and folder are filled in here.
+  void startTune(TuneRequest request);
+  TuneJob* tuneJob() { return tune_.get(); }
+  void stopTune();
+  // What the last tune did ("3 presets: tuned-cornell-rt-1x-legacy, ..."), and their names.
+  const std::string& lastTuneSummary() const { return lastTuneSummary_; }
+  const std::vector<std::string>& lastTunePresets() const { return lastTunePresets_; }
   const std::string& pinnedPreview() const { return viewer_.resource; }
   void showBrowser(bool on) { showBrowser_ = on; }
   // Passes of the UI loop (each takes the input, runs the panels, starts and collects engine
@@ -400,6 +410,10 @@ class EditorApp {
   friend class Script;
   std::optional<std::filesystem::path> frameCapturePath_;
   std::unique_ptr<albedo::BakeJob> bake_;
+  std::unique_ptr<TuneJob> tune_;
+  std::string lastTuneSummary_;
+  std::vector<std::string> lastTunePresets_;
+  void pollTune();  // every frame: when the tune has ended, its presets join the presets folder
   std::unique_ptr<gpu::ShaderReloader> reloader_;
   std::string shaderStatus_;
   void pollShaders();

@@ -262,6 +262,15 @@ void EditorApp::stopSceneWork(const std::string& why, bool quitting) {
     bake_.reset();
     session_->albedo().reload();
   }
+  pollTune();  // a tune that has just ended hands over its presets first
+  if (tune_ && tune_->running()) {
+    // A child process: SIGTERM, then the bound. What it measured stays in its folder.
+    if (!tune_->stop(kStopSeconds)) overdue("the tune");
+    lastStopped_.push_back(fmt::format("the tune (its measurements are kept in {}: the same request resumes)",
+                                       tune_->request().out.string()));
+    lastTuneSummary_ = "stopped for " + why;
+  }
+  tune_.reset();
   if (session::LiveCompare* live = session_->liveCompare(); live && live->measuring()) {
     if (!waitBounded("the compare's FLIP measurement", [&] { return !live->measuring(); }, kStopSeconds))
       overdue("the compare's FLIP measurement");

@@ -103,6 +103,12 @@
 //                          offered); click-ui recovery.recover or recovery.discard answers it
 //   autosave-every S       write unsaved work to the recovery file every S seconds (1 to 60)
 //   expect-stopped TEXT    fail unless what the last scene change stopped holds TEXT (`none`: nothing)
+//   tune-view BUDGET [WxH CANDIDATES RUNGS FRAMES SPP]
+//                          Lighting › Tune for this view (a child `twinlight tune`; the button's sizes
+//                          by default: 320x180 81 3 32 256)
+//   wait-tune [SECONDS]    hold the next line until the tune ends (default 600 s; fails after)
+//   stop-tune              stop the running tune (its measurements stay in its folder)
+//   expect-tune TEXT       fail unless what the last tune did holds TEXT ("finished: 1 preset(s)")
 //   resize W H             resize the window to W x H pixels, as a person dragging its corner
 //   expect-viewport-uncovered  fail when a panel (not a dialog) lies over the viewport
 //   dump-state DIR TAG     write what the scene opened as (lighting, settings, history, selection,

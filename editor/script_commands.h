@@ -37,6 +37,8 @@ struct ScriptState {
   int waitFrames = 0;
   uint64_t waitUntil = 0;  // engine frames begun when the wait ends
   bool waitScreenshot = false, waitCapture = false, waitLoaded = false, waitBake = false;
+  bool waitTune = false;  // wait-tune: until the tune job ends, or tuneDeadline
+  std::chrono::steady_clock::time_point tuneDeadline;
   std::string waitShaderError;  // expect-shader-error's text
   int shaderErrorFrames = 0;
   int scrollFrames = 0;  // frames click-ui has waited for its control to scroll into view

@@ -137,6 +137,17 @@ bool waitingForBake(EditorApp& app, ScriptState& s) {
   return false;
 }
 
+bool waitingForTune(EditorApp& app, ScriptState& s) {
+  if (!s.waitTune) return false;
+  if (app.tuneJob()) {
+    if (std::chrono::steady_clock::now() > s.tuneDeadline) throw ScriptFailure("the tune did not finish in time");
+    return true;
+  }
+  s.waitTune = false;
+  fmt::print("script: tune {}\n", app.lastTuneSummary());
+  return false;
+}
+
 // snapshot / expect-viewport-changed: the viewport read back by the engine's next frame.
 bool waitingForViewport(EditorApp& app, ScriptState& s) {
   if (s.capture == ScriptState::Capture::None) return false;
@@ -169,7 +180,7 @@ double processCpuSeconds() { return cpuSeconds(CLOCK_PROCESS_CPUTIME_ID); }
 
 bool scriptWaiting(EditorApp& app, ScriptState& state) {
   for (auto waiting : {measuring, waitingForFrames, waitingForScreenshot, waitingForCapture, waitingForLoad,
-                       waitingForShaderError, waitingForReload, waitingForBake, waitingForViewport})
+                       waitingForShaderError, waitingForReload, waitingForBake, waitingForTune, waitingForViewport})
     if (waiting(app, state)) return true;
   return false;
 }

@@ -13,7 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <chrono>
 #include <fstream>
+#include <sstream>
 #include <sstream>
 
 namespace tl::editor {
@@ -155,7 +157,48 @@ void dumpState(EditorApp& app, ScriptState&, const std::string& arg) {
   fmt::print("script: wrote {}\n", file.string());
 }
 
+// tune-view BUDGET [WxH CANDIDATES RUNGS FRAMES SPP]: Lighting › Tune for this view, sized
+// (the panel's button: 320x180, 81, 3, 32, 256).
+void tuneView(EditorApp& app, ScriptState&, const std::string& arg) {
+  std::istringstream words(arg);
+  TuneRequest request;
+  std::string budget;
+  if (!(words >> budget)) throw ScriptFailure("tune-view needs a budget (1x-legacy)");
+  request.budgets = {budget};
+  request.path.clear();  // the editor's path
+  std::string size;
+  if (words >> size) {
+    request.size = size;
+    if (!(words >> request.candidates >> request.rungs >> request.frames >> request.spp))
+      throw ScriptFailure("tune-view BUDGET WxH CANDIDATES RUNGS FRAMES SPP");
+  }
+  app.startTune(request);
+  if (!app.tuneJob()) throw ScriptFailure("the tune did not start");
+}
+
+void waitTune(EditorApp&, ScriptState& state, const std::string& arg) {
+  const double seconds = arg.empty() ? 600.0 : std::stod(arg);
+  state.waitTune = true;
+  state.tuneDeadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                              std::chrono::duration<double>(seconds));
+}
+
+void stopTune(EditorApp& app, ScriptState&, const std::string&) {
+  if (!app.tuneJob()) throw ScriptFailure("stop-tune: no tune is running");
+  app.stopTune();
+  fmt::print("script: tune {}\n", app.lastTuneSummary());
+}
+
+void expectTune(EditorApp& app, ScriptState&, const std::string& arg) {
+  if (app.lastTuneSummary().find(arg) == std::string::npos)
+    throw ScriptFailure(fmt::format("the tune says `{}`, without `{}`", app.lastTuneSummary(), arg));
+}
+
 constexpr ScriptCommand kCommands[] = {
+    {"tune-view", tuneView},
+    {"wait-tune", waitTune},
+    {"stop-tune", stopTune},
+    {"expect-tune", expectTune},
     {"reload", reload},
     {"close-window", closeWindow},
     {"expect-question", expectQuestion},

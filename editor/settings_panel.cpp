@@ -159,6 +159,38 @@ void presetRow(EditorApp& app) {
           "`twinlight compare --settings FILE` read it as it is");
 }
 
+// Tune for this view: a tune of the path in a child process; its presets join the Preset menu.
+void tuneRow(EditorApp& app) {
+  auto& session = app.session();
+  static int budget = 0;  // 1x, 1.3x, 2x legacy's frame time
+  static const char* budgets[] = {"1x-legacy", "1.3x-legacy", "2x-legacy"};
+  TuneJob* job = app.tuneJob();
+  const bool tunable = session.path() == "rt" || session.path() == "legacy";
+  if (job && job->running()) {
+    if (ImGui::SmallButton("Stop tuning")) app.stopTune();
+    tooltip("Stops the tune (its measurements stay: asking again for this view resumes)");
+    const std::string line = job->lastLine();
+    ImGui::TextWrapped("tuning: %s", line.empty() ? "starting" : line.c_str());
+    return;
+  }
+  ImGui::BeginDisabled(!tunable);
+  if (ImGui::SmallButton("Tune for this view")) {
+    TuneRequest request;
+    request.budgets = {budgets[budget]};
+    app.startTune(request);
+  }
+  ImGui::EndDisabled();
+  tooltip(tunable ? "Searches this path's settings for the cheapest that keep the error of the best under the budget,\n"
+                    "against the reference, at 320x180 from this camera (twinlight tune; a few minutes on a CPU).\n"
+                    "The scene's file is tuned: save lighting edits first. The result appears under Preset."
+                  : "Tuning is for the rt and legacy paths");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(110);
+  ImGui::Combo("budget", &budget, budgets, 3);
+  tooltip("The frame time the preset may take: a multiple of the legacy path's, measured in the same run");
+  if (!app.lastTuneSummary().empty()) ImGui::TextWrapped("tune: %s", app.lastTuneSummary().c_str());
+}
+
 }  // namespace
 
 std::filesystem::path presetDirectory() { return configDirectory() / "presets"; }
@@ -224,6 +256,7 @@ void settingsSection(EditorApp& app) {
   tooltip("Every setting back to its default (the image size stays the viewport's)");
   if (!pasteError.empty()) ImGui::TextWrapped("paste: %s", pasteError.c_str());
   presetRow(app);
+  tuneRow(app);
   // Undo and redo of settings and lighting, one step per change of a schema entry (a drag is one).
   auto& history = app.editHistory();
   ImGui::BeginDisabled(!history.canUndo());

@@ -23,6 +23,7 @@ class CliCommand {
 std::unique_ptr<CliCommand> makeRenderCommand();
 std::unique_ptr<CliCommand> makeBenchCommand();
 std::unique_ptr<CliCommand> makeCompareCommand();
+std::unique_ptr<CliCommand> makeTuneCommand();
 std::unique_ptr<CliCommand> makeCaptureCommand();
 std::unique_ptr<CliCommand> makeBakeCommand();
 std::unique_ptr<CliCommand> makeDoctorCommand();

@@ -7,6 +7,7 @@ std::vector<std::unique_ptr<CliCommand>> cliCommands() {
   commands.push_back(makeRenderCommand());
   commands.push_back(makeBenchCommand());
   commands.push_back(makeCompareCommand());
+  commands.push_back(makeTuneCommand());
   commands.push_back(makeCaptureCommand());
   commands.push_back(makeBakeCommand());
   commands.push_back(makeDoctorCommand());

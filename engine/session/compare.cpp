@@ -463,8 +463,26 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     // figure is the same whatever the process rendered before it, so a sweep split into
     // shards measures what one process does.
     s.setFrameIndex(0);
-    for (const char* n : {lighting::kCompositeAo, lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
-    s.renderFrames(std::max(1u, o.framesPerPath));
+    // The last errorFrames frames are measured one by one; the times of every frame are kept.
+    const uint32_t frames = std::max(1u, o.framesPerPath), measuredFrames = std::clamp(o.errorFrames, 1u, frames);
+    std::vector<double> frameMs;
+    std::vector<std::pair<std::string, std::vector<double>>> passMsAll;
+    auto render = [&](uint32_t n) {
+      for (const char* b : {lighting::kCompositeAo, lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(b);
+      s.renderFrames(n);
+      frameMs.insert(frameMs.end(), s.frameGpuMs().begin(), s.frameGpuMs().end());
+      for (const auto& [pass, ms] : s.passGpuMs()) {
+        auto it = std::find_if(passMsAll.begin(), passMsAll.end(), [&](const auto& p) { return p.first == pass; });
+        if (it == passMsAll.end()) passMsAll.push_back({pass, ms});
+        else it->second.insert(it->second.end(), ms.begin(), ms.end());
+      }
+    };
+    std::vector<nlohmann::json> frameSignificance;
+    render(frames - measuredFrames + 1);
+    for (uint32_t k = 1; k < measuredFrames; ++k) {
+      frameSignificance.push_back(pathSignificance(rgbImage(s.buffer(lighting::kCompositeHdr)), noisyReference));
+      render(1);
+    }
     const nlohmann::json runSettings = settingsJson(s.settings());
     s.settings() = baseSettings;
     if (progress) progress("path " + name, double(i + 1) / runs.size());
@@ -507,17 +525,21 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                                        ? nlohmann::json::object()
                                        : depthReport(test, referenceImages.byDepth, normalisation);
 
-    const nlohmann::json significance = pathSignificance(test, noisyReference);
+    frameSignificance.push_back(pathSignificance(test, noisyReference));
+    const nlohmann::json significance = combineFrameSignificance(frameSignificance);
 
     nlohmann::json passes = nlohmann::json::object();
-    for (const auto& [pass, ms] : s.passGpuMs()) passes[pass] = median(ms);
+    for (const auto& [pass, ms] : passMsAll) passes[pass] = median(ms);
     auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
     results.push_back({{"path", name},
                        {"lightingPath", runs[i].path},
                        {"overrides", runs[i].settings},
                        {"settings", runSettings},  // every setting it ran with: `render --settings` replays it
                        {"frames", o.framesPerPath},
-                       {"frameMs", median(s.frameGpuMs())},
+                       {"frameMs", median(frameMs)},
+                       // The middle half of the frames' times: how far apart two medians must
+                       // be before one configuration is faster (tune's fronts).
+                       {"frameMsQuartiles", {metrics::quantile(frameMs, 0.25), metrics::quantile(frameMs, 0.75)}},
                        {"passMs", passes},
                        {"relMSE", finite(rel.value)},
                        {"RMSE", finite(rms.value)},

@@ -51,6 +51,10 @@ struct CompareOptions {
   // scope of the RT path's one-hit rays and of legacy's one-bounce cones).
   std::string scope = "full";
   uint32_t framesPerPath = 8;          // the last one is measured against the reference
+  // The last this many frames are each measured and their noise-aware figures averaged, the
+  // interval widened by their spread: a path's own noise (a firefly one frame holds) then
+  // shows in the interval instead of deciding the figure. 1: the last frame alone.
+  uint32_t errorFrames = 1;
   std::filesystem::path outDir = "out/compare";
   std::filesystem::path cacheDir;      // empty: $XDG_CACHE_HOME/twinlight/reference
   // Another renderer's image (linear RGB EXR, same camera and size) instead of the path

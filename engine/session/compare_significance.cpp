@@ -52,6 +52,45 @@ metrics::NoiseAwareFigure figureFromJson(const nlohmann::json& f) {
   return {get("value"), get("raw"), get("low"), get("high")};
 }
 
+namespace {
+
+// Student's t at 97.5% for n - 1 degrees of freedom (n >= 2); the normal's 1.96 beyond 30.
+double studentT975(size_t n) {
+  static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228,
+                                 2.201,  2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086,
+                                 2.080,  2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045};
+  const size_t dof = n - 1;
+  return dof >= 1 && dof <= 29 ? table[dof - 1] : 1.96;
+}
+
+}  // namespace
+
+nlohmann::json combineFrameSignificance(const std::vector<nlohmann::json>& frames) {
+  if (frames.size() <= 1) return frames.empty() ? nlohmann::json::object() : frames.front();
+  nlohmann::json out = nlohmann::json::object();
+  const double n = double(frames.size());
+  for (const std::string& metric : significanceMetrics()) {
+    double value = 0.0, raw = 0.0, below = 0.0, above = 0.0;
+    std::vector<double> values;
+    for (const auto& f : frames) {
+      const metrics::NoiseAwareFigure fig = figureFromJson(f.value(metric, nlohmann::json::object()));
+      values.push_back(fig.value);
+      value += fig.value / n, raw += fig.raw / n, below += (fig.value - fig.low) / n, above += (fig.high - fig.value) / n;
+    }
+    double variance = 0.0;
+    for (double v : values) variance += (v - value) * (v - value) / (n - 1.0);
+    const double spread = std::sqrt(variance), frameSide = studentT975(frames.size()) * spread / std::sqrt(n);
+    auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    out[metric] = {{"value", finite(value)},
+                   {"raw", finite(raw)},
+                   {"low", finite(value - std::hypot(below, frameSide))},
+                   {"high", finite(value + std::hypot(above, frameSide))},
+                   {"frames", frames.size()},
+                   {"frameSpread", finite(spread)}};
+  }
+  return out;
+}
+
 nlohmann::json rankPaths(const nlohmann::json& results) {
   nlohmann::json out = nlohmann::json::object();
   for (const std::string& metric : significanceMetrics()) {

@@ -34,6 +34,12 @@ nlohmann::json pathSignificance(const metrics::Image& test, const NoisyReference
 
 metrics::NoiseAwareFigure figureFromJson(const nlohmann::json& figure);
 
+// Several frames' pathSignificance as one: per metric the mean of the values (and raws), the
+// interval's sides the mean of the frames' sides combined in quadrature with the frames' spread
+// (Student's t at 95% over the standard error of the mean), with "frames" and "frameSpread" (the
+// values' standard deviation). One frame is returned as it is.
+nlohmann::json combineFrameSignificance(const std::vector<nlohmann::json>& frames);
+
 // Per metric, the paths in order of value with `<` between neighbours whose intervals part and
 // `~` between those within noise of each other ("rt < legacy ~ direct"), and every pair's verdict.
 nlohmann::json rankPaths(const nlohmann::json& results);

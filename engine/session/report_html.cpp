@@ -32,6 +32,8 @@ std::string base64(const std::string& bytes) {
   return out;
 }
 
+}  // namespace
+
 std::string pngDataUri(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::stringstream ss;
@@ -39,11 +41,13 @@ std::string pngDataUri(const std::filesystem::path& file) {
   return "data:image/png;base64," + base64(ss.str());
 }
 
-std::string escape(const std::string& s) {
+std::string htmlEscape(const std::string& s) {
   std::string out;
   for (char c : s) out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
   return out;
 }
+
+namespace {
 
 std::string number(const nlohmann::json& v, const char* format = "{:.4f}") {
   return v.is_number() ? fmt::format(fmt::runtime(format), v.get<double>()) : std::string("n/a");
@@ -83,7 +87,7 @@ std::string speedErrorPlot(const nlohmann::json& paths) {
     if (!p["FLIP"].is_number()) continue;
     double x = X(p["frameMs"].get<double>()), y = Y(p["FLIP"].get<double>());
     svg += fmt::format("<circle cx='{:.1f}' cy='{:.1f}' r='5' fill='#2a6'/><text x='{:.1f}' y='{:.1f}'>{}</text>", x, y, x + 8, y - 6,
-                       escape(p["path"].get<std::string>()));
+                       htmlEscape(p["path"].get<std::string>()));
   }
   return svg + "</svg>";
 }
@@ -93,10 +97,10 @@ std::string timingBars(const nlohmann::json& paths) {
   for (auto& p : paths) worst = std::max(worst, p["frameMs"].get<double>());
   std::string html;
   for (auto& p : paths) {
-    html += fmt::format("<h4>{} — {:.2f} ms</h4>", escape(p["path"].get<std::string>()), p["frameMs"].get<double>());
+    html += fmt::format("<h4>{} — {:.2f} ms</h4>", htmlEscape(p["path"].get<std::string>()), p["frameMs"].get<double>());
     for (auto& [pass, ms] : p["passMs"].items())
       html += fmt::format("<div class='bar'><span style='width:{:.1f}%'></span>{} {:.2f} ms</div>", ms.get<double>() / worst * 100.0,
-                          escape(pass), ms.get<double>());
+                          htmlEscape(pass), ms.get<double>());
   }
   return html;
 }
@@ -134,11 +138,11 @@ std::string significanceSection(const nlohmann::json& r) {
                             : std::string());
   html += ". Two paths are ranked only where their intervals do not overlap; where they do, they are within noise of "
           "each other: more reference samples, not these figures, would tell them apart.</p><table><tr><th>path</th>";
-  for (auto& m : sig["metrics"]) html += fmt::format("<th>{}</th>", escape(m.get<std::string>()));
+  for (auto& m : sig["metrics"]) html += fmt::format("<th>{}</th>", htmlEscape(m.get<std::string>()));
   html += "</tr>";
   for (auto& p : r["paths"]) {
     if (!p.contains("significance")) continue;
-    html += fmt::format("<tr><td>{}</td>", escape(p["path"].get<std::string>()));
+    html += fmt::format("<tr><td>{}</td>", htmlEscape(p["path"].get<std::string>()));
     for (auto& m : sig["metrics"]) {
       const auto& f = p["significance"][m.get<std::string>()];
       html += fmt::format("<td>{} <small>[{}, {}]</small></td>", number(f["value"]), number(f["low"]), number(f["high"]));
@@ -150,8 +154,8 @@ std::string significanceSection(const nlohmann::json& r) {
     html += "<p>Rankings (<b>&lt;</b> lower, significant; <b>~</b> within noise):</p><ul>";
     for (auto& m : sig["metrics"])
       if (sig["rankings"].contains(m.get<std::string>()))
-        html += fmt::format("<li>{}: {}</li>", escape(m.get<std::string>()),
-                            escape(sig["rankings"][m.get<std::string>()]["order"].get<std::string>()));
+        html += fmt::format("<li>{}: {}</li>", htmlEscape(m.get<std::string>()),
+                            htmlEscape(sig["rankings"][m.get<std::string>()]["order"].get<std::string>()));
     html += "</ul>";
   }
   return html;
@@ -162,31 +166,31 @@ std::string significanceSection(const nlohmann::json& r) {
 void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r, const std::filesystem::path& dir) {
   std::string html = std::string("<!doctype html><html><head><meta charset='utf-8'><title>Twinlight compare</title>") + kStyle +
                      "</head><body>";
-  html += fmt::format("<h1>Speed against error: {}</h1>", escape(r["scene"].get<std::string>()));
+  html += fmt::format("<h1>Speed against error: {}</h1>", htmlEscape(r["scene"].get<std::string>()));
   const auto& ref = r["reference"];
   std::string reference;
   if (ref.value("source", "") == "file") {
-    reference = fmt::format("Reference: the image {} (another renderer's, same camera and size)", escape(ref["file"].get<std::string>()));
+    reference = fmt::format("Reference: the image {} (another renderer's, same camera and size)", htmlEscape(ref["file"].get<std::string>()));
   } else {
     const bool same = ref.value("scope", "full") == "same";
     reference = fmt::format("Reference: {} samples per pixel, {} scattering events{}{}; bounces: {}", ref["spp"].get<int>(),
                             ref["bounces"].get<int>(), same ? " (same scope as the real-time paths: direct + one bounce)" : "",
-                            ref["cached"].get<bool>() ? " (reused from the cache)" : "", escape(ref.value("bouncePolicy", "")));
+                            ref["cached"].get<bool>() ? " (reused from the cache)" : "", htmlEscape(ref.value("bouncePolicy", "")));
   }
   html += fmt::format("<p>{}×{} on {} ({}), Vulkan {}. {}. Materials: {}. Exposure {:.2f} EV.</p>", r["width"].get<int>(),
-                      r["height"].get<int>(), escape(r["device"].get<std::string>()), escape(r["driver"].get<std::string>()),
-                      r["vulkan"].get<std::string>(), reference, escape(ref.value("materials", "authored")),
+                      r["height"].get<int>(), htmlEscape(r["device"].get<std::string>()), htmlEscape(r["driver"].get<std::string>()),
+                      r["vulkan"].get<std::string>(), reference, htmlEscape(ref.value("materials", "authored")),
                       r["exposureEV"].get<double>());
   if (r.contains("gate")) {
     const auto& g = r["gate"];
     std::string limits;
-    for (auto& [m, v] : g["failAbove"].items()) limits += fmt::format("{}{} ≤ {}", limits.empty() ? "" : ", ", escape(m), v.get<double>());
+    for (auto& [m, v] : g["failAbove"].items()) limits += fmt::format("{}{} ≤ {}", limits.empty() ? "" : ", ", htmlEscape(m), v.get<double>());
     html += fmt::format("<p><b>Regression gate {}</b> ({}).</p>", gateWord(g), limits);
     if (!g["failures"].empty()) {
       html += "<table><tr><th>path</th><th>metric</th><th>value</th><th>threshold</th></tr>";
       for (auto& f : g["failures"])
-        html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>", escape(f["path"].get<std::string>()),
-                            escape(f["metric"].get<std::string>()), number(f["value"]), f["threshold"].get<double>());
+        html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>", htmlEscape(f["path"].get<std::string>()),
+                            htmlEscape(f["metric"].get<std::string>()), number(f["value"]), f["threshold"].get<double>());
       html += "</table>";
     }
     if (g.contains("withinNoise") && !g["withinNoise"].empty()) {
@@ -195,7 +199,7 @@ void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r,
       html += "<table><tr><th>path</th><th>metric</th><th>value</th><th>95% interval</th><th>threshold</th></tr>";
       for (auto& f : g["withinNoise"])
         html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} … {}</td><td>{}</td></tr>",
-                            escape(f["path"].get<std::string>()), escape(f["metric"].get<std::string>()), number(f["value"]),
+                            htmlEscape(f["path"].get<std::string>()), htmlEscape(f["metric"].get<std::string>()), number(f["value"]),
                             number(f["low"]), number(f["high"]), f["threshold"].get<double>());
       html += "</table>";
     }
@@ -206,7 +210,7 @@ void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r,
   html += "<table><tr><th>path</th><th>GPU ms</th><th>relMSE</th><th>RMSE</th><th>PSNR dB</th><th>SSIM</th><th>FLIP</th><th>HDR-FLIP</th></tr>";
   for (auto& p : r["paths"])
     html += fmt::format("<tr><td>{}</td><td>{:.2f}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-                        escape(p["path"].get<std::string>()), p["frameMs"].get<double>(), number(p["relMSE"]),
+                        htmlEscape(p["path"].get<std::string>()), p["frameMs"].get<double>(), number(p["relMSE"]),
                         number(p["RMSE"]), number(p["PSNR"], "{:.2f}"), number(p["SSIM"]), number(p["FLIP"]),
                         number(p["HDR-FLIP"]));
   html += "</table>";
@@ -215,7 +219,7 @@ void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r,
                       ref["normalisation"].get<double>(), ref["meanLuminance"].get<double>());
   html += "<table><tr><th>path</th><th>relMSE_norm</th><th>RMSE_norm</th><th>FLIP_norm</th></tr>";
   for (auto& p : r["paths"])
-    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>", escape(p["path"].get<std::string>()),
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>", htmlEscape(p["path"].get<std::string>()),
                         number(p["relMSE_norm"]), number(p["RMSE_norm"]), number(p["FLIP_norm"]));
   html += "</table>";
   html += "<h2>Error per stage</h2><p>What the composite multiplied, against the reference's own estimate of the same "
@@ -225,7 +229,7 @@ void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r,
   for (auto& p : r["paths"]) {
     if (!p.contains("stages") || !p["stages"].contains("ao")) continue;
     const auto& st = p["stages"];
-    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>", escape(p["path"].get<std::string>()),
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>", htmlEscape(p["path"].get<std::string>()),
                         number(st["ao"]["meanAbsError"]), number(st["ao"]["RMSE"]), number(st["irradiance"]["relMSE"]),
                         number(st["irradiance"]["RMSE"]));
   }
@@ -236,14 +240,14 @@ void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r,
             "tile its light is credited to the groups in depth order), and the light beyond the reference's.</p>"
             "<table><tr><th>path</th>";
     for (auto& g : r["reference"]["byDepth"]["groups"])
-      html += fmt::format("<th>{} ({} of the reference)</th>", escape(g["group"].get<std::string>()), number(g["shareOfReference"]));
+      html += fmt::format("<th>{} ({} of the reference)</th>", htmlEscape(g["group"].get<std::string>()), number(g["shareOfReference"]));
     html += "<th>excess</th><th>in words</th></tr>";
     for (auto& p : r["paths"]) {
       if (!p.contains("bounces") || !p["bounces"].contains("groups")) continue;
-      html += fmt::format("<tr><td>{}</td>", escape(p["path"].get<std::string>()));
+      html += fmt::format("<tr><td>{}</td>", htmlEscape(p["path"].get<std::string>()));
       for (auto& g : p["bounces"]["groups"]) html += fmt::format("<td>{}</td>", number(g["captured"]));
       html += fmt::format("<td>{}</td><td>{}</td></tr>", number(p["bounces"]["excess"]),
-                          escape(p["bounces"]["summary"].get<std::string>()));
+                          htmlEscape(p["bounces"]["summary"].get<std::string>()));
     }
     html += "</table>";
   }
@@ -253,19 +257,19 @@ void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r,
   html += fmt::format("<figure><img src='{}'><figcaption>reference</figcaption></figure>", pngDataUri(dir / "reference.png"));
   for (auto& p : r["paths"]) {
     html += fmt::format("<figure><img src='{}'><figcaption>{}</figcaption></figure>", pngDataUri(dir / p["image"].get<std::string>()),
-                        escape(p["path"].get<std::string>()));
+                        htmlEscape(p["path"].get<std::string>()));
     html += fmt::format("<figure><img src='{}'><figcaption>{} — FLIP error</figcaption></figure>",
-                        pngDataUri(dir / p["flipMap"].get<std::string>()), escape(p["path"].get<std::string>()));
+                        pngDataUri(dir / p["flipMap"].get<std::string>()), htmlEscape(p["path"].get<std::string>()));
   }
   html += "</div><p>FLIP error 0 <span class='legend' style='display:inline-block'></span> 1</p>";
   html += "<h2>Irradiance error maps</h2><div class='imgs'>";
   for (auto& p : r["paths"])
     if (p.contains("stages") && p["stages"].contains("irradianceMap"))
       html += fmt::format("<figure><img src='{}'><figcaption>{} — irradiance relMSE</figcaption></figure>",
-                          pngDataUri(dir / p["stages"]["irradianceMap"].get<std::string>()), escape(p["path"].get<std::string>()));
+                          pngDataUri(dir / p["stages"]["irradianceMap"].get<std::string>()), htmlEscape(p["path"].get<std::string>()));
   html += "</div><p>per-pixel relMSE of the diffuse irradiance 0 <span class='legend' style='display:inline-block'></span> 1</p>";
   html += "<h2>Metrics</h2><ul>";
-  for (auto& [k, v] : r["metrics"].items()) html += fmt::format("<li><b>{}</b>: {}</li>", escape(k), escape(v.get<std::string>()));
+  for (auto& [k, v] : r["metrics"].items()) html += fmt::format("<li><b>{}</b>: {}</li>", htmlEscape(k), htmlEscape(v.get<std::string>()));
   html += "</ul><p>Every figure is also in report.json beside this page.</p></body></html>\n";
   writeTextFile(file, html);
 }
@@ -279,7 +283,7 @@ void writeSweepReportHtml(const std::filesystem::path& file, const nlohmann::jso
   html += fmt::format("<h1>Speed against error: {} view(s) of {} scene(s)</h1>", views.size(), scenes.size());
   html += fmt::format("<p>Each configuration's figures are means over the views; every view has its own reference and "
                       "its own page. The reference: {} samples per pixel, scope {}.</p>",
-                      r["grid"]["referenceSpp"].get<int>(), escape(r["grid"]["scope"].get<std::string>()));
+                      r["grid"]["referenceSpp"].get<int>(), htmlEscape(r["grid"]["scope"].get<std::string>()));
   if (r.contains("gate")) {
     const auto& g = r["gate"];
     html += fmt::format("<p><b>Regression gate {}</b>: {} figure(s) above their thresholds, {} within the reference's "
@@ -289,8 +293,8 @@ void writeSweepReportHtml(const std::filesystem::path& file, const nlohmann::jso
       html += "<table><tr><th>scene</th><th>camera</th><th>path</th><th>metric</th><th>value</th><th>threshold</th></tr>";
       for (auto& f : g["failures"])
         html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-                            escape(f["scene"].get<std::string>()), escape(f["camera"].get<std::string>()),
-                            escape(f["path"].get<std::string>()), escape(f["metric"].get<std::string>()), number(f["value"]),
+                            htmlEscape(f["scene"].get<std::string>()), htmlEscape(f["camera"].get<std::string>()),
+                            htmlEscape(f["path"].get<std::string>()), htmlEscape(f["metric"].get<std::string>()), number(f["value"]),
                             f["threshold"].get<double>());
       html += "</table>";
     }
@@ -299,7 +303,7 @@ void writeSweepReportHtml(const std::filesystem::path& file, const nlohmann::jso
           "<th>relMSE</th><th>FLIP</th><th>HDR-FLIP</th><th>relMSE_norm</th><th>FLIP_norm</th></tr>";
   for (auto& c : r["configurations"])
     html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-                        escape(c["path"].get<std::string>()), c["views"].get<int>(), number(c["frameMs"], "{:.2f}"),
+                        htmlEscape(c["path"].get<std::string>()), c["views"].get<int>(), number(c["frameMs"], "{:.2f}"),
                         number(c["relMSE"]), number(c["FLIP"]), number(c["HDR-FLIP"]), number(c["relMSE_norm"]),
                         number(c["FLIP_norm"]));
   html += "</table><h2>Speed against error</h2>";
@@ -308,13 +312,13 @@ void writeSweepReportHtml(const std::filesystem::path& file, const nlohmann::jso
     if (c["frameMs"].is_number()) plotted.push_back(c);
   html += speedErrorPlot(plotted);
   html += "<h2>Views</h2><table><tr><th>scene</th><th>camera</th><th>device</th>";
-  for (auto& c : r["configurations"]) html += fmt::format("<th>{} FLIP</th>", escape(c["path"].get<std::string>()));
+  for (auto& c : r["configurations"]) html += fmt::format("<th>{} FLIP</th>", htmlEscape(c["path"].get<std::string>()));
   html += "</tr>";
   for (const auto& v : views) {
     const std::string camera = v["camera"].get<std::string>();
-    html += fmt::format("<tr><td><a href='{}'>{}</a></td><td>{}</td><td>{}</td>", escape(v["html"].get<std::string>()),
-                        escape(v["scene"].get<std::string>()), escape(camera.empty() ? "(as given)" : camera),
-                        escape(v["device"].get<std::string>()));
+    html += fmt::format("<tr><td><a href='{}'>{}</a></td><td>{}</td><td>{}</td>", htmlEscape(v["html"].get<std::string>()),
+                        htmlEscape(v["scene"].get<std::string>()), htmlEscape(camera.empty() ? "(as given)" : camera),
+                        htmlEscape(v["device"].get<std::string>()));
     for (auto& c : r["configurations"]) {
       std::string flip = "n/a";
       for (auto& p : v["paths"])

@@ -9,6 +9,11 @@
 
 namespace tl::session {
 
+// A PNG file as a data: URI, for a page that reads offline.
+std::string pngDataUri(const std::filesystem::path& file);
+// Text made safe inside HTML.
+std::string htmlEscape(const std::string& text);
+
 void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& report, const std::filesystem::path& imageDir);
 
 // A sweep's report.html (session/sweep.h): each configuration's mean figures over the views,

@@ -41,6 +41,14 @@ std::string defaultText(const SettingInfo& s) {
 
 std::string history(const SettingInfo& s) { return s.history.empty() ? "-" : std::string(s.history); }
 
+// What `twinlight tune` does with it: searches it, and tries presets without the feature it is.
+std::string tuning(const SettingInfo& s) {
+  if (!(s.flags & lighting::kSettingTune)) return "-";
+  if (!(s.flags & lighting::kSettingFeature)) return "searched";
+  const double off = s.type == SettingType::Bool ? 0.0 : (s.flags & lighting::kSettingOffAtMax) ? s.max : s.min;
+  return fmt::format("searched; a feature, off at {}", lighting::formatSetting(s, off));
+}
+
 }  // namespace
 
 std::string settingsReferenceText() {
@@ -55,11 +63,11 @@ std::string settingsReferenceText() {
 
 std::string settingsReferenceMarkdown() {
   std::string out;
-  out += "| setting | owner | type | default | range | unit | restarts the history of | what it does |\n";
-  out += "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  out += "| setting | owner | type | default | range | unit | restarts the history of | tune | what it does |\n";
+  out += "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const SettingInfo& s : lighting::settingsSchema())
-    out += fmt::format("| `{}` | {} | {} | {} | {} | {} | {} | {} |\n", s.name, s.owner, typeName(s), defaultText(s),
-                       range(s), s.unit.empty() ? "-" : std::string(s.unit), history(s), s.help);
+    out += fmt::format("| `{}` | {} | {} | {} | {} | {} | {} | {} | {} |\n", s.name, s.owner, typeName(s), defaultText(s),
+                       range(s), s.unit.empty() ? "-" : std::string(s.unit), history(s), tuning(s), s.help);
   return out;
 }
 

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace tl::session {
 namespace {
 
@@ -55,6 +57,31 @@ TEST(CompareSignificance, GateNeitherPassesNorFailsOnTheReferencesNoise) {
   const nlohmann::json plain = evaluateGate(nlohmann::json::array({path("rt", 0.14, 0.12, 0.16)}), {{"RMSE", 0.1}});
   EXPECT_EQ(plain["failures"].size(), 1u);
   EXPECT_TRUE(plain["withinNoise"].empty());
+}
+
+TEST(CompareSignificance, SeveralFramesAverageAndTheirSpreadWidensTheInterval) {
+  auto frame = [](double v) {
+    nlohmann::json f = nlohmann::json::object();
+    for (const std::string& m : significanceMetrics()) f[m] = {{"value", v}, {"raw", v + 0.001}, {"low", v - 0.01}, {"high", v + 0.02}};
+    return f;
+  };
+  // One frame is what it was.
+  EXPECT_EQ(combineFrameSignificance({frame(0.1)}), frame(0.1));
+  // Alike frames: the mean, the frames' own interval.
+  const nlohmann::json same = combineFrameSignificance({frame(0.1), frame(0.1), frame(0.1), frame(0.1)});
+  EXPECT_NEAR(same["relMSE_norm"]["value"].get<double>(), 0.1, 1e-12);
+  EXPECT_NEAR(same["relMSE_norm"]["low"].get<double>(), 0.09, 1e-12);
+  EXPECT_NEAR(same["relMSE_norm"]["high"].get<double>(), 0.12, 1e-12);
+  EXPECT_EQ(same["relMSE_norm"]["frames"].get<size_t>(), 4u);
+  // A firefly in one frame of four: the mean moves, and the interval widens by Student's t
+  // (3 degrees of freedom: 3.182) over the standard error of the mean, in quadrature.
+  const nlohmann::json spiky = combineFrameSignificance({frame(0.1), frame(0.1), frame(0.1), frame(0.5)});
+  const auto& f = spiky["FLIP_norm"];
+  EXPECT_NEAR(f["value"].get<double>(), 0.2, 1e-12);
+  EXPECT_NEAR(f["raw"].get<double>(), 0.201, 1e-12);
+  EXPECT_NEAR(f["frameSpread"].get<double>(), 0.2, 1e-12);
+  EXPECT_NEAR(f["high"].get<double>(), 0.2 + std::hypot(0.02, 3.182 * 0.2 / 2.0), 1e-9);
+  EXPECT_NEAR(f["low"].get<double>(), 0.2 - std::hypot(0.01, 3.182 * 0.2 / 2.0), 1e-9);
 }
 
 }  // namespace
