@@ -46,37 +46,36 @@ bool dominatesByValue(const TunePoint& a, const TunePoint& b) {
 std::vector<TunePoint> survivors(const std::vector<TunePoint>& points, size_t keep, double timeLimit) {
   struct Ranked {
     const TunePoint* point;
-    bool overBudget;  // significantly: its whole time interval above the limit
-    size_t front;     // 0: on the significant front; then the plain fronts, peeled
+    bool overBudget;        // significantly: its whole time interval above the limit
+    bool significantFront;  // no point beats it beyond the noise
+    size_t front;           // the plain fronts, peeled: 0 the first
   };
   std::vector<Ranked> ranked;
-  for (const TunePoint& p : points) ranked.push_back({&p, p.timeLow > timeLimit, 0});
-  // The significant front first: what no point beats beyond the noise survives before anything
-  // else, so a cut does not hang on the timing noise of a busy machine (the errors are the same
-  // from run to run: each configuration's frames are seeded alike).
+  for (const TunePoint& p : points) ranked.push_back({&p, p.timeLow > timeLimit, true, 0});
+  for (Ranked& r : ranked)
+    for (const Ranked& other : ranked)
+      if (&other != &r && other.overBudget == r.overBudget && dominates(*other.point, *r.point)) r.significantFront = false;
   std::vector<bool> placed(ranked.size(), false);
-  for (size_t i = 0; i < ranked.size(); ++i) {
-    bool dominated = false;
-    for (size_t j = 0; j < ranked.size() && !dominated; ++j)
-      dominated = j != i && ranked[j].overBudget == ranked[i].overBudget && dominates(*ranked[j].point, *ranked[i].point);
-    placed[i] = !dominated;
-  }
-  size_t left = std::count(placed.begin(), placed.end(), false);
-  for (size_t level = 1; left > 0; ++level) {
+  for (size_t level = 0, left = ranked.size(); left > 0; ++level) {
     std::vector<size_t> thisFront;
     for (size_t i = 0; i < ranked.size(); ++i) {
       if (placed[i]) continue;
       bool dominated = false;
       for (size_t j = 0; j < ranked.size() && !dominated; ++j)
         dominated = !placed[j] && j != i && ranked[j].overBudget == ranked[i].overBudget &&
+                    ranked[j].significantFront == ranked[i].significantFront &&
                     dominatesByValue(*ranked[j].point, *ranked[i].point);
       if (!dominated) thisFront.push_back(i);
     }
     for (size_t i : thisFront) ranked[i].front = level, placed[i] = true;
     left -= thisFront.size();
   }
+  // The significant front first (a cut does not hang on the timing noise of a busy machine);
+  // within it the plain fronts, so cheap and accurate points both go on, not the most accurate
+  // (and dearest) alone.
   std::stable_sort(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) {
     if (a.overBudget != b.overBudget) return !a.overBudget;
+    if (a.significantFront != b.significantFront) return a.significantFront;
     if (a.front != b.front) return a.front < b.front;
     if (a.point->error.value != b.point->error.value) return a.point->error.value < b.point->error.value;
     return a.point->name < b.point->name;

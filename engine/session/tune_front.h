@@ -41,8 +41,8 @@ std::vector<TunePoint> paretoFront(const std::vector<TunePoint>& points);
 
 // Successive halving's cut: `keep` points, in rank order: points not significantly over
 // `timeLimit` first (the others only when too few are left), then the significant front (what
-// no point beats beyond the noise), then the rest by plain fronts peeled one at a time, each by
-// error, then name. Deterministic for equal input.
+// no point beats beyond the noise), each group by plain fronts peeled one at a time, each front
+// by error, then name. Deterministic for equal input.
 std::vector<TunePoint> survivors(const std::vector<TunePoint>& points, size_t keep, double timeLimit);
 
 // Among the points within `timeLimit` (their median ratio), the cheapest that is not
