@@ -16,7 +16,6 @@
 #include <chrono>
 #include <fstream>
 #include <sstream>
-#include <sstream>
 
 namespace tl::editor {
 namespace {
@@ -177,7 +176,11 @@ void tuneView(EditorApp& app, ScriptState&, const std::string& arg) {
 }
 
 void waitTune(EditorApp&, ScriptState& state, const std::string& arg) {
-  const double seconds = arg.empty() ? 600.0 : std::stod(arg);
+  double seconds = 600.0;
+  if (!arg.empty()) {
+    std::istringstream in(arg);
+    if (!(in >> seconds) || !(seconds > 0.0 && seconds <= 3600.0)) throw ScriptFailure("wait-tune takes seconds from 0 to 3600");
+  }
   state.waitTune = true;
   state.tuneDeadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                               std::chrono::duration<double>(seconds));

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <fstream>
@@ -84,9 +85,15 @@ TuneJob::~TuneJob() {
 bool TuneJob::running() {
   if (status_ || pid_ <= 0) return false;
   int raw = 0;
-  const pid_t done = waitpid(pid_, &raw, WNOHANG);
+  pid_t done = 0;
+  do done = waitpid(pid_, &raw, WNOHANG);
+  while (done < 0 && errno == EINTR);
   if (done == 0) return true;
-  status_ = done == pid_ && WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
+  if (done < 0) {  // not our child any more (reaped elsewhere): it has ended, how is unknown
+    status_ = 128;
+    return false;
+  }
+  status_ = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
   return false;
 }
 
@@ -99,9 +106,10 @@ bool TuneJob::stop(double seconds) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   kill(-pid_, SIGKILL);
-  int raw = 0;
-  waitpid(pid_, &raw, 0);
-  status_ = 128 + SIGKILL;
+  // SIGKILL ends it unless it is stuck in the kernel (a driver): wait a little, then leave it.
+  const auto killedUntil = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (running() && std::chrono::steady_clock::now() < killedUntil) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  if (!status_) status_ = 128 + SIGKILL;
   return false;
 }
 

@@ -19,7 +19,7 @@ namespace tl::editor {
 
 struct TuneRequest {
   std::filesystem::path scene;
-  std::string path = "rt";
+  std::string path;  // "": the editor's path
   session::View view;
   lighting::RenderSettings settings;  // the editor's: the search starts from them (the image size is --size)
   std::vector<std::string> budgets{"1x-legacy"};

@@ -41,7 +41,10 @@ void EditorApp::startTune(TuneRequest request) {
   request.settings = session_->settings();
   if (request.out.empty()) {
     request.out = "pending";
-    const uint64_t key = requestHash(tuneArguments(request)) ^ requestHash({session::settingsJson(request.settings).dump()});
+    // The scene's content is in the key: a saved edit is another request, not a resume.
+    const uint64_t key = requestHash(tuneArguments(request)) ^
+                         requestHash({session::settingsJson(request.settings).dump(),
+                                      fmt::format("{:016x}", session_->scene().contentHash)});
     request.out = configDirectory() / "tune" / fmt::format("{}-{}-{:016x}", request.scene.stem().string(), request.path, key);
   }
   try {

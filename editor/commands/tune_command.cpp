@@ -25,14 +25,20 @@ using session::Session;
 int tuneMergeCommand(const std::vector<std::string>& dirs, const std::filesystem::path& out) {
   namespace fs = std::filesystem;
   std::optional<std::string> plan;
+  if (std::ifstream existing{out / "tune-plan.json"})  // a folder that holds a tune takes only that tune's runs
+    plan = std::string((std::istreambuf_iterator<char>(existing)), std::istreambuf_iterator<char>());
   size_t copied = 0;
   for (const std::string& d : dirs) {
     const fs::path dir(d);
     std::ifstream in(dir / "tune-plan.json");
     if (!in) throw session::SessionError(fmt::format("{}: not a tune folder (no tune-plan.json)", d));
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (plan && *plan != text) throw session::SessionError(fmt::format("{}: the plan of another tune than the first folder's", d));
+    if (plan && *plan != text)
+      throw session::SessionError(fmt::format("{}: the plan of another tune than the folders before it (or --out's)", d));
     plan = text;
+    const fs::path outAbsolute = fs::weakly_canonical(out), dirAbsolute = fs::weakly_canonical(dir);
+    if (outAbsolute == dirAbsolute || outAbsolute.string().rfind(dirAbsolute.string() + "/", 0) == 0)
+      throw session::SessionError(fmt::format("--out {} lies in {}: merge into another folder", out.string(), d));
     for (const auto& entry : fs::recursive_directory_iterator(dir)) {
       if (entry.path().filename() != "report.json" || entry.path().parent_path() == dir) continue;
       const fs::path folder = entry.path().parent_path(), target = out / fs::relative(folder, dir);
@@ -40,7 +46,9 @@ int tuneMergeCommand(const std::vector<std::string>& dirs, const std::filesystem
       fs::create_directories(target);
       for (const auto& file : fs::directory_iterator(folder))
         if (file.path().filename() != "report.json") fs::copy_file(file.path(), target / file.path().filename(), fs::copy_options::overwrite_existing);
-      fs::copy_file(folder / "report.json", target / "report.json", fs::copy_options::overwrite_existing);  // last: marks it done
+      // report.json marks the run done: copied under another name, then renamed.
+      fs::copy_file(folder / "report.json", target / "report.json.part", fs::copy_options::overwrite_existing);
+      fs::rename(target / "report.json.part", target / "report.json");
       ++copied;
     }
   }
@@ -60,8 +68,7 @@ class TuneCommand : public CliCommand {
   CLI::App* add(CLI::App& app) override {
     auto* cmd = app.add_subcommand(
         "tune", "the cheapest settings of a lighting path that the scenes need, found against the reference: a preset per budget");
-    cmd->add_option("--scene", scenes_, "glTF file(s); several give one preset that holds for all (the worst view decides)")
-        ->required();
+    cmd->add_option("--scene", scenes_, "glTF file(s); several give one preset that holds for all (the worst view decides)");
     cmd->add_option("--path", tune_.path, "the lighting path whose settings are searched")->capture_default_str();
     cmd->add_option("--baseline", tune_.baseline, "the path whose frame time is the unit of time, measured beside every run")
         ->capture_default_str();
@@ -83,7 +90,7 @@ class TuneCommand : public CliCommand {
         ->check(CLI::Range(1u, 6u))
         ->capture_default_str();
     cmd->add_option("--frames", tune_.frames, "frames each configuration runs at the last rung")
-        ->check(CLI::Range(1u, kMaxFrames))
+        ->check(CLI::Range(4u, kMaxFrames))
         ->capture_default_str();
     cmd->add_option("--seed", tune_.seed, "seed of the drawn configurations (the same seed, the same population)")
         ->capture_default_str();
@@ -111,6 +118,7 @@ class TuneCommand : public CliCommand {
       session::checkOutputFolder(out_);
       return tuneMergeCommand(merge_, out_);
     }
+    if (scenes_.empty()) throw UsageError("tune needs --scene (or --merge)");
     if (budgets_.empty()) budgets_ = {"1x-" + tune_.baseline};
     if (tune_.guard == "none" || tune_.guard == tune_.metric) tune_.guard.clear();
     try {
@@ -118,7 +126,8 @@ class TuneCommand : public CliCommand {
     } catch (const session::SessionError& e) {
       throw UsageError(e.what());
     }
-    if (tune_.path == "reference") throw UsageError("--path reference: the reference is what tune measures against");
+    for (const auto& [option, name] : {std::pair{"--path", tune_.path}, std::pair{"--baseline", tune_.baseline}})
+      if (name == "reference") throw UsageError(fmt::format("{} reference: the reference is what tune measures against", option));
     if (tune_.compare.referenceSpp > 16 && tune_.compare.referenceSpp % 16 != 0)
       throw UsageError(fmt::format("--spp {}: give at most 16 or a multiple of 16", tune_.compare.referenceSpp));
     std::optional<session::Shard> shard;
@@ -158,6 +167,9 @@ class TuneCommand : public CliCommand {
     Session session;
     // The base settings come from the first scene's command-line settings (presets hold them).
     cb.loadScene(session, plan.views.front().sceneFile);
+    // Both paths must run here before the folder is claimed (a typo would lock it otherwise).
+    session.setPath(tune_.baseline);
+    session.setPath(tune_.path);
     const session::TuneOutcome outcome = session::runTune(session, plan, tune_, shard, cb);
     progress.finish();
     if (!outcome.complete) {
@@ -168,6 +180,11 @@ class TuneCommand : public CliCommand {
     }
     printOutcome(outcome);
     if (int status = exitStatus(session); status != 0) return status;
+    if (outcome.budgetsMissed && shard) {
+      // A scheduler's dependent job must still start: the unmet budgets are in the report.
+      fmt::print("tune: {} budget(s) met by no configuration (a shard finished the tune: exit 0)\n", outcome.budgetsMissed);
+      return 0;
+    }
     if (outcome.budgetsMissed) {
       std::fflush(stdout);
       fmt::print(stderr, "twinlight: error: {} budget(s) met by no configuration (listed above)\n", outcome.budgetsMissed);

@@ -616,7 +616,8 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
        "g(r) = (t - r)^2 / (r^2 + eps) from r^ ~ N(r, v) to the second order, g - v/2 g'' + v^2/8 g''''; FLIP and "
        "FLIP_norm by simulation-extrapolation (the figure at noise v, 2v and 3v, the quadratic through them at 0). "
        "value = the estimate, raw = against the noisy reference as rendered, [low, high] = its 95% interval from the "
-       "reference's noise (docs/accuracy.md, Significance)"},
+       "reference's noise (docs/accuracy.md, Significance); with errorFrames > 1 (tune), the mean over the last frames, "
+       "the interval widened by their spread"},
       {"ranking", "paths in order of value; `<` where neighbours' intervals part, `~` where they overlap (within noise)"},
       {"rankings", rankPaths(results)}};
   if (!o.failAbove.empty()) report["gate"] = evaluateGate(results, o.failAbove);

@@ -1,6 +1,7 @@
 #include "session/settings_reference.h"
 
 #include "lighting/common/render_settings.h"
+#include "session/tune_space.h"
 
 #include <fmt/format.h>
 
@@ -45,8 +46,7 @@ std::string history(const SettingInfo& s) { return s.history.empty() ? "-" : std
 std::string tuning(const SettingInfo& s) {
   if (!(s.flags & lighting::kSettingTune)) return "-";
   if (!(s.flags & lighting::kSettingFeature)) return "searched";
-  const double off = s.type == SettingType::Bool ? 0.0 : (s.flags & lighting::kSettingOffAtMax) ? s.max : s.min;
-  return fmt::format("searched; a feature, off at {}", lighting::formatSetting(s, off));
+  return fmt::format("searched; a feature, off at {}", lighting::formatSetting(s, featureOffValue(s)));
 }
 
 }  // namespace

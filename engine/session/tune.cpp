@@ -23,6 +23,7 @@ TuneBudget parseTuneBudget(const std::string& text, const std::string& baseline)
   static const std::regex ratioForm(R"(([0-9]+(\.[0-9]+)?)x-([a-z]+))"), msForm(R"(([0-9]+(\.[0-9]+)?)ms)");
   std::smatch m;
   TuneBudget b{text};
+  if (text.size() > 32) throw SessionError(fmt::format("--budget {}...: too long for a budget", text.substr(0, 32)));
   if (std::regex_match(text, m, ratioForm)) {
     if (m[3] != baseline)
       throw SessionError(fmt::format("--budget {}: times are measured against the baseline `{}`: write {}x-{}", text,
@@ -129,6 +130,9 @@ TunePoint unitPoint(const nlohmann::json& report, const TuneConfig& c, const std
     const double n = std::max(1.0, result.value("frames", 1.0));
     return 1.96 * 0.93 * (number(q[1]) - number(q[0])) / (std::sqrt(n) * median);
   };
+  if (!(ms > 0.0 && base > 0.0) || !std::isfinite(ms) || !std::isfinite(base))
+    throw SessionError(fmt::format("tune: no GPU frame time for {} or {} on this device (timestamps): tune needs them",
+                                   c.name, baseline));
   const double half = std::hypot(relativeHalfWidth(*r, ms), relativeHalfWidth(*b, base));
   p.frameMs = ms;
   p.time = ms / base;
@@ -194,7 +198,9 @@ class Tuner {
     }
     for (const TuneConfig& c : stage.configs) result.points.push_back(worstOf(byConfig[c.name]));
     result.baseline = worstOf(baselineViews);
-    result.baselineMs = result.baseline.frameMs;
+    // Its ratio is 1 in every view: its time is the slowest view's (a budget in ms holds there).
+    for (const TunePoint& p : baselineViews) result.baselineMs = std::max(result.baselineMs, p.frameMs);
+    result.baseline.frameMs = result.baselineMs;
     return result;
   }
 
@@ -300,14 +306,17 @@ std::string budgetFileStem(const TuneOptions& o, const TuneBudget& b) {
 TuneOutcome runTune(Session& session, const SweepPlan& plan, const TuneOptions& o, const std::optional<Shard>& shard,
                     const TuneCallbacks& cb) {
   if (o.budgets.empty()) throw SessionError("tune needs at least one --budget");
-  if (o.rungs < 1 || o.keepOneIn < 2 || o.candidates < 1 || o.chunk < 1)
-    throw SessionError("tune: --rungs, --candidates and the chunk must be at least 1 and --keep-one-in at least 2");
+  if (o.rungs < 1 || o.rungs > 6 || o.keepOneIn < 2 || o.candidates < 1 || o.candidates > 4096 || o.chunk < 1 ||
+      o.frames < 4 || o.width < 16 || o.height < 16)
+    throw SessionError("tune: --rungs 1..6, --candidates 1..4096, --frames at least 4, a size of at least 16x16, "
+                       "--keep-one-in at least 2");
   const auto& metrics = significanceMetrics();
   for (const std::string& m : {o.metric, o.guard})
     if (!m.empty() && std::find(metrics.begin(), metrics.end(), m) == metrics.end())
       throw SessionError(fmt::format("tune: {} has no interval; one of relMSE, relMSE_norm, FLIP, FLIP_norm", m));
   const std::vector<TunableSetting> space = tunableSettings(o.path);
-  if (space.empty()) throw SessionError(fmt::format("tune: the `{}` path has no tunable setting", o.path));
+  if (std::none_of(space.begin(), space.end(), [&](const TunableSetting& t) { return t.info->owner == o.path; }))
+    throw SessionError(fmt::format("tune: the `{}` path has no tunable setting of its own", o.path));
 
   checkOrWritePlan(o.compare.outDir, tunePlanJson(plan, o));
   TuneOutcome outcome;
@@ -456,7 +465,8 @@ TuneOutcome runTune(Session& session, const SweepPlan& plan, const TuneOptions& 
       const std::string name(f.info->name);
       const TunePoint without = featurePoint(c.chosen->name + "-no-" + name);
       const bool unneeded = std::count(names.begin(), names.end(), name) > 0;
-      const double saves = with.frameMs - without.frameMs;
+      // In the baseline's milliseconds: with and without may come from two compare runs.
+      const double saves = (with.time - without.time) * featureResult.baselineMs;
       if (unneeded && saves > bestSaving) bestSaving = saves, bestSaver = name;
       features.push_back({{"setting", name},
                           {"off", settingJsonValue(*f.info, f.off)},

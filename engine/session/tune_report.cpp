@@ -81,21 +81,24 @@ std::string overridesText(const nlohmann::json& o) {
   return text;
 }
 
-// The image of a configuration measured at full size in the features stage, and that
-// measurement's reference and baseline.
+// The image of a configuration measured at full size (the preset's last measurement: the
+// features-together stage, else the features stage), and that measurement's reference and
+// baseline.
 std::string imagesOf(const fs::path& dir, const std::string& name, const std::string& baseline) {
   std::error_code ec;
-  if (!fs::is_directory(dir / "features", ec)) return "";
-  for (const auto& entry : fs::recursive_directory_iterator(dir / "features", ec)) {
-    if (entry.path().filename() != name + ".png") continue;
-    const fs::path folder = entry.path().parent_path();
-    std::string html = "<div class='images'>";
-    for (const auto& [file, caption] : std::vector<std::pair<std::string, std::string>>{
-             {"reference.png", "reference"}, {name + ".png", "tuned (" + name + ")"}, {baseline + ".png", baseline}})
-      if (fs::exists(folder / file))
-        html += fmt::format("<figure><img src='{}'><figcaption>{}</figcaption></figure>", pngDataUri(folder / file),
-                            htmlEscape(caption));
-    return html + "</div>";
+  for (const char* stage : {"features-together", "features"}) {
+    if (!fs::is_directory(dir / stage, ec)) continue;
+    for (const auto& entry : fs::recursive_directory_iterator(dir / stage, ec)) {
+      if (entry.path().filename() != name + ".png") continue;
+      const fs::path folder = entry.path().parent_path();
+      std::string html = "<div class='images'>";
+      for (const auto& [file, caption] : std::vector<std::pair<std::string, std::string>>{
+               {"reference.png", "reference"}, {name + ".png", "the preset (" + name + ")"}, {baseline + ".png", baseline}})
+        if (fs::exists(folder / file))
+          html += fmt::format("<figure><img src='{}'><figcaption>{}</figcaption></figure>", pngDataUri(folder / file),
+                              htmlEscape(caption));
+      return html + "</div>";
+    }
   }
   return "";
 }
@@ -142,7 +145,7 @@ void writeTuneReportHtml(const fs::path& file, const nlohmann::json& t, const fs
                           htmlEscape(f["setting"]), htmlEscape(f["verdict"]), value(f["savesMs"]), figure(f["errorWith"]),
                           figure(f["errorWithout"]), f["offInPreset"].get<bool>() ? "yes" : "no");
     html += "</table>";
-    html += imagesOf(tuneDir, c["name"], baseline);
+    if (b.value("met", false)) html += imagesOf(tuneDir, m["name"], baseline);
   }
   html += "<h2>The front (full size)</h2><table><tr><th>configuration</th><th>time</th><th>ms</th><th>error</th><th>worst view</th><th>settings</th></tr>";
   for (const auto& p : t["front"])

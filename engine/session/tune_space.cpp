@@ -46,9 +46,13 @@ std::vector<double> candidateValues(const SettingInfo& s) {
 
 std::vector<TunableSetting> tunableSettings(std::string_view path) {
   std::vector<TunableSetting> space;
-  for (const SettingInfo& s : lighting::settingsSchema())
-    if ((s.flags & lighting::kSettingTune) && (s.owner == path || s.owner == "common"))
-      space.push_back({&s, candidateValues(s)});
+  for (const SettingInfo& s : lighting::settingsSchema()) {
+    if (!(s.flags & lighting::kSettingTune) || (s.owner != path && s.owner != "common")) continue;
+    // A common setting whose history names other paths but not this one is not read by it
+    // (lightShadowMapSize: the paths that trace their shadows never build those maps).
+    if (s.owner == "common" && !s.history.empty() && !s.resetsHistoryOf(path)) continue;
+    space.push_back({&s, candidateValues(s)});
+  }
   return space;
 }
 

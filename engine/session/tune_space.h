@@ -24,7 +24,8 @@ struct TunableSetting {
 // value that turns many settings off). A default of 0: 0 and 1, 2, 4, 8 within the range.
 std::vector<double> candidateValues(const lighting::SettingInfo& setting);
 
-// The tunable settings `path` reads: those it owns and the common ones, in schema order.
+// The tunable settings `path` reads: those it owns and the common ones, but a common one whose
+// history column names only other paths; in schema order.
 std::vector<TunableSetting> tunableSettings(std::string_view path);
 
 // The value that leaves a kSettingFeature setting's feature out: false, or the range's minimum

@@ -37,6 +37,18 @@ set -- $runs
 [ "$1" = "$2" ] || fail "the resumed tune measured again ($1 runs, $2 found done)"
 diff <(grep "budget" "$out/one.log") <(grep "budget" "$out/again.log") || fail "the resumed tune chose differently"
 
+# Merged into another folder, the finished runs resume there: nothing measured again; a folder
+# of another tune is refused.
+"$tl" tune --merge "$out/one" --out "$out/merged" > "$out/merge.log" 2>&1 || { cat "$out/merge.log"; fail "the merge failed"; }
+grep -q "merged [1-9][0-9]* measurement(s) from 1 folder(s)" "$out/merge.log" || { cat "$out/merge.log"; fail "nothing merged"; }
+"$tl" tune "${small[@]}" --budget 1.5x-legacy --budget 1000ms --out "$out/merged" > "$out/merged_run.log" 2>&1 \
+  || { cat "$out/merged_run.log"; fail "the tune in the merged folder failed"; }
+set -- $(sed -n 's/.*: \([0-9]*\) compare run(s) (\([0-9]*\) found done).*/\1 \2/p' "$out/merged_run.log")
+[ "$1" = "$2" ] || fail "the merged folder measured $(( $1 - $2 )) run(s) again"
+mkdir -p "$out/other" && echo '{"other": true}' > "$out/other/tune-plan.json"
+if "$tl" tune --merge "$out/one" --out "$out/other" > "$out/merge_other.log" 2>&1; then fail "merged into another tune's folder"; fi
+grep -q "the plan of another tune" "$out/merge_other.log" || { cat "$out/merge_other.log"; fail "no clear refusal of the merge"; }
+
 # Another tune's options into the same folder: refused, nothing lost.
 if "$tl" tune "${small[@]}" --seed 2 --out "$out/one" > "$out/other.log" 2>&1; then fail "another tune's folder accepted"; fi
 grep -q "another tune's folder" "$out/other.log" || { cat "$out/other.log"; fail "no clear refusal"; }
