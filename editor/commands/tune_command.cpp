@@ -89,6 +89,9 @@ class TuneCommand : public CliCommand {
     cmd->add_option("--rungs", tune_.rungs, "rungs of successive halving; each before the last at half the side and frames")
         ->check(CLI::Range(1u, 6u))
         ->capture_default_str();
+    cmd->add_flag_callback("--full-size-rungs", [this] { tune_.halveSize = false; },
+                  "every rung at the full size (only the frames halved): frame times that carry to the full size, "
+                  "at about 4x the cost of the first rungs");
     cmd->add_option("--frames", tune_.frames, "frames each configuration runs at the last rung")
         ->check(CLI::Range(4u, kMaxFrames))
         ->capture_default_str();

@@ -49,7 +49,7 @@ struct Fidelity {
 
 Fidelity rungFidelity(const TuneOptions& o, uint32_t rung) {
   const uint32_t down = o.rungs - 1 - rung;
-  auto side = [&](uint32_t s) { return std::max(16u, s >> down); };
+  auto side = [&](uint32_t s) { return o.halveSize ? std::max(16u, s >> down) : s; };
   return {side(o.width), side(o.height), std::max(4u, o.frames >> down)};
 }
 
@@ -259,6 +259,7 @@ nlohmann::json tunePlanJson(const SweepPlan& plan, const TuneOptions& o) {
           {"rungs", o.rungs},
           {"frames", o.frames},
           {"size", {o.width, o.height}},
+          {"halveSize", o.halveSize},
           {"seed", o.seed},
           {"chunk", o.chunk},
           {"budgets", budgets}};

@@ -61,6 +61,11 @@ struct TuneOptions {
   uint32_t rungs = 3;        // the last at the full size and frames
   uint32_t frames = 32;      // frames each configuration runs at the last rung
   uint32_t width = 320, height = 180;
+  // The rungs before the last run at half the side per rung down as well as half the frames.
+  // Frame times at small sizes carry badly to the full size (fixed costs: the radiance cache's
+  // paths, acceleration structures); at the full size every rung costs about 4x more, and one
+  // run on cornell chose no better (docs/log/performance.md).
+  bool halveSize = true;
   uint64_t seed = 1;
   uint32_t chunk = 8;  // configurations per compare run (beside the baseline)
   // The reference and output options; outDir is the tune's folder. paths/variants are the tune's.
