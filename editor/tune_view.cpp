@@ -2,6 +2,7 @@
 // takes this scene, camera, path and settings; its folder is named by what it asks, so asking
 // again after a stop resumes it.
 #include "editor_app.h"
+#include "session/provenance.h"
 #include "session/settings_json.h"
 #include "settings_panel.h"
 
@@ -41,10 +42,12 @@ void EditorApp::startTune(TuneRequest request) {
   request.settings = session_->settings();
   if (request.out.empty()) {
     request.out = "pending";
-    // The scene's content is in the key: a saved edit is another request, not a resume.
+    // The scene's content is in the key (a saved edit is another request, not a resume), and the
+    // build (another build measures afresh: its folder's plan may have other fields).
     const uint64_t key = requestHash(tuneArguments(request)) ^
                          requestHash({session::settingsJson(request.settings).dump(),
-                                      fmt::format("{:016x}", session_->scene().contentHash)});
+                                      fmt::format("{:016x}", session_->scene().contentHash),
+                                      session::twinlightJson().dump()});
     request.out = configDirectory() / "tune" / fmt::format("{}-{}-{:016x}", request.scene.stem().string(), request.path, key);
   }
   try {
