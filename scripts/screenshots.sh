@@ -11,6 +11,8 @@ XDG_CONFIG_HOME="$config" xvfb-run -a -s "-screen 0 1600x900x24" \
   "${TWINLIGHT_BUILD_DIR:-$root/build}/editor/twinlight" --script docs/screenshots.script
 XDG_CONFIG_HOME="$config" xvfb-run -a -s "-screen 0 1600x900x24" \
   "${TWINLIGHT_BUILD_DIR:-$root/build}/editor/twinlight" --script docs/screenshots_views.script
+XDG_CONFIG_HOME="$config" xvfb-run -a -s "-screen 0 1600x900x24" \
+  "${TWINLIGHT_BUILD_DIR:-$root/build}/editor/twinlight" --script docs/screenshots_tune.script
 rm -rf out/screenshots
 crop() { oiiotool docs/images/editor_overview.png --cut "$2" -o "docs/images/panel_$1.png"; }
 crop outliner 300x420+0+20
@@ -24,6 +26,7 @@ oiiotool docs/images/editor_albedo.png --cut 300x440+0+440 -o docs/images/panel_
 oiiotool docs/images/editor_buffers.png --cut 470x720+300+20 -o docs/images/panel_buffers.png
 oiiotool docs/images/editor_compare.png --cut 360x300+320+420 -o docs/images/panel_compare.png
 oiiotool docs/images/editor_presets.png --cut 340x380+1260+20 -o docs/images/panel_presets.png
+oiiotool docs/images/editor_tune.png --cut 340x380+1260+20 -o docs/images/panel_tune.png
 oiiotool docs/images/editor_compare_band.png --cut 380x360+318+415 -o docs/images/panel_compare_band.png
 oiiotool docs/images/editor_help.png --cut 480x360+560+270 -o docs/images/panel_help.png
 oiiotool docs/images/editor_browser.png --cut 560x460+520+220 -o docs/images/panel_browser.png
