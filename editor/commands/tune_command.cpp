@@ -226,10 +226,18 @@ class TuneCommand : public CliCommand {
                    f["offInPreset"].get<bool>() || f["needed"].get<bool>() ? "" : " (kept: off together they were worse)",
                    f["savesMs"].get<double>());
       const auto& m = b["presetMeasured"];
-      const bool worse = m["error"]["low"].get<double>() > t["baseline"]["error"]["high"].get<double>();
+      // The preset significantly worse than the baseline's defaults, by the error or the guard.
+      auto worseOn = [&](const char* figure) {
+        return m[figure].is_object() && t["baseline"][figure].is_object() &&
+               m[figure]["low"].get<double>() > t["baseline"][figure]["high"].get<double>();
+      };
+      std::string worseText;
+      if (worseOn("error")) worseText = tune_.metric;
+      if (worseOn("guard")) worseText += (worseText.empty() ? "" : " and ") + tune_.guard;
+      const bool worse = !worseText.empty();
       if (b["met"].get<bool>())
         fmt::print("    preset: {:.2f}x, {}{} -> {}\n", m["timeRatio"].get<double>(), errors(m),
-                   worse ? fmt::format(" (worse than {}'s defaults)", tune_.baseline) : "",
+                   worse ? fmt::format(" ({} worse than {}'s defaults)", worseText, tune_.baseline) : "",
                    (std::filesystem::absolute(out_) / b["preset"].get<std::string>()).string());
       else
         fmt::print("    no preset: the cheapest measured ran at {:.2f}x\n", b["cheapestRatio"].get<double>());

@@ -90,11 +90,21 @@ std::optional<TunePoint> chooseWithinBudget(const std::vector<TunePoint>& points
   for (const TunePoint& p : points)
     if (p.time <= timeLimit && std::isfinite(p.error.value) && (!best || p.error.value < best->error.value)) best = &p;
   if (!best) return std::nullopt;
-  const TunePoint* chosen = best;
-  for (const TunePoint& p : points)
-    if (p.time <= timeLimit && std::isfinite(p.error.value) && !significantlyMoreAccurate(*best, p) &&
-        (p.time < chosen->time || (p.time == chosen->time && p.name < chosen->name)))
-      chosen = &p;
+  // The candidates: within the budget and within noise of the best error. Among them, the guard
+  // must not be significantly worse than the best guard's: the most accurate point by the error
+  // may itself be full of fireflies.
+  std::vector<const TunePoint*> close;
+  const TunePoint* bestGuard = nullptr;
+  for (const TunePoint& p : points) {
+    if (!(p.time <= timeLimit && std::isfinite(p.error.value)) || lower(best->error, p.error)) continue;
+    close.push_back(&p);
+    if (p.guard && (!bestGuard || p.guard->value < bestGuard->guard->value)) bestGuard = &p;
+  }
+  const TunePoint* chosen = nullptr;
+  for (const TunePoint* p : close) {
+    if (bestGuard && guardLower(*bestGuard, *p)) continue;
+    if (!chosen || p->time < chosen->time || (p->time == chosen->time && p->name < chosen->name)) chosen = p;
+  }
   return *chosen;
 }
 

@@ -45,9 +45,9 @@ std::vector<TunePoint> paretoFront(const std::vector<TunePoint>& points);
 // by error, then name. Deterministic for equal input.
 std::vector<TunePoint> survivors(const std::vector<TunePoint>& points, size_t keep, double timeLimit);
 
-// Among the points within `timeLimit` (their median ratio), the cheapest that is not
-// significantly worse than the most accurate one (by the error) on the error nor on the guard;
-// nothing when none fits.
+// Among the points within `timeLimit` (their median ratio) whose error is within noise of the
+// best one's, the cheapest whose guard is not significantly worse than the best guard among
+// them; nothing when none fits.
 std::optional<TunePoint> chooseWithinBudget(const std::vector<TunePoint>& points, double timeLimit);
 
 nlohmann::json pointJson(const TunePoint& p);

@@ -154,6 +154,11 @@ TEST(TuneFront, TheGuardKeepsTheChoiceFromSlidingIntoADarkerImage) {
   EXPECT_FALSE(significantlyMoreAccurate(dark, full));
   EXPECT_TRUE(dominates(full, dark) == false);  // dark is significantly faster: both stay on the front
   EXPECT_EQ(chooseWithinBudget({full, dark}, 1.5)->name, "full");
+  // The most accurate point by the error may be the one full of fireflies: the guard is taken
+  // against the best guard among the close points, not against it.
+  TunePoint spiky = point("spiky", 1.4, 0.01, 0.098, 0.01);
+  spiky.guard = metrics::NoiseAwareFigure{4.99, 4.99, 3.8, 6.1};
+  EXPECT_EQ(chooseWithinBudget({full, dark, spiky}, 1.5)->name, "full");
   // Without the guard the cheaper point within noise wins.
   full.guard.reset(), dark.guard.reset();
   EXPECT_EQ(chooseWithinBudget({full, dark}, 1.5)->name, "dark");
