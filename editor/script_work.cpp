@@ -164,7 +164,6 @@ void tuneView(EditorApp& app, ScriptState&, const std::string& arg) {
   std::string budget;
   if (!(words >> budget)) throw ScriptFailure("tune-view needs a budget (1x-legacy)");
   request.budgets = {budget};
-  request.path.clear();  // the editor's path
   std::string size;
   if (words >> size) {
     request.size = size;

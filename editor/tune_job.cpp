@@ -114,14 +114,24 @@ bool TuneJob::stop(double seconds) {
 }
 
 std::string TuneJob::lastLine() const {
-  std::ifstream in(request_.out / "tune.log");
+  // The panel asks every frame: while the tune runs, the log is read at most twice a second, and
+  // only its end; once it has ended, always (its last words).
+  const auto now = std::chrono::steady_clock::now();
+  if (!status_ && now - lastLineReadAt_ < std::chrono::milliseconds(500)) return lastLine_;
+  lastLineReadAt_ = now;
+  std::ifstream in(request_.out / "tune.log", std::ios::binary | std::ios::ate);
+  if (!in) return lastLine_;
+  constexpr std::streamoff kTail = 4096;
+  const std::streamoff size = in.tellg();
+  in.seekg(std::max<std::streamoff>(0, size - kTail));
   std::string line, last;
   while (std::getline(in, line)) {
     // The progress bar rewrites its line with carriage returns: keep what was written last.
     if (const size_t cr = line.find_last_of('\r'); cr != std::string::npos) line = line.substr(cr + 1);
     if (!line.empty()) last = line;
   }
-  return last;
+  if (!last.empty()) lastLine_ = last;
+  return lastLine_;
 }
 
 std::vector<fs::path> TuneJob::presets() const {

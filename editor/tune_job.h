@@ -9,6 +9,7 @@
 
 #include <sys/types.h>
 
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -52,6 +53,8 @@ class TuneJob {
   TuneRequest request_;
   pid_t pid_ = -1;
   std::optional<int> status_;
+  mutable std::string lastLine_;                                  // lastLine's, between reads of the log
+  mutable std::chrono::steady_clock::time_point lastLineReadAt_;
 };
 
 // The arguments of `twinlight tune` for a request (without the program name).

@@ -6,6 +6,7 @@
 #include "cli_output.h"
 #include "compare_cameras.h"
 #include "session/image_io.h"
+#include "session/json_file.h"
 #include "session/shard.h"
 #include "session/tune.h"
 
@@ -13,7 +14,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 namespace tl::editor {
 namespace {
@@ -24,18 +24,16 @@ using session::Session;
 // `out`: every compare report folder under a stage, and the plan, which must agree.
 int tuneMergeCommand(const std::vector<std::string>& dirs, const std::filesystem::path& out) {
   namespace fs = std::filesystem;
-  std::optional<std::string> plan;
-  if (std::ifstream existing{out / "tune-plan.json"})  // a folder that holds a tune takes only that tune's runs
-    plan = std::string((std::istreambuf_iterator<char>(existing)), std::istreambuf_iterator<char>());
+  // A folder that holds a tune takes only that tune's runs.
+  std::optional<nlohmann::json> plan = session::readJsonFile(out / "tune-plan.json");
   size_t copied = 0;
   for (const std::string& d : dirs) {
     const fs::path dir(d);
-    std::ifstream in(dir / "tune-plan.json");
-    if (!in) throw session::SessionError(fmt::format("{}: not a tune folder (no tune-plan.json)", d));
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (plan && *plan != text)
+    const std::optional<nlohmann::json> dirPlan = session::readJsonFile(dir / "tune-plan.json");
+    if (!dirPlan) throw session::SessionError(fmt::format("{}: not a tune folder (no tune-plan.json)", d));
+    if (plan && *plan != *dirPlan)
       throw session::SessionError(fmt::format("{}: the plan of another tune than the folders before it (or --out's)", d));
-    plan = text;
+    plan = dirPlan;
     const fs::path outAbsolute = fs::weakly_canonical(out), dirAbsolute = fs::weakly_canonical(dir);
     if (outAbsolute == dirAbsolute || outAbsolute.string().rfind(dirAbsolute.string() + "/", 0) == 0)
       throw session::SessionError(fmt::format("--out {} lies in {}: merge into another folder", out.string(), d));
@@ -46,13 +44,14 @@ int tuneMergeCommand(const std::vector<std::string>& dirs, const std::filesystem
       fs::create_directories(target);
       for (const auto& file : fs::directory_iterator(folder))
         if (file.path().filename() != "report.json") fs::copy_file(file.path(), target / file.path().filename(), fs::copy_options::overwrite_existing);
-      // report.json marks the run done: copied under another name, then renamed.
-      fs::copy_file(folder / "report.json", target / "report.json.part", fs::copy_options::overwrite_existing);
-      fs::rename(target / "report.json.part", target / "report.json");
+      // report.json marks the run done: it arrives whole or not at all.
+      session::writeFileAtomically(target / "report.json", [&](const std::string& tmp) {
+        return fs::copy_file(folder / "report.json", tmp, fs::copy_options::overwrite_existing);
+      });
       ++copied;
     }
   }
-  if (!fs::exists(out / "tune-plan.json")) session::writeTextFile(out / "tune-plan.json", *plan);
+  if (!fs::exists(out / "tune-plan.json")) session::writeTextFile(out / "tune-plan.json", plan->dump(2) + "\n");
   fmt::print("merged {} measurement(s) from {} folder(s) into {}; run the tune again with --out {} to go on\n", copied,
              dirs.size(), fs::absolute(out).string(), out.string());
   return 0;

@@ -1,6 +1,7 @@
 #include "session/sweep.h"
 
 #include "session/image_io.h"
+#include "session/json_file.h"
 #include "session/provenance.h"
 #include "session/report_html.h"
 #include "session/sweep_summary.h"
@@ -9,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <set>
 
@@ -20,13 +20,9 @@ constexpr const char* kShardManifest = "shard.json";
 constexpr const char* kShardKind = "twinlight compare shard";
 
 nlohmann::json readJson(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw SessionError(fmt::format("{}: cannot be read", file.string()));
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw SessionError(fmt::format("{}: not JSON: {}", file.string(), e.what()));
-  }
+  std::optional<nlohmann::json> j = readJsonFile(file);
+  if (!j) throw SessionError(fmt::format("{}: cannot be read", file.string()));
+  return std::move(*j);
 }
 
 void writeJson(const std::filesystem::path& file, const nlohmann::json& value) { writeTextFile(file, value.dump(2) + "\n"); }

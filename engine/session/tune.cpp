@@ -2,6 +2,7 @@
 
 #include "session/compare_significance.h"
 #include "session/image_io.h"
+#include "session/json_file.h"
 #include "session/presets.h"
 #include "session/settings_json.h"
 #include "session/tune_space.h"
@@ -10,7 +11,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <regex>
 #include <set>
@@ -79,20 +79,10 @@ std::vector<Unit> stageUnits(const Stage& stage, const SweepPlan& plan, const Tu
   return units;
 }
 
-std::optional<nlohmann::json> readJson(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) return std::nullopt;
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw SessionError(fmt::format("{}: not JSON ({}): delete it to measure again", file.string(), e.what()));
-  }
-}
-
 // A unit's compare report when it has been measured; SessionError when the folder holds a
 // measurement of other configurations (another tune wrote it).
 std::optional<nlohmann::json> finishedUnit(const Unit& u, const TuneOptions& o) {
-  std::optional<nlohmann::json> report = readJson(u.dir / "report.json");
+  std::optional<nlohmann::json> report = readJsonFile(u.dir / "report.json");
   if (!report) return std::nullopt;
   std::map<std::string, nlohmann::json> measured;
   for (const auto& p : report->value("paths", nlohmann::json::array())) measured[p.value("path", "")] = p.value("overrides", nlohmann::json());
@@ -267,7 +257,7 @@ nlohmann::json tunePlanJson(const SweepPlan& plan, const TuneOptions& o) {
 
 void checkOrWritePlan(const fs::path& dir, const nlohmann::json& plan) {
   const fs::path file = dir / "tune-plan.json";
-  if (std::optional<nlohmann::json> existing = readJson(file)) {
+  if (std::optional<nlohmann::json> existing = readJsonFile(file)) {
     if (*existing != plan)
       throw SessionError(fmt::format("{} is another tune's folder (its tune-plan.json differs from these options): give "
                                      "another --out, or the options it was started with", dir.string()));
@@ -275,6 +265,13 @@ void checkOrWritePlan(const fs::path& dir, const nlohmann::json& plan) {
   }
   fs::create_directories(dir);
   writeTextFile(file, plan.dump(2) + "\n");
+}
+
+// The point of a configuration measured in a stage.
+const TunePoint& pointNamed(const std::vector<TunePoint>& points, const std::string& name) {
+  for (const TunePoint& p : points)
+    if (p.name == name) return p;
+  throw SessionError("tune: internal: no measurement of " + name);
 }
 
 double budgetRatio(const TuneBudget& b, double baselineMs) { return b.ratio > 0.0 ? b.ratio : b.ms / baselineMs; }
@@ -369,7 +366,7 @@ TuneOutcome runTune(Session& session, const SweepPlan& plan, const TuneOptions& 
   struct Choice {
     TuneBudget budget;
     double limit = 0.0;
-    std::optional<TunePoint> chosen;
+    TunePoint chosen;
     bool overBudget = false;  // chosen as the cheapest point, above the budget before its features go
     std::vector<Feature> features;
   };
@@ -378,55 +375,50 @@ TuneOutcome runTune(Session& session, const SweepPlan& plan, const TuneOptions& 
   std::set<std::string> staged;
   for (const TuneBudget& b : o.budgets) {
     Choice c{b, budgetRatio(b, last.baselineMs)};
-    c.chosen = chooseWithinBudget(finalPoints, c.limit);
-    if (!c.chosen) {
-      // Nothing within the budget: the cheapest point, which may fit once the features the
-      // scene does not need are off.
-      for (const TunePoint& p : finalPoints)
-        if (!c.chosen || p.time < c.chosen->time) c.chosen = p;
+    if (std::optional<TunePoint> within = chooseWithinBudget(finalPoints, c.limit)) {
+      c.chosen = *within;
+    } else {
+      // Nothing within the budget: the cheapest point (the population is never empty), which
+      // may fit once the features the scene does not need are off.
+      c.chosen = *std::min_element(finalPoints.begin(), finalPoints.end(),
+                                   [](const TunePoint& a, const TunePoint& b) { return a.time < b.time; });
       c.overBudget = true;
     }
-    if (c.chosen) {
-      c.features = featuresOn(space, base, c.chosen->overrides);
-      if (staged.insert(c.chosen->name).second) {
-        featureStage.configs.push_back({c.chosen->name, c.chosen->overrides});
-        for (const Feature& f : c.features) {
-          nlohmann::json without = c.chosen->overrides;
-          without[std::string(f.info->name)] = settingJsonValue(*f.info, f.off);
-          featureStage.configs.push_back({c.chosen->name + "-no-" + std::string(f.info->name), without});
-        }
+    c.features = featuresOn(space, base, c.chosen.overrides);
+    if (staged.insert(c.chosen.name).second) {
+      featureStage.configs.push_back({c.chosen.name, c.chosen.overrides});
+      for (const Feature& f : c.features) {
+        nlohmann::json without = c.chosen.overrides;
+        without[std::string(f.info->name)] = settingJsonValue(*f.info, f.off);
+        featureStage.configs.push_back({c.chosen.name + "-no-" + std::string(f.info->name), without});
       }
     }
     choices.push_back(std::move(c));
   }
-  StageResult featureResult;
-  if (!featureStage.configs.empty()) {
-    featureResult = tuner.run(featureStage, outcome);
-    if (!featureResult.complete) return waiting(featureStage);
-  }
-  auto featurePoint = [&](const std::string& name) {
-    for (const TunePoint& p : featureResult.points)
-      if (p.name == name) return p;
-    throw SessionError("tune: internal: no measurement of " + name);
-  };
+  // Every budget has a chosen point: the stage is never empty.
+  const StageResult featureResult = tuner.run(featureStage, outcome);
+  if (!featureResult.complete) return waiting(featureStage);
+  auto featurePoint = [&](const std::string& name) -> const TunePoint& { return pointNamed(featureResult.points, name); };
 
   // The features each budget can leave off, then all of them off together, checked once more.
   Stage togetherStage{"features-together", full, {}};
   std::map<std::string, std::vector<std::string>> notNeeded;  // chosen name -> features
   for (const Choice& c : choices) {
-    if (!c.chosen || notNeeded.count(c.chosen->name)) continue;
-    const TunePoint with = featurePoint(c.chosen->name);
-    std::vector<std::string>& names = notNeeded[c.chosen->name];
-    nlohmann::json together = c.chosen->overrides;
+    if (notNeeded.count(c.chosen.name)) continue;
+    const TunePoint& with = featurePoint(c.chosen.name);
+    std::vector<std::string>& names = notNeeded[c.chosen.name];
+    nlohmann::json together = c.chosen.overrides;
     for (const Feature& f : c.features) {
-      const TunePoint without = featurePoint(c.chosen->name + "-no-" + std::string(f.info->name));
+      const TunePoint& without = featurePoint(c.chosen.name + "-no-" + std::string(f.info->name));
       if (!significantlyMoreAccurate(with, without) && !significantlyFaster(with, without)) {
         names.push_back(std::string(f.info->name));
         together[std::string(f.info->name)] = settingJsonValue(*f.info, f.off);
       }
     }
-    if (names.size() > 1) togetherStage.configs.push_back({c.chosen->name, c.chosen->overrides}),
-                          togetherStage.configs.push_back({c.chosen->name + "-lean", together});
+    if (names.size() > 1) {
+      togetherStage.configs.push_back({c.chosen.name, c.chosen.overrides});
+      togetherStage.configs.push_back({c.chosen.name + "-lean", together});
+    }
   }
   StageResult togetherResult;
   if (!togetherStage.configs.empty()) {
@@ -438,25 +430,16 @@ TuneOutcome runTune(Session& session, const SweepPlan& plan, const TuneOptions& 
   nlohmann::json budgetsJson = nlohmann::json::array();
   for (const Choice& c : choices) {
     nlohmann::json entry = {{"budget", c.budget.text}, {"limitRatio", c.limit}};
-    if (!c.chosen) {  // no point measured at all (cannot happen with a population)
-      ++outcome.budgetsMissed;
-      entry["met"] = false;
-      budgetsJson.push_back(entry);
-      continue;
-    }
-    const TunePoint with = featurePoint(c.chosen->name);
-    nlohmann::json overrides = c.chosen->overrides;
+    const TunePoint& with = featurePoint(c.chosen.name);
+    nlohmann::json overrides = c.chosen.overrides;
     nlohmann::json features = nlohmann::json::array();
-    const std::vector<std::string>& names = notNeeded[c.chosen->name];
+    const std::vector<std::string>& names = notNeeded[c.chosen.name];
     // All the unneeded features off together, unless that is significantly worse than the
     // chosen point: then only the one that saves most.
     bool together = names.size() <= 1;
     if (names.size() > 1) {
-      TunePoint lean, kept;
-      for (const TunePoint& p : togetherResult.points) {
-        if (p.name == c.chosen->name + "-lean") lean = p;
-        if (p.name == c.chosen->name) kept = p;
-      }
+      const TunePoint& kept = pointNamed(togetherResult.points, c.chosen.name);
+      const TunePoint& lean = pointNamed(togetherResult.points, c.chosen.name + "-lean");
       together = !significantlyMoreAccurate(kept, lean);
       entry["leanCheck"] = {{"with", pointJson(kept)}, {"without", pointJson(lean)}, {"heldTogether", together}};
     }
@@ -464,7 +447,7 @@ TuneOutcome runTune(Session& session, const SweepPlan& plan, const TuneOptions& 
     double bestSaving = -1e300;
     for (const Feature& f : c.features) {
       const std::string name(f.info->name);
-      const TunePoint without = featurePoint(c.chosen->name + "-no-" + name);
+      const TunePoint& without = featurePoint(c.chosen.name + "-no-" + name);
       const bool unneeded = std::count(names.begin(), names.end(), name) > 0;
       // In the baseline's milliseconds: with and without may come from two compare runs.
       const double saves = (with.time - without.time) * featureResult.baselineMs;
@@ -486,26 +469,23 @@ TuneOutcome runTune(Session& session, const SweepPlan& plan, const TuneOptions& 
       if (off) overrides[f["setting"].get<std::string>()] = f["off"];
     }
     // What the preset itself measured: the lean run, the one feature's run, or the chosen one.
-    TunePoint presetPoint = with;
-    if (names.size() > 1 && together) {
-      for (const TunePoint& p : togetherResult.points)
-        if (p.name == c.chosen->name + "-lean") presetPoint = p;
-    } else if (!bestSaver.empty()) {
-      presetPoint = featurePoint(c.chosen->name + "-no-" + bestSaver);
-    }
+    const TunePoint& presetPoint = names.size() > 1 && together ? pointNamed(togetherResult.points, c.chosen.name + "-lean")
+                                   : !bestSaver.empty()         ? featurePoint(c.chosen.name + "-no-" + bestSaver)
+                                                                : with;
+    const bool met = !c.overBudget || presetPoint.time <= c.limit;
     entry["presetMeasured"] = pointJson(presetPoint);
-    entry["chosen"] = pointJson(*c.chosen);
+    entry["chosen"] = pointJson(c.chosen);
     entry["chosenOverBudget"] = c.overBudget;
     entry["features"] = features;
     entry["overrides"] = overrides;
-    entry["met"] = !c.overBudget || presetPoint.time <= c.limit;
-    if (entry["met"].get<bool>()) {
+    entry["met"] = met;
+    if (met) {
       const fs::path presetFile = o.compare.outDir / (budgetFileStem(o, c.budget) + ".json");
       savePresetFile(presetFile, applySettingsJson(base, overrides));
       entry["preset"] = presetFile.filename().string();
     } else {
       ++outcome.budgetsMissed;
-      entry["cheapestRatio"] = std::min(c.chosen->time, presetPoint.time);
+      entry["cheapestRatio"] = std::min(c.chosen.time, presetPoint.time);
     }
     budgetsJson.push_back(entry);
   }
