@@ -471,7 +471,9 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
       for (const char* b : {lighting::kCompositeAo, lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(b);
       s.renderFrames(n);
       frameMs.insert(frameMs.end(), s.frameGpuMs().begin(), s.frameGpuMs().end());
-      for (const auto& [pass, ms] : s.passGpuMs()) {
+      for (const auto& passTimes : s.passGpuMs()) {
+        const std::string& pass = passTimes.first;
+        const std::vector<double>& ms = passTimes.second;
         auto it = std::find_if(passMsAll.begin(), passMsAll.end(), [&](const auto& p) { return p.first == pass; });
         if (it == passMsAll.end()) passMsAll.push_back({pass, ms});
         else it->second.insert(it->second.end(), ms.begin(), ms.end());
