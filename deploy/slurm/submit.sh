@@ -1,14 +1,20 @@
 #!/bin/bash
-# Submits a Twinlight bake or compare sweep to Slurm: a job array of TASKS tasks, each running
-# `twinlight ... --shard auto`, and a merge job that starts once every task has succeeded
-# (sbatch --dependency=afterok). Prints both job ids.
+# Submits a Twinlight bake, compare sweep or tune to Slurm: a job array of TASKS tasks, each
+# running `twinlight ... --shard auto`, and a merge job that starts once every task has succeeded
+# (sbatch --dependency=afterok). Prints the job ids.
 #
 #   submit.sh [--first ID] [--wait] bake    TASKS OUT_DIR SCENE...
 #   submit.sh [--first ID] [--wait] compare TASKS OUT_DIR [COMPARE OPTIONS...]
+#   submit.sh [--first ID] [--wait] tune    TASKS OUT_DIR [TUNE OPTIONS...]
 #
 # bake:    OUT_DIR/shards/bake-<id>.db per task, merged into OUT_DIR/albedo.db
 # compare: OUT_DIR/shards/compare-<id>/ per task (one folder per view of the sweep it measured),
 #          merged into OUT_DIR/report/ (report.json, report.html, each view's report)
+# tune:    one folder, OUT_DIR/tune/, that every task shares. A stage of a tune needs the one
+#          before it finished, so each stage (the rungs, then the two feature stages: --rungs
+#          + 2) is an array of its own after the last, and the last job writes the presets,
+#          tune.json and report.html (and measures whatever the arrays left, so a stage count
+#          that is off costs time, never a result).
 # Logs go to OUT_DIR/logs/. --first sets the array's first task id (default 0; ids need not
 # start at 0, twinlight reads SLURM_ARRAY_TASK_MIN). --wait blocks until the merge job ends
 # and exits with its status (a failed task cancels the merge: DependencyParameters
@@ -21,6 +27,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 usage() {
   echo "usage: submit.sh [--first ID] [--wait] bake TASKS OUT_DIR SCENE..." >&2
   echo "       submit.sh [--first ID] [--wait] compare TASKS OUT_DIR [COMPARE OPTIONS...]" >&2
+  echo "       submit.sh [--first ID] [--wait] tune TASKS OUT_DIR [TUNE OPTIONS...]" >&2
   exit 2
 }
 
@@ -36,7 +43,7 @@ done
 [ $# -ge 3 ] || usage
 mode=$1 tasks=$2 out=$3
 shift 3
-case $mode in bake | compare) ;; *) echo "submit.sh: unknown mode \`$mode' (bake or compare)" >&2; exit 2 ;; esac
+case $mode in bake | compare | tune) ;; *) echo "submit.sh: unknown mode \`$mode' (bake, compare or tune)" >&2; exit 2 ;; esac
 if ! [[ $tasks =~ ^[0-9]+$ ]] || [ "$tasks" -lt 1 ]; then
   echo "submit.sh: TASKS \`$tasks' is not a count >= 1" >&2
   exit 2
@@ -48,12 +55,43 @@ mkdir -p "$out/logs" "$out/shards"
 out=$(cd "$out" && pwd)  # the jobs may start in another directory
 read -r -a extra <<<"${TWINLIGHT_SBATCH_ARGS:-}"
 last=$((first + tasks - 1))
-array=$(sbatch --parsable "${extra[@]}" --job-name="twinlight-$mode" --array="$first-$last" \
-  --output="$out/logs/$mode-%A_%a.log" "$here/task.sbatch" "$mode" "$out" "$@")
-array=${array%%;*}  # --parsable prints "id[;cluster]"
-echo "submitted $mode array job $array (tasks $first-$last)"
+if [ "$mode" = tune ]; then
+  rungs=3  # twinlight tune's default
+  args=("$@")
+  for ((i = 0; i < ${#args[@]}; ++i)); do
+    case ${args[i]} in
+      --rungs) rungs=${args[i + 1]:-$rungs} ;;
+      --rungs=*) rungs=${args[i]#--rungs=} ;;
+    esac
+  done
+  [[ $rungs =~ ^[0-9]+$ ]] || { echo "submit.sh: --rungs \`$rungs' is not a count" >&2; exit 2; }
+  array=""
+  for ((stage = 1; stage <= rungs + 2; ++stage)); do
+    array=$(sbatch --parsable "${extra[@]}" --job-name="twinlight-tune-$stage" --array="$first-$last" \
+      ${array:+--dependency="afterok:$array"} --output="$out/logs/tune-$stage-%A_%a.log" \
+      "$here/task.sbatch" tune "$out" "$@")
+    array=${array%%;*}
+    echo "submitted tune stage $stage array job $array (tasks $first-$last)"
+  done
+else
+  array=$(sbatch --parsable "${extra[@]}" --job-name="twinlight-$mode" --array="$first-$last" \
+    --output="$out/logs/$mode-%A_%a.log" "$here/task.sbatch" "$mode" "$out" "$@")
+  array=${array%%;*}  # --parsable prints "id[;cluster]"
+  echo "submitted $mode array job $array (tasks $first-$last)"
+fi
+tune_args=()
+[ "$mode" = tune ] && tune_args=("$@")
 merge=$(sbatch --parsable "${extra[@]}" "${wait_flag[@]}" --job-name="twinlight-$mode-merge" \
   --dependency="afterok:$array" --output="$out/logs/$mode-merge-%j.log" \
-  "$here/merge.sbatch" "$mode" "$out" "$first" "$tasks")
+  "$here/merge.sbatch" "$mode" "$out" "$first" "$tasks" "${tune_args[@]}")
 merge=${merge%%;*}
 echo "submitted $mode merge job $merge (after every task of $array succeeded)"
+if [ ${#wait_flag[@]} -gt 0 ]; then
+  # sbatch --wait exits 0 for a merge job that never ran (cancelled when a task of an array it
+  # waited for failed): its state says whether it completed.
+  state=$(scontrol show job -o "$merge" 2>/dev/null | grep -o 'JobState=[A-Z_]*' || true)
+  if [ "$state" != JobState=COMPLETED ]; then
+    echo "submit.sh: the merge job $merge did not complete (${state:-its state is unknown}): see $out/logs/" >&2
+    exit 1
+  fi
+fi

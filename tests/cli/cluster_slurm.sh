@@ -7,7 +7,10 @@
 #     database must hold exactly the rows of a one-process bake;
 #   - a 3-task compare sweep (2 scenes x their cameras = 3 views, 3 configurations) and its
 #     merge, whose report must hold exactly the figures of an unsharded run, with each view's
-#     reference rendered by one task only.
+#     reference rendered by one task only;
+#   - a tune as one 2-task array per stage, each after the last, and its closing job: between
+#     them the tasks measure every compare run of the tune exactly once, and the closing job
+#     measures nothing and writes the preset.
 # Where the daemons cannot start (packages missing, no permission), it says why and runs the
 # same task and merge scripts as local processes with the variables Slurm would set.
 # Usage: cluster_slurm.sh TWINLIGHT CONTENT_DIR DEPLOY_DIR WORK_DIR
@@ -23,6 +26,10 @@ bake_scenes=("$content/cornell.gltf" "$content/atrium.gltf" "$content/grove.gltf
 echo '[{"name": "legacy-coarse", "path": "legacy", "settings": {"legacyConeDivisor": 2}}]' >"$work/variants.json"
 sweep=(--scene "$content/cornell.gltf" "$content/grove.gltf" --cameras scene --size 32x24 --spp 16 --frames 2
   --paths "direct,legacy" --settings "$work/variants.json")
+# A budget every configuration meets at this size: the closing job's exit status is then the
+# tune's, not the timing's.
+tune=(--scene "$content/cornell.gltf" --size 32x18 --candidates 4 --rungs 1 --frames 4 --spp 8 --budget 1000ms
+  --cache "$work/tune_cache")
 
 # ---- the single-process results everything is compared with -----------------------------
 "$tl" bake --scene "${bake_scenes[@]}" --db "$work/single.db" >"$work/single_bake.log" 2>&1
@@ -151,6 +158,15 @@ if start_slurm; then
     { tail -n 20 "$work"/bake/logs/*.log; echo "the bake array or its merge failed"; exit 1; }
   timeout 900 "$deploy/slurm/submit.sh" --wait compare 3 "$work/sweep" "${sweep[@]}" --cache "$work/cache_shards" ||
     { tail -n 20 "$work"/sweep/logs/*.log; echo "the compare array or its merge failed"; exit 1; }
+  timeout 900 "$deploy/slurm/submit.sh" --wait tune 2 "$work/tune" "${tune[@]}" ||
+    { tail -n 20 "$work"/tune/logs/*.log; echo "the tune's arrays or its closing job failed"; exit 1; }
+  # A task that fails cancels what waits for it, and --wait says so (sbatch --wait alone
+  # exits 0 for a job cancelled before it ran).
+  if timeout 300 "$deploy/slurm/submit.sh" --wait tune 2 "$work/tune_refused" "${tune[@]}" --frames 1 \
+      >"$work/tune_refused.log" 2>&1; then
+    cat "$work/tune_refused.log"; echo "submit.sh --wait exited 0 although every task failed"; exit 1
+  fi
+  grep -q "did not complete" "$work/tune_refused.log" || { cat "$work/tune_refused.log"; echo "no word of the cancelled merge"; exit 1; }
   ran="on Slurm"
 else
   echo "slurm: cannot start a local cluster here: $reason"
@@ -174,6 +190,19 @@ else
   }
   run_array 1 4 bake "$work/bake" "${bake_scenes[@]}"
   run_array 0 2 compare "$work/sweep" "${sweep[@]}" --cache "$work/cache_shards"
+  # The tune: its stages one array after another (--rungs 1: three), then the closing job.
+  mkdir -p "$work/tune/logs"
+  for stage in 1 2 3; do
+    pids=()
+    for id in 0 1; do
+      SLURM_ARRAY_TASK_ID=$id SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=1 SLURM_ARRAY_TASK_STEP=1 SLURM_ARRAY_TASK_COUNT=2 \
+        "$deploy/slurm/task.sbatch" tune "$work/tune" "${tune[@]}" >"$work/tune/logs/tune-$stage-local_$id.log" 2>&1 &
+      pids+=($!)
+    done
+    for pid in "${pids[@]}"; do wait "$pid" || { cat "$work"/tune/logs/*.log; echo "a tune task failed"; exit 1; }; done
+  done
+  "$deploy/slurm/merge.sbatch" tune "$work/tune" 0 2 "${tune[@]}" >"$work/tune/logs/tune-merge-local.log" 2>&1 ||
+    { cat "$work/tune/logs/tune-merge-local.log"; echo "the tune's closing job failed"; exit 1; }
   ran="as local processes"
 fi
 
@@ -201,3 +230,19 @@ echo "bake: 4 array tasks $ran, merged: $(wc -l <"$work/merged_rows.txt") rows i
 rendered=$(cat "$work"/sweep/logs/compare-*_[0-9]*.log | grep -c 'reference: 16 spp$' || true)
 [ "$rendered" = 3 ] || { echo "expected 3 references rendered by the tasks, found $rendered"; exit 1; }
 echo "compare: 3 array tasks $ran, merged: figures identical to one process, each reference rendered once"
+
+# ---- the tune: every run measured once, by the arrays; the closing job only writes ---------
+for f in tune.json report.html preset-rt-1000ms.json; do
+  [ -s "$work/tune/tune/$f" ] || { cat "$work"/tune/logs/*.log; echo "the tune wrote no $f"; exit 1; }
+done
+closing=$(cat "$work"/tune/logs/tune-merge-*.log)
+read -r runs done_before <<<"$(sed -n 's/.*: \([0-9]*\) compare run(s) (\([0-9]*\) found done).*/\1 \2/p' <<<"$closing")"
+[ -n "${runs:-}" ] && [ "$runs" = "$done_before" ] ||
+  { echo "$closing"; echo "the closing job measured $(( ${runs:-0} - ${done_before:-0} )) run(s) the arrays should have"; exit 1; }
+measured=0
+for log in "$work"/tune/logs/tune-[0-9]-*.log; do
+  n=$(sed -n 's/^tune: measured \([0-9]*\) run(s).*/\1/p; s/.*: \([0-9]*\) compare run(s) (\([0-9]*\) found done).*/\1 - \2/p' "$log" | head -n 1)
+  measured=$((measured + ${n:-0}))
+done
+[ "$measured" = "$runs" ] || { echo "the tune's tasks measured $measured run(s) between them, for $runs"; exit 1; }
+echo "tune: $runs compare runs over 3 stages of 2 array tasks $ran, each measured once, and the closing job wrote the preset"
