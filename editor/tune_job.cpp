@@ -38,7 +38,8 @@ std::vector<std::string> tuneArguments(const TuneRequest& r) {
                                 "--rungs", std::to_string(r.rungs),
                                 "--frames", std::to_string(r.frames),
                                 "--spp", std::to_string(r.spp),
-                                "--out", r.out.string()};
+                                "--out", r.out.string(),
+                                "--stop-with-parent"};  // an editor that dies takes its tune with it
   for (const std::string& b : r.budgets) args.insert(args.end(), {"--budget", b});
   return args;
 }

@@ -15,6 +15,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include <unistd.h>
+
 namespace tl::editor {
 namespace {
 
@@ -110,6 +112,9 @@ class TuneCommand : public CliCommand {
                     "share --out and run once per stage");
     cmd->add_option("--shard-count", shardCount_, "with --shard auto under a Kubernetes Indexed Job: the shard count");
     cmd->add_option("--merge", merge_, "copy the measurements of tune folders that shards wrote apart into --out (no GPU)");
+    cmd->add_flag("--stop-with-parent", stopWithParent_,
+                  "stop (exit 1, the folder resumable) when the process that started this one ends: the editor "
+                  "starts its tunes so");
     addViewAndLightOptions(*cmd, render_);
     return cmd;
   }
@@ -165,7 +170,15 @@ class TuneCommand : public CliCommand {
       fmt::print("{}\n", line);
       std::fflush(stdout);
     };
-    cb.progress = [&progress](const std::string& what, double f) { progress.update(f, what); };
+    // Checked with every progress step (each frame of a compare run): a tune whose editor died
+    // stops within a frame instead of measuring on for nobody.
+    const pid_t parent = getppid();
+    cb.progress = [&progress, parent, this](const std::string& what, double f) {
+      if (stopWithParent_ && getppid() != parent)
+        throw session::SessionError(fmt::format(
+            "the process that started this tune (pid {}) has ended: stopped; the same command resumes it", parent));
+      progress.update(f, what);
+    };
     Session session;
     // The base settings come from the first scene's command-line settings (presets hold them).
     cb.loadScene(session, plan.views.front().sceneFile);
@@ -247,6 +260,7 @@ class TuneCommand : public CliCommand {
   RenderOptions render_;
   session::TuneOptions tune_;
   std::vector<std::string> scenes_, budgets_, merge_;
+  bool stopWithParent_ = false;
   std::string cameras_, cache_, out_ = "out/tune", shard_;
   std::optional<std::string> shardCount_;
 };
