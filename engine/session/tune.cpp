@@ -3,6 +3,7 @@
 #include "session/compare_significance.h"
 #include "session/image_io.h"
 #include "session/json_file.h"
+#include "session/lighting_file.h"
 #include "session/presets.h"
 #include "session/settings_json.h"
 #include "session/tune_space.h"
@@ -267,6 +268,29 @@ void checkOrWritePlan(const fs::path& dir, const nlohmann::json& plan) {
   writeTextFile(file, plan.dump(2) + "\n");
 }
 
+// The scenes as they render (geometry, materials, textures and lights, the sidecar's and the
+// command line's included): a folder's runs were measured on them, so a scene edited since is
+// another tune, refused by name instead of resumed on stale figures.
+void checkOrWriteScenes(Session& s, const SweepPlan& plan, const fs::path& dir, const TuneCallbacks& cb) {
+  nlohmann::json now = nlohmann::json::object();
+  for (const SweepView& view : plan.views) {
+    if (now.contains(view.sceneFile)) continue;
+    cb.loadScene(s, view.sceneFile);
+    const std::string lights = lightingJson(s.lighting(), fs::path(view.sceneFile).parent_path());
+    now[view.sceneFile] = fmt::format("{:016x}", scene::hashBytes(lights.data(), lights.size(), s.scene().contentHash));
+  }
+  const fs::path file = dir / "tune-scenes.json";
+  if (std::optional<nlohmann::json> measured = readJsonFile(file)) {
+    for (const auto& [name, hash] : now.items())
+      if (!measured->contains(name) || (*measured)[name] != hash)
+        throw SessionError(fmt::format("{}: {} changed since this folder's runs were measured (its geometry, materials "
+                                       "or lights): give another --out, or delete the folder",
+                                       dir.string(), name));
+    return;
+  }
+  writeTextFile(file, now.dump(2) + "\n");
+}
+
 // The point of a configuration measured in a stage.
 const TunePoint& pointNamed(const std::vector<TunePoint>& points, const std::string& name) {
   for (const TunePoint& p : points)
@@ -317,6 +341,7 @@ TuneOutcome runTune(Session& session, const SweepPlan& plan, const TuneOptions& 
     throw SessionError(fmt::format("tune: the `{}` path has no tunable setting of its own", o.path));
 
   checkOrWritePlan(o.compare.outDir, tunePlanJson(plan, o));
+  checkOrWriteScenes(session, plan, o.compare.outDir, cb);
   TuneOutcome outcome;
   Tuner tuner(session, plan, o, shard, cb);
   auto waiting = [&](const Stage& stage) {
