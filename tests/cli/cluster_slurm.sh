@@ -237,8 +237,11 @@ for f in tune.json report.html preset-rt-1000ms.json; do
 done
 closing=$(cat "$work"/tune/logs/tune-merge-*.log)
 read -r runs done_before <<<"$(sed -n 's/.*: \([0-9]*\) compare run(s) (\([0-9]*\) found done).*/\1 \2/p' <<<"$closing")"
-[ -n "${runs:-}" ] && [ "$runs" = "$done_before" ] ||
-  { echo "$closing"; echo "the closing job measured $(( ${runs:-0} - ${done_before:-0} )) run(s) the arrays should have"; exit 1; }
+if [ -z "${runs:-}" ] || [ "$runs" != "$done_before" ]; then
+  echo "$closing"
+  echo "the closing job measured $((${runs:-0} - ${done_before:-0})) run(s) the arrays should have"
+  exit 1
+fi
 measured=0
 for log in "$work"/tune/logs/tune-[0-9]-*.log; do
   n=$(sed -n 's/^tune: measured \([0-9]*\) run(s).*/\1/p; s/.*: \([0-9]*\) compare run(s) (\([0-9]*\) found done).*/\1 - \2/p' "$log" | head -n 1)
