@@ -15,6 +15,7 @@
 #include <map>
 #include <regex>
 #include <set>
+#include <utility>
 
 namespace tl::session {
 
@@ -155,8 +156,11 @@ struct StageResult {
 
 class Tuner {
  public:
-  Tuner(Session& s, const SweepPlan& plan, const TuneOptions& o, const std::optional<Shard>& shard, const TuneCallbacks& cb)
-      : s_(s), plan_(plan), o_(o), shard_(shard), cb_(cb) {}
+  // `loadedScene`: the scene file the session holds already (its settings and lighting as
+  // cb.loadScene set them).
+  Tuner(Session& s, const SweepPlan& plan, const TuneOptions& o, const std::optional<Shard>& shard, const TuneCallbacks& cb,
+        std::string loadedScene)
+      : s_(s), plan_(plan), o_(o), shard_(shard), cb_(cb), loadedScene_(std::move(loadedScene)) {}
 
   // Measures this process's share of the stage; the stage's figures when every unit is done.
   StageResult run(const Stage& stage, TuneOutcome& outcome) {
@@ -270,12 +274,15 @@ void checkOrWritePlan(const fs::path& dir, const nlohmann::json& plan) {
 
 // The scenes as they render (geometry, materials, textures and lights, the sidecar's and the
 // command line's included): a folder's runs were measured on them, so a scene edited since is
-// another tune, refused by name instead of resumed on stale figures.
-void checkOrWriteScenes(Session& s, const SweepPlan& plan, const fs::path& dir, const TuneCallbacks& cb) {
+// another tune, refused by name instead of resumed on stale figures. Returns the scene it
+// left loaded, so the first measurement on it does not load it again.
+std::string checkOrWriteScenes(Session& s, const SweepPlan& plan, const fs::path& dir, const TuneCallbacks& cb) {
   nlohmann::json now = nlohmann::json::object();
+  std::string loaded;
   for (const SweepView& view : plan.views) {
     if (now.contains(view.sceneFile)) continue;
     cb.loadScene(s, view.sceneFile);
+    loaded = view.sceneFile;
     const std::string lights = lightingJson(s.lighting(), fs::path(view.sceneFile).parent_path());
     now[view.sceneFile] = fmt::format("{:016x}", scene::hashBytes(lights.data(), lights.size(), s.scene().contentHash));
   }
@@ -286,9 +293,10 @@ void checkOrWriteScenes(Session& s, const SweepPlan& plan, const fs::path& dir, 
         throw SessionError(fmt::format("{}: {} changed since this folder's runs were measured (its geometry, materials "
                                        "or lights): give another --out, or delete the folder",
                                        dir.string(), name));
-    return;
+    return loaded;
   }
   writeTextFile(file, now.dump(2) + "\n");
+  return loaded;
 }
 
 // The point of a configuration measured in a stage.
@@ -341,9 +349,9 @@ TuneOutcome runTune(Session& session, const SweepPlan& plan, const TuneOptions& 
     throw SessionError(fmt::format("tune: the `{}` path has no tunable setting of its own", o.path));
 
   checkOrWritePlan(o.compare.outDir, tunePlanJson(plan, o));
-  checkOrWriteScenes(session, plan, o.compare.outDir, cb);
+  const std::string loadedScene = checkOrWriteScenes(session, plan, o.compare.outDir, cb);
   TuneOutcome outcome;
-  Tuner tuner(session, plan, o, shard, cb);
+  Tuner tuner(session, plan, o, shard, cb, loadedScene);
   auto waiting = [&](const Stage& stage) {
     outcome.waitingFor = stage.name;
     return outcome;
