@@ -122,10 +122,6 @@ class Walk:
         # (editor addLight): the same add from the same state makes the same light again.
         self.camera = None  # ("open", scene) as a scene opens; a new value at every drag
         self.adds = {}  # (kind, lights before, camera) -> the light token it made
-        # Lights a save has written: each is bound to its glTF node from then on, so a light
-        # added again in its place (same kind, same lights before, same camera) is a new light
-        # (no node yet), and the editor rightly calls it unsaved work.
-        self.written = set()
         self.path = "direct"
         self.compare = False
         self.actions = 0
@@ -209,7 +205,6 @@ class Walk:
         if self.lights != s.saved_lights:
             s.lighting_written = True
         s.saved_lights = list(self.lights)
-        self.written.update(self.lights)
         s.saved_override = self.override
         if self.shadow != self.baseline_shadow:
             s.saved_settings = self.shadow
@@ -299,7 +294,7 @@ class Walk:
             self.emit("click-ui outliner.lights", "wait 1", "click-ui lights.add", "wait 1",
                       f"click-ui lights.add.{kind_of_light}", "wait 1")
             made = (kind_of_light, tuple(self.lights), self.current.name, self.camera)
-            if made not in self.adds or self.adds[made] in self.written:
+            if made not in self.adds:
                 self.adds[made] = self.new_id()
             self.lights.append(self.adds[made])
             self.edited(self.lh, "lights", before, list(self.lights))

@@ -66,9 +66,11 @@ void AlbedoLibrary::reload() {
     const AlbedoKey key = e.combination.key;
     auto b = baked.find(key);
     e.baked = b == baked.end() ? std::nullopt : std::optional<BakedEntry>(b->second);
-    // Unsaved edits win over what the database says; otherwise its override.
+    // An entry any edit of the history touched holds what the history's position says, applied
+    // or undone (an undo after a save leaves the colour before the saved one, which the database
+    // no longer holds); the others take the database's override.
     bool edited = false;
-    for (size_t k = 0; k < undoCount_; ++k) edited |= edits_[k].combination == i;
+    for (const Edit& edit : edits_) edited |= edit.combination == i;
     if (!edited) {
       auto o = overrides.find(key);
       e.override = o == overrides.end() ? std::nullopt : std::optional<glm::vec3>(o->second.rgb);

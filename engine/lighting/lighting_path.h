@@ -93,6 +93,8 @@ const std::vector<LightingPathFactory>& lightingPathRegistry();
 void registerLightingPath(LightingPathFactory factory);
 // Whether the path of this name came from registerLightingPath (a plugin), not the engine.
 bool isPluginPath(std::string_view name);
+// The registered paths' names, in the registry's order.
+std::vector<std::string> lightingPathNames();
 
 // A plugin registers its path from a static object in its own .cpp:
 //   static const LightingPathRegistrar registrar(makeMyPath);

@@ -60,6 +60,12 @@ void registerLightingPath(LightingPathFactory factory) {
   rebuildFactories();
 }
 
+std::vector<std::string> lightingPathNames() {
+  std::vector<std::string> names;
+  for (const Entry& e : entries()) names.push_back(e.name);
+  return names;
+}
+
 bool isPluginPath(std::string_view name) {
   for (const Entry& e : entries())
     if (e.name == name) return e.plugin;

@@ -2,16 +2,46 @@
 
 #include <fmt/format.h>
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 
 namespace tl::session {
 
+namespace {
+
+// Equal but for float rounding: a few units in the last place of a float, relative to the
+// larger length (a glTF node holds floats; the light's own vectors are doubles).
+constexpr double kFloatRounding = 4.0 * double(std::numeric_limits<float>::epsilon());
+bool nearlySame(const glm::dvec3& a, const glm::dvec3& b) {
+  return glm::length(a - b) <= kFloatRounding * std::max({glm::length(a), glm::length(b), 1e-30});
+}
+bool nearlySame(const glm::vec3& a, const glm::vec3& b) { return nearlySame(glm::dvec3(a), glm::dvec3(b)); }
+bool nearlySame(float a, float b) { return std::abs(double(a) - double(b)) <= kFloatRounding * std::max(std::abs(double(a)), std::abs(double(b))); }
+
+}  // namespace
+
 bool sameLight(const scene::Light& a, const scene::Light& b) {
-  return a.name == b.name && a.type == b.type && a.color == b.color && a.intensity == b.intensity && a.range == b.range &&
-         a.innerConeAngle == b.innerConeAngle && a.outerConeAngle == b.outerConeAngle && a.position == b.position &&
-         a.direction == b.direction && a.width == b.width && a.height == b.height && a.radius == b.radius &&
-         a.length == b.length && a.twoSided == b.twoSided && a.widthAxis == b.widthAxis && a.hidden == b.hidden;
+  using scene::LightType;
+  if (a.name != b.name || a.type != b.type || !nearlySame(a.color, b.color) || !nearlySame(a.intensity, b.intensity) ||
+      a.range.has_value() != b.range.has_value() || (a.range && !nearlySame(*a.range, *b.range)) ||
+      a.hidden != b.hidden || !nearlySame(a.position, b.position))
+    return false;
+  switch (a.type) {
+    case LightType::Point: return true;
+    case LightType::Directional: return nearlySame(a.direction, b.direction);
+    case LightType::Spot:
+      return nearlySame(a.direction, b.direction) && a.innerConeAngle == b.innerConeAngle && a.outerConeAngle == b.outerConeAngle;
+    case LightType::Rect:
+      return nearlySame(a.direction, b.direction) && nearlySame(a.widthAxis, b.widthAxis) && a.width == b.width &&
+             a.height == b.height && a.twoSided == b.twoSided;
+    case LightType::Disk: return nearlySame(a.direction, b.direction) && a.radius == b.radius && a.twoSided == b.twoSided;
+    case LightType::Tube: return nearlySame(a.direction, b.direction) && a.radius == b.radius && a.length == b.length;
+  }
+  return false;
 }
 
 namespace {

@@ -61,7 +61,11 @@ class EditHistory {
 };
 
 bool sameLighting(const Lighting& a, const Lighting& b);
-// Everything an artist edits on a light (the node it is saved to is bookkeeping, not an edit).
+// Whether two lights are the same to an artist: everything that shapes the light its kind
+// casts (a point light's direction or a spot's width, which nothing reads, left out), vectors
+// within float rounding (a light read back from a glTF went through its node's rotation). The
+// node it is saved to is bookkeeping, not an edit. So a light deleted and added again where a
+// saved one stood is no unsaved work, whether the saved one was made in this session or read.
 bool sameLight(const scene::Light& a, const scene::Light& b);
 
 }  // namespace tl::session

@@ -1,6 +1,7 @@
 #include "session/settings_reference.h"
 
 #include "lighting/common/render_settings.h"
+#include "lighting/lighting_path.h"
 #include "session/tune_space.h"
 
 #include <fmt/format.h>
@@ -40,7 +41,13 @@ std::string defaultText(const SettingInfo& s) {
   return text;
 }
 
-std::string history(const SettingInfo& s) { return s.history.empty() ? "-" : std::string(s.history); }
+// Every path whose history it restarts: the setting's own column and what the plugins declare.
+std::string history(const SettingInfo& s) {
+  std::string names;
+  for (const std::string& path : lighting::lightingPathNames())
+    if (s.resetsHistoryOf(path)) names += (names.empty() ? "" : " ") + path;
+  return names.empty() ? "-" : names;
+}
 
 // What `twinlight tune` does with it: searches it, and tries presets without the feature it is.
 std::string tuning(const SettingInfo& s) {

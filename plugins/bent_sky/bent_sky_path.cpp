@@ -20,6 +20,15 @@ namespace {
 
 using namespace lighting;
 
+// Its settings, in the schema beside the engine's (JSON, `--set`, the editor's bentsky group).
+const PluginSetting<uint32_t> kRays{"bentSkyRays", 4, 1, 64, "rays", "bentsky", "bentsky", kSettingPlain,
+                                    "sky-visibility rays per pixel and frame (cosine-distributed, as long as rtRayLength)"};
+const PluginSetting<uint32_t> kMaxFrames{"bentSkyMaxFrames", 32, 1, 1024, "frames", "bentsky", "", kSettingPlain,
+                                         "accumulation window while the view holds still"};
+// The engine's settings that change what its running mean estimates: the materials (the sun's
+// shading), the light shadow maps it shades with and the length of its rays.
+const HistoryInputsRegistrar kHistoryInputs{"bentsky", {"materials", "lightShadowMapSize", "lightShadowMaxLights", "rtRayLength"}};
+
 constexpr const char* kHistory = "bentsky.history";
 constexpr const char* kShY = "bentsky.shY";
 constexpr const char* kCoCg = "bentsky.coCg";
@@ -50,11 +59,11 @@ class BentSkyPath final : public LightingPath {
                                                           "mean escaping direction (xyz) and visibility (w), last frame");
     const bool stored = in.historyValid(kHistory, historyDesc);
     const bool restart = history_.advance(kAccumulation, in.key, name(), in.historyLog, {stored}).action == HistoryAction::Restart;
-    frames_ = restart ? 1 : std::min(frames_ + 1, std::max(1u, s.bentSkyMaxFrames));
+    frames_ = restart ? 1 : std::min(frames_ + 1, kMaxFrames.of(s));
     graph.declarePersistent(kHistory, historyDesc);
 
     shared::BentSkyPush push{};
-    push.rays = std::max(1u, s.bentSkyRays);
+    push.rays = kRays.of(s);  // at least 1: the schema's range
     push.frames = frames_;
     push.rayLength = s.rtRayLength;  // in.settings has automatic values resolved
     ComputePass(in.device, "bentsky.trace", "plugins/bent_sky/shaders/bent_sky.comp")

@@ -537,6 +537,37 @@ TEST(AlbedoLibrary, AnOrphanIsDeletedOnlyWhenAskedAndTheDeleteUndoes) {
 
 // An unsaved override whose key vanished in a reload is kept as an orphan, counts as
 // unsaved, and a save writes it under its old key (it outlives the session).
+// A bake ends by reloading the database (its new rows). An override undone after a save is
+// unsaved work too: the value before the saved edit, which the database no longer holds. The
+// reload used to keep only entries with an applied edit, so the saved colour came back and the
+// undo was lost (the editor soak, seed 2: undo, then Re-bake all).
+TEST(AlbedoLibrary, AReloadAfterAnUndoKeepsTheUndoneValue) {
+  auto s = test::makeCubeScene(plainMaterial());
+  AlbedoLibrary lib(*s);
+  lib.attach(std::make_unique<AlbedoDatabase>(tempFile("undo_reload.db")));
+  lib.setOverride(0, glm::vec3(0.2f, 0.4f, 0.6f));
+  lib.save();
+  lib.setOverride(0, glm::vec3(0.9f, 0.1f, 0.1f));
+  lib.save();
+  ASSERT_TRUE(lib.undo());
+  EXPECT_TRUE(lib.unsaved());
+  lib.reload();
+  ASSERT_TRUE(lib.entryOf(0).override);
+  EXPECT_EQ(*lib.entryOf(0).override, glm::vec3(0.2f, 0.4f, 0.6f)) << "the undo is kept, not the database's colour";
+  EXPECT_TRUE(lib.unsaved());
+  ASSERT_TRUE(lib.redo());
+  lib.reload();
+  EXPECT_EQ(*lib.entryOf(0).override, glm::vec3(0.9f, 0.1f, 0.1f));
+  EXPECT_FALSE(lib.unsaved());
+  // Undone to before the first edit: no override, while the database holds one.
+  ASSERT_TRUE(lib.undo());
+  ASSERT_TRUE(lib.undo());
+  lib.reload();
+  EXPECT_FALSE(lib.entryOf(0).override) << "the override undone away stays away";
+  lib.save();
+  EXPECT_TRUE(lib.database()->overrides().empty());
+}
+
 TEST(AlbedoLibrary, AnUnsavedOverrideCarriedOverAReloadIsKeptAndSaved) {
   auto s = test::makeCubeScene(plainMaterial());
   const fs::path file = tempFile("orphan_kept.db");

@@ -2,10 +2,13 @@
 // by schema entry, drags folded, undo touching only what a step changed.
 #include "session/edit_history.h"
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 namespace tl::session {
 namespace {
+
+using scene::Light;
 
 TEST(EditHistory, EverySchemaEntryUndoesAndRedoes) {
   lighting::RenderSettings s;
@@ -136,6 +139,46 @@ TEST(EditHistory, AnEnvironmentMapReadAgainIsTheSameLighting) {
   h.reset(lighting::RenderSettings{}, before);
   EXPECT_FALSE(h.observe(lighting::RenderSettings{}, reloaded, false)) << "reading the map again is not an edit";
   EXPECT_TRUE(h.observe(lighting::RenderSettings{}, otherTexels, false));
+}
+
+// The same light to an artist: what the kind casts, within float rounding; the node it is saved
+// to and a point light's unused direction are not edits, so a light added again where a saved
+// one stood is no unsaved work (the editor soak found the editor asking after a file read back).
+TEST(EditHistory, ALightIsComparedByWhatItsKindCasts) {
+  Light point;
+  point.type = scene::LightType::Point;
+  point.name = "point 1";
+  point.position = {0.0, 1.0, 2.8607696294784546};
+  point.intensity = 40.5f;
+  Light readBack = point;
+  readBack.node = 9;
+  readBack.direction = {0.0, 0.0, -1.0};
+  point.direction = {0.0, -1.0, 0.0};
+  EXPECT_TRUE(sameLight(point, readBack)) << "a point light's direction and node are not edits";
+  readBack.position.z += 1e-3;
+  EXPECT_FALSE(sameLight(point, readBack)) << "a millimetre's move is an edit";
+
+  Light spot = point;
+  spot.type = scene::LightType::Spot;
+  Light rounded = spot;
+  rounded.direction = glm::normalize(glm::dvec3(1e-9, -1.0, 2e-9));  // a node's rotation, read back
+  EXPECT_TRUE(sameLight(spot, rounded));
+  rounded.direction = glm::normalize(glm::dvec3(0.0, -1.0, 1e-3));
+  EXPECT_FALSE(sameLight(spot, rounded)) << "a spot turned";
+  Light wider = spot;
+  wider.outerConeAngle += 0.01f;
+  EXPECT_FALSE(sameLight(spot, wider));
+  Light brighter = point;
+  brighter.intensity *= 1.001f;
+  EXPECT_FALSE(sameLight(point, brighter));
+  Light rect = point;
+  rect.type = scene::LightType::Rect;
+  Light taller = rect;
+  taller.height = 2.0f;
+  EXPECT_FALSE(sameLight(rect, taller));
+  taller = rect;
+  taller.radius = 3.0f;  // a rectangle has no radius
+  EXPECT_TRUE(sameLight(rect, taller));
 }
 
 }  // namespace

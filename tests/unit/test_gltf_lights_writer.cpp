@@ -3,6 +3,7 @@
 // a second save of the same lights writes the same bytes, and a failure leaves the file alone.
 #include "../common/temp_dir.h"
 #include "scene/scene.h"
+#include "session/edit_history.h"
 #include "session/gltf_lights_writer.h"
 #include "session/lighting_file.h"
 
@@ -98,6 +99,8 @@ TEST_F(GltfLightsWriterTest, MovedAddedAndDeletedLightsLoadBackAsSavedAndTheRest
       if (l.name == saved.name) loaded = &l;
     ASSERT_NE(loaded, nullptr) << saved.name;
     expectSameLight(saved, *loaded);
+    // And the editor calls it the light it saved: nothing unsaved after a file read back.
+    EXPECT_TRUE(sameLight(saved, *loaded)) << saved.name;
   }
   // The rest of the scene is the scene it was.
   EXPECT_EQ(after.instances.size(), before.instances.size());

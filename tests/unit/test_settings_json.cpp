@@ -1,4 +1,5 @@
 // Render settings from JSON: known keys apply, unknown keys and wrong types are one clear error.
+#include "lighting/lighting_path.h"
 #include "session/session.h"
 #include "session/settings_json.h"
 #include "session/settings_reference.h"
@@ -170,10 +171,14 @@ TEST(SettingsSchema, HistoryFlagsDecideEachPathsHistorySettings) {
   std::vector<std::string> paths;
   for (auto make : lighting::lightingPathRegistry()) paths.push_back(make()->name());
   for (const auto& s : lighting::settingsSchema()) {
-    size_t named = 0;
-    for (const auto& p : paths) named += s.resetsHistoryOf(p);
-    EXPECT_EQ(named, size_t(std::count(s.history.begin(), s.history.end(), ' ') + !s.history.empty()))
-        << s.name << " names a path that does not exist: " << s.history;
+    std::string_view rest = s.history;
+    while (!rest.empty()) {
+      const std::string_view word = rest.substr(0, rest.find(' '));
+      rest = word.size() == rest.size() ? std::string_view() : rest.substr(word.size() + 1);
+      EXPECT_NE(std::find(paths.begin(), paths.end(), word), paths.end()) << s.name << " names a path that does not exist: " << word;
+      // An engine setting never names a plugin: the plugin declares what restarts it.
+      EXPECT_TRUE(s.owner == word || !lighting::isPluginPath(word)) << s.name << " names the plugin " << word;
+    }
   }
   const lighting::RenderSettings base;
   for (const auto& path : paths) {
@@ -198,6 +203,46 @@ TEST(SettingsSchema, HistoryFlagsDecideEachPathsHistorySettings) {
   // depends on the surfaces it shades and on the light shadow maps, not on the rest.
   EXPECT_TRUE(resets("materials", "direct") && resets("lightShadowMapSize", "direct") && resets("lightShadowMaxLights", "direct"));
   EXPECT_FALSE(resets("shadowMapSize", "direct") || resets("rtDenoise", "direct") || resets("legacyConeStep", "direct"));
+}
+
+// A plugin's settings are declared in its folder (plugins/bent_sky/) and are in the one schema:
+// JSON and `--set` with the range checks, the default where never set, its history; the engine
+// settings the plugin's history depends on are declared by the plugin, not named by the engine.
+TEST(SettingsSchema, PluginSettingsJoinTheSchemaFromTheirOwnFolder) {
+  const lighting::SettingInfo* rays = lighting::findSetting("bentSkyRays");
+  ASSERT_NE(rays, nullptr);
+  EXPECT_EQ(rays->owner, "bentsky");
+  EXPECT_TRUE(lighting::isPluginPath(rays->owner));
+  const lighting::RenderSettings base;
+  EXPECT_EQ(rays->get(base), 4.0) << "the default, never set";
+  const lighting::RenderSettings set = applySettingText(base, "bentSkyRays=16");
+  EXPECT_EQ(rays->get(set), 16.0);
+  EXPECT_EQ(rays->get(applySettingsJson(base, {{"bentSkyMaxFrames", 8}})), 4.0) << "settings keep their own slots";
+  EXPECT_EQ(lighting::findSetting("bentSkyMaxFrames")->get(applySettingsJson(base, {{"bentSkyMaxFrames", 8}})), 8.0);
+  EXPECT_THROW(applySettingText(base, "bentSkyRays=0"), SessionError) << "the range it declared";
+  EXPECT_THROW(applySettingText(base, "bentSkyRays=2.5"), SessionError);
+  EXPECT_NE(lighting::historySettingsHash(set, "bentsky"), lighting::historySettingsHash(base, "bentsky"));
+  EXPECT_EQ(lighting::historySettingsHash(set, "rt"), lighting::historySettingsHash(base, "rt"));
+  // Declared by the plugin: the materials and the ray length restart its history.
+  EXPECT_TRUE(lighting::findSetting("materials")->resetsHistoryOf("bentsky"));
+  EXPECT_TRUE(lighting::findSetting("rtRayLength")->resetsHistoryOf("bentsky"));
+  EXPECT_FALSE(lighting::findSetting("rtDenoise")->resetsHistoryOf("bentsky"));
+  // The plugins' settings follow the engine's, in the order of their owners' names.
+  const auto& schema = lighting::settingsSchema();
+  const auto firstPlugin = std::find_if(schema.begin(), schema.end(), [](const auto& s) { return lighting::isPluginPath(s.owner); });
+  EXPECT_TRUE(std::all_of(firstPlugin, schema.end(), [](const auto& s) { return lighting::isPluginPath(s.owner); }));
+  EXPECT_TRUE(std::is_sorted(firstPlugin, schema.end(), [](const auto& a, const auto& b) { return a.owner < b.owner; }));
+}
+
+// A setting registered once the schema is in use would be missing from everything made
+// before: refused loudly, and the schema is left as it was.
+TEST(SettingsSchema, LateRegistrationIsRefused) {
+  const size_t before = lighting::settingsSchema().size();
+  lighting::SettingInfo late{"lateSetting", lighting::SettingType::UInt, 1, 0, 4, "", "bentsky", "", lighting::kSettingPlain, "late"};
+  EXPECT_THROW(lighting::registerPluginSetting(late), std::logic_error);
+  EXPECT_THROW(lighting::registerHistoryInputs("bentsky", {"materials"}), std::logic_error);
+  EXPECT_EQ(lighting::settingsSchema().size(), before);
+  EXPECT_EQ(lighting::findSetting("lateSetting"), nullptr);
 }
 
 // docs/user-guide.md holds the settings reference `twinlight settings --markdown` prints.

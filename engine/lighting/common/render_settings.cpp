@@ -80,6 +80,23 @@ const Derivation kDerivations[] = {
      "the scene's largest side (+2%): the finest level holds the scene"},
 };
 
+// What plugins registered before the schema was first read (function-local statics: plugins
+// register from static initialisers, in whatever order the linker runs them).
+struct PluginRegistrations {
+  std::vector<SettingInfo> settings;
+  std::vector<std::pair<std::string_view, std::vector<std::string_view>>> historyInputs;  // path, settings
+  bool schemaRead = false;
+};
+PluginRegistrations& registrations() {
+  static PluginRegistrations r;
+  return r;
+}
+
+void refuseLateRegistration(std::string_view what) {
+  if (registrations().schemaRead)
+    throw std::logic_error(fmt::format("{} registered after the settings schema was read: register from a static object", what));
+}
+
 std::vector<SettingInfo> buildSchema() {
   std::vector<SettingInfo> schema;
 #define TL_SETTING_INFO(type, name, def, lo, hi, unit, owner, history, flags, help)                              \
@@ -89,6 +106,15 @@ std::vector<SettingInfo> buildSchema() {
                     [](RenderSettings& s, double v) { s.name = fromDouble<type>(v); }});
   TL_RENDER_SETTINGS(TL_SETTING_INFO)
 #undef TL_SETTING_INFO
+  // The plugins' own settings after the engine's, in the order the plugins' names sort (the
+  // linker's order of static initialisers is not the same from one build to the next).
+  std::vector<SettingInfo> plugins = registrations().settings;
+  std::stable_sort(plugins.begin(), plugins.end(), [](const SettingInfo& a, const SettingInfo& b) { return a.owner < b.owner; });
+  schema.insert(schema.end(), plugins.begin(), plugins.end());
+  for (const auto& [path, names] : registrations().historyInputs)
+    for (std::string_view name : names)
+      if (std::none_of(schema.begin(), schema.end(), [&](const SettingInfo& s) { return s.name == name; }))
+        throw std::logic_error(fmt::format("path `{}` restarts its history with `{}`, which is not a setting", path, name));
   // Each automatic setting has its derivation, and only those: checked once, loudly.
   for (const Derivation& d : kDerivations) {
     auto it = std::find_if(schema.begin(), schema.end(), [&](const SettingInfo& s) { return s.name == d.name; });
@@ -112,11 +138,48 @@ bool SettingInfo::resetsHistoryOf(std::string_view path) const {
     if (rest.substr(0, space) == path) return true;
     rest = space == std::string_view::npos ? std::string_view() : rest.substr(space + 1);
   }
+  for (const auto& [p, names] : registrations().historyInputs)
+    if (p == path && std::find(names.begin(), names.end(), name) != names.end()) return true;
   return false;
 }
 
+uint32_t registerPluginSetting(SettingInfo info) {
+  refuseLateRegistration(fmt::format("setting `{}`", info.name));
+  std::vector<SettingInfo>& settings = registrations().settings;
+  const bool taken = std::any_of(settings.begin(), settings.end(), [&](const SettingInfo& s) { return s.name == info.name; });
+  bool engines = false;
+#define TL_SETTING_NAMED(type, setting, ...) engines = engines || info.name == #setting;
+  TL_RENDER_SETTINGS(TL_SETTING_NAMED)
+#undef TL_SETTING_NAMED
+  if (taken || engines) throw std::logic_error(fmt::format("two settings are named `{}`", info.name));
+  if (settings.size() == kMaxPluginSettings)
+    throw std::logic_error(fmt::format("setting `{}`: the plugins have {} settings, the most there is room for", info.name,
+                                       kMaxPluginSettings));
+  if (info.flags & kSettingAuto)
+    throw std::logic_error(fmt::format("setting `{}`: a plugin's setting cannot be automatic", info.name));
+  const uint32_t slot = uint32_t(settings.size());
+  const double fallback = info.defaultValue;
+  const bool isSwitch = info.type == SettingType::Bool;
+  info.get = [slot, fallback](const RenderSettings& s) {
+    const double v = s.pluginValues[slot];
+    return std::isnan(v) ? fallback : v;
+  };
+  info.set = [slot, isSwitch](RenderSettings& s, double v) { s.pluginValues[slot] = isSwitch ? double(v != 0.0) : v; };
+  settings.push_back(std::move(info));
+  return slot;
+}
+
+void registerHistoryInputs(std::string_view path, std::vector<std::string_view> settings) {
+  refuseLateRegistration(fmt::format("the history inputs of `{}`", path));
+  registrations().historyInputs.emplace_back(path, std::move(settings));
+}
+
 const std::vector<SettingInfo>& settingsSchema() {
-  static const std::vector<SettingInfo> schema = buildSchema();
+  static const std::vector<SettingInfo> schema = [] {
+    std::vector<SettingInfo> built = buildSchema();
+    registrations().schemaRead = true;
+    return built;
+  }();
   return schema;
 }
 

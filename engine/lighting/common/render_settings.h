@@ -3,16 +3,22 @@
 // paths whose history it resets, flags and a one-line help. From this list come the
 // RenderSettings struct, the schema below (JSON and `--set` with range checks, the editor's
 // panels, `twinlight settings`, the docs' reference table) and each path's history settings
-// (the frame key's `settings` part): a new setting is one line here.
+// (the frame key's `settings` part): a new setting of the engine is one line here. A plugin
+// declares its own settings in its folder (PluginSetting, below): they join the same schema.
 #pragma once
 
 #include "shared/material_mode.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
+#include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace tl::lighting {
@@ -63,14 +69,14 @@ inline constexpr uint32_t kSettingOffAtMax = 1u << 5;
 #define TL_RENDER_SETTINGS(X) \
   X(uint32_t, width, 640, 1, 16384, "px", "common", "", kSettingNoPanel, "image width (--size)") \
   X(uint32_t, height, 360, 1, 16384, "px", "common", "", kSettingNoPanel, "image height (--size)") \
-  X(MaterialMode, materials, MaterialMode::Authored, 0, 2, "", "common", "reference rt legacy direct bentsky", kSettingPlain, "material override, every path and the reference: authored, diffuse (Lambert, authored base colour) or clay (Lambert 0.8 grey); emission stays") \
+  X(MaterialMode, materials, MaterialMode::Authored, 0, 2, "", "common", "reference rt legacy direct", kSettingPlain, "material override, every path and the reference: authored, diffuse (Lambert, authored base colour) or clay (Lambert 0.8 grey); emission stays") \
   X(uint32_t, shadowMapSize, 2048, 64, 8192, "texels", "common", "", kSettingTune, "side of the sun's shadow map") \
   X(float, shadowDepthBiasTexels, 1.5f, 0.0f, 16.0f, "texels", "common", "", kSettingPlain, "sun shadow constant depth bias, in shadow-map texels of depth") \
   X(float, shadowNormalOffsetTexels, 1.0f, 0.0f, 16.0f, "texels", "common", "", kSettingPlain, "sun shadow lookup offset along the normal, in shadow-map texels") \
   X(bool, softShadows, true, 0, 1, "", "common", "", kSettingTune, "PCSS: penumbrae from the sun's angular size (off: 3x3 PCF, --hard-shadows)") \
   X(float, pcssMaxRadiusTexels, 16.0f, 0.0f, 64.0f, "texels", "common", "", kSettingPlain, "widest PCSS filter") \
-  X(uint32_t, lightShadowMapSize, 512, 64, 4096, "texels", "common", "legacy direct bentsky", kSettingTune, "side of each shadow-map view of a point, spot or area light (a point or area light has six; direct and legacy paths)") \
-  X(uint32_t, lightShadowMaxLights, 8, 0, 32, "", "common", "legacy direct bentsky", kSettingPlain, "the most powerful point, spot and area lights that cast shadows in the direct and legacy paths (0: none; rt and the reference trace every light)") \
+  X(uint32_t, lightShadowMapSize, 512, 64, 4096, "texels", "common", "legacy direct", kSettingTune, "side of each shadow-map view of a point, spot or area light (a point or area light has six; direct and legacy paths)") \
+  X(uint32_t, lightShadowMaxLights, 8, 0, 32, "", "common", "legacy direct", kSettingPlain, "the most powerful point, spot and area lights that cast shadows in the direct and legacy paths (0: none; rt and the reference trace every light)") \
   X(bool, specularGi, true, 0, 1, "", "common", "", kSettingTune | kSettingFeature, "indirect specular from the path's SH (dominant direction, GGX; Metro); off: the sky's specular times AO") \
   X(bool, redeferred, false, 0, 1, "", "common", "", kSettingPlain, "redeferred shading (Fools Engine): lights accumulate material-free sums (ibuffer.*), one material pass applies the materials; off: the deferred composite") \
   X(float, redeferredRate, 1.0f, 0.25f, 1.0f, "", "common", "", kSettingPow2, "redeferred: share of pixels the illumination passes shade first (1 all, 0.5 a checkerboard, 0.25 one of each 2x2); the rest filled depth- and normal-aware, edges of geometry and light shaded at full rate") \
@@ -83,7 +89,7 @@ inline constexpr uint32_t kSettingOffAtMax = 1u << 5;
   X(float, rtSimplifyRatio, 0.25f, 0.01f, 1.0f, "x", "rt", "rt", kSettingTune, "RT (BLAS) mesh triangles / source triangles (Metro: about 4x fewer); 1 = the full mesh") \
   X(float, rtSimplifyError, 0.01f, 0.0f, 1.0f, "x size", "rt", "rt", kSettingPlain, "largest deviation the simplifier may introduce, as a fraction of the mesh's size") \
   X(float, rtAoRadius, 0.0f, 0.0f, 1e9f, "m", "rt", "rt reference", kSettingAuto, "RTAO radius: a hit closer than this occludes (also the reference's AO)") \
-  X(float, rtRayLength, 0.0f, 0.0f, 1e9f, "m", "rt", "rt bentsky", kSettingAuto, "GI rays stop after this distance; also the top level's culling margin") \
+  X(float, rtRayLength, 0.0f, 0.0f, 1e9f, "m", "rt", "rt", kSettingAuto, "GI rays stop after this distance; also the top level's culling margin") \
   X(float, rtBlendDistance, 0.0f, 0.0f, 1e9f, "m", "rt", "rt", kSettingAuto, "beyond this view distance RT GI fades to the far field (Metro: 250 m); the top level culls instances beyond it") \
   X(bool, rtFarLegacy, true, 0, 1, "", "rt", "", kSettingPlain, "the far field beyond the blend distance is the legacy path's voxel GI (Metro), else the unoccluded sky") \
   X(bool, rtPretrace, true, 0, 1, "", "rt", "rt", kSettingTune | kSettingFeature, "screen-space pre-trace: march the depth buffer first, real rays only where it finds nothing") \
@@ -125,8 +131,6 @@ inline constexpr uint32_t kSettingOffAtMax = 1u << 5;
   X(float, hybridShadowHardTexels, 4.0f, 0.5f, 64.0f, "texels", "rt", "", kSettingPlain, "HRTS: penumbrae narrower than this many shadow-map texels take the ray's hard shadow; linear blend up to it") \
   X(bool, rtRawRayProbe, false, 0, 1, "", "rt", "", kSettingNoPanel, "benchmark: also trace the same rays with a trivial kernel (rt.rawRays; bench --rays)") \
   X(bool, referenceRawRayProbe, false, 0, 1, "", "reference", "", kSettingNoPanel, "benchmark: also trace a trivial kernel on the reference's top level (reference.rawRays; bench --rays)") \
-  X(uint32_t, bentSkyRays, 4, 1, 64, "rays", "bentsky", "bentsky", kSettingPlain, "bentsky plugin: sky-visibility rays per pixel and frame (cosine-distributed, as long as rtRayLength)") \
-  X(uint32_t, bentSkyMaxFrames, 32, 1, 1024, "frames", "bentsky", "", kSettingPlain, "bentsky plugin: accumulation window while the view holds still") \
   X(float, legacyAoRadius, 0.0f, 0.0f, 1e9f, "m", "legacy", "legacy", kSettingAuto, "reach of SSAO and voxel AO") \
   X(float, legacyAoThickness, 0.1f, 0.0f, 1.0f, "", "legacy", "legacy", kSettingPlain, "GTAO thickness heuristic: how fast a horizon falls back behind thin occluders (0 infinitely thick, 1 paper thin)") \
   X(uint32_t, legacyAoSlices, 1, 1, 16, "slices", "legacy", "legacy", kSettingTune, "GTAO slice directions per pixel and frame (the 2x2 interleave and the accumulation supply more)") \
@@ -148,10 +152,22 @@ inline constexpr uint32_t kSettingOffAtMax = 1u << 5;
   X(uint32_t, legacySettleFrames, 4, 0, 64, "frames", "legacy", "", kSettingPlain, "after a change, rebuild the voxels this many more frames so bounces settle")
 // clang-format on
 
+// The values of the settings plugins declare (PluginSetting), by the slot each registration
+// got. NaN is a value never set, which stands for the setting's default: the defaults are
+// known only once the plugins have registered, after these arrays may have been made.
+inline constexpr size_t kMaxPluginSettings = 32;
+using PluginSettingValues = std::array<double, kMaxPluginSettings>;
+constexpr PluginSettingValues unsetPluginSettings() {
+  PluginSettingValues v{};
+  for (double& x : v) x = std::numeric_limits<double>::quiet_NaN();
+  return v;
+}
+
 struct RenderSettings {
 #define TL_SETTING_MEMBER(type, name, def, ...) type name = def;
   TL_RENDER_SETTINGS(TL_SETTING_MEMBER)
 #undef TL_SETTING_MEMBER
+  PluginSettingValues pluginValues = unsetPluginSettings();  // read through the plugin's PluginSetting
 };
 
 enum class SettingType { Bool, UInt, Float, Enum };
@@ -169,19 +185,73 @@ struct SettingInfo {
   SettingType type;
   double defaultValue, min, max;
   std::string_view unit;
-  std::string_view owner;    // "common" or a lighting path's name
-  std::string_view history;  // space-separated names of the paths whose history it resets
+  std::string_view owner;    // "common" or a lighting path's name (a plugin's, for its own settings)
+  // Space-separated names of the paths whose history it resets; a plugin's path adds itself
+  // to an engine setting's with registerHistoryInputs, so this column never names a plugin.
+  std::string_view history;
   uint32_t flags;
   std::string_view help;
   std::vector<std::string_view> choices;  // names of an enum's values, in order
-  double (*get)(const RenderSettings&);
-  void (*set)(RenderSettings&, double);
+  std::function<double(const RenderSettings&)> get;
+  std::function<void(RenderSettings&, double)> set;
   // kSettingAuto: what 0 stands for, from the settings and the scene's extent, and that rule
   // in words ("the scene's extent / 6").
   float (*derive)(const RenderSettings&, const SceneSize&) = nullptr;
   std::string_view autoRule;
 
+  // Its history column, or the path's own registerHistoryInputs, names `path`.
   bool resetsHistoryOf(std::string_view path) const;
+};
+
+// A plugin's setting, declared where the plugin lives (plugins/<name>/), as the engine's are in
+// TL_RENDER_SETTINGS: the same columns, the same schema (JSON, `--set`, the editor's panel, the
+// reference table, tune). Made from a static object in the plugin's .cpp, before main():
+//   const PluginSetting<uint32_t> kRays{"bentSkyRays", 4, 1, 64, "rays", "bentsky", "bentsky",
+//                                       kSettingPlain, "sky-visibility rays per pixel and frame"};
+//   ... kRays.of(settings) ...
+// Registering throws std::logic_error (a message at start-up) when the name is taken, the slots
+// (kMaxPluginSettings) are used up, or the schema was already read: never a silent loss.
+uint32_t registerPluginSetting(SettingInfo info);  // its slot in RenderSettings::pluginValues
+
+template <class T>
+class PluginSetting {
+  static_assert(std::is_same_v<T, bool> || std::is_same_v<T, uint32_t> || std::is_same_v<T, float>,
+                "a plugin's setting is a switch, a whole number or a number");
+
+ public:
+  PluginSetting(std::string_view name, T def, double min, double max, std::string_view unit, std::string_view owner,
+                std::string_view history, uint32_t flags, std::string_view help)
+      : slot_(registerPluginSetting({name, type(), double(def), min, max, unit, owner, history, flags, help, {}, {}, {}})),
+        default_(def) {}
+
+  // The value in `settings` (the default where it was never set), in the setting's type.
+  T of(const RenderSettings& settings) const {
+    const double v = settings.pluginValues[slot_];
+    if (std::isnan(v)) return default_;
+    if constexpr (std::is_same_v<T, bool>) return v != 0.0;
+    else return T(v);
+  }
+  void set(RenderSettings& settings, T value) const { settings.pluginValues[slot_] = double(value); }
+
+ private:
+  static constexpr SettingType type() {
+    if constexpr (std::is_same_v<T, bool>) return SettingType::Bool;
+    else if constexpr (std::is_same_v<T, uint32_t>) return SettingType::UInt;
+    else return SettingType::Float;
+  }
+  uint32_t slot_;
+  T default_;
+};
+
+// A plugin's path whose history also restarts when these engine settings change (the
+// materials, the light shadow maps, the ray length it borrows): declared by the plugin, so the
+// engine's TL_RENDER_SETTINGS never names a plugin. Each name must be a setting, checked when
+// the schema is first read (std::logic_error).
+void registerHistoryInputs(std::string_view path, std::vector<std::string_view> settings);
+struct HistoryInputsRegistrar {
+  HistoryInputsRegistrar(std::string_view path, std::vector<std::string_view> settings) {
+    registerHistoryInputs(path, std::move(settings));
+  }
 };
 
 // Every setting, in declaration order.
