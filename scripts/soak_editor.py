@@ -38,6 +38,7 @@ validation messages, seconds.
 import argparse
 import glob
 import json
+import math
 import os
 import random
 import re
@@ -100,6 +101,19 @@ def light_key(light):
     return json.dumps({k: v for k, v in light.items() if "node" not in k}, sort_keys=True)
 
 
+def same_light(a, b):
+    """Two light_keys that are the same light, numbers within float rounding (as the editor
+    compares them: a light added again at the orbit's pivot lands there through other sums)."""
+    def near(x, y):
+        if isinstance(x, list) and isinstance(y, list):
+            return len(x) == len(y) and math.dist(x, y) <= 1e-6 * max(math.hypot(*x), math.hypot(*y), 1e-30)
+        if isinstance(x, (int, float)) and isinstance(y, (int, float)) and not isinstance(x, bool):
+            return abs(x - y) <= 1e-6 * max(abs(x), abs(y))
+        return x == y
+    a, b = json.loads(a), json.loads(b)
+    return a.keys() == b.keys() and all(near(a[k], b[k]) for k in a)
+
+
 class Walk:
     def __init__(self, args):
         self.args = args
@@ -118,10 +132,19 @@ class Walk:
         self.baseline_shadow = DEFAULT_SHADOW  # the settings as opened or last saved
         self.lh, self.ah = History(), History()  # lighting and settings; albedo
         self.clock = 0  # orders the edits as the editor's steady clock does
-        # A new light's place and name follow from the camera, the lights there and its kind alone
-        # (editor addLight): the same add from the same state makes the same light again.
-        self.camera = None  # ("open", scene) as a scene opens; a new value at every drag
-        self.adds = {}  # (kind, lights before, camera) -> the light token it made
+        # A new light is known by what the editor makes it from (addLight): its kind, its name
+        # (the kind and how many lights of that kind there are) and its place. The editor puts it
+        # at the orbit camera's pivot (a third of the scene's size in front of it, where orbiting
+        # keeps it), stepped a quarter of that to the camera's right past any light within a
+        # fifth of it. The walk follows the camera's yaw through its drags (0.005 rad a pixel) and
+        # keeps each light it added at its place (in units of that distance, about the pivot), so
+        # the same add from the same state makes the same light again, and the editor (which
+        # compares lights by what they cast) calls it the light it replaced, saved or not. The
+        # scene's own lights stand elsewhere: they take no place.
+        self.yaw = 0.0  # radians from the opening camera's
+        self.adds = {}  # (kind, name, scene, place) -> the light token it made
+        self.kind = {}  # light token -> its kind
+        self.place = {}  # token of an added light -> (x, z) about the pivot
         self.path = "direct"
         self.compare = False
         self.actions = 0
@@ -146,25 +169,29 @@ class Walk:
                     shutil.copy(src, self.scene_dir)
             gltf = json.load(open(os.path.join(self.scene_dir, name + ".gltf")))
             # The lights the scene opens with are learnt from its first dump (bound then).
-            count = self.opening_light_count(name, gltf)
+            tokens = []
+            for kind in self.opening_light_kinds(name, gltf):
+                tokens.append(self.new_id())
+                self.kind[tokens[-1]] = kind
             instance = next(n["name"] for n in gltf["nodes"] if "mesh" in n and "name" in n)
-            self.scenes[name] = Scene(name, [self.new_id() for _ in range(count)], instance)
+            self.scenes[name] = Scene(name, tokens, instance)
         # A small window at a quarter of its resolution: the walk is about the editor's work, not its pixels.
         settings = {"renderScale": 0.25, "autosaveSeconds": 5, "windowWidth": 1280, "windowHeight": 720}
         json.dump(settings, open(os.path.join(self.config, "twinlight", "settings.json"), "w"))
 
-    def opening_light_count(self, name, gltf):
+    def opening_light_kinds(self, name, gltf):
+        """The kinds of the lights the scene opens with (its sidecar's, else its glTF's but the sun)."""
         sidecar = os.path.join(self.scene_dir, name + ".lighting.json")
         if os.path.exists(sidecar):
-            return len(json.load(open(sidecar)).get("lights", []))
+            return [light.get("type", "point") for light in json.load(open(sidecar)).get("lights", [])]
         lights = gltf.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
-        used = {n["extensions"]["KHR_lights_punctual"]["light"] for n in gltf["nodes"]
-                if "KHR_lights_punctual" in n.get("extensions", {})}
-        count = sum(1 for i in used if i < len(lights))
+        used = sorted({n["extensions"]["KHR_lights_punctual"]["light"] for n in gltf["nodes"]
+                       if "KHR_lights_punctual" in n.get("extensions", {})})
+        kinds = [lights[i].get("type", "point") for i in used if i < len(lights)]
         # The first directional light of the file is the sun, not one of the listed lights.
-        if any(lights[i].get("type") == "directional" for i in used if i < len(lights)):
-            count -= 1
-        return count
+        if "directional" in kinds:
+            kinds.remove("directional")
+        return kinds
 
     def new_id(self):
         self.next_id += 1
@@ -198,7 +225,7 @@ class Walk:
             self.shadow = scene.saved_settings
         self.baseline_shadow = self.shadow
         self.lh, self.ah = History(), History()
-        self.camera = ("open", scene.name)
+        self.yaw = 0.0
 
     def saved(self):
         s = self.current
@@ -293,9 +320,18 @@ class Walk:
             kind_of_light = self.rng.choice(["point", "spot", "rect"])
             self.emit("click-ui outliner.lights", "wait 1", "click-ui lights.add", "wait 1",
                       f"click-ui lights.add.{kind_of_light}", "wait 1")
-            made = (kind_of_light, tuple(self.lights), self.current.name, self.camera)
+            name = 1 + sum(1 for t in self.lights if self.kind[t] == kind_of_light)
+            right = (math.cos(self.yaw), -math.sin(self.yaw))
+            place = (0.0, 0.0)
+            for _ in range(64):
+                if not any(math.dist(self.place[t], place) < 0.2 for t in self.lights if t in self.place):
+                    break
+                place = (place[0] + 0.25 * right[0], place[1] + 0.25 * right[1])
+            made = (kind_of_light, name, self.current.name, (round(place[0], 6), round(place[1], 6)))
             if made not in self.adds:
                 self.adds[made] = self.new_id()
+                self.kind[self.adds[made]] = kind_of_light
+                self.place[self.adds[made]] = place
             self.lights.append(self.adds[made])
             self.edited(self.lh, "lights", before, list(self.lights))
         elif kind == "delete":
@@ -350,11 +386,15 @@ class Walk:
     def drag(self):
         """The camera orbited: a drag in the viewport from its lower left, with an instance selected
         (a drag on a selected light's gizmo or on a light's icon would move the light; new lights
-        stand in the middle of the view and to its right)."""
+        stand in the middle of the view and to its right), ending inside the viewport. drag-ui
+        moves the mouse in 8 equal steps; the orbit starts with the first step more than 3 px
+        from the press, and each step from then on turns the yaw by 0.005 rad a pixel."""
         dx, dy = self.rng.randint(-120, 120), self.rng.randint(-60, 60)
-        u, v = round(self.rng.uniform(0.08, 0.3), 2), round(self.rng.uniform(0.65, 0.92), 2)
+        u, v = round(self.rng.uniform(0.25, 0.4), 2), round(self.rng.uniform(0.6, 0.85), 2)
         self.emit(f"select {self.current.instance}", f"drag-ui viewport {dx} {dy} {u} {v}", "wait 1")
-        self.camera = ("drag", self.actions)
+        step = math.hypot(dx, dy) / 8
+        turning = sum(1 for i in range(1, 9) if i * step > 3.0)
+        self.yaw -= 0.005 * (dx / 8) * turning
         self.checks()
 
     def resize(self):
@@ -446,7 +486,7 @@ class Walk:
                 key = light_key(light)
                 if token not in self.bound:
                     self.bound[token] = key
-                elif self.bound[token] != key:
+                elif not same_light(self.bound[token], key):
                     return f"{tag} on {scene}: a light changed: {key} was {self.bound[token]}"
             if have["settings"].get("shadowMapSize") != want["shadow"]:
                 return f"{tag} on {scene}: shadowMapSize {have['settings'].get('shadowMapSize')}, the walk has {want['shadow']}"
@@ -474,7 +514,7 @@ class Walk:
                 if len(lights) != len(s.saved_lights):
                     return f"{name}.lighting.json holds {len(lights)} lights, the walk saved {len(s.saved_lights)}"
                 for token, light in zip(s.saved_lights, lights):
-                    if token in self.bound and self.bound[token] != light_key(light):
+                    if token in self.bound and not same_light(self.bound[token], light_key(light)):
                         return f"{name}.lighting.json: a light changed: {light_key(light)} was {self.bound[token]}"
             db = os.path.join(self.out, "dbs", name + ".db")
             if os.path.exists(db):
