@@ -96,13 +96,13 @@ def rgb_equal(a, b):
     return all(abs(x - y) <= 1e-5 for x, y in zip(a, b))
 
 
-def light_key(light):
+def light_fields(light):
     """A light as the walk compares it: the node it was saved to is bookkeeping, not an edit."""
-    return json.dumps({k: v for k, v in light.items() if "node" not in k}, sort_keys=True)
+    return {k: v for k, v in light.items() if "node" not in k}
 
 
 def same_light(a, b):
-    """Two light_keys that are the same light, numbers within float rounding (as the editor
+    """Two light_fields that are the same light, numbers within float rounding (as the editor
     compares them: a light added again at the orbit's pivot lands there through other sums)."""
     def near(x, y):
         if isinstance(x, list) and isinstance(y, list):
@@ -110,7 +110,6 @@ def same_light(a, b):
         if isinstance(x, (int, float)) and isinstance(y, (int, float)) and not isinstance(x, bool):
             return abs(x - y) <= 1e-6 * max(abs(x), abs(y))
         return x == y
-    a, b = json.loads(a), json.loads(b)
     return a.keys() == b.keys() and all(near(a[k], b[k]) for k in a)
 
 
@@ -124,7 +123,7 @@ class Walk:
         self.config = os.path.join(self.out, "config")
         self.scenes = {}
         self.next_id = 0
-        self.bound = {}  # light token -> the light as it first appeared (light_key)
+        self.bound = {}  # light token -> the light as it first appeared (light_fields)
         self.lines = []
         self.expected = []  # (tag, scene name, expected state) for the dumps of one editor
         self.current = None
@@ -134,7 +133,7 @@ class Walk:
         self.clock = 0  # orders the edits as the editor's steady clock does
         # A new light is known by what the editor makes it from (addLight): its kind, its name
         # (the kind and how many lights of that kind there are) and its place. The editor puts it
-        # at the orbit camera's pivot (a third of the scene's size in front of it, where orbiting
+        # at the orbit camera's pivot (0.3 of the scene's diagonal in front of it, where orbiting
         # keeps it), stepped a quarter of that to the camera's right past any light within a
         # fifth of it. The walk follows the camera's yaw through its drags (0.005 rad a pixel) and
         # keeps each light it added at its place (in units of that distance, about the pivot), so
@@ -483,11 +482,12 @@ class Walk:
             if len(lights) != len(want["lights"]):
                 return f"{tag} on {scene}: {len(lights)} lights, the walk has {len(want['lights'])}"
             for token, light in zip(want["lights"], lights):
-                key = light_key(light)
+                fields = light_fields(light)
                 if token not in self.bound:
-                    self.bound[token] = key
-                elif not same_light(self.bound[token], key):
-                    return f"{tag} on {scene}: a light changed: {key} was {self.bound[token]}"
+                    self.bound[token] = fields
+                elif not same_light(self.bound[token], fields):
+                    return f"{tag} on {scene}: a light changed: {json.dumps(fields, sort_keys=True)} was " \
+                           f"{json.dumps(self.bound[token], sort_keys=True)}"
             if have["settings"].get("shadowMapSize") != want["shadow"]:
                 return f"{tag} on {scene}: shadowMapSize {have['settings'].get('shadowMapSize')}, the walk has {want['shadow']}"
             overrides = list(have.get("overrides", {}).values())
@@ -514,8 +514,9 @@ class Walk:
                 if len(lights) != len(s.saved_lights):
                     return f"{name}.lighting.json holds {len(lights)} lights, the walk saved {len(s.saved_lights)}"
                 for token, light in zip(s.saved_lights, lights):
-                    if token in self.bound and not same_light(self.bound[token], light_key(light)):
-                        return f"{name}.lighting.json: a light changed: {light_key(light)} was {self.bound[token]}"
+                    if token in self.bound and not same_light(self.bound[token], light_fields(light)):
+                        return f"{name}.lighting.json: a light changed: {json.dumps(light_fields(light), sort_keys=True)} " \
+                               f"was {json.dumps(self.bound[token], sort_keys=True)}"
             db = os.path.join(self.out, "dbs", name + ".db")
             if os.path.exists(db):
                 con = sqlite3.connect(db)

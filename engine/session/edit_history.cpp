@@ -22,6 +22,15 @@ bool nearlySame(const glm::dvec3& a, const glm::dvec3& b) {
 bool nearlySame(const glm::vec3& a, const glm::vec3& b) { return nearlySame(glm::dvec3(a), glm::dvec3(b)); }
 bool nearlySame(float a, float b) { return std::abs(double(a) - double(b)) <= kFloatRounding * std::max(std::abs(double(a)), std::abs(double(b))); }
 
+// One map whether it is the same object or the same file read again (a reload reads it anew while
+// the artist's kept lighting holds the copy read before): compared by what it holds.
+bool sameEnvironmentMap(const std::shared_ptr<const scene::EnvironmentMap>& a,
+                        const std::shared_ptr<const scene::EnvironmentMap>& b) {
+  if (a == b) return true;
+  if (!a || !b) return false;
+  return a->path == b->path && a->width == b->width && a->height == b->height && a->contentHash == b->contentHash;
+}
+
 }  // namespace
 
 bool sameLight(const scene::Light& a, const scene::Light& b) {
@@ -44,18 +53,6 @@ bool sameLight(const scene::Light& a, const scene::Light& b) {
   return false;
 }
 
-namespace {
-
-// One map whether it is the same object or the same file read again (a reload reads it anew while
-// the artist's kept lighting holds the copy read before): compared by what it holds.
-bool sameEnvironmentMap(const std::shared_ptr<const scene::EnvironmentMap>& a,
-                        const std::shared_ptr<const scene::EnvironmentMap>& b) {
-  if (a == b) return true;
-  if (!a || !b) return false;
-  return a->path == b->path && a->width == b->width && a->height == b->height && a->contentHash == b->contentHash;
-}
-
-}  // namespace
 
 bool sameLighting(const Lighting& a, const Lighting& b) {
   return a.sunDirection == b.sunDirection && a.sunIrradiance == b.sunIrradiance && a.skyRadiance == b.skyRadiance &&

@@ -160,10 +160,7 @@ uint32_t registerPluginSetting(SettingInfo info) {
   const uint32_t slot = uint32_t(settings.size());
   const double fallback = info.defaultValue;
   const bool isSwitch = info.type == SettingType::Bool;
-  info.get = [slot, fallback](const RenderSettings& s) {
-    const double v = s.pluginValues[slot];
-    return std::isnan(v) ? fallback : v;
-  };
+  info.get = [slot, fallback](const RenderSettings& s) { return pluginSettingValue(s, slot, fallback); };
   info.set = [slot, isSwitch](RenderSettings& s, double v) { s.pluginValues[slot] = isSwitch ? double(v != 0.0) : v; };
   settings.push_back(std::move(info));
   return slot;

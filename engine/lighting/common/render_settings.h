@@ -170,6 +170,12 @@ struct RenderSettings {
   PluginSettingValues pluginValues = unsetPluginSettings();  // read through the plugin's PluginSetting
 };
 
+// A plugin setting's stored value: its slot's, or `fallback` (its default) where never set.
+inline double pluginSettingValue(const RenderSettings& settings, uint32_t slot, double fallback) {
+  const double v = settings.pluginValues[slot];
+  return std::isnan(v) ? fallback : v;
+}
+
 enum class SettingType { Bool, UInt, Float, Enum };
 
 // What automatic values derive from: the scene's size in its own units.
@@ -226,12 +232,10 @@ class PluginSetting {
 
   // The value in `settings` (the default where it was never set), in the setting's type.
   T of(const RenderSettings& settings) const {
-    const double v = settings.pluginValues[slot_];
-    if (std::isnan(v)) return default_;
+    const double v = pluginSettingValue(settings, slot_, double(default_));
     if constexpr (std::is_same_v<T, bool>) return v != 0.0;
     else return T(v);
   }
-  void set(RenderSettings& settings, T value) const { settings.pluginValues[slot_] = double(value); }
 
  private:
   static constexpr SettingType type() {
