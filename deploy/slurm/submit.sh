@@ -11,10 +11,10 @@
 # compare: OUT_DIR/shards/compare-<id>/ per task (one folder per view of the sweep it measured),
 #          merged into OUT_DIR/report/ (report.json, report.html, each view's report)
 # tune:    one folder, OUT_DIR/tune/, that every task shares. A stage of a tune needs the one
-#          before it finished, so each stage (the rungs, then the two feature stages: --rungs
-#          + 2) is an array of its own after the last, and the last job writes the presets,
-#          tune.json and report.html (and measures whatever the arrays left, so a stage count
-#          that is off costs time, never a result).
+#          before it finished, so each stage is an array of its own after the last (twinlight
+#          tune --print-stage-count says how many; it checks the options before anything is
+#          queued), and the last job writes the presets, tune.json and report.html (and measures
+#          whatever the arrays left, so a stage count that is off costs time, never a result).
 # Logs go to OUT_DIR/logs/. --first sets the array's first task id (default 0; ids need not
 # start at 0, twinlight reads SLURM_ARRAY_TASK_MIN). --wait blocks until the merge job ends
 # and exits with its status (a failed task cancels the merge: DependencyParameters
@@ -51,22 +51,20 @@ fi
 [[ $first =~ ^[0-9]+$ ]] || { echo "submit.sh: --first \`$first' is not an array task id" >&2; exit 2; }
 [ "$mode" = compare ] || [ $# -ge 1 ] || { echo "submit.sh: bake needs at least one scene" >&2; exit 2; }
 
+if [ "$mode" = tune ]; then
+  # twinlight knows how many stages these options make, and checks them before anything is queued.
+  stages=$("${TWINLIGHT:-twinlight}" tune "$@" --print-stage-count) ||
+    { echo "submit.sh: the tune's options were refused (above); nothing submitted" >&2; exit 2; }
+  [[ $stages =~ ^[0-9]+$ ]] || { echo "submit.sh: \`twinlight tune --print-stage-count' printed \`$stages'" >&2; exit 2; }
+fi
+
 mkdir -p "$out/logs" "$out/shards"
 out=$(cd "$out" && pwd)  # the jobs may start in another directory
 read -r -a extra <<<"${TWINLIGHT_SBATCH_ARGS:-}"
 last=$((first + tasks - 1))
 if [ "$mode" = tune ]; then
-  rungs=3  # twinlight tune's default
-  args=("$@")
-  for ((i = 0; i < ${#args[@]}; ++i)); do
-    case ${args[i]} in
-      --rungs) rungs=${args[i + 1]:-$rungs} ;;
-      --rungs=*) rungs=${args[i]#--rungs=} ;;
-    esac
-  done
-  [[ $rungs =~ ^[0-9]+$ ]] || { echo "submit.sh: --rungs \`$rungs' is not a count" >&2; exit 2; }
   array=""
-  for ((stage = 1; stage <= rungs + 2; ++stage)); do
+  for ((stage = 1; stage <= stages; ++stage)); do
     array=$(sbatch --parsable "${extra[@]}" --job-name="twinlight-tune-$stage" --array="$first-$last" \
       ${array:+--dependency="afterok:$array"} --output="$out/logs/tune-$stage-%A_%a.log" \
       "$here/task.sbatch" tune "$out" "$@")

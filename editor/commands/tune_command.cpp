@@ -112,6 +112,9 @@ class TuneCommand : public CliCommand {
                     "share --out and run once per stage");
     cmd->add_option("--shard-count", shardCount_, "with --shard auto under a Kubernetes Indexed Job: the shard count");
     cmd->add_option("--merge", merge_, "copy the measurements of tune folders that shards wrote apart into --out (no GPU)");
+    cmd->add_flag("--print-stage-count", printStageCount_,
+                  "print how many stages these options make (a job array each, one after another) and exit: "
+                  "the options are checked, nothing is measured");
     cmd->add_flag("--stop-with-parent", stopWithParent_,
                   "stop (exit 1, the folder resumable) when the process that started this one ends: the editor "
                   "starts its tunes so");
@@ -125,7 +128,7 @@ class TuneCommand : public CliCommand {
       session::checkOutputFolder(out_);
       return tuneMergeCommand(merge_, out_);
     }
-    if (scenes_.empty()) throw UsageError("tune needs --scene (or --merge)");
+    if (scenes_.empty() && !printStageCount_) throw UsageError("tune needs --scene (or --merge)");
     if (budgets_.empty()) budgets_ = {"1x-" + tune_.baseline};
     if (tune_.guard == "none" || tune_.guard == tune_.metric) tune_.guard.clear();
     try {
@@ -137,6 +140,10 @@ class TuneCommand : public CliCommand {
       if (name == "reference") throw UsageError(fmt::format("{} reference: the reference is what tune measures against", option));
     if (tune_.compare.referenceSpp > 16 && tune_.compare.referenceSpp % 16 != 0)
       throw UsageError(fmt::format("--spp {}: give at most 16 or a multiple of 16", tune_.compare.referenceSpp));
+    if (printStageCount_) {
+      fmt::print("{}\n", session::tuneStageCount(tune_));
+      return 0;
+    }
     std::optional<session::Shard> shard;
     if (!shard_.empty() || shardCount_) {
       if (shard_.empty()) throw UsageError("--shard-count goes with --shard auto");
@@ -261,6 +268,7 @@ class TuneCommand : public CliCommand {
   session::TuneOptions tune_;
   std::vector<std::string> scenes_, budgets_, merge_;
   bool stopWithParent_ = false;
+  bool printStageCount_ = false;
   std::string cameras_, cache_, out_ = "out/tune", shard_;
   std::optional<std::string> shardCount_;
 };

@@ -333,6 +333,10 @@ std::string budgetFileStem(const TuneOptions& o, const TuneBudget& b) {
 
 }  // namespace
 
+uint32_t tuneStageCount(const TuneOptions& o) {
+  return o.rungs + 2;  // the rungs, then "features" and "features-together"
+}
+
 TuneOutcome runTune(Session& session, const SweepPlan& plan, const TuneOptions& o, const std::optional<Shard>& shard,
                     const TuneCallbacks& cb) {
   if (o.budgets.empty()) throw SessionError("tune needs at least one --budget");

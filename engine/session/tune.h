@@ -91,6 +91,10 @@ struct TuneOutcome {
 TuneOutcome runTune(Session& session, const SweepPlan& plan, const TuneOptions& options,
                     const std::optional<Shard>& shard, const TuneCallbacks& callbacks);
 
+// How many stages a tune with these options has, each needing the one before it finished: a job
+// array per stage (deploy/slurm/submit.sh asks `twinlight tune --print-stage-count`).
+uint32_t tuneStageCount(const TuneOptions& options);
+
 // report.html of a finished tune: the front with each point's interval, the chosen points, what
 // each budget left off and the images at each chosen point.
 void writeTuneReportHtml(const std::filesystem::path& file, const nlohmann::json& tuneReport,

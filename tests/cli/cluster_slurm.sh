@@ -21,6 +21,8 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 rm -rf "$work" && mkdir -p "$work"
 work=$(cd "$work" && pwd)
 export TWINLIGHT=$tl
+# shellcheck source=/dev/null
+source "$here/tune_logs.sh"
 
 bake_scenes=("$content/cornell.gltf" "$content/atrium.gltf" "$content/grove.gltf" "$content/banners.gltf")
 echo '[{"name": "legacy-coarse", "path": "legacy", "settings": {"legacyConeDivisor": 2}}]' >"$work/variants.json"
@@ -30,6 +32,16 @@ sweep=(--scene "$content/cornell.gltf" "$content/grove.gltf" --cameras scene --s
 # tune's, not the timing's.
 tune=(--scene "$content/cornell.gltf" --size 32x18 --candidates 4 --rungs 1 --frames 4 --spp 8 --budget 1000ms
   --cache "$work/tune_cache")
+# One job array per stage: twinlight says how many (--rungs 1: the rung and two feature stages).
+stages=$("$tl" tune "${tune[@]}" --print-stage-count)
+[ "$stages" = 3 ] || { echo "tune --print-stage-count printed \`$stages' for one rung (3 stages)"; exit 1; }
+# Options twinlight refuses are refused before anything is queued: exit 2, no folder made.
+if "$deploy/slurm/submit.sh" tune 2 "$work/tune_bad_options" "${tune[@]}" --frames 1 >"$work/tune_bad_options.log" 2>&1; then
+  cat "$work/tune_bad_options.log"; echo "submit.sh accepted a tune of 1 frame"; exit 1
+fi
+if ! grep -q "nothing submitted" "$work/tune_bad_options.log" || [ -e "$work/tune_bad_options" ]; then
+  cat "$work/tune_bad_options.log"; echo "submit.sh: no clear refusal, or a folder made for a refused tune"; exit 1
+fi
 
 # ---- the single-process results everything is compared with -----------------------------
 "$tl" bake --scene "${bake_scenes[@]}" --db "$work/single.db" >"$work/single_bake.log" 2>&1
@@ -162,7 +174,7 @@ if start_slurm; then
     { tail -n 20 "$work"/tune/logs/*.log; echo "the tune's arrays or its closing job failed"; exit 1; }
   # A task that fails cancels what waits for it, and --wait says so (sbatch --wait alone
   # exits 0 for a job cancelled before it ran).
-  if timeout 300 "$deploy/slurm/submit.sh" --wait tune 2 "$work/tune_refused" "${tune[@]}" --frames 1 \
+  if timeout 300 "$deploy/slurm/submit.sh" --wait tune 2 "$work/tune_refused" "${tune[@]}" --scene "$work/no_such_scene.gltf" \
       >"$work/tune_refused.log" 2>&1; then
     cat "$work/tune_refused.log"; echo "submit.sh --wait exited 0 although every task failed"; exit 1
   fi
@@ -190,9 +202,9 @@ else
   }
   run_array 1 4 bake "$work/bake" "${bake_scenes[@]}"
   run_array 0 2 compare "$work/sweep" "${sweep[@]}" --cache "$work/cache_shards"
-  # The tune: its stages one array after another (--rungs 1: three), then the closing job.
+  # The tune: its stages one array after another, then the closing job.
   mkdir -p "$work/tune/logs"
-  for stage in 1 2 3; do
+  for ((stage = 1; stage <= stages; ++stage)); do
     pids=()
     for id in 0 1; do
       SLURM_ARRAY_TASK_ID=$id SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=1 SLURM_ARRAY_TASK_STEP=1 SLURM_ARRAY_TASK_COUNT=2 \
@@ -236,7 +248,7 @@ for f in tune.json report.html preset-rt-1000ms.json; do
   [ -s "$work/tune/tune/$f" ] || { cat "$work"/tune/logs/*.log; echo "the tune wrote no $f"; exit 1; }
 done
 closing=$(cat "$work"/tune/logs/tune-merge-*.log)
-read -r runs done_before <<<"$(sed -n 's/.*: \([0-9]*\) compare run(s) (\([0-9]*\) found done).*/\1 \2/p' <<<"$closing")"
+read -r runs done_before <<<"$(tune_runs_and_reused <(echo "$closing"))"
 if [ -z "${runs:-}" ] || [ "$runs" != "$done_before" ]; then
   echo "$closing"
   echo "the closing job measured $((${runs:-0} - ${done_before:-0})) run(s) the arrays should have"
@@ -244,8 +256,7 @@ if [ -z "${runs:-}" ] || [ "$runs" != "$done_before" ]; then
 fi
 measured=0
 for log in "$work"/tune/logs/tune-[0-9]-*.log; do
-  n=$(sed -n 's/^tune: measured \([0-9]*\) run(s).*/\1/p; s/.*: \([0-9]*\) compare run(s) (\([0-9]*\) found done).*/\1 - \2/p' "$log" | head -n 1)
-  measured=$((measured + ${n:-0}))
+  measured=$((measured + $(tune_measured "$log")))
 done
 [ "$measured" = "$runs" ] || { echo "the tune's tasks measured $measured run(s) between them, for $runs"; exit 1; }
-echo "tune: $runs compare runs over 3 stages of 2 array tasks $ran, each measured once, and the closing job wrote the preset"
+echo "tune: $runs compare runs over $stages stages of 2 array tasks $ran, each measured once, and the closing job wrote the preset"

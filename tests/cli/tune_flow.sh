@@ -10,9 +10,14 @@ tl="$1" scene="$2" out="$3"
 rm -rf "$out"
 mkdir -p "$out"
 fail() { echo "tune flow: $*" >&2; exit 1; }
+# shellcheck source=/dev/null
+source "$(dirname "$0")/tune_logs.sh"
 
 small=(--scene "$scene" --size 48x27 --candidates 4 --rungs 2 --frames 4 --spp 16 --cache "$out/cache")
 
+# Two rungs, then the two feature stages: a job array each on a cluster.
+stages=$("$tl" tune "${small[@]}" --print-stage-count) || fail "--print-stage-count failed"
+[ "$stages" = 4 ] || fail "--print-stage-count printed \`$stages' for two rungs (4 stages)"
 "$tl" tune "${small[@]}" --budget 1.5x-legacy --budget 1000ms --out "$out/one" > "$out/one.log" 2>&1 \
   || { cat "$out/one.log"; fail "the tune failed"; }
 cat "$out/one.log"
@@ -31,10 +36,9 @@ grep -Eq "^    rt[A-Za-z]+: (no effect here: off|not needed here: off|needed: th
 # A finished folder resumes: nothing measured again, the same choice.
 "$tl" tune "${small[@]}" --budget 1.5x-legacy --budget 1000ms --out "$out/one" > "$out/again.log" 2>&1 \
   || { cat "$out/again.log"; fail "the resumed tune failed"; }
-grep -q "compare run(s) (\([0-9]*\) found done)" "$out/again.log" || fail "no run count"
-runs=$(sed -n 's/.*: \([0-9]*\) compare run(s) (\([0-9]*\) found done).*/\1 \2/p' "$out/again.log")
-set -- $runs
-[ "$1" = "$2" ] || fail "the resumed tune measured again ($1 runs, $2 found done)"
+read -r runs reused <<<"$(tune_runs_and_reused "$out/again.log")"
+[ -n "${runs:-}" ] || fail "no run count"
+[ "$runs" = "$reused" ] || fail "the resumed tune measured again ($runs runs, $reused found done)"
 diff <(grep "budget" "$out/one.log") <(grep "budget" "$out/again.log") || fail "the resumed tune chose differently"
 
 # Merged into another folder, the finished runs resume there: nothing measured again; a folder
@@ -43,8 +47,9 @@ diff <(grep "budget" "$out/one.log") <(grep "budget" "$out/again.log") || fail "
 grep -q "merged [1-9][0-9]* measurement(s) from 1 folder(s)" "$out/merge.log" || { cat "$out/merge.log"; fail "nothing merged"; }
 "$tl" tune "${small[@]}" --budget 1.5x-legacy --budget 1000ms --out "$out/merged" > "$out/merged_run.log" 2>&1 \
   || { cat "$out/merged_run.log"; fail "the tune in the merged folder failed"; }
-set -- $(sed -n 's/.*: \([0-9]*\) compare run(s) (\([0-9]*\) found done).*/\1 \2/p' "$out/merged_run.log")
-[ "$1" = "$2" ] || fail "the merged folder measured $(( $1 - $2 )) run(s) again"
+read -r runs reused <<<"$(tune_runs_and_reused "$out/merged_run.log")"
+[ -n "${runs:-}" ] || { cat "$out/merged_run.log"; fail "no run count"; }
+[ "$runs" = "$reused" ] || fail "the merged folder measured $((runs - reused)) run(s) again"
 mkdir -p "$out/other" && echo '{"other": true}' > "$out/other/tune-plan.json"
 if "$tl" tune --merge "$out/one" --out "$out/other" > "$out/merge_other.log" 2>&1; then fail "merged into another tune's folder"; fi
 grep -q "the plan of another tune" "$out/merge_other.log" || { cat "$out/merge_other.log"; fail "no clear refusal of the merge"; }
@@ -55,22 +60,19 @@ grep -q "another tune's folder" "$out/other.log" || { cat "$out/other.log"; fail
 
 # Two shards sharing a folder, run in turns until the tune is finished: between them they measure
 # each compare run exactly once, and the unsharded run that follows measures nothing.
-measured_by() {  # runs a log says this process measured
-  sed -n 's/^tune: measured \([0-9]*\) run(s).*/\1/p; s/.*: \([0-9]*\) compare run(s) (\([0-9]*\) found done).*/\1 - \2/p' "$1" \
-    | head -n 1 | { read -r expr; echo $((expr)); }
-}
 measured=0
-for round in 1 2 3 4 5 6; do
+for _ in 1 2 3 4 5 6; do
   for i in 0 1; do
     [ -f "$out/shared/tune.json" ] && break
     "$tl" tune "${small[@]}" --chunk 2 --shard "$i/2" --out "$out/shared" > "$out/shard$i.log" 2>&1 \
       || { cat "$out/shard$i.log"; fail "shard $i failed"; }
-    measured=$((measured + $(measured_by "$out/shard$i.log")))
+    measured=$((measured + $(tune_measured "$out/shard$i.log")))
   done
 done
 [ -f "$out/shared/tune.json" ] || fail "the shards never finished"
 "$tl" tune "${small[@]}" --chunk 2 --out "$out/shared" > "$out/after.log" 2>&1 || { cat "$out/after.log"; fail "the run after the shards failed"; }
-set -- $(sed -n 's/.*: \([0-9]*\) compare run(s) (\([0-9]*\) found done).*/\1 \2/p' "$out/after.log")
-[ "$1" = "$2" ] || fail "after the shards, $(( $1 - $2 )) run(s) were measured again"
-[ "$measured" = "$1" ] || fail "the shards measured $measured runs for a tune of $1"
-echo "tune flow: ok ($1 compare runs, each measured once by the shards)"
+read -r runs reused <<<"$(tune_runs_and_reused "$out/after.log")"
+[ -n "${runs:-}" ] || { cat "$out/after.log"; fail "no run count"; }
+[ "$runs" = "$reused" ] || fail "after the shards, $((runs - reused)) run(s) were measured again"
+[ "$measured" = "$runs" ] || fail "the shards measured $measured runs for a tune of $runs"
+echo "tune flow: ok ($runs compare runs, each measured once by the shards)"
