@@ -1,5 +1,7 @@
 // The buffer viewer's decoders invert the encoders the passes use.
 #include "lighting/common/decoders.h"
+#include "shared/albedo.h"
+#include "shared/display.h"
 #include "shared/packing.h"
 #include "shared/rt.h"
 #include "shared/sh.h"
@@ -7,6 +9,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <sstream>
 
@@ -159,6 +163,79 @@ TEST(Decoders, InstanceIdNamesTheInstance) {
   in.scene = &s;
   EXPECT_EQ(find(decodeTexel("instance-id", in), "instance"), "crate (index 2)");
   EXPECT_NE(find(decodeTexel("instance-id", {oneTexel(VK_FORMAT_R32_UINT, 0u)}), "instance").find("none"), std::string::npos);
+}
+
+TEST(Decoders, IbufferSumsSayWhatTheyWeigh) {
+  auto r = oneTexel(VK_FORMAT_R32G32B32A32_SFLOAT, glm::vec4(1.0f, 2.0f, 3.0f, 0.0f));
+  DecodedLines lines = decodeTexel("ibuffer-sg2", {r});
+  EXPECT_EQ(parseVec(find(lines, "sum")), glm::vec3(1.0f, 2.0f, 3.0f));
+  EXPECT_NE(find(lines, "weighs").find("Schlick"), std::string::npos);
+  EXPECT_NE(find(decodeTexel("ibuffer-dg", {r}), "weighs").find("diffuse layer"), std::string::npos);
+  EXPECT_NE(find(decodeTexel("ibuffer-ms", {r}), "weighs").find("multiple-scattering"), std::string::npos);
+}
+
+TEST(Decoders, DepthShareIsAShareOfTheWholeRadiance) {
+  auto part = oneTexel(VK_FORMAT_R32G32B32A32_SFLOAT, glm::vec4(0.25f, 0.25f, 0.25f, 0.0f));
+  auto whole = oneTexel(VK_FORMAT_R32G32B32A32_SFLOAT, glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
+  DecodeInput in{part, 0, 0, 0, [&](const std::string& name) { return name == "all" ? &whole : nullptr; }};
+  EXPECT_EQ(find(decodeTexel("depth-share whole=all", in), "share of the pixel"), "25.0%");
+  EXPECT_EQ(find(decodeTexel("depth-share whole=missing", in), "share of the pixel"), "whole radiance not read back");
+}
+
+TEST(Decoders, AlbedoSourceNamesWhereTheAlbedoCameFrom) {
+  auto r = oneTexel(VK_FORMAT_R32G32B32A32_SFLOAT, glm::vec4(0.5f, 0.5f, 0.5f, shared::kAlbedoSourceBaked));
+  EXPECT_EQ(find(decodeTexel("albedo-source", {r}), "source"), "baked");
+  EXPECT_FALSE(meaningView("albedo-source")) << "a colour reads as a colour";
+}
+
+TEST(Decoders, EachDecodersDefaultViewAndSign) {
+  const auto hit = meaningView("rt-hit-record");
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->meaning, shared::kDisplayMeaningHitDistance);
+  EXPECT_TRUE(hit->fitted && hit->falseColour);
+  EXPECT_EQ(hit->unit, "m");
+  ASSERT_TRUE(meaningView("oct-normal"));
+  EXPECT_EQ(meaningView("oct-normal")->meaning, shared::kDisplayMeaningOctNormal);
+  ASSERT_TRUE(meaningView("rt-hit-surface"));
+  EXPECT_EQ(meaningView("rt-hit-surface")->meaning, shared::kDisplayMeaningHitNormal);
+  const auto sh = meaningView("sh-irradiance coCg=c normal=n");
+  ASSERT_TRUE(sh);
+  EXPECT_EQ(sh->meaning, shared::kDisplayMeaningShIrradiance);
+  EXPECT_EQ(sh->companions, (std::vector<std::string>{"c", "n"}));
+  EXPECT_FALSE(meaningView("sh-irradiance coCg=c")) << "no normal to resolve it at";
+  for (const char* none : {"instance-id", "voxel-faces", "ibuffer-dg", "depth-share whole=w", "no-such-decoder", ""})
+    EXPECT_FALSE(meaningView(none)) << none;
+  // Signed by nature: directions and SH; signed by format: SNORM; the rest must not go negative.
+  for (const char* signedSpec : {"oct-normal", "sh-irradiance coCg=c normal=n", "rt-hit-surface"})
+    EXPECT_FALSE(negativesInvalid(signedSpec, VK_FORMAT_R16G16_SFLOAT)) << signedSpec;
+  EXPECT_FALSE(negativesInvalid("", VK_FORMAT_R16G16_SNORM));
+  for (const char* unsignedSpec : {"", "ibuffer-dg", "depth-share", "albedo-source", "voxel-faces"})
+    EXPECT_TRUE(negativesInvalid(unsignedSpec, VK_FORMAT_R16G16B16A16_SFLOAT)) << unsignedSpec;
+}
+
+TEST(Decoders, FittedMeaningsGiveAValuePerTexel) {
+  graph::Readback hits;
+  hits.format = VK_FORMAT_R32_UINT;
+  hits.extent = {2, 1, 1};
+  appendBytes(hits.bytes, shared::tlRtPackHit(2.0f, glm::vec3(0.5f)));
+  appendBytes(hits.bytes, shared::kRtHitMiss);
+  const std::vector<float> d = meaningValues("rt-hit-record", hits, nullptr);
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_NEAR(d[0], 2.0f, 1e-3f);
+  EXPECT_TRUE(std::isnan(d[1])) << "a miss has no distance";
+  // SH irradiance: the largest channel at the normal; nothing without its companions.
+  const glm::vec3 n(0.0f, 1.0f, 0.0f);
+  const shared::ShLumaCoCg sh = shared::tlShProjectRadiance(n, glm::vec3(1.0f, 0.5f, 0.25f));
+  auto shY = oneTexel(VK_FORMAT_R32G32B32A32_SFLOAT, sh.shY);
+  auto coCg = oneTexel(VK_FORMAT_R32G32_SFLOAT, sh.coCg);
+  auto normal = oneTexel(VK_FORMAT_R32G32_SFLOAT, shared::tlOctEncode(n));
+  auto companion = [&](const std::string& name) { return name == "c" ? &coCg : name == "n" ? &normal : nullptr; };
+  const std::vector<float> e = meaningValues("sh-irradiance coCg=c normal=n", shY, companion);
+  ASSERT_EQ(e.size(), 1u);
+  const glm::vec3 expected = shared::tlShResolveIrradiance(sh, n);
+  EXPECT_NEAR(e[0], std::max({expected.r, expected.g, expected.b}), 1e-4f);
+  EXPECT_TRUE(meaningValues("sh-irradiance coCg=c normal=gone", shY, companion).empty());
+  EXPECT_TRUE(meaningValues("oct-normal", normal, nullptr).empty()) << "a direction is not fitted to a range";
 }
 
 }  // namespace

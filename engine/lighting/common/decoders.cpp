@@ -125,9 +125,10 @@ DecodedLines depthShare(const DecodeInput& in, const DecoderSpec& spec) {
 
 // One of the I-buffer's sums of light (shared/redeferred.h): its value, luminance and what it
 // weighs. A white dielectric would reflect about Ldg / pi of the diffuse share.
-DecodedLines ibufferSum(const DecodeInput& in, const std::string& quantity) {
+DecodedLines ibufferSum(const DecodeInput& in, const DecoderSpec& spec) {
   auto v = floatsAt(in.resource, in.x, in.y, in.z);
   if (v.size() < 3) return {};
+  const std::string quantity = spec.name.substr(std::string_view(kIbufferDecoderPrefix).size());
   const glm::vec3 sum(v[0], v[1], v[2]);
   const char* meaning = quantity == "dg"    ? "sum of E n.l (1 - E_d(mu_i)): the diffuse layer's light"
                         : quantity == "sg1" ? "sum of E n.l D V: the specular lobe's light, F = 1"
@@ -154,6 +155,108 @@ DecodedLines voxelFaces(const DecodeInput& in) {
           {"voxel", fmt::format("level {}, x {} y {} z {} of {}", in.z / R, in.x % R, in.y, in.z % R, R)},
           {"radiance", vec(glm::vec3(v[0], v[1], v[2]))},
           {"opacity", fmt::format("{:.3f}", v[3])}};
+}
+
+// The default views (MeaningView) and their per-texel values, for the rows below.
+std::optional<MeaningView> hitDistanceView(const DecoderSpec&) {
+  return MeaningView{shared::kDisplayMeaningHitDistance, "hit distance", "m",
+                     "near (blue) to far (red) over the range; dark blue-grey: miss (sky), grey: pending (traced later)",
+                     true, true, {}};
+}
+
+float hitDistanceValue(const DecodeInput& in, const DecoderSpec&) {
+  const uint32_t hit = uintAt(in.resource, in.x, in.y, in.z);
+  return shared::tlRtIsHit(hit) ? shared::tlRtHitDistance(hit) : std::numeric_limits<float>::quiet_NaN();
+}
+
+constexpr const char* kDirectionLegend =
+    "a direction as colour: red +X, green +Y, blue +Z; 0.5 grey = 0, darker = negative; no surface: near black";
+
+std::optional<MeaningView> octNormalView(const DecoderSpec&) {
+  return MeaningView{shared::kDisplayMeaningOctNormal, "shading normal", "", kDirectionLegend, false, false, {}};
+}
+
+std::optional<MeaningView> hitNormalView(const DecoderSpec&) {
+  return MeaningView{shared::kDisplayMeaningHitNormal, "hit normal", "", kDirectionLegend, false, false, {}};
+}
+
+// Irradiance needs the chroma and the normal to resolve the SH at.
+std::optional<MeaningView> shIrradianceView(const DecoderSpec& spec) {
+  if (!spec.companions.count("coCg") || !spec.companions.count("normal")) return std::nullopt;
+  return MeaningView{shared::kDisplayMeaningShIrradiance, "irradiance at the pixel normal", "W/m^2",
+                     "what the SH resolves to at the G-buffer normal, over the range (black to white per channel)",
+                     true, false, {spec.companions.at("coCg"), spec.companions.at("normal")}};
+}
+
+// The largest channel of the irradiance at the normal: what the RGB display's range must hold.
+float shIrradianceValue(const DecodeInput& in, const DecoderSpec& spec) {
+  auto shY = floatsAt(in.resource, in.x, in.y, in.z);
+  auto coCg = companionAt(in, spec.companions.at("coCg"));
+  auto n = companionAt(in, spec.companions.at("normal"));
+  if (shY.size() < 4 || coCg.size() < 2 || n.size() < 2) return std::numeric_limits<float>::quiet_NaN();
+  const shared::ShLumaCoCg sh = shared::tlShMake(glm::vec4(shY[0], shY[1], shY[2], shY[3]), glm::vec2(coCg[0], coCg[1]));
+  const glm::vec3 e = shared::tlShResolveIrradiance(sh, shared::tlOctDecode(glm::vec2(n[0], n[1])));
+  return std::max({e.r, e.g, e.b});
+}
+
+std::optional<MeaningView> aoView(const DecoderSpec&) {
+  return MeaningView{shared::kDisplayMeaningAo, "ambient occlusion", "",
+                     "visibility as grey: white = open (1), black = fully occluded (0); no surface: near black",
+                     false, false, {}};
+}
+
+// A slice of the clipmap: its level and world z voxel (R from the height, levels stacked in z).
+std::optional<std::string> voxelSlice(const VkExtent3D& extent, uint32_t slice) {
+  const uint32_t R = extent.height;
+  if (R == 0 || std::max(1u, extent.depth) % R != 0) return std::nullopt;
+  return fmt::format("level {}, world z voxel {} of {}", slice / R, slice % R, R);
+}
+
+// Every decoder, one row each: all the viewer asks of it. A new buffer view is a decode
+// function and its row (a new default view also needs its kDisplayMeaning* in shared/display.h
+// and the display shader's case).
+struct DecoderRow {
+  std::string_view name;
+  bool namePrefix = false;  // the spec's name starts with `name` (ibuffer-dg, -sg1, ...)
+  DecodedLines (*decode)(const DecodeInput&, const DecoderSpec&) = nullptr;
+  // What the viewer shows by default; none: the stored values read as what they mean.
+  std::optional<MeaningView> (*meaning)(const DecoderSpec&) = nullptr;
+  // A fitted meaning's value at a texel, NaN where there is none.
+  float (*meaningValue)(const DecodeInput&, const DecoderSpec&) = nullptr;
+  bool negativesValid = false;  // signed by nature: directions, SH coefficients
+  std::optional<std::string> (*slice)(const VkExtent3D&, uint32_t slice) = nullptr;  // what a 3D slice is
+};
+
+const DecoderRow kDecoderRows[] = {
+    {.name = "rt-hit-record",
+     .decode = [](const DecodeInput& i, const DecoderSpec&) { return hitRecord(i); },
+     .meaning = hitDistanceView,
+     .meaningValue = hitDistanceValue},
+    {.name = "rt-hit-surface",
+     .decode = [](const DecodeInput& i, const DecoderSpec&) { return hitSurface(i); },
+     .meaning = hitNormalView,
+     .negativesValid = true},
+    {.name = "oct-normal",
+     .decode = [](const DecodeInput& i, const DecoderSpec&) { return octNormal(i); },
+     .meaning = octNormalView,
+     .negativesValid = true},
+    {.name = "instance-id", .decode = [](const DecodeInput& i, const DecoderSpec&) { return instanceId(i); }},
+    {.name = "sh-irradiance",
+     .decode = shIrradiance,
+     .meaning = shIrradianceView,
+     .meaningValue = shIrradianceValue,
+     .negativesValid = true},
+    {.name = "albedo-source", .decode = [](const DecodeInput& i, const DecoderSpec&) { return albedoSource(i); }},
+    {.name = kDepthShareDecoder, .decode = depthShare},
+    {.name = kIbufferDecoderPrefix, .namePrefix = true, .decode = ibufferSum},
+    {.name = "ao", .decode = [](const DecodeInput& i, const DecoderSpec&) { return ambientOcclusion(i); }, .meaning = aoView},
+    {.name = "voxel-faces", .decode = [](const DecodeInput& i, const DecoderSpec&) { return voxelFaces(i); }, .slice = voxelSlice},
+};
+
+const DecoderRow* findDecoder(const DecoderSpec& spec) {
+  for (const DecoderRow& row : kDecoderRows)
+    if (row.namePrefix ? spec.name.rfind(row.name, 0) == 0 : spec.name == row.name) return &row;
+  return nullptr;
 }
 
 }  // namespace
@@ -205,81 +308,35 @@ DecodedLines rawTexel(const graph::Readback& r, uint32_t x, uint32_t y, uint32_t
 }
 
 DecodedLines decodeTexel(const std::string& text, const DecodeInput& in) {
-  using Decoder = DecodedLines (*)(const DecodeInput&, const DecoderSpec&);
-  static const std::map<std::string, Decoder> kDecoders = {
-      {"rt-hit-record", [](const DecodeInput& i, const DecoderSpec&) { return hitRecord(i); }},
-      {"rt-hit-surface", [](const DecodeInput& i, const DecoderSpec&) { return hitSurface(i); }},
-      {"oct-normal", [](const DecodeInput& i, const DecoderSpec&) { return octNormal(i); }},
-      {"instance-id", [](const DecodeInput& i, const DecoderSpec&) { return instanceId(i); }},
-      {"sh-irradiance", [](const DecodeInput& i, const DecoderSpec& s) { return shIrradiance(i, s); }},
-      {"albedo-source", [](const DecodeInput& i, const DecoderSpec&) { return albedoSource(i); }},
-      {kDepthShareDecoder, [](const DecodeInput& i, const DecoderSpec& s) { return depthShare(i, s); }},
-      {"ao", [](const DecodeInput& i, const DecoderSpec&) { return ambientOcclusion(i); }},
-      {"voxel-faces", [](const DecodeInput& i, const DecoderSpec&) { return voxelFaces(i); }},
-  };
   const DecoderSpec spec = parseDecoderSpec(text);
-  if (spec.name.rfind(kIbufferDecoderPrefix, 0) == 0) return ibufferSum(in, spec.name.substr(std::string_view(kIbufferDecoderPrefix).size()));
-  auto it = kDecoders.find(spec.name);
-  return it == kDecoders.end() ? DecodedLines{} : it->second(in, spec);
+  const DecoderRow* row = findDecoder(spec);
+  return row ? row->decode(in, spec) : DecodedLines{};
 }
 
 std::optional<MeaningView> meaningView(const std::string& text) {
   const DecoderSpec spec = parseDecoderSpec(text);
-  if (spec.name == "rt-hit-record")
-    return MeaningView{shared::kDisplayMeaningHitDistance, "hit distance", "m",
-                       "near (blue) to far (red) over the range; dark blue-grey: miss (sky), grey: pending (traced later)",
-                       true, true, {}};
-  if (spec.name == "rt-hit-surface" || spec.name == "oct-normal")
-    return MeaningView{spec.name == "oct-normal" ? shared::kDisplayMeaningOctNormal : shared::kDisplayMeaningHitNormal,
-                       spec.name == "oct-normal" ? "shading normal" : "hit normal", "",
-                       "a direction as colour: red +X, green +Y, blue +Z; 0.5 grey = 0, darker = negative; no surface: near black",
-                       false, false, {}};
-  if (spec.name == "sh-irradiance" && spec.companions.count("coCg") && spec.companions.count("normal"))
-    return MeaningView{shared::kDisplayMeaningShIrradiance, "irradiance at the pixel normal", "W/m^2",
-                       "what the SH resolves to at the G-buffer normal, over the range (black to white per channel)",
-                       true, false, {spec.companions.at("coCg"), spec.companions.at("normal")}};
-  if (spec.name == "ao")
-    return MeaningView{shared::kDisplayMeaningAo, "ambient occlusion", "",
-                       "visibility as grey: white = open (1), black = fully occluded (0); no surface: near black",
-                       false, false, {}};
-  return std::nullopt;
+  const DecoderRow* row = findDecoder(spec);
+  return row && row->meaning ? row->meaning(spec) : std::nullopt;
 }
 
 std::vector<float> meaningValues(const std::string& text, const graph::Readback& r,
                                  const std::function<const graph::Readback*(const std::string&)>& companion) {
-  const auto view = meaningView(text);
-  if (!view || !view->fitted || r.extent.width == 0) return {};
-  const float none = std::numeric_limits<float>::quiet_NaN();
-  std::vector<float> out(size_t(r.extent.width) * r.extent.height, none);
-  if (view->meaning == shared::kDisplayMeaningHitDistance) {
-    for (uint32_t y = 0; y < r.extent.height; ++y)
-      for (uint32_t x = 0; x < r.extent.width; ++x) {
-        const uint32_t hit = uintAt(r, x, y, 0);
-        if (shared::tlRtIsHit(hit)) out[size_t(y) * r.extent.width + x] = shared::tlRtHitDistance(hit);
-      }
-    return out;
-  }
-  // SH irradiance: the probe's decoding, texel by texel.
+  const DecoderSpec spec = parseDecoderSpec(text);
+  const DecoderRow* row = findDecoder(spec);
+  const auto view = row && row->meaning ? row->meaning(spec) : std::nullopt;
+  if (!view || !view->fitted || !row->meaningValue || r.extent.width == 0) return {};
   for (const std::string& c : view->companions)
     if (!companion || !companion(c)) return {};
-  const DecoderSpec spec = parseDecoderSpec(text);
+  std::vector<float> out(size_t(r.extent.width) * r.extent.height);
   for (uint32_t y = 0; y < r.extent.height; ++y)
-    for (uint32_t x = 0; x < r.extent.width; ++x) {
-      DecodeInput in{r, x, y, 0, companion, nullptr};
-      auto shY = floatsAt(r, x, y, 0);
-      auto coCg = companionAt(in, spec.companions.at("coCg"));
-      auto n = companionAt(in, spec.companions.at("normal"));
-      if (shY.size() < 4 || coCg.size() < 2 || n.size() < 2) continue;
-      const shared::ShLumaCoCg sh = shared::tlShMake(glm::vec4(shY[0], shY[1], shY[2], shY[3]), glm::vec2(coCg[0], coCg[1]));
-      const glm::vec3 e = shared::tlShResolveIrradiance(sh, shared::tlOctDecode(glm::vec2(n[0], n[1])));
-      out[size_t(y) * r.extent.width + x] = std::max({e.r, e.g, e.b});  // what the RGB display's range must hold
-    }
+    for (uint32_t x = 0; x < r.extent.width; ++x)
+      out[size_t(y) * r.extent.width + x] = row->meaningValue(DecodeInput{r, x, y, 0, companion, nullptr}, spec);
   return out;
 }
 
 bool negativesInvalid(const std::string& text, VkFormat format) {
-  const std::string name = parseDecoderSpec(text).name;
-  if (name == "oct-normal" || name == "sh-irradiance" || name == "rt-hit-surface") return false;
+  const DecoderRow* row = findDecoder(parseDecoderSpec(text));
+  if (row && row->negativesValid) return false;
   switch (format) {
     case VK_FORMAT_R8_SNORM: case VK_FORMAT_R8G8_SNORM: case VK_FORMAT_R8G8B8A8_SNORM: case VK_FORMAT_R16_SNORM:
     case VK_FORMAT_R16G16_SNORM: case VK_FORMAT_R16G16B16A16_SNORM: return false;  // signed by choice
@@ -288,10 +345,11 @@ bool negativesInvalid(const std::string& text, VkFormat format) {
 }
 
 std::string sliceMeaning(const std::string& text, const VkExtent3D& extent, uint32_t slice) {
-  const uint32_t depth = std::max(1u, extent.depth), R = extent.height;
+  const uint32_t depth = std::max(1u, extent.depth);
   slice = std::min(slice, depth - 1);  // what the display shows for a slice past the end
-  if (parseDecoderSpec(text).name == "voxel-faces" && R > 0 && depth % R == 0)
-    return fmt::format("level {}, world z voxel {} of {}", slice / R, slice % R, R);
+  const DecoderRow* row = findDecoder(parseDecoderSpec(text));
+  if (row && row->slice)
+    if (std::optional<std::string> named = row->slice(extent, slice)) return *named;
   return fmt::format("z {} of {}", slice, depth);
 }
 

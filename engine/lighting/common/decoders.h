@@ -1,7 +1,9 @@
 // Texel decoders for the buffer viewer's pixel probe. A resource that needs decoding to be
 // understood says so in its description (graph::ResourceDesc::decoder, set where it is
-// written): "NAME key=resource ...". The viewer asks this table, by that spec, what a texel
-// means; it never knows a resource by name. Decoders (and what their companions are):
+// written): "NAME key=resource ...". The viewer asks the decoders, by that spec, what a texel
+// means; it never knows a resource by name. Each decoder is one row of the table in
+// decoders.cpp (its decoding, default view, sign and slices). The decoders (and what their
+// companions are):
 //   rt-hit-record          r32ui hit record: distance + albedo, or miss / pending (shared/rt.h)
 //   rt-hit-surface         rg32ui: hit normal (oct snorm16) + emission (rgb9e5)
 //   oct-normal             rg16 snorm octahedral normal (shared/packing.h)
