@@ -101,6 +101,11 @@ def light_fields(light):
     return {k: v for k, v in light.items() if "node" not in k}
 
 
+def describe_light(fields):
+    """light_fields as one line, for a message."""
+    return json.dumps(fields, sort_keys=True)
+
+
 def same_light(a, b):
     """Two light_fields that are the same light, numbers within float rounding (as the editor
     compares them: a light added again at the orbit's pivot lands there through other sums)."""
@@ -486,8 +491,8 @@ class Walk:
                 if token not in self.bound:
                     self.bound[token] = fields
                 elif not same_light(self.bound[token], fields):
-                    return f"{tag} on {scene}: a light changed: {json.dumps(fields, sort_keys=True)} was " \
-                           f"{json.dumps(self.bound[token], sort_keys=True)}"
+                    return f"{tag} on {scene}: a light changed: {describe_light(fields)} was " \
+                           f"{describe_light(self.bound[token])}"
             if have["settings"].get("shadowMapSize") != want["shadow"]:
                 return f"{tag} on {scene}: shadowMapSize {have['settings'].get('shadowMapSize')}, the walk has {want['shadow']}"
             overrides = list(have.get("overrides", {}).values())
@@ -514,9 +519,10 @@ class Walk:
                 if len(lights) != len(s.saved_lights):
                     return f"{name}.lighting.json holds {len(lights)} lights, the walk saved {len(s.saved_lights)}"
                 for token, light in zip(s.saved_lights, lights):
-                    if token in self.bound and not same_light(self.bound[token], light_fields(light)):
-                        return f"{name}.lighting.json: a light changed: {json.dumps(light_fields(light), sort_keys=True)} " \
-                               f"was {json.dumps(self.bound[token], sort_keys=True)}"
+                    fields = light_fields(light)
+                    if token in self.bound and not same_light(self.bound[token], fields):
+                        return f"{name}.lighting.json: a light changed: {describe_light(fields)} " \
+                               f"was {describe_light(self.bound[token])}"
             db = os.path.join(self.out, "dbs", name + ".db")
             if os.path.exists(db):
                 con = sqlite3.connect(db)

@@ -53,7 +53,6 @@ bool sameLight(const scene::Light& a, const scene::Light& b) {
   return false;
 }
 
-
 bool sameLighting(const Lighting& a, const Lighting& b) {
   return a.sunDirection == b.sunDirection && a.sunIrradiance == b.sunIrradiance && a.skyRadiance == b.skyRadiance &&
          a.exposureEv == b.exposureEv && a.sunAngularRadius == b.sunAngularRadius &&

@@ -50,7 +50,7 @@ std::vector<float> companionAt(const DecodeInput& in, const std::string& name) {
 
 std::string vec(const glm::vec3& v, int digits = 4) { return fmt::format("{:.{}f} {:.{}f} {:.{}f}", v.x, digits, v.y, digits, v.z, digits); }
 
-DecodedLines hitRecord(const DecodeInput& in) {
+DecodedLines hitRecord(const DecodeInput& in, const DecoderSpec&) {
   const uint32_t hit = uintAt(in.resource, in.x, in.y, in.z);
   if (shared::tlRtIsMiss(hit)) return {{"ray", "miss: left the scene (sky)"}};
   if (shared::tlRtIsPending(hit)) return {{"ray", "pending: the pre-trace found nothing (a real ray is traced)"}};
@@ -58,18 +58,18 @@ DecodedLines hitRecord(const DecodeInput& in) {
           {"hit albedo", vec(shared::tlRtHitAlbedo(hit), 3)}};
 }
 
-DecodedLines hitSurface(const DecodeInput& in) {
+DecodedLines hitSurface(const DecodeInput& in, const DecoderSpec&) {
   const uint32_t normal = uintAt(in.resource, in.x, in.y, in.z, 0), emission = uintAt(in.resource, in.x, in.y, in.z, 1);
   return {{"hit normal", vec(shared::tlOctDecodeSnorm16(normal))}, {"hit emission", vec(shared::tlUnpackRgb9e5(emission))}};
 }
 
-DecodedLines octNormal(const DecodeInput& in) {
+DecodedLines octNormal(const DecodeInput& in, const DecoderSpec&) {
   auto v = floatsAt(in.resource, in.x, in.y, in.z);
   if (v.size() < 2) return {};
   return {{"normal", vec(shared::tlOctDecode(glm::vec2(v[0], v[1])))}};
 }
 
-DecodedLines instanceId(const DecodeInput& in) {
+DecodedLines instanceId(const DecodeInput& in, const DecoderSpec&) {
   const uint32_t id = uintAt(in.resource, in.x, in.y, in.z);
   if (id == 0) return {{"instance", "none (background)"}};
   std::string name = in.scene && id - 1 < in.scene->instances.size() ? in.scene->instances[id - 1].name : "?";
@@ -96,7 +96,7 @@ DecodedLines shIrradiance(const DecodeInput& in, const DecoderSpec& spec) {
   return out;
 }
 
-DecodedLines albedoSource(const DecodeInput& in) {
+DecodedLines albedoSource(const DecodeInput& in, const DecoderSpec&) {
   auto v = floatsAt(in.resource, in.x, in.y, in.z);
   if (v.size() < 4) return {};
   const char* source = v[3] == shared::kAlbedoSourceOverride ? "override"
@@ -139,7 +139,7 @@ DecodedLines ibufferSum(const DecodeInput& in, const DecoderSpec& spec) {
 
 // Ambient occlusion: the visibility the lighting multiplies by (other channels, e.g. the view
 // depth a temporal filter keeps beside it, are shown by the raw values).
-DecodedLines ambientOcclusion(const DecodeInput& in) {
+DecodedLines ambientOcclusion(const DecodeInput& in, const DecoderSpec&) {
   auto v = floatsAt(in.resource, in.x, in.y, in.z);
   if (v.empty()) return {};
   return {{"visibility", fmt::format("{:.3f} ({:.0f}% occluded)", v[0], 100.0f * (1.0f - v[0]))}};
@@ -147,7 +147,7 @@ DecodedLines ambientOcclusion(const DecodeInput& in) {
 
 // The clipmap's layout (shared/legacy.h): R from the height, levels stacked in z.
 constexpr const char* kVoxelFaceNames[] = {"+x", "-x", "+y", "-y", "+z", "-z"};
-DecodedLines voxelFaces(const DecodeInput& in) {
+DecodedLines voxelFaces(const DecodeInput& in, const DecoderSpec&) {
   const uint32_t R = in.resource.extent.height;
   auto v = floatsAt(in.resource, in.x, in.y, in.z);
   if (R == 0 || v.size() < 4 || in.x / R >= 6) return {};
@@ -213,7 +213,7 @@ std::optional<std::string> voxelSlice(const VkExtent3D& extent, uint32_t slice) 
 }
 
 // Every decoder, one row each: all the viewer asks of it. A new buffer view is a decode
-// function and its row (a new default view also needs its kDisplayMeaning* in shared/display.h
+// function (of the texel and the spec, whether or not it reads the spec's companions) and its row (a new default view also needs its kDisplayMeaning* in shared/display.h
 // and the display shader's case).
 struct DecoderRow {
   std::string_view name;
@@ -229,28 +229,28 @@ struct DecoderRow {
 
 const DecoderRow kDecoderRows[] = {
     {.name = "rt-hit-record",
-     .decode = [](const DecodeInput& i, const DecoderSpec&) { return hitRecord(i); },
+     .decode = hitRecord,
      .meaning = hitDistanceView,
      .meaningValue = hitDistanceValue},
     {.name = "rt-hit-surface",
-     .decode = [](const DecodeInput& i, const DecoderSpec&) { return hitSurface(i); },
+     .decode = hitSurface,
      .meaning = hitNormalView,
      .negativesValid = true},
     {.name = "oct-normal",
-     .decode = [](const DecodeInput& i, const DecoderSpec&) { return octNormal(i); },
+     .decode = octNormal,
      .meaning = octNormalView,
      .negativesValid = true},
-    {.name = "instance-id", .decode = [](const DecodeInput& i, const DecoderSpec&) { return instanceId(i); }},
+    {.name = "instance-id", .decode = instanceId},
     {.name = "sh-irradiance",
      .decode = shIrradiance,
      .meaning = shIrradianceView,
      .meaningValue = shIrradianceValue,
      .negativesValid = true},
-    {.name = "albedo-source", .decode = [](const DecodeInput& i, const DecoderSpec&) { return albedoSource(i); }},
+    {.name = "albedo-source", .decode = albedoSource},
     {.name = kDepthShareDecoder, .decode = depthShare},
     {.name = kIbufferDecoderPrefix, .namePrefix = true, .decode = ibufferSum},
-    {.name = "ao", .decode = [](const DecodeInput& i, const DecoderSpec&) { return ambientOcclusion(i); }, .meaning = aoView},
-    {.name = "voxel-faces", .decode = [](const DecodeInput& i, const DecoderSpec&) { return voxelFaces(i); }, .slice = voxelSlice},
+    {.name = "ao", .decode = ambientOcclusion, .meaning = aoView},
+    {.name = "voxel-faces", .decode = voxelFaces, .slice = voxelSlice},
 };
 
 const DecoderRow* findDecoder(const DecoderSpec& spec) {
