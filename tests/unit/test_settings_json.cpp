@@ -165,6 +165,23 @@ TEST(SettingsSchema, DefaultsAreValidAndFormatBackToThemselves) {
   }
 }
 
+// Every setting belongs to `common` or to a lighting path that exists (the engine's groups name
+// their owner once, in TL_RENDER_SETTINGS), and each engine owner's settings are one run of the
+// schema: a group is declared in one place.
+TEST(SettingsSchema, EachSettingsOwnerIsCommonOrAPathAndItsGroupIsOneRun) {
+  std::vector<std::string> paths;
+  for (auto make : lighting::lightingPathRegistry()) paths.push_back(make()->name());
+  std::vector<std::string_view> runs;
+  for (const auto& s : lighting::settingsSchema()) {
+    EXPECT_TRUE(s.owner == "common" || std::find(paths.begin(), paths.end(), s.owner) != paths.end())
+        << s.name << " is owned by `" << s.owner << "`, neither common nor a path";
+    if (runs.empty() || runs.back() != s.owner) runs.push_back(s.owner);
+  }
+  for (std::string_view owner : runs)
+    EXPECT_EQ(std::count(runs.begin(), runs.end(), owner), 1) << "the settings of `" << owner << "` are split";
+  EXPECT_EQ(runs.front(), "common");
+}
+
 // The history flags name lighting paths that exist, and a path's history settings hash is
 // exactly what its flags say: the frame key's `settings` part (docs/design/frame-key.md).
 TEST(SettingsSchema, HistoryFlagsDecideEachPathsHistorySettings) {
