@@ -95,7 +95,7 @@ void mainMenu(EditorApp& app, bool& showHelp, bool& showBrowser) {
     const bool redeferred = app.session().settings().redeferred;
     const bool lightOnly = app.pinnedPreview() == session::kIbufferLightOnly;
     if (ImGui::MenuItem("Light only", nullptr, lightOnly, redeferred))
-      app.pinPreview(lightOnly ? "" : session::kIbufferLightOnly);
+      app.pinPreview(lightOnly ? std::string() : std::string(session::kIbufferLightOnly));
     if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
       ImGui::SetTooltip(redeferred ? "the light arriving at each pixel, on a white world (the I-buffer without materials)"
                                    : "needs redeferred shading: Lighting panel, `redeferred`");

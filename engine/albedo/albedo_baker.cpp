@@ -159,7 +159,7 @@ std::vector<BakeOutcome> AlbedoBaker::bake(const std::vector<const Combination*>
 }
 
 const graph::Readback* AlbedoBaker::lastAtlas() const {
-  auto it = executor_.readbacks().find(kBakeAtlas);
+  auto it = executor_.readbacks().find(std::string(kBakeAtlas));
   return it == executor_.readbacks().end() ? nullptr : &it->second;
 }
 

@@ -18,9 +18,9 @@
 
 namespace tl::albedo {
 
-inline constexpr const char* kBakeAtlas = "albedo.bake.atlas";
-inline constexpr const char* kBakeDepth = "albedo.bake.depth";
-inline constexpr const char* kBakeSums = "albedo.bake.sums";
+inline constexpr graph::ImageName kBakeAtlas{"albedo.bake.atlas"};
+inline constexpr graph::ImageName kBakeDepth{"albedo.bake.depth"};
+inline constexpr graph::BufferName kBakeSums{"albedo.bake.sums"};
 
 struct BakeOutcome {
   AlbedoKey key = 0;

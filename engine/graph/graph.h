@@ -6,6 +6,7 @@
 #pragma once
 
 #include "graph/barriers.h"
+#include "graph/resource_name.h"
 
 #include <vulkan/vulkan_core.h>
 

@@ -252,7 +252,7 @@ void GpuScene::updateInstances(const Scene& scene, const glm::dvec3& camera, con
 }
 
 void GpuScene::importBuffers(graph::RenderGraph& graph, uint64_t frame) {
-  auto imported = [&](const char* name, gpu::Buffer& b, const char* what) {
+  auto imported = [&](graph::BufferName name, gpu::Buffer& b, const char* what) {
     graph.importBuffer(name, graph::ResourceDesc::buffer(b.size(), what), b);
   };
   imported(kSceneVertices, vertices_, "all meshes' vertices");

@@ -16,15 +16,15 @@
 namespace tl::scene {
 
 // The scene's buffers as a frame graph sees them (imported: owned by GpuScene).
-inline constexpr const char* kSceneVertices = "scene.vertices";
-inline constexpr const char* kSceneIndices = "scene.indices";
-inline constexpr const char* kSceneInstances = "scene.instances";
-inline constexpr const char* kSceneMaterials = "scene.materials";
+inline constexpr graph::BufferName kSceneVertices{"scene.vertices"};
+inline constexpr graph::BufferName kSceneIndices{"scene.indices"};
+inline constexpr graph::BufferName kSceneInstances{"scene.instances"};
+inline constexpr graph::BufferName kSceneMaterials{"scene.materials"};
 // Deforming meshes' positions of the last frame (vec4 each), for the motion vectors; only in
 // scenes that deform.
-inline constexpr const char* kScenePreviousPositions = "scene.vertices.previous";
+inline constexpr graph::BufferName kScenePreviousPositions{"scene.vertices.previous"};
 // This frame's instance table as the host wrote it; a transfer pass copies it into kSceneInstances.
-inline constexpr const char* kSceneInstanceUpload = "scene.instances.upload";
+inline constexpr graph::BufferName kSceneInstanceUpload{"scene.instances.upload"};
 
 // The Vulkan format a texture is uploaded in: its TexelFormat, sRGB-decoded by the sampler
 // where an 8-bit texture holds colour.

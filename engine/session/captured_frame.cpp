@@ -103,8 +103,8 @@ gpu::Image& CapturedFrame::image(const std::string& name) {
 }
 
 void CapturedFrame::display(graph::Executor& executor, lighting::DisplayPass& pass, const lighting::DisplayRequest& request) {
-  const std::string shown = request.source.empty() ? "tonemap.ldr" : request.source;
-  const char* ids = lighting::kGbufferChannels[5].name;
+  const std::string shown = request.source.empty() ? std::string("tonemap.ldr") : request.source;
+  const std::string ids(lighting::gbuffer::kInstanceId);
   graph::RenderGraph graph;
   std::vector<std::string> names{shown};
   if (shown != ids) names.push_back(ids);

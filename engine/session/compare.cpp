@@ -4,6 +4,7 @@
 
 #include "gpu/pipeline.h"
 #include "lighting/common/composite_pass.h"
+#include "lighting/common/gbuffer_pass.h"
 #include "lighting/reference/reference_path.h"
 #include "metrics/depth_attribution.h"
 #include "metrics/flip.h"
@@ -468,7 +469,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     std::vector<double> frameMs;
     std::vector<std::pair<std::string, std::vector<double>>> passMsAll;
     auto render = [&](uint32_t n) {
-      for (const char* b : {lighting::kCompositeAo, lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(b);
+      for (graph::ImageName b : {lighting::kCompositeAo, lighting::kCompositeIrradiance, lighting::gbuffer::kDepth}) s.requestBuffer(b);
       s.renderFrames(n);
       frameMs.insert(frameMs.end(), s.frameGpuMs().begin(), s.frameGpuMs().end());
       for (const auto& passTimes : s.passGpuMs()) {
@@ -518,7 +519,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     if (!external && s.hasBuffer(lighting::kCompositeIrradiance)) {
       std::vector<float> irradianceMap;
       stages = stageErrors(channelOf(s.buffer(lighting::kCompositeAo), 0), rgbImage(s.buffer(lighting::kCompositeIrradiance)),
-                           s.buffer("gbuffer.depth").texels(), referenceImages, irradianceMap);
+                           s.buffer(lighting::gbuffer::kDepth).texels(), referenceImages, irradianceMap);
       writeFalseColourPng(o.outDir / (stem + "_irradiance.png"), test.width, test.height, irradianceMap, 1.0f);
       stages["irradianceMap"] = stem + "_irradiance.png";
     }

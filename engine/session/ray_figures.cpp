@@ -1,5 +1,6 @@
 #include "session/ray_figures.h"
 
+#include "lighting/common/gbuffer_pass.h"
 #include "lighting/reference/reference_path.h"
 #include "lighting/rt/rt_path.h"
 #include "metrics/statistics.h"
@@ -48,7 +49,7 @@ void requestRayFigureBuffers(Session& session) {
     return;
   }
   session.requestBuffer(lighting::kPretraceHits);
-  session.requestBuffer("gbuffer.depth");
+  session.requestBuffer(lighting::gbuffer::kDepth);
 }
 
 void enableRayProbe(Session& session) {
@@ -63,7 +64,7 @@ void enableRayProbe(Session& session) {
 nlohmann::json rayFigures(Session& session, const PassTimes& passes) {
   if (session.path() == "reference") return referenceRayFigures(session, passes);
   const auto& pre = session.buffer(lighting::kPretraceHits);
-  const auto depth = session.buffer("gbuffer.depth").texels();
+  const auto depth = session.buffer(lighting::gbuffer::kDepth).texels();
   std::vector<uint32_t> hits(pre.bytes.size() / 4);
   std::memcpy(hits.data(), pre.bytes.data(), hits.size() * 4);
   size_t surface = 0, pending = 0;

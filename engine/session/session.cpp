@@ -4,6 +4,7 @@
 
 #include "lighting/common/albedo_view_pass.h"
 #include "lighting/common/composite_pass.h"
+#include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/taa_pass.h"
 #include "scene/morph.h"
 #include "scene/node_animation.h"
@@ -539,7 +540,7 @@ void Session::finishOne() {
   if (compare_ && !done.compared.empty() && done.compareGeneration == compareGeneration_) {
     compare_->frameDone(done.compared, executor_->readback(lighting::compareImageName(done.compared)), total, done.key,
                         done.referenceSamples, done.exposure, done.accumulation,
-                        executor_->readbacks().count(lighting::kReferenceStdErr) && done.compared == compare_->referencePath()
+                        executor_->readbacks().count(std::string(lighting::kReferenceStdErr)) && done.compared == compare_->referencePath()
                             ? &executor_->readback(lighting::kReferenceStdErr)
                             : nullptr);
   }
@@ -600,7 +601,7 @@ void Session::finishFrame() {
 }
 
 const graph::Readback* Session::displayReadback() const {
-  auto it = executor_->readbacks().find(lighting::kDisplayLdr);
+  auto it = executor_->readbacks().find(std::string(lighting::kDisplayLdr));
   return it == executor_->readbacks().end() ? nullptr : &it->second;
 }
 
@@ -632,7 +633,7 @@ void Session::renderFrames(uint32_t n, const std::function<void(uint32_t done)>&
 }
 
 std::optional<uint32_t> Session::instanceAt(uint32_t x, uint32_t y) const {
-  const graph::Readback& ids = buffer("gbuffer.instanceId");
+  const graph::Readback& ids = buffer(lighting::gbuffer::kInstanceId);
   if (x >= ids.extent.width || y >= ids.extent.height) return std::nullopt;
   uint32_t id;
   std::memcpy(&id, &ids.bytes[(size_t(y) * ids.extent.width + x) * 4], 4);
@@ -670,8 +671,8 @@ void Session::closeCapture() {
   executor_ = std::make_unique<graph::Executor>(*device_);
 }
 
-const graph::Readback& Session::buffer(const std::string& name) const {
-  if (capture_) return capture_->readback(name);
+const graph::Readback& Session::buffer(std::string_view name) const {
+  if (capture_) return capture_->readback(std::string(name));
   try {
     return executor_->readback(name);
   } catch (const gpu::Error& e) {
@@ -679,12 +680,12 @@ const graph::Readback& Session::buffer(const std::string& name) const {
   }
 }
 
-bool Session::hasBuffer(const std::string& name) const {
+bool Session::hasBuffer(std::string_view name) const {
   if (capture_) {
     const auto& r = capture_->resources();
     return std::any_of(r.begin(), r.end(), [&](auto& info) { return info.name == name; });
   }
-  return executor_->readbacks().count(name) != 0;
+  return executor_->readbacks().count(std::string(name)) != 0;
 }
 
 void Session::writeGraph(const std::filesystem::path& file) const {

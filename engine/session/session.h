@@ -177,7 +177,7 @@ class Session {
   std::optional<uint32_t> instanceAt(uint32_t x, uint32_t y) const;
 
   // Read-backs for the last of the next frames: by name, or every resource.
-  void requestBuffer(const std::string& name) { requested_.push_back(name); }
+  void requestBuffer(std::string_view name) { requested_.emplace_back(name); }
   void requestAllBuffers() { requestAll_ = true; }
 
   // Drops every persistent (history) resource: the next frame starts accumulating afresh.
@@ -218,9 +218,9 @@ class Session {
   bool frameDone() const;
   void finishFrame();
 
-  const graph::Readback& buffer(const std::string& name) const;
+  const graph::Readback& buffer(std::string_view name) const;
   // Whether the last frame read back `name` (a path may not produce it).
-  bool hasBuffer(const std::string& name) const;
+  bool hasBuffer(std::string_view name) const;
   const std::vector<graph::PhysicalInfo>& resources() const;
   const std::vector<graph::PassTiming>& timings() const;
 

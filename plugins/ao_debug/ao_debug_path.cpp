@@ -15,7 +15,7 @@ namespace {
 
 using namespace lighting;
 
-constexpr const char* kAoGrey = "ao.grey";
+constexpr graph::ImageName kAoGrey{"ao.grey"};
 
 class AoDebugPath final : public LightingPath {
  public:
@@ -34,9 +34,9 @@ class AoDebugPath final : public LightingPath {
   LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
     const LightingOutputs traced = source_->addPasses(graph, in);
     const uint32_t w = in.settings.width, h = in.settings.height;
-    ComputePass(in.device, kAoGrey, "plugins/ao_debug/shaders/ao_grey.comp")
-        .sampled(shared::kAoDebugSource, traced.ambientOcclusion)
-        .sampled(shared::kAoDebugDepth, kGbufferDepth)
+    ComputePass(in.device, std::string(kAoGrey), "plugins/ao_debug/shaders/ao_grey.comp")
+        .sampled(shared::kAoDebugSource, graph::ImageName{traced.ambientOcclusion})
+        .sampled(shared::kAoDebugDepth, gbuffer::kDepth)
         .storageOut(shared::kAoDebugOutput, kAoGrey,
                     graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, "ambient occlusion as grey radiance"))
         .dispatch(w, h)

@@ -7,6 +7,7 @@
 // its GPU time is its own pass and the culled top level's build, not the rt path's passes.
 #include "lighting/common/frame_inputs.h"
 #include "lighting/common/gbuffer_pass.h"
+#include "lighting/common/history.h"
 #include "lighting/common/pass_builders.h"
 #include "lighting/common/scene_accel.h"
 #include "lighting/lighting_path.h"
@@ -29,10 +30,10 @@ const PluginSetting<uint32_t> kMaxFrames{"bentSkyMaxFrames", 32, 1, 1024, "frame
 // shading), the light shadow maps it shades with and the length of its rays.
 const HistoryInputsRegistrar kHistoryInputs{"bentsky", {"materials", "lightShadowMapSize", "lightShadowMaxLights", "rtRayLength"}};
 
-constexpr const char* kHistory = "bentsky.history";
-constexpr const char* kShY = "bentsky.shY";
-constexpr const char* kCoCg = "bentsky.coCg";
-constexpr const char* kAo = "bentsky.ao";
+constexpr graph::ImageName kHistory{"bentsky.history"};
+constexpr graph::ImageName kShY{"bentsky.shY"};
+constexpr graph::ImageName kCoCg{"bentsky.coCg"};
+constexpr graph::ImageName kAo{"bentsky.ao"};
 
 // What the running mean estimates changes with the view, the sun's shadow casters (the
 // scene, its geometry) and its own settings: any of these starts it over.
@@ -57,10 +58,9 @@ class BentSkyPath final : public LightingPath {
 
     const auto historyDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                                           "mean escaping direction (xyz) and visibility (w), last frame");
-    const bool stored = in.historyValid(kHistory, historyDesc);
-    const bool restart = history_.advance(kAccumulation, in.key, name(), in.historyLog, {stored}).action == HistoryAction::Restart;
+    const bool restart =
+        keepHistory(graph, in, history_, kAccumulation, name(), {{kHistory, historyDesc}}).action == HistoryAction::Restart;
     frames_ = restart ? 1 : std::min(frames_ + 1, kMaxFrames.of(s));
-    graph.declarePersistent(kHistory, historyDesc);
 
     shared::BentSkyPush push{};
     push.rays = kRays.of(s);  // at least 1: the schema's range
@@ -68,8 +68,8 @@ class BentSkyPath final : public LightingPath {
     push.rayLength = s.rtRayLength;  // in.settings has automatic values resolved
     ComputePass(in.device, "bentsky.trace", "plugins/bent_sky/shaders/bent_sky.comp")
         .uniform(shared::kBindingFrame, kFrameConstants)
-        .sampled(shared::kBentSkyNormal, "gbuffer.normal")
-        .sampled(shared::kBentSkyDepth, kGbufferDepth)
+        .sampled(shared::kBentSkyNormal, lighting::gbuffer::kNormal)
+        .sampled(shared::kBentSkyDepth, gbuffer::kDepth)
         .accelerationStructure(shared::kBentSkyTlas, traced.tlas, traced.names)
         .storageInOut(shared::kBentSkyHistory, kHistory)
         .storageOut(shared::kBentSkyShY, kShY,

@@ -5,9 +5,9 @@
 #include "rt/rt_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = kRtBindingCoCg) uniform sampler2D accumulated;  // .z: AO
-layout(set = 0, binding = kRtBindingHistDepth) uniform sampler2D viewDepth;
-layout(set = 0, binding = kRtBindingAo, r16f) uniform writeonly image2D aoOut;
+layout(set = 0, binding = kRtAoFilterAccumulated) uniform sampler2D accumulated;  // .z: AO
+layout(set = 0, binding = kRtAoFilterViewDepth) uniform sampler2D viewDepth;
+layout(set = 0, binding = kRtAoFilterOut, r16f) uniform writeonly image2D aoOut;
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);

@@ -24,13 +24,13 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = kRtBindingFrame) uniform Frame { FrameConstants frame; };
 layout(set = 0, binding = kRtBindingDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kRtBindingNormal) uniform sampler2D gNormal;
-layout(set = 0, binding = kRtBindingShY) uniform sampler2D inShY;
-layout(set = 0, binding = kRtBindingCoCg) uniform sampler2D inCoCgAo;
-layout(set = 0, binding = kRtBindingDenoiseMoment) uniform sampler2D lumaMoment;
+layout(set = 0, binding = kRtDenoiseInShY) uniform sampler2D inShY;
+layout(set = 0, binding = kRtDenoiseInCoCgAo) uniform sampler2D inCoCgAo;
+layout(set = 0, binding = kRtDenoiseLumaMoment) uniform sampler2D lumaMoment;
 layout(set = 0, binding = kRtBindingBaseColor) uniform sampler2D gBaseColor;
 layout(set = 0, binding = kRtBindingMaterial) uniform sampler2D gMaterial;
-layout(set = 0, binding = kRtBindingDenoiseShY, rgba16f) uniform writeonly image2D outShY;
-layout(set = 0, binding = kRtBindingDenoiseCoCgAo, rgba16f) uniform writeonly image2D outCoCgAo;
+layout(set = 0, binding = kRtDenoiseOutShY, rgba16f) uniform writeonly image2D outShY;
+layout(set = 0, binding = kRtDenoiseOutCoCgAo, rgba16f) uniform writeonly image2D outCoCgAo;
 layout(push_constant) uniform Push { RtDenoisePush push; };
 
 #include "common/poisson_disk.glsl"

@@ -6,13 +6,13 @@
 #include "rt/rt_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = kRtBindingShY) uniform sampler2D accumulatedShY;
-layout(set = 0, binding = kRtBindingCoCg) uniform sampler2D accumulatedCoCgAo;
-layout(set = 0, binding = kRtBindingCellShY) uniform sampler2D cellShY;
-layout(set = 0, binding = kRtBindingCellCoCgAo) uniform sampler2D cellCoCgAo;
-layout(set = 0, binding = kRtBindingCellPosition) uniform sampler2D cellPosition;
-layout(set = 0, binding = kRtBindingOutShY, rgba16f) uniform writeonly image2D outShY;
-layout(set = 0, binding = kRtBindingOutCoCgAo, rgba16f) uniform writeonly image2D outCoCgAo;
+layout(set = 0, binding = kRtBlendAccumulatedShY) uniform sampler2D accumulatedShY;
+layout(set = 0, binding = kRtBlendAccumulatedCoCgAo) uniform sampler2D accumulatedCoCgAo;
+layout(set = 0, binding = kRtBlendCellShY) uniform sampler2D cellShY;
+layout(set = 0, binding = kRtBlendCellCoCgAo) uniform sampler2D cellCoCgAo;
+layout(set = 0, binding = kRtBlendCellOrigin) uniform sampler2D cellPosition;
+layout(set = 0, binding = kRtBlendOutShY, rgba16f) uniform writeonly image2D outShY;
+layout(set = 0, binding = kRtBlendOutCoCgAo, rgba16f) uniform writeonly image2D outCoCgAo;
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);

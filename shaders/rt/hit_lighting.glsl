@@ -12,8 +12,8 @@
 // (shared/rt_cache.h) instead of the sky ray: every bounce, at the price of a lookup.
 #include "shared/rt_cache.h"
 layout(set = 0, binding = kRtBindingTlas) uniform accelerationStructureEXT tlas;
-layout(set = 0, binding = kRtBindingHistRadiance) uniform sampler2D previousRadiance;
-layout(set = 0, binding = kRtBindingHistDepth) uniform sampler2D previousViewDepth;
+layout(set = 0, binding = kRtBindingPreviousRadiance) uniform sampler2D previousRadiance;
+layout(set = 0, binding = kRtBindingPreviousViewDepth) uniform sampler2D previousViewDepth;
 layout(set = 0, binding = kRtBindingBaseColor) uniform sampler2D gBaseColor;
 layout(set = 0, binding = kRtBindingMaterial) uniform sampler2D gMaterial;
 layout(set = 0, binding = kRtBindingEmissive) uniform sampler2D gEmissive;

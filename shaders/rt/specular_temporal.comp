@@ -24,7 +24,7 @@ layout(set = 0, binding = kRtBindingFrame) uniform Frame { FrameConstants frame;
 layout(set = 0, binding = kRtBindingDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kRtBindingSpecularMotion) uniform sampler2D gMotion;
 layout(set = 0, binding = kRtBindingMaterial) uniform sampler2D gMaterial;
-layout(set = 0, binding = kRtBindingHistDepth) uniform sampler2D historyDepth;
+layout(set = 0, binding = kRtBindingPreviousViewDepth) uniform sampler2D historyDepth;
 layout(set = 0, binding = kRtBindingSpecularRaw) uniform sampler2D raw;
 layout(set = 0, binding = kRtBindingSpecularHistory) uniform sampler2D history;
 layout(set = 0, binding = kRtBindingSpecularHistoryHit) uniform sampler2D historyHit;

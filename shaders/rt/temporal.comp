@@ -11,19 +11,19 @@
 #include "shared/sampling.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = kRtBindingMotion) uniform sampler2D gMotion;
-layout(set = 0, binding = kRtBindingShY) uniform sampler2D rawShY;
-layout(set = 0, binding = kRtBindingCoCg) uniform sampler2D rawCoCg;
-layout(set = 0, binding = kRtBindingAo) uniform sampler2D rawAo;
-layout(set = 0, binding = kRtBindingHistShY) uniform sampler2D historyShY;
-layout(set = 0, binding = kRtBindingHistCoCgAo) uniform sampler2D historyCoCgAo;
-layout(set = 0, binding = kRtBindingHistDepth) uniform sampler2D historyDepth;
-layout(set = 0, binding = kRtBindingOutShY, rgba16f) uniform writeonly image2D outShY;
-layout(set = 0, binding = kRtBindingOutCoCgAo, rgba16f) uniform writeonly image2D outCoCgAo;
-layout(set = 0, binding = kRtBindingOutDepth, r32f) uniform writeonly image2D outDepth;
-layout(set = 0, binding = kRtBindingHistMoment) uniform sampler2D historyMoment;
+layout(set = 0, binding = kRtTemporalMotion) uniform sampler2D gMotion;
+layout(set = 0, binding = kRtTemporalRawShY) uniform sampler2D rawShY;
+layout(set = 0, binding = kRtTemporalRawCoCg) uniform sampler2D rawCoCg;
+layout(set = 0, binding = kRtTemporalRawAo) uniform sampler2D rawAo;
+layout(set = 0, binding = kRtTemporalHistoryShY) uniform sampler2D historyShY;
+layout(set = 0, binding = kRtTemporalHistoryCoCgAo) uniform sampler2D historyCoCgAo;
+layout(set = 0, binding = kRtTemporalHistoryViewDepth) uniform sampler2D historyDepth;
+layout(set = 0, binding = kRtTemporalOutShY, rgba16f) uniform writeonly image2D outShY;
+layout(set = 0, binding = kRtTemporalOutCoCgAo, rgba16f) uniform writeonly image2D outCoCgAo;
+layout(set = 0, binding = kRtTemporalOutViewDepth, r32f) uniform writeonly image2D outDepth;
+layout(set = 0, binding = kRtTemporalHistoryMoment) uniform sampler2D historyMoment;
 // x: the mean squared sample luma; y: the mean inverse hit distance (the denoiser's radius).
-layout(set = 0, binding = kRtBindingOutMoment, rg32f) uniform writeonly image2D outMoment;
+layout(set = 0, binding = kRtTemporalOutMoment, rg32f) uniform writeonly image2D outMoment;
 
 // How much the view depth changes over one pixel on this pixel's surface: per axis the
 // smaller step to the two opposite neighbours (the plane's gradient; the larger one may cross

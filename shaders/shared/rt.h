@@ -252,6 +252,9 @@ struct RtDenoisePush {
 };
 
 // Bindings (set 0) of the RT path's passes; set 1 is the scene (shared/scene.h) where used.
+// Slots every pass that includes rt/rt_common.glsl or rt/hit_lighting.glsl shares (the ray
+// pipelines' stages must agree on them), then each shader's own, named by their role in it: a
+// slot number may mean another thing in another shader.
 TL_CONST uint kRtBindingFrame = 0;       // FrameConstants
 TL_CONST uint kRtBindingTlas = 1;
 TL_CONST uint kRtBindingBlueNoise = 2;   // rg16 unorm, 64 x 64
@@ -265,34 +268,61 @@ TL_CONST uint kRtBindingSurfaceIn = 9;   // rg32ui hit surface read
 TL_CONST uint kRtBindingHitsOut = 10;    // r32ui hit records written
 TL_CONST uint kRtBindingSurfaceOut = 11; // rg32ui hit surface written: x oct normal, y rgb9e5 emission
 TL_CONST uint kRtBindingInstances = 12;  // RtInstance[]
-TL_CONST uint kRtBindingShY = 13;        // rgba16f
-TL_CONST uint kRtBindingCoCg = 14;       // rg16f / rgba16f
-TL_CONST uint kRtBindingAo = 15;         // r16f
-TL_CONST uint kRtBindingMotion = 16;     // gbuffer.motion
-TL_CONST uint kRtBindingHistShY = 17;
-TL_CONST uint kRtBindingHistCoCgAo = 18;
-TL_CONST uint kRtBindingHistDepth = 19;
-TL_CONST uint kRtBindingOutShY = 20;
-TL_CONST uint kRtBindingOutCoCgAo = 21;
-TL_CONST uint kRtBindingOutDepth = 22;
-TL_CONST uint kRtBindingHistRadiance = 23;  // last frame's composite radiance
-TL_CONST uint kRtBindingDenoiseShY = 24;     // denoiser output
-TL_CONST uint kRtBindingDenoiseCoCgAo = 25;
+TL_CONST uint kRtBindingPreviousViewDepth = 19;  // r32f: last frame's view depth (reprojection, screen radiance)
+TL_CONST uint kRtBindingPreviousRadiance = 23;   // last frame's composite radiance (screen radiance at hits)
 TL_CONST uint kRtBindingInstanceId = 26;     // gbuffer.instanceId (instance + 1, 0 = none)
-TL_CONST uint kRtBindingHistMoment = 27;       // r32f: the history's mean squared sample luma (firefly scale)
-TL_CONST uint kRtBindingOutMoment = 28;
-TL_CONST uint kRtBindingCellShY = 29;          // disocclusion rays, one texel per cell: SH luma
-TL_CONST uint kRtBindingCellCoCgAo = 30;       // chroma (xy), AO (z)
-TL_CONST uint kRtBindingCellPosition = 31;     // rgba32f: world position the rays left from (xyz), 1 if traced (w)
-TL_CONST uint kRtBindingFirstShY = 33;         // two rays per pixel: the first ray's raw SH, read by the second's hit lighting
-TL_CONST uint kRtBindingFirstCoCg = 34;
-TL_CONST uint kRtBindingFirstAo = 35;
-TL_CONST uint kRtBindingEmitters = 32;         // Emitter[] (shared/emitters.h; at least one entry, RtPush::emitterCount of them valid)
-TL_CONST uint kRtBindingDenoiseMoment = 36;    // r32f: the accumulation's mean squared sample luma (the denoiser's noise estimate)
-TL_CONST uint kRtBindingCacheEntries = 37;     // RtCacheEntry[]: the radiance cache as hits read it (shared/rt_cache.h)
-TL_CONST uint kRtBindingCacheAccum = 38;       // RtCacheAccum[]: its keys and this frame's sums
-TL_CONST uint kRtBindingCacheSamples = 39;     // RtCacheSample[]: the update paths' samples
-TL_CONST uint kRtBindingCacheOutcomes = 40;    // RtCacheOutcome[]: each update path's first ray and the light the cache adds there
+TL_CONST uint kRtBindingEmitters = 32;       // Emitter[] (shared/emitters.h; at least one entry, RtPush::emitterCount of them valid)
+TL_CONST uint kRtBindingCacheEntries = 37;   // RtCacheEntry[]: the radiance cache as hits read it (shared/rt_cache.h)
+TL_CONST uint kRtBindingCacheAccum = 38;     // RtCacheAccum[]: its keys and this frame's sums
+TL_CONST uint kRtBindingCacheSamples = 39;   // RtCacheSample[]: the update paths' samples
+TL_CONST uint kRtBindingCacheOutcomes = 40;  // RtCacheOutcome[]: each update path's first ray and the light the cache adds there
+
+// rt/lighting.rgen: a ray's hit lighting, written as raw SH; with two rays per pixel the
+// second pass reads the first's and writes the mean.
+TL_CONST uint kRtLightingOutShY = 13;    // rgba16f: L1 SH of luma
+TL_CONST uint kRtLightingOutCoCg = 14;   // rg16f: chroma
+TL_CONST uint kRtLightingOutAo = 15;     // rg16f: AO, hit distance (capped)
+TL_CONST uint kRtLightingFirstShY = 33;  // the first ray's raw SH
+TL_CONST uint kRtLightingFirstCoCg = 34;
+TL_CONST uint kRtLightingFirstAo = 35;
+// rt/raw.rgen: the benchmark's trivial kernel.
+TL_CONST uint kRtRawDistances = 15;      // r32f: each ray's hit distance
+// rt/temporal.comp: this frame's raw SH accumulated onto the reprojected history.
+TL_CONST uint kRtTemporalRawShY = 13;
+TL_CONST uint kRtTemporalRawCoCg = 14;
+TL_CONST uint kRtTemporalRawAo = 15;
+TL_CONST uint kRtTemporalMotion = 16;           // gbuffer.motion
+TL_CONST uint kRtTemporalHistoryShY = 17;
+TL_CONST uint kRtTemporalHistoryCoCgAo = 18;
+TL_CONST uint kRtTemporalHistoryViewDepth = 19;
+TL_CONST uint kRtTemporalHistoryMoment = 27;    // rg32f: the history's mean squared sample luma (firefly scale), mean inverse hit distance
+TL_CONST uint kRtTemporalOutShY = 20;
+TL_CONST uint kRtTemporalOutCoCgAo = 21;
+TL_CONST uint kRtTemporalOutViewDepth = 22;
+TL_CONST uint kRtTemporalOutMoment = 28;
+// rt/ao_filter.comp: the accumulated AO filtered across pixels of similar depth.
+TL_CONST uint kRtAoFilterAccumulated = 14;  // chroma (xy), AO (z)
+TL_CONST uint kRtAoFilterViewDepth = 19;    // this frame's view depth
+TL_CONST uint kRtAoFilterOut = 15;          // r16f
+// rt/denoise.comp: one pass of the spatial denoiser (it also reads depth, normal, base colour, material).
+TL_CONST uint kRtDenoiseInShY = 13;
+TL_CONST uint kRtDenoiseInCoCgAo = 14;
+TL_CONST uint kRtDenoiseLumaMoment = 36;    // the accumulation's mean squared sample luma (its noise estimate)
+TL_CONST uint kRtDenoiseOutShY = 24;
+TL_CONST uint kRtDenoiseOutCoCgAo = 25;
+// rt/disocclusion.rgen: rays for the cells holding a pixel whose history was rejected, one texel per cell.
+TL_CONST uint kRtDisocclusionAccumulated = 14;  // rt.gi.temporal.coCgAo: w = frames
+TL_CONST uint kRtDisocclusionCellShY = 29;      // SH luma
+TL_CONST uint kRtDisocclusionCellCoCgAo = 30;   // chroma (xy), AO (z)
+TL_CONST uint kRtDisocclusionCellOrigin = 31;   // rgba32f: world position the rays left from (xyz), 1 if traced (w)
+// rt/disocclusion_blend.comp: those cells' rays blended into the fresh pixels of the accumulation.
+TL_CONST uint kRtBlendAccumulatedShY = 13;
+TL_CONST uint kRtBlendAccumulatedCoCgAo = 14;
+TL_CONST uint kRtBlendCellShY = 29;
+TL_CONST uint kRtBlendCellCoCgAo = 30;
+TL_CONST uint kRtBlendCellOrigin = 31;
+TL_CONST uint kRtBlendOutShY = 20;
+TL_CONST uint kRtBlendOutCoCgAo = 21;
 // RtPush::screenRadiance: last frame's image is reused at hits seen on screen (Used); not this
 // frame (Unavailable: a first frame, a restart, the light changed); or never (Off: the setting
 // is off, every hit is lit afresh, and the radiance cache's vote counts every hit as off screen).

@@ -45,7 +45,7 @@ inline FurnaceStats furnaceStats(const std::vector<float>& t, uint32_t c) {
 
 // The mean of `averaged` successive frames of `image` (after whatever the session rendered
 // before); `channels` receives the image's channel count.
-inline std::vector<float> averagedFrames(session::Session& s, const char* image, uint32_t averaged, uint32_t& channels) {
+inline std::vector<float> averagedFrames(session::Session& s, std::string_view image, uint32_t averaged, uint32_t& channels) {
   std::vector<float> mean;
   for (uint32_t f = 0; f < averaged; ++f) {
     s.requestBuffer(image);
@@ -67,7 +67,7 @@ inline std::vector<double> luminanceOf(const std::vector<float>& texels, uint32_
 }
 
 // The luminance of the mean of `averaged` successive frames of `image` (averagedFrames).
-inline std::vector<double> averagedLuminance(session::Session& s, const char* image, uint32_t averaged) {
+inline std::vector<double> averagedLuminance(session::Session& s, std::string_view image, uint32_t averaged) {
   uint32_t channels = 0;
   const std::vector<float> mean = averagedFrames(s, image, averaged, channels);  // sets channels
   return luminanceOf(mean, channels);

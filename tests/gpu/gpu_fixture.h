@@ -51,8 +51,8 @@ inline double pathFigure(const session::Session& s, const std::string& name) {
 }
 
 // The buffer a path's final HDR image is in: the reference's own estimate, else the composite.
-inline const char* finalImageOf(const std::string& path) {
-  return path == "reference" ? "reference.radiance" : lighting::kCompositeHdr;
+inline std::string_view finalImageOf(const std::string& path) {
+  return path == "reference" ? std::string_view("reference.radiance") : lighting::kCompositeHdr.name();
 }
 
 // Renders `frames` frames of `path` at width x height from a fresh history (frame index 0) and

@@ -22,7 +22,7 @@ class FurnaceTest : public RayTracingTest {
   // Renders `frames` frames of the furnace with `path`, then checks the mean of its image over
   // `averaged` more frames.
   FurnaceStats render(const std::string& path, uint32_t frames, uint32_t averaged = 1,
-                      const char* image = lighting::kCompositeHdr) {
+                      std::string_view image = lighting::kCompositeHdr) {
     auto& s = session();
     s.loadScene(contentFile("white_furnace.gltf"));
     s.setPath(path);

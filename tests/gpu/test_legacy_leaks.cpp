@@ -73,7 +73,7 @@ class LegacyLeakTest : public GpuTest {
   // The legacy path at 64x48 after 8 frames from `position` along `forward`, the rooms' flood at
   // `roomSweeps` rounds (0: off; else the reach image is read back too): the mean luminance of
   // `image`.
-  double legacyMean(uint32_t roomSweeps, const char* image, glm::dvec3 position, glm::dvec3 forward) {
+  double legacyMean(uint32_t roomSweeps, const std::string& image, glm::dvec3 position, glm::dvec3 forward) {
     auto& s = session();
     s.settings().legacyRoomSweeps = roomSweeps;
     s.setPath("legacy");
@@ -361,7 +361,7 @@ TEST(LegacyStepContrast, MeasuresAStepAndIgnoresARamp) {
 // loaded: pixels at least 12 pixels (~0.4 m, 3 voxels) from the surface's edges, away from
 // the corners' darkening (a gradient, not a step).
 StepContrast flatStepContrast(session::Session& s, glm::dvec3 position, glm::dvec3 forward, glm::dvec3 up,
-                              glm::vec3 normal, const char* image) {
+                              glm::vec3 normal, const std::string& image) {
   s.setPath("legacy");
   const uint32_t w = 128, h = 96;
   s.setSize(w, h);
@@ -391,14 +391,14 @@ StepContrast flatStepContrast(session::Session& s, glm::dvec3 position, glm::dve
     }
   const auto& b = s.buffer(image);
   StepContrast c = stepContrast(b.texels(), b.channels(), flat, w, h);
-  std::printf("%s step contrast: worst %.4f, 99th percentile %.4f over %zu pairs\n", image, c.worst, c.p99, c.pairs);
+  std::printf("%s step contrast: worst %.4f, 99th percentile %.4f over %zu pairs\n", image.c_str(), c.worst, c.p99, c.pairs);
   EXPECT_GT(c.pairs, size_t(w * h / 3)) << "the camera should see the surface";
   return c;
 }
 
 // A wall of the two rooms (normal along x).
 StepContrast wallStepContrast(session::Session& s, glm::dvec3 position, glm::dvec3 forward, float wallNormal,
-                              const char* image) {
+                              const std::string& image) {
   s.installScene(makeTwoRooms());
   lightTwoRooms(s);
   return flatStepContrast(s, position, forward, {0.0, 1.0, 0.0}, {wallNormal, 0.0f, 0.0f}, image);

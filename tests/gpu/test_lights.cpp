@@ -59,7 +59,7 @@ class LightsTest : public RayTracingTest {
     s.settings().materials = materials;
     s.settings().referenceSamplesPerFrame = 16;
     s.setPath(path);
-    const std::string read = buffer.empty() ? finalImageOf(path) : buffer;
+    const std::string read = buffer.empty() ? std::string(finalImageOf(path)) : buffer;
     s.requestBuffer(read);
     s.renderFrames(frames);
     return s.buffer(read).texels();
@@ -518,7 +518,7 @@ TEST_F(LightsTest, AnAreaLightsPenumbraBehindABoxFollowsThePartOfTheShapeInSight
       const bool reference = std::string(c.path) == "reference";
       const uint32_t bounces = session().settings().referenceBounces;
       if (reference) session().settings().referenceBounces = 1;
-      const auto img = renderPlane(c.path, {shape.light}, c.frames, planeWithBox(), reference ? "" : lighting::kLightsRadiance);
+      const auto img = renderPlane(c.path, {shape.light}, c.frames, planeWithBox(), reference ? std::string() : std::string(lighting::kLightsRadiance));
       session().settings().referenceBounces = bounces;
       const double rho = albedo(c.path);
       double worst = 0.0, worstAt = 0.0, mean = 0.0;

@@ -42,9 +42,9 @@ float runOptional(gpu::Device& device, bool withSource, float sourceValue) {
                                      &range);
               });
   ComputePass pass(device, "optional.input", kShader);
-  pass.optionalSampled(shared::kOptionalInputSource, "source", g);
+  pass.optionalSampled(shared::kOptionalInputSource, graph::ImageName{"source"}, g);
   shared::OptionalInputPush push{pass.present(shared::kOptionalInputSource) ? 1u : 0u, -7.0f};
-  pass.storageOut(shared::kOptionalInputResult, "result", kDesc).push(push).dispatch(8, 8).add(g);
+  pass.storageOut(shared::kOptionalInputResult, graph::ImageName{"result"}, kDesc).push(push).dispatch(8, 8).add(g);
   g.markOutput("result");
   auto compiled = g.compile(ex.entryStates(g));
   ex.requestReadback("result");
@@ -72,8 +72,8 @@ TEST_F(GpuTest, PassBuilderBindingDeclaredTwiceNamesBoth) {
   graph::RenderGraph g;
   const std::string e = errorOf([&] {
     ComputePass(session().device(), "twice", kShader)
-        .sampled(shared::kOptionalInputSource, "first")
-        .storageOut(shared::kOptionalInputSource, "second", kDesc)
+        .sampled(shared::kOptionalInputSource, graph::ImageName{"first"})
+        .storageOut(shared::kOptionalInputSource, graph::ImageName{"second"}, kDesc)
         .add(g);
   });
   EXPECT_NE(e.find("`twice`"), std::string::npos) << e;
@@ -85,7 +85,7 @@ TEST_F(GpuTest, PassBuilderBindingDeclaredTwiceNamesBoth) {
 TEST_F(GpuTest, PassBuilderMissingBindingNamesShaderVariable) {
   graph::RenderGraph g;
   const std::string e = errorOf([&] {
-    ComputePass(session().device(), "missing", kShader).storageOut(shared::kOptionalInputResult, "result", kDesc).add(g);
+    ComputePass(session().device(), "missing", kShader).storageOut(shared::kOptionalInputResult, graph::ImageName{"result"}, kDesc).add(g);
   });
   EXPECT_NE(e.find("`missing`"), std::string::npos) << e;
   EXPECT_NE(e.find("`source`"), std::string::npos) << e;  // the shader's name for the binding
@@ -97,8 +97,8 @@ TEST_F(GpuTest, PassBuilderBindingOfAnotherTypeNamesBoth) {
   graph::RenderGraph g;
   const std::string e = errorOf([&] {
     ComputePass(session().device(), "retyped", kShader)
-        .storageIn(shared::kOptionalInputSource, "input")
-        .storageOut(shared::kOptionalInputResult, "result", kDesc)
+        .storageIn(shared::kOptionalInputSource, graph::ImageName{"input"})
+        .storageOut(shared::kOptionalInputResult, graph::ImageName{"result"}, kDesc)
         .add(g);
   });
   EXPECT_NE(e.find("`input` as a storage image"), std::string::npos) << e;
@@ -114,7 +114,7 @@ TEST_F(GpuTest, PassBuilderOptionalStorageAndConstantsDeclareNoAccess) {
     graph::RenderGraph g;
     ComputePass pass(d, "optional.storage", kShader);
     pass.constantSampled(shared::kOptionalInputSource, constant, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-        .optionalStorageInOut(shared::kOptionalInputResult, "accum", present)
+        .optionalStorageInOut(shared::kOptionalInputResult, graph::ImageName{"accum"}, present)
         .push(shared::OptionalInputPush{1u, 0.0f})
         .add(g);
     ASSERT_EQ(g.passes().size(), 1u);
@@ -136,9 +136,9 @@ TEST_F(GpuTest, PassBuilderStepsOfOneWriteAreGraphUpdates) {
     ComputePass pass(d, name, kShader);
     pass.constantSampled(shared::kOptionalInputSource, constant, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     if (update)
-      pass.storageUpdate(shared::kOptionalInputResult, "chain", mip);
+      pass.storageUpdate(shared::kOptionalInputResult, graph::ImageName{"chain"}, mip);
     else
-      pass.storageOut(shared::kOptionalInputResult, "chain", mip);
+      pass.storageOut(shared::kOptionalInputResult, graph::ImageName{"chain"}, mip);
     pass.pipelineName("optional.chain").push(shared::OptionalInputPush{1u, 0.0f}).add(g);
   };
   const auto chainDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, 8, 8, "test chain", 2);
@@ -206,7 +206,7 @@ TEST_F(RayTracingPassTest, TracesFromItsBindingList) {
   graph::RenderGraph g;
   lighting::RayTracingPass(d, "builder.trace", kSelfTestShaders)
       .accelerationStructure(shared::kSelfTestBindingScene, tlas_.handle(), {})
-      .storageOut(shared::kSelfTestBindingOutput, "result", kSelfTestDesc)
+      .storageOut(shared::kSelfTestBindingOutput, graph::ImageName{"result"}, kSelfTestDesc)
       .trace(shared::kSelfTestSize, shared::kSelfTestSize)
       .add(g);
   ASSERT_EQ(g.passes().size(), 1u);
@@ -234,16 +234,16 @@ TEST_F(RayTracingPassTest, TracesFromItsBindingList) {
 TEST_F(RayTracingPassTest, PassesOfTheSameShadersShareOnePipeline) {
   gpu::Device& d = session().device();
   graph::RenderGraph g;
-  auto add = [&](const char* name, const char* output) {
+  auto add = [&](const char* name, graph::ImageName output) {
     lighting::RayTracingPass(d, name, kSelfTestShaders)
         .accelerationStructure(shared::kSelfTestBindingScene, tlas_.handle(), {})
         .storageOut(shared::kSelfTestBindingOutput, output, kSelfTestDesc)
         .trace(shared::kSelfTestSize, shared::kSelfTestSize)
         .add(g);
   };
-  add("builder.first", "first");
+  add("builder.first", graph::ImageName{"first"});
   const size_t pipelines = d.pipelines().size();
-  add("builder.second", "second");
+  add("builder.second", graph::ImageName{"second"});
   EXPECT_EQ(d.pipelines().size(), pipelines);
   EXPECT_EQ(g.passes().size(), 2u);
 }
@@ -317,7 +317,7 @@ const auto kDepthDesc = graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, 8, 8,
 TEST_F(GpuTest, RasterPassListMatchesBothStages) {
   lighting::RasterPass pass(session().device(), "raster.ok", gbufferShaders("raster.ok"));
   pass.uniform(shared::kBindingFrame, lighting::kFrameConstants);
-  pass.optionalBufferIn(shared::kGbufferPreviousPositions, "previous", false);
+  pass.optionalBufferIn(shared::kGbufferPreviousPositions, graph::BufferName{"previous"}, false);
   EXPECT_NO_THROW(pass.check(lighting::reflectStages({"common/gbuffer.vert", "common/gbuffer.frag"})));
 }
 
@@ -328,7 +328,7 @@ TEST_F(GpuTest, RasterPassMissingBindingFailsBeforeThePipeline) {
   graph::RenderGraph g;
   const size_t pipelines = d.pipelines().size();
   const std::string e = errorOf([&] {
-    lighting::RasterPass(d, "raster.missing", gbufferShaders("raster.missing")).depthOut("depth", kDepthDesc, 0.0f).add(g);
+    lighting::RasterPass(d, "raster.missing", gbufferShaders("raster.missing")).depthOut(graph::ImageName{"depth"}, kDepthDesc, 0.0f).add(g);
   });
   EXPECT_NE(e.find("`raster.missing`"), std::string::npos) << e;
   EXPECT_NE(e.find("common/gbuffer.vert"), std::string::npos) << e;
@@ -344,9 +344,9 @@ TEST_F(GpuTest, RasterPassExtraBindingNamesBothStages) {
   const std::string e = errorOf([&] {
     lighting::RasterPass(session().device(), "raster.extra", gbufferShaders("raster.extra"))
         .uniform(shared::kBindingFrame, lighting::kFrameConstants)
-        .optionalBufferIn(shared::kGbufferPreviousPositions, "previous", false)
-        .bufferIn(shared::kBindingLightShadowViews, "views")
-        .depthOut("depth", kDepthDesc, 0.0f)
+        .optionalBufferIn(shared::kGbufferPreviousPositions, graph::BufferName{"previous"}, false)
+        .bufferIn(shared::kBindingLightShadowViews, graph::BufferName{"views"})
+        .depthOut(graph::ImageName{"depth"}, kDepthDesc, 0.0f)
         .add(g);
   });
   EXPECT_NE(e.find("`views`"), std::string::npos) << e;

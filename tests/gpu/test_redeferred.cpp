@@ -110,9 +110,9 @@ TEST_F(GpuTest, RedeferredWritesTheIbuffer) {
   auto& s = session();
   s.setSize(32, 32);
   s.settings().redeferred = true;
-  for (const char* n : lighting::kIbuffer) s.requestBuffer(n);
+  for (graph::ImageName n : lighting::kIbuffer) s.requestBuffer(n);
   s.renderFrames(1);
-  for (const char* n : lighting::kIbuffer) {
+  for (graph::ImageName n : lighting::kIbuffer) {
     ASSERT_TRUE(s.hasBuffer(n)) << n;
     const auto t = s.buffer(n).texels();
     EXPECT_EQ(countNonFinite(std::vector<float>(t.begin(), t.end())), 0u) << n;

@@ -126,7 +126,7 @@ TEST_F(ReferenceTest, PlaneIrradianceIsPiLForTheReferenceAndTheComposite) {
   // The reference draws no G-buffer of its own to mask with: a direct frame first reads it.
   s.setSize(w, h);
   s.setPath("direct");
-  for (const char* n : {lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
+  for (std::string_view n : std::initializer_list<std::string_view>{lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
   s.renderFrames(1);
   auto direct = worstError(lighting::kCompositeIrradiance);
   EXPECT_LT(direct.first, 2e-3) << "direct: pi L times AO = 1 (half-float rounding)";
@@ -148,7 +148,7 @@ TEST_F(ReferenceTest, PlaneIrradianceIsPiLForTheReferenceAndTheComposite) {
   EXPECT_EQ(occluded, 0u);
 
   s.setPath("rt");
-  for (const char* n : {lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
+  for (std::string_view n : std::initializer_list<std::string_view>{lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
   s.renderFrames(8);
   auto rt = worstError(lighting::kCompositeIrradiance);
   EXPECT_LT(rt.first, 0.01) << "measured 0.0028 (8 frames accumulated)";

@@ -69,7 +69,7 @@ TEST_F(ReflectionsTest, ReflectionsAreTracedOnlyBelowTheirRoughness) {
   s.setSize(64, 36);
   struct Case {
     const char* path;
-    const char* image;  // its reflections' buffer: a > 0 where a pixel has them
+    graph::ImageName image;  // its reflections' buffer: a > 0 where a pixel has them
     float lighting::RenderSettings::*threshold;
   };
   for (const Case& c : {Case{"rt", lighting::kSpecularRaw, &lighting::RenderSettings::rtReflectionRoughness},
@@ -198,7 +198,7 @@ TEST_F(ReflectionsTest, WhatMovesInAMirrorLeavesNoGhostLongerThanFourFrames) {
   s.loadScene(contentFile("mirror_floor.gltf"));
   const uint32_t width = 96, height = 54;
   s.setSize(width, height);
-  const char* image = lighting::kCompositeHdr;
+  const std::string_view image = lighting::kCompositeHdr;
   std::vector<uint32_t> halfIds;
   for (const char* name : {"mirror_floor_left", "polished_floor_right"})
     for (size_t i = 0; i < s.scene().instances.size(); ++i)

@@ -142,7 +142,7 @@ TEST_F(RtTest, CameraCutRejectsHistory) {
 
 // Per pixel, the luminance of the irradiance an SH image pair (coCg with 4 channels) resolves
 // to at the G-buffer normal; the normal must have been read back with them.
-std::vector<double> irradianceLuma(session::Session& s, const char* shYName, const char* coCgName) {
+std::vector<double> irradianceLuma(session::Session& s, const std::string& shYName, const std::string& coCgName) {
   auto shY = s.buffer(shYName).texels(), coCg = s.buffer(coCgName).texels();
   auto n = s.buffer("gbuffer.normal").texels();
   std::vector<double> out(n.size() / 2);
@@ -178,7 +178,7 @@ TEST_F(RtTest, DisocclusionRaysBringACutCloserToConverged) {
   session::View after = before;
   after.position = {5.0, 1.5, -7.0};
   after.forward = glm::normalize(glm::dvec3(0.0, -0.1, -1.0));
-  auto luma = [&](const char* shYName, const char* coCgName) { return irradianceLuma(s, shYName, coCgName); };
+  auto luma = [&](const std::string& shYName, const std::string& coCgName) { return irradianceLuma(s, shYName, coCgName); };
   s.setView(after);
   s.settings().rtDenoise = false;
   s.settings().rtMaxAccumFrames = 4096;
@@ -187,7 +187,7 @@ TEST_F(RtTest, DisocclusionRaysBringACutCloserToConverged) {
   const auto depth = s.buffer("gbuffer.depth").texels();
   auto relMse = [&](const std::vector<double>& x) { return surfaceRelMse(x, converged, depth); };
   // The cut: a few frames at the first view, then one at the second.
-  auto firstFrameAfterCut = [&](uint32_t rays, const char* shYName, const char* coCgName) {
+  auto firstFrameAfterCut = [&](uint32_t rays, const std::string& shYName, const std::string& coCgName) {
     s.settings() = RenderSettings{};
     s.settings().rtDenoise = false;
     s.settings().rtDisocclusionRays = rays;
@@ -220,7 +220,7 @@ TEST_F(RtTest, DenoisedSingleFrameIsCloserToConvergedThanRaw) {
   auto& s = session();
   s.loadScene(contentFile("cornell.gltf"));
   const uint32_t w = 64, h = 64;
-  auto luma = [&](const char* shYName, const char* coCgName) { return irradianceLuma(s, shYName, coCgName); };
+  auto luma = [&](const std::string& shYName, const std::string& coCgName) { return irradianceLuma(s, shYName, coCgName); };
   s.settings().rtDenoise = false;
   s.settings().rtMaxAccumFrames = 4096;
   render(w, h, 256, {kShY, kCoCgAo, "gbuffer.normal", "gbuffer.depth"});
@@ -299,7 +299,7 @@ double bannerAgreement(session::Session& s, uint32_t frameIndex) {
   s.settings().rtPretracePixels = 128.0f;  // long marches at this small size: more rays to compare
   s.setPath("rt");
   s.setSize(96, 64);
-  for (const char* n : {kPretraceHits, "gbuffer.depth"}) s.requestBuffer(n);
+  for (std::string_view n : std::initializer_list<std::string_view>{kPretraceHits, "gbuffer.depth"}) s.requestBuffer(n);
   s.renderFrames(1);
   auto pre = uints(s.buffer(kPretraceHits), 1);
   s.settings().rtPretrace = false;
@@ -392,7 +392,7 @@ TEST_F(RtTest, BeyondTheBlendDistanceTheLegacyGiTakesOver) {
     s.settings().rtFarLegacy = farLegacy;
     s.settings().rtBlendDistance = blend;
     s.resetHistory();
-    for (const char* n : {lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
+    for (std::string_view n : std::initializer_list<std::string_view>{lighting::kCompositeIrradiance, "gbuffer.depth"}) s.requestBuffer(n);
     s.renderFrames(6);
     auto e = s.buffer(lighting::kCompositeIrradiance).texels();
     auto depth = s.buffer("gbuffer.depth").texels();
@@ -437,9 +437,9 @@ TEST_F(RtTest, AtriumStaysFiniteAndItsIntermediatesAreNamed) {
   auto& s = session();
   s.loadScene(contentFile("atrium.gltf"));
   render(80, 45, 3, {kShY, kCoCgAo, kAo, "composite.hdr"});
-  for (const char* n : {kShY, kCoCgAo, kAo, "composite.hdr"}) EXPECT_EQ(countNonFinite(s.buffer(n).texels()), 0u) << n;
+  for (std::string_view n : std::initializer_list<std::string_view>{kShY, kCoCgAo, kAo, "composite.hdr"}) EXPECT_EQ(countNonFinite(s.buffer(n).texels()), 0u) << n;
   const std::string dump = s.graphDump();
-  for (const char* n : {kAccelSimplified.tlas, kPretraceHits, kHits, kHitSurface, kRawShY, kRawAo, kShY, kAo, kHistShY})
+  for (std::string_view n : std::initializer_list<std::string_view>{kAccelSimplified.tlas, kPretraceHits, kHits, kHitSurface, kRawShY, kRawAo, kShY, kAo, kHistShY})
     EXPECT_NE(dump.find(n), std::string::npos) << n;
 }
 
@@ -566,7 +566,7 @@ TEST_F(RtTest, FirefliesOf1e4StayFiniteAndConverge) {
     s.settings().rtMaxAccumFrames = 64;
     Run r;
     r.early = meanAccumulatedLuma(s, 48, 32, 32);
-    for (const char* n : {kShY, kDenoisedShY, "composite.hdr", "gbuffer.depth"}) s.requestBuffer(n);
+    for (std::string_view n : std::initializer_list<std::string_view>{kShY, kDenoisedShY, "composite.hdr", "gbuffer.depth"}) s.requestBuffer(n);
     s.renderFrames(32);
     auto shY = s.buffer(kShY).texels();
     EXPECT_EQ(countNonFinite(shY), 0u);
@@ -635,7 +635,7 @@ IrradianceErrors irradianceErrors(session::Session& s, const char* scene, uint32
     s.settings().legacyScreenRadiance = false;
   }
   if (scope != Scope::Full) s.settings().rtCacheMinGain = 2.0f;  // above 1: never
-  auto irradiance = [&](const char* path, uint32_t frames, const char* name) {
+  auto irradiance = [&](const char* path, uint32_t frames, const std::string& name) {
     s.setPath(path);
     s.resetHistory();
     s.setFrameIndex(0);  // the same noise whatever ran before

@@ -99,7 +99,7 @@ std::vector<float> render(session::Session& s, const std::string& path, uint64_t
 // kFrames samples after the first (draw + 1) kFrames, from two running means.
 std::vector<float> renderOtherSeed(session::Session& s, const session::PathInfo& info, int draw) {
   if (info.capabilities.isReference) {
-    const char* image = finalImageOf(info.name);
+    const std::string_view image = finalImageOf(info.name);
     s.setPath(info.name);
     s.setSize(kWidth, kHeight);
     s.setFrameIndex(0);

@@ -3,6 +3,7 @@
 #include "graph/executor.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/copy_pass.h"
+#include "lighting/common/gbuffer_pass.h"
 #include "lighting/common/pass_builders.h"
 #include "shared/albedo.h"
 
@@ -27,9 +28,9 @@ void AlbedoViewPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   graph.importBuffer(kAlbedoPerInstance, graph::ResourceDesc::buffer(perInstance_.size(), "per instance: resolved albedo (rgb), source (w)"), perInstance_.forFrame(frame));
 
   ComputePass(in.device, "albedo.view", "common/albedo_view.comp")
-      .sampled(shared::kAlbedoViewBindingInstanceId, "gbuffer.instanceId")
-      .sampled(shared::kAlbedoViewBindingBaseColor, "gbuffer.baseColor")
-      .sampled(shared::kAlbedoViewBindingMaterial, "gbuffer.material")
+      .sampled(shared::kAlbedoViewBindingInstanceId, gbuffer::kInstanceId)
+      .sampled(shared::kAlbedoViewBindingBaseColor, gbuffer::kBaseColor)
+      .sampled(shared::kAlbedoViewBindingMaterial, gbuffer::kMaterial)
       .bufferIn(shared::kAlbedoViewBindingPerInstance, kAlbedoPerInstance)
       .storageOut(shared::kAlbedoViewBindingInstance, kAlbedoInstance,
                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,

@@ -14,11 +14,11 @@
 
 namespace tl::lighting {
 
-inline constexpr const char* kAlbedoInstance = "albedo.instance";
-inline constexpr const char* kAlbedoDifference = "albedo.difference";
-inline constexpr const char* kAlbedoImpact = "albedo.impact";
-inline constexpr const char* kAlbedoPerInstance = "albedo.perInstance";
-inline constexpr const char* kAlbedoImpactBaseline = "albedo.impactBaseline";
+inline constexpr graph::ImageName kAlbedoInstance{"albedo.instance"};
+inline constexpr graph::ImageName kAlbedoDifference{"albedo.difference"};
+inline constexpr graph::ImageName kAlbedoImpact{"albedo.impact"};
+inline constexpr graph::BufferName kAlbedoPerInstance{"albedo.perInstance"};
+inline constexpr graph::ImageName kAlbedoImpactBaseline{"albedo.impactBaseline"};
 
 class AlbedoViewPass {
  public:

@@ -20,7 +20,7 @@ void CompareViewPass::add(graph::RenderGraph& graph, FrameInputs& in, const Comp
   const std::string left = compareImageName(request.left), right = compareImageName(request.right),
                     mine = compareImageName(rendered);
   for (const std::string& n : std::set<std::string>{left, right, mine}) graph.declareCache(n, desc);
-  addCopyPass(graph, "compare.keep", {{kCompositeHdr, mine}});
+  addCopyPass(graph, "compare.keep", {{kCompositeHdr, graph::ImageName{mine}}});
 
   shared::CompareViewPush push{};
   push.wipe = std::clamp(request.wipe, 0.0f, 1.0f);
@@ -29,8 +29,8 @@ void CompareViewPass::add(graph::RenderGraph& graph, FrameInputs& in, const Comp
   push.flags = (haveLeft ? shared::kCompareViewLeftValid : 0u) | (haveRight ? shared::kCompareViewRightValid : 0u);
   ComputePass(in.device, "compare.view", "common/compare_view.comp")
       .uniform(shared::kCompareViewFrame, kFrameConstants)
-      .sampled(shared::kCompareViewLeft, left)
-      .sampled(shared::kCompareViewRight, right)
+      .sampled(shared::kCompareViewLeft, graph::ImageName{left})
+      .sampled(shared::kCompareViewRight, graph::ImageName{right})
       .storageOut(shared::kCompareViewOutput, kDisplayLdr,
                   graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "compare view: wipe or difference").displayReferred())
       .push(push)

@@ -17,22 +17,24 @@ using graph::Usage;
 // No stand-in fills an absent image: the flags tell the shader which are bound.
 void addPathInputs(ComputePass& pass, const LightingOutputs& path, uint32_t flags) {
   const bool gi = (flags & shared::kCompositeHasGi) != 0, far = (flags & shared::kCompositeHasFarGi) != 0;
-  pass.optionalSampled(shared::kCompositeAo, path.ambientOcclusion, (flags & shared::kCompositeHasAo) != 0)
-      .optionalSampled(shared::kCompositeShY, path.diffuseShY, gi)
-      .optionalSampled(shared::kCompositeCoCg, path.diffuseCoCg, gi)
-      .optionalSampled(shared::kCompositeFarShY, path.farShY, far)
-      .optionalSampled(shared::kCompositeFarCoCg, path.farCoCg, far)
-      .optionalSampled(shared::kCompositeFarAo, path.farAo, far)
-      .optionalSampled(shared::kCompositeSpecular, path.specular, (flags & shared::kCompositeHasTracedSpecular) != 0);
+  const bool ao = (flags & shared::kCompositeHasAo) != 0;
+  const bool specular = (flags & shared::kCompositeHasTracedSpecular) != 0;
+  pass.optionalSampled(shared::kCompositeAo, graph::ImageName{path.ambientOcclusion}, ao)
+      .optionalSampled(shared::kCompositeShY, graph::ImageName{path.diffuseShY}, gi)
+      .optionalSampled(shared::kCompositeCoCg, graph::ImageName{path.diffuseCoCg}, gi)
+      .optionalSampled(shared::kCompositeFarShY, graph::ImageName{path.farShY}, far)
+      .optionalSampled(shared::kCompositeFarCoCg, graph::ImageName{path.farCoCg}, far)
+      .optionalSampled(shared::kCompositeFarAo, graph::ImageName{path.farAo}, far)
+      .optionalSampled(shared::kCompositeSpecular, graph::ImageName{path.specular}, specular);
 }
 
 void addCompositeGbuffer(ComputePass& pass) {
   pass.uniform(shared::kBindingFrame, kFrameConstants)
       .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
-      .sampled(shared::kCompositeBaseColor, "gbuffer.baseColor")
-      .sampled(shared::kCompositeNormal, "gbuffer.normal")
-      .sampled(shared::kCompositeMaterial, "gbuffer.material")
-      .sampled(shared::kCompositeDepth, kGbufferDepth);
+      .sampled(shared::kCompositeBaseColor, gbuffer::kBaseColor)
+      .sampled(shared::kCompositeNormal, gbuffer::kNormal)
+      .sampled(shared::kCompositeMaterial, gbuffer::kMaterial)
+      .sampled(shared::kCompositeDepth, gbuffer::kDepth);
 }
 
 void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path) {
@@ -41,7 +43,7 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
       graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, "scene-linear radiance before exposure");
   if (!path.radiance.empty()) {
     // The path computed the whole image: pass it through (32-bit float -> half).
-    TransferPass("composite").blit(path.radiance, kCompositeHdr, hdrDesc).add(graph);
+    TransferPass("composite").blit(graph::ImageName{path.radiance}, kCompositeHdr, hdrDesc).add(graph);
     return;
   }
   // Without a sun the shadow map is never sampled (the shader tests kFrameFlagSunShadows):
@@ -67,7 +69,7 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   push.giBlendWidth = kGiBlendWidthFraction * path.giBlendDistance;
   // With TAA the composite is this frame's jittered image; the TAA pass resolves it into
   // composite.hdr (lighting/common/taa_pass.h).
-  const char* output = in.temporalAntialiasing ? kCompositeUnresolved : kCompositeHdr;
+  const graph::ImageName output = in.temporalAntialiasing ? kCompositeUnresolved : kCompositeHdr;
   const auto unresolvedDesc = graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h,
                                                            "scene-linear radiance before exposure, jittered (TAA input)");
   // Redeferred shading (lighting/common/redeferred_pass.h): the same image from the I-buffer.
@@ -78,11 +80,11 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   }
   ComputePass pass(in.device, "composite", "common/composite.comp");
   addCompositeGbuffer(pass);
-  pass.sampled(shared::kCompositeEmissive, "gbuffer.emissive")
+  pass.sampled(shared::kCompositeEmissive, gbuffer::kEmissive)
       .optionalSampled(shared::kCompositeShadow, kShadowSunDepth, sun && !hybrid, samplers::sunShadowCompare)
       .optionalSampled(shared::kCompositeShadowDepth, kShadowSunDepth, sun && !hybrid)
       .optionalSampled(shared::kCompositeSunVisibility, kShadowSunVisibility, hybrid)
-      .optionalSampled(shared::kCompositeLights, path.lightsRadiance, !path.lightsRadiance.empty())
+      .optionalSampled(shared::kCompositeLights, graph::ImageName{path.lightsRadiance}, !path.lightsRadiance.empty())
       .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, hasEnvironmentMap(in))  // the background
       .storageOut(shared::kCompositeOutput, output, in.temporalAntialiasing ? unresolvedDesc : hdrDesc);
   addPathInputs(pass, path, push.flags);

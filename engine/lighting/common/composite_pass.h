@@ -13,17 +13,17 @@
 
 namespace tl::lighting {
 
-inline constexpr const char* kCompositeHdr = "composite.hdr";  // scene-linear radiance, kCompositeHdrFormat
+inline constexpr graph::ImageName kCompositeHdr{"composite.hdr"};  // scene-linear radiance, kCompositeHdrFormat
 // The final radiance and every copy of it (TAA's input and history, the paths' radiance
 // histories, compare's kept images, the albedo baseline) are 32-bit floats: half floats
 // saturated at 65504, so a sun of 1e6 (radiance 3e5) was clipped silently in 63-67% of the
 // pixels of an EXR. The GLSL writers say rgba32f (composite.comp, taa.comp).
 inline constexpr VkFormat kCompositeHdrFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-inline constexpr const char* kTonemapLdr = "tonemap.ldr";      // RGBA8, sRGB-encoded display image
+inline constexpr graph::ImageName kTonemapLdr{"tonemap.ldr"};      // RGBA8, sRGB-encoded display image
 // What the composite multiplied, as images (composite.stages; run only when read): per-stage
 // error against reference.ao and reference.irradiance. 0 on sky pixels.
-inline constexpr const char* kCompositeAo = "composite.ao";                  // R16F
-inline constexpr const char* kCompositeIrradiance = "composite.irradiance";  // RGBA16F, sky + bounce, no sun
+inline constexpr graph::ImageName kCompositeAo{"composite.ao"};                  // R16F
+inline constexpr graph::ImageName kCompositeIrradiance{"composite.irradiance"};  // RGBA16F, sky + bounce, no sun
 
 // The path's images every pass that includes shaders/common/path_indirect.glsl samples (the
 // composite, its stages, redeferred shading's ibuffer.light and redeferred.material): optional

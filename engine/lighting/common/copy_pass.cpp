@@ -6,7 +6,7 @@ namespace tl::lighting {
 
 void addCopyPass(graph::RenderGraph& graph, std::string_view name, std::vector<ImageCopy> copies) {
   TransferPass pass{std::string(name)};
-  for (const ImageCopy& c : copies) pass.copy(c.from, c.to);
+  for (const ImageCopy& c : copies) pass.copy(graph::ImageName{c.from}, graph::ImageName{c.to});
   pass.add(graph);
 }
 

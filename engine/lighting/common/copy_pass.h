@@ -11,6 +11,7 @@
 namespace tl::lighting {
 
 struct ImageCopy {
+  ImageCopy(graph::ImageName source, graph::ImageName destination) : from(source), to(destination) {}
   std::string from, to;
 };
 

@@ -76,23 +76,36 @@ DecodedLines instanceId(const DecodeInput& in, const DecoderSpec&) {
   return {{"instance", fmt::format("{} (index {})", name, id - 1)}};
 }
 
-DecodedLines shIrradiance(const DecodeInput& in, const DecoderSpec& spec) {
+// A texel of L1 SH luma with what its spec's companions add: the chroma (zero where it was not
+// read back) and the G-buffer normal to resolve it at (none where not read back).
+struct ShTexel {
+  shared::ShLumaCoCg sh;
+  bool chroma = false;
+  std::optional<glm::vec3> normal;
+};
+std::optional<ShTexel> shTexelAt(const DecodeInput& in, const DecoderSpec& spec) {
   auto y = floatsAt(in.resource, in.x, in.y, in.z);
-  if (y.size() < 4) return {};
-  glm::vec2 coCg(0.0f);
-  DecodedLines out;
+  if (y.size() < 4) return std::nullopt;
   auto c = spec.companions.count("coCg") ? companionAt(in, spec.companions.at("coCg")) : std::vector<float>{};
-  if (c.size() >= 2) coCg = glm::vec2(c[0], c[1]);
-  else out.push_back({"chroma", "not read back: luma only"});
-  const shared::ShLumaCoCg sh = shared::tlShMake(glm::vec4(y[0], y[1], y[2], y[3]), coCg);
   auto n = spec.companions.count("normal") ? companionAt(in, spec.companions.at("normal")) : std::vector<float>{};
-  if (n.size() >= 2) {
-    const glm::vec3 normal = shared::tlOctDecode(glm::vec2(n[0], n[1]));
-    out.push_back({"irradiance (at normal)", vec(shared::tlShResolveIrradiance(sh, normal))});
-    out.push_back({"normal", vec(normal, 3)});
+  ShTexel t;
+  t.chroma = c.size() >= 2;
+  t.sh = shared::tlShMake(glm::vec4(y[0], y[1], y[2], y[3]), t.chroma ? glm::vec2(c[0], c[1]) : glm::vec2(0.0f));
+  if (n.size() >= 2) t.normal = shared::tlOctDecode(glm::vec2(n[0], n[1]));
+  return t;
+}
+
+DecodedLines shIrradiance(const DecodeInput& in, const DecoderSpec& spec) {
+  const std::optional<ShTexel> t = shTexelAt(in, spec);
+  if (!t) return {};
+  DecodedLines out;
+  if (!t->chroma) out.push_back({"chroma", "not read back: luma only"});
+  if (t->normal) {
+    out.push_back({"irradiance (at normal)", vec(shared::tlShResolveIrradiance(t->sh, *t->normal))});
+    out.push_back({"normal", vec(*t->normal, 3)});
   }
-  out.push_back({"dominant direction", vec(shared::tlShDominantDirection(sh, glm::vec3(0.0f, 1.0f, 0.0f)), 3)});
-  out.push_back({"directionality", fmt::format("{:.3f}", shared::tlShDirectionality(sh))});
+  out.push_back({"dominant direction", vec(shared::tlShDominantDirection(t->sh, glm::vec3(0.0f, 1.0f, 0.0f)), 3)});
+  out.push_back({"directionality", fmt::format("{:.3f}", shared::tlShDirectionality(t->sh))});
   return out;
 }
 
@@ -190,12 +203,9 @@ std::optional<MeaningView> shIrradianceView(const DecoderSpec& spec) {
 
 // The largest channel of the irradiance at the normal: what the RGB display's range must hold.
 float shIrradianceValue(const DecodeInput& in, const DecoderSpec& spec) {
-  auto shY = floatsAt(in.resource, in.x, in.y, in.z);
-  auto coCg = companionAt(in, spec.companions.at("coCg"));
-  auto n = companionAt(in, spec.companions.at("normal"));
-  if (shY.size() < 4 || coCg.size() < 2 || n.size() < 2) return std::numeric_limits<float>::quiet_NaN();
-  const shared::ShLumaCoCg sh = shared::tlShMake(glm::vec4(shY[0], shY[1], shY[2], shY[3]), glm::vec2(coCg[0], coCg[1]));
-  const glm::vec3 e = shared::tlShResolveIrradiance(sh, shared::tlOctDecode(glm::vec2(n[0], n[1])));
+  const std::optional<ShTexel> t = shTexelAt(in, spec);
+  if (!t || !t->chroma || !t->normal) return std::numeric_limits<float>::quiet_NaN();
+  const glm::vec3 e = shared::tlShResolveIrradiance(t->sh, *t->normal);
   return std::max({e.r, e.g, e.b});
 }
 

@@ -16,7 +16,7 @@ void DisplayPass::add(graph::RenderGraph& graph, FrameInputs& in, const DisplayR
 }
 
 void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w, uint32_t h, const DisplayRequest& request) {
-  const std::string requested = request.source.empty() ? kTonemapLdr : request.source;
+  const std::string requested = request.source.empty() ? std::string(kTonemapLdr) : request.source;
   auto id = graph.find(requested);
   if (!id || graph.resources()[*id].desc.type != graph::ResourceType::Image)
     throw gpu::Error("the display shows images of the frame; `" + requested + "` is not one");
@@ -29,7 +29,7 @@ void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w
   if (request.keepCopy) copyDesc_ = desc;
   const bool haveCopy = copyDesc_ && *copyDesc_ == desc;
   if (haveCopy) graph.declareCache(kDisplayCopy, *copyDesc_);
-  if (request.keepCopy) addCopyPass(graph, "display.keepCopy", {{requested, kDisplayCopy}});
+  if (request.keepCopy) addCopyPass(graph, "display.keepCopy", {{graph::ImageName{requested}, kDisplayCopy}});
   const std::string source = request.showCopy && haveCopy && !request.keepCopy ? std::string(kDisplayCopy) : requested;
 
   const gpu::FormatInfo fi = gpu::formatInfo(desc.format);
@@ -67,8 +67,9 @@ void DisplayPass::add(graph::RenderGraph& graph, gpu::Device& device, uint32_t w
   // Only the 2D float view declares the companions; the integer and the volume views have none
   // (the builder refuses a binding the shader does not declare).
   if (!ids && !volume)
-    pass.sampled(shared::kDisplayCompanionA, companions[0]).sampled(shared::kDisplayCompanionB, companions[1]);
-  pass.sampled(shared::kDisplaySource, source)
+    pass.sampled(shared::kDisplayCompanionA, graph::ImageName{companions[0]})
+        .sampled(shared::kDisplayCompanionB, graph::ImageName{companions[1]});
+  pass.sampled(shared::kDisplaySource, graph::ImageName{source})
       .sampled(shared::kDisplayInstanceId, kGbufferChannels[5].name)
       .storageOut(shared::kDisplayOutput, kDisplayLdr,
                   graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "editor viewport image").displayReferred())

@@ -15,8 +15,8 @@
 
 namespace tl::lighting {
 
-inline constexpr const char* kDisplayLdr = "display.ldr";
-inline constexpr const char* kDisplayCopy = "display.copyB";  // the A/B copy (a cache resource)
+inline constexpr graph::ImageName kDisplayLdr{"display.ldr"};
+inline constexpr graph::ImageName kDisplayCopy{"display.copyB"};  // the A/B copy (a cache resource)
 
 struct DisplayRequest {
   std::string source;             // a resource of the frame; empty: the final image

@@ -9,7 +9,7 @@
 
 namespace tl::lighting {
 
-inline constexpr const char* kEnvironmentTable = "environment.table";
+inline constexpr graph::BufferName kEnvironmentTable{"environment.table"};
 
 inline bool hasEnvironmentMap(const FrameInputs& in) { return (in.constants.flags & shared::kFrameFlagEnvironment) != 0u; }
 

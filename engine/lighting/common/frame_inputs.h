@@ -26,10 +26,10 @@ class SceneAccel;
 
 // Resources the frame imports from outside the graph: the session's constants, and the
 // scene's buffers (named and imported by scene/gpu_scene.h, GpuScene::importBuffers).
-inline constexpr const char* kFrameConstants = "frame.constants";
+inline constexpr graph::BufferName kFrameConstants{"frame.constants"};
 // The shared BRDF's tables (shared/brdf_lut.h BrdfTables), uploaded once by the session: every
 // pass that shades with shared/shading.h reads them at set 0 binding kBindingBrdfTables.
-inline constexpr const char* kBrdfTables = "brdf.tables";
+inline constexpr graph::BufferName kBrdfTables{"brdf.tables"};
 using scene::kSceneIndices;
 using scene::kSceneInstances;
 using scene::kSceneMaterials;

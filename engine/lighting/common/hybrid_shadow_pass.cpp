@@ -21,8 +21,8 @@ bool addHybridSunShadow(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   push.hardPenumbraTexels = in.settings.hybridShadowHardTexels;
   ComputePass(in.device, "shadow.sun.hybrid", "common/sun_shadow_hybrid.comp")
       .uniform(shared::kBindingFrame, kFrameConstants)
-      .sampled(shared::kHybridShadowNormal, "gbuffer.normal")
-      .sampled(shared::kHybridShadowDepth, kGbufferDepth)
+      .sampled(shared::kHybridShadowNormal, gbuffer::kNormal)
+      .sampled(shared::kHybridShadowDepth, gbuffer::kDepth)
       .sampled(shared::kHybridShadowMap, kShadowSunDepth, samplers::sunShadowCompare)
       .sampled(shared::kHybridShadowMapDepth, kShadowSunDepth)
       .accelerationStructure(shared::kHybridShadowTlas, path.shadowTlasHandle, path.shadowStructures)

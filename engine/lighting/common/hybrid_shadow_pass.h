@@ -12,7 +12,7 @@
 
 namespace tl::lighting {
 
-inline constexpr const char* kShadowSunVisibility = "shadow.sun.visibility";  // R16F, 0..1
+inline constexpr graph::ImageName kShadowSunVisibility{"shadow.sun.visibility"};  // R16F, 0..1
 
 // Adds shadow.sun.hybrid (creating kShadowSunVisibility) where this frame's sun shadow is
 // hybrid: the setting on, a sun that casts shadows, a top level from the path to trace

@@ -3,6 +3,7 @@
 // Pure, tested without a GPU; the session uploads the views and LightShadowPass draws them.
 #pragma once
 
+#include "graph/resource_name.h"
 #include "scene/scene.h"
 #include "shared/lights.h"
 
@@ -12,8 +13,8 @@
 namespace tl::lighting {
 
 // Graph names: the views (imported, only in frames that have them) and the atlas they draw.
-inline constexpr const char* kLightShadowViews = "lights.shadowViews";
-inline constexpr const char* kLightShadowAtlas = "shadow.lightsDepth";
+inline constexpr graph::BufferName kLightShadowViews{"lights.shadowViews"};
+inline constexpr graph::ImageName kLightShadowAtlas{"shadow.lightsDepth"};
 
 // The atlas is at most this many texels on a side; lights that do not fit go unshadowed.
 inline constexpr uint32_t kLightShadowAtlasMax = 16384;

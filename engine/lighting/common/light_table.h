@@ -3,6 +3,7 @@
 // with the probability that many-light sampling draws it. Pure, tested without a GPU.
 #pragma once
 
+#include "graph/resource_name.h"
 #include "scene/scene.h"
 #include "shared/lights.h"
 
@@ -13,7 +14,7 @@
 namespace tl::lighting {
 
 // The graph's name of the imported table (only in frames whose scene has such lights).
-inline constexpr const char* kLightTable = "lights.table";
+inline constexpr graph::BufferName kLightTable{"lights.table"};
 
 // The power a light is drawn in proportion to (luminance, Twinlight units): 4 pi I for a point
 // light, I times the outer cone's solid angle for a spot, and for a directional light its

@@ -2,6 +2,7 @@
 
 #include "graph/executor.h"
 #include "lighting/common/gbuffer_pass.h"
+#include "lighting/common/history.h"
 #include "lighting/common/light_shadows.h"
 #include "lighting/common/light_table.h"
 #include "lighting/common/pass_builders.h"
@@ -24,9 +25,9 @@ constexpr HistoryPolicy kLightsAccumulation{
 void addTableInputs(ComputePass& pass, const std::vector<std::string>& structures, VkAccelerationStructureKHR tlasHandle,
                     bool traced, bool mapped) {
   pass.uniform(shared::kBindingFrame, kFrameConstants)
-      .sampled(shared::kLightsPassNormal, "gbuffer.normal")
-      .sampled(shared::kLightsPassMaterial, "gbuffer.material")
-      .sampled(shared::kLightsPassDepth, kGbufferDepth)
+      .sampled(shared::kLightsPassNormal, gbuffer::kNormal)
+      .sampled(shared::kLightsPassMaterial, gbuffer::kMaterial)
+      .sampled(shared::kLightsPassDepth, gbuffer::kDepth)
       .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
       .bufferIn(shared::kBindingLights, kLightTable);
   if (traced) pass.accelerationStructure(shared::kLightsPassTlas, tlasHandle, structures);
@@ -72,19 +73,16 @@ std::string LightsPass::add(graph::RenderGraph& graph, FrameInputs& in, const st
                                                       "sum of light-table estimates (rgb) and their count (a)");
   if (sampledEstimate(in)) {
     push.accumulate = 1;
-    const bool stored = in.historyValid(accum, accumDesc);
-    push.restart = accumulation_[in.pathName].advance(kLightsAccumulation, in.key, in.pathName, in.historyLog, {stored})
-                               .action == HistoryAction::Restart
-                       ? 1u
-                       : 0u;
-    graph.declarePersistent(accum, accumDesc);
+    const HistoryDecision d =
+        keepHistory(graph, in, accumulation_[in.pathName], kLightsAccumulation, in.pathName, {{accum, accumDesc}});
+    push.restart = d.action == HistoryAction::Restart ? 1u : 0u;
   } else {
     accumulation_.erase(in.pathName);
   }
   ComputePass pass(in.device, "lights.direct", shaderFor("lights", traced, mapped));
   addTableInputs(pass, structures, tlasHandle, traced, mapped);
-  pass.sampled(shared::kLightsPassBaseColor, "gbuffer.baseColor")
-      .optionalStorageInOut(shared::kLightsPassAccum, accum, push.accumulate != 0)  // the shader tests push.accumulate
+  pass.sampled(shared::kLightsPassBaseColor, gbuffer::kBaseColor)
+      .optionalStorageInOut(shared::kLightsPassAccum, graph::ImageName{accum}, push.accumulate != 0)  // the shader tests push.accumulate
       .storageOut(shared::kLightsPassOutput, kLightsRadiance,
                   graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
                                                traced   ? "radiance from the light table, ray-traced shadows"
@@ -93,7 +91,7 @@ std::string LightsPass::add(graph::RenderGraph& graph, FrameInputs& in, const st
       .push(push)
       .dispatch(w, h)
       .add(graph);
-  return kLightsRadiance;
+  return std::string(kLightsRadiance);
 }
 
 // The same picks and shadow rays, summed into the I-buffer's four sums of light instead of
@@ -137,13 +135,10 @@ std::string LightsPass::addIbuffer(graph::RenderGraph& graph, FrameInputs& in, c
     }
   } else if (sampledEstimate(in)) {
     push.accumulate = 1;
-    bool stored = true;
-    for (const auto& a : accum) stored = stored && in.historyValid(a, accumDesc);
-    push.restart = accumulation_[keeper].advance(kLightsAccumulation, in.key, in.pathName, in.historyLog, {stored}).action ==
-                           HistoryAction::Restart
-                       ? 1u
-                       : 0u;
-    for (const auto& a : accum) graph.declarePersistent(a, accumDesc);
+    std::vector<HistoryResource> sums;
+    for (const auto& a : accum) sums.push_back({a, accumDesc});
+    const HistoryDecision d = keepHistory(graph, in, accumulation_[keeper], kLightsAccumulation, in.pathName, sums);
+    push.restart = d.action == HistoryAction::Restart ? 1u : 0u;
   } else {
     accumulation_.erase(keeper);
   }
@@ -155,10 +150,10 @@ std::string LightsPass::addIbuffer(graph::RenderGraph& graph, FrameInputs& in, c
   // Outside the refining run the shader reads no mask (shaders/common/ibuffer_stage.glsl).
   pass.optionalSampled(shared::kIbufferRefineMaskSampled, kIbufferRefine, refine);
   for (size_t q = 0; q < kLightsIbuffer.size(); ++q)
-    pass.optionalStorageInOut(kAccum[q], accum[q], push.accumulate != 0)
+    pass.optionalStorageInOut(kAccum[q], graph::ImageName{accum[q]}, push.accumulate != 0)
         .storageOut(kOut[q], outputs[q],
                     graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                 std::string("the light table's share of ") + kIbuffer[q] + ", " +
+                                                 std::string("the light table's share of ") + std::string(kIbuffer[q]) + ", " +
                                                      (traced   ? "ray-traced shadows"
                                                       : mapped ? "shadow-mapped point and spot lights"
                                                                : "unshadowed"))
@@ -166,7 +161,7 @@ std::string LightsPass::addIbuffer(graph::RenderGraph& graph, FrameInputs& in, c
   const glm::uvec2 grid = stage == shared::kIbufferStagePattern ? shared::tlIbufferPatternGrid(glm::uvec2(w, h), pattern)
                                                                 : glm::uvec2(w, h);
   pass.push(push).dispatch(grid.x, grid.y).add(graph);
-  return kLightsIbuffer[0];
+  return std::string(kLightsIbuffer[0]);
 }
 
 }  // namespace tl::lighting

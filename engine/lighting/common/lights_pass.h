@@ -18,7 +18,7 @@
 
 namespace tl::lighting {
 
-inline constexpr const char* kLightsRadiance = "lights.radiance";  // RGBA16F, 0 on the sky
+inline constexpr graph::ImageName kLightsRadiance{"lights.radiance"};  // RGBA16F, 0 on the sky
 // With more lights than every point evaluates (shared/lights.h kLightsLoopMax), each path
 // accumulates the noisy estimate in its own persistent "lights.accum.<path>" while the frame
 // key's camera, projection, light, scene, geometry and the path's settings stay.

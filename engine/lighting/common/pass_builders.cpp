@@ -1,6 +1,7 @@
 #include "lighting/common/pass_builders.h"
 
 #include "graph/executor.h"
+#include "lighting/common/history.h"
 #include "shared/scene.h"
 
 #include <fmt/format.h>
@@ -92,9 +93,7 @@ void BindingList::constantEntry(uint32_t binding, const gpu::Image* image, VkIma
 
 void BindingList::declareHistory(std::string_view name, const graph::ResourceDesc& desc, graph::RenderGraph& graph,
                                  FrameInputs& in, HistoryKeeper& keeper, const HistoryPolicy& policy) {
-  const bool stored = in.historyValid(name, desc);
-  historyValid_ = keeper.advance(policy, in.key, in.pathName, in.historyLog, {stored}).action != HistoryAction::Restart;
-  graph.declarePersistent(name, desc);
+  historyValid_ = keepHistory(graph, in, keeper, policy, in.pathName, {{name, desc}}).action != HistoryAction::Restart;
 }
 
 void BindingList::setPush(const void* bytes, size_t size) {
@@ -362,12 +361,12 @@ RasterPass& RasterPass::variant(gpu::GraphicsPipelineDesc pipeline) {
   return *this;
 }
 
-RasterPass& RasterPass::colorOut(std::string_view image, const graph::ResourceDesc& create, std::optional<glm::vec4> clear) {
+RasterPass& RasterPass::colorOut(graph::ImageName image, const graph::ResourceDesc& create, std::optional<glm::vec4> clear) {
   colors_.push_back({std::string(image), create, clear, std::nullopt});
   return *this;
 }
 
-RasterPass& RasterPass::depthOut(std::string_view image, const graph::ResourceDesc& create, std::optional<float> clear) {
+RasterPass& RasterPass::depthOut(graph::ImageName image, const graph::ResourceDesc& create, std::optional<float> clear) {
   depth_ = Target{std::string(image), create, std::nullopt, clear};
   return *this;
 }
@@ -450,17 +449,17 @@ graph::PassId RasterPass::add(graph::RenderGraph& graph) {
 
 // ---- TransferPass -----------------------------------------------------------------------
 
-TransferPass& TransferPass::copy(std::string_view from, std::string_view to) {
+TransferPass& TransferPass::copy(graph::ImageName from, graph::ImageName to) {
   steps_.push_back({Op::Copy, std::string(from), std::string(to), std::nullopt});
   return *this;
 }
 
-TransferPass& TransferPass::blit(std::string_view from, std::string_view to, std::optional<graph::ResourceDesc> create) {
+TransferPass& TransferPass::blit(graph::ImageName from, graph::ImageName to, std::optional<graph::ResourceDesc> create) {
   steps_.push_back({Op::Blit, std::string(from), std::string(to), std::move(create)});
   return *this;
 }
 
-TransferPass& TransferPass::clear(std::string_view image) {
+TransferPass& TransferPass::clear(graph::ImageName image) {
   steps_.push_back({Op::Clear, {}, std::string(image), std::nullopt});
   return *this;
 }
@@ -487,7 +486,7 @@ graph::PassId TransferPass::add(graph::RenderGraph& graph) const {
 
 // ---- AccelerationStructurePass ----------------------------------------------------------
 
-AccelerationStructurePass& AccelerationStructurePass::input(std::string_view buffer) {
+AccelerationStructurePass& AccelerationStructurePass::input(graph::BufferName buffer) {
   accesses_.emplace_back(std::string(buffer), Usage::BuildInput);
   return *this;
 }

@@ -132,70 +132,70 @@ class BindingPass : public BindingList {
  public:
   // Buffers: a uniform block (the frame constants), storage read, storage written (an existing
   // buffer, or one this pass creates with `create`).
-  Self& uniform(uint32_t binding, std::string_view buffer) { return listed(binding, Kind::Uniform, buffer); }
-  Self& bufferIn(uint32_t binding, std::string_view buffer) { return listed(binding, Kind::BufferIn, buffer); }
-  Self& bufferOut(uint32_t binding, std::string_view buffer) { return listed(binding, Kind::BufferOut, buffer); }
-  Self& bufferOut(uint32_t binding, std::string_view buffer, const graph::ResourceDesc& create) {
+  Self& uniform(uint32_t binding, graph::BufferName buffer) { return listed(binding, Kind::Uniform, buffer); }
+  Self& bufferIn(uint32_t binding, graph::BufferName buffer) { return listed(binding, Kind::BufferIn, buffer); }
+  Self& bufferOut(uint32_t binding, graph::BufferName buffer) { return listed(binding, Kind::BufferOut, buffer); }
+  Self& bufferOut(uint32_t binding, graph::BufferName buffer, const graph::ResourceDesc& create) {
     return listed(binding, Kind::BufferOut, buffer, {.create = create});
   }
   // A storage buffer a pass declared before this one writes, written again as the next step of
   // that work (graph::PassBuilder::update), as storageUpdate for an image.
-  Self& bufferUpdate(uint32_t binding, std::string_view buffer) {
+  Self& bufferUpdate(uint32_t binding, graph::BufferName buffer) {
     return listed(binding, Kind::BufferOut, buffer, {.update = true});
   }
   // A storage buffer read that the frame may lack (the light table in a scene without lights):
   // absent, no access and no descriptor (partially bound; the shader is told, e.g. by a count).
-  Self& optionalBufferIn(uint32_t binding, std::string_view buffer, bool present) {
+  Self& optionalBufferIn(uint32_t binding, graph::BufferName buffer, bool present) {
     return listed(binding, Kind::BufferIn, buffer, {.optional = true, .present = present});
   }
   // Images: sampled, storage read, storage written (an existing resource, or one this pass
   // creates with `create`), storage read and written in place.
-  Self& sampled(uint32_t binding, std::string_view image, const gpu::SamplerDesc& sampler = samplers::point) {
+  Self& sampled(uint32_t binding, graph::ImageName image, const gpu::SamplerDesc& sampler = samplers::point) {
     return listed(binding, Kind::Sampled, image, {.sampler = sampler});
   }
-  Self& storageIn(uint32_t binding, std::string_view image) { return listed(binding, Kind::StorageIn, image); }
-  Self& storageOut(uint32_t binding, std::string_view image) { return listed(binding, Kind::StorageOut, image); }
-  Self& storageOut(uint32_t binding, std::string_view image, const graph::ResourceDesc& create) {
+  Self& storageIn(uint32_t binding, graph::ImageName image) { return listed(binding, Kind::StorageIn, image); }
+  Self& storageOut(uint32_t binding, graph::ImageName image) { return listed(binding, Kind::StorageOut, image); }
+  Self& storageOut(uint32_t binding, graph::ImageName image, const graph::ResourceDesc& create) {
     return listed(binding, Kind::StorageOut, image, {.create = create});
   }
-  Self& storageInOut(uint32_t binding, std::string_view image) { return listed(binding, Kind::StorageInOut, image); }
+  Self& storageInOut(uint32_t binding, graph::ImageName image) { return listed(binding, Kind::StorageInOut, image); }
   // A storage image a pass declared before this one writes, read and written in place as the
   // next step of that work (graph::PassBuilder::update): the voxels' clear, then each
   // voxelization round. The graph orders the steps and places the barriers between them.
-  Self& storageUpdate(uint32_t binding, std::string_view image) {
+  Self& storageUpdate(uint32_t binding, graph::ImageName image) {
     return listed(binding, Kind::StorageInOut, image, {.update = true});
   }
   // One mip level of a storage image (its view of that level), for a chain that makes a level
   // per pass from the one before: the first pass writes its level with storageOut, each next
   // reads the last level with storageIn and writes its own with storageUpdate.
-  Self& storageIn(uint32_t binding, std::string_view image, uint32_t mip) {
+  Self& storageIn(uint32_t binding, graph::ImageName image, uint32_t mip) {
     return listed(binding, Kind::StorageIn, image, {.mip = mip});
   }
-  Self& storageOut(uint32_t binding, std::string_view image, uint32_t mip) {
+  Self& storageOut(uint32_t binding, graph::ImageName image, uint32_t mip) {
     return listed(binding, Kind::StorageOut, image, {.mip = mip});
   }
   // The first level of such a chain, creating the image (all its mips) with `create`.
-  Self& storageOut(uint32_t binding, std::string_view image, const graph::ResourceDesc& create, uint32_t mip) {
+  Self& storageOut(uint32_t binding, graph::ImageName image, const graph::ResourceDesc& create, uint32_t mip) {
     return listed(binding, Kind::StorageOut, image, {.create = create, .mip = mip});
   }
-  Self& storageUpdate(uint32_t binding, std::string_view image, uint32_t mip) {
+  Self& storageUpdate(uint32_t binding, graph::ImageName image, uint32_t mip) {
     return listed(binding, Kind::StorageInOut, image, {.mip = mip, .update = true});
   }
   // A sampled input that may be absent from this frame's graph (nobody wrote it): then there
   // is no access and no descriptor (the binding is partially bound, no stand-in resource);
   // present() says which, for the push constant that tells the shader.
-  Self& optionalSampled(uint32_t binding, std::string_view image, const graph::RenderGraph& graph,
+  Self& optionalSampled(uint32_t binding, graph::ImageName image, const graph::RenderGraph& graph,
                         const gpu::SamplerDesc& sampler = samplers::point) {
     return optionalSampled(binding, image, graph.find(image).has_value(), sampler);
   }
   // The same where the pass knows whether the input exists (a path's optional output).
-  Self& optionalSampled(uint32_t binding, std::string_view image, bool present,
+  Self& optionalSampled(uint32_t binding, graph::ImageName image, bool present,
                         const gpu::SamplerDesc& sampler = samplers::point) {
     return listed(binding, Kind::Sampled, image, {.sampler = sampler, .optional = true, .present = present});
   }
   // Last frame's `name` (declared persistent here) sampled at `binding`. Whether it holds
   // anything is the history's decision from the frame key (frame_key.h): historyValid().
-  Self& history(uint32_t binding, std::string_view name, const graph::ResourceDesc& desc, graph::RenderGraph& graph,
+  Self& history(uint32_t binding, graph::ImageName name, const graph::ResourceDesc& desc, graph::RenderGraph& graph,
                 FrameInputs& in, HistoryKeeper& keeper, const HistoryPolicy& policy,
                 const gpu::SamplerDesc& sampler = samplers::linear) {
     declareHistory(name, desc, graph, in, keeper, policy);
@@ -203,7 +203,7 @@ class BindingPass : public BindingList {
   }
   // A storage image read and written in place that the pass may leave unbound (an accumulation
   // the frame does not keep): absent, no access and no descriptor, as for optionalSampled.
-  Self& optionalStorageInOut(uint32_t binding, std::string_view image, bool present) {
+  Self& optionalStorageInOut(uint32_t binding, graph::ImageName image, bool present) {
     return listed(binding, Kind::StorageInOut, image, {.optional = true, .present = present});
   }
 
@@ -342,7 +342,7 @@ class RayTracingPass final : public BindingPass<RayTracingPass> {
 //   RasterPass(in.device, "gbuffer", gbufferPipeline)
 //       .uniform(shared::kBindingFrame, kFrameConstants)
 //       .colorOut(kGbufferNormal, normalDesc, glm::vec4(0.0f))
-//       .depthOut(kGbufferDepth, depthDesc, 0.0f)
+//       .depthOut(gbuffer::kDepth, depthDesc, 0.0f)
 //       .drawsScene(in.scene.table())
 //       .draw([&in](graph::PassContext& ctx, const RasterPass::Use&) { in.scene.drawAll(ctx.cmd); })
 //       .add(graph);
@@ -357,8 +357,8 @@ class RasterPass final : public BindingPass<RasterPass> {
   // Another pipeline drawn with the same list (its layout and formats, too, come from the pass).
   RasterPass& variant(gpu::GraphicsPipelineDesc pipeline);
   // A colour or depth attachment the pass creates (`create`), cleared to `clear` (none: loaded).
-  RasterPass& colorOut(std::string_view image, const graph::ResourceDesc& create, std::optional<glm::vec4> clear);
-  RasterPass& depthOut(std::string_view image, const graph::ResourceDesc& create, std::optional<float> clear);
+  RasterPass& colorOut(graph::ImageName image, const graph::ResourceDesc& create, std::optional<glm::vec4> clear);
+  RasterPass& depthOut(graph::ImageName image, const graph::ResourceDesc& create, std::optional<float> clear);
   // The rendering area of a pass without attachments (one that writes storage images only).
   RasterPass& area(uint32_t width, uint32_t height);
   // The scene's descriptor table as set shared::kSceneSet, and the scene's buffers the draws
@@ -399,11 +399,11 @@ class RasterPass final : public BindingPass<RasterPass> {
 class TransferPass {
  public:
   explicit TransferPass(std::string name) : name_(std::move(name)) {}
-  TransferPass& copy(std::string_view from, std::string_view to);
+  TransferPass& copy(graph::ImageName from, graph::ImageName to);
   // Into `to`, which this pass creates with `create` where given.
-  TransferPass& blit(std::string_view from, std::string_view to, std::optional<graph::ResourceDesc> create = std::nullopt);
+  TransferPass& blit(graph::ImageName from, graph::ImageName to, std::optional<graph::ResourceDesc> create = std::nullopt);
   // Mip 0 to zero.
-  TransferPass& clear(std::string_view image);
+  TransferPass& clear(graph::ImageName image);
   graph::PassId add(graph::RenderGraph& graph) const;
 
  private:
@@ -433,7 +433,7 @@ class AccelerationStructurePass {
   using Record = std::function<void(graph::PassContext&, const gpu::Buffer& scratch)>;
 
   explicit AccelerationStructurePass(std::string name) : name_(std::move(name)) {}
-  AccelerationStructurePass& input(std::string_view buffer);
+  AccelerationStructurePass& input(graph::BufferName buffer);
   AccelerationStructurePass& reads(std::string_view structure);
   AccelerationStructurePass& writes(std::string_view structure);
   AccelerationStructurePass& scratch(std::string_view name, VkDeviceSize bytes, std::string what);

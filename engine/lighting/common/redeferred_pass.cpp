@@ -39,15 +39,15 @@ namespace {
 void addIbufferSurface(ComputePass& pass) {
   pass.uniform(shared::kBindingFrame, kFrameConstants)
       .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
-      .sampled(shared::kIbufferNormal, "gbuffer.normal")
-      .sampled(shared::kIbufferMaterial, "gbuffer.material")
-      .sampled(shared::kIbufferDepth, kGbufferDepth);
+      .sampled(shared::kIbufferNormal, gbuffer::kNormal)
+      .sampled(shared::kIbufferMaterial, gbuffer::kMaterial)
+      .sampled(shared::kIbufferDepth, gbuffer::kDepth);
 }
 
 }  // namespace
 
 void RedeferredPass::add(graph::RenderGraph& graph, FrameInputs& in, const shared::CompositePush& push,
-                         const LightingOutputs& path, const std::string& output, const graph::ResourceDesc& outputDesc) {
+                         const LightingOutputs& path, graph::ImageName output, const graph::ResourceDesc& outputDesc) {
   // Below full rate: the pattern's pixels, the rest filled, then the edges shaded after all.
   const uint32_t pattern = shared::tlIbufferPattern(in.settings.redeferredRate);
   if (pattern == shared::kIbufferPatternEvery) {
@@ -64,7 +64,7 @@ void RedeferredPass::add(graph::RenderGraph& graph, FrameInputs& in, const share
   addLightOnly(graph, in);
   ComputePass pass(in.device, "redeferred.material", "common/redeferred_material.comp");
   addCompositeGbuffer(pass);
-  pass.sampled(shared::kCompositeEmissive, "gbuffer.emissive")
+  pass.sampled(shared::kCompositeEmissive, gbuffer::kEmissive)
       .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, hasEnvironmentMap(in))  // the background
       .storageOut(shared::kCompositeOutput, output, outputDesc);
   for (size_t q = 0; q < kIbuffer.size(); ++q) pass.sampled(kSampledBinding[q], kIbuffer[q]);

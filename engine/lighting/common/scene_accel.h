@@ -34,18 +34,19 @@ enum class AccelDetail : uint8_t { Simplified, Full };
 // The graph's names of a level's structures and of its passes' scratch.
 struct AccelNames {
   const char* tlas;           // imported: the top level
-  const char* tlasInstances;  // imported: its instance list (host-written)
+  graph::BufferName tlasInstances;  // imported: its instance list (host-written)
   const char* tlasScratch;
   const char* blasDeforming;  // imported: the deforming meshes' bottom levels, side by side
   const char* blasScratch;    // scratch of their refits (simplified) or rebuilds (full)
   const char* updatePass;     // the pass that refits or rebuilds them
   const char* tlasPass;       // the pass that builds the top level
 };
-inline constexpr AccelNames kAccelSimplified{"accel.simplified.tlas", "accel.simplified.tlas.instances",
+inline constexpr AccelNames kAccelSimplified{"accel.simplified.tlas",
+                                             graph::BufferName{"accel.simplified.tlas.instances"},
                                              "accel.simplified.tlas.scratch", "accel.simplified.blas.deforming",
                                              "accel.simplified.blas.refitScratch", "accel.simplified.blas.refit",
                                              "accel.simplified.tlas"};
-inline constexpr AccelNames kAccelFull{"accel.full.tlas", "accel.full.tlas.instances", "accel.full.tlas.scratch",
+inline constexpr AccelNames kAccelFull{"accel.full.tlas", graph::BufferName{"accel.full.tlas.instances"}, "accel.full.tlas.scratch",
                                        "accel.full.blas.deforming", "accel.full.blas.rebuildScratch",
                                        "accel.full.blas.rebuild", "accel.full.tlas"};
 

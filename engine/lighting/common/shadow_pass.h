@@ -11,7 +11,7 @@
 
 namespace tl::lighting {
 
-inline constexpr const char* kShadowSunDepth = "shadow.sunDepth";  // D32F, standard Z (0 near the sun)
+inline constexpr graph::ImageName kShadowSunDepth{"shadow.sunDepth"};  // D32F, standard Z (0 near the sun)
 
 // A shadow map's two caster pipelines, for the sun's and the lamps' maps alike: opaque casters
 // depth-only with positions alone (other attributes would be fetched for nothing: a performance

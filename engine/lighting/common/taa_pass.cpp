@@ -17,7 +17,8 @@ constexpr HistoryPolicy kTaaHistory{"taa", parts(FramePart::Scene, FramePart::Ca
 void TaaPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   const uint32_t w = in.settings.width, h = in.settings.height;
   const auto hdr = [&](const char* what) { return graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, what); };
-  const std::string history = taaHistoryName(in.pathName);
+  const std::string historyName = taaHistoryName(in.pathName);
+  const graph::ImageName history{historyName};
   ComputePass pass(in.device, "taa", "common/taa.comp");
   pass.history(shared::kTaaBindingHistory, history, hdr("TAA: this path's last resolved image"), graph, in,
                keepers_[in.pathName], kTaaHistory, samplers::linear);
@@ -26,7 +27,7 @@ void TaaPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   push.historyValid = pass.historyValid() ? 1u : 0u;
   pass.uniform(shared::kTaaBindingFrame, kFrameConstants)
       .sampled(shared::kTaaBindingCurrent, kCompositeUnresolved, samplers::point)
-      .sampled(shared::kTaaBindingMotion, "gbuffer.motion", samplers::point)
+      .sampled(shared::kTaaBindingMotion, gbuffer::kMotion, samplers::point)
       .storageOut(shared::kTaaBindingOutput, kCompositeHdr, hdr("scene-linear radiance before exposure, resolved by TAA"))
       .push(push)
       .dispatch(w, h)

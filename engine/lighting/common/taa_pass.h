@@ -12,7 +12,7 @@
 
 namespace tl::lighting {
 
-inline constexpr const char* kCompositeUnresolved = "composite.unresolved";  // RGBA16F, this frame's jittered composite
+inline constexpr graph::ImageName kCompositeUnresolved{"composite.unresolved"};  // RGBA16F, this frame's jittered composite
 // RGBA16F, the path's last resolved image: one per path (taa.history.<path>), so the Compare
 // panel's sides, rendered in turn, never blend each other's images.
 inline std::string taaHistoryName(const std::string& path) { return "taa.history." + path; }

@@ -10,6 +10,7 @@
 #include "lighting/common/copy_pass.h"
 #include "lighting/common/decoders.h"
 #include "lighting/common/gbuffer_pass.h"
+#include "lighting/common/history.h"
 #include "lighting/common/shadow_pass.h"
 #include "lighting/legacy/legacy_path.h"
 #include "lighting/legacy/voxel_regions.h"
@@ -153,19 +154,17 @@ class LegacyPath final : public LightingPath {
       graph.declarePersistent(kLegacyHistRadiance, radianceDesc);
       graph.declarePersistent(kLegacyHistDepth, depthDesc);
     }
-    graph.declarePersistent(kLegacyHistSsao, ssaoDesc);
     // History counts only if this frame's declaration keeps it: a resize recreates it with
-    // undefined contents (NaN on lavapipe's reused memory, once).
-    const bool ssaoStored = in.historyValid(kLegacyHistSsao, ssaoDesc);
-    const bool screenKept =
-        screen_.advance(kScreenHistory, in.key, name(), in.historyLog, {ssaoStored}).action != HistoryAction::Restart;
-    const bool aoHistory = s.legacyAoFrames > 1 && screenKept && ssaoStored;
+    // undefined contents (NaN on lavapipe's reused memory, once), and restarts it.
+    const bool screenKept = keepHistory(graph, in, screen_, kScreenHistory, name(), {{kLegacyHistSsao, ssaoDesc}}).action !=
+                            HistoryAction::Restart;
+    const bool aoHistory = s.legacyAoFrames > 1 && screenKept;
     push.aoHistory = aoHistory ? s.legacyAoFrames : 0u;
 
     withCommon(ComputePass(in.device, "legacy.ssao.temporal", "legacy/ssao_temporal.comp"))
         .sampled(shared::kLegacyBindingAoRaw, kLegacyAoRaw)
         .sampled(shared::kLegacyBindingAoHistory, kLegacyHistSsao)
-        .sampled(shared::kLegacyBindingMotion, "gbuffer.motion")
+        .sampled(shared::kLegacyBindingMotion, gbuffer::kMotion)
         .storageOut(shared::kLegacyBindingSsaoOut, kLegacySsao,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, aw, ah,
                                                  "GTAO accumulated over frames (r), view depth (g), frames (b), 1/aoDivisor")
@@ -225,7 +224,7 @@ class LegacyPath final : public LightingPath {
 
     std::vector<ImageCopy> history = {{kLegacySsao, kLegacyHistSsao}};
     if (feedback) {
-      history.push_back({kGbufferDepth, kLegacyHistDepth});
+      history.push_back({gbuffer::kDepth, kLegacyHistDepth});
       history.push_back({kCompositeHdr, kLegacyHistRadiance});
     }
     addCopyPass(graph, "legacy.history", std::move(history));
@@ -263,7 +262,7 @@ class LegacyPath final : public LightingPath {
 
     ComputePass(in.device, "legacy.reflections.hiz0", "legacy/hiz_first.comp")
         .uniform(shared::kLegacyBindingFrame, kFrameConstants)
-        .sampled(shared::kLegacyBindingDepth, kGbufferDepth)
+        .sampled(shared::kLegacyBindingDepth, gbuffer::kDepth)
         .storageOut(shared::kLegacyBindingHizOut, kLegacyHiz,
                     graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
                                                  "hierarchical depth: the nearest reversed-Z depth of each 2^m-pixel cell, mip m",
@@ -281,8 +280,8 @@ class LegacyPath final : public LightingPath {
     }
 
     withVoxelCones(withCommon(ComputePass(in.device, "legacy.reflections", "legacy/reflections.comp")), rooms)
-        .sampled(shared::kLegacyBindingMaterial, "gbuffer.material")
-        .sampled(shared::kLegacyBindingBaseColor, "gbuffer.baseColor")
+        .sampled(shared::kLegacyBindingMaterial, gbuffer::kMaterial)
+        .sampled(shared::kLegacyBindingBaseColor, gbuffer::kBaseColor)
         .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
         .sampled(shared::kLegacyBindingHiz, kLegacyHiz)
         .optionalSampled(shared::kLegacyBindingPrevRadiance, kLegacyHistRadiance, feedback, samplers::linear)
@@ -594,8 +593,8 @@ class LegacyPath final : public LightingPath {
   // What the screen-space passes' shaders declare in legacy/legacy_common.glsl.
   static ComputePass withCommon(ComputePass pass) {
     pass.uniform(shared::kLegacyBindingFrame, kFrameConstants)
-        .sampled(shared::kLegacyBindingDepth, kGbufferDepth)
-        .sampled(shared::kLegacyBindingNormal, "gbuffer.normal");
+        .sampled(shared::kLegacyBindingDepth, gbuffer::kDepth)
+        .sampled(shared::kLegacyBindingNormal, gbuffer::kNormal);
     return pass;
   }
   // What legacy/voxel_cones.glsl reads: the voxels, their mips and, with rooms, the flood.

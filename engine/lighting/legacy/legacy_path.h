@@ -1,28 +1,29 @@
 // Names of the legacy path's graph resources, and the clipmap fit (pure, unit-tested).
 #pragma once
 
+#include "graph/resource_name.h"
 #include "scene/scene.h"
 #include "shared/legacy.h"
 
 namespace tl::lighting {
 
-inline constexpr const char* kLegacyAoRaw = "legacy.ao.raw";
-inline constexpr const char* kVoxelRadiance = "legacy.voxel.clipmap";
-inline constexpr const char* kVoxelRadianceMips = "legacy.voxel.clipmapMips";
-inline constexpr const char* kVoxelSeeds = "legacy.voxel.seeds";  // rooms: where direct light enters the air (level 0)
-inline constexpr const char* kVoxelReach = "legacy.voxel.reach";  // rooms: the air light reaches (level 0)
-inline constexpr const char* kVoxelReachUnsettled = "legacy.voxel.reachUnsettled";  // rooms: the flood's last round's count
-inline constexpr const char* kConeShY = "legacy.cones.shY";
-inline constexpr const char* kConeCoCgAo = "legacy.cones.coCgAo";
-inline constexpr const char* kLegacyAo = "legacy.ao";
-inline constexpr const char* kLegacyShY = "legacy.gi.shY";
-inline constexpr const char* kLegacyCoCg = "legacy.gi.coCg";
-inline constexpr const char* kLegacyHistRadiance = "legacy.history.radiance";
-inline constexpr const char* kLegacyHistDepth = "legacy.history.depth";
-inline constexpr const char* kLegacySsao = "legacy.ssao";  // SSAO accumulated over frames, reduced resolution
-inline constexpr const char* kLegacyHistSsao = "legacy.history.ssao";
-inline constexpr const char* kLegacyHiz = "legacy.reflections.hiz";  // hierarchical depth: nearest depth per 2^m cell, mip m
-inline constexpr const char* kLegacyReflections = "legacy.reflections";
+inline constexpr graph::ImageName kLegacyAoRaw{"legacy.ao.raw"};
+inline constexpr graph::ImageName kVoxelRadiance{"legacy.voxel.clipmap"};
+inline constexpr graph::ImageName kVoxelRadianceMips{"legacy.voxel.clipmapMips"};
+inline constexpr graph::ImageName kVoxelSeeds{"legacy.voxel.seeds"};  // rooms: where direct light enters the air (level 0)
+inline constexpr graph::ImageName kVoxelReach{"legacy.voxel.reach"};  // rooms: the air light reaches (level 0)
+inline constexpr graph::BufferName kVoxelReachUnsettled{"legacy.voxel.reachUnsettled"};  // rooms: the flood's last round's count
+inline constexpr graph::ImageName kConeShY{"legacy.cones.shY"};
+inline constexpr graph::ImageName kConeCoCgAo{"legacy.cones.coCgAo"};
+inline constexpr graph::ImageName kLegacyAo{"legacy.ao"};
+inline constexpr graph::ImageName kLegacyShY{"legacy.gi.shY"};
+inline constexpr graph::ImageName kLegacyCoCg{"legacy.gi.coCg"};
+inline constexpr graph::ImageName kLegacyHistRadiance{"legacy.history.radiance"};
+inline constexpr graph::ImageName kLegacyHistDepth{"legacy.history.depth"};
+inline constexpr graph::ImageName kLegacySsao{"legacy.ssao"};  // SSAO accumulated over frames, reduced resolution
+inline constexpr graph::ImageName kLegacyHistSsao{"legacy.history.ssao"};
+inline constexpr graph::ImageName kLegacyHiz{"legacy.reflections.hiz"};  // hierarchical depth: nearest depth per 2^m cell, mip m
+inline constexpr graph::ImageName kLegacyReflections{"legacy.reflections"};
 
 struct LegacyClipmapFit {
   shared::LegacyClipmap clipmap{};

@@ -7,6 +7,7 @@
 #include "lighting/lighting_path.h"
 #include "lighting/common/emitter_table.h"
 #include "lighting/common/environment_table.h"
+#include "lighting/common/history.h"
 #include "lighting/common/light_table.h"
 #include "lighting/common/lights_pass.h"
 #include "lighting/common/pass_builders.h"
@@ -26,16 +27,16 @@
 namespace tl::lighting {
 namespace {
 
-inline constexpr const char* kRadiance = "reference.radiance";
-inline constexpr const char* kPilotMean = "reference.pilot.mean";
-inline constexpr const char* kPilotMoments = "reference.pilot.moments";
-inline constexpr const char* kAo = "reference.ao";
-inline constexpr const char* kIrradianceAccum = "reference.irradianceAccum";
-inline constexpr const char* kIrradiance = "reference.irradiance";
-inline constexpr const char* kDepthAccum = "reference.bouncesAccum";
-inline constexpr const char* kMoments = "reference.moments";
-inline constexpr const char* kSampleMean = "reference.sampleMean";
-inline constexpr const char* kNoiseTiles = "reference.noise.tiles";
+inline constexpr graph::ImageName kRadiance{"reference.radiance"};
+inline constexpr graph::ImageName kPilotMean{"reference.pilot.mean"};
+inline constexpr graph::ImageName kPilotMoments{"reference.pilot.moments"};
+inline constexpr graph::ImageName kAo{"reference.ao"};
+inline constexpr graph::ImageName kIrradianceAccum{"reference.irradianceAccum"};
+inline constexpr graph::ImageName kIrradiance{"reference.irradiance"};
+inline constexpr graph::ImageName kDepthAccum{"reference.bouncesAccum"};
+inline constexpr graph::ImageName kMoments{"reference.moments"};
+inline constexpr graph::ImageName kSampleMean{"reference.sampleMean"};
+inline constexpr graph::BufferName kNoiseTiles{"reference.noise.tiles"};
 
 // Every part of the frame key changes the converged image except the per-instance hit
 // albedo (the RT path's, not the materials the reference shades with): the sums start over.
@@ -87,16 +88,13 @@ class ReferencePath final : public LightingPath {
     const auto noiseDesc = graph::ResourceDesc::buffer(
         sizeof(shared::RefNoiseTotals), "the reference's noise over the image (shared/reference.h RefNoiseTotals); the "
                                         "next frame's trace allocates its samples by it");
-    const bool stored = in.historyValid(kMoments, momentsDesc) && in.historyValid(kSampleMean, sampleMeanDesc) &&
-                        in.historyValid(kPilotMean, pilotMeanDesc) && in.historyValid(kPilotMoments, pilotMomentsDesc) &&
-                        in.historyValid(kReferenceNoise, noiseDesc);
-    if (accumulation_.advance(kAccumulation, in.key, name(), in.historyLog, {stored}).action == HistoryAction::Restart)
-      samples_ = 0, irradianceSamples_ = 0;
-
-    for (const auto& [image, desc] : {std::pair{kMoments, momentsDesc}, {kSampleMean, sampleMeanDesc},
-                                      {kPilotMean, pilotMeanDesc}, {kPilotMoments, pilotMomentsDesc}})
-      graph.declarePersistent(image, desc);
-    graph.declarePersistent(kReferenceNoise, noiseDesc);
+    const HistoryDecision accumulation = keepHistory(graph, in, accumulation_, kAccumulation, name(),
+                                                     {{kMoments, momentsDesc},
+                                                      {kSampleMean, sampleMeanDesc},
+                                                      {kPilotMean, pilotMeanDesc},
+                                                      {kPilotMoments, pilotMomentsDesc},
+                                                      {kReferenceNoise, noiseDesc}});
+    if (accumulation.action == HistoryAction::Restart) samples_ = 0, irradianceSamples_ = 0;
     shared::RefPush push{};
     push.aoRadius = in.settings.rtAoRadius;  // resolved (render_settings.h resolveAutomatic)
     push.samplesPerFrame = std::max(1u, in.settings.referenceSamplesPerFrame);
@@ -248,10 +246,10 @@ class ReferencePath final : public LightingPath {
     pass.storageInOut(shared::kRefBindingDepthAccum, kDepthAccum);
     pass.storageIn(shared::kRefBindingAllocation, kReferenceAllocation);
     for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
-      pass.storageOut(shared::kRefBindingDepth0 + g, names[g],
+      pass.storageOut(shared::kRefBindingDepth0 + g, graph::ImageName{names[g]},
                       graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                                    fmt::format("path-traced radiance of {}", kWhat[g]))
-                          .decodedAs(fmt::format("{} whole={}", kDepthShareDecoder, kRadiance)));
+                          .decodedAs(fmt::format("{} whole={}", kDepthShareDecoder, kRadiance.name())));
     pass.push(push,
               [this, base](graph::PassContext& ctx, shared::RefPush& p) {
                 const bool traceRestarted = base == 0 || !ctx.historyValid(kSampleMean);  // as the trace pass decides

@@ -2,6 +2,8 @@
 // compare command's on-disk reference cache keys its images by a hash of these shaders' SPIR-V.
 #pragma once
 
+#include "graph/resource_name.h"
+
 #include <string>
 #include <vector>
 
@@ -11,14 +13,14 @@ namespace tl::lighting {
 // of each pixel's estimate (rgba32f: rgb per channel, a the pixel's samples) and its sum over
 // the image (a buffer of one shared::RefNoiseTotals, read back every frame:
 // shared::tlRefRelativeStdError gives the image's relative standard error).
-inline constexpr const char* kReferenceStdErr = "reference.stderr";
-inline constexpr const char* kReferenceNoise = "reference.noise";
+inline constexpr graph::ImageName kReferenceStdErr{"reference.stderr"};
+inline constexpr graph::BufferName kReferenceNoise{"reference.noise"};
 // Where each frame's samples went (adaptive sampling, shared/reference.h): rgba32f, the pixel's
 // samples this frame (x), the first one's number (y), the standard deviation the next frame
 // allocates by (z).
-inline constexpr const char* kReferenceAllocation = "reference.allocation";
+inline constexpr graph::ImageName kReferenceAllocation{"reference.allocation"};
 // The benchmark's trivial kernel (referenceRawRayProbe): rays traced per pixel (r32f).
-inline constexpr const char* kReferenceRawRays = "reference.rawRays";
+inline constexpr graph::ImageName kReferenceRawRays{"reference.rawRays"};
 
 // The shaders (relative to the shader folder, as gpu::loadSpirv takes them) of every
 // pipeline the reference path builds.

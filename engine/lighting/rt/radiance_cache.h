@@ -20,10 +20,10 @@
 
 namespace tl::lighting {
 
-inline constexpr const char* kRtCacheEntries = "rt.cache.entries";    // persistent: what hits read
-inline constexpr const char* kRtCacheAccum = "rt.cache.accum";        // persistent: keys and sums
-inline constexpr const char* kRtCacheSamples = "rt.cache.samples";    // the update paths' samples
-inline constexpr const char* kRtCacheOutcomes = "rt.cache.outcomes";  // each path's first ray: shared::RtCacheOutcome
+inline constexpr graph::BufferName kRtCacheEntries{"rt.cache.entries"};    // persistent: what hits read
+inline constexpr graph::BufferName kRtCacheAccum{"rt.cache.accum"};        // persistent: keys and sums
+inline constexpr graph::BufferName kRtCacheSamples{"rt.cache.samples"};    // the update paths' samples
+inline constexpr graph::BufferName kRtCacheOutcomes{"rt.cache.outcomes"};  // each path's first ray: shared::RtCacheOutcome
 
 // What the update paths' first rays found in one frame, and the light involved.
 struct RtCacheOutcomes {

@@ -7,6 +7,7 @@
 #include "lighting/common/copy_pass.h"
 #include "lighting/common/decoders.h"
 #include "lighting/common/gbuffer_pass.h"
+#include "lighting/common/history.h"
 #include "lighting/common/light_table.h"
 #include "lighting/common/lights_pass.h"
 #include "lighting/common/pass_builders.h"
@@ -100,17 +101,16 @@ class RtPath final : public LightingPath {
     push.hitDistanceCap = denoiseRadius;
     const uint32_t w = s.width, h = s.height;
     auto image = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, w, h, what); };
-    const graph::ResourceDesc histDescs[] = {
-        image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated SH luma, last frame"),
-        image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated CoCg, AO, frame count, last frame"),
-        image(VK_FORMAT_R32_SFLOAT, "view depth, last frame"),
-        image(VK_FORMAT_R32G32_SFLOAT, "mean squared sample luma, mean inverse hit distance, last frame")};
-    const char* histNames[] = {kHistShY, kHistCoCgAo, kHistDepth, kHistLumaMoment};
-    bool stored = true;
-    for (int i = 0; i < 4; ++i) stored = stored && in.historyValid(histNames[i], histDescs[i]);
     // Luminance rejection is triggered by a change of the light (see shared/rt.h).
     const HistoryPolicy temporal{"rt.temporal", kTemporalRestarts, s.rtLumaRejection ? kTemporalRejects : 0u};
-    const HistoryAction action = temporalHistory_.advance(temporal, in.key, name(), in.historyLog, {stored}).action;
+    const HistoryAction action =
+        keepHistory(graph, in, temporalHistory_, temporal, name(),
+                    {{kHistShY, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated SH luma, last frame")},
+                     {kHistCoCgAo, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated CoCg, AO, frame count, last frame")},
+                     {kHistDepth, image(VK_FORMAT_R32_SFLOAT, "view depth, last frame")},
+                     {kHistLumaMoment, image(VK_FORMAT_R32G32_SFLOAT,
+                                             "mean squared sample luma, mean inverse hit distance, last frame")}})
+            .action;
     restart_ = action == HistoryAction::Restart;
     push.lightChanged = action == HistoryAction::Reject ? 1u : 0u;
     push.disocclusionRays = std::min(s.rtDisocclusionRays, kMaxDisocclusionRays);
@@ -121,7 +121,6 @@ class RtPath final : public LightingPath {
     cache_.plan(graph, in, push, scene_->maxEmitterRadiance());
     push.maxAccumFrames = cache_.temporalWindow(push.maxAccumFrames);
 
-    for (int i = 0; i < 4; ++i) graph.declarePersistent(histNames[i], histDescs[i]);
     const bool screenRadiance = s.rtScreenRadiance;
     if (screenRadiance)
       graph.declarePersistent(kHistRadiance, image(kCompositeHdrFormat, "composite radiance, last frame"));
@@ -140,21 +139,21 @@ class RtPath final : public LightingPath {
     cache_.addPasses(graph, in);
 
     withCommon(ComputePass(in.device, "rt.temporal", "rt/temporal.comp"))
-        .sampled(shared::kRtBindingMotion, "gbuffer.motion")
-        .sampled(shared::kRtBindingShY, raw->shY)
-        .sampled(shared::kRtBindingCoCg, raw->coCg)
-        .sampled(shared::kRtBindingAo, raw->ao)
-        .sampled(shared::kRtBindingHistShY, kHistShY)
-        .sampled(shared::kRtBindingHistCoCgAo, kHistCoCgAo)
-        .sampled(shared::kRtBindingHistDepth, kHistDepth)
-        .sampled(shared::kRtBindingHistMoment, kHistLumaMoment)
-        .storageOut(shared::kRtBindingOutShY, kShY,
+        .sampled(shared::kRtTemporalMotion, gbuffer::kMotion)
+        .sampled(shared::kRtTemporalRawShY, raw->shY)
+        .sampled(shared::kRtTemporalRawCoCg, raw->coCg)
+        .sampled(shared::kRtTemporalRawAo, raw->ao)
+        .sampled(shared::kRtTemporalHistoryShY, kHistShY)
+        .sampled(shared::kRtTemporalHistoryCoCgAo, kHistCoCgAo)
+        .sampled(shared::kRtTemporalHistoryViewDepth, kHistDepth)
+        .sampled(shared::kRtTemporalHistoryMoment, kHistLumaMoment)
+        .storageOut(shared::kRtTemporalOutShY, kShY,
                     image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated irradiance: L1 SH of luma")
                         .decodedAs(shIrradianceDecoder(kCoCgAo)))
-        .storageOut(shared::kRtBindingOutCoCgAo, kCoCgAo, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated chroma (xy), AO (z), frames (w)"))
-        .storageOut(shared::kRtBindingOutDepth, kViewDepth,
+        .storageOut(shared::kRtTemporalOutCoCgAo, kCoCgAo, image(VK_FORMAT_R16G16B16A16_SFLOAT, "accumulated chroma (xy), AO (z), frames (w)"))
+        .storageOut(shared::kRtTemporalOutViewDepth, kViewDepth,
                     image(VK_FORMAT_R32_SFLOAT, "view depth (w) for the next frame's disocclusion test"))
-        .storageOut(shared::kRtBindingOutMoment, kLumaMoment,
+        .storageOut(shared::kRtTemporalOutMoment, kLumaMoment,
                     image(VK_FORMAT_R32G32_SFLOAT,
                           "mean squared sample luma (x: the firefly ceiling's and the denoiser's scale), mean inverse GI hit distance (y: the denoiser's radius)"))
         .push(push)
@@ -170,8 +169,8 @@ class RtPath final : public LightingPath {
     LightingOutputs out;
     // What the history, the AO filter and the denoiser take: the accumulation, with the
     // disocclusion rays filled into its fresh pixels when they are on.
-    const char* accShY = kShY;
-    const char* accCoCgAo = kCoCgAo;
+    graph::ImageName accShY = kShY;
+    graph::ImageName accCoCgAo = kCoCgAo;
     if (push.disocclusionRays > 0) {
       addDisocclusionPasses(graph, in, push, screenRadiance);
       accShY = kFilledShY;
@@ -185,9 +184,9 @@ class RtPath final : public LightingPath {
                 {{accShY, kHistShY}, {accCoCgAo, kHistCoCgAo}, {kViewDepth, kHistDepth}, {kLumaMoment, kHistLumaMoment}});
 
     withCommon(ComputePass(in.device, "rt.ao.filter", "rt/ao_filter.comp"))
-        .sampled(shared::kRtBindingCoCg, accCoCgAo)
-        .sampled(shared::kRtBindingHistDepth, kViewDepth)
-        .storageOut(shared::kRtBindingAo, kAo, image(VK_FORMAT_R16_SFLOAT, "filtered ambient occlusion").decodedAs("ao"))
+        .sampled(shared::kRtAoFilterAccumulated, accCoCgAo)
+        .sampled(shared::kRtAoFilterViewDepth, kViewDepth)
+        .storageOut(shared::kRtAoFilterOut, kAo, image(VK_FORMAT_R16_SFLOAT, "filtered ambient occlusion").decodedAs("ao"))
         .push(push)
         .dispatch(w, h)
         .add(graph);
@@ -195,13 +194,13 @@ class RtPath final : public LightingPath {
     if (s.rtRawRayProbe) {
       // The benchmark's trivial kernel, twice: every pixel's ray, and only the rays rt.trace
       // had to trace (the pre-trace's pending ones): the fair rate to hold rt.trace against.
-      auto rawProbe = [&](const char* pass, const char* output, uint32_t pendingOnly) {
+      auto rawProbe = [&](const char* pass, graph::ImageName output, uint32_t pendingOnly) {
         RtPush probe = push;
         probe.rawPendingOnly = pendingOnly;
         withCommon(RayTracingPass(in.device, pass, kRawShaders))
             .accelerationStructure(shared::kRtBindingTlas, tlas(), structures())
             .storageIn(shared::kRtBindingHitsIn, kPretraceHits)
-            .storageOut(shared::kRtBindingAo, output,
+            .storageOut(shared::kRtRawDistances, output,
                         image(VK_FORMAT_R32_SFLOAT, "benchmark: hit distance of the trivial trace kernel"))
             .push(probe)
             .trace(tracedWidth(in), tracedHeight(in))
@@ -214,10 +213,11 @@ class RtPath final : public LightingPath {
 
     if (screenRadiance) addCopyPass(graph, "rt.radiance.store", {{kCompositeHdr, kHistRadiance}});
 
-    std::string giShY = accShY, giCoCg = accCoCgAo;
+    graph::ImageName giShY = accShY, giCoCg = accCoCgAo;
     if (s.rtDenoise) {
       const uint32_t frameIndex = in.constants.frameIndex;
-      auto denoise = [&](const char* name, const char* inShY, const char* inCoCg, const char* outShY, const char* outCoCg,
+      auto denoise = [&](const char* name, graph::ImageName inShY, graph::ImageName inCoCg, graph::ImageName outShY,
+                         graph::ImageName outCoCg,
                          float radius, uint32_t normalWeight) {
         shared::RtDenoisePush dp{};
         dp.baseRadius = radius;
@@ -227,17 +227,17 @@ class RtPath final : public LightingPath {
         dp.hitDistanceCap = denoiseRadius;
         ComputePass(in.device, name, "rt/denoise.comp")
             .uniform(shared::kRtBindingFrame, kFrameConstants)
-            .sampled(shared::kRtBindingDepth, kGbufferDepth)
-            .sampled(shared::kRtBindingNormal, "gbuffer.normal")
-            .sampled(shared::kRtBindingShY, inShY)
-            .sampled(shared::kRtBindingCoCg, inCoCg)
-            .sampled(shared::kRtBindingDenoiseMoment, kLumaMoment)
-            .sampled(shared::kRtBindingBaseColor, "gbuffer.baseColor")
-            .sampled(shared::kRtBindingMaterial, "gbuffer.material")
-            .storageOut(shared::kRtBindingDenoiseShY, outShY,
+            .sampled(shared::kRtBindingDepth, gbuffer::kDepth)
+            .sampled(shared::kRtBindingNormal, gbuffer::kNormal)
+            .sampled(shared::kRtDenoiseInShY, inShY)
+            .sampled(shared::kRtDenoiseInCoCgAo, inCoCg)
+            .sampled(shared::kRtDenoiseLumaMoment, kLumaMoment)
+            .sampled(shared::kRtBindingBaseColor, gbuffer::kBaseColor)
+            .sampled(shared::kRtBindingMaterial, gbuffer::kMaterial)
+            .storageOut(shared::kRtDenoiseOutShY, outShY,
                         image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised irradiance, SH luma")
                             .decodedAs(shIrradianceDecoder(outCoCg)))
-            .storageOut(shared::kRtBindingDenoiseCoCgAo, outCoCg,
+            .storageOut(shared::kRtDenoiseOutCoCgAo, outCoCg,
                         image(VK_FORMAT_R16G16B16A16_SFLOAT, "denoised chroma (xy), AO and frames as input"))
             .push(dp)
             .dispatch(w, h)
@@ -302,10 +302,10 @@ class RtPath final : public LightingPath {
     };
     const char* rays = first ? "the mean of two rays" : "one ray";
     withCommon(ComputePass(in.device, r.pretracePass, "rt/pretrace.comp"))
-        .sampled(shared::kRtBindingBaseColor, "gbuffer.baseColor")
-        .sampled(shared::kRtBindingMaterial, "gbuffer.material")
-        .sampled(shared::kRtBindingEmissive, "gbuffer.emissive")
-        .sampled(shared::kRtBindingInstanceId, "gbuffer.instanceId")
+        .sampled(shared::kRtBindingBaseColor, gbuffer::kBaseColor)
+        .sampled(shared::kRtBindingMaterial, gbuffer::kMaterial)
+        .sampled(shared::kRtBindingEmissive, gbuffer::kEmissive)
+        .sampled(shared::kRtBindingInstanceId, gbuffer::kInstanceId)
         .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.frame).handle())
         .storageOut(shared::kRtBindingHitsOut, r.pretraceHits,
                     image(VK_FORMAT_R32_UINT, "pre-trace hit records: distance + G-buffer albedo, or pending").decodedAs("rt-hit-record"))
@@ -332,17 +332,17 @@ class RtPath final : public LightingPath {
     withHitLighting(withCommon(RayTracingPass(in.device, r.lightingPass, kLightingShaders)), screenRadiance, in)
         .storageIn(shared::kRtBindingHitsIn, r.hits)
         .storageIn(shared::kRtBindingSurfaceIn, r.hitSurface)
-        .storageOut(shared::kRtBindingShY, r.shY,
+        .storageOut(shared::kRtLightingOutShY, r.shY,
                     image(VK_FORMAT_R16G16B16A16_SFLOAT, fmt::format("{} irradiance: L1 SH of luma", rays))
                         .decodedAs(shIrradianceDecoder(r.coCg)))
-        .storageOut(shared::kRtBindingCoCg, r.coCg, image(VK_FORMAT_R16G16_SFLOAT, fmt::format("{} irradiance: chroma", rays)))
-        .storageOut(shared::kRtBindingAo, r.ao,
+        .storageOut(shared::kRtLightingOutCoCg, r.coCg, image(VK_FORMAT_R16G16_SFLOAT, fmt::format("{} irradiance: chroma", rays)))
+        .storageOut(shared::kRtLightingOutAo, r.ao,
                     image(VK_FORMAT_R16G16_SFLOAT,
                           fmt::format("{} ambient occlusion (x: hit closer than the AO radius), hit distance up to the denoiser's radius (y)", rays)))
         // The first ray's results, read by the second ray only (lighting.rgen: RtPush::sampleIndex 1).
-        .optionalSampled(shared::kRtBindingFirstShY, kFirstRay.shY, first != nullptr)
-        .optionalSampled(shared::kRtBindingFirstCoCg, kFirstRay.coCg, first != nullptr)
-        .optionalSampled(shared::kRtBindingFirstAo, kFirstRay.ao, first != nullptr)
+        .optionalSampled(shared::kRtLightingFirstShY, kFirstRay.shY, first != nullptr)
+        .optionalSampled(shared::kRtLightingFirstCoCg, kFirstRay.coCg, first != nullptr)
+        .optionalSampled(shared::kRtLightingFirstAo, kFirstRay.ao, first != nullptr)
         .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, push.environmentSampling != 0u)
         .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.frame).handle())
         .push(push, screenRadianceAtRecord(screenRadiance))
@@ -399,10 +399,10 @@ class RtPath final : public LightingPath {
     sp.roughDivisor = s.rtReflectionRoughDivisor >= 2 ? 2u : 1u;
     ComputePass(in.device, "rt.specular.temporal", "rt/specular_temporal.comp")
         .uniform(shared::kRtBindingFrame, kFrameConstants)
-        .sampled(shared::kRtBindingDepth, kGbufferDepth)
-        .sampled(shared::kRtBindingSpecularMotion, "gbuffer.motion")
-        .sampled(shared::kRtBindingMaterial, "gbuffer.material")
-        .sampled(shared::kRtBindingHistDepth, kHistDepth)
+        .sampled(shared::kRtBindingDepth, gbuffer::kDepth)
+        .sampled(shared::kRtBindingSpecularMotion, gbuffer::kMotion)
+        .sampled(shared::kRtBindingMaterial, gbuffer::kMaterial)
+        .sampled(shared::kRtBindingPreviousViewDepth, kHistDepth)
         .sampled(shared::kRtBindingSpecularRaw, kSpecularRaw)
         .sampled(shared::kRtBindingSpecularHistory, kHistSpecular, samplers::linear)
         .sampled(shared::kRtBindingSpecularHistoryHit, kHistSpecularHit, samplers::linear)
@@ -422,9 +422,9 @@ class RtPath final : public LightingPath {
 
     ComputePass(in.device, "rt.specular.filter", "rt/specular_filter.comp")
         .uniform(shared::kRtBindingFrame, kFrameConstants)
-        .sampled(shared::kRtBindingDepth, kGbufferDepth)
-        .sampled(shared::kRtBindingNormal, "gbuffer.normal")
-        .sampled(shared::kRtBindingMaterial, "gbuffer.material")
+        .sampled(shared::kRtBindingDepth, gbuffer::kDepth)
+        .sampled(shared::kRtBindingNormal, gbuffer::kNormal)
+        .sampled(shared::kRtBindingMaterial, gbuffer::kMaterial)
         .sampled(shared::kRtBindingSpecularAccumulated, kSpecularTemporal)
         .sampled(shared::kRtBindingSpecularHit, kSpecularHitDistance)
         .storageOut(shared::kRtBindingSpecularFiltered, kSpecular,
@@ -433,7 +433,7 @@ class RtPath final : public LightingPath {
         .push(sp)
         .dispatch(w, h)
         .add(graph);
-    return kSpecular;
+    return std::string(kSpecular);
   }
 
   static constexpr uint32_t kMaxDisocclusionRays = 64;  // RE ENGINE traces 16-64 per low-resolution pixel
@@ -444,13 +444,13 @@ class RtPath final : public LightingPath {
     const uint32_t cw = cellsAcross(in.settings.width), ch = cellsAcross(in.settings.height);
     auto cells = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, cw, ch, what); };
     withHitLighting(withCommon(RayTracingPass(in.device, "rt.disocclusion", kDisocclusionShaders)), screenRadiance, in)
-        .sampled(shared::kRtBindingCoCg, kCoCgAo)
+        .sampled(shared::kRtDisocclusionAccumulated, kCoCgAo)
         .constantBuffer(shared::kRtBindingInstances, scene_->instanceData(in.frame).handle())
-        .storageOut(shared::kRtBindingCellShY, kCellShY,
+        .storageOut(shared::kRtDisocclusionCellShY, kCellShY,
                     cells(VK_FORMAT_R16G16B16A16_SFLOAT, "disocclusion rays per 8x8 cell: mean SH luma"))
-        .storageOut(shared::kRtBindingCellCoCgAo, kCellCoCgAo,
+        .storageOut(shared::kRtDisocclusionCellCoCgAo, kCellCoCgAo,
                     cells(VK_FORMAT_R16G16B16A16_SFLOAT, "disocclusion rays: mean chroma (xy), AO (z)"))
-        .storageOut(shared::kRtBindingCellPosition, kCellOrigin,
+        .storageOut(shared::kRtDisocclusionCellOrigin, kCellOrigin,
                     cells(VK_FORMAT_R32G32B32A32_SFLOAT, "disocclusion rays: world origin (xyz), 1 if traced (w)"))
         .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, push.environmentSampling != 0u)
         .push(push, screenRadianceAtRecord(screenRadiance))
@@ -458,16 +458,16 @@ class RtPath final : public LightingPath {
         .add(graph);
     const uint32_t w = in.settings.width, h = in.settings.height;
     withCommon(ComputePass(in.device, "rt.disocclusion.blend", "rt/disocclusion_blend.comp"))
-        .sampled(shared::kRtBindingShY, kShY)
-        .sampled(shared::kRtBindingCoCg, kCoCgAo)
-        .sampled(shared::kRtBindingCellShY, kCellShY)
-        .sampled(shared::kRtBindingCellCoCgAo, kCellCoCgAo)
-        .sampled(shared::kRtBindingCellPosition, kCellOrigin)
-        .storageOut(shared::kRtBindingOutShY, kFilledShY,
+        .sampled(shared::kRtBlendAccumulatedShY, kShY)
+        .sampled(shared::kRtBlendAccumulatedCoCgAo, kCoCgAo)
+        .sampled(shared::kRtBlendCellShY, kCellShY)
+        .sampled(shared::kRtBlendCellCoCgAo, kCellCoCgAo)
+        .sampled(shared::kRtBlendCellOrigin, kCellOrigin)
+        .storageOut(shared::kRtBlendOutShY, kFilledShY,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
                                                  "accumulated irradiance, fresh pixels filled from the disocclusion rays")
                         .decodedAs(shIrradianceDecoder(kFilledCoCgAo)))
-        .storageOut(shared::kRtBindingOutCoCgAo, kFilledCoCgAo,
+        .storageOut(shared::kRtBlendOutCoCgAo, kFilledCoCgAo,
                     graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
                                                  "accumulated chroma (xy), AO (z), frames (w), fresh pixels filled"))
         .push(push)
@@ -492,11 +492,11 @@ class RtPath final : public LightingPath {
         .constantBuffer(shared::kRtBindingEmitters, scene_->emitterData().handle())
         .optionalBufferIn(shared::kRtBindingCacheEntries, kRtCacheEntries, cache_.active())
         .optionalBufferIn(shared::kBindingLights, kLightTable, in.constants.lightCount > 0)
-        .optionalSampled(shared::kRtBindingHistRadiance, kHistRadiance, screenRadiance)
-        .sampled(shared::kRtBindingHistDepth, kHistDepth)
-        .sampled(shared::kRtBindingBaseColor, "gbuffer.baseColor")
-        .sampled(shared::kRtBindingMaterial, "gbuffer.material")
-        .sampled(shared::kRtBindingEmissive, "gbuffer.emissive")
+        .optionalSampled(shared::kRtBindingPreviousRadiance, kHistRadiance, screenRadiance)
+        .sampled(shared::kRtBindingPreviousViewDepth, kHistDepth)
+        .sampled(shared::kRtBindingBaseColor, gbuffer::kBaseColor)
+        .sampled(shared::kRtBindingMaterial, gbuffer::kMaterial)
+        .sampled(shared::kRtBindingEmissive, gbuffer::kEmissive)
         .sceneTable(in.scene.table());
     return pass;
   }
@@ -534,8 +534,8 @@ class RtPath final : public LightingPath {
   Pass withCommon(Pass pass) const {
     pass.uniform(shared::kRtBindingFrame, kFrameConstants)
         .constantSampled(shared::kRtBindingBlueNoise, blueNoise_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-        .sampled(shared::kRtBindingDepth, kGbufferDepth)
-        .sampled(shared::kRtBindingNormal, "gbuffer.normal");
+        .sampled(shared::kRtBindingDepth, gbuffer::kDepth)
+        .sampled(shared::kRtBindingNormal, gbuffer::kNormal);
     return pass;
   }
   // Invocations per row of the passes that trace: half with 0.5 rays per pixel.
