@@ -52,6 +52,19 @@ struct LightingOutputs {
   std::string lightsRadiance;
 };
 
+// Graph resources a path makes for those who measure it, beyond what the composite takes
+// (empty: not made). Compare, the Compare panel and the noise figures read a path through these
+// names, never its own headers.
+struct PathReadouts {
+  std::string image;             // a path that computes the whole image: that image (else composite.hdr)
+  std::string ambientOcclusion;  // its AO (1 = unoccluded)
+  std::string irradiance;        // irradiance at the pixels, without the sun
+  std::string noise;             // per-pixel standard error of its estimate (rgba32f: rgb, a the pixel's samples)
+  std::string noiseTotals;       // a buffer of one shared::RefNoiseTotals: the image's noise, read back every frame
+  std::vector<std::string> byDepth;  // its radiance split by path depth (what --bounces caps), in depth order
+  std::vector<std::string> shaders;  // the shaders its estimate comes from: a cache of its images keys on their SPIR-V
+};
+
 // What a path is, for everything that must treat paths differently without knowing their
 // names: the session, compare, bench and the editor ask these.
 struct PathCapabilities {
@@ -65,6 +78,17 @@ struct PathCapabilities {
   // are (no exposure, no tonemap curve: the same grey in every scene) and left out of compare
   // and the Compare panel unless asked for by name (an error against the reference means nothing).
   bool debugView = false;
+  PathReadouts readouts;
+};
+
+// What `bench --rays` gives a path to make its ray figures from: the last frame's settings
+// and index, its read-backs (those the path asked for with rayProbeReadbacks) and the median
+// GPU time of a pass by name (0 when it did not run).
+struct RayProbeFrame {
+  const RenderSettings& settings;
+  uint32_t frameIndex = 0;
+  std::function<const graph::Readback&(std::string_view name)> readback;
+  std::function<double(std::string_view pass)> medianMs;
 };
 
 class LightingPath {
@@ -79,6 +103,12 @@ class LightingPath {
   // Figures about the last frame beyond pass timings (acceleration-structure sizes, culled
   // instances, ...), name -> value, for the benchmark and the tests.
   virtual std::vector<std::pair<std::string, double>> figures() const { return {}; }
+  // `bench --rays`: a path with a trivial benchmark kernel turns it on in `settings` (false:
+  // it has none), names the buffers its figures read back, and makes them from a frame: its
+  // rate of rays or paths against the trivial kernel's on the same structures.
+  virtual bool enableRayProbe(RenderSettings&) const { return false; }
+  virtual std::vector<std::string> rayProbeReadbacks() const { return {}; }
+  virtual std::vector<std::pair<std::string, double>> rayFigures(const RayProbeFrame&) const { return {}; }
   virtual PathCapabilities capabilities() const = 0;
 };
 

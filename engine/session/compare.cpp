@@ -5,7 +5,6 @@
 #include "gpu/pipeline.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/gbuffer_pass.h"
-#include "lighting/reference/reference_path.h"
 #include "metrics/depth_attribution.h"
 #include "metrics/flip.h"
 #include "metrics/metrics.h"
@@ -32,12 +31,21 @@ namespace {
 
 using metrics::median;
 
+// What compare reads of the reference path beyond its image: its AO, irradiance, noise, depth
+// split and shaders, by the names the path gives (lighting::PathReadouts).
+lighting::PathReadouts referenceReadouts(const Session& s) {
+  const std::string reference = s.referencePath();
+  for (const PathInfo& p : s.paths())
+    if (p.name == reference) return p.capabilities.readouts;
+  throw SessionError("this build has no reference path to compare against");
+}
+
 // The reference's shaders as compiled (includes and all) and the BRDF tables they read: any
 // change to the path tracer's GPU code gives new SPIR-V and so a new cache key, with no
 // version to remember to bump.
-uint64_t referenceSpirvHash() {
+uint64_t referenceSpirvHash(const Session& s) {
   std::vector<uint64_t> hashes;
-  for (const std::string& shader : lighting::referenceShaders()) {
+  for (const std::string& shader : referenceReadouts(s).shaders) {
     const std::vector<uint32_t> words = gpu::loadSpirv(shader);
     hashes.push_back(scene::hashBytes(words.data(), words.size() * sizeof(uint32_t)));
   }
@@ -61,7 +69,7 @@ std::string referenceKey(const Session& s, const CompareOptions& o) {
   std::string text = fmt::format("{:x}|{:x}|{:x}|{:x}|{:x}|{:x}|scene {:x}|spirv {:x}|{}",
                                  key.hash(FramePart::CameraPosition), key.hash(FramePart::CameraOrientation),
                                  key.hash(FramePart::Projection), key.hash(FramePart::Sun), key.hash(FramePart::Sky),
-                                 key.settingsOf("reference"), s.scene().contentHash, referenceSpirvHash(), samples);
+                                 key.settingsOf("reference"), s.scene().contentHash, referenceSpirvHash(s), samples);
   if (s.animated()) text += fmt::format("|t{}", s.animationTime());  // the pose of deforming meshes and moving nodes
   return fmt::format("{:016x}", scene::hashBytes(text.data(), text.size()));
 }
@@ -75,9 +83,10 @@ std::string referenceBouncePolicy(uint32_t cap) {
 
 // The reference image and its per-stage quantities at the primary hit: AO at the AO radius
 // (one channel) and the diffuse irradiance (sky + bounce light, no sun; 0 on the sky); and its
-// radiance split by path depth (lighting::referenceBounceBuffers(): empty for another
+// radiance split by path depth (PathReadouts::byDepth: empty for another
 // renderer's image).
 struct ReferenceImages {
+  lighting::PathReadouts names;  // the graph resources they were read from (empty for another renderer's image)
   metrics::Image radiance, ao, irradiance;
   std::vector<metrics::Image> byDepth;
   // The standard error of each pixel's radiance per channel (reference.stderr); empty for
@@ -85,7 +94,7 @@ struct ReferenceImages {
   metrics::Image stdErr;
 };
 
-// What each depth group is called in reports, in referenceBounceBuffers()'s order.
+// What each depth group is called in reports, in PathReadouts::byDepth's order.
 const std::vector<std::string>& depthGroupNames() {
   static const std::vector<std::string> names = {"direct", "bounce1", "bounce2", "bounce3plus"};
   return names;
@@ -103,7 +112,8 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   const std::filesystem::path dir = o.cacheDir.empty() ? defaultReferenceCache() : o.cacheDir;
   s.settings().referenceBounces = o.referenceBounces;  // before the key, which holds the reference's settings
   const std::string key = referenceKey(s, o);
-  const auto& depthBuffers = lighting::referenceBounceBuffers();
+  const lighting::PathReadouts names = referenceReadouts(s);
+  const std::vector<std::string>& depthBuffers = names.byDepth;
   // The radiance first: its presence is what a run looks for first (it is written last).
   std::vector<std::filesystem::path> files = {dir / (key + ".exr"), dir / (key + ".ao.exr"), dir / (key + ".irradiance.exr"),
                                               dir / (key + ".stderr.exr"), dir / (key + ".noise.json")};
@@ -133,8 +143,8 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   }
   if (hit) {
     info["cached"] = true;
-    ReferenceImages r{metrics::Image::fromTexels(w, h, 3, std::move(cached[0]->rgb)), metrics::Image::filled(w, h, 1, 0.0f),
-                      metrics::Image::fromTexels(w, h, 3, std::move(cached[2]->rgb))};
+    ReferenceImages r{names, metrics::Image::fromTexels(w, h, 3, std::move(cached[0]->rgb)),
+                      metrics::Image::filled(w, h, 1, 0.0f), metrics::Image::fromTexels(w, h, 3, std::move(cached[2]->rgb))};
     for (size_t i = 0; i < r.ao.data.size(); ++i) r.ao.data[i] = cached[1]->rgb[3 * i];
     r.stdErr = metrics::Image::fromTexels(w, h, 3, std::move(cached[3]->rgb));
     for (size_t g = 0; g < depthBuffers.size(); ++g)
@@ -152,9 +162,9 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   // The irradiance and depth-split passes run only in frames that read their results: every
   // frame here, so the split holds the very samples of the radiance.
   auto request = [&](bool all) {
-    s.requestBuffer("reference.irradiance");
+    s.requestBuffer(names.irradiance);
     for (const auto& b : depthBuffers) s.requestBuffer(b);
-    if (all) s.requestBuffer("reference.radiance"), s.requestBuffer("reference.ao"), s.requestBuffer(lighting::kReferenceStdErr);
+    if (all) s.requestBuffer(names.image), s.requestBuffer(names.ambientOcclusion), s.requestBuffer(names.noise);
   };
   if (o.referenceNoise) {
     // Stopped by its noise: any frame may be the last, so each one reads the images back.
@@ -184,9 +194,9 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
     info["noise"]["spp"] = noise->samplesPerPixel();
     info["spp"] = noise->samplesPerPixel();
   }
-  ReferenceImages r{rgbImage(s.buffer("reference.radiance")), channelOf(s.buffer("reference.ao"), 0),
-                    rgbImage(s.buffer("reference.irradiance"))};
-  r.stdErr = rgbImage(s.buffer(lighting::kReferenceStdErr));
+  ReferenceImages r{names, rgbImage(s.buffer(names.image)), channelOf(s.buffer(names.ambientOcclusion), 0),
+                    rgbImage(s.buffer(names.irradiance))};
+  r.stdErr = rgbImage(s.buffer(names.noise));
   for (const auto& b : depthBuffers) r.byDepth.push_back(rgbImage(s.buffer(b)));
   std::vector<float> aoRgb(r.ao.data.size() * 3);
   for (size_t i = 0; i < aoRgb.size(); ++i) aoRgb[i] = r.ao.data[i / 3];
@@ -225,9 +235,9 @@ nlohmann::json stageErrors(const metrics::Image& ao, const metrics::Image& irrad
   const double n = double(surface.size());
   auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   return {{"surfacePixels", surface.size()},
-          {"ao", {{"buffer", lighting::kCompositeAo}, {"reference", "reference.ao"}, {"meanAbsError", finite(aoAbs / n)},
+          {"ao", {{"buffer", lighting::kCompositeAo}, {"reference", ref.names.ambientOcclusion}, {"meanAbsError", finite(aoAbs / n)},
                   {"RMSE", finite(metrics::rmse(aoTest, aoRef).value)}, {"referenceMean", aoRefSum / n}}},
-          {"irradiance", {{"buffer", lighting::kCompositeIrradiance}, {"reference", "reference.irradiance"},
+          {"irradiance", {{"buffer", lighting::kCompositeIrradiance}, {"reference", ref.names.irradiance},
                           {"relMSE", finite(rel.value)}, {"RMSE", finite(metrics::rmse(eTest, eRef).value)}}}};
 }
 
@@ -236,13 +246,14 @@ nlohmann::json stageErrors(const metrics::Image& ao, const metrics::Image& irrad
 // reference truncated after 1, 2 and 3 groups (what --bounces 1, 2, 3 renders), exposure-
 // normalised with the whole reference's factor: the truncation it resembles most says how
 // many bounces it models.
-nlohmann::json depthReport(const metrics::Image& test, const std::vector<metrics::Image>& byDepth, double normalisation) {
+nlohmann::json depthReport(const metrics::Image& test, const std::vector<metrics::Image>& byDepth,
+                           const std::vector<std::string>& byDepthNames, double normalisation) {
   auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   const metrics::DepthAttribution a = metrics::attributeDepths(test, byDepth);
   nlohmann::json groups = nlohmann::json::array();
   for (size_t g = 0; g < byDepth.size(); ++g)
     groups.push_back({{"group", depthGroupNames()[g]},
-                      {"buffer", lighting::referenceBounceBuffers()[g]},
+                      {"buffer", byDepthNames[g]},
                       {"captured", finite(a.captured[g])},
                       {"missing", finite(a.missing[g])},
                       {"shareOfReference", finite(a.groupShare[g])}});
@@ -445,7 +456,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     const metrics::DepthAttribution whole = metrics::attributeDepths(reference, referenceImages.byDepth);
     nlohmann::json groups = nlohmann::json::array();
     for (size_t g = 0; g < whole.groupShare.size(); ++g)
-      groups.push_back({{"group", depthGroupNames()[g]}, {"buffer", lighting::referenceBounceBuffers()[g]},
+      groups.push_back({{"group", depthGroupNames()[g]}, {"buffer", referenceImages.names.byDepth[g]},
                         {"shareOfReference", whole.groupShare[g]}});
     double difference = 0.0, total = 0.0;
     for (size_t i = 0; i < sum.data.size(); ++i) difference += std::abs(double(sum.data[i]) - reference.data[i]), total += reference.data[i];
@@ -526,7 +537,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
 
     const nlohmann::json bounces = referenceImages.byDepth.empty()
                                        ? nlohmann::json::object()
-                                       : depthReport(test, referenceImages.byDepth, normalisation);
+                                       : depthReport(test, referenceImages.byDepth, referenceImages.names.byDepth, normalisation);
 
     frameSignificance.push_back(pathSignificance(test, noisyReference));
     const nlohmann::json significance = combineFrameSignificance(frameSignificance);

@@ -1,8 +1,7 @@
-// The ray figures for `twinlight bench --rays`. The RT path's: the rays it really traced (pixels
-// its pre-trace left pending) against the same rays through a trivial kernel, measured in the
-// same frames. The reference's: its paths per second against the rays per second of a trivial
-// kernel (reference/raw.rgen) on its own top level, in the same frames. Here, not in the editor, so the editor reaches the RT path's internals only through
-// the session.
+// The ray figures for `twinlight bench --rays`, which the path makes itself
+// (LightingPath::rayFigures): the RT path's rays really traced against the same rays through a
+// trivial kernel, the reference's paths per second against a trivial kernel's rays per second on
+// its own top level, each measured in the same frames.
 #pragma once
 
 #include "session/session.h"
@@ -19,10 +18,10 @@ using PassTimes = std::vector<std::pair<std::string, std::vector<double>>>;
 
 // The buffers the figures read from the last frame: request them before it renders.
 void requestRayFigureBuffers(Session& session);
-// Turns the raw-ray probe on (rtRawRayProbe, referenceRawRayProbe); throws SessionError unless
-// the path is `rt` or `reference`.
+// Turns the path's trivial kernel on (rtRawRayProbe, referenceRawRayProbe); throws SessionError
+// for a path that has none.
 void enableRayProbe(Session& session);
-// From the last frame's pre-trace records and depth and the passes' median times.
+// From the last frame's read-backs and the passes' median times.
 nlohmann::json rayFigures(Session& session, const PassTimes& passes);
 
 }  // namespace tl::session

@@ -1,6 +1,5 @@
 #include "session/reference_noise.h"
 
-#include "lighting/reference/reference_path.h"
 #include "session/session.h"
 #include "shared/reference.h"
 
@@ -13,8 +12,10 @@
 namespace tl::session {
 
 std::optional<ReferenceNoise> Session::referenceNoise() const {
-  if (capture_ || !hasBuffer(lighting::kReferenceNoise)) return std::nullopt;
-  const graph::Readback& rb = buffer(lighting::kReferenceNoise);
+  const lighting::LightingPath* reference = findPath(referencePath());
+  const std::string totals = reference ? reference->capabilities().readouts.noiseTotals : std::string();
+  if (capture_ || totals.empty() || !hasBuffer(totals)) return std::nullopt;
+  const graph::Readback& rb = buffer(totals);
   shared::RefNoiseTotals t{};
   if (rb.bytes.size() < sizeof(t)) return std::nullopt;
   std::memcpy(&t, rb.bytes.data(), sizeof(t));

@@ -1,7 +1,5 @@
 #include "session/session.h"
 
-#include "lighting/reference/reference_path.h"
-
 #include "lighting/common/albedo_view_pass.h"
 #include "lighting/common/composite_pass.h"
 #include "lighting/common/gbuffer_pass.h"
@@ -507,7 +505,9 @@ void Session::beginOne(bool readback) {
   }
   if (compare_) executor_->requestReadback(lighting::compareImageName(compared));
   // The compare panel's figures against the converged reference need the reference's noise.
-  if (compare_ && compared == compare_->referencePath()) executor_->requestReadback(lighting::kReferenceStdErr);
+  const std::string noise = compare_ && compared == compare_->referencePath() ? findPath(compared)->capabilities().readouts.noise
+                                                                               : std::string();
+  if (!noise.empty()) executor_->requestReadback(noise);
   executor_->submit(graph, compiled);
   graphDump_ = graph.dump(compiled);
   if (readback) graphDot_ = graph.dot(compiled);
@@ -538,11 +538,12 @@ void Session::finishOne() {
   frameGpuMs_.push_back(total);
   // The compare view it was rendered for may have been closed or replaced since.
   if (compare_ && !done.compared.empty() && done.compareGeneration == compareGeneration_) {
+    const std::string noise = done.compared == compare_->referencePath()
+                                  ? findPath(done.compared)->capabilities().readouts.noise
+                                  : std::string();
     compare_->frameDone(done.compared, executor_->readback(lighting::compareImageName(done.compared)), total, done.key,
                         done.referenceSamples, done.exposure, done.accumulation,
-                        executor_->readbacks().count(std::string(lighting::kReferenceStdErr)) && done.compared == compare_->referencePath()
-                            ? &executor_->readback(lighting::kReferenceStdErr)
-                            : nullptr);
+                        !noise.empty() && executor_->readbacks().count(noise) ? &executor_->readback(noise) : nullptr);
   }
 }
 

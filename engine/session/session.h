@@ -120,6 +120,9 @@ class Session {
   std::vector<PathInfo> paths() const;
   void setPath(const std::string& name);  // throws SessionError with the reason
   const std::string& path() const { return pathName_; }
+  // The path frames render with now, for measurements that ask a path about itself (`bench
+  // --rays`: LightingPath::rayFigures).
+  const lighting::LightingPath& currentPath() const { return *findPath(pathName_); }
   // The path the others are measured against (PathCapabilities::isReference); empty if none.
   std::string referencePath() const;
 

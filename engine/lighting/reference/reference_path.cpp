@@ -68,7 +68,17 @@ class ReferencePath final : public LightingPath {
     return "progressive path tracer (ground truth): same materials, sun, sky and emitters";
   }
   PathCapabilities capabilities() const override {
-    return {.needsRayTracing = true, .isReference = true, .accumulates = true, .rasterizes = false};
+    return {.needsRayTracing = true,
+            .isReference = true,
+            .accumulates = true,
+            .rasterizes = false,
+            .readouts = {.image = std::string(kRadiance),
+                         .ambientOcclusion = std::string(kAo),
+                         .irradiance = std::string(kIrradiance),
+                         .noise = std::string(kReferenceStdErr),
+                         .noiseTotals = std::string(kReferenceNoise),
+                         .byDepth = referenceBounceBuffers(),
+                         .shaders = referenceShaders()}};
   }
 
   LightingOutputs addPasses(graph::RenderGraph& graph, FrameInputs& in) override {
@@ -146,6 +156,33 @@ class ReferencePath final : public LightingPath {
   }
 
   uint32_t samples() const { return samples_; }
+
+  // bench --rays: the reference's paths per second against the raw kernel's rays per second on
+  // its top level, in the same frames.
+  bool enableRayProbe(RenderSettings& settings) const override {
+    settings.referenceRawRayProbe = true;
+    return true;
+  }
+  std::vector<std::string> rayProbeReadbacks() const override { return {std::string(kReferenceRawRays)}; }
+  std::vector<std::pair<std::string, double>> rayFigures(const RayProbeFrame& frame) const override {
+    double rawRays = 0.0;
+    for (float c : frame.readback(kReferenceRawRays).texels()) rawRays += c;
+    const double pixels = double(frame.settings.width) * frame.settings.height;
+    const double paths = pixels * frame.settings.referenceSamplesPerFrame;
+    const double rawMs = frame.medianMs("reference.rawRays"), traceMs = frame.medianMs("reference.trace");
+    const double rawRate = rawMs > 0.0 ? rawRays / (rawMs * 1e-3) : 0.0;
+    const double pathRate = traceMs > 0.0 ? paths / (traceMs * 1e-3) : 0.0;
+    return {{"paths", paths},  // this frame's: samples per frame a pixel (adaptive sampling spreads them)
+            {"traceMs", traceMs},
+            {"pathsPerSecond", pathRate},
+            {"rawRays", rawRays},
+            {"rawRaysPerPath", paths > 0.0 ? rawRays / paths : 0.0},
+            {"rawKernelMs", rawMs},
+            {"rawRaysPerSecond", rawRate},
+            // What one path costs, in the trivial kernel's rays: the raw rate over the path rate.
+            {"rawRaysPerPathTime", pathRate > 0.0 ? rawRate / pathRate : 0.0}};
+  }
+
   std::vector<std::pair<std::string, double>> figures() const override {
     return {{"reference.samples", double(samples_)},
             {"reference.irradianceSamples", double(irradianceSamples_)},
@@ -184,7 +221,7 @@ class ReferencePath final : public LightingPath {
 
   // The benchmark's trivial kernel (reference/raw.rgen) on the same top level, samplesPerFrame
   // short paths of rays a pixel: the device's raw ray rate, which `bench --rays` holds the
-  // reference's paths per second against (session/ray_figures.h).
+  // reference's paths per second against (rayFigures).
   void addRawRayPass(graph::RenderGraph& graph, FrameInputs& in, shared::RefPush push) {
     const uint32_t w = in.settings.width, h = in.settings.height;
     push.samplesSoFar = samples_;

@@ -24,6 +24,8 @@
 
 #include <fmt/format.h>
 
+#include <cstring>
+
 namespace tl::lighting {
 namespace {
 
@@ -268,6 +270,51 @@ class RtPath final : public LightingPath {
       out.farOpenSkyDirectionality = far.openSkyDirectionality;
     }
     return out;
+  }
+
+  // bench --rays: the rays rt.trace really traced (pixels its pre-trace left pending) against the
+  // same rays through a trivial kernel (rt/raw.rgen), in the same frames.
+  bool enableRayProbe(RenderSettings& settings) const override {
+    settings.rtRawRayProbe = true;
+    return true;
+  }
+  std::vector<std::string> rayProbeReadbacks() const override {
+    return {std::string(kPretraceHits), std::string(gbuffer::kDepth)};
+  }
+  std::vector<std::pair<std::string, double>> rayFigures(const RayProbeFrame& frame) const override {
+    const graph::Readback& pre = frame.readback(kPretraceHits);
+    const std::vector<float> depth = frame.readback(gbuffer::kDepth).texels();
+    std::vector<uint32_t> hits(pre.bytes.size() / 4);
+    std::memcpy(hits.data(), pre.bytes.data(), hits.size() * 4);
+    size_t surface = 0, pending = 0;
+    const uint32_t w = frame.settings.width;
+    const uint32_t pattern = rtRayPattern(frame.settings);
+    for (size_t i = 0; i < hits.size() && i < depth.size(); ++i) {
+      if (depth[i] <= 0.0f) continue;
+      if (!shared::tlRtTracesThisFrame(glm::ivec2(int(i % w), int(i / w)), frame.frameIndex, pattern)) continue;
+      ++surface;
+      pending += shared::tlRtIsPending(hits[i]);
+    }
+    const double rawMs = frame.medianMs("rt.rawRays"), traceMs = frame.medianMs("rt.trace");
+    const double rawPendingMs = frame.medianMs("rt.rawRays.pending");
+    const double rawRate = rawMs > 0.0 ? double(surface) / (rawMs * 1e-3) : 0.0;
+    const double rawPendingRate = rawPendingMs > 0.0 ? double(pending) / (rawPendingMs * 1e-3) : 0.0;
+    const double rtRate = traceMs > 0.0 ? double(pending) / (traceMs * 1e-3) : 0.0;
+    const double pixels = double(frame.settings.width) * frame.settings.height;
+    return {{"surfacePixels", double(surface)},  // traced this frame (all, this frame's checkerboard or 2x2 pixel)
+            {"realRays", double(pending)},
+            {"pretraceShare", surface ? 1.0 - double(pending) / double(surface) : 0.0},
+            {"realRaysPerPixel", pending / pixels},
+            {"rawKernelMs", rawMs},
+            {"rawRaysPerSecond", rawRate},
+            {"traceMs", traceMs},
+            {"rtRaysPerSecond", rtRate},
+            {"rtOverRaw", rawRate > 0.0 ? rtRate / rawRate : 0.0},
+            // The same trivial kernel on only the rays rt.trace traced: those left after the
+            // pre-trace are the long, incoherent ones, slower per ray for any kernel.
+            {"rawPendingKernelMs", rawPendingMs},
+            {"rawPendingRaysPerSecond", rawPendingRate},
+            {"rtOverRawSameRays", rawPendingRate > 0.0 ? rtRate / rawPendingRate : 0.0}};
   }
 
   std::vector<std::pair<std::string, double>> figures() const override {
