@@ -15,7 +15,7 @@
 #include "shared/sh.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = kLegacyBindingSsaoOut) uniform sampler2D ssaoIn;  // AO, view depth, frames
+layout(set = 0, binding = kLegacyUpsampleSsao) uniform sampler2D ssaoIn;  // AO, view depth, frames
 layout(set = 0, binding = kLegacyBindingConeShY) uniform sampler2D coneShY;
 layout(set = 0, binding = kLegacyBindingConeCoCgAo) uniform sampler2D coneCoCgAo;
 layout(set = 0, binding = kLegacyBindingOutAo, r16f) uniform writeonly image2D aoOut;

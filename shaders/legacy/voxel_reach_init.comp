@@ -6,7 +6,7 @@
 #include "shared/legacy.h"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(set = 0, binding = kLegacyBindingMipSrcRadiance, rgba16f) uniform readonly image3D voxels;
+layout(set = 0, binding = kLegacyReachInitVoxels, rgba16f) uniform readonly image3D voxels;
 layout(set = 0, binding = kLegacyBindingSeeds, r8ui) uniform readonly uimage3D seeds;
 layout(set = 0, binding = kLegacyBindingReach, r8ui) uniform writeonly uimage3D reach;
 layout(set = 0, binding = kLegacyBindingReachUnsettled, std430) writeonly buffer Unsettled { uint unsettledVoxels; };

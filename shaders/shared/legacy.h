@@ -112,6 +112,9 @@ TL_CONST uint kLegacyBindingIndices = 22;       // voxelize: the scene's index b
 TL_CONST uint kLegacyBindingSeeds = 23;         // rooms: empty voxels in front of directly lit surfaces (r8ui, level 0)
 TL_CONST uint kLegacyBindingReach = 24;         // rooms: kLegacyReach* per voxel of level 0 (r8ui)
 TL_CONST uint kLegacyBindingReachUnsettled = 25;  // rooms: one uint, the voxels the flood's last round still reached
+// Slots a shader names by its own role for them (the number is the slot above it shares).
+TL_CONST uint kLegacyUpsampleSsao = 20;       // legacy/upsample.comp: the accumulated SSAO it upsamples (what ssao_temporal wrote)
+TL_CONST uint kLegacyReachInitVoxels = 15;    // legacy/voxel_reach_init.comp: the voxels' mip 0, read for what is solid
 
 // Values of the reach image.
 TL_CONST uint kLegacyReachSealed = 0u;  // empty, and no light reaches it

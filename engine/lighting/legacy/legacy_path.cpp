@@ -205,7 +205,7 @@ class LegacyPath final : public LightingPath {
         .add(graph);
 
     withCommon(ComputePass(in.device, "legacy.upsample", "legacy/upsample.comp"))
-        .sampled(shared::kLegacyBindingSsaoOut, kLegacySsao, samplers::linear)
+        .sampled(shared::kLegacyUpsampleSsao, kLegacySsao, samplers::linear)
         .sampled(shared::kLegacyBindingConeShY, kConeShY, samplers::linear)
         .sampled(shared::kLegacyBindingConeCoCgAo, kConeCoCgAo, samplers::linear)
         .storageOut(shared::kLegacyBindingOutAo, kLegacyAo,
@@ -391,7 +391,7 @@ class LegacyPath final : public LightingPath {
     LegacyVoxelPush vpush{};
     vpush.clipmap = clipmap;
     ComputePass(in.device, "legacy.voxel.reach", "legacy/voxel_reach_init.comp")
-        .storageIn(shared::kLegacyBindingMipSrcRadiance, kVoxelRadiance)
+        .storageIn(shared::kLegacyReachInitVoxels, kVoxelRadiance)
         .storageIn(shared::kLegacyBindingSeeds, kVoxelSeeds)
         .storageOut(shared::kLegacyBindingReach, kVoxelReach)
         .bufferOut(shared::kLegacyBindingReachUnsettled, kVoxelReachUnsettled)
