@@ -38,7 +38,7 @@ class AoDebugPath final : public LightingPath {
         .sampled(shared::kAoDebugSource, graph::ImageName{traced.ambientOcclusion})
         .sampled(shared::kAoDebugDepth, gbuffer::kDepth)
         .storageOut(shared::kAoDebugOutput, kAoGrey,
-                    graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, "ambient occlusion as grey radiance"))
+                    in.screenImage(kCompositeHdrFormat, "ambient occlusion as grey radiance"))
         .dispatch(w, h)
         .add(graph);
     LightingOutputs out;

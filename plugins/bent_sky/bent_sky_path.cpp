@@ -56,8 +56,8 @@ class BentSkyPath final : public LightingPath {
     const RenderSettings& s = in.settings;
     const uint32_t w = s.width, h = s.height;
 
-    const auto historyDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                          "mean escaping direction (xyz) and visibility (w), last frame");
+    const auto historyDesc =
+        in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT, "mean escaping direction (xyz) and visibility (w), last frame");
     const bool restart =
         keepHistory(graph, in, history_, kAccumulation, name(), {{kHistory, historyDesc}}).action == HistoryAction::Restart;
     frames_ = restart ? 1 : std::min(frames_ + 1, kMaxFrames.of(s));
@@ -73,9 +73,9 @@ class BentSkyPath final : public LightingPath {
         .accelerationStructure(shared::kBentSkyTlas, traced.tlas, traced.names)
         .storageInOut(shared::kBentSkyHistory, kHistory)
         .storageOut(shared::kBentSkyShY, kShY,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "sky irradiance, L1 SH of luma (L0 only)"))
-        .storageOut(shared::kBentSkyCoCg, kCoCg, graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "sky irradiance, chroma"))
-        .storageOut(shared::kBentSkyAo, kAo, graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "sky visibility (cosine-weighted)"))
+                    in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT, "sky irradiance, L1 SH of luma (L0 only)"))
+        .storageOut(shared::kBentSkyCoCg, kCoCg, in.screenImage(VK_FORMAT_R16G16_SFLOAT, "sky irradiance, chroma"))
+        .storageOut(shared::kBentSkyAo, kAo, in.screenImage(VK_FORMAT_R16_SFLOAT, "sky visibility (cosine-weighted)"))
         .push(push)
         .dispatch(w, h)
         .add(graph);

@@ -33,19 +33,18 @@ void AlbedoViewPass::add(graph::RenderGraph& graph, FrameInputs& in) {
       .sampled(shared::kAlbedoViewBindingMaterial, gbuffer::kMaterial)
       .bufferIn(shared::kAlbedoViewBindingPerInstance, kAlbedoPerInstance)
       .storageOut(shared::kAlbedoViewBindingInstance, kAlbedoInstance,
-                  graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
-                                               "albedo the RT rays read (rgb); a: 1 override, 2 baked, 3 texture average")
+                  in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
+                                 "albedo the RT rays read (rgb); a: 1 override, 2 baked, 3 texture average")
                       .decodedAs("albedo-source"))
       .storageOut(shared::kAlbedoViewBindingDifference, kAlbedoDifference,
-                  graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
-                                               "|database albedo - G-buffer hit albedo| (rgb), signed luminance (a)"))
+                  in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
+                                 "|database albedo - G-buffer hit albedo| (rgb), signed luminance (a)"))
       .dispatch(w, h)
       .add(graph);
 
   // The baseline is a cache: written from the final image in the frame that captures it,
   // kept unchanged after.
-  graph.declareCache(kAlbedoImpactBaseline,
-                     graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, "final image before the albedo edits"));
+  graph.declareCache(kAlbedoImpactBaseline, in.screenImage(kCompositeHdrFormat, "final image before the albedo edits"));
   if (captureBaseline_) {
     addCopyPass(graph, "albedo.impactBaseline", {{kCompositeHdr, kAlbedoImpactBaseline}});
     captureBaseline_ = false;
@@ -56,8 +55,8 @@ void AlbedoViewPass::add(graph::RenderGraph& graph, FrameInputs& in) {
       .sampled(shared::kAlbedoViewBindingCurrent, kCompositeHdr)
       .sampled(shared::kAlbedoViewBindingBaseline, kAlbedoImpactBaseline)
       .storageOut(shared::kAlbedoViewBindingImpact, kAlbedoImpact,
-                  graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
-                                               "|final image - before the albedo edits| (rgb), signed luminance (a)"))
+                  in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
+                                 "|final image - before the albedo edits| (rgb), signed luminance (a)"))
       .dispatch(w, h)
       .add(graph);
 }

@@ -15,8 +15,7 @@ std::string compareImageName(const std::string& path) { return "compare." + path
 void CompareViewPass::add(graph::RenderGraph& graph, FrameInputs& in, const CompareViewRequest& request,
                           const std::string& rendered, bool haveLeft, bool haveRight) {
   const uint32_t w = in.settings.width, h = in.settings.height;
-  const auto desc = graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h,
-                                                 "a compared path's last image (scene-linear radiance)");
+  const auto desc = in.screenImage(kCompositeHdrFormat, "a compared path's last image (scene-linear radiance)");
   const std::string left = compareImageName(request.left), right = compareImageName(request.right),
                     mine = compareImageName(rendered);
   for (const std::string& n : std::set<std::string>{left, right, mine}) graph.declareCache(n, desc);
@@ -32,7 +31,7 @@ void CompareViewPass::add(graph::RenderGraph& graph, FrameInputs& in, const Comp
       .sampled(shared::kCompareViewLeft, graph::ImageName{left})
       .sampled(shared::kCompareViewRight, graph::ImageName{right})
       .storageOut(shared::kCompareViewOutput, kDisplayLdr,
-                  graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "compare view: wipe or difference").displayReferred())
+                  in.screenImage(VK_FORMAT_R8G8B8A8_UNORM, "compare view: wipe or difference").displayReferred())
       .push(push)
       .dispatch(w, h)
       .add(graph);

@@ -39,8 +39,7 @@ void addCompositeGbuffer(ComputePass& pass) {
 
 void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path) {
   const uint32_t w = in.settings.width, h = in.settings.height;
-  const auto hdrDesc =
-      graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, "scene-linear radiance before exposure");
+  const auto hdrDesc = in.screenImage(kCompositeHdrFormat, "scene-linear radiance before exposure");
   if (!path.radiance.empty()) {
     // The path computed the whole image: pass it through (32-bit float -> half).
     TransferPass("composite").blit(graph::ImageName{path.radiance}, kCompositeHdr, hdrDesc).add(graph);
@@ -70,8 +69,8 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   // With TAA the composite is this frame's jittered image; the TAA pass resolves it into
   // composite.hdr (lighting/common/taa_pass.h).
   const graph::ImageName output = in.temporalAntialiasing ? kCompositeUnresolved : kCompositeHdr;
-  const auto unresolvedDesc = graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h,
-                                                           "scene-linear radiance before exposure, jittered (TAA input)");
+  const auto unresolvedDesc =
+      in.screenImage(kCompositeHdrFormat, "scene-linear radiance before exposure, jittered (TAA input)");
   // Redeferred shading (lighting/common/redeferred_pass.h): the same image from the I-buffer.
   if (in.settings.redeferred) {
     redeferred_.add(graph, in, push, path, output, in.temporalAntialiasing ? unresolvedDesc : hdrDesc);
@@ -98,10 +97,10 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
   ComputePass pass(in.device, "composite.stages", "common/composite_stages.comp");
   addCompositeGbuffer(pass);
   pass.storageOut(shared::kCompositeStageAo, kCompositeAo,
-                  graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "the AO the composite applied (0: sky)").decodedAs("ao"))
+                  in.screenImage(VK_FORMAT_R16_SFLOAT, "the AO the composite applied (0: sky)").decodedAs("ao"))
       .storageOut(shared::kCompositeStageIrradiance, kCompositeIrradiance,
-                  graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
-                                               "the diffuse irradiance the composite used: sky + bounce, no sun (0: sky)"));
+                  in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
+                                 "the diffuse irradiance the composite used: sky + bounce, no sun (0: sky)"));
   addPathInputs(pass, path, push.flags);
   pass.push(push).dispatch(w, h).add(graph);
 }
@@ -112,7 +111,7 @@ void TonemapPass::add(graph::RenderGraph& graph, FrameInputs& in) {
       .uniform(shared::kBindingFrame, kFrameConstants)
       .sampled(shared::kTonemapInput, kCompositeHdr)
       .storageOut(shared::kTonemapOutput, kTonemapLdr,
-                  graph::ResourceDesc::image2D(VK_FORMAT_R8G8B8A8_UNORM, w, h, "display image: exposure, ACES, sRGB").displayReferred())
+                  in.screenImage(VK_FORMAT_R8G8B8A8_UNORM, "display image: exposure, ACES, sRGB").displayReferred())
       .dispatch(w, h)
       .add(graph);
   graph.markOutput(kTonemapLdr);

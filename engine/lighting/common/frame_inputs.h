@@ -94,6 +94,12 @@ struct FrameInputs {
   // Redeferred below full rate: adds the light table's refining run (lights.direct.refine, the
   // pixels ibuffer.upsample could not fill), which whoever added lights.direct owns.
   std::function<void(graph::RenderGraph&)> refineLights;
+
+  // An image the size of the frame's (settings.width x height), as graph::ResourceDesc::image2D
+  // makes it (with `mips` levels): what a full-resolution pass states instead of the numbers.
+  graph::ResourceDesc screenImage(VkFormat format, std::string what, uint32_t mips = 1) const {
+    return graph::ResourceDesc::image2D(format, settings.width, settings.height, std::move(what), mips);
+  }
 };
 
 }  // namespace tl::lighting

@@ -26,7 +26,7 @@ void GbufferPass::add(graph::RenderGraph& graph, FrameInputs& in) {
     pass.colorOut(c.name, graph::ResourceDesc::image2D(c.format, w, h, c.description).decodedAs(c.decoder).named(c.channels),
                   glm::vec4(0.0f));
   pass.depthOut(gbuffer::kDepth,
-                graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, w, h, "depth, reversed Z (1 near, 0 at infinity)")
+                in.screenImage(VK_FORMAT_D32_SFLOAT, "depth, reversed Z (1 near, 0 at infinity)")
                     .named("Z"),  // captures store view depth in metres (session/capture_encoding.h)
                 0.0f)
       .drawsScene(in.scene.table())

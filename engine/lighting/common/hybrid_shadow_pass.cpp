@@ -27,8 +27,8 @@ bool addHybridSunShadow(graph::RenderGraph& graph, FrameInputs& in, const Lighti
       .sampled(shared::kHybridShadowMapDepth, kShadowSunDepth)
       .accelerationStructure(shared::kHybridShadowTlas, path.shadowTlasHandle, path.shadowStructures)
       .storageOut(shared::kHybridShadowOutput, kShadowSunVisibility,
-                  graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h,
-                                               "the sun's visibility: HRTS, ray near contacts, PCSS further (0: facing away)"))
+                  in.screenImage(VK_FORMAT_R16_SFLOAT,
+                                 "the sun's visibility: HRTS, ray near contacts, PCSS further (0: facing away)"))
       .push(push)
       .dispatch(w, h)
       .add(graph);

@@ -69,8 +69,8 @@ std::string LightsPass::add(graph::RenderGraph& graph, FrameInputs& in, const st
   // Many lights or sampled area shadows: a noisy estimate, accumulated while nothing it depends on changes.
   shared::LightsPush push{};
   const std::string accum = "lights.accum." + in.pathName;
-  const auto accumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                      "sum of light-table estimates (rgb) and their count (a)");
+  const auto accumDesc =
+      in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT, "sum of light-table estimates (rgb) and their count (a)");
   if (sampledEstimate(in)) {
     push.accumulate = 1;
     const HistoryDecision d =
@@ -82,12 +82,13 @@ std::string LightsPass::add(graph::RenderGraph& graph, FrameInputs& in, const st
   ComputePass pass(in.device, "lights.direct", shaderFor("lights", traced, mapped));
   addTableInputs(pass, structures, tlasHandle, traced, mapped);
   pass.sampled(shared::kLightsPassBaseColor, gbuffer::kBaseColor)
-      .optionalStorageInOut(shared::kLightsPassAccum, graph::ImageName{accum}, push.accumulate != 0)  // the shader tests push.accumulate
+      .optionalStorageInOut(shared::kLightsPassAccum, graph::ImageName{accum},
+                            push.accumulate != 0)  // the shader tests push.accumulate
       .storageOut(shared::kLightsPassOutput, kLightsRadiance,
-                  graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
-                                               traced   ? "radiance from the light table, ray-traced shadows"
-                                               : mapped ? "radiance from the light table, shadow-mapped point and spot lights"
-                                                        : "radiance from the light table, unshadowed"))
+                  in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
+                                 traced   ? "radiance from the light table, ray-traced shadows"
+                                 : mapped ? "radiance from the light table, shadow-mapped point and spot lights"
+                                          : "radiance from the light table, unshadowed"))
       .push(push)
       .dispatch(w, h)
       .add(graph);
@@ -119,8 +120,8 @@ std::string LightsPass::addIbuffer(graph::RenderGraph& graph, FrameInputs& in, c
     accum[q] = "lights.accum." + in.pathName + (refine ? ".refine" : "") +
                std::string(kIbuffer[q]).substr(std::string_view("ibuffer").size());
   const auto& outputs = refine ? kLightsRefined : kLightsIbuffer;
-  const auto accumDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                      "sum of estimates of an I-buffer sum of light (rgb) and their count (a)");
+  const auto accumDesc = in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT,
+                                        "sum of estimates of an I-buffer sum of light (rgb) and their count (a)");
   // One sum per pattern: another pattern's sums hold other pixels' estimates.
   const std::string keeper = in.pathName + ".ibuffer." + std::to_string(pattern);
   for (uint32_t other = shared::kIbufferPatternEvery; other <= shared::kIbufferPatternBlocks; ++other)
@@ -152,11 +153,11 @@ std::string LightsPass::addIbuffer(graph::RenderGraph& graph, FrameInputs& in, c
   for (size_t q = 0; q < kLightsIbuffer.size(); ++q)
     pass.optionalStorageInOut(kAccum[q], graph::ImageName{accum[q]}, push.accumulate != 0)
         .storageOut(kOut[q], outputs[q],
-                    graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                 std::string("the light table's share of ") + std::string(kIbuffer[q]) + ", " +
-                                                     (traced   ? "ray-traced shadows"
-                                                      : mapped ? "shadow-mapped point and spot lights"
-                                                               : "unshadowed"))
+                    in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT, std::string("the light table's share of ") +
+                                                                      std::string(kIbuffer[q]) + ", " +
+                                                                      (traced   ? "ray-traced shadows"
+                                                                       : mapped ? "shadow-mapped point and spot lights"
+                                                                                : "unshadowed"))
                         .decodedAs(ibufferDecoder(q)));
   const glm::uvec2 grid = stage == shared::kIbufferStagePattern ? shared::tlIbufferPatternGrid(glm::uvec2(w, h), pattern)
                                                                 : glm::uvec2(w, h);

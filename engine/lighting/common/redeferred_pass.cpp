@@ -95,10 +95,10 @@ void RedeferredPass::addLight(graph::RenderGraph& graph, FrameInputs& in, const 
       .optionalSampled(shared::kIbufferRefineMaskSampled, kIbufferRefine, refine);
   for (size_t q = 0; q < kIbuffer.size(); ++q)
     pass.storageOut(kOutBinding[q], outputs[q],
-                    graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                 stage == shared::kIbufferStagePattern
-                                                     ? std::string(kDescription[q]) + "; the pattern's pixels only"
-                                                     : std::string(kDescription[q]))
+                    in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT,
+                                   stage == shared::kIbufferStagePattern
+                                       ? std::string(kDescription[q]) + "; the pattern's pixels only"
+                                       : std::string(kDescription[q]))
                         .decodedAs(ibufferDecoder(q)))
         .optionalSampled(kSampledBinding[q], lightsShare[q], lights)
         .optionalSampled(kFilledBinding[q], kIbufferFilled[q], refine);
@@ -117,14 +117,15 @@ void RedeferredPass::addUpsample(graph::RenderGraph& graph, FrameInputs& in, uin
   push.pattern = pattern;
   ComputePass pass(in.device, "ibuffer.upsample", "common/ibuffer_upsample.comp");
   addIbufferSurface(pass);  // the BRDF table there: ibuffer_upsample.comp declares it (the old layout left it out)
-  pass.storageOut(shared::kIbufferRefineMask, kIbufferRefine,
-                  graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
-                                               "how each pixel's I-buffer was made: 0 shaded (pattern, sky), 1 filled, 2 shaded as an edge"));
+  pass.storageOut(
+      shared::kIbufferRefineMask, kIbufferRefine,
+      in.screenImage(VK_FORMAT_R32_SFLOAT,
+                     "how each pixel's I-buffer was made: 0 shaded (pattern, sky), 1 filled, 2 shaded as an edge"));
   for (size_t q = 0; q < kIbufferFilled.size(); ++q)
     pass.sampled(kSampledBinding[q], kIbufferShaded[q])
         .storageOut(kOutBinding[q], kIbufferFilled[q],
-                    graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                 std::string(kDescription[q]) + "; filled below full rate (edges still 0)")
+                    in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT,
+                                   std::string(kDescription[q]) + "; filled below full rate (edges still 0)")
                         .decodedAs(ibufferDecoder(q)));
   pass.push(push).dispatch(w, h).add(graph);
 }
@@ -134,9 +135,9 @@ void RedeferredPass::addLightOnly(graph::RenderGraph& graph, FrameInputs& in) {
   ComputePass pass(in.device, "ibuffer.lightOnly", "common/ibuffer_light_only.comp");
   addIbufferSurface(pass);
   pass.optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, hasEnvironmentMap(in));  // the background
-  pass.storageOut(shared::kIbufferOutDg, kIbufferLightOnly,
-                  graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                               "light only: the I-buffer resolved against white (no materials)"));
+  pass.storageOut(
+      shared::kIbufferOutDg, kIbufferLightOnly,
+      in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT, "light only: the I-buffer resolved against white (no materials)"));
   for (size_t q = 0; q < kIbuffer.size(); ++q) pass.sampled(kSampledBinding[q], kIbuffer[q]);
   pass.dispatch(w, h).add(graph);
 }

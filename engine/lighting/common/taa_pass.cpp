@@ -16,7 +16,7 @@ constexpr HistoryPolicy kTaaHistory{"taa", parts(FramePart::Scene, FramePart::Ca
 
 void TaaPass::add(graph::RenderGraph& graph, FrameInputs& in) {
   const uint32_t w = in.settings.width, h = in.settings.height;
-  const auto hdr = [&](const char* what) { return graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, what); };
+  const auto hdr = [&](const char* what) { return in.screenImage(kCompositeHdrFormat, what); };
   const std::string historyName = taaHistoryName(in.pathName);
   const graph::ImageName history{historyName};
   ComputePass pass(in.device, "taa", "common/taa.comp");

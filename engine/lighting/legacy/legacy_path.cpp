@@ -126,9 +126,8 @@ class LegacyPath final : public LightingPath {
     const graph::ResourceDesc voxelMipsDesc =
         graph::ResourceDesc::image3D(VK_FORMAT_R16G16B16A16_SFLOAT, 3 * R, R / 2, N * R / 2,
                                      "voxels per face, mips 1.. (front-to-back along each face's axis)", mips);
-    const graph::ResourceDesc radianceDesc =
-        graph::ResourceDesc::image2D(kCompositeHdrFormat, w, h, "composite radiance, last frame");
-    const graph::ResourceDesc depthDesc = graph::ResourceDesc::image2D(VK_FORMAT_D32_SFLOAT, w, h, "G-buffer depth, last frame");
+    const graph::ResourceDesc radianceDesc = in.screenImage(kCompositeHdrFormat, "composite radiance, last frame");
+    const graph::ResourceDesc depthDesc = in.screenImage(VK_FORMAT_D32_SFLOAT, "G-buffer depth, last frame");
     // The SSAO accumulates at its own resolution, before the upsample: a quarter of the pixels.
     // It keeps the view depth it was taken at, so the next frame's history test needs no depth.
     const graph::ResourceDesc ssaoDesc = graph::ResourceDesc::image2D(
@@ -209,12 +208,12 @@ class LegacyPath final : public LightingPath {
         .sampled(shared::kLegacyBindingConeShY, kConeShY, samplers::linear)
         .sampled(shared::kLegacyBindingConeCoCgAo, kConeCoCgAo, samplers::linear)
         .storageOut(shared::kLegacyBindingOutAo, kLegacyAo,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R16_SFLOAT, w, h, "AO: GTAO x voxel AO").decodedAs("ao"))
+                    in.screenImage(VK_FORMAT_R16_SFLOAT, "AO: GTAO x voxel AO").decodedAs("ao"))
         .storageOut(shared::kLegacyBindingOutShY, kLegacyShY,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, "diffuse irradiance, SH luma")
+                    in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT, "diffuse irradiance, SH luma")
                         .decodedAs(shIrradianceDecoder(kLegacyCoCg)))
         .storageOut(shared::kLegacyBindingOutCoCg, kLegacyCoCg,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16_SFLOAT, w, h, "diffuse irradiance, chroma"))
+                    in.screenImage(VK_FORMAT_R16G16_SFLOAT, "diffuse irradiance, chroma"))
         .push(push)
         .dispatch(w, h)
         .add(graph);
@@ -263,11 +262,11 @@ class LegacyPath final : public LightingPath {
     ComputePass(in.device, "legacy.reflections.hiz0", "legacy/hiz_first.comp")
         .uniform(shared::kLegacyBindingFrame, kFrameConstants)
         .sampled(shared::kLegacyBindingDepth, gbuffer::kDepth)
-        .storageOut(shared::kLegacyBindingHizOut, kLegacyHiz,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
-                                                 "hierarchical depth: the nearest reversed-Z depth of each 2^m-pixel cell, mip m",
-                                                 mips),
-                    0)
+        .storageOut(
+            shared::kLegacyBindingHizOut, kLegacyHiz,
+            in.screenImage(VK_FORMAT_R32_SFLOAT,
+                           "hierarchical depth: the nearest reversed-Z depth of each 2^m-pixel cell, mip m", mips),
+            0)
         .dispatch(w, h)
         .add(graph);
     for (uint32_t m = 1; m < mips; ++m) {
@@ -287,8 +286,9 @@ class LegacyPath final : public LightingPath {
         .optionalSampled(shared::kLegacyBindingPrevRadiance, kLegacyHistRadiance, feedback, samplers::linear)
         .optionalSampled(shared::kLegacyBindingPrevDepth, kLegacyHistDepth, feedback)
         .storageOut(shared::kLegacyBindingReflections, kLegacyReflections,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
-                                                 "reflections: screen-space march and voxel cone, demodulated (rgb); weight against the SH specular (a)"))
+                    in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
+                                   "reflections: screen-space march and voxel cone, demodulated (rgb); weight against "
+                                   "the SH specular (a)"))
         .push(rp)
         .dispatch(w, h)
         .add(graph);

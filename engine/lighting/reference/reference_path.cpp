@@ -87,14 +87,14 @@ class ReferencePath final : public LightingPath {
     structures_ = traceStructures(graph, in, AccelDetail::Full);
     prepareScene(in);
     const uint32_t w = in.settings.width, h = in.settings.height;
-    const auto momentsDesc = graph::ResourceDesc::image2D(
-        VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "squared deviations of the samples from their mean, summed (rgb), samples (a)");
-    const auto sampleMeanDesc = graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                             "mean of the pixel's samples (rgb), their mean AO (a)");
-    const auto pilotMeanDesc = graph::ResourceDesc::image2D(
-        VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "adaptive sampling's pilot: mean of its samples (rgb), samples (a)");
-    const auto pilotMomentsDesc = graph::ResourceDesc::image2D(
-        VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "adaptive sampling's pilot: squared deviations from its mean, summed (rgb)");
+    const auto momentsDesc = in.screenImage(
+        VK_FORMAT_R32G32B32A32_SFLOAT, "squared deviations of the samples from their mean, summed (rgb), samples (a)");
+    const auto sampleMeanDesc =
+        in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT, "mean of the pixel's samples (rgb), their mean AO (a)");
+    const auto pilotMeanDesc = in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT,
+                                              "adaptive sampling's pilot: mean of its samples (rgb), samples (a)");
+    const auto pilotMomentsDesc = in.screenImage(
+        VK_FORMAT_R32G32B32A32_SFLOAT, "adaptive sampling's pilot: squared deviations from its mean, summed (rgb)");
     const auto noiseDesc = graph::ResourceDesc::buffer(
         sizeof(shared::RefNoiseTotals), "the reference's noise over the image (shared/reference.h RefNoiseTotals); the "
                                         "next frame's trace allocates its samples by it");
@@ -119,21 +119,21 @@ class ReferencePath final : public LightingPath {
         .storageInOut(shared::kRefBindingPilotMoments, kPilotMoments)
         .bufferIn(shared::kRefBindingLastNoise, kReferenceNoise)
         .storageOut(shared::kRefBindingAllocation, kReferenceAllocation,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                 "where this frame's samples went: the pixel's samples (x) and the "
-                                                 "first one's number (y); the standard deviation the next frame "
-                                                 "allocates by (z)"))
+                    in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT,
+                                   "where this frame's samples went: the pixel's samples (x) and the "
+                                   "first one's number (y); the standard deviation the next frame "
+                                   "allocates by (z)"))
         .storageOut(shared::kRefBindingStdErr, kReferenceStdErr,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                 "standard error of reference.radiance per channel (rgb: how far each "
-                                                 "pixel's estimate is expected to be from the converged one), the "
-                                                 "pixel's samples (a)"))
-        .storageOut(shared::kRefBindingAo, kAo,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
-                                                 "ambient occlusion at the AO radius (cosine-weighted), ground truth")
-                        .decodedAs("ao"))
+                    in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT,
+                                   "standard error of reference.radiance per channel (rgb: how far each "
+                                   "pixel's estimate is expected to be from the converged one), the "
+                                   "pixel's samples (a)"))
+        .storageOut(
+            shared::kRefBindingAo, kAo,
+            in.screenImage(VK_FORMAT_R32_SFLOAT, "ambient occlusion at the AO radius (cosine-weighted), ground truth")
+                .decodedAs("ao"))
         .storageOut(shared::kRefBindingRadiance, kRadiance,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, "path-traced radiance"))
+                    in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT, "path-traced radiance"))
         .push(tracePush,
               [this](graph::PassContext& ctx, shared::RefPush& p) {
                 // History can vanish under us (resize, reset): then the sum starts over.
@@ -229,8 +229,7 @@ class ReferencePath final : public LightingPath {
         .uniform(shared::kRefBindingFrame, kFrameConstants)
         .accelerationStructure(shared::kRefBindingTlas, structures_.tlas, structures_.names)
         .storageOut(shared::kRefBindingRawRays, kReferenceRawRays,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R32_SFLOAT, w, h,
-                                                 "benchmark: rays the trivial kernel traced per pixel"))
+                    in.screenImage(VK_FORMAT_R32_SFLOAT, "benchmark: rays the trivial kernel traced per pixel"))
         .push(push)
         .trace(w, h)
         .add(graph);
@@ -242,15 +241,15 @@ class ReferencePath final : public LightingPath {
   // only in frames that read reference.irradiance (compare's per-stage error, the inspector).
   void addIrradiancePass(graph::RenderGraph& graph, FrameInputs& in, shared::RefPush push) {
     const uint32_t w = in.settings.width, h = in.settings.height;
-    graph.declareOnDemandHistory(kIrradianceAccum,
-                                 graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                              "sum of irradiance samples (rgb) and their count (a)"));
+    graph.declareOnDemandHistory(
+        kIrradianceAccum,
+        in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT, "sum of irradiance samples (rgb) and their count (a)"));
     withPathInputs(RayTracingPass(in.device, "reference.irradiance", kIrradianceShaders), in)
         .storageInOut(shared::kRefBindingIrradianceAccum, kIrradianceAccum)
         .storageOut(shared::kRefBindingIrradiance, kIrradiance,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                 "diffuse irradiance at the primary hit: sky + bounce light, no sun "
-                                                 "(0: sky), ground truth"))
+                    in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT,
+                                   "diffuse irradiance at the primary hit: sky + bounce light, no sun "
+                                   "(0: sky), ground truth"))
         .push(push,
               [this](graph::PassContext& ctx, shared::RefPush& p) {
                 if (!ctx.historyValid(kIrradianceAccum)) irradianceSamples_ = 0;
@@ -284,8 +283,7 @@ class ReferencePath final : public LightingPath {
     pass.storageIn(shared::kRefBindingAllocation, kReferenceAllocation);
     for (uint32_t g = 0; g < shared::kRefDepthGroups; ++g)
       pass.storageOut(shared::kRefBindingDepth0 + g, graph::ImageName{names[g]},
-                      graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                                                   fmt::format("path-traced radiance of {}", kWhat[g]))
+                      in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT, fmt::format("path-traced radiance of {}", kWhat[g]))
                           .decodedAs(fmt::format("{} whole={}", kDepthShareDecoder, kRadiance.name())));
     pass.push(push,
               [this, base](graph::PassContext& ctx, shared::RefPush& p) {

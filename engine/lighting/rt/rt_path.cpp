@@ -102,7 +102,7 @@ class RtPath final : public LightingPath {
     const float denoiseRadius = s.rtDenoiseRadius;
     push.hitDistanceCap = denoiseRadius;
     const uint32_t w = s.width, h = s.height;
-    auto image = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, w, h, what); };
+    auto image = [&](VkFormat f, const char* what) { return in.screenImage(f, what); };
     // Luminance rejection is triggered by a change of the light (see shared/rt.h).
     const HistoryPolicy temporal{"rt.temporal", kTemporalRestarts, s.rtLumaRejection ? kTemporalRejects : 0u};
     const HistoryAction action =
@@ -416,7 +416,7 @@ class RtPath final : public LightingPath {
   std::string addReflections(graph::RenderGraph& graph, FrameInputs& in, RtPush push, bool screenRadiance) {
     const RenderSettings& s = in.settings;
     const uint32_t w = s.width, h = s.height;
-    auto image = [&](VkFormat f, const char* what) { return graph::ResourceDesc::image2D(f, w, h, what); };
+    auto image = [&](VkFormat f, const char* what) { return in.screenImage(f, what); };
     push.specularRoughness = shared::tlRtPackSpecularRoughness(s.rtReflectionRoughness, s.rtMirrorRoughness);
     // This pass's own pattern: the rough pixels' checkerboard (shared/rt_specular.h), not the GI's.
     push.rayPattern = s.rtReflectionRoughDivisor >= 2 ? shared::kRtRaysCheckerboard : shared::kRtRaysFull;
@@ -511,12 +511,12 @@ class RtPath final : public LightingPath {
         .sampled(shared::kRtBlendCellCoCgAo, kCellCoCgAo)
         .sampled(shared::kRtBlendCellOrigin, kCellOrigin)
         .storageOut(shared::kRtBlendOutShY, kFilledShY,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
-                                                 "accumulated irradiance, fresh pixels filled from the disocclusion rays")
+                    in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
+                                   "accumulated irradiance, fresh pixels filled from the disocclusion rays")
                         .decodedAs(shIrradianceDecoder(kFilledCoCgAo)))
         .storageOut(shared::kRtBlendOutCoCgAo, kFilledCoCgAo,
-                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, w, h,
-                                                 "accumulated chroma (xy), AO (z), frames (w), fresh pixels filled"))
+                    in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
+                                   "accumulated chroma (xy), AO (z), frames (w), fresh pixels filled"))
         .push(push)
         .dispatch(w, h)
         .add(graph);
