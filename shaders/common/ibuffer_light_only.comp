@@ -14,11 +14,11 @@ layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; }
 layout(set = 0, binding = kIbufferNormal) uniform sampler2D gNormal;
 layout(set = 0, binding = kIbufferMaterial) uniform sampler2D gMaterial;
 layout(set = 0, binding = kIbufferDepth) uniform sampler2D gDepth;
-layout(set = 0, binding = kIbufferLightsDg) uniform sampler2D iDg;
-layout(set = 0, binding = kIbufferLightsSg1) uniform sampler2D iSg1;
-layout(set = 0, binding = kIbufferLightsSg2) uniform sampler2D iSg2;
-layout(set = 0, binding = kIbufferLightsMs) uniform sampler2D iMs;
-layout(set = 0, binding = kIbufferOutDg, rgba32f) uniform writeonly image2D outLight;
+layout(set = 0, binding = kIbufferSumDg) uniform sampler2D iDg;
+layout(set = 0, binding = kIbufferSumSg1) uniform sampler2D iSg1;
+layout(set = 0, binding = kIbufferSumSg2) uniform sampler2D iSg2;
+layout(set = 0, binding = kIbufferSumMs) uniform sampler2D iMs;
+layout(set = 0, binding = kIbufferLightOnlyOut, rgba32f) uniform writeonly image2D outLight;
 
 #include "common/camera.glsl"
 #include "common/environment.glsl"

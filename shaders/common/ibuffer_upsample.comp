@@ -18,10 +18,10 @@ layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; }
 layout(set = 0, binding = kIbufferNormal) uniform sampler2D gNormal;
 layout(set = 0, binding = kIbufferMaterial) uniform sampler2D gMaterial;
 layout(set = 0, binding = kIbufferDepth) uniform sampler2D gDepth;
-layout(set = 0, binding = kIbufferLightsDg) uniform sampler2D shadedDg;  // ibuffer.shaded.*: the pattern's pixels
-layout(set = 0, binding = kIbufferLightsSg1) uniform sampler2D shadedSg1;
-layout(set = 0, binding = kIbufferLightsSg2) uniform sampler2D shadedSg2;
-layout(set = 0, binding = kIbufferLightsMs) uniform sampler2D shadedMs;
+layout(set = 0, binding = kIbufferSumDg) uniform sampler2D shadedDg;  // ibuffer.shaded.*: the pattern's pixels
+layout(set = 0, binding = kIbufferSumSg1) uniform sampler2D shadedSg1;
+layout(set = 0, binding = kIbufferSumSg2) uniform sampler2D shadedSg2;
+layout(set = 0, binding = kIbufferSumMs) uniform sampler2D shadedMs;
 layout(set = 0, binding = kIbufferOutDg, rgba32f) uniform writeonly image2D ioDg;  // ibuffer.filled.*
 layout(set = 0, binding = kIbufferOutSg1, rgba32f) uniform writeonly image2D ioSg1;
 layout(set = 0, binding = kIbufferOutSg2, rgba32f) uniform writeonly image2D ioSg2;

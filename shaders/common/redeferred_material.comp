@@ -21,10 +21,10 @@ layout(set = 0, binding = kCompositeMaterial) uniform sampler2D gMaterial;
 layout(set = 0, binding = kCompositeEmissive) uniform sampler2D gEmissive;
 layout(set = 0, binding = kCompositeDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kCompositeOutput, rgba32f) uniform writeonly image2D outRadiance;  // kCompositeHdrFormat
-layout(set = 0, binding = kIbufferLightsDg) uniform sampler2D iDg;
-layout(set = 0, binding = kIbufferLightsSg1) uniform sampler2D iSg1;
-layout(set = 0, binding = kIbufferLightsSg2) uniform sampler2D iSg2;
-layout(set = 0, binding = kIbufferLightsMs) uniform sampler2D iMs;
+layout(set = 0, binding = kIbufferSumDg) uniform sampler2D iDg;
+layout(set = 0, binding = kIbufferSumSg1) uniform sampler2D iSg1;
+layout(set = 0, binding = kIbufferSumSg2) uniform sampler2D iSg2;
+layout(set = 0, binding = kIbufferSumMs) uniform sampler2D iMs;
 layout(push_constant) uniform Push { CompositePush push; };
 
 #include "common/camera.glsl"

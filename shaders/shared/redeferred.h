@@ -35,9 +35,16 @@ TL_CONST uint kIbufferLightsDg = 24u;  // the light table's share (lights.direct
 TL_CONST uint kIbufferLightsSg1 = 25u;
 TL_CONST uint kIbufferLightsSg2 = 26u;
 TL_CONST uint kIbufferLightsMs = 27u;
-// The material pass (redeferred.material) samples the I-buffer at 24-27 and writes at
-// kCompositeOutput like the composite; the lights pass in redeferred form writes its four sums
-// at 20-23 and accumulates them (many lights) in 28-31.
+// The passes that read sums of the I-buffer (redeferred.material and ibuffer.lightOnly the
+// finished ones, ibuffer.upsample the pattern's) sample them at slots 24-27, named for them by
+// what they hold. The material pass writes at kCompositeOutput like the composite, the
+// light-only view at kIbufferLightOnlyOut. The lights pass in redeferred form writes its four
+// sums at 20-23 and accumulates them (many lights) in 28-31.
+TL_CONST uint kIbufferSumDg = 24u;   // ibuffer.Ldg ... Lms (or ibuffer.shaded.*), sampled
+TL_CONST uint kIbufferSumSg1 = 25u;
+TL_CONST uint kIbufferSumSg2 = 26u;
+TL_CONST uint kIbufferSumMs = 27u;
+TL_CONST uint kIbufferLightOnlyOut = 20u;  // rgba32f: ibuffer.lightOnly
 TL_CONST uint kIbufferAccumDg = 28u;
 TL_CONST uint kIbufferAccumSg1 = 29u;
 TL_CONST uint kIbufferAccumSg2 = 30u;

@@ -21,8 +21,12 @@ constexpr uint32_t kOutBinding[4] = {shared::kIbufferOutDg, shared::kIbufferOutS
                                      shared::kIbufferOutMs};
 constexpr uint32_t kFilledBinding[4] = {shared::kIbufferFilledDg, shared::kIbufferFilledSg1, shared::kIbufferFilledSg2,
                                         shared::kIbufferFilledMs};
-constexpr uint32_t kSampledBinding[4] = {shared::kIbufferLightsDg, shared::kIbufferLightsSg1,
-                                         shared::kIbufferLightsSg2, shared::kIbufferLightsMs};
+// The light table's share of each sum, sampled by ibuffer.light; sums of the I-buffer (the
+// pattern's, or the finished ones), sampled by the passes that read them.
+constexpr uint32_t kLightsShareBinding[4] = {shared::kIbufferLightsDg, shared::kIbufferLightsSg1,
+                                             shared::kIbufferLightsSg2, shared::kIbufferLightsMs};
+constexpr uint32_t kSumBinding[4] = {shared::kIbufferSumDg, shared::kIbufferSumSg1, shared::kIbufferSumSg2,
+                                     shared::kIbufferSumMs};
 constexpr const char* kDescription[4] = {
     "I-buffer: the diffuse layer's share of the light, sum of E n.l (1 - E_d(mu_i))",
     "I-buffer: the single-scattering lobe with F = 1, sum of E n.l D V",
@@ -67,7 +71,7 @@ void RedeferredPass::add(graph::RenderGraph& graph, FrameInputs& in, const share
   pass.sampled(shared::kCompositeEmissive, gbuffer::kEmissive)
       .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, hasEnvironmentMap(in))  // the background
       .storageOut(shared::kCompositeOutput, output, outputDesc);
-  for (size_t q = 0; q < kIbuffer.size(); ++q) pass.sampled(kSampledBinding[q], kIbuffer[q]);
+  for (size_t q = 0; q < kIbuffer.size(); ++q) pass.sampled(kSumBinding[q], kIbuffer[q]);
   addPathInputs(pass, path, push.flags);
   pass.push(push).dispatch(in.settings.width, in.settings.height).add(graph);
 }
@@ -100,7 +104,7 @@ void RedeferredPass::addLight(graph::RenderGraph& graph, FrameInputs& in, const 
                                        ? std::string(kDescription[q]) + "; the pattern's pixels only"
                                        : std::string(kDescription[q]))
                         .decodedAs(ibufferDecoder(q)))
-        .optionalSampled(kSampledBinding[q], lightsShare[q], lights)
+        .optionalSampled(kLightsShareBinding[q], lightsShare[q], lights)
         .optionalSampled(kFilledBinding[q], kIbufferFilled[q], refine);
   addPathInputs(pass, path, push.flags);
   const glm::uvec2 grid = stage == shared::kIbufferStagePattern
@@ -122,7 +126,7 @@ void RedeferredPass::addUpsample(graph::RenderGraph& graph, FrameInputs& in, uin
       in.screenImage(VK_FORMAT_R32_SFLOAT,
                      "how each pixel's I-buffer was made: 0 shaded (pattern, sky), 1 filled, 2 shaded as an edge"));
   for (size_t q = 0; q < kIbufferFilled.size(); ++q)
-    pass.sampled(kSampledBinding[q], kIbufferShaded[q])
+    pass.sampled(kSumBinding[q], kIbufferShaded[q])
         .storageOut(kOutBinding[q], kIbufferFilled[q],
                     in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT,
                                    std::string(kDescription[q]) + "; filled below full rate (edges still 0)")
@@ -136,9 +140,9 @@ void RedeferredPass::addLightOnly(graph::RenderGraph& graph, FrameInputs& in) {
   addIbufferSurface(pass);
   pass.optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, hasEnvironmentMap(in));  // the background
   pass.storageOut(
-      shared::kIbufferOutDg, kIbufferLightOnly,
+      shared::kIbufferLightOnlyOut, kIbufferLightOnly,
       in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT, "light only: the I-buffer resolved against white (no materials)"));
-  for (size_t q = 0; q < kIbuffer.size(); ++q) pass.sampled(kSampledBinding[q], kIbuffer[q]);
+  for (size_t q = 0; q < kIbuffer.size(); ++q) pass.sampled(kSumBinding[q], kIbuffer[q]);
   pass.dispatch(w, h).add(graph);
 }
 
