@@ -89,6 +89,8 @@ struct RayProbeFrame {
   uint32_t frameIndex = 0;
   std::function<const graph::Readback&(std::string_view name)> readback;
   std::function<double(std::string_view pass)> medianMs;
+  // `count` things done in `ms` milliseconds, per second (0 for a pass that did not run).
+  static double perSecond(double count, double ms) { return ms > 0.0 ? count / (ms * 1e-3) : 0.0; }
 };
 
 class LightingPath {

@@ -34,9 +34,8 @@ using metrics::median;
 // What compare reads of the reference path beyond its image: its AO, irradiance, noise, depth
 // split and shaders, by the names the path gives (lighting::PathReadouts).
 lighting::PathReadouts referenceReadouts(const Session& s) {
-  const std::string reference = s.referencePath();
   for (const PathInfo& p : s.paths())
-    if (p.name == reference) return p.capabilities.readouts;
+    if (p.capabilities.isReference) return p.capabilities.readouts;
   throw SessionError("this build has no reference path to compare against");
 }
 

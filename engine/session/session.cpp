@@ -511,7 +511,7 @@ void Session::beginOne(bool readback) {
   executor_->submit(graph, compiled);
   graphDump_ = graph.dump(compiled);
   if (readback) graphDot_ = graph.dot(compiled);
-  InFlight begun{path, compared, compareGeneration_, in.key, fc.exposure};
+  InFlight begun{path, compared, compareGeneration_, in.key, fc.exposure, noise};
   for (auto& [name, value] : path->figures())
     if (name == "reference.samples") begun.referenceSamples = uint32_t(value);
   for (const auto& d : historyLog_)
@@ -538,12 +538,10 @@ void Session::finishOne() {
   frameGpuMs_.push_back(total);
   // The compare view it was rendered for may have been closed or replaced since.
   if (compare_ && !done.compared.empty() && done.compareGeneration == compareGeneration_) {
-    const std::string noise = done.compared == compare_->referencePath()
-                                  ? findPath(done.compared)->capabilities().readouts.noise
-                                  : std::string();
     compare_->frameDone(done.compared, executor_->readback(lighting::compareImageName(done.compared)), total, done.key,
                         done.referenceSamples, done.exposure, done.accumulation,
-                        !noise.empty() && executor_->readbacks().count(noise) ? &executor_->readback(noise) : nullptr);
+                        !done.noise.empty() && executor_->readbacks().count(done.noise) ? &executor_->readback(done.noise)
+                                                                                        : nullptr);
   }
 }
 

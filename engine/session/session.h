@@ -281,6 +281,7 @@ class Session {
     uint64_t compareGeneration = 0;
     lighting::FrameKey key;
     float exposure = 1.0f;
+    std::string noise;  // the compared reference's noise estimate, read back for the Compare panel ("": none)
     // What the frame's path said when it was built (a later frame may be built before this one
     // is finished): the reference's sample count and the accumulation's history decision.
     uint32_t referenceSamples = 0;

@@ -170,8 +170,8 @@ class ReferencePath final : public LightingPath {
     const double pixels = double(frame.settings.width) * frame.settings.height;
     const double paths = pixels * frame.settings.referenceSamplesPerFrame;
     const double rawMs = frame.medianMs("reference.rawRays"), traceMs = frame.medianMs("reference.trace");
-    const double rawRate = rawMs > 0.0 ? rawRays / (rawMs * 1e-3) : 0.0;
-    const double pathRate = traceMs > 0.0 ? paths / (traceMs * 1e-3) : 0.0;
+    const double rawRate = RayProbeFrame::perSecond(rawRays, rawMs);
+    const double pathRate = RayProbeFrame::perSecond(paths, traceMs);
     return {{"paths", paths},  // this frame's: samples per frame a pixel (adaptive sampling spreads them)
             {"traceMs", traceMs},
             {"pathsPerSecond", pathRate},

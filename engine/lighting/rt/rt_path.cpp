@@ -297,9 +297,9 @@ class RtPath final : public LightingPath {
     }
     const double rawMs = frame.medianMs("rt.rawRays"), traceMs = frame.medianMs("rt.trace");
     const double rawPendingMs = frame.medianMs("rt.rawRays.pending");
-    const double rawRate = rawMs > 0.0 ? double(surface) / (rawMs * 1e-3) : 0.0;
-    const double rawPendingRate = rawPendingMs > 0.0 ? double(pending) / (rawPendingMs * 1e-3) : 0.0;
-    const double rtRate = traceMs > 0.0 ? double(pending) / (traceMs * 1e-3) : 0.0;
+    const double rawRate = RayProbeFrame::perSecond(double(surface), rawMs);
+    const double rawPendingRate = RayProbeFrame::perSecond(double(pending), rawPendingMs);
+    const double rtRate = RayProbeFrame::perSecond(double(pending), traceMs);
     const double pixels = double(frame.settings.width) * frame.settings.height;
     return {{"surfacePixels", double(surface)},  // traced this frame (all, this frame's checkerboard or 2x2 pixel)
             {"realRays", double(pending)},
