@@ -54,6 +54,46 @@ TEST_F(PluginTest, AoPluginShowsTheOpenPlaneWhiteAndTheBoxCornersDark) {
   EXPECT_LT(darkest, 0.7) << "the box's corners are occluded";
 }
 
+// The ao plugin traces its own rays by the definition the reference's AO has (cosine rays
+// from the primary hit, occluded within rtAoRadius): on the Cornell box, after as many rays
+// per pixel as the reference's samples, the two agree per pixel within their noise and in the
+// mean within a hundredth; and its frame runs none of the rt path's passes.
+TEST_F(PluginTest, AoPluginMatchesTheReferenceAoAndRunsNoRtPass) {
+  auto& s = session();
+  s.loadScene(contentFile("cornell.gltf"));
+  const uint32_t w = 48, h = 48;
+  s.settings().referenceSamplesPerFrame = 64;
+  renderFresh(s, "reference", w, h, 4, {"reference.ao", "gbuffer.depth"});
+  const auto reference = s.buffer("reference.ao").texels(), depth = s.buffer("gbuffer.depth").texels();
+  renderFresh(s, "ao", w, h, 128, {"ao.grey"});
+  const auto grey = s.buffer("ao.grey").texels();
+  const uint32_t channels = s.buffer("ao.grey").channels();
+  double meanAbs = 0.0, aoMean = 0.0, referenceMean = 0.0;
+  size_t n = 0;
+  for (size_t i = 0; i < depth.size(); ++i) {
+    if (depth[i] <= 0.0f) continue;
+    ++n;
+    meanAbs += std::abs(double(grey[channels * i]) - reference[i]);
+    aoMean += grey[channels * i], referenceMean += reference[i];
+  }
+  ASSERT_GT(n, depth.size() / 2);
+  meanAbs /= double(n), aoMean /= double(n), referenceMean /= double(n);
+  RecordProperty("ao_mean", std::to_string(aoMean));
+  RecordProperty("reference_ao_mean", std::to_string(referenceMean));
+  RecordProperty("mean_abs_difference", std::to_string(meanAbs));
+  EXPECT_LT(referenceMean, 0.97) << "the box has corners: some occlusion";
+  EXPECT_NEAR(aoMean, referenceMean, 0.01) << "the same definition, unbiased";
+  EXPECT_LT(meanAbs, 0.05) << "per pixel within the two estimates' noise";
+
+  size_t rtPasses = 0, aoPasses = 0;
+  for (const auto& [pass, ms] : s.passGpuMs()) {
+    rtPasses += pass.rfind("rt.", 0) == 0;
+    aoPasses += pass.rfind("ao.", 0) == 0;
+  }
+  EXPECT_EQ(rtPasses, 0u) << "the plugin borrows the structures, not the rt path";
+  EXPECT_EQ(aoPasses, 1u);
+}
+
 // bentsky on the open plane: visibility 1 and irradiance pi L at every surface pixel from the
 // first frame (every ray escapes; the uniform sky's irradiance does not depend on the bent
 // normal); within half-float rounding. In the Cornell box the floor sees less sky than that.

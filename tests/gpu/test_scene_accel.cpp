@@ -38,7 +38,7 @@ TEST_F(SceneAccelTest, EveryTracerBorrowsTheSceneStructuresBuiltOnce) {
   EXPECT_EQ(step("rt"), meshes) << "the simplified level: one bottom level per mesh";
   EXPECT_EQ(step("reference"), meshes) << "the full level: one bottom level per mesh";
   EXPECT_EQ(step("bentsky"), 0u) << "the plugin borrows the simplified level";
-  EXPECT_EQ(step("ao"), 0u) << "the plugin (the rt path's AO) borrows the simplified level";
+  EXPECT_EQ(step("ao"), 0u) << "the plugin borrows the simplified level";
   EXPECT_EQ(step("rt"), 0u) << "back to rt: nothing rebuilt";
   EXPECT_EQ(step("reference"), 0u) << "back to the reference: nothing rebuilt";
   const gpu::AccelerationStructureTotals end = gpu::accelerationStructureTotals();
