@@ -351,6 +351,8 @@ void Device::createLogicalDevice(const DeviceOptions& options) {
   enable.features.depthBiasClamp = have.features.depthBiasClamp;
   enable.features.independentBlend = have.features.independentBlend;
   enable.features.geometryShader = have.features.geometryShader;
+  multiDrawIndirect_ = have.features.multiDrawIndirect && have.features.drawIndirectFirstInstance;
+  enable.features.multiDrawIndirect = enable.features.drawIndirectFirstInstance = multiDrawIndirect_;
 
   void** tail = &e13.pNext;
   if (rayTracing_.pipeline) {

@@ -94,6 +94,9 @@ class Device {
   const RayTracingSupport& rayTracing() const { return rayTracing_; }
   const VkPhysicalDeviceLimits& limits() const { return limits_; }
   bool validationEnabled() const { return validation_; }
+  // Many draws in one indirect call, each with its own first instance (the optional features
+  // multiDrawIndirect and drawIndirectFirstInstance, enabled where present): gpu/draw_arena.h.
+  bool multiDrawIndirect() const { return multiDrawIndirect_; }
 
   // Validation errors reported by the layers since creation (warnings are only logged).
   uint32_t validationErrorCount() const { return validationErrors_.load(); }
@@ -175,6 +178,7 @@ class Device {
   std::string driver_;
   uint32_t apiVersion_ = 0;
   bool validation_ = false;
+  bool multiDrawIndirect_ = false;
   bool debugUtils_ = false;
   Extensions ext_;
   RayTracingSupport rayTracing_;

@@ -100,7 +100,7 @@ shared::GpuTextureSlot textureSlot(const std::optional<TextureRef>& r) {
 
 }  // namespace
 
-GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
+GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device), drawArena_(device) {
   static std::atomic<uint64_t> nextId{1};
   id_ = nextId++;
   // Geometry: all meshes in one vertex and one index buffer.
@@ -287,29 +287,37 @@ void GpuScene::drawMesh(VkCommandBuffer cmd, uint32_t mesh) const {
   vkCmdDrawIndexed(cmd, m.indexCount, 1, m.firstIndex, m.vertexOffset, 0);
 }
 
-void GpuScene::drawAll(VkCommandBuffer cmd) const {
-  bindGeometry(cmd);
+void GpuScene::drawAll(graph::PassContext& ctx) const {
+  bindGeometry(ctx.cmd);
+  std::vector<VkDrawIndexedIndirectCommand> draws(drawMesh_.size());
   for (uint32_t i = 0; i < drawMesh_.size(); ++i) {
     const MeshRange& m = meshes_[drawMesh_[i]];
-    vkCmdDrawIndexed(cmd, m.indexCount, 1, m.firstIndex, m.vertexOffset, i);
+    draws[i] = {m.indexCount, 1, m.firstIndex, m.vertexOffset, i};
   }
+  drawArena_.drawIndexed(ctx.cmd, ctx.frameIndex, draws);
 }
 
-void GpuScene::drawInstances(VkCommandBuffer cmd, const std::vector<uint32_t>& instances) const {
-  bindGeometry(cmd);
+void GpuScene::drawInstances(graph::PassContext& ctx, const std::vector<uint32_t>& instances) const {
+  bindGeometry(ctx.cmd);
+  std::vector<VkDrawIndexedIndirectCommand> draws;
+  draws.reserve(instances.size());
   for (uint32_t i : instances) {
     if (i >= drawMesh_.size()) continue;
     const MeshRange& m = meshes_[drawMesh_[i]];
-    vkCmdDrawIndexed(cmd, m.indexCount, 1, m.firstIndex, m.vertexOffset, i);
+    draws.push_back({m.indexCount, 1, m.firstIndex, m.vertexOffset, i});
   }
+  drawArena_.drawIndexed(ctx.cmd, ctx.frameIndex, draws);
 }
 
-void GpuScene::drawInstancesUnindexed(VkCommandBuffer cmd, const std::vector<uint32_t>& instances) const {
+void GpuScene::drawInstancesUnindexed(graph::PassContext& ctx, const std::vector<uint32_t>& instances) const {
+  std::vector<VkDrawIndirectCommand> draws;
+  draws.reserve(instances.size());
   for (uint32_t i : instances) {
     if (i >= drawMesh_.size()) continue;
     const MeshRange& m = meshes_[drawMesh_[i]];
-    vkCmdDraw(cmd, m.indexCount, 1, m.firstIndex, i);
+    draws.push_back({m.indexCount, 1, m.firstIndex, i});
   }
+  drawArena_.draw(ctx.cmd, ctx.frameIndex, draws);
 }
 
 void GpuScene::updateMeshVertices(const std::vector<uint32_t>& meshes, const std::vector<std::vector<Vertex>>& vertices) {

@@ -1,9 +1,11 @@
 // The scene on the GPU: one vertex and one index buffer for all meshes, the material
 // table, the per-frame camera-relative instance table, and the texture table, bound
-// together as descriptor set kSceneSet. Passes draw it with drawAll().
+// together as descriptor set kSceneSet. Passes draw it with drawAll(), one multi-draw call
+// for all its instances.
 #pragma once
 
 #include "gpu/descriptor_table.h"
+#include "gpu/draw_arena.h"
 #include "gpu/resources.h"
 #include "gpu/upload_ring.h"
 #include "graph/executor.h"
@@ -63,14 +65,19 @@ class GpuScene {
   // also the pass that uploads the instances.
   void importBuffers(graph::RenderGraph& graph, uint64_t frame);
 
-  // Binds the geometry and draws every instance (instance index via firstInstance).
-  void drawAll(VkCommandBuffer cmd) const;
-  // Binds the geometry and draws the listed instances only.
-  void drawInstances(VkCommandBuffer cmd, const std::vector<uint32_t>& instances) const;
-  // Draws the listed instances without vertex or index buffers: vertex k of instance i is
-  // gl_VertexIndex = its mesh's firstIndex + k (a multiple of 3 starts each mesh's triangles),
-  // for shaders that fetch whole triangles from the buffers themselves (GpuInstance::vertexOffset).
-  void drawInstancesUnindexed(VkCommandBuffer cmd, const std::vector<uint32_t>& instances) const;
+  // Binds the geometry and draws every instance (instance index via firstInstance), in the
+  // pass `ctx` records: one multi-draw call for all of them (gpu/draw_arena.h).
+  void drawAll(graph::PassContext& ctx) const;
+  // Binds the geometry and draws the listed instances only, in one call.
+  void drawInstances(graph::PassContext& ctx, const std::vector<uint32_t>& instances) const;
+  // Draws the listed instances without vertex or index buffers, in one call: vertex k of
+  // instance i is gl_VertexIndex = its mesh's firstIndex + k (a multiple of 3 starts each
+  // mesh's triangles), for shaders that fetch whole triangles from the buffers themselves
+  // (GpuInstance::vertexOffset).
+  void drawInstancesUnindexed(graph::PassContext& ctx, const std::vector<uint32_t>& instances) const;
+  // Draw calls recorded since the scene was made and the instance draws they held.
+  uint64_t drawCalls() const { return drawArena_.calls(); }
+  uint64_t instanceDraws() const { return drawArena_.draws(); }
   // Binds the vertex and index buffers; then drawMesh() draws one mesh once (instance 0),
   // for passes that place meshes themselves (the albedo baker).
   void bindGeometry(VkCommandBuffer cmd) const;
@@ -117,6 +124,8 @@ class GpuScene {
   std::vector<SamplerMode> samplerModes_;  // distinct modes, one Vulkan sampler each
   std::vector<gpu::Sampler> samplers_;
   gpu::DescriptorTable table_;
+  // The draw calls' arguments: memory for recording, not the scene's state (hence mutable).
+  mutable gpu::DrawArena drawArena_;
   std::vector<MeshRange> meshes_;
   std::vector<uint32_t> drawMesh_;             // per instance: its mesh
   std::vector<uint32_t> alphaTested_, opaque_;  // instance lists

@@ -97,6 +97,8 @@ class Session {
   void installScene(std::unique_ptr<scene::Scene> scene);
   bool hasScene() const { return scene_ != nullptr; }
   const scene::Scene& scene() const;
+  // The scene's buffers on the GPU (its draw-call counts: gpu_scene.h).
+  const scene::GpuScene& gpuScene() const { return *gpuScene_; }
 
   // Per-instance hit albedo for the RT path (engine/albedo/): override > baked > texture average. Edits
   // through it show in the next frame.

@@ -4,6 +4,8 @@
 
 #include "lighting/common/composite_pass.h"
 
+#include <set>
+
 namespace tl::test {
 
 TEST_F(GpuTest, AtriumRendersFiniteLitFrameWithEveryResourceNamed) {
@@ -66,6 +68,34 @@ TEST_F(GpuTest, GbufferInstanceIdsMatchSceneInstances) {
   // No sun in cornell: nothing reads the shadow map, so the graph culls its pass.
   EXPECT_NE(s.graphDump().find("shadow.sun (nobody reads shadow.sunDepth)"), std::string::npos) << s.graphDump();
   for (const auto& t : s.timings()) EXPECT_NE(t.pass, "shadow.sun");
+}
+
+// The grove's ten thousand instances (trees of three meshes over a ground) are drawn by one
+// multi-draw call per raster pass, each draw with its own instance: the G-buffer shows
+// thousands of distinct instance ids, and the shadow map and G-buffer together record a few
+// calls for all their draws. (One call per instance cost the validation layers half a minute
+// per test on this scene.)
+TEST_F(GpuTest, TenThousandInstancesDrawInOneCallPerPassEachAsItself) {
+  auto& s = session();
+  s.loadScene(contentFile("grove.gltf"));
+  ASSERT_GT(s.scene().instances.size(), 10000u);
+  s.useSceneCamera(1);  // from above the trees (the first camera stands on the ground)
+  s.setSize(160, 90);
+  s.requestBuffer("gbuffer.instanceId");
+  const uint64_t callsBefore = s.gpuScene().drawCalls(), drawsBefore = s.gpuScene().instanceDraws();
+  s.renderFrames(1);
+  const uint64_t calls = s.gpuScene().drawCalls() - callsBefore, draws = s.gpuScene().instanceDraws() - drawsBefore;
+  std::set<float> ids;
+  for (float id : s.buffer("gbuffer.instanceId").texels())
+    if (id > 0.0f) ids.insert(id);
+  RecordProperty("draw_calls", std::to_string(calls));
+  RecordProperty("instance_draws", std::to_string(draws));
+  RecordProperty("distinct_instances_seen", std::to_string(ids.size()));
+  EXPECT_GE(draws, 2 * s.scene().instances.size()) << "the G-buffer and the sun's shadow map draw every instance";
+  if (s.device().multiDrawIndirect()) {
+    EXPECT_LE(calls, 4u) << "one multi-draw call per raster pass";
+  }
+  EXPECT_GT(ids.size(), 500u) << "each draw is its own instance (its transform, its id)";
 }
 
 }  // namespace tl::test

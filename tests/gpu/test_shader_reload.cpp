@@ -84,15 +84,15 @@ TEST(ShaderReload, PluginShadersAreASecondSourceRoot) {
   fs::remove_all(root);
   fs::create_directories(root);
   fs::copy(fs::path(TWINLIGHT_SOURCE_ROOT) / "plugins", root / "plugins", fs::copy_options::recursive);
-  const fs::path grey = root / "plugins" / "ao_debug" / "shaders" / "ao_grey.comp";
+  const fs::path trace = root / "plugins" / "ao_debug" / "shaders" / "ao_trace.comp";
   {
     gpu::ShaderReloader reloader(fs::path(TWINLIGHT_SOURCE_ROOT) / "shaders", root / "spv", root / "plugins");
     EXPECT_TRUE(reloader.poll().recompiled.empty()) << "the first poll only records";
-    rewrite(grey, readText(grey) + "\n// edited\n");
+    rewrite(trace, readText(trace) + "\n// edited\n");
     gpu::ShaderReloadResult r = reloader.poll();
     EXPECT_TRUE(r.errors.empty()) << (r.errors.empty() ? "" : r.errors[0]);
-    EXPECT_EQ(r.recompiled, std::vector<std::string>{"plugins/ao_debug/shaders/ao_grey.comp"});
-    EXPECT_TRUE(fs::exists(root / "spv" / "plugins" / "ao_debug" / "shaders" / "ao_grey.comp.spv"));
+    EXPECT_EQ(r.recompiled, std::vector<std::string>{"plugins/ao_debug/shaders/ao_trace.comp"});
+    EXPECT_TRUE(fs::exists(root / "spv" / "plugins" / "ao_debug" / "shaders" / "ao_trace.comp.spv"));
   }
   fs::remove_all(root);
 }

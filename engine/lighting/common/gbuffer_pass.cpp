@@ -30,7 +30,7 @@ void GbufferPass::add(graph::RenderGraph& graph, FrameInputs& in) {
                     .named("Z"),  // captures store view depth in metres (session/capture_encoding.h)
                 0.0f)
       .drawsScene(in.scene.table())
-      .draw([&in](graph::PassContext& ctx, const RasterPass::Use&) { in.scene.drawAll(ctx.cmd); })
+      .draw([&in](graph::PassContext& ctx, const RasterPass::Use&) { in.scene.drawAll(ctx); })
       .add(graph);
 }
 

@@ -32,7 +32,7 @@ void LightShadowPass::add(graph::RenderGraph& graph, FrameInputs& in, const Ligh
           for (uint32_t v = 0; v < views; ++v) {
             ctx.setViewport((v % columns) * tile, (v / columns) * tile, tile, tile);
             ctx.pushConstants(shared::LightShadowPush{v, 0, 0, 0});
-            in.scene.drawInstances(ctx.cmd, instances);
+            in.scene.drawInstances(ctx, instances);
           }
         };
         draw(0, in.scene.opaqueInstances());

@@ -344,7 +344,7 @@ class RayTracingPass final : public BindingPass<RayTracingPass> {
 //       .colorOut(kGbufferNormal, normalDesc, glm::vec4(0.0f))
 //       .depthOut(gbuffer::kDepth, depthDesc, 0.0f)
 //       .drawsScene(in.scene.table())
-//       .draw([&in](graph::PassContext& ctx, const RasterPass::Use&) { in.scene.drawAll(ctx.cmd); })
+//       .draw([&in](graph::PassContext& ctx, const RasterPass::Use&) { in.scene.drawAll(ctx); })
 //       .add(graph);
 class RasterPass final : public BindingPass<RasterPass> {
  public:

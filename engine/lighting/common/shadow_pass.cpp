@@ -40,11 +40,11 @@ void ShadowPass::add(graph::RenderGraph& graph, FrameInputs& in) {
       .draw([&in](graph::PassContext& ctx, const RasterPass::Use& use) {
         // Slope-scaled bias against acne on surfaces at grazing angles to the sun.
         vkCmdSetDepthBias(ctx.cmd, 0.0f, 0.0f, 1.5f);
-        in.scene.drawInstances(ctx.cmd, in.scene.opaqueInstances());
+        in.scene.drawInstances(ctx, in.scene.opaqueInstances());
         if (!in.scene.alphaTestedInstances().empty()) {
           use(1);
           vkCmdSetDepthBias(ctx.cmd, 0.0f, 0.0f, 1.5f);
-          in.scene.drawInstances(ctx.cmd, in.scene.alphaTestedInstances());
+          in.scene.drawInstances(ctx, in.scene.alphaTestedInstances());
         }
       })
       .add(graph);

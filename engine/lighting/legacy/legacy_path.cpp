@@ -357,7 +357,7 @@ class LegacyPath final : public LightingPath {
                   vpush.axis = axis + 3 * level;
                   scissorToRegion(ctx, region, axis);
                   ctx.pushConstants(vpush);
-                  in.scene.drawInstancesUnindexed(ctx.cmd, draw);
+                  in.scene.drawInstancesUnindexed(ctx, draw);
                 }
               }
           })
