@@ -17,8 +17,9 @@
 #          whatever the arrays left, so a stage count that is off costs time, never a result).
 # Logs go to OUT_DIR/logs/. --first sets the array's first task id (default 0; ids need not
 # start at 0, twinlight reads SLURM_ARRAY_TASK_MIN). --wait blocks until the merge job ends
-# and exits with its status (a failed task cancels the merge: DependencyParameters
-# kill_invalid_depend, or it stays pending with reason DependencyNeverSatisfied).
+# (its state read every second) and exits 0 only if it completed: a failed task cancels the
+# merge (DependencyParameters kill_invalid_depend) or leaves it pending with reason
+# DependencyNeverSatisfied, and either way --wait exits 1.
 # Environment: TWINLIGHT, the twinlight binary (default: twinlight on PATH);
 # TWINLIGHT_SBATCH_ARGS, extra sbatch options for every job (e.g. "--partition=render
 # --gres=gpu:1" on GPU nodes, "--cpus-per-task=8" for lavapipe on CPU nodes).
@@ -32,11 +33,11 @@ usage() {
 }
 
 first=0
-wait_flag=()
+wait_for_merge=0
 while [ $# -gt 0 ]; do
   case $1 in
     --first) first=${2:?--first needs an id}; shift 2 ;;
-    --wait) wait_flag=(--wait); shift ;;
+    --wait) wait_for_merge=1; shift ;;
     *) break ;;
   esac
 done
@@ -79,15 +80,31 @@ else
 fi
 tune_args=()
 [ "$mode" = tune ] && tune_args=("$@")
-merge=$(sbatch --parsable "${extra[@]}" "${wait_flag[@]}" --job-name="twinlight-$mode-merge" \
+merge=$(sbatch --parsable "${extra[@]}" --job-name="twinlight-$mode-merge" \
   --dependency="afterok:$array" --output="$out/logs/$mode-merge-%j.log" \
   "$here/merge.sbatch" "$mode" "$out" "$first" "$tasks" "${tune_args[@]}")
 merge=${merge%%;*}
 echo "submitted $mode merge job $merge (after every task of $array succeeded)"
-if [ ${#wait_flag[@]} -gt 0 ]; then
-  # sbatch --wait exits 0 for a merge job that never ran (cancelled when a task of an array it
-  # waited for failed): its state says whether it completed.
-  state=$(scontrol show job -o "$merge" 2>/dev/null | grep -o 'JobState=[A-Z_]*' || true)
+if [ "$wait_for_merge" = 1 ]; then
+  # Watches the merge job's state every second until it ends. Not sbatch --wait, which polls
+  # after 2 s, 8 s and then every 32 s (a merge that ends a moment after a poll was reported half
+  # a minute late), exits 0 for a merge job that never ran, and waits for ever on one left
+  # pending because a task it waited for failed (without kill_invalid_depend).
+  state="" unknown=0
+  while :; do
+    info=$(scontrol show job -o "$merge" 2>/dev/null || true)
+    state=$(grep -o 'JobState=[A-Z_]*' <<<"$info" || true)
+    case "$state" in
+      JobState=PENDING) if grep -q 'Reason=DependencyNeverSatisfied' <<<"$info"; then break; fi ;;
+      JobState=RUNNING | JobState=CONFIGURING | JobState=COMPLETING | JobState=SUSPENDED | JobState=REQUEUED | \
+        JobState=RESIZING | JobState=SIGNALING | JobState=STAGE_OUT | JobState=STOPPED) ;;
+      "") # the controller did not answer (or forgot the job): a few tries before giving up
+        unknown=$((unknown + 1))
+        [ "$unknown" -lt 30 ] || break ;;
+      *) break ;;  # COMPLETED, FAILED, CANCELLED, TIMEOUT, NODE_FAIL, OUT_OF_MEMORY, ...
+    esac
+    sleep 1
+  done
   if [ "$state" != JobState=COMPLETED ]; then
     echo "submit.sh: the merge job $merge did not complete (${state:-its state is unknown}): see $out/logs/" >&2
     exit 1

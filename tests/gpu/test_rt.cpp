@@ -619,10 +619,11 @@ TEST_F(RtTest, FirefliesOf1e4StayFiniteAndConverge) {
 // within a stated relMSE and below the legacy path's in both.
 struct IrradianceErrors {
   double rt = 0.0, legacy = 0.0;
+  double rtNoCache = -1.0;  // with alsoWithoutCache: every bounce, the RT path without its radiance cache
 };
-enum class Scope { Full, OneBounce, NoCache };  // NoCache: every bounce, the RT path without its radiance cache
+enum class Scope { Full, OneBounce };
 IrradianceErrors irradianceErrors(session::Session& s, const char* scene, uint32_t w, uint32_t h,
-                                  uint32_t referenceFrames, Scope scope) {
+                                  uint32_t referenceFrames, Scope scope, bool alsoWithoutCache = false) {
   s.loadScene(contentFile(scene));
   s.settings() = RenderSettings{};  // (holds the size too: set it after)
   s.setSize(w, h);
@@ -639,10 +640,14 @@ IrradianceErrors irradianceErrors(session::Session& s, const char* scene, uint32
     s.setPath(path);
     s.resetHistory();
     s.setFrameIndex(0);  // the same noise whatever ran before
-    // The reference's irradiance accumulates only in frames that read it: read every frame.
+    // The reference's irradiance accumulates only in frames that read it: read every frame;
+    // the paths' is their last frame's.
+    const bool everyFrame = std::string_view(path) == "reference";
     for (uint32_t f = 0; f < frames; ++f) {
-      s.requestBuffer(name);
-      s.requestBuffer("gbuffer.depth");
+      if (everyFrame || f + 1 == frames) {
+        s.requestBuffer(name);
+        s.requestBuffer("gbuffer.depth");
+      }
       s.renderFrames(1);
     }
     auto t = s.buffer(name).texels();
@@ -656,6 +661,11 @@ IrradianceErrors irradianceErrors(session::Session& s, const char* scene, uint32
   const auto reference = irradiance("reference", referenceFrames, "reference.irradiance");
   const auto legacy = irradiance("legacy", 8, lighting::kCompositeIrradiance);
   const auto rt = irradiance("rt", 64, lighting::kCompositeIrradiance);
+  std::vector<float> rtNoCache;
+  if (alsoWithoutCache) {  // the same reference and legacy image: only rt again
+    s.settings().rtCacheMinGain = 2.0f;
+    rtNoCache = irradiance("rt", 64, lighting::kCompositeIrradiance);
+  }
   const auto depth = s.buffer("gbuffer.depth").texels();
   auto interior = [&](size_t i) {
     const size_t x = i % w, y = i / w;
@@ -677,15 +687,14 @@ IrradianceErrors irradianceErrors(session::Session& s, const char* scene, uint32
     EXPECT_GT(n, depth.size());  // most pixels are interior surface (3 channels each)
     return sum / double(std::max<size_t>(n, 1));
   };
-  return {relMse(rt), relMse(legacy)};
+  return {relMse(rt), relMse(legacy), rtNoCache.empty() ? -1.0 : relMse(rtNoCache)};
 }
 
 TEST_F(RtTest, After64FramesIrradianceBeatsLegacyAgainstTheReference) {
   auto& s = session();
-  const IrradianceErrors cornell = irradianceErrors(s, "cornell.gltf", 48, 48, 8, Scope::Full);
+  const IrradianceErrors cornell = irradianceErrors(s, "cornell.gltf", 48, 48, 8, Scope::Full, true);
   const IrradianceErrors atrium = irradianceErrors(s, "atrium.gltf", 64, 36, 4, Scope::Full);
   const IrradianceErrors cornell1 = irradianceErrors(s, "cornell.gltf", 48, 48, 8, Scope::OneBounce);
-  const IrradianceErrors cornellNoCache = irradianceErrors(s, "cornell.gltf", 48, 48, 8, Scope::NoCache);
   const IrradianceErrors atrium1 = irradianceErrors(s, "atrium.gltf", 64, 36, 4, Scope::OneBounce);
   std::printf("one bounce: cornell rt %.4f legacy %.4f; atrium rt %.4f legacy %.4f\n", cornell1.rt, cornell1.legacy,
               atrium1.rt, atrium1.legacy);
@@ -699,8 +708,8 @@ TEST_F(RtTest, After64FramesIrradianceBeatsLegacyAgainstTheReference) {
   RecordProperty("cornell_legacy_relmse", std::to_string(cornell.legacy));
   RecordProperty("atrium_rt_relmse", std::to_string(atrium.rt));
   RecordProperty("atrium_legacy_relmse", std::to_string(atrium.legacy));
-  std::printf("cornell without the radiance cache: rt %.4f\n", cornellNoCache.rt);
-  RecordProperty("cornell_no_cache_rt_relmse", std::to_string(cornellNoCache.rt));
+  std::printf("cornell without the radiance cache: rt %.4f\n", cornell.rtNoCache);
+  RecordProperty("cornell_no_cache_rt_relmse", std::to_string(cornell.rtNoCache));
   EXPECT_LT(cornell.rt, cornell.legacy);
   EXPECT_LT(atrium.rt, atrium.legacy);
   // The cache switches itself on in the open Cornell box (the light it adds off screen is 40%
@@ -708,7 +717,7 @@ TEST_F(RtTest, After64FramesIrradianceBeatsLegacyAgainstTheReference) {
   // cells near the open front holding too much light (docs/accuracy.md, a known defect): 0.355
   // against 0.097 without it. Bounded by legacy's (above) until that is fixed; without the
   // cache, by the figure measured with a margin.
-  EXPECT_LT(cornellNoCache.rt, 0.15) << "measured 0.097 (legacy 0.50)";
+  EXPECT_LT(cornell.rtNoCache, 0.15) << "measured 0.097 (legacy 0.50)";
   EXPECT_LT(atrium.rt, 0.08) << "measured 0.027 (legacy 0.20)";
   EXPECT_LT(cornell1.rt, cornell1.legacy);
   EXPECT_LT(atrium1.rt, atrium1.legacy);
