@@ -172,8 +172,8 @@ if start_slurm; then
     { tail -n 20 "$work"/sweep/logs/*.log; echo "the compare array or its merge failed"; exit 1; }
   timeout 900 "$deploy/slurm/submit.sh" --wait tune 2 "$work/tune" "${tune[@]}" ||
     { tail -n 20 "$work"/tune/logs/*.log; echo "the tune's arrays or its closing job failed"; exit 1; }
-  # A task that fails cancels what waits for it, and --wait says so (sbatch --wait alone
-  # exits 0 for a job cancelled before it ran).
+  # A task that fails cancels what waits for it, and --wait says so (it reads the merge job's
+  # state: a job cancelled before it ran did not complete).
   if timeout 300 "$deploy/slurm/submit.sh" --wait tune 2 "$work/tune_refused" "${tune[@]}" --scene "$work/no_such_scene.gltf" \
       >"$work/tune_refused.log" 2>&1; then
     cat "$work/tune_refused.log"; echo "submit.sh --wait exited 0 although every task failed"; exit 1
