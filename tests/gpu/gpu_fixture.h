@@ -82,7 +82,7 @@ class GpuTest : public ::testing::Test {
   static void SetUpTestSuite() {
     if (!session_) {
       gpu::DeviceOptions o;
-      o.validation = !std::getenv("TL_NOVAL");
+      o.validation = true;
       session_ = std::make_unique<session::Session>(o);
       restoreBaseline(*session_);
     }
