@@ -34,39 +34,46 @@ DrawArena::Placed DrawArena::place(uint64_t frame, const void* data, VkDeviceSiz
 
 uint32_t DrawArena::drawsPerCall() const { return std::max(device_->limits().maxDrawIndirectCount, 1u); }
 
-void DrawArena::drawIndexed(VkCommandBuffer cmd, uint64_t frame,
-                            const std::vector<VkDrawIndexedIndirectCommand>& draws) {
+// One list, either kind of draw: `direct` records one draw (a device without multi-draw),
+// `indirect` one call over `count` of the list's commands placed at `offset`.
+template <class Command, class Direct, class Indirect>
+void DrawArena::record(uint64_t frame, const std::vector<Command>& draws, Direct direct, Indirect indirect) {
   if (draws.empty()) return;
   draws_ += draws.size();
   if (!device_->multiDrawIndirect()) {
-    for (const VkDrawIndexedIndirectCommand& d : draws)
-      vkCmdDrawIndexed(cmd, d.indexCount, d.instanceCount, d.firstIndex, d.vertexOffset, d.firstInstance), ++calls_;
+    for (const Command& d : draws) direct(d), ++calls_;
     return;
   }
-  constexpr uint32_t stride = sizeof(VkDrawIndexedIndirectCommand);
+  constexpr uint32_t stride = sizeof(Command);
   const Placed at = place(frame, draws.data(), draws.size() * stride);
   for (size_t first = 0; first < draws.size(); first += drawsPerCall()) {
     const uint32_t count = uint32_t(std::min<size_t>(drawsPerCall(), draws.size() - first));
-    vkCmdDrawIndexedIndirect(cmd, at.buffer, at.offset + first * stride, count, stride);
+    indirect(at.buffer, at.offset + first * stride, count, stride);
     ++calls_;
   }
 }
 
+void DrawArena::drawIndexed(VkCommandBuffer cmd, uint64_t frame,
+                            const std::vector<VkDrawIndexedIndirectCommand>& draws) {
+  record(
+      frame, draws,
+      [cmd](const VkDrawIndexedIndirectCommand& d) {
+        vkCmdDrawIndexed(cmd, d.indexCount, d.instanceCount, d.firstIndex, d.vertexOffset, d.firstInstance);
+      },
+      [cmd](VkBuffer buffer, VkDeviceSize offset, uint32_t count, uint32_t stride) {
+        vkCmdDrawIndexedIndirect(cmd, buffer, offset, count, stride);
+      });
+}
+
 void DrawArena::draw(VkCommandBuffer cmd, uint64_t frame, const std::vector<VkDrawIndirectCommand>& draws) {
-  if (draws.empty()) return;
-  draws_ += draws.size();
-  if (!device_->multiDrawIndirect()) {
-    for (const VkDrawIndirectCommand& d : draws)
-      vkCmdDraw(cmd, d.vertexCount, d.instanceCount, d.firstVertex, d.firstInstance), ++calls_;
-    return;
-  }
-  constexpr uint32_t stride = sizeof(VkDrawIndirectCommand);
-  const Placed at = place(frame, draws.data(), draws.size() * stride);
-  for (size_t first = 0; first < draws.size(); first += drawsPerCall()) {
-    const uint32_t count = uint32_t(std::min<size_t>(drawsPerCall(), draws.size() - first));
-    vkCmdDrawIndirect(cmd, at.buffer, at.offset + first * stride, count, stride);
-    ++calls_;
-  }
+  record(
+      frame, draws,
+      [cmd](const VkDrawIndirectCommand& d) {
+        vkCmdDraw(cmd, d.vertexCount, d.instanceCount, d.firstVertex, d.firstInstance);
+      },
+      [cmd](VkBuffer buffer, VkDeviceSize offset, uint32_t count, uint32_t stride) {
+        vkCmdDrawIndirect(cmd, buffer, offset, count, stride);
+      });
 }
 
 }  // namespace tl::gpu

@@ -42,6 +42,8 @@ class DrawArena {
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceSize offset = 0;
   };
+  template <class Command, class Direct, class Indirect>
+  void record(uint64_t frame, const std::vector<Command>& draws, Direct direct, Indirect indirect);
   // Copies `bytes` into frame `frame`'s slot: where it was put.
   Placed place(uint64_t frame, const void* data, VkDeviceSize bytes);
   // At most the device's maxDrawIndirectCount draws per call.

@@ -287,13 +287,16 @@ void GpuScene::drawMesh(VkCommandBuffer cmd, uint32_t mesh) const {
   vkCmdDrawIndexed(cmd, m.indexCount, 1, m.firstIndex, m.vertexOffset, 0);
 }
 
+// Instance i's draw: its mesh's triangles, gl_InstanceIndex = i.
+VkDrawIndexedIndirectCommand GpuScene::indexedDrawOf(uint32_t instance) const {
+  const MeshRange& m = meshes_[drawMesh_[instance]];
+  return {m.indexCount, 1, m.firstIndex, m.vertexOffset, instance};
+}
+
 void GpuScene::drawAll(graph::PassContext& ctx) const {
   bindGeometry(ctx.cmd);
   std::vector<VkDrawIndexedIndirectCommand> draws(drawMesh_.size());
-  for (uint32_t i = 0; i < drawMesh_.size(); ++i) {
-    const MeshRange& m = meshes_[drawMesh_[i]];
-    draws[i] = {m.indexCount, 1, m.firstIndex, m.vertexOffset, i};
-  }
+  for (uint32_t i = 0; i < drawMesh_.size(); ++i) draws[i] = indexedDrawOf(i);
   drawArena_.drawIndexed(ctx.cmd, ctx.frameIndex, draws);
 }
 
@@ -301,21 +304,19 @@ void GpuScene::drawInstances(graph::PassContext& ctx, const std::vector<uint32_t
   bindGeometry(ctx.cmd);
   std::vector<VkDrawIndexedIndirectCommand> draws;
   draws.reserve(instances.size());
-  for (uint32_t i : instances) {
-    if (i >= drawMesh_.size()) continue;
-    const MeshRange& m = meshes_[drawMesh_[i]];
-    draws.push_back({m.indexCount, 1, m.firstIndex, m.vertexOffset, i});
-  }
+  for (uint32_t i : instances)
+    if (i < drawMesh_.size()) draws.push_back(indexedDrawOf(i));
   drawArena_.drawIndexed(ctx.cmd, ctx.frameIndex, draws);
 }
 
 void GpuScene::drawInstancesUnindexed(graph::PassContext& ctx, const std::vector<uint32_t>& instances) const {
+  // The same ranges without the index buffer: vertex k is the mesh's firstIndex + k.
   std::vector<VkDrawIndirectCommand> draws;
   draws.reserve(instances.size());
   for (uint32_t i : instances) {
     if (i >= drawMesh_.size()) continue;
-    const MeshRange& m = meshes_[drawMesh_[i]];
-    draws.push_back({m.indexCount, 1, m.firstIndex, i});
+    const VkDrawIndexedIndirectCommand d = indexedDrawOf(i);
+    draws.push_back({d.indexCount, d.instanceCount, d.firstIndex, d.firstInstance});
   }
   drawArena_.draw(ctx.cmd, ctx.frameIndex, draws);
 }

@@ -115,6 +115,8 @@ class GpuScene {
   VkDeviceSize bytes() const;
 
  private:
+  VkDrawIndexedIndirectCommand indexedDrawOf(uint32_t instance) const;
+
   gpu::Device& device_;
   uint64_t id_ = 0;
   gpu::Buffer vertices_, indices_, materials_, instances_;
