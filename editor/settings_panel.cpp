@@ -3,6 +3,7 @@
 #include "editor_app.h"
 #include "session/presets.h"
 #include "session/settings_json.h"
+#include "session/tune_space.h"
 #include "settings.h"
 #include "ui_helpers.h"
 
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -103,6 +105,57 @@ void settingWidget(const SettingInfo& s, lighting::RenderSettings& settings, con
   trackItem("settings." + label);  // scripts reach the widget itself: click-ui settings.NAME
   tooltip(settingTooltip(s, settings, sceneSize).c_str());
   if (next != value && !lighting::settingRangeError(s, next)) s.set(settings, next);
+}
+
+// The widgets of the schema's settings that `shown` picks, in schema order, each leaving room
+// for the longest name among them: a label is never cut off.
+template <class Shown>
+void settingGroup(lighting::RenderSettings& settings, const lighting::SceneSize& sceneSize, Shown shown) {
+  float labelWidth = 0.0f;
+  for (const SettingInfo& s : lighting::settingsSchema())
+    if (shown(s)) labelWidth = std::max(labelWidth, ImGui::CalcTextSize(std::string(s.name).c_str()).x);
+  ImGui::PushItemWidth(-(labelWidth + ImGui::GetStyle().ItemInnerSpacing.x + 1.0f));
+  for (const SettingInfo& s : lighting::settingsSchema())
+    if (shown(s) && !(s.flags & lighting::kSettingNoPanel)) settingWidget(s, settings, sceneSize);
+  ImGui::PopItemWidth();
+}
+
+// Every path's reflections settings in one group (lighting::kSettingReflections), the shown
+// path's first, with its switch on top: the RT on/off pair of a mirror is one click, and the
+// other path's counterpart is beside it for a fair comparison. The switch puts the path's
+// feature setting at its "off" value, and back at the value it had (its default if none).
+void reflectionsGroup(lighting::RenderSettings& settings, const lighting::SceneSize& sceneSize,
+                      const std::string& path) {
+  static std::map<std::string, double, std::less<>> lastOn;  // per setting: the value the switch restores
+  const auto reflections = [](const SettingInfo& s) { return (s.flags & lighting::kSettingReflections) != 0; };
+  ImGui::SetNextItemOpen(true, ImGuiCond_Appearing);
+  if (!ImGui::CollapsingHeader("reflections##settings.reflections")) return;
+  std::vector<std::string_view> owners = {path};
+  for (const SettingInfo& s : lighting::settingsSchema())
+    if (reflections(s) && std::find(owners.begin(), owners.end(), s.owner) == owners.end()) owners.push_back(s.owner);
+  for (std::string_view owner : owners) {
+    const SettingInfo* feature = nullptr;
+    for (const SettingInfo& s : lighting::settingsSchema())
+      if (reflections(s) && s.owner == owner && (s.flags & lighting::kSettingFeature)) feature = &s;
+    if (!feature) continue;  // a path without reflections (the shown one may have none)
+    const double off = session::featureOffValue(*feature), value = feature->get(settings);
+    bool on = value != off;
+    if (on) lastOn[std::string(feature->name)] = value;
+    ImGui::PushID(std::string(owner).c_str());
+    if (ImGui::Checkbox(fmt::format("{} reflections{}", owner, owner == path ? " (this path)" : "").c_str(), &on)) {
+      const auto it = lastOn.find(feature->name);
+      feature->set(settings, on ? (it != lastOn.end() ? it->second : feature->defaultValue) : off);
+    }
+    ImGui::PopID();
+    trackItem(fmt::format("reflections.{}", owner));
+    tooltip(fmt::format("{}'s reflections on or off: off sets {} to {} (the SH specular shades every pixel), on "
+                        "gives it back the value it had",
+                        owner, feature->name, lighting::formatSetting(*feature, off))
+                .c_str());
+    ImGui::Indent();
+    settingGroup(settings, sceneSize, [&](const SettingInfo& s) { return reflections(s) && s.owner == owner; });
+    ImGui::Unindent();
+  }
 }
 
 // The artist's presets: settings JSON files in the config directory's presets folder.
@@ -270,7 +323,8 @@ void settingsSection(EditorApp& app) {
   ImGui::EndDisabled();
   tooltip(history.canRedo() ? ("Redo " + history.redoLabel() + " (Ctrl+Y)").c_str() : "Nothing to redo");
 
-  // Owners in the order the schema first names them: common, then the paths.
+  // Owners in the order the schema first names them: common, then the paths; the reflections
+  // group after common.
   std::vector<std::string_view> owners;
   for (const SettingInfo& s : lighting::settingsSchema())
     if (std::find(owners.begin(), owners.end(), s.owner) == owners.end()) owners.push_back(s.owner);
@@ -278,15 +332,11 @@ void settingsSection(EditorApp& app) {
     const bool open = owner == "common" || owner == session.path();
     ImGui::SetNextItemOpen(open, ImGuiCond_Appearing);
     const std::string header = fmt::format("{}{}##settings.{}", owner, owner == session.path() ? " (this path)" : "", owner);
-    if (!ImGui::CollapsingHeader(header.c_str())) continue;
-    // The widgets leave room for the group's longest name: a label is never cut off.
-    float labelWidth = 0.0f;
-    for (const SettingInfo& s : lighting::settingsSchema())
-      if (s.owner == owner) labelWidth = std::max(labelWidth, ImGui::CalcTextSize(std::string(s.name).c_str()).x);
-    ImGui::PushItemWidth(-(labelWidth + ImGui::GetStyle().ItemInnerSpacing.x + 1.0f));
-    for (const SettingInfo& s : lighting::settingsSchema())
-      if (s.owner == owner && !(s.flags & lighting::kSettingNoPanel)) settingWidget(s, settings, sceneSize);
-    ImGui::PopItemWidth();
+    if (ImGui::CollapsingHeader(header.c_str()))
+      settingGroup(settings, sceneSize, [&](const SettingInfo& s) {
+        return s.owner == owner && !(s.flags & lighting::kSettingReflections);
+      });
+    if (owner == "common") reflectionsGroup(settings, sceneSize, session.path());
   }
 }
 

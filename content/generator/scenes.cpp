@@ -246,6 +246,60 @@ void polishedMetals(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// A wet street at night, lit by its signs: wet asphalt (dark dielectric, roughness 0.08) with
+// mirror puddles of water (IOR 1.33, roughness 0) between two rows of facades whose emissive
+// signs (red, cyan, amber, magenta; 6-16 nits) and two warm street lamps (KHR spots) are the
+// light; a dark blue night sky, no sun. Most of what the camera sees of the street is the signs
+// reflected: what real games show with RT reflections, and what the SH specular cannot (an
+// irradiance has no sharp sign in it). The signs are meshes, so the reference reaches them by
+// emitter sampling, and the rt path's hits by its emitter samples.
+void wetStreet(const std::filesystem::path& dir) {
+  SceneWriter w("wet_street");
+  int asphalt = w.material({"wet_asphalt", {0.05f, 0.05f, 0.055f}, 0.0f, 0.08f});
+  MaterialSpec water{"puddle_water", {0.02f, 0.02f, 0.025f}, 0.0f, 0.0f};
+  water.ior = 1.33f;
+  int puddle = w.material(water);
+  int kerb = w.material({"kerb_concrete", {0.35f, 0.34f, 0.32f}, 0.0f, 0.85f});
+  int brick = w.material({"brick", {0.32f, 0.14f, 0.10f}, 0.0f, 0.9f});
+  int plaster = w.material({"facade_plaster", {0.55f, 0.52f, 0.48f}, 0.0f, 0.9f});
+  int glass = w.material({"dark_window", {0.02f, 0.02f, 0.03f}, 0.0f, 0.05f});
+  struct Sign {
+    const char* name;
+    glm::vec3 colour;
+    float nits;
+    glm::vec3 center, size;
+  };
+  const Sign signs[] = {{"sign_red", {1.0f, 0.12f, 0.08f}, 12.0f, {-3.95f, 3.2f, -4.0f}, {0.2f, 0.8f, 2.4f}},
+                        {"sign_cyan", {0.15f, 0.85f, 1.0f}, 10.0f, {3.95f, 2.6f, -9.0f}, {0.2f, 1.0f, 3.0f}},
+                        {"sign_amber", {1.0f, 0.62f, 0.15f}, 16.0f, {-3.95f, 2.2f, -14.0f}, {0.2f, 0.6f, 2.0f}},
+                        {"sign_magenta", {0.95f, 0.2f, 0.85f}, 6.0f, {3.95f, 3.6f, -19.0f}, {0.2f, 1.4f, 1.6f}}};
+  for (const Sign& sign : signs) {
+    int m = w.material({sign.name, {0.05f, 0.05f, 0.05f}, 0.0f, 1.0f, sign.colour, sign.nits});
+    wall(w, sign.name, m, sign.center, sign.size);
+  }
+  // The street 6 m wide and 30 m long, kerbs and pavements 2 m wide, facades 10 m high.
+  wall(w, "street", asphalt, {0.0f, -0.1f, -10.0f}, {6.0f, 0.2f, 30.0f});
+  wall(w, "pavement_left", kerb, {-4.0f, 0.0f, -10.0f}, {2.0f, 0.3f, 30.0f});
+  wall(w, "pavement_right", kerb, {4.0f, 0.0f, -10.0f}, {2.0f, 0.3f, 30.0f});
+  const glm::vec3 puddles[] = {{-1.2f, 0.0f, -3.0f}, {1.0f, 0.0f, -7.5f}, {-0.6f, 0.0f, -12.0f}, {1.4f, 0.0f, -16.5f}};
+  const glm::vec3 puddleSize[] = {{1.8f, 0.02f, 1.2f}, {1.4f, 0.02f, 2.0f}, {2.2f, 0.02f, 1.6f}, {1.2f, 0.02f, 1.0f}};
+  for (int i = 0; i < 4; ++i) wall(w, "puddle_" + std::to_string(i), puddle, puddles[i], puddleSize[i]);
+  for (int i = 0; i < 3; ++i) {
+    const float z = -3.0f - 10.0f * float(i);
+    wall(w, "facade_left_" + std::to_string(i), i % 2 ? plaster : brick, {-6.0f, 5.0f, z - 2.0f}, {4.0f, 10.0f, 9.6f});
+    wall(w, "facade_right_" + std::to_string(i), i % 2 ? brick : plaster, {6.0f, 5.0f, z - 7.0f}, {4.0f, 10.0f, 9.6f});
+    wall(w, "window_left_" + std::to_string(i), glass, {-3.95f, 5.5f, z - 1.0f}, {0.1f, 1.6f, 2.4f});
+    wall(w, "window_right_" + std::to_string(i), glass, {3.95f, 5.5f, z - 6.0f}, {0.1f, 1.6f, 2.4f});
+  }
+  w.spotLight("street_lamp_near", {-2.6f, 5.0f, -6.0f}, {0.25f, -1.0f, 0.0f}, 1500.0f, 25.0f, 45.0f,
+              {1.0f, 0.75f, 0.45f});
+  w.spotLight("street_lamp_far", {2.6f, 5.0f, -17.0f}, {-0.25f, -1.0f, 0.0f}, 1500.0f, 25.0f, 45.0f,
+              {1.0f, 0.75f, 0.45f});
+  w.camera("street", {0.4f, 1.6f, 4.0f}, {0.0f, 1.2f, -12.0f}, 55.0f);
+  w.sky({0.012f, 0.018f, 0.035f});
+  w.write(dir);
+}
+
 void furnace(const std::filesystem::path& dir) {
   SceneWriter w("furnace");
   int grey = w.material({"furnace_grey", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
@@ -1405,6 +1459,7 @@ int main(int argc, char** argv) {
     tl::content::polishedMetals(dir);
     tl::content::metalFurnace(dir);
     tl::content::mirrorFloor(dir);
+    tl::content::wetStreet(dir);
     tl::content::plane(dir);
     tl::content::grove(dir);
     tl::content::banners(dir);

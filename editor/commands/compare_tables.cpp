@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -126,6 +127,31 @@ void printCompareReport(const nlohmann::json& report, const std::vector<session:
     for (auto& p : report["paths"])
       if (p.contains("bounces") && p["bounces"].contains("summary"))
         fmt::print("{}: {}\n", p["path"].get<std::string>(), p["bounces"]["summary"].get<std::string>());
+  }
+  // Per lobe: the light the surfaces reflect through their diffuse layer and their specular lobes.
+  if (report["reference"].contains("byLobe")) {
+    const auto share = [](const nlohmann::json& v) {
+      return v.is_number() ? fmt::format("{:.1f}%", 100.0 * v.get<double>()) : std::string("-");
+    };
+    const auto& lobes = report["reference"]["byLobe"];
+    fmt::print(
+        "per lobe (share of the light reflected through each lobe a path holds; the lobe's share of the reference)\n");
+    size_t width = 10;  // the longest name (a configuration's may be long)
+    for (auto& p : report["paths"]) width = std::max(width, p["path"].get<std::string>().size());
+    fmt::print("{:{}} {:>17} {:>17} {:>20} {:>21}\n", "captured", width,
+               fmt::format("diffuse ({})", share(lobes["diffuseShare"])),
+               fmt::format("specular ({})", share(lobes["specularShare"])), "diffuse relMSE_norm",
+               "specular relMSE_norm");
+    for (auto& p : report["paths"]) {
+      if (!p.contains("lobes") || !p["lobes"].contains("specular")) continue;
+      const auto& l = p["lobes"];
+      fmt::print("{:{}} {:>17} {:>17} {} {}\n", p["path"].get<std::string>(), width, share(l["diffuse"]["captured"]),
+                 share(l["specular"]["captured"]), cell(l["diffuse"]["relMSE_norm"], 20, 4),
+                 cell(l["specular"]["relMSE_norm"], 21, 4));
+    }
+    for (auto& p : report["paths"])
+      if (p.contains("lobes") && p["lobes"].contains("summary"))
+        fmt::print("{}: {}\n", p["path"].get<std::string>(), p["lobes"]["summary"].get<std::string>());
   }
   if (report.contains("gate")) {
     const auto& gate = report["gate"];

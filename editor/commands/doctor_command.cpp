@@ -17,8 +17,10 @@ class DoctorCommand : public CliCommand {
 
   CLI::App* add(CLI::App& app) override {
     auto* cmd = app.add_subcommand(
-        "doctor", "stability report: every lighting path on SCENE, NaN/Inf/negative counts per buffer, energy against the "
-                  "reference, flicker over a short camera orbit, messages from the Vulkan layers; exit status 1 when not healthy");
+        "doctor",
+        "stability report: every lighting path on SCENE, NaN/Inf/negative counts per buffer, energy against the "
+        "reference, flicker over a short camera orbit, the frames the reflections take to settle after it, messages "
+        "from the Vulkan layers; exit status 1 when not healthy");
     cmd->add_option("scene", render_.scene, "glTF file")->required();
     cmd->add_option("--frames", doctor_.frames, "frames each real-time path renders before its buffers are read")
         ->check(CLI::Range(1u, kMaxFrames))
@@ -27,6 +29,15 @@ class DoctorCommand : public CliCommand {
         ->check(CLI::Range(1u, kMaxSpp))
         ->capture_default_str();
     cmd->add_option("--orbit-frames", doctor_.orbitFrames, "frames of the camera orbit that measures flicker (0: none)")
+        ->check(CLI::Range(0u, kMaxFrames))
+        ->capture_default_str();
+    cmd->add_option("--orbit-degrees", doctor_.orbitDegrees,
+                    "the orbit's step per frame in degrees, about the point looked at (larger: a faster camera)")
+        ->check(CLI::Range(0.0, 45.0))
+        ->capture_default_str();
+    cmd->add_option("--settle-frames", doctor_.settleFrames,
+                    "frames the view is held after the orbit, to measure how many the reflections take to settle "
+                    "(0: none)")
         ->check(CLI::Range(0u, kMaxFrames))
         ->capture_default_str();
     cmd->add_option("--json", json_, "also write the report as JSON to FILE (- for stdout)");

@@ -62,6 +62,9 @@ struct PathReadouts {
   std::string noise;             // per-pixel standard error of its estimate (rgba32f: rgb, a the pixel's samples)
   std::string noiseTotals;       // a buffer of one shared::RefNoiseTotals: the image's noise, read back every frame
   std::vector<std::string> byDepth;  // its radiance split by path depth (what --bounces caps), in depth order
+  // Its radiance split by the first surface's lobe: what it reflects through its diffuse layer,
+  // and through its specular lobes (rgb each; what the camera sees directly is in neither).
+  std::vector<std::string> byLobe;
   std::vector<std::string> shaders;  // the shaders its estimate comes from: a cache of its images keys on their SPIR-V
 };
 

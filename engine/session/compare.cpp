@@ -88,6 +88,7 @@ struct ReferenceImages {
   lighting::PathReadouts names;  // the graph resources they were read from (empty for another renderer's image)
   metrics::Image radiance, ao, irradiance;
   std::vector<metrics::Image> byDepth;
+  std::vector<metrics::Image> byLobe;  // PathReadouts::byLobe: the diffuse layer's, the specular lobes'
   // The standard error of each pixel's radiance per channel (reference.stderr); empty for
   // another renderer's image, whose noise is unknown.
   metrics::Image stdErr;
@@ -113,11 +114,14 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   const std::string key = referenceKey(s, o);
   const lighting::PathReadouts names = referenceReadouts(s);
   const std::vector<std::string>& depthBuffers = names.byDepth;
+  const std::vector<std::string>& lobeBuffers = names.byLobe;
   // The radiance first: its presence is what a run looks for first (it is written last).
   std::vector<std::filesystem::path> files = {dir / (key + ".exr"), dir / (key + ".ao.exr"), dir / (key + ".irradiance.exr"),
                                               dir / (key + ".stderr.exr"), dir / (key + ".noise.json")};
   const size_t firstDepthFile = files.size();
   for (size_t g = 0; g < depthBuffers.size(); ++g) files.push_back(dir / fmt::format("{}.bounces{}.exr", key, g));
+  const size_t firstLobeFile = files.size();
+  for (size_t l = 0; l < lobeBuffers.size(); ++l) files.push_back(dir / fmt::format("{}.lobe{}.exr", key, l));
   info = {{"source", "path tracer"},
           {"spp", o.referenceSpp},
           {"bounces", o.referenceBounces},
@@ -148,6 +152,8 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
     r.stdErr = metrics::Image::fromTexels(w, h, 3, std::move(cached[3]->rgb));
     for (size_t g = 0; g < depthBuffers.size(); ++g)
       r.byDepth.push_back(metrics::Image::fromTexels(w, h, 3, std::move(cached[firstDepthFile + g]->rgb)));
+    for (size_t l = 0; l < lobeBuffers.size(); ++l)
+      r.byLobe.push_back(metrics::Image::fromTexels(w, h, 3, std::move(cached[firstLobeFile + l]->rgb)));
     info["noise"] = *cachedNoise;
     if (cachedNoise->contains("spp")) info["spp"] = (*cachedNoise)["spp"];
     return r;
@@ -163,6 +169,7 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
   auto request = [&](bool all) {
     s.requestBuffer(names.irradiance);
     for (const auto& b : depthBuffers) s.requestBuffer(b);
+    for (const auto& b : lobeBuffers) s.requestBuffer(b);
     if (all) s.requestBuffer(names.image), s.requestBuffer(names.ambientOcclusion), s.requestBuffer(names.noise);
   };
   if (o.referenceNoise) {
@@ -197,10 +204,12 @@ ReferenceImages renderReference(Session& s, const CompareOptions& o, const Progr
                     rgbImage(s.buffer(names.irradiance))};
   r.stdErr = rgbImage(s.buffer(names.noise));
   for (const auto& b : depthBuffers) r.byDepth.push_back(rgbImage(s.buffer(b)));
+  for (const auto& b : lobeBuffers) r.byLobe.push_back(rgbImage(s.buffer(b)));
   std::vector<float> aoRgb(r.ao.data.size() * 3);
   for (size_t i = 0; i < aoRgb.size(); ++i) aoRgb[i] = r.ao.data[i / 3];
   // The radiance file last: its presence is what a later run looks for first.
   for (size_t g = 0; g < depthBuffers.size(); ++g) writeExrRgb(files[firstDepthFile + g], w, h, r.byDepth[g].data);
+  for (size_t l = 0; l < lobeBuffers.size(); ++l) writeExrRgb(files[firstLobeFile + l], w, h, r.byLobe[l].data);
   writeTextFile(files[4], info["noise"].dump(2) + "\n");
   writeExrRgb(files[3], w, h, r.stdErr.data);
   writeExrRgb(files[2], w, h, r.irradiance.data);
@@ -279,6 +288,37 @@ nlohmann::json depthReport(const metrics::Image& test, const std::vector<metrics
           {"truncated", truncated},
           {"tile", metrics::kAttributionTile},
           {"summary", summary}};
+}
+
+// What the surfaces reflect through each lobe, the path's against the reference's (PathReadouts::byLobe;
+// composite.diffuse and composite.specular for a path through the composite): the share of the
+// reference's light in each lobe the path holds (the ratio of their summed luminance), each
+// lobe's share of the reference, and its relMSE_norm (both lobes' images scaled by the whole
+// reference's factor). The reference's lobe images carry its noise: the figures are not
+// corrected for it (a lobe's summed luminance averages it out; its relMSE_norm does not).
+nlohmann::json lobeReport(const std::vector<metrics::Image>& test, const std::vector<metrics::Image>& reference,
+                          double referenceLuminance, double normalisation) {
+  auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  static const char* kNames[] = {"diffuse", "specular"};
+  nlohmann::json lobes = nlohmann::json::object();
+  std::vector<std::string> parts;
+  for (size_t l = 0; l < reference.size() && l < test.size(); ++l) {
+    const double testMean = metrics::meanLuminance(test[l]), referenceMean = metrics::meanLuminance(reference[l]);
+    const double captured = referenceMean > 0.0 ? testMean / referenceMean : std::nan("");
+    const double share = referenceLuminance > 0.0 ? referenceMean / referenceLuminance : std::nan("");
+    lobes[kNames[l]] = {{"captured", finite(captured)},
+                        {"shareOfReference", finite(share)},
+                        {"relMSE_norm", finite(metrics::relMse(metrics::scaled(test[l], normalisation),
+                                                               metrics::scaled(reference[l], normalisation))
+                                                   .value)}};
+    // A lobe under 1% of the reference's light is not worth a sentence.
+    if (std::isfinite(captured) && share >= 0.01)
+      parts.push_back(fmt::format("{:.0f}% of the {}", 100.0 * captured, kNames[l]));
+  }
+  std::string summary = parts.empty() ? "the reference has no reflected light to split" : "captures ";
+  for (size_t i = 0; i < parts.size(); ++i) summary += (i == 0 ? "" : " and ") + parts[i];
+  lobes["summary"] = summary;
+  return lobes;
 }
 
 // Another renderer's image as the reference: it must be readable, of the size compare
@@ -461,6 +501,14 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     for (size_t i = 0; i < sum.data.size(); ++i) difference += std::abs(double(sum.data[i]) - reference.data[i]), total += reference.data[i];
     refInfo["byDepth"] = {{"groups", groups}, {"sumRelativeError", total > 0.0 ? difference / total : 0.0}};
   }
+  if (referenceImages.byLobe.size() == 2) {
+    // Each lobe's share of the reference's light; the rest is what the camera sees directly.
+    const double diffuse = metrics::meanLuminance(referenceImages.byLobe[0]),
+                 specular = metrics::meanLuminance(referenceImages.byLobe[1]);
+    refInfo["byLobe"] = {{"buffers", referenceImages.names.byLobe},
+                         {"diffuseShare", referenceMean > 0.0 ? diffuse / referenceMean : 0.0},
+                         {"specularShare", referenceMean > 0.0 ? specular / referenceMean : 0.0}};
+  }
   writeExrRgb(o.outDir / "reference.exr", reference.width, reference.height, reference.data);
   writePngRgb(o.outDir / "reference.png", referenceDisplay.width, referenceDisplay.height, referenceDisplay.data);
 
@@ -479,15 +527,20 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
     std::vector<double> frameMs;
     std::vector<std::pair<std::string, std::vector<double>>> passMsAll;
     auto render = [&](uint32_t n) {
-      for (graph::ImageName b : {lighting::kCompositeAo, lighting::kCompositeIrradiance, lighting::gbuffer::kDepth}) s.requestBuffer(b);
+      for (graph::ImageName b :
+           {lighting::kCompositeAo, lighting::kCompositeIrradiance, lighting::kCompositeDiffuseLobe,
+            lighting::kCompositeSpecularLobe, lighting::gbuffer::kDepth})
+        s.requestBuffer(b);
       s.renderFrames(n);
       frameMs.insert(frameMs.end(), s.frameGpuMs().begin(), s.frameGpuMs().end());
       for (const auto& passTimes : s.passGpuMs()) {
         const std::string& pass = passTimes.first;
         const std::vector<double>& ms = passTimes.second;
         auto it = std::find_if(passMsAll.begin(), passMsAll.end(), [&](const auto& p) { return p.first == pass; });
-        if (it == passMsAll.end()) passMsAll.push_back({pass, ms});
-        else it->second.insert(it->second.end(), ms.begin(), ms.end());
+        if (it == passMsAll.end())
+          passMsAll.push_back({pass, ms});
+        else
+          it->second.insert(it->second.end(), ms.begin(), ms.end());
       }
     };
     std::vector<nlohmann::json> frameSignificance;
@@ -497,6 +550,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
       render(1);
     }
     const nlohmann::json runSettings = settingsJson(s.settings());
+    const bool redeferred = s.settings().redeferred;
     s.settings() = baseSettings;
     if (progress) progress("path " + name, double(i + 1) / runs.size());
     metrics::Image test = rgbImage(s.buffer(lighting::kCompositeHdr));
@@ -534,6 +588,13 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
       stages["irradianceMap"] = stem + "_irradiance.png";
     }
 
+    // The split by lobe, where the path's composite made one: not under redeferred shading,
+    // whose light table comes as the I-buffer's sums (composite.stages leaves it out).
+    nlohmann::json lobes = nlohmann::json::object();
+    if (!external && !referenceImages.byLobe.empty() && s.hasBuffer(lighting::kCompositeSpecularLobe) && !redeferred)
+      lobes = lobeReport(
+          {rgbImage(s.buffer(lighting::kCompositeDiffuseLobe)), rgbImage(s.buffer(lighting::kCompositeSpecularLobe))},
+          referenceImages.byLobe, referenceMean, normalisation);
     const nlohmann::json bounces = referenceImages.byDepth.empty()
                                        ? nlohmann::json::object()
                                        : depthReport(test, referenceImages.byDepth, referenceImages.names.byDepth, normalisation);
@@ -570,6 +631,7 @@ nlohmann::json runCompare(Session& s, const CompareOptions& options, const Progr
                        {"relMSEMap", stem + "_relmse.exr"},
                        {"stages", stages},
                        {"bounces", bounces},
+                       {"lobes", lobes},
                        {"significance", significance}});
   }
   s.setPath(previousPath);

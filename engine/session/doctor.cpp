@@ -40,7 +40,47 @@ View orbit(const View& v, double distance, double degrees) {
   return o;
 }
 
+// The luminance of every pixel of `image` (zero where not finite).
+std::vector<double> luminanceOf(const graph::Readback& image) {
+  const std::vector<float> t = image.texels();
+  const uint32_t c = image.channels();
+  std::vector<double> y;
+  if (c < 3) return y;
+  for (size_t i = 0; i + 2 < t.size(); i += c) {
+    const double v = shared::tlLuminance(glm::vec3(t[i], t[i + 1], t[i + 2]));
+    y.push_back(std::isfinite(v) ? v : 0.0);
+  }
+  return y;
+}
+
 }  // namespace
+
+std::optional<SettleFigure> settleFigure(const std::vector<std::vector<double>>& frames) {
+  if (frames.size() < kSettleTail + 1) return std::nullopt;
+  const size_t n = frames.front().size(), first = frames.size() - kSettleTail;
+  std::vector<double> settled(n, 0.0);
+  for (size_t f = first; f < frames.size(); ++f) {
+    if (frames[f].size() != n) return std::nullopt;
+    for (size_t i = 0; i < n; ++i) settled[i] += frames[f][i] / double(kSettleTail);
+  }
+  double norm = 0.0;
+  for (double v : settled) norm += std::abs(v);
+  if (!(norm > 0.0)) return std::nullopt;  // no reflected light to settle
+  auto residual = [&](const std::vector<double>& frame) {
+    double d = 0.0;
+    for (size_t i = 0; i < n; ++i) d += std::abs(frame[i] - settled[i]);
+    return d / norm;
+  };
+  SettleFigure fig;
+  for (size_t f = first; f < frames.size(); ++f) fig.noiseFloor = std::max(fig.noiseFloor, residual(frames[f]));
+  fig.firstResidual = residual(frames.front());
+  const double threshold = 2.0 * fig.noiseFloor + kSettleMargin;
+  for (size_t f = 0; f < first; ++f) {
+    if (frames[f].size() != n) return std::nullopt;
+    if (residual(frames[f]) > threshold) fig.lag = uint32_t(f + 1);
+  }
+  return fig;
+}
 
 bool DoctorReport::healthy() const {
   for (const auto& p : paths)
@@ -57,6 +97,11 @@ nlohmann::json DoctorReport::toJson() const {
                          {"meanLuminance", p.meanLuminance}, {"validationMessages", p.validationMessages}};
     jp["energyRatio"] = p.energyRatio ? nlohmann::json(*p.energyRatio) : nlohmann::json();
     jp["flicker"] = p.flicker ? nlohmann::json(*p.flicker) : nlohmann::json();
+    jp["reflectionsSettle"] = p.reflectionsSettle
+                                  ? nlohmann::json{{"frames", p.reflectionsSettle->lag},
+                                                   {"firstResidual", p.reflectionsSettle->firstResidual},
+                                                   {"noiseFloor", p.reflectionsSettle->noiseFloor}}
+                                  : nlohmann::json();
     jp["buffers"] = nlohmann::json::array();
     for (const auto& b : p.buffers)
       jp["buffers"].push_back({{"name", b.name}, {"check", b.check}, {"values", b.values}, {"nonFinite", b.nonFinite},
@@ -67,12 +112,18 @@ nlohmann::json DoctorReport::toJson() const {
 }
 
 std::string DoctorReport::toText() const {
-  std::string s = fmt::format("doctor: {} at {}x{}\n{:10} {:>8} {:>10} {:>9} {:>11} {:>9} {:>11}\n", scene, width, height,
-                              "path", "buffers", "non-finite", "negative", "energy/ref", "flicker", "layers");
-  for (const auto& p : paths)
-    s += fmt::format("{:10} {:>8} {:>10} {:>9} {:>11} {:>9} {:>11}\n", p.path, p.buffers.size(), p.nonFinite, p.negative,
-                     p.energyRatio ? fmt::format("{:.3f}", *p.energyRatio) : "-",
-                     p.flicker ? fmt::format("{:.2f}%", 100.0 * *p.flicker) : "-", p.validationMessages);
+  std::string s =
+      fmt::format("doctor: {} at {}x{}\n{:10} {:>8} {:>10} {:>9} {:>11} {:>9} {:>20} {:>11}\n", scene, width, height,
+                  "path", "buffers", "non-finite", "negative", "energy/ref", "flicker", "reflections settle", "layers");
+  for (const auto& p : paths) {
+    // The frames the reflections took to settle after the move, and how far off the first was.
+    const std::string settle = p.reflectionsSettle ? fmt::format("{} frames ({:.0f}%)", p.reflectionsSettle->lag,
+                                                                 100.0 * p.reflectionsSettle->firstResidual)
+                                                   : "-";
+    s += fmt::format("{:10} {:>8} {:>10} {:>9} {:>11} {:>9} {:>20} {:>11}\n", p.path, p.buffers.size(), p.nonFinite,
+                     p.negative, p.energyRatio ? fmt::format("{:.3f}", *p.energyRatio) : "-",
+                     p.flicker ? fmt::format("{:.2f}%", 100.0 * *p.flicker) : "-", settle, p.validationMessages);
+  }
   bool any = false;
   for (const auto& p : paths)
     for (const auto& b : p.buffers)
@@ -142,6 +193,16 @@ DoctorReport runDoctor(Session& session, const DoctorOptions& o) {
         previous = mean;
       }
       if (steps) r.flicker = std::sqrt(sum / double(steps));
+      // Ghosting: the view held where the orbit stopped, the specular lobe frame by frame until
+      // it has settled (paths through the composite only: the others have no lobe split).
+      std::vector<std::vector<double>> held;
+      for (uint32_t k = 0; k < o.settleFrames; ++k) {
+        session.requestBuffer(lighting::kCompositeSpecularLobe);
+        session.renderFrames(1);
+        if (!session.hasBuffer(lighting::kCompositeSpecularLobe)) break;
+        held.push_back(luminanceOf(session.buffer(lighting::kCompositeSpecularLobe)));
+      }
+      r.reflectionsSettle = settleFigure(held);
     }
     r.validationMessages = session.validationErrors() - validationBefore;
     report.paths.push_back(std::move(r));

@@ -251,6 +251,25 @@ void writeReportHtml(const std::filesystem::path& file, const nlohmann::json& r,
     }
     html += "</table>";
   }
+  if (r["reference"].contains("byLobe")) {
+    // Per lobe: what the surfaces reflect through their diffuse layer and their specular lobes.
+    const auto& lobes = r["reference"]["byLobe"];
+    html += fmt::format(
+        "<h2>Per lobe</h2><p>The share of the light the surfaces the camera sees reflect through their diffuse "
+        "layer ({} of the reference) and through their specular lobes (highlights and reflections, {}) that a "
+        "path holds, and each lobe's relMSE_norm.</p><table><tr><th>path</th><th>diffuse</th><th>specular</th>"
+        "<th>diffuse relMSE_norm</th><th>specular relMSE_norm</th><th>in words</th></tr>",
+        number(lobes["diffuseShare"]), number(lobes["specularShare"]));
+    for (auto& p : r["paths"]) {
+      if (!p.contains("lobes") || !p["lobes"].contains("specular")) continue;
+      const auto& l = p["lobes"];
+      html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                          htmlEscape(p["path"].get<std::string>()), number(l["diffuse"]["captured"]),
+                          number(l["specular"]["captured"]), number(l["diffuse"]["relMSE_norm"]),
+                          number(l["specular"]["relMSE_norm"]), htmlEscape(l["summary"].get<std::string>()));
+    }
+    html += "</table>";
+  }
   html += "<h2>Speed against error</h2>" + speedErrorPlot(r["paths"]);
   html += "<h2>Where the time goes</h2>" + timingBars(r["paths"]);
   html += "<h2>Images and FLIP error maps</h2><div class='imgs'>";

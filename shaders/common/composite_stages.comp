@@ -1,13 +1,16 @@
 #version 460
 // The composite's intermediate quantities as images, for per-stage error against the
-// reference (reference.ao, reference.irradiance): the AO and the diffuse irradiance the
-// composite multiplies, from the same code. Only frames that read them run this pass.
+// reference (reference.ao, reference.irradiance, reference.diffuse and .specular): the AO and
+// the diffuse irradiance the composite multiplies, and the radiance it adds through the
+// surface's diffuse layer and through its specular lobes (the sun's, the light table's, the
+// indirect), from the same code. Only frames that read them run this pass.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/frame.h"
 #include "shared/gbuffer.h"
 #include "shared/packing.h"
 #include "shared/shading.h"
 #include "shared/sh.h"
+#include "shared/environment.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = kBindingFrame) uniform Frame { FrameConstants frame; };
@@ -17,10 +20,20 @@ layout(set = 0, binding = kCompositeMaterial) uniform sampler2D gMaterial;
 layout(set = 0, binding = kCompositeDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kCompositeStageAo, r16f) uniform writeonly image2D outAo;
 layout(set = 0, binding = kCompositeStageIrradiance, rgba16f) uniform writeonly image2D outIrradiance;
+layout(set = 0, binding = kCompositeStageDiffuse, rgba16f) uniform writeonly image2D outDiffuse;
+layout(set = 0, binding = kCompositeStageSpecular, rgba16f) uniform writeonly image2D outSpecular;
+layout(set = 0, binding = kCompositeShadow) uniform sampler2DShadow sunShadow;
+layout(set = 0, binding = kCompositeLights) uniform sampler2D lightsRadiance;
+layout(set = 0, binding = kCompositeSunVisibility) uniform sampler2D sunVisibilityHybrid;
 layout(push_constant) uniform Push { CompositePush push; };
 
 #include "common/camera.glsl"
 #include "common/path_indirect.glsl"
+
+#define TL_SUN_SHADOW_PCSS
+#define TL_SUN_VISIBILITY_HYBRID
+layout(set = 0, binding = kCompositeShadowDepth) uniform sampler2D sunShadowDepth;
+#include "common/sun_shadow.glsl"
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -29,6 +42,8 @@ void main() {
   if (depth <= 0.0) {  // the sky: no surface, nothing to measure (the reference writes 0 too)
     imageStore(outAo, p, vec4(0.0));
     imageStore(outIrradiance, p, vec4(0.0));
+    imageStore(outDiffuse, p, vec4(0.0));
+    imageStore(outSpecular, p, vec4(0.0));
     return;
   }
   vec3 position = cameraRelativePosition((vec2(p) + 0.5) * frame.viewport.zw, depth);
@@ -40,5 +55,28 @@ void main() {
   SurfaceParams s = tlGbufferSurface(texelFetch(gBaseColor, p, 0), material, tlFrameMaterials(frame.flags));
   vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), tlSkyIrradiance(frame, n));
   // As the composite applies it: times the material's occlusion (gbuffer.material.a).
-  imageStore(outIrradiance, p, vec4(material.w * irradiance, 1.0));
+  float occlusion = material.w;
+  imageStore(outIrradiance, p, vec4(occlusion * irradiance, 1.0));
+
+  // Each term of the composite through the lobe that reflects it.
+  vec3 v = towardsViewer(position);
+  vec3 diffuse = tlEnvironmentDiffuse(s, dot(n, v)) * kInvPi * (occlusion * irradiance);
+  vec3 specular = occlusion * pathSpecular(p, n, v, position, ao, s, tlSkyRadiance(frame, reflect(-v, n)));
+  float nl = dot(n, frame.sunToLight.xyz);
+  if (nl > 0.0) {
+    vec3 sun = frame.sunIrradiance.rgb * (nl * sunVisibilityShading(position, n, p));
+    diffuse += sun * tlBrdfDiffuse(s, n, v, frame.sunToLight.xyz);
+    specular += sun * tlBrdfSpecular(s, n, v, frame.sunToLight.xyz);
+  }
+  if ((push.flags & kCompositeHasLights) != 0u) {
+    // lights.direct: its radiance, and its specular part's luminance (a); the part takes the
+    // whole's colour (exact in luminance, which compare measures).
+    vec4 lights = texelFetch(lightsRadiance, p, 0);
+    float luminance = tlLuminance(lights.rgb);
+    float share = luminance > 0.0 ? clamp(lights.a / luminance, 0.0, 1.0) : 0.0;
+    diffuse += lights.rgb * (1.0 - share);
+    specular += lights.rgb * share;
+  }
+  imageStore(outDiffuse, p, vec4(diffuse, 1.0));
+  imageStore(outSpecular, p, vec4(specular, 1.0));
 }

@@ -101,15 +101,6 @@ vec3 lightSumScale(vec3 a, float k) { return a * k; }
 // cannot contribute).
 vec3 lightContribution(uint light, LightIncidence li) {
   if (all(equal(li.irradiance, vec3(0.0)))) return vec3(0.0);
-#ifdef TL_LIGHTS_AREA_GLOSSY
-  // An area light's analytic incidence (pdf 0): the includer's areaLightReflection gives the
-  // diffuse layer from it and estimates the lobes (shared/area_specular.h).
-  if (li.pdf == 0.0 && tlIsAreaLight(lights[light].type)) {
-    vec3 reflected = areaLightReflection(light, li);
-    if (all(equal(reflected, vec3(0.0)))) return vec3(0.0);
-    return reflected * (lightVisibilityOf(light, li) * lightSampleWeight(li));
-  }
-#endif
   vec3 response = lightResponse(li.toLight);
   if (all(equal(response, vec3(0.0)))) return vec3(0.0);
   return li.irradiance * response * (lightVisibilityOf(light, li) * lightSampleWeight(li));

@@ -24,6 +24,52 @@ vec2 next2() {
   return vec2(tlUintToUnitFloat(h.x), tlUintToUnitFloat(h.y));
 }
 
+// Light a path gathers, by its depth: the scattering events between the light and the camera
+// (the sky or an emitter seen directly: 0; the sun or the sky on a surface the camera sees: 1;
+// light off one other surface first: 2; ...), what --bounces caps. An includer that defines
+// TL_REFERENCE_DEPTH_SPLIT (bounces.rgen) also gets it summed into gByDepth: [0] depths 0 and 1
+// (emission and direct light), [1] depth 2 (the first bounce), [2] depth 3 (the second), [3]
+// depth 4 and more; the others compile without it.
+//
+// It also gets the light split by the first surface's lobes (shared/reference.h kRefLobes) in
+// gByLobe: the first surface's next events are evaluated once per lobe (pathBrdf with
+// gLobeMask) with the same random numbers, so the two sum to the one evaluation trace.rgen
+// makes (exactly where the estimate is linear in the BRDF: every case but the light table's
+// resampled picks beyond kLightsLoopMax lights, whose candidates the masked BRDF weighs); the
+// light found past its scattered ray is shared by that direction's f_specular / f.
+#ifdef TL_REFERENCE_DEPTH_SPLIT
+vec3 gByDepth[4];
+vec3 gByLobe[kRefLobes];
+const int kLobeNone = -1;      // seen directly: emission, the sky
+const int kLobeByShare = 2;    // past the first surface's scattered ray: by gSpecularShare
+int gLobeTarget = kLobeNone;   // a lobe's index, or one of the two above
+vec2 gLobeMask = vec2(1.0);    // the diffuse layer's and the specular lobes' weight in pathBrdf
+vec3 gSpecularShare = vec3(0.0);
+#endif
+void gather(inout vec3 radiance, uint depth, vec3 light) {
+  radiance += light;
+#ifdef TL_REFERENCE_DEPTH_SPLIT
+  gByDepth[clamp(depth, 1u, 4u) - 1u] += light;
+  if (gLobeTarget == kLobeByShare) {
+    gByLobe[1] += light * gSpecularShare;
+    gByLobe[0] += light * (vec3(1.0) - gSpecularShare);
+  } else if (gLobeTarget != kLobeNone) {
+    gByLobe[gLobeTarget] += light;
+  }
+#endif
+}
+
+// The BRDF every next event evaluates (the split masks its lobes at the first surface).
+vec3 pathBrdf(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
+#ifdef TL_REFERENCE_DEPTH_SPLIT
+  return gLobeMask.x * tlBrdfDiffuse(s, n, v, l) + gLobeMask.y * tlBrdfSpecular(s, n, v, l);
+#else
+  return tlBrdf(s, n, v, l);
+#endif
+}
+
+
+
 // The light table (shared/lights.h) by next-event estimation from each scattering point: a
 // shadow ray per light (per resampled pick beyond kLightsLoopMax lights). Delta lights cannot
 // be hit by a BRDF-sampled ray; an area light can, so its sampled point (shared/area_lights.h)
@@ -39,7 +85,7 @@ float lightVisibility(uint light, vec3 toLight, float distance) {
 }
 vec3 lightResponse(vec3 toLight) {
   float nl = dot(gLightNormal, toLight);
-  return nl > 0.0 ? tlBrdf(gLightSurface, gLightNormal, gLightView, toLight) * nl : vec3(0.0);
+  return nl > 0.0 ? pathBrdf(gLightSurface, gLightNormal, gLightView, toLight) * nl : vec3(0.0);
 }
 float lightMisWeight(vec3 toLight, float lightPdf) {
   float pSpec = tlBrdfSpecularProbability(gLightSurface, dot(gLightNormal, gLightView));
@@ -114,7 +160,7 @@ vec3 emitterLight(vec3 origin, vec3 n, vec3 geometric, vec3 v, SurfaceParams s, 
   if (visible <= 0.0) return vec3(0.0);
   float lightPdf = tlEmitterSolidAnglePdf(e.edge2.w, area, distance2, cosLight);
   float weight = tlPowerHeuristic(lightPdf, tlBrdfPdf(s, n, v, l, pSpec));
-  return emitted * tlBrdf(s, n, v, l) * (nl * weight / lightPdf);
+  return emitted * pathBrdf(s, n, v, l) * (nl * weight / lightPdf);
 }
 
 // The weight of emission a BRDF-drawn ray found (directionPdf: the BRDF's density of its
@@ -143,26 +189,58 @@ void traceCameraRay(vec3 origin, vec3 dir) {
 // ground truth the real-time paths' AO is measured against, at the same radius.
 float gAo;
 
-// Light a path gathers, by its depth: the scattering events between the light and the camera
-// (the sky or an emitter seen directly: 0; the sun or the sky on a surface the camera sees: 1;
-// light off one other surface first: 2; ...), what --bounces caps. An includer that defines
-// TL_REFERENCE_DEPTH_SPLIT (bounces.rgen) also gets it summed into gByDepth: [0] depths 0 and 1
-// (emission and direct light), [1] depth 2 (the first bounce), [2] depth 3 (the second), [3]
-// depth 4 and more; the others compile without it.
-#ifdef TL_REFERENCE_DEPTH_SPLIT
-vec3 gByDepth[4];
-#endif
-void gather(inout vec3 radiance, uint depth, vec3 light) {
-  radiance += light;
-#ifdef TL_REFERENCE_DEPTH_SPLIT
-  gByDepth[clamp(depth, 1u, 4u) - 1u] += light;
-#endif
+// The light sampled explicitly at a scattering point (next-event estimation): the sun, the
+// light table, the emitters and the environment map, through pathBrdf.
+void gatherNextEvents(inout vec3 radiance, uint bounce, vec3 throughput, vec3 position, vec3 n, vec3 geometric, vec3 v,
+                      SurfaceParams s, float pSpec) {
+  // The sun: a delta light, reached only by next-event estimation.
+  vec3 toSun = frame.sunToLight.xyz;
+  float sunNl = dot(n, toSun);
+  if ((frame.flags & kFrameFlagSunShadows) != 0u && sunNl > 0.0 && dot(geometric, toSun) > 0.0) {
+    visible = 0.0;
+    traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
+                0xFF, 0, 0, 1, position, 0.0, toSun, 1e30, 1);
+    gather(radiance, bounce + 1u, throughput * frame.sunIrradiance.rgb * (sunNl * visible) * pathBrdf(s, n, v, toSun));
+  }
+
+  if (frame.lightCount > 0u) {
+    gLightOrigin = position;
+    gLightNormal = n;
+    gLightGeometric = geometric;
+    gLightView = v;
+    gLightSurface = s;
+    vec2 u = next2();
+    gather(radiance, bounce + 1u, throughput * shadeLights(position, n, uvec3(floatBitsToUint(u.x), floatBitsToUint(u.y), gSample)));
+  }
+
+  if (push.emitterCount > 0u) gather(radiance, bounce + 1u, throughput * emitterLight(position, n, geometric, v, s, pSpec));
+
+  // The environment map by next-event estimation: a direction drawn by its importance table,
+  // weighted against the BRDF's density for it (the power heuristic); the BRDF's own
+  // samples that escape take the complementary weight above.
+  if (environmentMapOn()) {
+    float envPdf;
+    vec3 l = environmentSample(next2(), envPdf);
+    float nl = dot(n, l);
+    if (envPdf > 0.0 && nl > 0.0 && dot(geometric, l) > 0.0) {
+      visible = 0.0;
+      traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
+                  0xFF, 0, 0, 1, position, 0.0, l, 1e30, 1);
+      if (visible > 0.0) {
+        float w = environmentMisWeight(envPdf, tlBrdfPdf(s, n, v, l, pSpec));
+        gather(radiance, bounce + 1u, throughput * environmentRadiance(l) * pathBrdf(s, n, v, l) * (nl * w / envPdf));
+      }
+    }
+  }
 }
 
 // Radiance arriving at `origin` from direction `dir`, where `firstBounce` scattering events
 // have already happened (0: a camera ray; it also sets gAo).
 vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
   gAo = 1.0;
+#ifdef TL_REFERENCE_DEPTH_SPLIT
+  gLobeTarget = kLobeNone;
+#endif
   vec3 throughput = vec3(1.0), radiance = vec3(0.0);
   // The BRDF density of the direction being traced, for multiple importance sampling against
   // the environment map's samples; 0 where nothing else could have drawn it (the camera ray,
@@ -203,46 +281,20 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
       }
     }
 
-    // The sun: a delta light, reached only by next-event estimation.
-    vec3 toSun = frame.sunToLight.xyz;
-    float sunNl = dot(n, toSun);
-    if ((frame.flags & kFrameFlagSunShadows) != 0u && sunNl > 0.0 && dot(geometric, toSun) > 0.0) {
-      visible = 0.0;
-      traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
-                  0xFF, 0, 0, 1, position, 0.0, toSun, 1e30, 1);
-      gather(radiance, bounce + 1u, throughput * frame.sunIrradiance.rgb * (sunNl * visible) * tlBrdf(s, n, v, toSun));
-    }
-
-    if (frame.lightCount > 0u) {
-      gLightOrigin = position;
-      gLightNormal = n;
-      gLightGeometric = geometric;
-      gLightView = v;
-      gLightSurface = s;
-      vec2 u = next2();
-      gather(radiance, bounce + 1u, throughput * shadeLights(position, n, uvec3(floatBitsToUint(u.x), floatBitsToUint(u.y), gSample)));
-    }
-
     float pSpec = tlBrdfSpecularProbability(s, dot(n, v));
-    if (push.emitterCount > 0u) gather(radiance, bounce + 1u, throughput * emitterLight(position, n, geometric, v, s, pSpec));
-
-    // The environment map by next-event estimation: a direction drawn by its importance table,
-    // weighted against the BRDF's density for it (the power heuristic); the BRDF's own
-    // samples that escape take the complementary weight above.
-    if (environmentMapOn()) {
-      float envPdf;
-      vec3 l = environmentSample(next2(), envPdf);
-      float nl = dot(n, l);
-      if (envPdf > 0.0 && nl > 0.0 && dot(geometric, l) > 0.0) {
-        visible = 0.0;
-        traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
-                    0xFF, 0, 0, 1, position, 0.0, l, 1e30, 1);
-        if (visible > 0.0) {
-          float w = environmentMisWeight(envPdf, tlBrdfPdf(s, n, v, l, pSpec));
-          gather(radiance, bounce + 1u, throughput * environmentRadiance(l) * tlBrdf(s, n, v, l) * (nl * w / envPdf));
-        }
-      }
-    }
+#ifdef TL_REFERENCE_DEPTH_SPLIT
+    if (bounce == 0u) {
+      // Once per lobe of the first surface, with the same random numbers.
+      uint dimension = gDimension;
+      gLobeMask = vec2(1.0, 0.0), gLobeTarget = 0;
+      gatherNextEvents(radiance, bounce, throughput, position, n, geometric, v, s, pSpec);
+      gDimension = dimension;
+      gLobeMask = vec2(0.0, 1.0), gLobeTarget = 1;
+      gatherNextEvents(radiance, bounce, throughput, position, n, geometric, v, s, pSpec);
+      gLobeMask = vec2(1.0);
+    } else
+#endif
+      gatherNextEvents(radiance, bounce, throughput, position, n, geometric, v, s, pSpec);
 
     // Next direction from the BRDF (shared/shading.h): the single-scattering lobe from its
     // visible normals, the rest by cosine, each in proportion to its albedo; weight f cos / pdf.
@@ -253,8 +305,15 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
     if (nl <= 0.0 || dot(geometric, l) <= 0.0) break;
     float pdf = tlBrdfPdf(s, n, v, l, pSpec);
     if (!(pdf > 1e-8)) break;
-    throughput *= tlBrdf(s, n, v, l) * (nl / pdf);
+    vec3 f = tlBrdf(s, n, v, l);
+    throughput *= f * (nl / pdf);
     directionPdf = pdf;
+#ifdef TL_REFERENCE_DEPTH_SPLIT
+    if (bounce == 0u) {
+      gSpecularShare = clamp(tlBrdfSpecular(s, n, v, l) / max(f, vec3(1e-30)), 0.0, 1.0);
+      gLobeTarget = kLobeByShare;
+    }
+#endif
 
     // Russian roulette from the fourth scattering event on keeps long paths unbiased and cheap:
     // a path survives with the probability its throughput carries (at most 0.95, so even a

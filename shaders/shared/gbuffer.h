@@ -50,9 +50,13 @@ TL_CONST uint kCompositeStageIrradiance = 13;  // rgba16f: the diffuse irradianc
 TL_CONST uint kCompositeFarShY = 14;
 TL_CONST uint kCompositeFarCoCg = 15;
 TL_CONST uint kCompositeFarAo = 16;
-TL_CONST uint kCompositeLights = 17;  // rgba16f: the light table's reflected radiance (lights.direct)
+TL_CONST uint kCompositeLights = 17;  // rgba16f: the light table's reflected radiance (lights.direct; a: its specular lobes' luminance)
 TL_CONST uint kCompositeSunVisibility = 18;  // r16f: the sun's visibility from shadow.sun.hybrid (HRTS)
 TL_CONST uint kCompositeSpecular = 19;  // rgba16f: the path's traced specular, demodulated (rgb), its weight (a) (shared/rt_specular.h)
+// composite.stages: the radiance the surface reflects through its diffuse layer and through its
+// specular lobes (rgba16f each; 0 on the sky), the same split as the reference's lobes.
+TL_CONST uint kCompositeStageDiffuse = 20;
+TL_CONST uint kCompositeStageSpecular = 21;
 
 TL_CONST uint kCompositeHasAo = 1u;
 TL_CONST uint kCompositeHasGi = 2u;

@@ -25,6 +25,7 @@ TL_CONST uint kRefBindingEmitters = 19;    // Emitter[] (shared/emitters.h): Ref
 TL_CONST uint kRefBindingAllocation = 20;  // rgba32f: this frame's samples (x), the first one's number (y), the noise the next frame allocates by (z)
 TL_CONST uint kRefBindingLastNoise = 21;   // RefNoiseTotals: the image's noise at the end of the last frame (persistent)
 TL_CONST uint kRefBindingRawRays = 22;     // r32f: rays the benchmark's trivial kernel traced per pixel (reference/raw.rgen)
+TL_CONST uint kRefBindingLobe0 = 23;       // rgba32f: the light the first surface reflects through its diffuse layer, sum / count; its specular lobes' at 24
 
 // Adaptive sampling (RefPush::adaptive). Each frame's samples of a pixel are drawn in proportion
 // to the standard deviation of its samples, sigma = sqrt(sum over channels of s_c^2), over the
@@ -62,6 +63,11 @@ TL_CONST uint kRefNoiseBindingAllocation = 4;  // reference.allocation (tile ste
 // The radiance by path depth (scattering events between light and camera), in four groups:
 // 0-1 (emission and direct light), 2 (the first bounce), 3 (the second), 4 and more.
 TL_CONST uint kRefDepthGroups = 4;
+// The same radiance split by the lobe of the first surface the camera sees that reflected it:
+// [0] its diffuse layer, [1] its specular lobes (the sun's highlight, reflections). What the
+// camera sees directly (emission, the sky, the environment) is in neither, so the two sum to
+// the radiance less that. Summed in the depth split's image, below its groups' rows.
+TL_CONST uint kRefLobes = 2;
 
 
 // Where an instance's triangles are in the scene's shared vertex/index buffers.

@@ -37,6 +37,21 @@ void addCompositeGbuffer(ComputePass& pass) {
       .sampled(shared::kCompositeDepth, gbuffer::kDepth);
 }
 
+// The sun's shadow (the map, or hybrid ray-traced shadows' visibility) and lights.direct, as
+// `flags` say, at the composite's bindings: the composite and its stages shade the sun and the
+// light table from the same images.
+void addSunAndLights(ComputePass& pass, const FrameInputs& in, const LightingOutputs& path, uint32_t flags) {
+  // Without a sun the shadow map is never sampled (the shaders test kFrameFlagSunShadows):
+  // not reading it lets the graph cull the shadow pass.
+  const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
+  const bool hybrid = (flags & shared::kCompositeHasSunVisibility) != 0;
+  pass.optionalSampled(shared::kCompositeShadow, kShadowSunDepth, sun && !hybrid, samplers::sunShadowCompare)
+      .optionalSampled(shared::kCompositeShadowDepth, kShadowSunDepth, sun && !hybrid)
+      .optionalSampled(shared::kCompositeSunVisibility, kShadowSunVisibility, hybrid)
+      .optionalSampled(shared::kCompositeLights, graph::ImageName{path.lightsRadiance},
+                       (flags & shared::kCompositeHasLights) != 0);
+}
+
 void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const LightingOutputs& path) {
   const uint32_t w = in.settings.width, h = in.settings.height;
   const auto hdrDesc = in.screenImage(kCompositeHdrFormat, "scene-linear radiance before exposure");
@@ -45,9 +60,6 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
     TransferPass("composite").blit(graph::ImageName{path.radiance}, kCompositeHdr, hdrDesc).add(graph);
     return;
   }
-  // Without a sun the shadow map is never sampled (the shader tests kFrameFlagSunShadows):
-  // not reading it lets the graph cull the shadow pass.
-  const bool sun = (in.constants.flags & shared::kFrameFlagSunShadows) != 0;
   shared::CompositePush push{};
   push.flags = (path.ambientOcclusion.empty() ? 0u : shared::kCompositeHasAo) |
                (path.diffuseShY.empty() || path.diffuseCoCg.empty() ? 0u : shared::kCompositeHasGi) |
@@ -79,11 +91,8 @@ void CompositePass::add(graph::RenderGraph& graph, FrameInputs& in, const Lighti
   }
   ComputePass pass(in.device, "composite", "common/composite.comp");
   addCompositeGbuffer(pass);
+  addSunAndLights(pass, in, path, push.flags);
   pass.sampled(shared::kCompositeEmissive, gbuffer::kEmissive)
-      .optionalSampled(shared::kCompositeShadow, kShadowSunDepth, sun && !hybrid, samplers::sunShadowCompare)
-      .optionalSampled(shared::kCompositeShadowDepth, kShadowSunDepth, sun && !hybrid)
-      .optionalSampled(shared::kCompositeSunVisibility, kShadowSunVisibility, hybrid)
-      .optionalSampled(shared::kCompositeLights, graph::ImageName{path.lightsRadiance}, !path.lightsRadiance.empty())
       .optionalBufferIn(shared::kBindingEnvironment, kEnvironmentTable, hasEnvironmentMap(in))  // the background
       .storageOut(shared::kCompositeOutput, output, in.temporalAntialiasing ? unresolvedDesc : hdrDesc);
   addPathInputs(pass, path, push.flags);
@@ -96,13 +105,27 @@ void CompositePass::addStages(graph::RenderGraph& graph, FrameInputs& in, const 
   const uint32_t w = in.settings.width, h = in.settings.height;
   ComputePass pass(in.device, "composite.stages", "common/composite_stages.comp");
   addCompositeGbuffer(pass);
+  // Redeferred shading's light table comes as the I-buffer's sums, not lights.direct: its
+  // stages leave the light table out of the lobes (compare does not split such a run).
+  const uint32_t flags = in.settings.redeferred ? push.flags & ~shared::kCompositeHasLights : push.flags;
+  addSunAndLights(pass, in, path, flags);
   pass.storageOut(shared::kCompositeStageAo, kCompositeAo,
                   in.screenImage(VK_FORMAT_R16_SFLOAT, "the AO the composite applied (0: sky)").decodedAs("ao"))
       .storageOut(shared::kCompositeStageIrradiance, kCompositeIrradiance,
                   in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
-                                 "the diffuse irradiance the composite used: sky + bounce, no sun (0: sky)"));
-  addPathInputs(pass, path, push.flags);
-  pass.push(push).dispatch(w, h).add(graph);
+                                 "the diffuse irradiance the composite used: sky + bounce, no sun (0: sky)"))
+      .storageOut(shared::kCompositeStageDiffuse, kCompositeDiffuseLobe,
+                  in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
+                                 "the radiance the surface reflects through its diffuse layer: sun, lights, indirect "
+                                 "(0: sky)"))
+      .storageOut(shared::kCompositeStageSpecular, kCompositeSpecularLobe,
+                  in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
+                                 "the radiance the surface reflects through its specular lobes: sun, lights, "
+                                 "reflections (0: sky)"));
+  shared::CompositePush stagePush = push;
+  stagePush.flags = flags;
+  addPathInputs(pass, path, flags);
+  pass.push(stagePush).dispatch(w, h).add(graph);
 }
 
 void TonemapPass::add(graph::RenderGraph& graph, FrameInputs& in) {

@@ -21,9 +21,13 @@ inline constexpr graph::ImageName kCompositeHdr{"composite.hdr"};  // scene-line
 inline constexpr VkFormat kCompositeHdrFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 inline constexpr graph::ImageName kTonemapLdr{"tonemap.ldr"};      // RGBA8, sRGB-encoded display image
 // What the composite multiplied, as images (composite.stages; run only when read): per-stage
-// error against reference.ao and reference.irradiance. 0 on sky pixels.
+// error against reference.ao and reference.irradiance, and the lobes' split. 0 on sky pixels.
 inline constexpr graph::ImageName kCompositeAo{"composite.ao"};                  // R16F
 inline constexpr graph::ImageName kCompositeIrradiance{"composite.irradiance"};  // RGBA16F, sky + bounce, no sun
+// The radiance through the surface's diffuse layer and through its specular lobes (RGBA16F):
+// the split of reference.diffuse and reference.specular. Emission is in neither.
+inline constexpr graph::ImageName kCompositeDiffuseLobe{"composite.diffuse"};
+inline constexpr graph::ImageName kCompositeSpecularLobe{"composite.specular"};
 
 // The path's images every pass that includes shaders/common/path_indirect.glsl samples (the
 // composite, its stages, redeferred shading's ibuffer.light and redeferred.material): optional

@@ -69,15 +69,19 @@ std::string LightsPass::add(graph::RenderGraph& graph, FrameInputs& in, const st
   // Many lights or sampled area shadows: a noisy estimate, accumulated while nothing it depends on changes.
   shared::LightsPush push{};
   const std::string accum = "lights.accum." + in.pathName;
-  const auto accumDesc =
-      in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT, "sum of light-table estimates (rgb) and their count (a)");
+  const auto accumDesc = in.screenImage(
+      VK_FORMAT_R32G32B32A32_SFLOAT, "sum of light-table estimates (rgb) and of their specular lobes' luminance (a)");
   if (sampledEstimate(in)) {
     push.accumulate = 1;
     const HistoryDecision d =
         keepHistory(graph, in, accumulation_[in.pathName], kLightsAccumulation, in.pathName, {{accum, accumDesc}});
     push.restart = d.action == HistoryAction::Restart ? 1u : 0u;
+    uint32_t& summed = summed_[in.pathName];
+    summed = push.restart ? 1u : summed + 1u;
+    push.summed = summed;
   } else {
     accumulation_.erase(in.pathName);
+    summed_.erase(in.pathName);
   }
   ComputePass pass(in.device, "lights.direct", shaderFor("lights", traced, mapped));
   addTableInputs(pass, structures, tlasHandle, traced, mapped);
@@ -86,9 +90,12 @@ std::string LightsPass::add(graph::RenderGraph& graph, FrameInputs& in, const st
                             push.accumulate != 0)  // the shader tests push.accumulate
       .storageOut(shared::kLightsPassOutput, kLightsRadiance,
                   in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
-                                 traced   ? "radiance from the light table, ray-traced shadows"
-                                 : mapped ? "radiance from the light table, shadow-mapped point and spot lights"
-                                          : "radiance from the light table, unshadowed"))
+                                 traced   ? "radiance from the light table (rgb), its specular lobes' luminance (a); "
+                                            "ray-traced shadows"
+                                 : mapped ? "radiance from the light table (rgb), its specular lobes' luminance (a); "
+                                            "shadow-mapped point and spot lights"
+                                          : "radiance from the light table (rgb), its specular lobes' luminance (a); "
+                                            "unshadowed"))
       .push(push)
       .dispatch(w, h)
       .add(graph);

@@ -63,6 +63,10 @@ inline constexpr uint32_t kSettingTune = 1u << 3;
 // kSettingOffAtMax), leaves it out. `tune` tries its chosen presets without each.
 inline constexpr uint32_t kSettingFeature = 1u << 4;
 inline constexpr uint32_t kSettingOffAtMax = 1u << 5;
+// A reflections setting: the editor's Lighting panel shows every path's together in its
+// reflections group (the artist's RT on/off pair of a mirror), not in its owner's group. The
+// owner's one flagged kSettingFeature too is that path's reflections switch.
+inline constexpr uint32_t kSettingReflections = 1u << 6;
 
 // X(type, name, default, min, max, unit, owner, resets history of, flags, help)
 // Distances flagged kSettingAuto are "scaled to the scene" at 0 (see autoSettingValue).

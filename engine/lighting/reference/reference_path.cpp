@@ -78,6 +78,7 @@ class ReferencePath final : public LightingPath {
                          .noise = std::string(kReferenceStdErr),
                          .noiseTotals = std::string(kReferenceNoise),
                          .byDepth = referenceBounceBuffers(),
+                         .byLobe = referenceLobeBuffers(),
                          .shaders = referenceShaders()}};
   }
 
@@ -261,18 +262,20 @@ class ReferencePath final : public LightingPath {
         .add(graph);
   }
 
-  // The radiance split by path depth (referenceBounceBuffers()), each group its own progressive
-  // sum. It traces the trace pass's paths a second time (the counts and sample numbers the trace
-  // wrote to reference.allocation this frame), so it runs only in frames that read
-  // one of its buffers (compare's per-bounce attribution, the inspector); requested in every
-  // frame since the reference's sum started, its four images sum to reference.radiance. Its
-  // sum restarts with the reference's (a frame whose trace starts over).
+  // The radiance split by path depth (referenceBounceBuffers()) and by the first surface's lobe
+  // (referenceLobeBuffers()), each part its own progressive sum. It traces the trace pass's paths
+  // a second time (the counts and sample numbers the trace wrote to reference.allocation this
+  // frame), so it runs only in frames that read one of its buffers (compare's per-bounce and
+  // per-lobe figures, the inspector); requested in every frame since the reference's sum started,
+  // its four depth images sum to reference.radiance, and its two lobes to the radiance less what
+  // the camera sees directly. Its sums restart with the reference's (a frame whose trace starts over).
   void addDepthSplitPass(graph::RenderGraph& graph, FrameInputs& in, shared::RefPush push) {
     const uint32_t w = in.settings.width, h = in.settings.height;
     graph.declareOnDemandHistory(
-        kDepthAccum, graph::ResourceDesc::image2D(VK_FORMAT_R32G32B32A32_SFLOAT, w, h * shared::kRefDepthGroups,
-                                                  "sums of the radiance by path depth (rgb) and their count (a), the "
-                                                  "four groups stacked vertically"));
+        kDepthAccum, graph::ResourceDesc::image2D(
+                         VK_FORMAT_R32G32B32A32_SFLOAT, w, h * (shared::kRefDepthGroups + shared::kRefLobes),
+                         "sums of the radiance by path depth, then by the first surface's lobe (rgb) and "
+                         "their count (a), the four groups and two lobes stacked vertically"));
     const auto names = referenceBounceBuffers();
     static const char* kWhat[] = {"emission and direct light (paths of 0 or 1 scattering events)",
                                   "the first bounce (2 scattering events)", "the second bounce (3 scattering events)",
@@ -285,6 +288,14 @@ class ReferencePath final : public LightingPath {
       pass.storageOut(shared::kRefBindingDepth0 + g, graph::ImageName{names[g]},
                       in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT, fmt::format("path-traced radiance of {}", kWhat[g]))
                           .decodedAs(fmt::format("{} whole={}", kDepthShareDecoder, kRadiance.name())));
+    const auto lobes = referenceLobeBuffers();
+    static const char* kLobe[] = {"the diffuse layer", "the specular lobes (highlights and reflections)"};
+    for (uint32_t l = 0; l < shared::kRefLobes; ++l)
+      pass.storageOut(
+          shared::kRefBindingLobe0 + l, graph::ImageName{lobes[l]},
+          in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT,
+                         fmt::format("path-traced radiance the first surface reflects through {}", kLobe[l]))
+              .decodedAs(fmt::format("{} whole={}", kDepthShareDecoder, kRadiance.name())));
     pass.push(push,
               [this, base](graph::PassContext& ctx, shared::RefPush& p) {
                 const bool traceRestarted = base == 0 || !ctx.historyValid(kSampleMean);  // as the trace pass decides
@@ -364,6 +375,11 @@ class ReferencePath final : public LightingPath {
 const std::vector<std::string>& referenceBounceBuffers() {
   static const std::vector<std::string> names = {"reference.bounce0", "reference.bounce1", "reference.bounce2",
                                                  "reference.bounce3plus"};
+  return names;
+}
+
+const std::vector<std::string>& referenceLobeBuffers() {
+  static const std::vector<std::string> names = {"reference.diffuse", "reference.specular"};
   return names;
 }
 

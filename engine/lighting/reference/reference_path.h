@@ -32,5 +32,9 @@ std::vector<std::string> referenceShaders();
 // (the second bounce), [3] depth 4 and more. Over the same frames they sum to
 // reference.radiance; the sum of the first k is the reference rendered with --bounces k.
 const std::vector<std::string>& referenceBounceBuffers();
+// The same radiance split by the lobe of the first surface the camera sees that reflected it:
+// [0] its diffuse layer, [1] its specular lobes (highlights and reflections). What the camera
+// sees directly (emission, the sky) is in neither. Computed by the same pass and frames.
+const std::vector<std::string>& referenceLobeBuffers();
 
 }  // namespace tl::lighting
