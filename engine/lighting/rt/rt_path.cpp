@@ -433,7 +433,7 @@ class RtPath final : public LightingPath {
                     image(VK_FORMAT_R16G16B16A16_SFLOAT,
                           "one specular ray: radiance x lobe weight / lobe albedo (rgb), hit distance (a; 0 untraced)"))
         .push(push, screenRadianceAtRecord(screenRadiance))
-        .trace(w, h)
+        .trace(push.rayPattern == shared::kRtRaysCheckerboard ? (w + 1) / 2 : w, h)  // a pair an invocation (specular.rgen)
         .add(graph);
 
     shared::RtSpecularPush sp{};
