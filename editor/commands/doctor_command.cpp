@@ -37,7 +37,7 @@ class DoctorCommand : public CliCommand {
         ->capture_default_str();
     cmd->add_option("--settle-frames", doctor_.settleFrames,
                     "frames the view is held after the orbit, to measure how many the reflections take to settle "
-                    "(0: none)")
+                    "(0: none; needs --orbit-frames 2 or more)")
         ->check(CLI::Range(0u, kMaxFrames))
         ->capture_default_str();
     cmd->add_option("--json", json_, "also write the report as JSON to FILE (- for stdout)");

@@ -72,13 +72,19 @@ std::optional<SettleFigure> settleFigure(const std::vector<std::vector<double>>&
     return d / norm;
   };
   SettleFigure fig;
-  for (size_t f = first; f < frames.size(); ++f) fig.noiseFloor = std::max(fig.noiseFloor, residual(frames[f]));
+  for (size_t f = first; f < frames.size(); ++f) {
+    double d = 0.0;  // against the mean of the tail's other frames
+    for (size_t i = 0; i < n; ++i)
+      d += std::abs(frames[f][i] - (settled[i] * double(kSettleTail) - frames[f][i]) / double(kSettleTail - 1));
+    fig.noiseFloor = std::max(fig.noiseFloor, d / norm);
+  }
   fig.firstResidual = residual(frames.front());
   const double threshold = 2.0 * fig.noiseFloor + kSettleMargin;
   for (size_t f = 0; f < first; ++f) {
     if (frames[f].size() != n) return std::nullopt;
     if (residual(frames[f]) > threshold) fig.lag = uint32_t(f + 1);
   }
+  fig.settled = fig.lag < first;
   return fig;
 }
 
@@ -99,6 +105,7 @@ nlohmann::json DoctorReport::toJson() const {
     jp["flicker"] = p.flicker ? nlohmann::json(*p.flicker) : nlohmann::json();
     jp["reflectionsSettle"] = p.reflectionsSettle
                                   ? nlohmann::json{{"frames", p.reflectionsSettle->lag},
+                                                   {"settled", p.reflectionsSettle->settled},
                                                    {"firstResidual", p.reflectionsSettle->firstResidual},
                                                    {"noiseFloor", p.reflectionsSettle->noiseFloor}}
                                   : nlohmann::json();
@@ -117,9 +124,12 @@ std::string DoctorReport::toText() const {
                   "path", "buffers", "non-finite", "negative", "energy/ref", "flicker", "reflections settle", "layers");
   for (const auto& p : paths) {
     // The frames the reflections took to settle after the move, and how far off the first was.
-    const std::string settle = p.reflectionsSettle ? fmt::format("{} frames ({:.0f}%)", p.reflectionsSettle->lag,
-                                                                 100.0 * p.reflectionsSettle->firstResidual)
-                                                   : "-";
+    // ">=": not settled within the hold.
+    const std::string settle =
+        p.reflectionsSettle
+            ? fmt::format("{}{} frames ({:.0f}%)", p.reflectionsSettle->settled ? "" : ">=", p.reflectionsSettle->lag,
+                          100.0 * p.reflectionsSettle->firstResidual)
+            : "-";
     s += fmt::format("{:10} {:>8} {:>10} {:>9} {:>11} {:>9} {:>20} {:>11}\n", p.path, p.buffers.size(), p.nonFinite,
                      p.negative, p.energyRatio ? fmt::format("{:.3f}", *p.energyRatio) : "-",
                      p.flicker ? fmt::format("{:.2f}%", 100.0 * *p.flicker) : "-", settle, p.validationMessages);

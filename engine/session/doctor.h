@@ -26,19 +26,23 @@ struct DoctorOptions {
   uint32_t referenceSpp = 64;   // the reference's samples per pixel (16 a frame)
   uint32_t orbitFrames = 8;     // frames of the camera orbit that measures flicker
   double orbitDegrees = 0.25;   // the orbit's step per frame, about the point looked at
-  uint32_t settleFrames = 16;   // frames the view is held after the orbit to see the reflections settle (0: none)
+  uint32_t settleFrames = 16;   // frames the view is held after the orbit to see the reflections settle (0: none;
+                                // only after an orbit of 2 frames or more)
 };
 
 // How a sequence of frames of one image settles (the reflections after a camera move): the
 // settled image is the mean of the last kSettleTail frames; a frame's residual is its L1
 // distance to it over the settled image's L1 norm; the noise floor is the largest residual of
-// those last frames. The lag is the number of frames up to the last one before the tail whose
-// residual is above twice the floor plus kSettleMargin: how long what the move left behind
-// stays visible above the noise.
+// each of those last frames against the mean of the others (leaving it out: a mean holding
+// the frame would understate its noise). The lag is the number of frames up to the last one
+// before the tail whose residual is above twice the floor plus kSettleMargin: how long what
+// the move left behind stays visible above the noise. A lag of every frame before the tail is
+// "not settled within the hold".
 inline constexpr size_t kSettleTail = 4;
 inline constexpr double kSettleMargin = 0.01;
 struct SettleFigure {
   uint32_t lag = 0;
+  bool settled = true;         // false: still above the noise just before the tail
   double firstResidual = 0.0;  // the first held frame's
   double noiseFloor = 0.0;
 };

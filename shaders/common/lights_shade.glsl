@@ -11,6 +11,7 @@ layout(set = 0, binding = kLightsPassMaterial) uniform sampler2D gMaterial;
 layout(set = 0, binding = kLightsPassDepth) uniform sampler2D gDepth;
 layout(set = 0, binding = kLightsPassOutput, rgba16f) uniform writeonly image2D outRadiance;
 layout(set = 0, binding = kLightsPassAccum, rgba32f) uniform image2D accum;
+layout(set = 0, binding = kLightsPassAccumSpecular, r32f) uniform image2D accumSpecular;
 layout(push_constant) uniform Push { LightsPush push; };
 
 #include "common/camera.glsl"
@@ -56,7 +57,10 @@ void main() {
   float depth = texelFetch(gDepth, p, 0).r;
   if (depth <= 0.0) {
     imageStore(outRadiance, p, vec4(0.0));
-    if (push.accumulate != 0u) imageStore(accum, p, vec4(0.0));
+    if (push.accumulate != 0u) {
+      imageStore(accum, p, vec4(0.0));
+      imageStore(accumSpecular, p, vec4(0.0));
+    }
     return;
   }
   vec3 position = cameraRelativePosition((vec2(p) + 0.5) * frame.viewport.zw, depth);
@@ -68,10 +72,16 @@ void main() {
   gShadowOrigin = tlOffsetRayOrigin(position, gNormalHere, frame.sceneScale);
   vec4 radiance = shadeLights(position, gNormalHere, uvec3(uvec2(p), frame.frameIndex));
   if (push.accumulate != 0u) {
-    vec4 sum = radiance;
-    if (push.restart == 0u) sum += imageLoad(accum, p);
+    // Each pixel counts its own estimates (a pixel that was sky starts over).
+    vec4 sum = vec4(radiance.rgb, 1.0);
+    float specular = radiance.a;
+    if (push.restart == 0u) {
+      sum += imageLoad(accum, p);
+      specular += imageLoad(accumSpecular, p).r;
+    }
     imageStore(accum, p, sum);
-    radiance = sum / float(max(push.summed, 1u));
+    imageStore(accumSpecular, p, vec4(specular));
+    radiance = vec4(sum.rgb, specular) / sum.a;
   }
   imageStore(outRadiance, p, radiance);
 }

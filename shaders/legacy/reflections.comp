@@ -17,6 +17,7 @@
 #include "shared/packing.h"
 #include "shared/shading.h"
 #include "shared/rt_specular.h"
+#include "shared/bilateral.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = kLegacyBindingFrame) uniform Frame { FrameConstants frame; };
@@ -28,6 +29,7 @@ layout(set = 0, binding = kLegacyBindingHiz) uniform sampler2D hiz;
 layout(set = 0, binding = kLegacyBindingPrevRadiance) uniform sampler2D previousRadiance;  // when screenHistory
 layout(set = 0, binding = kLegacyBindingPrevDepth) uniform sampler2D previousDepth;        // when screenHistory
 layout(set = 0, binding = kLegacyBindingReflections, rgba16f) uniform writeonly image2D reflectionsOut;
+layout(set = 0, binding = kLegacyBindingReflectionsReduced) uniform sampler2D reducedIn;  // kLegacyReflectionsUpsample
 layout(push_constant) uniform Push { LegacyReflectionPush push; };
 
 #include "common/camera.glsl"
@@ -137,25 +139,29 @@ vec3 coneRadiance(vec3 position, vec3 n, vec3 dir, float alpha) {
   return cone.gathered + (1.0 - cone.occlusion) * tlSkyRadiance(frame, dir);
 }
 
-void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+// Whether pixel p reflects (a surface below the roughness threshold whose lobe reflects
+// something) and its weight against the SH specular.
+bool reflects(ivec2 p, out SurfaceParams s, out float weight) {
+  weight = 0.0;
   float depth = texelFetch(gDepth, p, 0).r;
-  if (depth <= 0.0) {
-    imageStore(reflectionsOut, p, vec4(0.0));
-    return;
-  }
-  SurfaceParams s = tlGbufferSurface(texelFetch(gBaseColor, p, 0), texelFetch(gMaterial, p, 0), tlFrameMaterials(frame.flags));
-  float weight = tlRtSpecularTracedWeight(s.roughness, push.roughness);
-  vec3 position = pixelPosition(p, depth);
+  if (depth <= 0.0) return false;
+  s = tlGbufferSurface(texelFetch(gBaseColor, p, 0), texelFetch(gMaterial, p, 0), tlFrameMaterials(frame.flags));
+  weight = tlRtSpecularTracedWeight(s.roughness, push.roughness);
   vec3 n = pixelNormal(p);
-  vec3 v = tlSamplingView(n, towardsViewer(position));
+  vec3 v = tlSamplingView(n, towardsViewer(pixelPosition(p, depth)));
   vec2 split = tlSpecularAlbedoSplit(max(dot(n, v), kBrdfMinCosine), s.roughness);
-  if (s.specular == 0.0 || weight <= 0.0 || !tlRtSpecularWorthTracing(s.f0 * split.x + s.f90 * split.y)) {
-    imageStore(reflectionsOut, p, vec4(0.0));
-    return;
-  }
-  vec3 dir = reflect(-v, n);
+  return s.specular > 0.0 && weight > 0.0 && tlRtSpecularWorthTracing(s.f0 * split.x + s.f90 * split.y);
+}
+
+// What pixel p reflects: the march and the cone's radiance (rgb) and its weight against the SH
+// specular (a; 0: nothing to reflect here, rgb 0 too).
+vec4 reflection(ivec2 p) {
+  SurfaceParams s;
+  float weight;
+  if (!reflects(p, s, weight)) return vec4(0.0);
+  vec3 position = pixelPosition(p, texelFetch(gDepth, p, 0).r);
+  vec3 n = pixelNormal(p);
+  vec3 dir = reflect(-tlSamplingView(n, towardsViewer(position)), n);
   vec3 screen = vec3(0.0);
   float confidence = 0.0;
   if (push.screenHistory != 0u && push.maxSteps > 0u) {
@@ -164,5 +170,66 @@ void main() {
   }
   vec3 radiance = confidence * screen;
   if (confidence < 1.0) radiance += (1.0 - confidence) * coneRadiance(position, n, dir, s.alpha);
-  imageStore(reflectionsOut, p, vec4(min(radiance, vec3(65000.0)), weight));
+  return vec4(min(radiance, vec3(65000.0)), weight);
+}
+
+// The reduced texels around pixel p on p's own surface, bilinear: their weighted mean (rgb) and
+// the share of the bilinear weight on p's surface (a). Reduced texel t stands for pixel 2t; it
+// counts where that pixel has p's material (the G-buffer's roughness, metalness and F0 within
+// its 8-bit steps: a puddle's reflection never spreads onto the asphalt around it), and weighs
+// less as its view depth and normal differ from p's.
+vec4 upsampled(ivec2 p) {
+  vec3 n = pixelNormal(p);
+  vec3 material = texelFetch(gMaterial, p, 0).rgb;
+  float w0 = depthToViewW(texelFetch(gDepth, p, 0).r);
+  ivec2 reduced = textureSize(reducedIn, 0);
+  vec2 at = vec2(p) * 0.5;  // p in reduced texels' coordinates (texel t at pixel 2t)
+  ivec2 base = ivec2(floor(at));
+  vec2 f = at - vec2(base);
+  vec4 sum = vec4(0.0);
+  for (int k = 0; k < 4; ++k) {
+    ivec2 o = ivec2(k & 1, k >> 1);
+    ivec2 t = min(base + o, reduced - 1);
+    vec4 texel = texelFetch(reducedIn, t, 0);
+    if (texel.a <= 0.0) continue;  // nothing was reflected there
+    ivec2 q = min(2 * t, ivec2(frame.viewport.xy) - 1);
+    if (any(greaterThan(abs(texelFetch(gMaterial, q, 0).rgb - material), vec3(1.5 / 255.0)))) continue;
+    float w = depthToViewW(texelFetch(gDepth, q, 0).r);
+    float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+    float weight = bilinear * tlBilateralWeight(abs(w - w0) / w0, 0.02) * pow(max(dot(pixelNormal(q), n), 0.0), 32.0);
+    sum += vec4(texel.rgb * weight, weight);
+  }
+  return sum.a > 0.0 ? vec4(sum.rgb / sum.a, sum.a) : vec4(0.0);
+}
+
+void main() {
+  ivec2 id = ivec2(gl_GlobalInvocationID.xy);
+  if (push.mode == kLegacyReflectionsReduced) {
+    ivec2 p = 2 * id;
+    if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+    vec4 r = reflection(p);
+    imageStore(reflectionsOut, id, vec4(r.rgb, r.a > 0.0 ? 1.0 : 0.0));
+    return;
+  }
+  ivec2 p = id;
+  if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+  if (push.mode == kLegacyReflectionsUpsample) {
+    SurfaceParams s;
+    float weight;
+    if (!reflects(p, s, weight)) {
+      imageStore(reflectionsOut, p, vec4(0.0));
+      return;
+    }
+    // The G-buffer's roughness, not the BRDF's floored one.
+    if (texelFetch(gMaterial, p, 0).r > push.fullRoughness) {
+      vec4 u = upsampled(p);
+      // A pixel the reduced texels hardly stand for (less than a quarter of the bilinear weight
+      // on its surface: an edge, a small object) is marched itself.
+      if (u.a >= 0.25) {
+        imageStore(reflectionsOut, p, vec4(u.rgb, weight));
+        return;
+      }
+    }
+  }
+  imageStore(reflectionsOut, p, reflection(p));
 }

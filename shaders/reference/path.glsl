@@ -34,9 +34,9 @@ vec2 next2() {
 // It also gets the light split by the first surface's lobes (shared/reference.h kRefLobes) in
 // gByLobe: the first surface's next events are evaluated once per lobe (pathBrdf with
 // gLobeMask) with the same random numbers, so the two sum to the one evaluation trace.rgen
-// makes (exactly where the estimate is linear in the BRDF: every case but the light table's
-// resampled picks beyond kLightsLoopMax lights, whose candidates the masked BRDF weighs); the
-// light found past its scattered ray is shared by that direction's f_specular / f.
+// makes (each estimate is linear in the BRDF: the light table's resampled picks weigh their
+// candidates by irradiance and cosine only); the light found past its scattered ray is shared
+// by that direction's f_specular / f.
 #ifdef TL_REFERENCE_DEPTH_SPLIT
 vec3 gByDepth[4];
 vec3 gByLobe[kRefLobes];

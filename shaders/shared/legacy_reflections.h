@@ -32,9 +32,20 @@ struct LegacyReflectionPush {
   uint screenHistory;    // 1: last frame's image and depth are valid (the march can use them)
   uint hizMips;          // mips of the hierarchical depth
   uint maxSteps;         // the march's iterations at most (0: no screen-space march)
-  uint pad1;
-  uint pad0;
+  uint mode;             // kLegacyReflections*: every pixel, or the reduced march and its upsample
+  float fullRoughness;   // kLegacyReflectionsUpsample: pixels at or below this roughness are computed, not upsampled
 };
+
+// Resolution (LegacyReflectionPush::mode, legacyReflectionDivisor). Full: every pixel is
+// marched. Reduced: one pixel of each 2x2 block (its top-left) is marched into
+// legacy.reflections.reduced (a 1: computed; 0: nothing to reflect there). Upsample: each pixel
+// takes the reduced texels around it of its own material (the G-buffer's roughness, metalness
+// and F0), bilinear and weighted by depth and normal, and is marched itself where they hardly
+// stand for it or where it is mirror-like (at or below fullRoughness: a half-resolution
+// reflection of a mirror is visibly blurred).
+TL_CONST uint kLegacyReflectionsFull = 0u;
+TL_CONST uint kLegacyReflectionsReduced = 1u;
+TL_CONST uint kLegacyReflectionsUpsample = 2u;
 
 // Bindings (set 0) beyond the legacy path's (shared/legacy.h): frame, depth, normal, voxels,
 // mips, reach and last frame's image and depth keep theirs.
@@ -43,7 +54,8 @@ TL_CONST uint kLegacyBindingBaseColor = 27;       // gbuffer.baseColor: base col
 TL_CONST uint kLegacyBindingHiz = 28;             // hierarchical depth, all mips (sampled)
 TL_CONST uint kLegacyBindingHizSource = 29;       // hiz_reduce.comp: the mip below (storage, r32f)
 TL_CONST uint kLegacyBindingHizOut = 30;          // hiz_first.comp, hiz_reduce.comp: the mip written (storage, r32f)
-TL_CONST uint kLegacyBindingReflections = 31;     // legacy.reflections (storage, rgba16f)
+TL_CONST uint kLegacyBindingReflections = 31;     // legacy.reflections (storage, rgba16f); the reduced pass's legacy.reflections.reduced
+TL_CONST uint kLegacyBindingReflectionsReduced = 32;  // the upsample's input: legacy.reflections.reduced (sampled)
 TL_END
 
 #ifdef __cplusplus

@@ -39,7 +39,8 @@ TL_CONST uint kLightsPassMaterial = 3u;
 TL_CONST uint kLightsPassDepth = 4u;
 TL_CONST uint kLightsPassOutput = 5u;
 TL_CONST uint kLightsPassTlas = 6u;
-TL_CONST uint kLightsPassAccum = 7u;  // rgba32f, persistent: sum of estimates (rgb) and of their specular lobes' luminance (a)
+TL_CONST uint kLightsPassAccum = 7u;          // rgba32f, persistent: sum of estimates (rgb) and their count (a)
+TL_CONST uint kLightsPassAccumSpecular = 8u;  // r32f, persistent: sum of the estimates' specular lobes' luminance
 
 // With more than kLightsLoopMax lights the pass's estimate is noisy: it accumulates while
 // nothing it depends on changes (the frame key), like the reference, and writes the mean.
@@ -48,7 +49,6 @@ struct LightsPush {
   uint restart;     // 1: the sum starts over this frame
   uint ibufferStage;    // redeferred form: kIbufferStage* (shared/redeferred.h)
   uint ibufferPattern;  // redeferred form: kIbufferPattern*
-  uint summed;          // accumulate: the estimates in the sum, this frame's included
 };
 
 // Up to this many lights every shading point evaluates all of them (exact: no noise). With more,

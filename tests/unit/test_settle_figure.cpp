@@ -31,6 +31,7 @@ TEST(SettleFigure, CountsTheFramesAGhostStaysAboveTheNoise) {
   const auto fig = settleFigure(frames);
   ASSERT_TRUE(fig);
   EXPECT_EQ(fig->lag, 3u);
+  EXPECT_TRUE(fig->settled);
   EXPECT_NEAR(fig->firstResidual, 0.4, 0.03);
   EXPECT_GT(fig->noiseFloor, 0.0);
   EXPECT_LT(fig->noiseFloor, 0.005);
@@ -51,6 +52,7 @@ TEST(SettleFigure, AGhostThatNeverFadesLastsTheWholeHold) {
   const auto fig = settleFigure(frames);
   ASSERT_TRUE(fig);
   EXPECT_EQ(fig->lag, 6u);
+  EXPECT_FALSE(fig->settled) << "every frame before the tail stood out";
 }
 
 TEST(SettleFigure, TooFewFramesOrNoLightGiveNothing) {

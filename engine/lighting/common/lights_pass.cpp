@@ -69,25 +69,25 @@ std::string LightsPass::add(graph::RenderGraph& graph, FrameInputs& in, const st
   // Many lights or sampled area shadows: a noisy estimate, accumulated while nothing it depends on changes.
   shared::LightsPush push{};
   const std::string accum = "lights.accum." + in.pathName;
-  const auto accumDesc = in.screenImage(
-      VK_FORMAT_R32G32B32A32_SFLOAT, "sum of light-table estimates (rgb) and of their specular lobes' luminance (a)");
+  const std::string accumSpecular = accum + ".specular";
+  const auto accumDesc =
+      in.screenImage(VK_FORMAT_R32G32B32A32_SFLOAT, "sum of light-table estimates (rgb) and their count (a)");
+  const auto accumSpecularDesc =
+      in.screenImage(VK_FORMAT_R32_SFLOAT, "sum of the light-table estimates' specular lobes' luminance");
   if (sampledEstimate(in)) {
     push.accumulate = 1;
-    const HistoryDecision d =
-        keepHistory(graph, in, accumulation_[in.pathName], kLightsAccumulation, in.pathName, {{accum, accumDesc}});
+    const HistoryDecision d = keepHistory(graph, in, accumulation_[in.pathName], kLightsAccumulation, in.pathName,
+                                          {{accum, accumDesc}, {accumSpecular, accumSpecularDesc}});
     push.restart = d.action == HistoryAction::Restart ? 1u : 0u;
-    uint32_t& summed = summed_[in.pathName];
-    summed = push.restart ? 1u : summed + 1u;
-    push.summed = summed;
   } else {
     accumulation_.erase(in.pathName);
-    summed_.erase(in.pathName);
   }
   ComputePass pass(in.device, "lights.direct", shaderFor("lights", traced, mapped));
   addTableInputs(pass, structures, tlasHandle, traced, mapped);
   pass.sampled(shared::kLightsPassBaseColor, gbuffer::kBaseColor)
       .optionalStorageInOut(shared::kLightsPassAccum, graph::ImageName{accum},
                             push.accumulate != 0)  // the shader tests push.accumulate
+      .optionalStorageInOut(shared::kLightsPassAccumSpecular, graph::ImageName{accumSpecular}, push.accumulate != 0)
       .storageOut(shared::kLightsPassOutput, kLightsRadiance,
                   in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
                                  traced   ? "radiance from the light table (rgb), its specular lobes' luminance (a); "

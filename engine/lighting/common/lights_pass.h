@@ -50,7 +50,6 @@ class LightsPass {
 
   shared::LightsPush ibufferPush_{};  // this frame's pattern run's: the refining run continues its sums
   std::map<std::string, HistoryKeeper, std::less<>> accumulation_;  // per lighting path
-  std::map<std::string, uint32_t, std::less<>> summed_;             // estimates in its sum (LightsPush::summed)
 };
 
 }  // namespace tl::lighting

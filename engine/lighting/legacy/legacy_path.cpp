@@ -278,18 +278,44 @@ class LegacyPath final : public LightingPath {
           .add(graph);
     }
 
-    withVoxelCones(withCommon(ComputePass(in.device, "legacy.reflections", "legacy/reflections.comp")), rooms)
-        .sampled(shared::kLegacyBindingMaterial, gbuffer::kMaterial)
-        .sampled(shared::kLegacyBindingBaseColor, gbuffer::kBaseColor)
-        .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
-        .sampled(shared::kLegacyBindingHiz, kLegacyHiz)
-        .optionalSampled(shared::kLegacyBindingPrevRadiance, kLegacyHistRadiance, feedback, samplers::linear)
-        .optionalSampled(shared::kLegacyBindingPrevDepth, kLegacyHistDepth, feedback)
-        .storageOut(shared::kLegacyBindingReflections, kLegacyReflections,
-                    in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
-                                   "reflections: screen-space march and voxel cone, demodulated (rgb); weight against "
-                                   "the SH specular (a)"))
-        .push(rp)
+    // The march and the cone, every pixel; or one of each 2x2 block, then the upsample
+    // (shared/legacy_reflections.h: one shader, its mode in the push constants).
+    auto reflectionPass = [&](const char* name, uint32_t mode) {
+      rp.mode = mode;
+      ComputePass pass = withVoxelCones(withCommon(ComputePass(in.device, name, "legacy/reflections.comp")), rooms);
+      pass.pipelineName("legacy.reflections")
+          .sampled(shared::kLegacyBindingMaterial, gbuffer::kMaterial)
+          .sampled(shared::kLegacyBindingBaseColor, gbuffer::kBaseColor)
+          .bufferIn(shared::kBindingBrdfTables, kBrdfTables)
+          .sampled(shared::kLegacyBindingHiz, kLegacyHiz)
+          .optionalSampled(shared::kLegacyBindingPrevRadiance, kLegacyHistRadiance, feedback, samplers::linear)
+          .optionalSampled(shared::kLegacyBindingPrevDepth, kLegacyHistDepth, feedback)
+          .optionalSampled(shared::kLegacyBindingReflectionsReduced, kLegacyReflectionsReduced,
+                           mode == shared::kLegacyReflectionsUpsample)
+          .push(rp);
+      return pass;
+    };
+    const auto fullDesc = in.screenImage(VK_FORMAT_R16G16B16A16_SFLOAT,
+                                         "reflections: screen-space march and voxel cone, demodulated (rgb); weight "
+                                         "against the SH specular (a)");
+    if (s.legacyReflectionDivisor < 2) {
+      reflectionPass("legacy.reflections", shared::kLegacyReflectionsFull)
+          .storageOut(shared::kLegacyBindingReflections, kLegacyReflections, fullDesc)
+          .dispatch(w, h)
+          .add(graph);
+      return;
+    }
+    const uint32_t rw = (w + 1) / 2, rh = (h + 1) / 2;
+    rp.fullRoughness = s.legacyMirrorRoughness;
+    reflectionPass("legacy.reflections.reduced", shared::kLegacyReflectionsReduced)
+        .storageOut(shared::kLegacyBindingReflections, kLegacyReflectionsReduced,
+                    graph::ResourceDesc::image2D(VK_FORMAT_R16G16B16A16_SFLOAT, rw, rh,
+                                                 "reflections of one pixel of each 2x2 block (its top-left): march "
+                                                 "and cone, demodulated (rgb); 1 where it reflects (a)"))
+        .dispatch(rw, rh)
+        .add(graph);
+    reflectionPass("legacy.reflections", shared::kLegacyReflectionsUpsample)
+        .storageOut(shared::kLegacyBindingReflections, kLegacyReflections, fullDesc)
         .dispatch(w, h)
         .add(graph);
   }

@@ -24,6 +24,8 @@ inline constexpr graph::ImageName kLegacySsao{"legacy.ssao"};  // SSAO accumulat
 inline constexpr graph::ImageName kLegacyHistSsao{"legacy.history.ssao"};
 inline constexpr graph::ImageName kLegacyHiz{"legacy.reflections.hiz"};  // hierarchical depth: nearest depth per 2^m cell, mip m
 inline constexpr graph::ImageName kLegacyReflections{"legacy.reflections"};
+// legacyReflectionDivisor 2: the reflections of one pixel of each 2x2 block, before the upsample.
+inline constexpr graph::ImageName kLegacyReflectionsReduced{"legacy.reflections.reduced"};
 
 struct LegacyClipmapFit {
   shared::LegacyClipmap clipmap{};
