@@ -11,20 +11,22 @@
 namespace tl::session {
 namespace {
 
+// The luminance of every pixel of `image` (non-finite where the pixel is).
+std::vector<double> luminanceOf(const graph::Readback& image) {
+  const std::vector<float> t = image.texels();
+  const uint32_t c = image.channels();
+  std::vector<double> y;
+  if (c < 3) return y;
+  for (size_t i = 0; i + 2 < t.size(); i += c) y.push_back(shared::tlLuminance(glm::vec3(t[i], t[i + 1], t[i + 2])));
+  return y;
+}
+
 // The mean luminance of the frame's composite.hdr over its finite pixels.
 double meanLuminance(const Session& session) {
-  const graph::Readback& hdr = session.buffer(lighting::kCompositeHdr);
-  const std::vector<float> t = hdr.texels();
-  const uint32_t c = hdr.channels();
-  if (c < 3) return 0.0;
   double sum = 0.0;
   size_t n = 0;
-  for (size_t i = 0; i + 2 < t.size(); i += c) {
-    const double y = shared::tlLuminance(glm::vec3(t[i], t[i + 1], t[i + 2]));
-    if (!std::isfinite(y)) continue;
-    sum += y;
-    ++n;
-  }
+  for (double y : luminanceOf(session.buffer(lighting::kCompositeHdr)))
+    if (std::isfinite(y)) sum += y, ++n;
   return n ? sum / double(n) : 0.0;
 }
 
@@ -40,29 +42,16 @@ View orbit(const View& v, double distance, double degrees) {
   return o;
 }
 
-// The luminance of every pixel of `image` (zero where not finite).
-std::vector<double> luminanceOf(const graph::Readback& image) {
-  const std::vector<float> t = image.texels();
-  const uint32_t c = image.channels();
-  std::vector<double> y;
-  if (c < 3) return y;
-  for (size_t i = 0; i + 2 < t.size(); i += c) {
-    const double v = shared::tlLuminance(glm::vec3(t[i], t[i + 1], t[i + 2]));
-    y.push_back(std::isfinite(v) ? v : 0.0);
-  }
-  return y;
-}
-
 }  // namespace
 
 std::optional<SettleFigure> settleFigure(const std::vector<std::vector<double>>& frames) {
   if (frames.size() < kSettleTail + 1) return std::nullopt;
   const size_t n = frames.front().size(), first = frames.size() - kSettleTail;
+  for (const auto& frame : frames)
+    if (frame.size() != n) return std::nullopt;
   std::vector<double> settled(n, 0.0);
-  for (size_t f = first; f < frames.size(); ++f) {
-    if (frames[f].size() != n) return std::nullopt;
+  for (size_t f = first; f < frames.size(); ++f)
     for (size_t i = 0; i < n; ++i) settled[i] += frames[f][i] / double(kSettleTail);
-  }
   double norm = 0.0;
   for (double v : settled) norm += std::abs(v);
   if (!(norm > 0.0)) return std::nullopt;  // no reflected light to settle
@@ -80,10 +69,8 @@ std::optional<SettleFigure> settleFigure(const std::vector<std::vector<double>>&
   }
   fig.firstResidual = residual(frames.front());
   const double threshold = 2.0 * fig.noiseFloor + kSettleMargin;
-  for (size_t f = 0; f < first; ++f) {
-    if (frames[f].size() != n) return std::nullopt;
+  for (size_t f = 0; f < first; ++f)
     if (residual(frames[f]) > threshold) fig.lag = uint32_t(f + 1);
-  }
   fig.settled = fig.lag < first;
   return fig;
 }
@@ -211,6 +198,8 @@ DoctorReport runDoctor(Session& session, const DoctorOptions& o) {
         session.renderFrames(1);
         if (!session.hasBuffer(lighting::kCompositeSpecularLobe)) break;
         held.push_back(luminanceOf(session.buffer(lighting::kCompositeSpecularLobe)));
+        for (double& y : held.back())
+          if (!std::isfinite(y)) y = 0.0;  // the health check counts it; here it would poison the sums
       }
       r.reflectionsSettle = settleFigure(held);
     }

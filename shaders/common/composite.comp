@@ -30,6 +30,7 @@ layout(push_constant) uniform Push { CompositePush push; };
 #define TL_SUN_VISIBILITY_HYBRID
 layout(set = 0, binding = kCompositeShadowDepth) uniform sampler2D sunShadowDepth;
 #include "common/sun_shadow.glsl"
+#include "common/composite_lobes.glsl"
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -49,23 +50,10 @@ void main() {
   vec4 material = texelFetch(gMaterial, p, 0);
   SurfaceParams s = tlGbufferSurface(baseColor, material, tlFrameMaterials(frame.flags));
 
-  vec3 radiance = texelFetch(gEmissive, p, 0).rgb;
-  float nl = dot(n, frame.sunToLight.xyz);
-  if (nl > 0.0) {
-    vec3 sun = frame.sunIrradiance.rgb * (nl * sunVisibilityShading(position, n, p));
-    radiance += sun * tlBrdf(s, n, v, frame.sunToLight.xyz);
-  }
-  // Point, spot and further directional lights (lights.direct), when the scene has any.
+  // Emission, the sun and the indirect light (common/composite_lobes.glsl), and the point, spot
+  // and further directional lights (lights.direct), when the scene has any.
+  CompositeLobes lobes = compositeLobes(p, position, n, v, s, material);
+  vec3 radiance = texelFetch(gEmissive, p, 0).rgb + lobes.diffuse + lobes.specular;
   if ((push.flags & kCompositeHasLights) != 0u) radiance += texelFetch(lightsRadiance, p, 0).rgb;
-  // Indirect diffuse: the diffuse layer's albedo under uniform light from the irradiance's
-  // directions (shared/shading.h; exact for a uniform sky), radiance = albedo / pi * E.
-  // The material's own occlusion (glTF occlusionTexture, gbuffer.material.a) darkens both
-  // indirect terms, never the sun, the lights or emission.
-  float ao = pathAmbientOcclusion(p);
-  float occlusion = material.w;
-  vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), tlSkyIrradiance(frame, n));
-  radiance += tlEnvironmentDiffuse(s, dot(n, v)) * kInvPi * (occlusion * irradiance);
-  // Indirect specular: from the path's SH where it has one, else the sky's (times AO).
-  radiance += occlusion * pathSpecular(p, n, v, position, ao, s, tlSkyRadiance(frame, reflect(-v, n)));
   imageStore(outRadiance, p, vec4(radiance, 1.0));
 }

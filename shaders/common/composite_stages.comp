@@ -34,6 +34,7 @@ layout(push_constant) uniform Push { CompositePush push; };
 #define TL_SUN_VISIBILITY_HYBRID
 layout(set = 0, binding = kCompositeShadowDepth) uniform sampler2D sunShadowDepth;
 #include "common/sun_shadow.glsl"
+#include "common/composite_lobes.glsl"
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -48,26 +49,14 @@ void main() {
   }
   vec3 position = cameraRelativePosition((vec2(p) + 0.5) * frame.viewport.zw, depth);
   vec3 n = tlOctDecode(texelFetch(gNormal, p, 0).xy);
-  float ao = pathAmbientOcclusion(p);
-  imageStore(outAo, p, vec4(ao));
-  // The surface only for its albedo: what occlusion puts back (path_indirect.glsl).
   vec4 material = texelFetch(gMaterial, p, 0);
   SurfaceParams s = tlGbufferSurface(texelFetch(gBaseColor, p, 0), material, tlFrameMaterials(frame.flags));
-  vec3 irradiance = pathDiffuseIrradiance(p, n, position, ao, tlHemisphericalAlbedo(s), tlSkyIrradiance(frame, n));
-  // As the composite applies it: times the material's occlusion (gbuffer.material.a).
-  float occlusion = material.w;
-  imageStore(outIrradiance, p, vec4(occlusion * irradiance, 1.0));
-
-  // Each term of the composite through the lobe that reflects it.
-  vec3 v = towardsViewer(position);
-  vec3 diffuse = tlEnvironmentDiffuse(s, dot(n, v)) * kInvPi * (occlusion * irradiance);
-  vec3 specular = occlusion * pathSpecular(p, n, v, position, ao, s, tlSkyRadiance(frame, reflect(-v, n)));
-  float nl = dot(n, frame.sunToLight.xyz);
-  if (nl > 0.0) {
-    vec3 sun = frame.sunIrradiance.rgb * (nl * sunVisibilityShading(position, n, p));
-    diffuse += sun * tlBrdfDiffuse(s, n, v, frame.sunToLight.xyz);
-    specular += sun * tlBrdfSpecular(s, n, v, frame.sunToLight.xyz);
-  }
+  // Each term of the composite through the lobe that reflects it, and the AO and irradiance
+  // it multiplied (the irradiance as it applies it: times the material's occlusion).
+  CompositeLobes lobes = compositeLobes(p, position, n, towardsViewer(position), s, material);
+  imageStore(outAo, p, vec4(lobes.ao));
+  imageStore(outIrradiance, p, vec4(lobes.irradiance, 1.0));
+  vec3 diffuse = lobes.diffuse, specular = lobes.specular;
   if ((push.flags & kCompositeHasLights) != 0u) {
     // lights.direct: its radiance, and its specular part's luminance (a); the part takes the
     // whole's colour (exact in luminance, which compare measures).
