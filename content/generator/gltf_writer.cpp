@@ -271,6 +271,22 @@ int SceneWriter::material(const MaterialSpec& spec) {
     m.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object{});
     use("KHR_materials_unlit");
   }
+  if (spec.transmission > 0.0f) {
+    tinygltf::Value::Object e;
+    e["transmissionFactor"] = tinygltf::Value(double(spec.transmission));
+    m.extensions["KHR_materials_transmission"] = tinygltf::Value(e);
+    use("KHR_materials_transmission");
+  }
+  if (spec.thickness > 0.0f) {
+    tinygltf::Value::Object e;
+    e["thicknessFactor"] = tinygltf::Value(double(spec.thickness));
+    const glm::vec3 c = spec.attenuationColor;
+    e["attenuationColor"] = tinygltf::Value(tinygltf::Value::Array{
+        tinygltf::Value(double(c.r)), tinygltf::Value(double(c.g)), tinygltf::Value(double(c.b))});
+    if (spec.attenuationDistance) e["attenuationDistance"] = tinygltf::Value(double(*spec.attenuationDistance));
+    m.extensions["KHR_materials_volume"] = tinygltf::Value(e);
+    use("KHR_materials_volume");
+  }
   if (!spec.baseColorTexture.empty()) {
     tinygltf::Image img;
     img.uri = spec.baseColorTexture;

@@ -81,6 +81,12 @@ struct MaterialSpec {
   std::optional<float> specularFactor;
   std::optional<glm::vec3> specularColorFactor;
   bool unlit = false;
+  // KHR_materials_transmission (written when above 0) and KHR_materials_volume (written when the
+  // thickness is above 0): attenuationColor left after attenuationDistance.
+  float transmission = 0.0f;
+  float thickness = 0.0f;
+  glm::vec3 attenuationColor{1.0f};
+  std::optional<float> attenuationDistance;
 };
 
 // An image file's bytes encoded in memory by OpenImageIO (`extension`: "png", "exr", ...):

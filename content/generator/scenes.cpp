@@ -1330,6 +1330,95 @@ void iorProbe(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// KHR_materials_transmission: a white room (base colour 0.8), 4 x 3 x 5 m inside 0.25 m walls,
+// lit only by the sun (E = 20, travelling along (0, -0.6, -1): 31 degrees high, from the south)
+// through a window of amber glass in its south wall: a 1.6 x 1.4 m opening (x -0.8..0.8, y
+// 0.8..2.2) holding a smooth, thin, double-sided pane (base colour (0.9, 0.55, 0.25),
+// transmission 1, ior 1.5: glTF's default) in the wall's middle plane. The sky is black, so
+// the floor's direct light is the sun through the pane alone: a patch x -0.8..0.8, z -1.33..-3.42
+// (the sill and the wall's depth bound it), where a floor of albedo rho shows
+//   L = rho / pi x E cos(theta_floor) x baseColor (1 - F(theta_pane)),
+// F the dielectric's Fresnel at the pane (the sun meets floor and pane at the same angle's
+// complements: cos theta_floor = 0.514, cos theta_pane = 0.857). Camera `floor_patch` looks
+// down at the patch's middle from 1.5 m above it and sees only the patch (30 degrees);
+// `towards_window` shows the room and the pane.
+void glassWindow(const std::filesystem::path& dir) {
+  SceneWriter w("glass_window");
+  const int white = w.material({"plaster_white", {0.8f, 0.8f, 0.8f}, 0.0f, 1.0f});
+  MaterialSpec glass{"amber_glass", {0.9f, 0.55f, 0.25f}, 0.0f, 0.0f};
+  glass.transmission = 1.0f;
+  glass.doubleSided = true;
+  const int amber = w.material(glass);
+  const float t = 0.25f, h = 3.0f, x = 2.0f, z = -5.0f;
+  const float left = -0.8f, right = 0.8f, sill = 0.8f, top = 2.2f;
+  slab(w, "floor", white, {-x - t, -t, z - t}, {x + t, 0.0f, t});
+  slab(w, "ceiling", white, {-x - t, h, z - t}, {x + t, h + t, t});
+  slab(w, "wall_west", white, {-x - t, -t, z - t}, {-x, h + t, t});
+  slab(w, "wall_east", white, {x, -t, z - t}, {x + t, h + t, t});
+  slab(w, "wall_north", white, {-x, -t, z - t}, {x, h + t, z});
+  slab(w, "wall_south_west", white, {-x, -t, 0.0f}, {left, h + t, t});
+  slab(w, "wall_south_east", white, {right, -t, 0.0f}, {x, h + t, t});
+  slab(w, "wall_under_window", white, {left, -t, 0.0f}, {right, sill, t});
+  slab(w, "wall_over_window", white, {left, top, 0.0f}, {right, h + t, t});
+  // The pane: a quad in XZ facing +Y turned to face +Z (south, towards the sun).
+  w.node("pane", w.mesh("pane", quad(right - left, top - sill), amber), {0.0f, 0.5f * (sill + top), 0.5f * t},
+         {90.0f, 0.0f, 0.0f});
+  w.camera("floor_patch", {0.0f, 1.5f, -2.375f}, {0.0f, 0.0f, -2.4f}, 30.0f);
+  w.camera("towards_window", {1.2f, 1.5f, -4.5f}, {-0.3f, 1.1f, 0.0f}, 65.0f);
+  w.sun({0.0f, -0.6f, -1.0f}, 20.0f);
+  w.sky({0.0f, 0.0f, 0.0f});
+  w.write(dir);
+}
+
+// The white furnace with transmission: a white floor (base colour 1) under a uniform sky of 1,
+// and above it a white thin pane (transmission 1, roughness 0.3) and a white glass box that
+// bounds a clear volume (KHR_materials_volume). Everything reflects or passes on all the light
+// it receives, so every pixel shows the sky's radiance, 1, under and through the glass as beside
+// it.
+void glassFurnace(const std::filesystem::path& dir) {
+  SceneWriter w("glass_furnace");
+  MaterialSpec floorSpec{"white", {1.0f, 1.0f, 1.0f}, 0.0f, 0.5f};
+  floorSpec.doubleSided = true;
+  const int white = w.material(floorSpec);
+  MaterialSpec pane{"white_pane", {1.0f, 1.0f, 1.0f}, 0.0f, 0.3f};
+  pane.transmission = 1.0f;
+  pane.doubleSided = true;
+  MaterialSpec block{"white_glass_block", {1.0f, 1.0f, 1.0f}, 0.0f, 0.0f};
+  block.transmission = 1.0f;
+  block.thickness = 0.5f;
+  block.doubleSided = true;
+  w.node("floor", w.mesh("floor", quad(40.0f, 40.0f), white), {0.0f, 0.0f, 0.0f});
+  w.node("pane", w.mesh("pane", quad(1.5f, 1.5f), w.material(pane)), {-0.9f, 0.8f, 0.0f}, {20.0f, 0.0f, 0.0f});
+  w.node("block", w.mesh("block", box({0.8f, 0.8f, 0.8f}), w.material(block)), {0.9f, 0.6f, 0.0f}, {0.0f, 30.0f, 0.0f});
+  w.camera("above", {0.0f, 3.0f, 2.5f}, {0.0f, 0.3f, 0.0f}, 60.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
+// KHR_materials_volume: a glass block 1.2 x 1.2 x 0.5 m (smooth, clear surface of ior 1.5,
+// transmission 1) bounding a volume that leaves attenuationColor (0.5, 0.7, 0.9) of the light
+// after attenuationDistance 0.5 m, held in front of an unlit white wall (it shows 1 whatever
+// the light) in the dark. Seen head-on through the block's 0.5 m, the wall shows
+//   L = (1 - F)^2 attenuationColor^(0.5 / 0.5),   F = ((n - 1) / (n + 1))^2 = 0.04,
+// (0.461, 0.645, 0.829) by Beer-Lambert and Fresnel at the two faces; beside the block, 1.
+void glassVolume(const std::filesystem::path& dir) {
+  SceneWriter w("glass_volume");
+  MaterialSpec wallSpec{"unlit_white", {1.0f, 1.0f, 1.0f}, 0.0f, 1.0f};
+  wallSpec.unlit = true;
+  MaterialSpec glass{"tinted_glass_block", {1.0f, 1.0f, 1.0f}, 0.0f, 0.0f};
+  glass.transmission = 1.0f;
+  glass.thickness = 0.5f;
+  glass.attenuationColor = {0.5f, 0.7f, 0.9f};
+  glass.attenuationDistance = 0.5f;
+  glass.doubleSided = true;
+  // The wall: a quad in XZ facing +Y turned to face +Z, towards the camera.
+  w.node("wall", w.mesh("wall", quad(6.0f, 4.0f), w.material(wallSpec)), {0.0f, 1.0f, -1.0f}, {90.0f, 0.0f, 0.0f});
+  w.node("block", w.mesh("block", box({1.2f, 1.2f, 0.5f}), w.material(glass)), {0.0f, 1.0f, 0.0f});
+  w.camera("head_on", {0.0f, 1.0f, 6.0f}, {0.0f, 1.0f, 0.0f}, 20.0f);
+  w.sky({0.0f, 0.0f, 0.0f});
+  w.write(dir);
+}
+
 // Scale: `instances` boxes on a 2 km square of ground, each one of `keys` distinct mesh and
 // material combinations (albedo keys): 40 box shapes x as many materials as the keys need.
 // The positions are a jittered grid, the shapes and materials and yaw a fixed hash of the
@@ -1491,6 +1580,9 @@ int main(int argc, char** argv) {
     tl::content::occlusionProbe(dir);
     tl::content::oneSidedProbe(dir);
     tl::content::iorProbe(dir);
+    tl::content::glassWindow(dir);
+    tl::content::glassFurnace(dir);
+    tl::content::glassVolume(dir);
     tl::content::writeHardScenes(dir / "hard");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());

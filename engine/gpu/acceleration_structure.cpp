@@ -204,7 +204,9 @@ void AccelerationStructure::reset() {
 VkAccelerationStructureGeometryKHR trianglesGeometry(const TriangleGeometry& g) {
   VkAccelerationStructureGeometryKHR geometry{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
   geometry.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
-  geometry.flags = g.opaque ? VK_GEOMETRY_OPAQUE_BIT_KHR : 0;
+  // Non-opaque geometry runs any-hit shaders once per crossing: the reference's shadow rays
+  // multiply a pane's transmittance in there, which a repeated call would apply twice.
+  geometry.flags = g.opaque ? VK_GEOMETRY_OPAQUE_BIT_KHR : VK_GEOMETRY_NO_DUPLICATE_ANY_HIT_INVOCATION_BIT_KHR;
   auto& t = geometry.geometry.triangles;
   t.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR;
   t.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;

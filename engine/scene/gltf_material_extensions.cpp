@@ -1,12 +1,14 @@
-// The glTF material extensions that change how a surface reflects (KHR_materials_ior,
-// KHR_materials_specular, KHR_materials_unlit) and KHR_materials_pbrSpecularGlossiness, which
+// The glTF material extensions that change how a surface reflects or lets light through
+// (KHR_materials_ior, KHR_materials_specular, KHR_materials_unlit, KHR_materials_transmission,
+// KHR_materials_volume) and KHR_materials_pbrSpecularGlossiness, which
 // is converted to the metal-rough model on import. Every value is checked as the float it is
 // stored in (ImportValues), as the core material's are (gltf_materials.cpp).
-#include "scene/gltf_parts.h"
-#include "scene/material_average.h"
-
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "scene/gltf_parts.h"
+#include "scene/material_average.h"
 
 namespace tl::scene {
 namespace {
@@ -70,6 +72,23 @@ void readReflectionExtensions(const tinygltf::Material& gm, Material& m, ImportV
         texture(extensionTexture(*spec, "specularColorTexture", values, where), true, where + " specularColorTexture");
   }
   m.unlit = extension(gm, "KHR_materials_unlit") != nullptr;
+  if (const auto* tr = extension(gm, "KHR_materials_transmission")) {
+    const std::string where = what + " KHR_materials_transmission";
+    m.transmission = values.clamped(number(*tr, "transmissionFactor", 0.0f, values, where), 0.0f, 1.0f,
+                                    where + " transmissionFactor");
+    m.transmissionTexture =
+        texture(extensionTexture(*tr, "transmissionTexture", values, where), false, where + " transmissionTexture");
+  }
+  if (const auto* vol = extension(gm, "KHR_materials_volume")) {
+    const std::string where = what + " KHR_materials_volume";
+    m.thickness =
+        values.clamped(number(*vol, "thicknessFactor", 0.0f, values, where), 0.0f, 1e30f, where + " thicknessFactor");
+    m.attenuationColor = numbers<3>(*vol, "attenuationColor", glm::vec3(1.0f), 0.0f, 1.0f, values, where);
+    // glTF: positive, infinite when absent (no absorption).
+    const float distance = number(*vol, "attenuationDistance", std::numeric_limits<float>::infinity(), values, where);
+    if (!(distance > 0.0f)) values.fail(fmt::format("{} attenuationDistance {} is not positive", where, distance));
+    m.attenuationDistance = distance;
+  }
 }
 
 SpecularGlossinessConversion metalRoughFromSpecularGlossiness(glm::vec3 diffuse, glm::vec3 specular) {

@@ -96,6 +96,13 @@ void readMaterials(GltfImport& in, TextureCache& textures) {
     const glm::vec3 c = m.specularColorFactor;
     if (m.specularColorTexture || c.r != c.g || c.g != c.b)
       in.ignored.add("a tinted KHR_materials_specular colour", "in the reference; the G-buffer paths use its luminance");
+    if (m.transmits())
+      in.ignored.add(
+          "KHR_materials_transmission",
+          "in the reference (a thin surface unrefracted); stochastic coverage (grey, at normal incidence) in the "
+          "G-buffer paths");
+    if (m.transmits() && m.thickness > 0.0f)
+      in.ignored.add("KHR_materials_volume", "refraction and absorption in the reference only");
   }
 }
 

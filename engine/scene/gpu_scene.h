@@ -83,12 +83,14 @@ class GpuScene {
   void bindGeometry(VkCommandBuffer cmd) const;
   void drawMesh(VkCommandBuffer cmd, uint32_t mesh) const;
 
-  // Instances whose material is alpha-tested (MASK cut-outs, BLEND's stochastic transparency)
-  // and all the others: passes that only need depth (the shadow maps) draw the opaque ones
+  // Instances whose material is alpha-tested (MASK cut-outs, BLEND's stochastic transparency,
+  // and transmission, which the G-buffer paths draw as stochastic coverage: shared/scene.h
+  // tlTransmissionCutout) and all the others: passes that only need depth (the shadow maps) draw the opaque ones
   // without a fragment stage.
   const std::vector<uint32_t>& alphaTestedInstances() const { return alphaTested_; }
   const std::vector<uint32_t>& opaqueInstances() const { return opaque_; }
-  // Per mesh: its material is alpha-tested (ray tracing keeps such meshes non-opaque).
+  // Per mesh: its material is alpha-tested or transmits (ray tracing keeps such meshes
+  // non-opaque: any-hit shaders cut them out or pass their transmittance on).
   bool meshAlphaTested(uint32_t mesh) const { return meshAlphaTested_.at(mesh) != 0; }
 
   const gpu::DescriptorTable& table() const { return table_; }

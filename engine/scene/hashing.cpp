@@ -64,8 +64,12 @@ uint64_t hashMaterial(const Material& m, const std::vector<Texture>& textures) {
   h.add(m.specularColorFactor);
   uint8_t unlit = m.unlit;
   h.add(unlit);
-  for (const auto& t : {m.baseColorTexture, m.normalTexture, m.metallicRoughnessTexture, m.emissiveTexture, m.occlusionTexture,
-                        m.specularTexture, m.specularColorTexture}) {
+  h.add(m.transmission);
+  h.add(m.thickness);
+  h.add(m.attenuationColor);
+  h.add(m.attenuationDistance);
+  for (const auto& t : {m.baseColorTexture, m.normalTexture, m.metallicRoughnessTexture, m.emissiveTexture,
+                        m.occlusionTexture, m.specularTexture, m.specularColorTexture, m.transmissionTexture}) {
     uint64_t th = t && t->texture < textures.size() ? textures[t->texture].contentHash : 0;
     h.add(th);
     if (!t) continue;

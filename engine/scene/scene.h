@@ -124,6 +124,17 @@ struct Material {
   std::optional<TextureRef> specularTexture;       // its alpha scales specularFactor
   std::optional<TextureRef> specularColorTexture;  // its rgb (sRGB) scales specularColorFactor
   bool unlit = false;                              // KHR_materials_unlit: shows its base colour, reflects nothing
+  // KHR_materials_transmission: the share of the dielectric's diffuse layer that passes through
+  // the surface instead (factor x texture red); KHR_materials_volume: a thickness above 0 makes
+  // the mesh the boundary of a volume that absorbs by Beer-Lambert, attenuationColor left after
+  // attenuationDistance (metres of the file; infinite: clear). How each path renders them:
+  // shared/shading.h and docs/user-guide.md "What of glTF 2.0 renders".
+  float transmission = 0.0f;
+  std::optional<TextureRef> transmissionTexture;  // its red channel scales the factor
+  float thickness = 0.0f;
+  glm::vec3 attenuationColor{1.0f};
+  float attenuationDistance = std::numeric_limits<float>::infinity();
+  bool transmits() const { return transmission > 0.0f && !unlit; }
   // KHR_materials_pbrSpecularGlossiness, converted on import to the fields above: how far glTF's
   // reference shading of the result is from the file's (the larger of the F0 and the diffuse
   // colour's largest difference; -1: not converted), and whether a specularGlossinessTexture

@@ -46,9 +46,17 @@ std::string extensionRendering(const std::string& name) {
       {"KHR_materials_emissive_strength", "rendered: emission scaled in every path and the reference"},
       {"KHR_materials_ior", "rendered: the dielectric's F0 in the shared BRDF, every path and the reference"},
       {"KHR_materials_specular",
-       "rendered: the dielectric's F0 and F90 in the shared BRDF, every path and the reference (a tinted colour in grey in the "
+       "rendered: the dielectric's F0 and F90 in the shared BRDF, every path and the reference (a tinted colour in "
+       "grey in the "
        "G-buffer paths)"},
       {"KHR_materials_unlit", "rendered: the base colour as emission over a black, non-reflecting surface"},
+      {"KHR_materials_transmission",
+       "rendered: light through the surface, tinted and by Fresnel, in the reference (a thin surface unrefracted); the "
+       "G-buffer paths draw it as stochastic coverage (grey, at normal incidence)"},
+      {"KHR_materials_volume",
+       "rendered: refraction and Beer-Lambert absorption inside the mesh in the reference; the G-buffer paths draw it "
+       "as a "
+       "thin transmitting surface"},
       {"KHR_materials_pbrSpecularGlossiness", "converted to metal-rough on import (the error is an ignored line)"},
       {"KHR_lights_punctual", "rendered: point, spot and directional lights in their photometric units"},
       {"KHR_mesh_quantization", "read: integer and normalized attributes"},

@@ -36,7 +36,7 @@ void main() {
   vec4 base = materialBaseColor(m, inUv, inUv1, inColor);
   bool framesAveraged = (frame.flags & kFrameFlagFramesAveraged) != 0u;
   float xi = tlAlphaDither(uint(gl_FragCoord.x), uint(gl_FragCoord.y), frame.frameIndex, framesAveraged);
-  if (materialCutout(m, base.a, xi)) discard;
+  if (materialCutoutTransmitting(m, base.a, materialCoverage(m, inUv, inUv1, base.rgb), xi)) discard;
 
   // The glTF front (shared/scene.h): the rasterizer's facing of the world-space winding, turned
   // over where the instance mirrors (the winding is then clockwise). Single-sided surfaces seen

@@ -6,8 +6,9 @@
 //   float lightVisibility(uint light, vec3 toLight, float distance)  1 where light `light` of the
 //                                   table is seen from the point (a shadow ray, a shadow map; 1: unshadowed)
 //   vec3 lightResponse(vec3 toLight)                      the BRDF times the cosine there
-// and the sum is reflected radiance. An includer that sums something else (the I-buffer's
-// light sums, common/ibuffer_lights.glsl) defines TL_LIGHTS_CUSTOM_SUM and, instead of
+// and the sum is reflected radiance. One that defines TL_LIGHTS_TINTED also defines vec3
+// lightTint(), the colour of what its last lightVisibility let through over that visibility.
+// An includer that sums something else (the I-buffer's light sums, common/ibuffer_lights.glsl) defines TL_LIGHTS_CUSTOM_SUM and, instead of
 // lightResponse, the type LightSum with lightSumZero(), lightSumAdd(LightSum, LightSum),
 // lightSumScale(LightSum, float) and LightSum lightContribution(uint light, LightIncidence li)
 // (light `light` of the table, its visibility included, through lightVisibilityOf).
@@ -103,7 +104,13 @@ vec3 lightContribution(uint light, LightIncidence li) {
   if (all(equal(li.irradiance, vec3(0.0)))) return vec3(0.0);
   vec3 response = lightResponse(li.toLight);
   if (all(equal(response, vec3(0.0)))) return vec3(0.0);
-  return li.irradiance * response * (lightVisibilityOf(light, li) * lightSampleWeight(li));
+  float visibility = lightVisibilityOf(light, li);
+#ifdef TL_LIGHTS_TINTED
+  // The includer's shadow rays pass coloured surfaces: visibility is the largest channel of what
+  // came through, lightTint() that colour over it (the reference's glass, reference/path.glsl).
+  response *= lightTint();
+#endif
+  return li.irradiance * response * (visibility * lightSampleWeight(li));
 }
 #endif
 

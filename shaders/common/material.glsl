@@ -14,5 +14,5 @@ vec4 sampleSlot(GpuTextureSlot s, vec2 uv0, vec2 uv1) {
 }
 
 TL_MATERIAL_INPUTS(materialBaseColor, materialRoughnessMetallic, materialOcclusion, materialEmission,
-                   materialDielectricFresnel, sampleSlot)
+                   materialDielectricFresnel, materialTransmission, materialCoverage, sampleSlot)
 #endif

@@ -22,7 +22,10 @@ vec4 slotTexelLod0(GpuTextureSlot s, vec2 uv0, vec2 uv1) {
 // without a texture; emission. Below: the *Lod0 forms (slotTexelLod0); common/material.glsl
 // makes the fragment forms (sampleSlot, with derivatives). The dielectric's Fresnel: F0 (rgb) and
 // F90 (w) from KHR_materials_ior and KHR_materials_specular (shared/scene.h tlDielectricFresnel).
-#define TL_MATERIAL_INPUTS(BASE_COLOR, ROUGHNESS_METALLIC, OCCLUSION, EMISSION, DIELECTRIC_FRESNEL, SAMPLE) \
+// KHR_materials_transmission's factor x its texture's red; and the coverage the G-buffer paths
+// draw a transmitting surface with (shared/scene.h tlTransmissionCoverage; 1: opaque).
+#define TL_MATERIAL_INPUTS(BASE_COLOR, ROUGHNESS_METALLIC, OCCLUSION, EMISSION, DIELECTRIC_FRESNEL, TRANSMISSION, COVERAGE, \
+                           SAMPLE)                                                                       \
   vec4 BASE_COLOR(GpuMaterial m, vec2 uv0, vec2 uv1, vec4 vertexColor) {                                 \
     vec4 base = m.baseColorFactor * vertexColor;                                                         \
     if (m.baseColorTexture.texture != kNoTexture) base *= SAMPLE(m.baseColorTexture, uv0, uv1);          \
@@ -47,10 +50,20 @@ vec4 slotTexelLod0(GpuTextureSlot s, vec2 uv0, vec2 uv1) {
     if (m.specularTexture.texture != kNoTexture) c.w *= SAMPLE(m.specularTexture, uv0, uv1).a;           \
     if (m.specularColorTexture.texture != kNoTexture) c.rgb *= SAMPLE(m.specularColorTexture, uv0, uv1).rgb; \
     return tlDielectricFresnel(m.ior, c.rgb, c.w);                                                       \
+  }                                                                                                      \
+  float TRANSMISSION(GpuMaterial m, vec2 uv0, vec2 uv1) {                                                \
+    float t = m.transmission;                                                                            \
+    if (t > 0.0 && m.transmissionTexture.texture != kNoTexture) t *= SAMPLE(m.transmissionTexture, uv0, uv1).r; \
+    return t;                                                                                            \
+  }                                                                                                      \
+  float COVERAGE(GpuMaterial m, vec2 uv0, vec2 uv1, vec3 baseColor) {                                    \
+    if (!(m.transmission > 0.0)) return 1.0;                                                             \
+    return tlTransmissionCoverage(TRANSMISSION(m, uv0, uv1), ROUGHNESS_METALLIC(m, uv0, uv1).y, baseColor, \
+                                  DIELECTRIC_FRESNEL(m, uv0, uv1).rgb);                                  \
   }
 
 TL_MATERIAL_INPUTS(materialBaseColorLod0, materialRoughnessMetallicLod0, materialOcclusionLod0, materialEmissionLod0,
-                   materialDielectricFresnelLod0, slotTexelLod0)
+                   materialDielectricFresnelLod0, materialTransmissionLod0, materialCoverageLod0, slotTexelLod0)
 
 // A normal map's tangent-space texel (as stored, [0, 1]) applied to the unit normal n facing the
 // viewer or the ray: the tangent is made orthogonal to n, the bitangent is n x t times the
@@ -72,5 +85,9 @@ vec3 normalMapped(vec3 n, vec4 tangent, vec3 texel, float scale) {
 // does not exceed xi, the stage's stochastic-transparency number in [0, 1)).
 bool materialCutout(GpuMaterial m, float alpha, float xi) {
   return tlMaterialCutout(m.alphaMode, m.alphaCutoff, alpha, xi);
+}
+// The G-buffer paths' test: alpha's, and transmission's coverage (shared/scene.h).
+bool materialCutoutTransmitting(GpuMaterial m, float alpha, float coverage, float xi) {
+  return tlMaterialCutoutTransmitting(m.alphaMode, m.alphaCutoff, alpha, coverage, xi);
 }
 #endif

@@ -16,6 +16,7 @@ layout(location = 3) in float inAlpha;
 
 void main() {
   GpuMaterial m = materials[instances[inInstance].material];
-  float alpha = materialBaseColor(m, inUv, inUv1, vec4(1.0, 1.0, 1.0, inAlpha)).a;
-  if (materialCutout(m, alpha, tlOrderedDither4(uint(gl_FragCoord.x), uint(gl_FragCoord.y)))) discard;
+  vec4 base = materialBaseColor(m, inUv, inUv1, vec4(1.0, 1.0, 1.0, inAlpha));
+  float coverage = materialCoverage(m, inUv, inUv1, base.rgb);
+  if (materialCutoutTransmitting(m, base.a, coverage, tlOrderedDither4(uint(gl_FragCoord.x), uint(gl_FragCoord.y)))) discard;
 }

@@ -77,7 +77,9 @@ void main() {
   // A translucent (BLEND) surface fills alpha of its voxels: an ordered dither over the voxel
   // grid (the (x + y, z + 3y) mix keeps every 4x4 block of an axis-aligned wall exact); the
   // cone tracer's mips average it to an opacity of alpha. Both rounds decide alike.
-  if (materialCutout(m, base.a, tlOrderedDither4(uint(v.x + v.y), uint(v.z + 3 * v.y)))) return;
+  // A transmitting surface fills the voxels its coverage says (shared/scene.h), the same way.
+  float coverage = materialCoverage(m, inUv, inUv1, base.rgb);
+  if (materialCutoutTransmitting(m, base.a, coverage, tlOrderedDither4(uint(v.x + v.y), uint(v.z + 3 * v.y)))) return;
   vec3 emission = materialEmission(m, inUv, inUv1);
   vec3 albedo = tlMaterialHitAlbedo(clamp(base.rgb, 0.0, 1.0), m.metallic, tlFrameMaterials(frame.flags));
   vec3 n = normalize(inNormal);

@@ -8,7 +8,7 @@
 layout(set = kSceneSet, binding = kSceneBindingInstances, std430) readonly buffer Instances { GpuInstance instances[]; };
 
 layout(location = 0) rayPayloadEXT RefHit hit;
-layout(location = 1) rayPayloadEXT float visible;
+layout(location = 1) rayPayloadEXT RefShadowRay shadowRay;
 
 // Deterministic per pixel, per sample and per dimension: the same image for the same spp.
 // The dimension has its own 16 bits (beside the pixel's x), so however long a path gets its
@@ -59,6 +59,12 @@ void gather(inout vec3 radiance, uint depth, vec3 light) {
 #endif
 }
 
+// The density with which a path leaving a surface draws direction l: tlSampleBrdf's, for the
+// share of the paths that reflect rather than pass through (tlTransmissionProbability).
+float pathPdf(SurfaceParams s, vec3 n, vec3 v, vec3 l, float pSpec) {
+  return (1.0 - tlTransmissionProbability(s, dot(n, v))) * tlBrdfPdf(s, n, v, l, pSpec);
+}
+
 // The BRDF every next event evaluates (the split masks its lobes at the first surface).
 vec3 pathBrdf(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
 #ifdef TL_REFERENCE_DEPTH_SPLIT
@@ -70,44 +76,60 @@ vec3 pathBrdf(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
 
 
 
+// What arrives along a shadow ray from `origin` in direction `dir` within `tMax`: 0 where an
+// opaque surface or a volume's boundary is in the way, else what the thin transmitting surfaces
+// crossed let through (shadow.rahit, shared/reference.h RefShadowRay).
+vec3 shadowTransmittance(vec3 origin, vec3 dir, float tMax) {
+  shadowRay.transmittance = vec3(1.0);
+  shadowRay.reached = 0.0;
+  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT, 0xFF, kRefShadowHitGroup, 0, 1,
+              origin, 0.0, dir, tMax, 1);
+  return shadowRay.reached > 0.0 ? shadowRay.transmittance : vec3(0.0);
+}
+
 // The light table (shared/lights.h) by next-event estimation from each scattering point: a
 // shadow ray per light (per resampled pick beyond kLightsLoopMax lights). Delta lights cannot
 // be hit by a BRDF-sampled ray; an area light can, so its sampled point (shared/area_lights.h)
 // and the BRDF's rays that meet it (areaLightsMet) share it by the power heuristic.
 vec3 gLightOrigin, gLightNormal, gLightGeometric, gLightView;
 SurfaceParams gLightSurface;
+vec3 gLightTint;
 float lightVisibility(uint light, vec3 toLight, float distance) {
   if (dot(gLightGeometric, toLight) <= 0.0) return 0.0;
-  visible = 0.0;
-  traceRayEXT(tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
-              0xFF, 0, 0, 1, gLightOrigin, 0.0, toLight, distance * (1.0 - 1e-4), 1);
-  return visible;
+  vec3 through = shadowTransmittance(gLightOrigin, toLight, distance * (1.0 - 1e-4));
+  float visibility = max(through.r, max(through.g, through.b));
+  gLightTint = visibility > 0.0 ? through / visibility : vec3(0.0);
+  return visibility;
 }
+vec3 lightTint() { return gLightTint; }
 vec3 lightResponse(vec3 toLight) {
   float nl = dot(gLightNormal, toLight);
   return nl > 0.0 ? pathBrdf(gLightSurface, gLightNormal, gLightView, toLight) * nl : vec3(0.0);
 }
 float lightMisWeight(vec3 toLight, float lightPdf) {
   float pSpec = tlBrdfSpecularProbability(gLightSurface, dot(gLightNormal, gLightView));
-  return tlPowerHeuristic(lightPdf, tlBrdfPdf(gLightSurface, gLightNormal, gLightView, toLight, pSpec));
+  return tlPowerHeuristic(lightPdf, pathPdf(gLightSurface, gLightNormal, gLightView, toLight, pSpec));
 }
 #define TL_LIGHTS_AREA TL_AREA_SAMPLED
 #define TL_LIGHTS_AREA_MIS
+#define TL_LIGHTS_TINTED
 #include "common/lights.glsl"
 #include "common/environment.glsl"
 #include "common/camera.glsl"
 
-// The area lights a BRDF-drawn ray from `origin` meets before `tMax`, weighted against their
-// next-event samples (directionPdf: the BRDF's density of dir; 0: nothing else drew it, weight
-// 1). Lights block nothing, so the path goes on to what lies behind. With more lights than
-// kLightsLoopMax the next-event picks keep the whole weight and the rays count none.
-vec3 areaLightsMet(vec3 origin, vec3 dir, float tMax, float directionPdf) {
+// The area lights a BRDF-drawn ray from `origin` meets between `tMin` and `tMax`, weighted
+// against their next-event samples (directionPdf: the BRDF's density of dir; 0: nothing else
+// drew it, weight 1). The origin is the point that drew the direction (the segments a path takes
+// through transmitting surfaces start further on, at tMin), so the densities are those of its
+// next events. Lights block nothing, so the path goes on to what lies behind. With more lights
+// than kLightsLoopMax the next-event picks keep the whole weight and the rays count none.
+vec3 areaLightsMet(vec3 origin, vec3 dir, float tMin, float tMax, float directionPdf) {
   vec3 sum = vec3(0.0);
   if (frame.lightCount > kLightsLoopMax) return sum;
   for (uint i = 0u; i < frame.lightCount; ++i) {
     if (!tlIsAreaLight(lights[i].type)) continue;
     AreaHit h = tlAreaLightHit(lights[i], origin, dir);
-    if (!(h.t > 0.0) || h.t >= tMax) continue;
+    if (!(h.t > tMin) || h.t >= tMax) continue;
     float w = directionPdf > 0.0 ? tlPowerHeuristic(directionPdf, h.pdf) : 1.0;
     sum += lights[i].intensity.rgb * w;
   }
@@ -154,23 +176,28 @@ vec3 emitterLight(vec3 origin, vec3 n, vec3 geometric, vec3 v, SurfaceParams s, 
   float xi = tlUintToUnitFloat(tlPcgHash(h.z ^ 0x68E31DA4u));
   if (materialCutout(material, base.a, xi)) return vec3(0.0);
   if (dot(emitted, emitted) <= 0.0) return vec3(0.0);
-  visible = 0.0;
-  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT, 0xFF, 0, 0, 1, origin, 0.0, l,
-              distance * (1.0 - 1e-4), 1);
-  if (visible <= 0.0) return vec3(0.0);
+  vec3 through = shadowTransmittance(origin, l, distance * (1.0 - 1e-4));
+  if (all(equal(through, vec3(0.0)))) return vec3(0.0);
   float lightPdf = tlEmitterSolidAnglePdf(e.edge2.w, area, distance2, cosLight);
-  float weight = tlPowerHeuristic(lightPdf, tlBrdfPdf(s, n, v, l, pSpec));
-  return emitted * pathBrdf(s, n, v, l) * (nl * weight / lightPdf);
+  float weight = tlPowerHeuristic(lightPdf, pathPdf(s, n, v, l, pSpec));
+  return emitted * through * pathBrdf(s, n, v, l) * (nl * weight / lightPdf);
 }
 
 // The weight of emission a BRDF-drawn ray found (directionPdf: the BRDF's density of its
-// direction; 0: nothing else could have drawn it) against emitter sampling's draw of that point.
-float emissionWeight(vec3 dir, float directionPdf) {
+// direction; 0: nothing else could have drawn it) against emitter sampling's draw of that point
+// from where the direction was drawn, `before` short of this segment's start (the surfaces it
+// passed straight through).
+float emissionWeight(vec3 dir, float directionPdf, float before) {
   if (push.emitterCount == 0u || !(directionPdf > 0.0) || !(hit.geometric.w > 0.0)) return 1.0;
   float cosLight = abs(dot(hit.geometric.xyz, dir));
-  float lightPdf = hit.geometric.w * hit.positionT.w * hit.positionT.w / max(cosLight, 1e-12);
+  float distance = before + hit.positionT.w;
+  float lightPdf = hit.geometric.w * distance * distance / max(cosLight, 1e-12);
   return tlPowerHeuristic(directionPdf, lightPdf);
 }
+
+// How many transmitting surfaces one segment of a path may pass straight through (a bound
+// for the GPU's sake: past it the path ends).
+const uint kPathCrossingsMax = 64u;
 
 // A camera ray: what it meets first, passing the backs of single-sided surfaces as the raster
 // culls them (glTF doubleSided, shared/scene.h). Each crossing restarts the ray just beyond the
@@ -197,10 +224,8 @@ void gatherNextEvents(inout vec3 radiance, uint bounce, vec3 throughput, vec3 po
   vec3 toSun = frame.sunToLight.xyz;
   float sunNl = dot(n, toSun);
   if ((frame.flags & kFrameFlagSunShadows) != 0u && sunNl > 0.0 && dot(geometric, toSun) > 0.0) {
-    visible = 0.0;
-    traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
-                0xFF, 0, 0, 1, position, 0.0, toSun, 1e30, 1);
-    gather(radiance, bounce + 1u, throughput * frame.sunIrradiance.rgb * (sunNl * visible) * pathBrdf(s, n, v, toSun));
+    vec3 through = shadowTransmittance(position, toSun, 1e30);
+    gather(radiance, bounce + 1u, throughput * frame.sunIrradiance.rgb * through * sunNl * pathBrdf(s, n, v, toSun));
   }
 
   if (frame.lightCount > 0u) {
@@ -223,12 +248,10 @@ void gatherNextEvents(inout vec3 radiance, uint bounce, vec3 throughput, vec3 po
     vec3 l = environmentSample(next2(), envPdf);
     float nl = dot(n, l);
     if (envPdf > 0.0 && nl > 0.0 && dot(geometric, l) > 0.0) {
-      visible = 0.0;
-      traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
-                  0xFF, 0, 0, 1, position, 0.0, l, 1e30, 1);
-      if (visible > 0.0) {
-        float w = environmentMisWeight(envPdf, tlBrdfPdf(s, n, v, l, pSpec));
-        gather(radiance, bounce + 1u, throughput * environmentRadiance(l) * pathBrdf(s, n, v, l) * (nl * w / envPdf));
+      vec3 through = shadowTransmittance(position, l, 1e30);
+      if (any(greaterThan(through, vec3(0.0)))) {
+        float w = environmentMisWeight(envPdf, pathPdf(s, n, v, l, pSpec));
+        gather(radiance, bounce + 1u, throughput * through * environmentRadiance(l) * pathBrdf(s, n, v, l) * (nl * w / envPdf));
       }
     }
   }
@@ -246,7 +269,16 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
   // the environment map's samples; 0 where nothing else could have drawn it (the camera ray,
   // the caller's first direction).
   float directionPdf = 0.0;
-  for (uint bounce = firstBounce;; ++bounce) {
+  // Passing straight through a thin transmitting surface (shared/shading.h tlThinTransmittance)
+  // is not a scattering event: the direction, its density and the bounce stay. `before` is how
+  // far the direction has come from the point that drew it. The boundary of a volume
+  // (KHR_materials_volume) refracts instead: a new direction, drawn by nothing else (a delta:
+  // density 0, what it meets weighs 1, as no next event reaches through it). `medium` is the
+  // absorption of the volume the path is in (one at a time, the camera outside every volume).
+  float before = 0.0;
+  vec3 medium = vec3(0.0);
+  uint crossings = 0u;
+  for (uint bounce = firstBounce;;) {
     // Only camera rays cull single-sided backs; every scattered ray sees both sides.
     if (bounce == 0u)
       traceCameraRay(origin, dir);
@@ -254,28 +286,30 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
       traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xFF, 0, 0, 0, origin, 0.0, dir, 1e30, 0);
     // Area lights are not shown to the camera (no path draws them): only scattered rays see them.
     if (bounce > 0u && frame.lightCount > 0u)
-      gather(radiance, bounce, throughput * areaLightsMet(origin, dir, hit.positionT.w < 0.0 ? 1e30 : hit.positionT.w, directionPdf));
+      gather(radiance, bounce,
+             throughput * areaLightsMet(origin - dir * before, dir, before, before + (hit.positionT.w < 0.0 ? 1e30 : hit.positionT.w),
+                                        directionPdf));
+    if (any(greaterThan(medium, vec3(0.0)))) throughput *= exp(-medium * (hit.positionT.w < 0.0 ? 1e30 : hit.positionT.w));
     if (hit.positionT.w < 0.0) {
       float w = environmentMapOn() && directionPdf > 0.0 ? environmentMisWeight(directionPdf, environmentPdf(dir)) : 1.0;
       gather(radiance, bounce, throughput * environmentRadiance(dir) * w);
       break;
     }
-    gather(radiance, bounce, throughput * hit.emission.rgb * emissionWeight(dir, directionPdf));
+    gather(radiance, bounce, throughput * hit.emission.rgb * emissionWeight(dir, directionPdf, before));
     if (bounce >= push.maxBounces) break;  // no more scattering events allowed
 
     vec3 n = hit.normal.xyz, geometric = hit.geometric.xyz, v = -dir;
-    SurfaceParams s =
-        tlMaterialSurfaceFresnel(hit.baseColor.rgb, hit.baseColor.a, hit.emission.a, hit.fresnel, tlFrameMaterials(frame.flags));
+    SurfaceParams s = tlSurfaceTransmitting(
+        tlMaterialSurfaceFresnel(hit.baseColor.rgb, hit.baseColor.a, hit.emission.a, hit.fresnel, tlFrameMaterials(frame.flags)),
+        hit.transmission.x);
     vec3 position = tlOffsetRayOrigin(hit.positionT.xyz, geometric, frame.sceneScale);
 
     if (bounce == 0u && push.aoRadius > 0.0) {
       // One cosine-distributed ray within the AO radius: the definition RTAO estimates.
       vec3 a = tlLocalToWorld(tlSampleCosineHemisphere(next2()), n);
       if (dot(geometric, a) > 0.0) {
-        visible = 0.0;
-        traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT,
-                    0xFF, 0, 0, 1, position, 0.0, a, push.aoRadius, 1);
-        gAo = visible;
+        // What glass lets through counts as open (by luminance).
+        gAo = tlLuminance(shadowTransmittance(position, a, push.aoRadius));
       } else {
         gAo = 0.0;  // the shading normal points into the surface here: treat as occluded
       }
@@ -296,18 +330,50 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
 #endif
       gatherNextEvents(radiance, bounce, throughput, position, n, geometric, v, s, pSpec);
 
-    // Next direction from the BRDF (shared/shading.h): the single-scattering lobe from its
-    // visible normals, the rest by cosine, each in proportion to its albedo; weight f cos / pdf.
     vec2 u = next2();
     vec2 choice = next2();
+    float pThrough = tlTransmissionProbability(s, dot(n, v));
+    if (choice.x < pThrough) {
+      // Through the surface, the bounce not counted (a bound on the crossings instead): on in
+      // the same direction, or refracted into or out of its volume by Snell's law. Where the
+      // light cannot leave (total internal reflection) the share that would have passed is
+      // reflected as by a mirror, and the path stays inside.
+      throughput *= tlThinTransmittance(s, dot(n, v)) / pThrough;
+      bool crossed = true;
+      if (hit.transmission.y > 0.0) {
+        bool leaving = hit.transmission.z > 0.0;
+        float ior = max(hit.transmission.w, 1.0);
+        vec3 refracted = refract(dir, n, leaving ? ior : 1.0 / ior);
+        crossed = dot(refracted, refracted) > 0.0 && dot(refracted, geometric) < 0.0;
+        dir = crossed ? normalize(refracted) : reflect(dir, n);
+        if (!crossed && dot(dir, geometric) <= 0.0) break;
+        if (crossed) medium = leaving ? vec3(0.0) : hit.absorption.rgb;
+        directionPdf = 0.0;
+        before = 0.0;
+      } else {
+        before += hit.positionT.w;
+      }
+      origin = tlOffsetRayOrigin(hit.positionT.xyz, crossed ? -geometric : geometric, frame.sceneScale);
+#ifdef TL_REFERENCE_DEPTH_SPLIT
+      if (bounce == 0u) gLobeTarget = kLobeNone;  // the next surface seen is the first to reflect
+#endif
+      if (++crossings > kPathCrossingsMax) break;
+      continue;
+    }
+    choice.x = (choice.x - pThrough) / (1.0 - pThrough);
+
+    // Next direction from the BRDF (shared/shading.h): the single-scattering lobe from its
+    // visible normals, the rest by cosine, each in proportion to its albedo; weight f cos / pdf.
     vec3 l = tlSampleBrdf(s, n, v, pSpec, u, choice.x);
     float nl = dot(n, l);
     if (nl <= 0.0 || dot(geometric, l) <= 0.0) break;
-    float pdf = tlBrdfPdf(s, n, v, l, pSpec);
+    float pdf = (1.0 - pThrough) * tlBrdfPdf(s, n, v, l, pSpec);
     if (!(pdf > 1e-8)) break;
     vec3 f = tlBrdf(s, n, v, l);
     throughput *= f * (nl / pdf);
     directionPdf = pdf;
+    before = 0.0;
+    crossings = 0u;
 #ifdef TL_REFERENCE_DEPTH_SPLIT
     if (bounce == 0u) {
       gSpecularShare = clamp(tlBrdfSpecular(s, n, v, l) / max(f, vec3(1e-30)), 0.0, 1.0);
@@ -326,6 +392,7 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
     }
     origin = position;
     dir = l;
+    ++bounce;
   }
   return radiance;
 }

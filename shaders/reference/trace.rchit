@@ -52,9 +52,13 @@ void main() {
   vec3 w = vec3(1.0 - bary.x - bary.y, bary.x, bary.y);
   vec3 position = vec3(inst.modelRelative * vec4(h.p0 * w.x + h.p1 * w.y + h.p2 * w.z, 1.0));
   hit.positionT = vec4(position, gl_HitTEXT);
-  hit.normal = vec4(shading, back && tlMaterialCulledFromBehind(m.flags) ? 1.0 : 0.0);
+  // A volume's boundary is seen from inside by the rays it refracts in: never culled.
+  bool culled = back && tlMaterialCulledFromBehind(m.flags) && !(m.thickness > 0.0 && m.transmission > 0.0);
+  hit.normal = vec4(shading, culled ? 1.0 : 0.0);
   hit.geometric = vec4(geometric, refEmitterDensity(g, uint(gl_PrimitiveID), refWorldArea(inst.modelRelative, h)));
   hit.baseColor = vec4(clamp(baseColor.rgb, 0.0, 1.0), clamp(rm.x, 0.0, 1.0));
   hit.emission = vec4(emission, clamp(rm.y, 0.0, 1.0));
   hit.fresnel = fresnel;
+  hit.transmission = vec4(materialTransmissionLod0(m, h.uv0, h.uv1), m.thickness > 0.0 ? 1.0 : 0.0, back ? 1.0 : 0.0, m.ior);
+  hit.absorption = m.thickness > 0.0 ? m.absorption : vec4(0.0);
 }

@@ -124,6 +124,22 @@ struct RefHit {
   vec4 baseColor;     // rgb, a roughness
   vec4 emission;      // rgb emitted radiance, a metallic
   vec4 fresnel;       // the dielectric's F0 (rgb) and F90 (a): KHR_materials_ior / specular (shared/scene.h)
+  vec4 transmission;  // x KHR_materials_transmission (factor x texture, 0: opaque); y 1 where the mesh bounds a
+                      // volume (KHR_materials_volume); z 1 where the ray met the surface's back; w the ior
+  vec4 absorption;    // rgb the volume's absorption per scene unit (KHR_materials_volume), 0 for a thin surface
+};
+
+// The hit groups: paths' rays (trace.rchit, alpha.rahit) and shadow rays (shadow.rahit), the
+// traceRayEXT sbtRecordOffset each takes.
+TL_CONST uint kRefPathHitGroup = 0;
+TL_CONST uint kRefShadowHitGroup = 1;
+
+// A shadow ray's payload (location 1): what the thin transmitting surfaces it crossed let
+// through (their transmittance multiplied), and whether it reached its end (the miss shader sets
+// `reached`; an opaque hit ends it without).
+struct RefShadowRay {
+  vec3 transmittance;
+  float reached;
 };
 TL_END
 

@@ -64,6 +64,13 @@ struct GpuMaterial {
   GpuTextureSlot occlusionTexture;
   GpuTextureSlot specularTexture;       // KHR_materials_specular: its alpha scales specularFactor
   GpuTextureSlot specularColorTexture;  // and its rgb (sRGB) specularColorFactor
+  float transmission;                   // KHR_materials_transmission's factor (shared/shading.h tlSurfaceTransmitting)
+  float thickness;                      // KHR_materials_volume's thicknessFactor: above 0 the mesh bounds a volume
+  uint transmissionPad0;
+  uint transmissionPad1;
+  vec4 absorption;                     // KHR_materials_volume: rgb the absorption coefficient per scene unit,
+                                       // -ln(attenuationColor) / attenuationDistance (0: clear)
+  GpuTextureSlot transmissionTexture;  // KHR_materials_transmission: its red scales the factor
 };
 
 // glTF's doubleSided. A single-sided surface (the flag clear) is culled where the camera sees
@@ -129,11 +136,33 @@ TL_FN bool tlMaterialCutout(uint alphaMode, float alphaCutoff, float alpha, floa
   if (alphaMode == kAlphaBlend) return alpha <= xi;
   return false;
 }
+
+// KHR_materials_transmission in the G-buffer paths (rt and legacy), which have one surface per
+// pixel: a transmitting surface is stochastic coverage, as alpha BLEND is. It is there for the
+// share of the samples (pixels, shadow-map texels, voxels, rays) it does not let through at normal
+// incidence, 1 - t (1 - metallic) lum(baseColor) (1 - lum(F0_d)), and absent for the rest, where
+// what lies behind it is seen and lit. The light it passes is then right in luminance at normal
+// incidence; its tint, its Fresnel's rise at grazing angles and the part of its reflection that
+// the absent samples lose are not (the reference renders all three: shared/shading.h). Computed
+// from the authored material in every override mode.
+TL_FN float tlTransmissionCoverage(float transmission, float metallic, vec3 baseColor, vec3 dielectricF0) {
+  float through = clamp(transmission, 0.0f, 1.0f) * (1.0f - clamp(metallic, 0.0f, 1.0f)) *
+                  clamp(tlLuminance(baseColor), 0.0f, 1.0f) * (1.0f - clamp(tlLuminance(dielectricF0), 0.0f, 1.0f));
+  return 1.0f - through;
+}
+
+// tlMaterialCutout with that coverage: cut where alpha cuts, or where the surface's presence
+// (alpha x coverage for BLEND, coverage otherwise) does not exceed xi.
+TL_FN bool tlMaterialCutoutTransmitting(uint alphaMode, float alphaCutoff, float alpha, float coverage, float xi) {
+  if (alphaMode == kAlphaMask && alpha < alphaCutoff) return true;
+  if (alphaMode == kAlphaBlend) return alpha * coverage <= xi;
+  return coverage < 1.0f && coverage <= xi;
+}
 TL_END
 
 #ifdef __cplusplus
 static_assert(sizeof(tl::shared::GpuTextureSlot) == 32);
-static_assert(sizeof(tl::shared::GpuMaterial) == 304);
+static_assert(sizeof(tl::shared::GpuMaterial) == 368);
 static_assert(sizeof(tl::shared::GpuInstance) == 208);
 #endif
 #endif

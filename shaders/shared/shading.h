@@ -76,6 +76,8 @@ struct SurfaceParams {
   vec3 layerAverage;     // E_d,avg: the cosine-weighted average of the dielectric layer's specular albedo
   vec3 baseColor;        // what it was made from (tlSurfaceWithRoughness)
   float metallic;
+  vec3 transmitted;    // the diffuse layer's share that passes through instead (tlSurfaceTransmitting)
+  float transmission;  // and the factor t that made it
 };
 
 // The tables at (cos theta, roughness): vec2(S, B) with E_F0 = F0 S + B, bilinear.
@@ -131,6 +133,21 @@ TL_FN SurfaceParams tlSurfaceSpecular(vec3 baseColor, float roughness, float met
   s.layerMsFresnel = tlMultipleScatteringFresnel(d0, w, s.singleAverage);
   s.msFresnel = mix(s.layerMsFresnel, tlMultipleScatteringFresnel(baseColor, 1.0f, s.singleAverage), m);
   s.layerAverage = d0 * average.x + vec3(w * average.y) + s.layerMsFresnel * (1.0f - s.singleAverage);
+  s.transmitted = vec3(0.0f);
+  s.transmission = 0.0f;
+  return s;
+}
+
+// KHR_materials_transmission: a share t of the dielectric's diffuse layer passes through the
+// surface instead of scattering back. The layer keeps 1 - t of its albedo and the rest leaves on
+// the far side (tlThinTransmittance): what the specular layer does not reflect, tinted by the
+// base colour, so reflection plus transmission is the opaque surface's albedo and a white pane
+// conserves energy exactly. Metal transmits nothing (its share is baseColor (1 - metallic) t).
+TL_FN SurfaceParams tlSurfaceTransmitting(SurfaceParams s, float transmission) {
+  float t = clamp(transmission, 0.0f, 1.0f);
+  s.transmission = t;
+  s.transmitted = s.diffuse * t;
+  s.diffuse = s.diffuse * (1.0f - t);
   return s;
 }
 
@@ -149,7 +166,8 @@ TL_FN SurfaceParams tlLambertSurface(vec3 albedo) {
 // The same surface at another roughness (the SH specular's directional part, shared/sh_specular.h).
 TL_FN SurfaceParams tlSurfaceWithRoughness(SurfaceParams s, float roughness) {
   if (s.specular == 0.0f) return s;  // Lambert does not depend on roughness
-  return tlSurfaceSpecular(s.baseColor, roughness, s.metallic, s.layerF0, s.layerF90);
+  return tlSurfaceTransmitting(tlSurfaceSpecular(s.baseColor, roughness, s.metallic, s.layerF0, s.layerF90),
+                               s.transmission);
 }
 
 // E(mu) with F = 1, from the split.
@@ -164,6 +182,17 @@ TL_FN vec3 tlDiffuseLayerWeight(SurfaceParams s) { return max(vec3(1.0f) - s.lay
 TL_FN vec3 tlLayerAlbedo(SurfaceParams s, vec2 split) {
   float e = split.x + split.y;
   return s.specular * (s.layerF0 * split.x + vec3(s.layerF90 * split.y) + s.layerMsFresnel * (1.0f - e));
+}
+
+// The light a transmitting surface passes at |cos theta| = mu to the incident direction. A thin
+// one passes it straight through, unrefracted, at every roughness (the roughness blurs its
+// reflection only): exact for a smooth thin pane, whose parallel faces give the light back its
+// direction. The boundary of a volume (KHR_materials_volume) refracts it in the reference
+// (reference/path.glsl). The user guide states the approximations.
+TL_FN vec3 tlThinTransmittance(SurfaceParams s, float cosTheta) {
+  if (!(s.transmission > 0.0f)) return vec3(0.0f);
+  vec2 split = tlSpecularAlbedoSplit(max(abs(cosTheta), kBrdfMinCosine), s.roughness);
+  return s.transmitted * (vec3(1.0f) - tlLayerAlbedo(s, split));
 }
 
 // The specular lobes (f_ss + f_ms) alone.
@@ -267,6 +296,15 @@ TL_FN vec3 tlSamplingView(vec3 n, vec3 v) {
   float nv = dot(n, v);
   if (nv >= kBrdfMinCosine) return v;
   return normalize(v + (kBrdfMinCosine - nv) * n);
+}
+
+// The probability that the reference's path passes a transmitting surface rather than
+// reflecting off it: the share of the light at this view that goes through (luminance).
+TL_FN float tlTransmissionProbability(SurfaceParams s, float nv) {
+  float through = tlLuminance(tlThinTransmittance(s, nv));
+  if (!(through > 0.0f)) return 0.0f;
+  float back = tlLuminance(tlEnvironmentAlbedo(s, nv));
+  return through / (through + back);
 }
 
 // A direction drawn with the mixture tlBrdfPdf describes; `choice` picks the lobe.

@@ -300,6 +300,47 @@ TEST(SceneImport, MaterialExtensionsAreReadAndSpecularGlossinessIsConverted) {
     EXPECT_TRUE(std::any_of(report.begin(), report.end(), [&](const std::string& l) { return l.rfind(line, 0) == 0; })) << line;
 }
 
+// KHR_materials_transmission and KHR_materials_volume reach the material as authored; a
+// transmission above 1 is clamped with a warning, and an attenuationDistance that is not
+// positive is one clear error.
+TEST(SceneImport, TransmissionAndVolumeAreRead) {
+  TempDir tmp;
+  writeTriangleBin(tmp.path / "t.bin");
+  auto j = triangle("t.bin");
+  j["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_volume"};
+  j["materials"] = {
+      {{"name", "window"}, {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}}},
+      {{"name", "bottle"},
+       {"extensions",
+        {{"KHR_materials_transmission", {{"transmissionFactor", 1.5}}},
+         {"KHR_materials_volume",
+          {{"thicknessFactor", 0.2}, {"attenuationColor", {0.5, 0.8, 1.0}}, {"attenuationDistance", 0.25}}}}}}};
+  j["meshes"][0]["primitives"][0]["material"] = 1;
+  writeText(tmp.path / "glass.gltf", j.dump());
+  const Scene s = loadGltf(tmp.path / "glass.gltf");
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_FLOAT_EQ(s.materials[0].transmission, 1.0f);
+  EXPECT_FLOAT_EQ(s.materials[0].thickness, 0.0f);
+  EXPECT_TRUE(std::isinf(s.materials[0].attenuationDistance));
+  const Material& bottle = s.materials[1];
+  EXPECT_FLOAT_EQ(bottle.transmission, 1.0f);
+  EXPECT_FLOAT_EQ(bottle.thickness, 0.2f);
+  EXPECT_FLOAT_EQ(bottle.attenuationColor.g, 0.8f);
+  EXPECT_FLOAT_EQ(bottle.attenuationDistance, 0.25f);
+  EXPECT_TRUE(std::any_of(s.warnings.begin(), s.warnings.end(),
+                          [](const std::string& w) { return w.find("transmissionFactor") != std::string::npos; }));
+  for (const auto& i : s.ignored) EXPECT_EQ(i.find("not applied"), std::string::npos) << i;
+  const auto report = sceneReport(s);
+  for (const char* line :
+       {"extension KHR_materials_transmission: rendered", "extension KHR_materials_volume: rendered"})
+    EXPECT_TRUE(std::any_of(report.begin(), report.end(), [&](const std::string& l) { return l.rfind(line, 0) == 0; }))
+        << line;
+
+  j["materials"][1]["extensions"]["KHR_materials_volume"]["attenuationDistance"] = 0.0;
+  writeText(tmp.path / "bad_distance.gltf", j.dump());
+  expectOneLineErrorNaming(tmp.path / "bad_distance.gltf", "attenuationDistance");
+}
+
 TEST(SceneErrors, NonFinitePosition) {
   TempDir tmp;
   writeTriangleBin(tmp.path / "t.bin", 2, {0, 0, 0, NAN, 0, 0, 0, 1, 0});

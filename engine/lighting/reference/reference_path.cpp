@@ -53,9 +53,14 @@ constexpr const char* kDepthRaygen = "reference/bounces.rgen";
 constexpr const char* kMisses[] = {"reference/trace.rmiss", "reference/shadow.rmiss"};
 constexpr const char* kClosestHit = "reference/trace.rchit";
 constexpr const char* kAnyHit = "reference/alpha.rahit";  // alpha MASK and BLEND: runs on non-opaque geometry only
+// Shadow rays' hit group (shared/reference.h kRefShadowHitGroup): cut-outs and transmission.
+constexpr const char* kShadowAnyHit = "reference/shadow.rahit";
 
 // The three pipelines: the same paths, misses and hit shaders from three ray generations.
-const RayShaders kTraceShaders{"reference.trace", kRaygen, {std::begin(kMisses), std::end(kMisses)}, {{kClosestHit, kAnyHit}}};
+const RayShaders kTraceShaders{"reference.trace",
+                               kRaygen,
+                               {std::begin(kMisses), std::end(kMisses)},
+                               {{kClosestHit, kAnyHit}, {"", kShadowAnyHit}}};
 const RayShaders kIrradianceShaders{"reference.irradiance", kIrradianceRaygen, kTraceShaders.misses, kTraceShaders.hitGroups};
 const RayShaders kDepthShaders{"reference.bounces", kDepthRaygen, kTraceShaders.misses, kTraceShaders.hitGroups};
 // The benchmark's trivial kernel (bench --rays): the rt path's distance-only hit and miss shaders.
@@ -390,6 +395,7 @@ std::vector<std::string> referenceShaders() {
   all.insert(all.end(), std::begin(kMisses), std::end(kMisses));
   all.push_back(kClosestHit);
   all.push_back(kAnyHit);
+  all.push_back(kShadowAnyHit);
   return all;
 }
 
