@@ -40,6 +40,9 @@ void scaleScene(Scene& scene, double factor) {
     c.xmag *= float(factor), c.ymag *= float(factor);
   }
   for (Light& l : scene.lights) scaleLight(l, factor);
+  // A volume's attenuation distance is a length in the world (KHR_materials_volume); its
+  // thickness is in the mesh's space, which the nodes already scale.
+  for (Material& m : scene.materials) m.attenuationDistance *= float(factor);
   // Another scene as far as every history is concerned.
   scene.contentHash = hashBytes(&factor, sizeof factor, scene.contentHash);
 }
