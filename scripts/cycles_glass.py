@@ -4,7 +4,7 @@ another path tracer's: a clear glass block and a glass sphere, each the boundary
 exporter's "glTF Material Output" thickness), in front of a wall of emissive stripes, in the
 dark. The stripes seen through the glass are displaced and mirrored by refraction and total
 internal reflection, so any difference in either shows. A development check, not a CI
-dependency.
+dependency (Debian's blender and, for its glTF exporter, python3-numpy).
 
     blender -b --python scripts/cycles_glass.py -- OUT_DIR [--render SPP] [--size WxH]
 
