@@ -82,7 +82,15 @@ std::vector<std::string> sceneReport(const Scene& s) {
   std::vector<std::pair<std::string, size_t>> modes;
   for (const auto& m : s.materials)
     count(modes, m.alphaMode == AlphaMode::Mask ? "alpha MASK" : m.alphaMode == AlphaMode::Blend ? "alpha BLEND" : "opaque");
-  lines.push_back(fmt::format("materials: {} ({})", s.materials.size(), counts(modes)));
+  // Glass is counted beside the alpha modes: a transmitting surface has one of them too.
+  size_t transmitting = 0, volumes = 0;
+  for (const auto& m : s.materials) {
+    transmitting += m.transmits();
+    volumes += m.transmits() && m.thickness > 0.0f;
+  }
+  std::string glass =
+      transmitting ? fmt::format("; {} transmitting, {} of them bounding a volume", transmitting, volumes) : "";
+  lines.push_back(fmt::format("materials: {} ({}{})", s.materials.size(), counts(modes), glass));
   std::vector<std::pair<std::string, size_t>> formats;
   size_t placeholders = 0;
   for (const auto& t : s.textures) {
