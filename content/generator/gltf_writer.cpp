@@ -277,6 +277,13 @@ int SceneWriter::material(const MaterialSpec& spec) {
     m.extensions["KHR_materials_transmission"] = tinygltf::Value(e);
     use("KHR_materials_transmission");
   }
+  if (spec.clearcoat > 0.0f) {
+    tinygltf::Value::Object e;
+    e["clearcoatFactor"] = tinygltf::Value(double(spec.clearcoat));
+    e["clearcoatRoughnessFactor"] = tinygltf::Value(double(spec.clearcoatRoughness));
+    m.extensions["KHR_materials_clearcoat"] = tinygltf::Value(e);
+    use("KHR_materials_clearcoat");
+  }
   if (spec.thickness > 0.0f) {
     tinygltf::Value::Object e;
     e["thicknessFactor"] = tinygltf::Value(double(spec.thickness));

@@ -85,6 +85,8 @@ struct MaterialSpec {
   // thickness is above 0): attenuationColor left after attenuationDistance.
   float transmission = 0.0f;
   float thickness = 0.0f;
+  float clearcoat = 0.0f;  // KHR_materials_clearcoat, written when above 0
+  float clearcoatRoughness = 0.0f;
   glm::vec3 attenuationColor{1.0f};
   std::optional<float> attenuationDistance;
 };

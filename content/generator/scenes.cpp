@@ -1419,6 +1419,22 @@ void glassVolume(const std::filesystem::path& dir) {
   w.write(dir);
 }
 
+// KHR_materials_clearcoat: two black, smooth dielectric quads (roughness 0.05) under a uniform
+// sky of 1, seen from above: bare, head-on it reflects Fresnel's 0.04 of the sky; under a full,
+// smooth clear coat (ior 1.5) the light meets two such interfaces, 1 - (1 - 0.04)^2 = 0.0784.
+void clearcoatProbe(const std::filesystem::path& dir) {
+  SceneWriter w("clearcoat_probe");
+  MaterialSpec bare{"black_bare", {0.0f, 0.0f, 0.0f}, 0.0f, 0.05f};
+  MaterialSpec coated{"black_coated", {0.0f, 0.0f, 0.0f}, 0.0f, 0.05f};
+  coated.clearcoat = 1.0f;
+  coated.clearcoatRoughness = 0.05f;
+  w.node("black_bare", w.mesh("black_bare", quad(1.0f, 1.0f), w.material(bare)), {-0.6f, 0.0f, 0.0f});
+  w.node("black_coated", w.mesh("black_coated", quad(1.0f, 1.0f), w.material(coated)), {0.6f, 0.0f, 0.0f});
+  w.camera("above", {0.0f, 4.0f, 0.01f}, {0.0f, 0.0f, 0.0f}, 40.0f);
+  w.sky({1.0f, 1.0f, 1.0f});
+  w.write(dir);
+}
+
 // Scale: `instances` boxes on a 2 km square of ground, each one of `keys` distinct mesh and
 // material combinations (albedo keys): 40 box shapes x as many materials as the keys need.
 // The positions are a jittered grid, the shapes and materials and yaw a fixed hash of the
@@ -1583,6 +1599,7 @@ int main(int argc, char** argv) {
     tl::content::glassWindow(dir);
     tl::content::glassFurnace(dir);
     tl::content::glassVolume(dir);
+    tl::content::clearcoatProbe(dir);
     tl::content::writeHardScenes(dir / "hard");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tl_content_gen: %s\n", e.what());

@@ -1,6 +1,6 @@
 // The glTF material extensions that change how a surface reflects or lets light through
 // (KHR_materials_ior, KHR_materials_specular, KHR_materials_unlit, KHR_materials_transmission,
-// KHR_materials_volume) and KHR_materials_pbrSpecularGlossiness, which
+// KHR_materials_volume, KHR_materials_clearcoat) and KHR_materials_pbrSpecularGlossiness, which
 // is converted to the metal-rough model on import. Every value is checked as the float it is
 // stored in (ImportValues), as the core material's are (gltf_materials.cpp).
 #include <algorithm>
@@ -78,6 +78,15 @@ void readReflectionExtensions(const tinygltf::Material& gm, Material& m, ImportV
                                     where + " transmissionFactor");
     m.transmissionTexture =
         texture(extensionTexture(*tr, "transmissionTexture", values, where), false, where + " transmissionTexture");
+  }
+  if (const auto* cc = extension(gm, "KHR_materials_clearcoat")) {
+    const std::string where = what + " KHR_materials_clearcoat";
+    m.clearcoat =
+        values.clamped(number(*cc, "clearcoatFactor", 0.0f, values, where), 0.0f, 1.0f, where + " clearcoatFactor");
+    m.clearcoatRoughness = values.clamped(number(*cc, "clearcoatRoughnessFactor", 0.0f, values, where), 0.0f, 1.0f,
+                                          where + " clearcoatRoughnessFactor");
+    m.clearcoatTexturesUnread =
+        cc->Has("clearcoatTexture") || cc->Has("clearcoatRoughnessTexture") || cc->Has("clearcoatNormalTexture");
   }
   if (const auto* vol = extension(gm, "KHR_materials_volume")) {
     const std::string where = what + " KHR_materials_volume";

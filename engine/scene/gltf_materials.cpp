@@ -101,6 +101,12 @@ void readMaterials(GltfImport& in, TextureCache& textures) {
           "KHR_materials_transmission",
           "in the reference (a thin surface unrefracted); stochastic coverage (grey, at normal incidence) in the "
           "G-buffer paths");
+    if (m.clearcoat > 0.0f && !m.unlit)
+      in.ignored.add("KHR_materials_clearcoat",
+                     "in the reference; the G-buffer paths render the base without its coat");
+    if (m.clearcoatTexturesUnread)
+      in.ignored.add("KHR_materials_clearcoat textures",
+                     "not read (the coat's factors hold across the surface, its normal is the base's)");
     if (m.transmits() && m.thickness > 0.0f)
       in.ignored.add("KHR_materials_volume", "refraction and absorption in the reference only");
   }

@@ -49,14 +49,14 @@ struct GltfImport {
 };
 
 // The extensions the importer applies (KHR_materials_emissive_strength, _ior, _specular,
-// _unlit, _transmission, _volume, _pbrSpecularGlossiness (converted), KHR_lights_punctual, KHR_mesh_quantization,
-// KHR_texture_transform): a file that requires another is refused, one that merely uses another
+// _unlit, _transmission, _volume, _clearcoat, _pbrSpecularGlossiness (converted), KHR_lights_punctual,
+// KHR_mesh_quantization, KHR_texture_transform): a file that requires another is refused, one that merely uses another
 // is loaded with an ignored-feature line.
 inline bool extensionApplied(const std::string& name) {
   return name == "KHR_materials_emissive_strength" || name == "KHR_materials_ior" || name == "KHR_materials_specular" ||
          name == "KHR_materials_unlit" || name == "KHR_materials_transmission" || name == "KHR_materials_volume" ||
-         name == "KHR_materials_pbrSpecularGlossiness" || name == "KHR_lights_punctual" ||
-         name == "KHR_mesh_quantization" || name == "KHR_texture_transform";
+         name == "KHR_materials_clearcoat" || name == "KHR_materials_pbrSpecularGlossiness" ||
+         name == "KHR_lights_punctual" || name == "KHR_mesh_quantization" || name == "KHR_texture_transform";
 }
 
 // The file's bytes parsed by tinygltf under the input limits (gltf_file.cpp): one SceneError
@@ -78,7 +78,7 @@ struct ExtensionTexture {
 ExtensionTexture extensionTexture(const tinygltf::Value& ext, const char* name, ImportValues& values, const std::string& what);
 // Reads a material's texture through the importer's cache (srgb: a colour texture).
 using TextureReader = std::function<std::optional<TextureRef>(const ExtensionTexture&, bool srgb, const std::string& what)>;
-// KHR_materials_ior, _specular, _unlit, _transmission and _volume into m (gltf_material_extensions.cpp).
+// KHR_materials_ior, _specular, _unlit, _transmission, _volume and _clearcoat into m (gltf_material_extensions.cpp).
 void readReflectionExtensions(const tinygltf::Material& gm, Material& m, ImportValues& values, const std::string& what,
                               const TextureReader& texture);
 // KHR_materials_pbrSpecularGlossiness converted into m's metal-rough fields, when the material has it.

@@ -201,6 +201,8 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device), d
     g.transmissionTexture = textureSlot(m.transmissionTexture);
     g.thickness = m.thickness;
     g.absorption = glm::vec4(volumeAbsorption(m), 0.0f);
+    g.clearcoat = m.unlit ? 0.0f : m.clearcoat;
+    g.clearcoatRoughness = m.clearcoatRoughness;
     materials.push_back(g);
   }
   materials_ = gpu::Buffer(device, materials.size() * sizeof(GpuMaterial), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,

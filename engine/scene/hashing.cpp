@@ -68,6 +68,8 @@ uint64_t hashMaterial(const Material& m, const std::vector<Texture>& textures) {
   h.add(m.thickness);
   h.add(m.attenuationColor);
   h.add(m.attenuationDistance);
+  h.add(m.clearcoat);
+  h.add(m.clearcoatRoughness);
   for (const auto& t : {m.baseColorTexture, m.normalTexture, m.metallicRoughnessTexture, m.emissiveTexture,
                         m.occlusionTexture, m.specularTexture, m.specularColorTexture, m.transmissionTexture}) {
     uint64_t th = t && t->texture < textures.size() ? textures[t->texture].contentHash : 0;

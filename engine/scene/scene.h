@@ -135,6 +135,11 @@ struct Material {
   glm::vec3 attenuationColor{1.0f};
   float attenuationDistance = std::numeric_limits<float>::infinity();
   bool transmits() const { return transmission > 0.0f && !unlit; }
+  // KHR_materials_clearcoat: a clear coat of this factor and roughness over the surface (the
+  // factors; its textures and normal are not read: a line of the scene report).
+  float clearcoat = 0.0f;
+  float clearcoatRoughness = 0.0f;
+  bool clearcoatTexturesUnread = false;
   // KHR_materials_pbrSpecularGlossiness, converted on import to the fields above: how far glTF's
   // reference shading of the result is from the file's (the larger of the F0 and the diffuse
   // colour's largest difference; -1: not converted), and whether a specularGlossinessTexture

@@ -53,6 +53,10 @@ std::string extensionRendering(const std::string& name) {
       {"KHR_materials_transmission",
        "rendered: light through the surface, tinted and by Fresnel, in the reference (a thin surface unrefracted); the "
        "G-buffer paths draw it as stochastic coverage (grey, at normal incidence)"},
+      {"KHR_materials_clearcoat",
+       "rendered: a clear coat over the base (albedo-scaled, energy-conserving) in the reference; the G-buffer paths "
+       "render "
+       "the base alone"},
       {"KHR_materials_volume",
        "rendered: refraction and Beer-Lambert absorption inside the mesh in the reference; the G-buffer paths draw it "
        "as a "

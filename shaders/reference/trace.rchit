@@ -61,4 +61,5 @@ void main() {
   hit.fresnel = fresnel;
   hit.transmission = vec4(materialTransmissionLod0(m, h.uv0, h.uv1), m.thickness > 0.0 ? 1.0 : 0.0, back ? 1.0 : 0.0, m.ior);
   hit.absorption = m.thickness > 0.0 ? m.absorption : vec4(0.0);
+  hit.coat = vec4(m.clearcoat, m.clearcoatRoughness, 0.0, 0.0);
 }

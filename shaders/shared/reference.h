@@ -127,6 +127,7 @@ struct RefHit {
   vec4 transmission;  // x KHR_materials_transmission (factor x texture, 0: opaque); y 1 where the mesh bounds a
                       // volume (KHR_materials_volume); z 1 where the ray met the surface's back; w the ior
   vec4 absorption;    // rgb the volume's absorption per scene unit (KHR_materials_volume), 0 for a thin surface
+  vec4 coat;          // x KHR_materials_clearcoat's factor, y its roughness
 };
 
 // The hit groups: paths' rays (trace.rchit, alpha.rahit) and shadow rays (shadow.rahit), the

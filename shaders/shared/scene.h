@@ -66,8 +66,8 @@ struct GpuMaterial {
   GpuTextureSlot specularColorTexture;  // and its rgb (sRGB) specularColorFactor
   float transmission;                   // KHR_materials_transmission's factor (shared/shading.h tlSurfaceTransmitting)
   float thickness;                      // KHR_materials_volume's thicknessFactor: above 0 the mesh bounds a volume
-  uint transmissionPad0;
-  uint transmissionPad1;
+  float clearcoat;                      // KHR_materials_clearcoat's factor (0: none; shared/shading.h tlSurfaceCoated)
+  float clearcoatRoughness;             // and its roughness factor
   vec4 absorption;                     // KHR_materials_volume: rgb the absorption coefficient per scene unit,
                                        // -ln(attenuationColor) / attenuationDistance (0: clear)
   GpuTextureSlot transmissionTexture;  // KHR_materials_transmission: its red scales the factor

@@ -31,6 +31,9 @@
 // A "Lambert" surface (tlLambertSurface: the diffuse and clay override modes) has no specular
 // layer: f = albedo / pi.
 //
+// Layers glTF's extensions add: transmission through the diffuse layer (tlSurfaceTransmitting)
+// and a clear coat over everything (tlSurfaceCoated); the G-buffer paths' surfaces have neither.
+//
 // Also here: the terms for a uniform environment (tlEnvironmentSpecular / tlEnvironmentDiffuse:
 // the reflected radiance per unit of uniform incident radiance, exact for this BRDF), the
 // hemispherical albedo, and sampling (the reference path tracer).
@@ -76,8 +79,11 @@ struct SurfaceParams {
   vec3 layerAverage;     // E_d,avg: the cosine-weighted average of the dielectric layer's specular albedo
   vec3 baseColor;        // what it was made from (tlSurfaceWithRoughness)
   float metallic;
-  vec3 transmitted;    // the diffuse layer's share that passes through instead (tlSurfaceTransmitting)
-  float transmission;  // and the factor t that made it
+  vec3 transmitted;     // the diffuse layer's share that passes through instead (tlSurfaceTransmitting)
+  float transmission;   // and the factor t that made it
+  float coat;           // KHR_materials_clearcoat's factor (tlSurfaceCoated; 0: none)
+  float coatRoughness;  // its perceptual roughness, clamped as roughness is
+  float coatAlpha;      // and its GGX alpha
 };
 
 // The tables at (cos theta, roughness): vec2(S, B) with E_F0 = F0 S + B, bilinear.
@@ -135,7 +141,43 @@ TL_FN SurfaceParams tlSurfaceSpecular(vec3 baseColor, float roughness, float met
   s.layerAverage = d0 * average.x + vec3(w * average.y) + s.layerMsFresnel * (1.0f - s.singleAverage);
   s.transmitted = vec3(0.0f);
   s.transmission = 0.0f;
+  s.coat = 0.0f;
+  s.coatRoughness = 1.0f;
+  s.coatAlpha = 1.0f;
   return s;
+}
+
+// KHR_materials_clearcoat: a clear dielectric coat (F0 0.04, F90 1: ior 1.5) of factor c and its
+// own roughness over the whole surface, by albedo scaling:
+//   f = c f_coat + (1 - c E_coat(mu_o)) f_base,
+// E_coat the coat's directional albedo at the view, from the tables that define its lobe. What
+// the base reflects or passes is scaled by what the coat lets through, so a white coated surface
+// still reflects everything, exactly. The scaling is on the view's side only, as in Autodesk's
+// Standard Surface: not reciprocal, which the reference (tracing from the camera) does not need.
+// The coat has the surface's shading normal (glTF's clearcoatNormalTexture is not read).
+TL_FN SurfaceParams tlSurfaceCoated(SurfaceParams s, float coat, float coatRoughness) {
+  s.coat = clamp(coat, 0.0f, 1.0f);
+  s.coatRoughness = clamp(coatRoughness, kBrdfMinRoughness, 1.0f);
+  s.coatAlpha = s.coatRoughness * s.coatRoughness;
+  return s;
+}
+
+// c E_coat(mu): the share of the light arriving at cos theta = mu that the coat reflects.
+TL_FN float tlCoatAlbedo(SurfaceParams s, float mu) {
+  if (!(s.coat > 0.0f)) return 0.0f;
+  vec2 split = tlSpecularAlbedoSplit(max(mu, kBrdfMinCosine), s.coatRoughness);
+  vec2 average = tlSpecularAverageSplit(s.coatRoughness);
+  float ms = tlMultipleScatteringFresnel(vec3(kDielectricF0), 1.0f, average.x + average.y).x;
+  return s.coat * (kDielectricF0 * split.x + split.y + ms * (1.0f - split.x - split.y));
+}
+
+// The coat's cosine-weighted average albedo, c E_coat,avg.
+TL_FN float tlCoatAverageAlbedo(SurfaceParams s) {
+  if (!(s.coat > 0.0f)) return 0.0f;
+  vec2 average = tlSpecularAverageSplit(s.coatRoughness);
+  float e = average.x + average.y;
+  float ms = tlMultipleScatteringFresnel(vec3(kDielectricF0), 1.0f, e).x;
+  return s.coat * (kDielectricF0 * average.x + average.y + ms * (1.0f - e));
 }
 
 // KHR_materials_transmission: a share t of the dielectric's diffuse layer passes through the
@@ -166,8 +208,9 @@ TL_FN SurfaceParams tlLambertSurface(vec3 albedo) {
 // The same surface at another roughness (the SH specular's directional part, shared/sh_specular.h).
 TL_FN SurfaceParams tlSurfaceWithRoughness(SurfaceParams s, float roughness) {
   if (s.specular == 0.0f) return s;  // Lambert does not depend on roughness
-  return tlSurfaceTransmitting(tlSurfaceSpecular(s.baseColor, roughness, s.metallic, s.layerF0, s.layerF90),
-                               s.transmission);
+  SurfaceParams r = tlSurfaceTransmitting(tlSurfaceSpecular(s.baseColor, roughness, s.metallic, s.layerF0, s.layerF90),
+                                          s.transmission);
+  return tlSurfaceCoated(r, s.coat, s.coatRoughness);
 }
 
 // E(mu) with F = 1, from the split.
@@ -192,7 +235,26 @@ TL_FN vec3 tlLayerAlbedo(SurfaceParams s, vec2 split) {
 TL_FN vec3 tlThinTransmittance(SurfaceParams s, float cosTheta) {
   if (!(s.transmission > 0.0f)) return vec3(0.0f);
   vec2 split = tlSpecularAlbedoSplit(max(abs(cosTheta), kBrdfMinCosine), s.roughness);
-  return s.transmitted * (vec3(1.0f) - tlLayerAlbedo(s, split));
+  return s.transmitted * (vec3(1.0f) - tlLayerAlbedo(s, split)) * (1.0f - tlCoatAlbedo(s, abs(cosTheta)));
+}
+
+// The coat's lobe, c f_coat: f_ss + f_ms of a clear dielectric at the coat's roughness.
+TL_FN float tlBrdfCoat(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
+  float nl = dot(n, l);
+  if (!(nl > 0.0f) || !(s.coat > 0.0f)) return 0.0f;
+  float nv = max(dot(n, v), kBrdfMinCosine);
+  vec3 hv = v + l;
+  float hl = length(hv);
+  vec3 h = hl > 1e-7f ? hv / hl : n;
+  float fresnel = kDielectricF0 + (1.0f - kDielectricF0) * tlSchlickWeight(max(dot(v, h), 0.0f));
+  float single = tlGgxDOfHalfVector(n, h, s.coatAlpha) * tlSmithVisibility(nl, nv, s.coatAlpha) * fresnel;
+  vec2 average = tlSpecularAverageSplit(s.coatRoughness);
+  float eAvg = average.x + average.y;
+  float ms = tlMultipleScatteringFresnel(vec3(kDielectricF0), 1.0f, eAvg).x;
+  float eo = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nv, s.coatRoughness));
+  float ei = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nl, s.coatRoughness));
+  float multiple = ms * (1.0f - eo) * (1.0f - ei) * kInvPi / max(1.0f - eAvg, 1e-6f);
+  return s.coat * (single + multiple);
 }
 
 // The specular lobes (f_ss + f_ms) alone.
@@ -209,7 +271,8 @@ TL_FN vec3 tlBrdfSpecular(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
   float eo = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nv, s.roughness));
   float ei = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nl, s.roughness));
   vec3 multiple = s.msFresnel * ((1.0f - eo) * (1.0f - ei) * kInvPi / max(1.0f - s.singleAverage, 1e-6f));
-  return single + multiple;
+  if (!(s.coat > 0.0f)) return single + multiple;
+  return vec3(tlBrdfCoat(s, n, v, l)) + (single + multiple) * (1.0f - tlCoatAlbedo(s, nv));
 }
 
 // The diffuse layer alone.
@@ -219,7 +282,8 @@ TL_FN vec3 tlBrdfDiffuse(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
   float nv = max(dot(n, v), kBrdfMinCosine);
   vec3 edo = tlLayerAlbedo(s, tlSpecularAlbedoSplit(nv, s.roughness));
   vec3 edi = tlLayerAlbedo(s, tlSpecularAlbedoSplit(nl, s.roughness));
-  return s.diffuse * kInvPi * (vec3(1.0f) - edo) * (vec3(1.0f) - edi) / tlDiffuseLayerWeight(s);
+  return s.diffuse * kInvPi * (vec3(1.0f) - edo) * (vec3(1.0f) - edi) / tlDiffuseLayerWeight(s) *
+         (1.0f - tlCoatAlbedo(s, nv));
 }
 
 // f(l, v) (pi-free: radiance = f E n.l for a light of irradiance E from l); 0 below the surface.
@@ -253,10 +317,13 @@ TL_FN SurfaceParams tlGbufferSurface(vec4 baseColor, vec4 material, uint materia
 TL_FN vec3 tlEnvironmentSpecular(SurfaceParams s, float nv) {
   vec2 split = tlSpecularAlbedoSplit(max(nv, kBrdfMinCosine), s.roughness);
   float e = tlSingleScatteringAlbedo(split);
-  return s.specular * (s.f0 * split.x + s.f90 * split.y + s.msFresnel * (1.0f - e));
+  vec3 base = s.specular * (s.f0 * split.x + s.f90 * split.y + s.msFresnel * (1.0f - e));
+  float coat = tlCoatAlbedo(s, nv);
+  return vec3(coat) + base * (1.0f - coat);
 }
 TL_FN vec3 tlEnvironmentDiffuse(SurfaceParams s, float nv) {
-  return s.diffuse * (vec3(1.0f) - tlLayerAlbedo(s, tlSpecularAlbedoSplit(max(nv, kBrdfMinCosine), s.roughness)));
+  return s.diffuse * (vec3(1.0f) - tlLayerAlbedo(s, tlSpecularAlbedoSplit(max(nv, kBrdfMinCosine), s.roughness))) *
+         (1.0f - tlCoatAlbedo(s, nv));
 }
 TL_FN vec3 tlEnvironmentAlbedo(SurfaceParams s, float nv) { return tlEnvironmentSpecular(s, nv) + tlEnvironmentDiffuse(s, nv); }
 
@@ -265,7 +332,9 @@ TL_FN vec3 tlEnvironmentAlbedo(SurfaceParams s, float nv) { return tlEnvironment
 TL_FN vec3 tlHemisphericalAlbedo(SurfaceParams s) {
   vec2 average = tlSpecularAverageSplit(s.roughness);
   vec3 specular = s.specular * (s.f0 * average.x + s.f90 * average.y + s.msFresnel * (1.0f - s.singleAverage));
-  return specular + s.diffuse * (vec3(1.0f) - s.layerAverage);
+  // A coat scales the base by its average (the view-side scaling averaged over the views).
+  float coat = tlCoatAverageAlbedo(s);
+  return vec3(coat) + (specular + s.diffuse * (vec3(1.0f) - s.layerAverage)) * (1.0f - coat);
 }
 
 // Ambient occlusion with the occluders' light put back: the fraction 1 - ao of the sky that
@@ -307,8 +376,24 @@ TL_FN float tlTransmissionProbability(SurfaceParams s, float nv) {
   return through / (through + back);
 }
 
+// The share of tlSampleBrdf's directions drawn from the coat's visible normals: its share of
+// the albedo at this view (the rest follow the base's mixture).
+TL_FN float tlCoatSamplingProbability(SurfaceParams s, float nv) {
+  float coat = tlCoatAlbedo(s, nv);
+  if (!(coat > 0.0f)) return 0.0f;
+  return clamp(coat / max(tlLuminance(tlEnvironmentAlbedo(s, nv)), 1e-6f), 0.0f, 1.0f);
+}
+
 // A direction drawn with the mixture tlBrdfPdf describes; `choice` picks the lobe.
 TL_FN vec3 tlSampleBrdf(SurfaceParams s, vec3 n, vec3 v, float specularProbability, vec2 u, float choice) {
+  float coatProbability = tlCoatSamplingProbability(s, dot(n, v));
+  if (choice < coatProbability) {
+    vec3 w = tlSamplingView(n, v);
+    mat3 basis = tlBasisFromNormal(n);
+    vec3 h = basis * tlSampleGgxVisibleNormal(transpose(basis) * w, s.coatAlpha, u);
+    return reflect(-w, h);
+  }
+  if (coatProbability > 0.0f) choice = (choice - coatProbability) / (1.0f - coatProbability);
   if (choice < specularProbability) {
     vec3 w = tlSamplingView(n, v);
     mat3 basis = tlBasisFromNormal(n);
@@ -330,7 +415,14 @@ TL_FN float tlBrdfPdf(SurfaceParams s, vec3 n, vec3 v, vec3 l, float specularPro
     // Visible normals: D_w(h) = G1(w) max(w.h, 0) D(h) / n.w; reflection: / (4 w.h).
     if (dot(w, h) > 0.0f) pdf += specularProbability * tlSmithG1(nw, s.alpha) * tlGgxDOfHalfVector(n, h, s.alpha) / (4.0f * nw);
   }
-  return pdf;
+  float coatProbability = tlCoatSamplingProbability(s, dot(n, v));
+  if (!(coatProbability > 0.0f)) return pdf;
+  vec3 w = tlSamplingView(n, v);
+  vec3 h = normalize(w + l);
+  float nw = max(dot(n, w), kBrdfMinCosine);
+  float coatPdf =
+      dot(w, h) > 0.0f ? tlSmithG1(nw, s.coatAlpha) * tlGgxDOfHalfVector(n, h, s.coatAlpha) / (4.0f * nw) : 0.0f;
+  return (1.0f - coatProbability) * pdf + coatProbability * coatPdf;
 }
 TL_END
 #endif

@@ -228,6 +228,48 @@ TEST(Brdf, SamplerEstimatesTheAlbedo) {
       }
 }
 
+// KHR_materials_clearcoat: a white dielectric or metal under a full coat still reflects all the
+// light at every angle (quadrature of the BRDF against 1, at roughnesses the quadrature
+// resolves); the reference's sampler, which draws from the coat's visible normals too, estimates
+// that albedo; and a smooth black dielectric under a smooth coat reflects head-on what two
+// interfaces of ior 1.5 do, 1 - (1 - 0.04)^2 = 0.0784 (closed form).
+TEST(Brdf, ClearcoatKeepsEnergyAndAddsASecondInterface) {
+  const vec3 n(0, 0, 1);
+  for (float metallic : {0.0f, 1.0f})
+    for (float r : {0.3f, 1.0f})
+      for (float rc : {0.3f, 1.0f}) {
+        const SurfaceParams s = tlSurfaceCoated(tlSurface(vec3(1.0f), r, metallic), 1.0f, rc);
+        double lo = 2.0, hi = 0.0;
+        for (double mu : kCosines) {
+          const double a = directionalAlbedo(s, mu).x;
+          lo = std::min(lo, a), hi = std::max(hi, a);
+          EXPECT_NEAR(a, 1.0, 0.01) << "metallic " << metallic << " roughness " << r << " coat " << rc << " cos " << mu;
+        }
+        std::printf("white, metallic %.0f, roughness %.1f, coat roughness %.1f: albedo %.5f .. %.5f\n", metallic, r, rc,
+                    lo, hi);
+        const int g = 192;
+        for (double mu : {0.2, 0.7, 1.0}) {
+          const vec3 v = viewAt(mu);
+          const float p = tlBrdfSpecularProbability(s, float(mu));
+          double sum = 0.0;
+          for (int i = 0; i < g; ++i)
+            for (int j = 0; j < g; ++j) {
+              const vec2 u((i + 0.5f) / g, (j + 0.5f) / g);
+              const vec3 l = tlSampleBrdf(s, n, v, p, u, tlUintToUnitFloat(tlPcgHash(uint(i * g + j))));
+              const float pdf = tlBrdfPdf(s, n, v, l, p);
+              if (pdf > 0.0f && l.z > 0.0f) sum += double(tlBrdf(s, n, v, l).x) * double(l.z / pdf);
+            }
+          EXPECT_NEAR(sum / double(g * g), directionalAlbedo(s, mu).x, 0.01) << "sampler, cos " << mu;
+        }
+      }
+  const SurfaceParams bare = tlSurface(vec3(0.0f), 0.05f, 0.0f);
+  const SurfaceParams coated = tlSurfaceCoated(bare, 1.0f, 0.05f);
+  const double a = directionalAlbedo(bare, 1.0).x, b = directionalAlbedo(coated, 1.0).x;
+  std::printf("black dielectric head-on: bare %.5f (Fresnel 0.04), coated %.5f (two interfaces 0.0784)\n", a, b);
+  EXPECT_NEAR(a, 0.04, 0.04 * 0.02);
+  EXPECT_NEAR(b, 0.0784, 0.0784 * 0.02);
+}
+
 TEST(Brdf, TablesAreBoundedAndSmoothMirrorsReflectEverything) {
   for (uint r = 0; r < kBrdfLutRoughness; ++r)
     for (uint c = 0; c < kBrdfLutCosines; ++c) {

@@ -300,16 +300,19 @@ TEST(SceneImport, MaterialExtensionsAreReadAndSpecularGlossinessIsConverted) {
     EXPECT_TRUE(std::any_of(report.begin(), report.end(), [&](const std::string& l) { return l.rfind(line, 0) == 0; })) << line;
 }
 
-// KHR_materials_transmission and KHR_materials_volume reach the material as authored; a
+// KHR_materials_transmission, _volume and _clearcoat reach the material as authored; a
 // transmission above 1 is clamped with a warning, and an attenuationDistance that is not
 // positive is one clear error.
 TEST(SceneImport, TransmissionAndVolumeAreRead) {
   TempDir tmp;
   writeTriangleBin(tmp.path / "t.bin");
   auto j = triangle("t.bin");
-  j["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_volume"};
+  j["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_clearcoat"};
   j["materials"] = {
-      {{"name", "window"}, {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}}},
+      {{"name", "window"},
+       {"extensions",
+        {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+         {"KHR_materials_clearcoat", {{"clearcoatFactor", 0.5}, {"clearcoatRoughnessFactor", 0.25}}}}}},
       {{"name", "bottle"},
        {"extensions",
         {{"KHR_materials_transmission", {{"transmissionFactor", 1.5}}},
@@ -322,6 +325,9 @@ TEST(SceneImport, TransmissionAndVolumeAreRead) {
   EXPECT_FLOAT_EQ(s.materials[0].transmission, 1.0f);
   EXPECT_FLOAT_EQ(s.materials[0].thickness, 0.0f);
   EXPECT_TRUE(std::isinf(s.materials[0].attenuationDistance));
+  EXPECT_FLOAT_EQ(s.materials[0].clearcoat, 0.5f);
+  EXPECT_FLOAT_EQ(s.materials[0].clearcoatRoughness, 0.25f);
+  EXPECT_FLOAT_EQ(s.materials[1].clearcoat, 0.0f);
   const Material& bottle = s.materials[1];
   EXPECT_FLOAT_EQ(bottle.transmission, 1.0f);
   EXPECT_FLOAT_EQ(bottle.thickness, 0.2f);
@@ -331,9 +337,9 @@ TEST(SceneImport, TransmissionAndVolumeAreRead) {
                           [](const std::string& w) { return w.find("transmissionFactor") != std::string::npos; }));
   for (const auto& i : s.ignored) EXPECT_EQ(i.find("not applied"), std::string::npos) << i;
   const auto report = sceneReport(s);
-  for (const char* line :
-       {"materials: 2 (2 opaque; 2 transmitting, 1 of them bounding a volume)",
-        "extension KHR_materials_transmission: rendered", "extension KHR_materials_volume: rendered"})
+  for (const char* line : {"materials: 2 (2 opaque; 2 transmitting, 1 of them bounding a volume)",
+                           "extension KHR_materials_transmission: rendered", "extension KHR_materials_volume: rendered",
+                           "extension KHR_materials_clearcoat: rendered"})
     EXPECT_TRUE(std::any_of(report.begin(), report.end(), [&](const std::string& l) { return l.rfind(line, 0) == 0; }))
         << line;
 
