@@ -255,7 +255,7 @@ TEST(GltfIgnored, EachIgnoredFeatureIsOneLineAndOneWarning) {
   writeImage(tmp.path / "a.png", 3, std::vector<float>(12, 0.5f), OIIO::TypeDesc::UINT8);
   j["samplers"] = {{{"wrapS", 33071}, {"magFilter", 9728}}};
   j["textures"] = {{{"source", 0}, {"sampler", 0}}};
-  j["extensionsUsed"] = {"KHR_texture_transform", "KHR_materials_clearcoat"};
+  j["extensionsUsed"] = {"KHR_texture_transform", "KHR_materials_sheen"};
   nlohmann::json transform = {{"KHR_texture_transform", {{"scale", {2, 2}}}}};
   j["materials"] = {{{"name", "m"},
                      {"alphaMode", "BLEND"},  // applied (stochastic transparency): no line
@@ -270,7 +270,7 @@ TEST(GltfIgnored, EachIgnoredFeatureIsOneLineAndOneWarning) {
   std::ofstream(tmp.path / "features.gltf") << j.dump();
   Scene s = loadGltf(tmp.path / "features.gltf");
   const std::vector<std::string> expected = {
-      "extension KHR_materials_clearcoat (1x)", "TEXCOORD_2 in a baseColorTexture (1x)"};
+      "extension KHR_materials_sheen (1x)", "TEXCOORD_2 in a baseColorTexture (1x)"};
   ASSERT_EQ(s.ignored.size(), expected.size());
   for (const auto& e : expected) {
     bool found = false;
