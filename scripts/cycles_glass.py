@@ -18,6 +18,9 @@ import sys
 
 import bpy
 
+sys.path.append(os.path.dirname(os.path.abspath(__file__)))
+from cycles_common import export_triangles, render_exr  # noqa: E402
+
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 out_dir = argv[0] if argv else "out/glass"
 render_spp = int(argv[argv.index("--render") + 1]) if "--render" in argv else 0
@@ -81,16 +84,7 @@ camera.data.angle = math.radians(30.0)
 scene.camera = camera
 scene.render.resolution_x, scene.render.resolution_y = width, height
 
-for o in scene.objects:  # triangles as Twinlight and Cycles both see them
-    if o.type == "MESH":
-        bpy.context.view_layer.objects.active = o
-        mod = o.modifiers.new("triangulate", "TRIANGULATE")
-        bpy.ops.object.modifier_apply(modifier=mod.name)
-
-os.makedirs(out_dir, exist_ok=True)
-bpy.ops.export_scene.gltf(filepath=os.path.join(out_dir, "glass.gltf"), export_format="GLTF_SEPARATE", export_cameras=True,
-                          export_lights=False, export_apply=True)
-print(f"glass: written to {out_dir}/glass.gltf")
+print(f"glass: written to {export_triangles(scene, out_dir, 'glass')}")
 
 if render_spp:
     # Cycles with Twinlight's definitions: the stripes pure emission (a radiance on both faces),
@@ -100,27 +94,4 @@ if render_spp:
         emission = nodes.new("ShaderNodeEmission")
         emission.inputs["Strength"].default_value = nodes["Principled BSDF"].inputs["Emission Strength"].default_value
         links.new(emission.outputs[0], nodes["Material Output"].inputs["Surface"])
-    world = bpy.data.worlds.new("black")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
-    scene.world = world
-    scene.render.engine = "CYCLES"
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = render_spp
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = 64
-    c.volume_bounces = c.transparent_max_bounces = 64
-    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
-    c.caustics_reflective = c.caustics_refractive = True
-    c.blur_glossy = 0.0
-    c.filter_type = "BOX"
-    c.filter_width = 1.0
-    c.seed = 1
-    scene.view_settings.view_transform = "Standard"
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
-    scene.render.filepath = os.path.join(out_dir, f"cycles_{render_spp}.exr")
-    bpy.ops.render.render(write_still=True)
-    print(f"wrote {scene.render.filepath}")
+    render_exr(scene, render_spp, 64, os.path.join(out_dir, f"cycles_{render_spp}.exr"))

@@ -15,9 +15,13 @@ ceiling; about 16,700 triangles in all. Definitions as Twinlight's (docs/accurac
 is a radiance on both faces, surfaces are Lambertian in the diffuse material mode, no sky.
 """
 import math
+import os
 import sys
 
 import bpy
+
+sys.path.append(os.path.dirname(os.path.abspath(__file__)))
+from cycles_common import export_triangles, render_exr  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 out_dir = argv[0] if argv else "out/panel_box"
@@ -86,17 +90,7 @@ camera.data.angle = math.radians(38.6)
 scene.camera = camera
 scene.render.resolution_x, scene.render.resolution_y = width, height
 
-for o in scene.objects:  # triangles as Twinlight and Cycles both see them
-    if o.type == "MESH":
-        bpy.context.view_layer.objects.active = o
-        mod = o.modifiers.new("triangulate", "TRIANGULATE")
-        bpy.ops.object.modifier_apply(modifier=mod.name)
-
-import os
-
-os.makedirs(out_dir, exist_ok=True)
-bpy.ops.export_scene.gltf(filepath=os.path.join(out_dir, "panel_box.gltf"), export_format="GLTF_SEPARATE",
-                          export_cameras=True, export_lights=False, export_apply=True)
+export_triangles(scene, out_dir, "panel_box")
 triangles = sum(len(o.data.polygons) for o in scene.objects if o.type == "MESH")
 print(f"panel_box: {triangles} triangles, written to {out_dir}/panel_box.gltf")
 
@@ -121,25 +115,4 @@ if render_spp:
             links.new(add.outputs[0], out.inputs["Surface"])
         else:
             links.new(diffuse.outputs[0], out.inputs["Surface"])
-    world = bpy.data.worlds.new("black")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
-    scene.world = world
-    scene.render.engine = "CYCLES"
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = render_spp
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.max_bounces = c.diffuse_bounces = 128
-    c.glossy_bounces = c.transmission_bounces = c.volume_bounces = c.transparent_max_bounces = 128
-    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
-    c.filter_type = "BOX"
-    c.filter_width = 1.0
-    c.seed = 1
-    scene.view_settings.view_transform = "Standard"
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
-    scene.render.filepath = os.path.join(out_dir, f"cycles_{render_spp}.exr")
-    bpy.ops.render.render(write_still=True)
-    print(f"wrote {scene.render.filepath}")
+    render_exr(scene, render_spp, 128, os.path.join(out_dir, f"cycles_{render_spp}.exr"))

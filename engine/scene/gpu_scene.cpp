@@ -211,9 +211,10 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device), d
 
   for (const Instance& inst : scene.instances) drawMesh_.push_back(inst.mesh);
   meshAlphaTested_.assign(scene.meshes.size(), 0);
-  for (size_t m = 0; m < scene.meshes.size(); ++m)
-    meshAlphaTested_[m] = scene.materials[scene.meshes[m].material].alphaMode != AlphaMode::Opaque ||
-                          scene.materials[scene.meshes[m].material].transmits();
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Material& material = scene.materials[scene.meshes[m].material];
+    meshAlphaTested_[m] = material.alphaMode != AlphaMode::Opaque || material.transmits();
+  }
   for (uint32_t i = 0; i < drawMesh_.size(); ++i)
     (meshAlphaTested_[drawMesh_[i]] ? alphaTested_ : opaque_).push_back(i);
   const VkDeviceSize instanceBytes = std::max<size_t>(1, drawMesh_.size()) * sizeof(GpuInstance);

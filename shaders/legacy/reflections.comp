@@ -153,12 +153,9 @@ bool reflects(ivec2 p, out SurfaceParams s, out float weight) {
   return s.specular > 0.0 && weight > 0.0 && tlRtSpecularWorthTracing(s.f0 * split.x + s.f90 * split.y);
 }
 
-// What pixel p reflects: the march and the cone's radiance (rgb) and its weight against the SH
-// specular (a; 0: nothing to reflect here, rgb 0 too).
-vec4 reflection(ivec2 p) {
-  SurfaceParams s;
-  float weight;
-  if (!reflects(p, s, weight)) return vec4(0.0);
+// What pixel p, whose surface s reflects (reflects), reflects: the march and the cone's radiance
+// (rgb) and its weight against the SH specular (a).
+vec4 marched(ivec2 p, SurfaceParams s, float weight) {
   vec3 position = pixelPosition(p, texelFetch(gDepth, p, 0).r);
   vec3 n = pixelNormal(p);
   vec3 dir = reflect(-tlSamplingView(n, towardsViewer(position)), n);
@@ -171,6 +168,13 @@ vec4 reflection(ivec2 p) {
   vec3 radiance = confidence * screen;
   if (confidence < 1.0) radiance += (1.0 - confidence) * coneRadiance(position, n, dir, s.alpha);
   return vec4(min(radiance, vec3(65000.0)), weight);
+}
+
+// The same for any pixel (a = 0 and rgb 0 where it reflects nothing).
+vec4 reflection(ivec2 p) {
+  SurfaceParams s;
+  float weight;
+  return reflects(p, s, weight) ? marched(p, s, weight) : vec4(0.0);
 }
 
 // The reduced texels around pixel p on p's own surface, bilinear: their weighted mean (rgb) and
@@ -213,23 +217,25 @@ void main() {
   }
   ivec2 p = id;
   if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
-  if (push.mode == kLegacyReflectionsUpsample) {
-    SurfaceParams s;
-    float weight;
-    if (!reflects(p, s, weight)) {
-      imageStore(reflectionsOut, p, vec4(0.0));
+  if (push.mode != kLegacyReflectionsUpsample) {
+    imageStore(reflectionsOut, p, reflection(p));
+    return;
+  }
+  SurfaceParams s;
+  float weight;
+  if (!reflects(p, s, weight)) {
+    imageStore(reflectionsOut, p, vec4(0.0));
+    return;
+  }
+  // The G-buffer's roughness, not the BRDF's floored one.
+  if (texelFetch(gMaterial, p, 0).r > push.fullRoughness) {
+    vec4 u = upsampled(p);
+    // A pixel the reduced texels hardly stand for (less than a quarter of the bilinear weight
+    // on its surface: an edge, a small object) is marched itself.
+    if (u.a >= 0.25) {
+      imageStore(reflectionsOut, p, vec4(u.rgb, weight));
       return;
     }
-    // The G-buffer's roughness, not the BRDF's floored one.
-    if (texelFetch(gMaterial, p, 0).r > push.fullRoughness) {
-      vec4 u = upsampled(p);
-      // A pixel the reduced texels hardly stand for (less than a quarter of the bilinear weight
-      // on its surface: an edge, a small object) is marched itself.
-      if (u.a >= 0.25) {
-        imageStore(reflectionsOut, p, vec4(u.rgb, weight));
-        return;
-      }
-    }
   }
-  imageStore(reflectionsOut, p, reflection(p));
+  imageStore(reflectionsOut, p, marched(p, s, weight));
 }

@@ -299,12 +299,8 @@ vec3 tracePath(vec3 origin, vec3 dir, uint firstBounce) {
     if (bounce >= push.maxBounces) break;  // no more scattering events allowed
 
     vec3 n = hit.normal.xyz, geometric = hit.geometric.xyz, v = -dir;
-    uint materialMode = tlFrameMaterials(frame.flags);
-    SurfaceParams s = tlSurfaceTransmitting(
-        tlMaterialSurfaceFresnel(hit.baseColor.rgb, hit.baseColor.a, hit.emission.a, hit.fresnel, materialMode),
-        hit.transmission.x);
-    // The coat is a specular layer: the Lambertian modes have none.
-    if (materialMode == kMaterialsAuthored) s = tlSurfaceCoated(s, hit.coat.x, hit.coat.y);
+    SurfaceParams s = tlMaterialSurfaceLayered(hit.baseColor.rgb, hit.baseColor.a, hit.emission.a, hit.fresnel,
+                                               hit.transmission.x, hit.coat.x, hit.coat.y, tlFrameMaterials(frame.flags));
     vec3 position = tlOffsetRayOrigin(hit.positionT.xyz, geometric, frame.sceneScale);
 
     if (bounce == 0u && push.aoRadius > 0.0) {

@@ -17,7 +17,9 @@
 TL_BEGIN
 
 // The solid-angle density of a direction l from the specular lobe's visible normals alone.
-TL_FN float tlSpecularLobePdf(SurfaceParams s, vec3 n, vec3 v, vec3 l) { return tlBrdfPdf(s, n, v, l, 1.0f); }
+TL_FN float tlSpecularLobePdf(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
+  return tlVisibleReflectionPdf(n, v, l, s.alpha);
+}
 
 // The two weighted samples of one estimate: directions towards the shape and their weights as
 // irradiance on the surface (E n.l, multiple-importance weight included): the lobes' radiance is
@@ -43,9 +45,7 @@ TL_FN AreaSpecularSamples tlAreaLightSpecularSamples(GpuLight light, SurfacePara
     r.towardsShape = ls.toLight;
     r.shapeWeight = ls.irradiance * (nl * tlPowerHeuristic(ls.pdf, tlSpecularLobePdf(s, n, v, ls.toLight)));
   }
-  vec3 w = tlSamplingView(n, v);
-  mat3 basis = tlBasisFromNormal(n);
-  vec3 l = reflect(-w, basis * tlSampleGgxVisibleNormal(transpose(basis) * w, s.alpha, uLobe));
+  vec3 l = tlSampleVisibleReflection(n, v, s.alpha, uLobe);
   nl = dot(n, l);
   if (nl > 0.0f) {
     AreaHit hit = tlAreaLightHit(light, position, l);

@@ -84,6 +84,9 @@ struct SurfaceParams {
   float coat;           // KHR_materials_clearcoat's factor (tlSurfaceCoated; 0: none)
   float coatRoughness;  // its perceptual roughness, clamped as roughness is
   float coatAlpha;      // and its GGX alpha
+  float coatSingleAverage;  // E_avg at the coat's roughness
+  float coatMsFresnel;      // F_ms of the coat's multiple-scattering lobe (F0 0.04, F90 1)
+  float coatAverage;        // c E_coat,avg: the coat's cosine-weighted average albedo
 };
 
 // The tables at (cos theta, roughness): vec2(S, B) with E_F0 = F0 S + B, bilinear.
@@ -144,6 +147,9 @@ TL_FN SurfaceParams tlSurfaceSpecular(vec3 baseColor, float roughness, float met
   s.coat = 0.0f;
   s.coatRoughness = 1.0f;
   s.coatAlpha = 1.0f;
+  s.coatSingleAverage = 0.0f;
+  s.coatMsFresnel = 0.0f;
+  s.coatAverage = 0.0f;
   return s;
 }
 
@@ -159,6 +165,10 @@ TL_FN SurfaceParams tlSurfaceCoated(SurfaceParams s, float coat, float coatRough
   s.coat = clamp(coat, 0.0f, 1.0f);
   s.coatRoughness = clamp(coatRoughness, kBrdfMinRoughness, 1.0f);
   s.coatAlpha = s.coatRoughness * s.coatRoughness;
+  vec2 average = tlSpecularAverageSplit(s.coatRoughness);
+  s.coatSingleAverage = average.x + average.y;
+  s.coatMsFresnel = tlMultipleScatteringFresnel(vec3(kDielectricF0), 1.0f, s.coatSingleAverage).x;
+  s.coatAverage = s.coat * (kDielectricF0 * average.x + average.y + s.coatMsFresnel * (1.0f - s.coatSingleAverage));
   return s;
 }
 
@@ -166,18 +176,7 @@ TL_FN SurfaceParams tlSurfaceCoated(SurfaceParams s, float coat, float coatRough
 TL_FN float tlCoatAlbedo(SurfaceParams s, float mu) {
   if (!(s.coat > 0.0f)) return 0.0f;
   vec2 split = tlSpecularAlbedoSplit(max(mu, kBrdfMinCosine), s.coatRoughness);
-  vec2 average = tlSpecularAverageSplit(s.coatRoughness);
-  float ms = tlMultipleScatteringFresnel(vec3(kDielectricF0), 1.0f, average.x + average.y).x;
-  return s.coat * (kDielectricF0 * split.x + split.y + ms * (1.0f - split.x - split.y));
-}
-
-// The coat's cosine-weighted average albedo, c E_coat,avg.
-TL_FN float tlCoatAverageAlbedo(SurfaceParams s) {
-  if (!(s.coat > 0.0f)) return 0.0f;
-  vec2 average = tlSpecularAverageSplit(s.coatRoughness);
-  float e = average.x + average.y;
-  float ms = tlMultipleScatteringFresnel(vec3(kDielectricF0), 1.0f, e).x;
-  return s.coat * (kDielectricF0 * average.x + average.y + ms * (1.0f - e));
+  return s.coat * (kDielectricF0 * split.x + split.y + s.coatMsFresnel * (1.0f - split.x - split.y));
 }
 
 // KHR_materials_transmission: a share t of the dielectric's diffuse layer passes through the
@@ -238,41 +237,40 @@ TL_FN vec3 tlThinTransmittance(SurfaceParams s, float cosTheta) {
   return s.transmitted * (vec3(1.0f) - tlLayerAlbedo(s, split)) * (1.0f - tlCoatAlbedo(s, abs(cosTheta)));
 }
 
-// The coat's lobe, c f_coat: f_ss + f_ms of a clear dielectric at the coat's roughness.
-TL_FN float tlBrdfCoat(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
+// One microfacet lobe, f_ss + f_ms, for light from l seen from v (n.l > 0): GGX of perceptual
+// roughness `roughness` (alpha = roughness^2) with Schlick's Fresnel from f0 to f90, and
+// Kulla & Conty's multiple scattering of Fresnel msFresnel and average albedo singleAverage.
+// The base's specular lobes and the coat's are each one.
+TL_FN vec3 tlGgxLobe(vec3 n, vec3 v, vec3 l, vec3 f0, vec3 f90, vec3 msFresnel, float roughness, float alpha,
+                     float singleAverage) {
   float nl = dot(n, l);
-  if (!(nl > 0.0f) || !(s.coat > 0.0f)) return 0.0f;
-  float nv = max(dot(n, v), kBrdfMinCosine);
-  vec3 hv = v + l;
-  float hl = length(hv);
-  vec3 h = hl > 1e-7f ? hv / hl : n;
-  float fresnel = kDielectricF0 + (1.0f - kDielectricF0) * tlSchlickWeight(max(dot(v, h), 0.0f));
-  float single = tlGgxDOfHalfVector(n, h, s.coatAlpha) * tlSmithVisibility(nl, nv, s.coatAlpha) * fresnel;
-  vec2 average = tlSpecularAverageSplit(s.coatRoughness);
-  float eAvg = average.x + average.y;
-  float ms = tlMultipleScatteringFresnel(vec3(kDielectricF0), 1.0f, eAvg).x;
-  float eo = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nv, s.coatRoughness));
-  float ei = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nl, s.coatRoughness));
-  float multiple = ms * (1.0f - eo) * (1.0f - ei) * kInvPi / max(1.0f - eAvg, 1e-6f);
-  return s.coat * (single + multiple);
-}
-
-// The specular lobes (f_ss + f_ms) alone.
-TL_FN vec3 tlBrdfSpecular(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
-  float nl = dot(n, l);
-  if (!(nl > 0.0f) || s.specular == 0.0f) return vec3(0.0f);
   float nv = max(dot(n, v), kBrdfMinCosine);
   vec3 hv = v + l;
   float hl = length(hv);
   vec3 h = hl > 1e-7f ? hv / hl : n;
   float vh = max(dot(v, h), 0.0f);
-  vec3 fresnel = s.f0 + (s.f90 - s.f0) * tlSchlickWeight(vh);
-  vec3 single = tlGgxDOfHalfVector(n, h, s.alpha) * tlSmithVisibility(nl, nv, s.alpha) * fresnel;
-  float eo = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nv, s.roughness));
-  float ei = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nl, s.roughness));
-  vec3 multiple = s.msFresnel * ((1.0f - eo) * (1.0f - ei) * kInvPi / max(1.0f - s.singleAverage, 1e-6f));
-  if (!(s.coat > 0.0f)) return single + multiple;
-  return vec3(tlBrdfCoat(s, n, v, l)) + (single + multiple) * (1.0f - tlCoatAlbedo(s, nv));
+  vec3 fresnel = f0 + (f90 - f0) * tlSchlickWeight(vh);
+  vec3 single = tlGgxDOfHalfVector(n, h, alpha) * tlSmithVisibility(nl, nv, alpha) * fresnel;
+  float eo = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nv, roughness));
+  float ei = tlSingleScatteringAlbedo(tlSpecularAlbedoSplit(nl, roughness));
+  vec3 multiple = msFresnel * ((1.0f - eo) * (1.0f - ei) * kInvPi / max(1.0f - singleAverage, 1e-6f));
+  return single + multiple;
+}
+
+// The coat's lobe, c f_coat: a clear dielectric's at the coat's roughness.
+TL_FN float tlBrdfCoat(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
+  if (!(dot(n, l) > 0.0f) || !(s.coat > 0.0f)) return 0.0f;
+  return s.coat * tlGgxLobe(n, v, l, vec3(kDielectricF0), vec3(1.0f), vec3(s.coatMsFresnel), s.coatRoughness,
+                            s.coatAlpha, s.coatSingleAverage)
+                      .x;
+}
+
+// The specular lobes (f_ss + f_ms) alone, the coat's included.
+TL_FN vec3 tlBrdfSpecular(SurfaceParams s, vec3 n, vec3 v, vec3 l) {
+  if (!(dot(n, l) > 0.0f) || s.specular == 0.0f) return vec3(0.0f);
+  vec3 base = tlGgxLobe(n, v, l, s.f0, s.f90, s.msFresnel, s.roughness, s.alpha, s.singleAverage);
+  if (!(s.coat > 0.0f)) return base;
+  return vec3(tlBrdfCoat(s, n, v, l)) + base * (1.0f - tlCoatAlbedo(s, max(dot(n, v), kBrdfMinCosine)));
 }
 
 // The diffuse layer alone.
@@ -301,6 +299,15 @@ TL_FN SurfaceParams tlMaterialSurface(vec3 baseColor, float roughness, float met
 TL_FN SurfaceParams tlMaterialSurfaceFresnel(vec3 baseColor, float roughness, float metallic, vec4 fresnel, uint materials) {
   if (materials == kMaterialsAuthored) return tlSurfaceSpecular(baseColor, roughness, metallic, vec3(fresnel), fresnel.w);
   return tlLambertSurface(tlMaterialBaseColor(baseColor, materials));
+}
+
+// The same with the layers the reference adds: transmission (kept in every mode: a window still
+// lets the light in) and the clear coat (a specular layer: the Lambertian modes have none).
+TL_FN SurfaceParams tlMaterialSurfaceLayered(vec3 baseColor, float roughness, float metallic, vec4 fresnel,
+                                             float transmission, float coat, float coatRoughness, uint materials) {
+  SurfaceParams s =
+      tlSurfaceTransmitting(tlMaterialSurfaceFresnel(baseColor, roughness, metallic, fresnel, materials), transmission);
+  return materials == kMaterialsAuthored ? tlSurfaceCoated(s, coat, coatRoughness) : s;
 }
 
 // The surface a G-buffer texel describes (shared/gbuffer.h): gbuffer.baseColor (rgb, and the
@@ -333,7 +340,7 @@ TL_FN vec3 tlHemisphericalAlbedo(SurfaceParams s) {
   vec2 average = tlSpecularAverageSplit(s.roughness);
   vec3 specular = s.specular * (s.f0 * average.x + s.f90 * average.y + s.msFresnel * (1.0f - s.singleAverage));
   // A coat scales the base by its average (the view-side scaling averaged over the views).
-  float coat = tlCoatAverageAlbedo(s);
+  float coat = s.coatAverage;
   return vec3(coat) + (specular + s.diffuse * (vec3(1.0f) - s.layerAverage)) * (1.0f - coat);
 }
 
@@ -384,22 +391,29 @@ TL_FN float tlCoatSamplingProbability(SurfaceParams s, float nv) {
   return clamp(coat / max(tlLuminance(tlEnvironmentAlbedo(s, nv)), 1e-6f), 0.0f, 1.0f);
 }
 
+// A reflection of the view about a normal drawn from GGX's visible normals of `alpha`, seen from
+// tlSamplingView(n, v); and the solid-angle density of a direction l so drawn. The base's
+// single-scattering lobe and the coat's are drawn this way.
+TL_FN vec3 tlSampleVisibleReflection(vec3 n, vec3 v, float alpha, vec2 u) {
+  vec3 w = tlSamplingView(n, v);
+  mat3 basis = tlBasisFromNormal(n);
+  vec3 h = basis * tlSampleGgxVisibleNormal(transpose(basis) * w, alpha, u);
+  return reflect(-w, h);
+}
+TL_FN float tlVisibleReflectionPdf(vec3 n, vec3 v, vec3 l, float alpha) {
+  vec3 w = tlSamplingView(n, v);
+  vec3 h = normalize(w + l);
+  float nw = max(dot(n, w), kBrdfMinCosine);
+  // Visible normals: D_w(h) = G1(w) max(w.h, 0) D(h) / n.w; reflection: / (4 w.h).
+  return dot(w, h) > 0.0f ? tlSmithG1(nw, alpha) * tlGgxDOfHalfVector(n, h, alpha) / (4.0f * nw) : 0.0f;
+}
+
 // A direction drawn with the mixture tlBrdfPdf describes; `choice` picks the lobe.
 TL_FN vec3 tlSampleBrdf(SurfaceParams s, vec3 n, vec3 v, float specularProbability, vec2 u, float choice) {
   float coatProbability = tlCoatSamplingProbability(s, dot(n, v));
-  if (choice < coatProbability) {
-    vec3 w = tlSamplingView(n, v);
-    mat3 basis = tlBasisFromNormal(n);
-    vec3 h = basis * tlSampleGgxVisibleNormal(transpose(basis) * w, s.coatAlpha, u);
-    return reflect(-w, h);
-  }
+  if (choice < coatProbability) return tlSampleVisibleReflection(n, v, s.coatAlpha, u);
   if (coatProbability > 0.0f) choice = (choice - coatProbability) / (1.0f - coatProbability);
-  if (choice < specularProbability) {
-    vec3 w = tlSamplingView(n, v);
-    mat3 basis = tlBasisFromNormal(n);
-    vec3 h = basis * tlSampleGgxVisibleNormal(transpose(basis) * w, s.alpha, u);
-    return reflect(-w, h);
-  }
+  if (choice < specularProbability) return tlSampleVisibleReflection(n, v, s.alpha, u);
   return tlLocalToWorld(tlSampleCosineHemisphere(u), n);
 }
 
@@ -408,21 +422,10 @@ TL_FN float tlBrdfPdf(SurfaceParams s, vec3 n, vec3 v, vec3 l, float specularPro
   float nl = dot(n, l);
   if (!(nl > 0.0f)) return 0.0f;
   float pdf = (1.0f - specularProbability) * nl * kInvPi;
-  if (specularProbability > 0.0f) {
-    vec3 w = tlSamplingView(n, v);
-    vec3 h = normalize(w + l);
-    float nw = max(dot(n, w), kBrdfMinCosine);
-    // Visible normals: D_w(h) = G1(w) max(w.h, 0) D(h) / n.w; reflection: / (4 w.h).
-    if (dot(w, h) > 0.0f) pdf += specularProbability * tlSmithG1(nw, s.alpha) * tlGgxDOfHalfVector(n, h, s.alpha) / (4.0f * nw);
-  }
+  if (specularProbability > 0.0f) pdf += specularProbability * tlVisibleReflectionPdf(n, v, l, s.alpha);
   float coatProbability = tlCoatSamplingProbability(s, dot(n, v));
   if (!(coatProbability > 0.0f)) return pdf;
-  vec3 w = tlSamplingView(n, v);
-  vec3 h = normalize(w + l);
-  float nw = max(dot(n, w), kBrdfMinCosine);
-  float coatPdf =
-      dot(w, h) > 0.0f ? tlSmithG1(nw, s.coatAlpha) * tlGgxDOfHalfVector(n, h, s.coatAlpha) / (4.0f * nw) : 0.0f;
-  return (1.0f - coatProbability) * pdf + coatProbability * coatPdf;
+  return (1.0f - coatProbability) * pdf + coatProbability * tlVisibleReflectionPdf(n, v, l, s.coatAlpha);
 }
 TL_END
 #endif

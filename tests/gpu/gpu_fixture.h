@@ -12,8 +12,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace tl::test {
@@ -67,6 +69,36 @@ inline void renderFresh(session::Session& s, const std::string& path, uint32_t w
   s.requestBuffer(finalImageOf(path));
   for (const char* b : buffers) s.requestBuffer(b);
   s.renderFrames(1);
+}
+
+// The mean RGB of each instance's pixels of `image` away from its edges (all 8 neighbours on the
+// same instance in gbuffer.instanceId, which the last frame read back: no pixel mixes in what
+// lies beside it), by instance name, and how many pixels made it.
+struct InstanceMean {
+  glm::dvec3 rgb{0.0};
+  size_t pixels = 0;
+};
+inline std::map<std::string, InstanceMean> interiorMeanByInstance(const session::Session& s, std::string_view image) {
+  const auto& readback = s.buffer(image);
+  const auto texels = readback.texels();
+  const uint32_t channels = readback.channels(), width = readback.extent.width, height = readback.extent.height;
+  const auto ids = s.buffer("gbuffer.instanceId").texels();
+  std::map<std::string, InstanceMean> means;
+  for (uint32_t y = 1; y + 1 < height; ++y)
+    for (uint32_t x = 1; x + 1 < width; ++x) {
+      const float id = ids[size_t(y) * width + x];
+      if (id == 0.0f) continue;
+      bool inside = true;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) inside &= ids[size_t(int(y) + dy) * width + size_t(int(x) + dx)] == id;
+      if (!inside) continue;
+      const size_t p = (size_t(y) * width + x) * channels;
+      auto& m = means[s.scene().instances[size_t(id) - 1].name];
+      m.rgb += glm::dvec3(texels[p], texels[p + 1], texels[p + 2]);
+      ++m.pixels;
+    }
+  for (auto& [name, m] : means) m.rgb /= double(m.pixels);
+  return means;
 }
 
 // Sum of |a - b| over sum of |b|, over the RGB of two RGBA images: how far image a is from b.

@@ -34,27 +34,12 @@ TEST_P(MaterialExtensionsTest, IorSpecularAndUnlitShowTheirClosedForms) {
   const uint32_t width = 192, height = 108;
   s.settings().referenceSamplesPerFrame = 16;
   renderFresh(s, path, width, height, path == "reference" ? 2 : (path == "direct" ? 1 : 16), {"gbuffer.instanceId"});
-  const auto image = s.buffer(finalImageOf(path)).texels();
-  const uint32_t channels = s.buffer(finalImageOf(path)).channels();
-  const auto ids = s.buffer("gbuffer.instanceId").texels();
-  // Each quad's pixels away from its edges (all 8 neighbours on the same quad): no pixel mixes the sky in.
-  std::map<std::string, std::pair<double, size_t>> sums;
-  for (uint32_t y = 1; y + 1 < height; ++y)
-    for (uint32_t x = 1; x + 1 < width; ++x) {
-      const float id = ids[size_t(y) * width + x];
-      if (id == 0.0f) continue;
-      bool inside = true;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) inside &= ids[size_t(int(y) + dy) * width + size_t(int(x) + dx)] == id;
-      if (!inside) continue;
-      const size_t p = (size_t(y) * width + x) * channels;
-      auto& e = sums[s.scene().instances[size_t(id) - 1].name];
-      e.first += (image[p] + image[p + 1] + image[p + 2]) / 3.0;
-      ++e.second;
-    }
+  // Each quad's pixels away from its edges: no pixel mixes the sky in.
+  auto means = interiorMeanByInstance(s, finalImageOf(path));
   for (const Expected& e : kExpected) {
-    ASSERT_GT(sums[e.name].second, 20u) << e.name;
-    const double mean = sums[e.name].first / double(sums[e.name].second);
+    ASSERT_GT(means[e.name].pixels, 20u) << e.name;
+    const glm::dvec3 rgb = means[e.name].rgb;
+    const double mean = (rgb.r + rgb.g + rgb.b) / 3.0;
     std::printf("[ ior ] %-9s %-13s %.5f, closed form %.5f (%+.2f%%)\n", path.c_str(), e.name, mean, e.value,
                 e.value > 0.0 ? 100.0 * (mean / e.value - 1.0) : 0.0);
     EXPECT_NEAR(mean, e.value, 0.03 * e.value + 0.002) << path << " " << e.name;

@@ -8,21 +8,15 @@
 //     over a white floor under a sky of 1 shows 1 everywhere, in every path;
 //   content/glass_volume.gltf: an unlit white wall seen through 0.5 m of tinted glass shows
 //     (1 - F0)^2 attenuationColor (two faces, one attenuation distance).
+#include "../common/fresnel.h"
+#include "gpu_fixture.h"
+
 #include <cmath>
 #include <cstdio>
 #include <string>
 
-#include "gpu_fixture.h"
-
 namespace tl::test {
 namespace {
-
-// Fresnel's reflectance of unpolarised light from air into a dielectric of index n.
-double fresnelReflectance(double n, double cosI) {
-  const double sinT = std::sqrt(std::max(0.0, 1.0 - cosI * cosI)) / n, cosT = std::sqrt(1.0 - sinT * sinT);
-  const double s = (cosI - n * cosT) / (cosI + n * cosT), p = (cosT - n * cosI) / (cosT + n * cosI);
-  return 0.5 * (s * s + p * p);
-}
 
 // The mean RGB of the image's pixels in [x0, x1) x [y0, y1) (fractions of its size).
 glm::dvec3 regionMean(const std::vector<float>& image, uint32_t channels, uint32_t width, uint32_t height, double x0,

@@ -9,6 +9,7 @@
 //     albedo, density = the pdf it reports);
 //   - KHR_materials_ior / specular: a white dielectric still reflects everything at any F0 and
 //     F90, and F0 from the ior is Fresnel's head-on reflectance.
+#include "../common/fresnel.h"
 #include "shared/sampling.h"
 #include "shared/scene.h"
 #include "shared/shading.h"
@@ -328,14 +329,6 @@ TEST(Brdf, SmoothBlackDielectricReflectsFresnelsReflectanceHeadOn) {
   }
 }
 
-// Fresnel's reflectance of unpolarised light from air into a dielectric of index n at cos theta:
-// the closed form a smooth pane's transmission is held to (not the BRDF's tables).
-double fresnelReflectance(double n, double cosI) {
-  const double sinT = std::sqrt(std::max(0.0, 1.0 - cosI * cosI)) / n, cosT = std::sqrt(1.0 - sinT * sinT);
-  const double s = (cosI - n * cosT) / (cosI + n * cosT), p = (cosT - n * cosI) / (cosT + n * cosI);
-  return 0.5 * (s * s + p * p);
-}
-
 // KHR_materials_transmission: what a white transmitting surface reflects (quadrature of the
 // BRDF, at roughnesses the quadrature resolves) and what it passes (tlThinTransmittance) add up
 // to all the light, at any share t and angle; and a smooth clear pane passes 1 - Fresnel's
@@ -357,7 +350,7 @@ TEST(Brdf, TransmittingSurfaceReflectsAndPassesAllTheLight) {
   const SurfaceParams pane = tlSurfaceTransmitting(tlSurface(amber, 0.0f, 0.0f), 1.0f);
   for (double mu : {1.0, 0.857, 0.5, 0.26}) {
     const vec3 passed = tlThinTransmittance(pane, float(mu));
-    const double exact = 1.0 - fresnelReflectance(1.5, mu);
+    const double exact = 1.0 - tl::test::fresnelReflectance(1.5, mu);
     std::printf("amber pane at cos %.3f: passes %.5f of its colour, 1 - Fresnel %.5f\n", mu, passed.x / amber.x, exact);
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(passed[c] / amber[c], exact, 0.025 * exact) << "cos " << mu << " channel " << c;
